@@ -1,0 +1,78 @@
+#version 460
+#extension GL_GOOGLE_include_directive : require
+// Constraint stage (Jacobi: every correction is computed from p_in, the physics output):
+// stretch limit on structural and shear springs, brute-force self-collision, then sphere
+// colliders with friction, and the velocity update. Reads p_in, writes p_out.
+#include "bindings.glsl"
+#include "springs.glsl"
+
+layout(local_size_x_id = 0, local_size_y_id = 1, local_size_z = 1) in;
+
+void main() {
+    uvec2 cell = gl_GlobalInvocationID.xy;
+    if (cell.x >= obj.dims.x || cell.y >= obj.dims.y) return;
+    uint i = cell.x + cell.y * obj.dims.x;
+
+    Particle p = p_in[i];
+    if (p.pos.w > 0.5) {
+        p_out[i] = Particle(p.pos, vec4(0.0));
+        return;
+    }
+    vec3 x = p.pos.xyz;
+    vec3 v = p.vel.xyz;
+    vec3 correction = vec3(0.0);
+
+    // Springs may not stretch past (1 + stretch_limit) * rest: each end moves half the excess
+    // (all of it when the other end is pinned).
+    if ((obj.flags & OBJ_STRETCH_LIMIT) != 0u) {
+        for (int s = 0; s < 8; ++s) {
+            ivec3 spring = SPRINGS[s];
+            int j = neighbour(ivec2(cell), spring.xy, obj.dims);
+            if (j < 0 || obj.stiffness[spring.z] == 0.0) continue;
+            vec3 to_j = p_in[j].pos.xyz - x;
+            float d = length(to_j);
+            float excess = d - rest_length(spring, obj.spacing, obj.rest_scale) * (1.0 + obj.stretch_limit);
+            if (excess > 0.0) {
+                correction += (to_j / d) * (excess * (is_pinned(uint(j)) ? 1.0 : 0.5));
+            }
+        }
+    }
+
+    // Self-collision: particles closer than self_distance push apart, except pairs that are
+    // closer than that in the rest state (grid neighbours), which the springs already keep.
+    if ((obj.flags & OBJ_SELF_COLLISION) != 0u) {
+        float reach = obj.self_distance;
+        uint n = particle_count();
+        for (uint j = 0u; j < n; ++j) {
+            ivec2 other = ivec2(int(j % obj.dims.x), int(j / obj.dims.x));
+            vec2 rest = vec2(other - ivec2(cell)) * obj.spacing;
+            if (dot(rest, rest) < reach * reach) continue;  // includes j == i
+            vec3 to_j = p_in[j].pos.xyz - x;
+            float d = length(to_j);
+            if (d < reach && d > 0.0) {
+                correction += (to_j / d) * ((d - reach) * (is_pinned(j) ? 1.0 : 0.5));
+            }
+        }
+    }
+
+    x += correction;
+    v += correction / g.dt;  // velocity follows the position correction
+
+    // Sphere colliders: project out to radius + margin, remove the approaching normal velocity,
+    // scale the tangential velocity by (1 - friction).
+    for (uint s = 0u; s < g.sphere_count; ++s) {
+        vec3 c = spheres[s].xyz;
+        float reach = spheres[s].w + obj.margin;
+        vec3 from_c = x - c;
+        float d = length(from_c);
+        if (d < reach) {
+            vec3 n = d > 0.0 ? from_c / d : vec3(0.0, 1.0, 0.0);
+            x = c + n * reach;
+            float vn = dot(v, n);
+            vec3 vt = v - vn * n;
+            v = vt * (1.0 - obj.friction) + max(vn, 0.0) * n;
+        }
+    }
+
+    p_out[i] = Particle(vec4(x, 0.0), vec4(v, 0.0));
+}

@@ -1,0 +1,17 @@
+// Descriptor bindings of the simulation pipelines (one set per object and ping-pong direction).
+// The host side is src/sim/gpu.rs (SimBinding); the order here is part of the layout contract.
+#ifndef MSD_BINDINGS_GLSL
+#define MSD_BINDINGS_GLSL
+#include "layout.glsl"
+
+layout(std430, set = 0, binding = 0) readonly buffer GlobalsBuf { Globals g; };
+layout(std430, set = 0, binding = 1) readonly buffer ObjectBuf { ObjectParams obj; };
+layout(std430, set = 0, binding = 2) readonly buffer StateIn { Particle p_in[]; };
+layout(std430, set = 0, binding = 3) writeonly buffer StateOut { Particle p_out[]; };
+layout(std430, set = 0, binding = 4) readonly buffer SphereBuf { vec4 spheres[]; }; // xyz centre, w radius
+layout(std430, set = 0, binding = 5) writeonly buffer SurfaceBuf { SurfaceVertex surface[]; };
+
+uint particle_count() { return obj.dims.x * obj.dims.y; }
+bool is_pinned(uint i) { return p_in[i].pos.w > 0.5; }
+
+#endif

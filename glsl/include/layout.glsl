@@ -1,0 +1,52 @@
+// std430 layouts shared by every simulation shader: the single source of truth for GPU structs.
+// Mirrored in src/sim/gpu_types.rs (#[repr(C)] + bytemuck); tests/layout.rs checks every member
+// offset and array stride of these structs in the compiled SPIR-V against the Rust mirrors.
+// Units: metres, seconds, kilograms, newtons.
+#ifndef MSD_LAYOUT_GLSL
+#define MSD_LAYOUT_GLSL
+
+// Number of tube vertices around each rope node (the paper's eight).
+#define ROPE_RING 8
+
+// Bits of ObjectParams.flags.
+#define OBJ_STRETCH_LIMIT  1u   // enforce the maximum spring elongation
+#define OBJ_SELF_COLLISION 2u   // brute-force particle-particle self-collision
+
+struct Particle {
+    vec4 pos;   // xyz position [m]; w = 1 pinned, 0 free
+    vec4 vel;   // xyz velocity [m/s]; w unused (0)
+};
+
+// What the renderer draws: a cloth particle or a rope tube vertex, with its smoothed normal.
+struct SurfaceVertex {
+    vec4 pos;     // xyz position [m]; w = 1
+    vec4 normal;  // xyz unit normal; w = 0
+};
+
+struct Globals {
+    vec3 gravity;        float dt;             // [m/s^2], substep length [s]
+    vec3 wind_origin;    float wind_force;     // cone apex [m], force at full strength [N per particle]
+    vec3 wind_dir;       float wind_cos_full;  // unit axis; cos of the full-force half-angle
+    float wind_cos_att;                        // cos of the half-angle where the force reaches 0
+    uint wind_enabled;                         // 0 or 1
+    uint sphere_count;                         // spheres[] entries in use
+    uint pad0;
+};
+
+struct ObjectParams {
+    uvec2 dims;            // grid columns, rows (a rope is nodes x 1)
+    vec2 spacing;          // rest distance between grid neighbours along columns, rows [m]
+    vec4 stiffness;        // x structural, y shear, z bending [N/m]; w spring damping [N s/m]
+    vec4 rest_scale;       // rest length = scale * grid distance; x structural, y shear, z bending
+    float mass;            // per particle [kg]
+    float drag;            // Stokes coefficient c, drag force -c v [N s/m]
+    float stretch_limit;   // maximum elongation as a fraction of rest length
+    float friction;        // 0..1: fraction of tangential velocity removed on sphere contact
+    float margin;          // distance kept from sphere surfaces [m]
+    float self_distance;   // particles closer than this push apart [m]
+    float rope_radius;     // rope tube radius [m]
+    uint flags;            // OBJ_* bits
+    vec2 ring_weights[ROPE_RING]; // rope tube vertex offsets in (side, up) units of rope_radius
+};
+
+#endif

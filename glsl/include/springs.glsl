@@ -1,0 +1,27 @@
+// The spring network of a grid: 12 springs per interior particle (the paper's structural, shear
+// and bending springs). A rope is a grid of nodes x 1: its vertical springs fall out of bounds.
+#ifndef MSD_SPRINGS_GLSL
+#define MSD_SPRINGS_GLSL
+
+#define SPRING_STRUCTURAL 0
+#define SPRING_SHEAR 1
+#define SPRING_BENDING 2
+
+// xy: grid offset to the other particle, z: spring type.
+const ivec3 SPRINGS[12] = ivec3[12](
+    ivec3(1, 0, 0), ivec3(-1, 0, 0), ivec3(0, 1, 0), ivec3(0, -1, 0),
+    ivec3(1, 1, 1), ivec3(-1, -1, 1), ivec3(1, -1, 1), ivec3(-1, 1, 1),
+    ivec3(2, 0, 2), ivec3(-2, 0, 2), ivec3(0, 2, 2), ivec3(0, -2, 2));
+
+// Index of the particle at `cell + offset`, or -1 when it falls outside the grid.
+int neighbour(ivec2 cell, ivec2 offset, uvec2 dims) {
+    ivec2 o = cell + offset;
+    if (o.x < 0 || o.y < 0 || o.x >= int(dims.x) || o.y >= int(dims.y)) return -1;
+    return o.x + o.y * int(dims.x);
+}
+
+float rest_length(ivec3 spring, vec2 spacing, vec4 rest_scale) {
+    return rest_scale[spring.z] * length(vec2(spring.xy) * spacing);
+}
+
+#endif

@@ -1,0 +1,185 @@
+//! `msdsim simulate`: headless run of a preset.
+
+use crate::error::UserError;
+use crate::scene;
+use crate::sim::gpu::{FrameTiming, GpuSim};
+use crate::sim::model::ObjectKind;
+use crate::vk::{ContextOptions, GpuContext};
+use anyhow::{Context as _, Result};
+use clap::Args;
+use std::io::Write as _;
+use std::path::{Path, PathBuf};
+
+#[derive(Debug, Args)]
+pub struct SimulateArgs {
+    /// Scene preset (TOML), e.g. presets/curtain.toml.
+    #[arg(long, value_name = "FILE")]
+    pub preset: PathBuf,
+    /// Frames to simulate (each `sim.frame_dt` seconds of `sim.substeps` substeps).
+    #[arg(long, default_value_t = 60, value_parser = clap::value_parser!(u64).range(1..=10_000_000))]
+    pub frames: u64,
+    /// Override a preset value, e.g. --set sim.substeps=32 --set cloth.curtain.mass=0.02 (repeatable).
+    #[arg(long = "set", value_name = "KEY=VALUE")]
+    pub overrides: Vec<String>,
+    /// Write the final state (time, substeps, every object's positions and velocities) as JSON.
+    #[arg(long, value_name = "FILE")]
+    pub out: Option<PathBuf>,
+    /// Print only the summary, not a line per frame.
+    #[arg(long)]
+    pub quiet: bool,
+}
+
+#[derive(serde::Serialize)]
+struct StateFile<'a> {
+    preset: String,
+    device: String,
+    /// Simulated time [s].
+    time: f64,
+    frames: u64,
+    substeps: u64,
+    substep_dt: f64,
+    objects: Vec<ObjectOut<'a>>,
+}
+
+#[derive(serde::Serialize)]
+struct ObjectOut<'a> {
+    kind: ObjectKind,
+    name: &'a str,
+    /// [columns, rows]; a rope is [nodes, 1].
+    dims: [u32; 2],
+    pinned: Vec<usize>,
+    /// [m]
+    positions: Vec<[f32; 3]>,
+    /// [m/s]
+    velocities: Vec<[f32; 3]>,
+}
+
+pub fn run(args: &SimulateArgs, options: &ContextOptions) -> Result<()> {
+    let scene = scene::load(&args.preset, &args.overrides)?;
+    let model = scene::to_model(&scene);
+    // Claim the output file before simulating, so a bad path fails before any work is done.
+    let out = args.out.as_deref().map(OutFile::create).transpose()?;
+
+    let ctx = GpuContext::new(options)?;
+    println!("device: {}", ctx.info());
+    println!(
+        "preset: {} ({} objects, {} spheres, {} substeps of {:.3} ms per frame)",
+        args.preset.display(),
+        model.objects.len(),
+        model.spheres.len(),
+        model.substeps,
+        model.dt() * 1e3
+    );
+    let mut sim = GpuSim::new(&ctx, &model)?;
+    let result = simulate(&ctx, &mut sim, args, &model, out);
+    sim.destroy(&ctx);
+    result?;
+    crate::cli::check_validation(&ctx)
+}
+
+fn simulate(
+    ctx: &GpuContext,
+    sim: &mut GpuSim,
+    args: &SimulateArgs,
+    model: &crate::sim::model::SimModel,
+    out: Option<OutFile>,
+) -> Result<()> {
+    let mut timings: Vec<FrameTiming> = Vec::with_capacity(args.frames.min(100_000) as usize);
+    for frame in 1..=args.frames {
+        let timing = sim.step_frame(ctx).with_context(|| format!("frame {frame}"))?;
+        if let Some(t) = timing {
+            if !args.quiet {
+                println!(
+                    "frame {frame:>6}  gpu {:>8.3} ms  (physics {:.3}, constraints {:.3}, surface {:.3})",
+                    t.total_ms, t.physics_ms, t.constraints_ms, t.surface_ms
+                );
+            }
+            timings.push(t);
+        }
+    }
+    print_summary(sim, &timings);
+
+    if let Some(out) = out {
+        let states = sim.read_states(ctx)?;
+        let objects = model
+            .objects
+            .iter()
+            .zip(&states)
+            .map(|(o, s)| ObjectOut {
+                kind: o.kind,
+                name: &o.name,
+                dims: o.dims,
+                pinned: o.pinned.iter().enumerate().filter(|(_, p)| **p).map(|(i, _)| i).collect(),
+                positions: s.particles.iter().map(|p| [p.pos[0], p.pos[1], p.pos[2]]).collect(),
+                velocities: s.particles.iter().map(|p| [p.vel[0], p.vel[1], p.vel[2]]).collect(),
+            })
+            .collect();
+        let file = StateFile {
+            preset: args.preset.display().to_string(),
+            device: ctx.info().name.clone(),
+            time: sim.time(),
+            frames: sim.frames(),
+            substeps: sim.substeps_done(),
+            substep_dt: model.dt(),
+            objects,
+        };
+        out.commit(&file)?;
+    }
+    Ok(())
+}
+
+fn print_summary(sim: &GpuSim, timings: &[FrameTiming]) {
+    println!("simulated {:.4} s in {} frames ({} substeps)", sim.time(), sim.frames(), sim.substeps_done());
+    if timings.is_empty() {
+        println!("GPU timing: not available (the device has no timestamps)");
+        return;
+    }
+    let stat = |f: fn(&FrameTiming) -> f64| {
+        let mut v: Vec<f64> = timings.iter().map(f).collect();
+        v.sort_by(|a, b| a.total_cmp(b));
+        let mean = v.iter().sum::<f64>() / v.len() as f64;
+        (mean, v[v.len() / 2], v[0], v[v.len() - 1])
+    };
+    let (mean, median, min, max) = stat(|t| t.total_ms);
+    println!(
+        "GPU frame time: mean {mean:.3} ms, median {median:.3}, min {min:.3}, max {max:.3} ({:.0} frames/s)",
+        1e3 / median.max(1e-9)
+    );
+    let (p, ..) = stat(|t| t.physics_ms);
+    let (c, ..) = stat(|t| t.constraints_ms);
+    let (s, ..) = stat(|t| t.surface_ms);
+    println!("GPU stage means: physics {p:.3} ms, constraints {c:.3} ms, surface {s:.3} ms");
+}
+
+/// An output file claimed up front and written atomically (temporary file, then rename).
+struct OutFile {
+    path: PathBuf,
+    tmp: PathBuf,
+    file: std::fs::File,
+}
+
+impl OutFile {
+    fn create(path: &Path) -> Result<Self> {
+        let mut tmp = path.as_os_str().to_owned();
+        tmp.push(".partial");
+        let tmp = PathBuf::from(tmp);
+        let file = std::fs::File::create(&tmp)
+            .map_err(|e| UserError(format!("--out {}: cannot write: {e}", path.display())))?;
+        Ok(Self { path: path.to_path_buf(), tmp, file })
+    }
+
+    fn commit(mut self, value: &impl serde::Serialize) -> Result<()> {
+        let json = serde_json::to_vec(value).context("serialising the state")?;
+        self.file
+            .write_all(&json)
+            .and_then(|_| self.file.sync_all())
+            .and_then(|_| std::fs::rename(&self.tmp, &self.path))
+            .with_context(|| format!("writing {}", self.path.display()))
+    }
+}
+
+impl Drop for OutFile {
+    fn drop(&mut self) {
+        let _ = std::fs::remove_file(&self.tmp);
+    }
+}

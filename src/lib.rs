@@ -1,0 +1,12 @@
+//! msdsim: a GPU mass-spring-damper simulator for cloth and ropes on raw Vulkan compute.
+//!
+//! Layers, bottom up: `vk` (the only place with `unsafe` and ash), `shaders` (GLSL compile and
+//! SPIR-V layout reading), `sim` (model, GPU simulation, CPU reference), `scene` (TOML presets),
+//! `cli` (the commands).
+
+pub mod cli;
+pub mod error;
+pub mod scene;
+pub mod shaders;
+pub mod sim;
+pub mod vk;

@@ -1,0 +1,33 @@
+//! The `msdsim` binary: parses the command line, runs it, and turns errors into a one-line
+//! message and an exit code (2: bad input, 1: other failures). No panic reaches the user.
+
+use clap::Parser;
+use msdsim::error::{exit, UserError};
+
+fn main() {
+    env_logger::Builder::from_env(env_logger::Env::default().default_filter_or("warn,msdsim=warn"))
+        .format_timestamp(None)
+        .init();
+    std::panic::set_hook(Box::new(|info| {
+        eprintln!("msdsim: internal error (a bug; please report it): {info}");
+    }));
+    let cli = msdsim::cli::Cli::parse();
+    let code = match std::panic::catch_unwind(|| msdsim::cli::run(cli)) {
+        Ok(Ok(())) => 0,
+        Ok(Err(e)) => {
+            let line = format!("{e:#}").replace('\n', " ");
+            eprintln!("msdsim: error: {line}");
+            if e.chain().any(|c| c.is::<UserError>() || is_selector_error(c)) {
+                exit::BAD_INPUT
+            } else {
+                exit::FAILURE
+            }
+        }
+        Err(_) => exit::FAILURE,
+    };
+    std::process::exit(code);
+}
+
+fn is_selector_error(e: &(dyn std::error::Error + 'static)) -> bool {
+    matches!(e.downcast_ref::<msdsim::vk::VkError>(), Some(msdsim::vk::VkError::DeviceSelector(_)))
+}

@@ -1,0 +1,127 @@
+//! Scene preset -> simulation model: initial positions, pins, derived wind cone.
+
+use super::{Cloth, ClothPins, Orientation, Rope, RopePins, Scene};
+use crate::sim::model::{default_ring_weights, ObjectKind, ObjectModel, SimModel, SphereModel, WindModel};
+use glam::DVec3;
+
+/// Builds the model of a validated scene.
+pub fn to_model(scene: &Scene) -> SimModel {
+    let w = &scene.wind;
+    let wind = w.enabled.then(|| {
+        let cone_cos = |radius: f64| w.reference_distance / w.reference_distance.hypot(radius);
+        WindModel {
+            origin: DVec3::from_array(w.origin),
+            direction: DVec3::from_array(w.direction).normalize(),
+            force: w.force,
+            cos_full: cone_cos(w.full_force_radius),
+            cos_att: cone_cos(w.full_force_radius + w.attenuation_radius),
+        }
+    });
+    SimModel {
+        gravity: DVec3::from_array(scene.sim.gravity),
+        frame_dt: scene.sim.frame_dt,
+        substeps: scene.sim.substeps,
+        wind,
+        spheres: scene
+            .spheres
+            .iter()
+            .map(|s| SphereModel { center: DVec3::from_array(s.center), radius: s.radius })
+            .collect(),
+        objects: scene.cloths.iter().map(cloth).chain(scene.ropes.iter().map(rope)).collect(),
+    }
+}
+
+fn cloth(c: &Cloth) -> ObjectModel {
+    let [cols, rows] = c.resolution;
+    let spacing = [c.size[0] / (cols - 1) as f64, c.size[1] / (rows - 1) as f64];
+    let down = match c.orientation {
+        Orientation::Vertical => DVec3::NEG_Y,
+        Orientation::Horizontal => DVec3::Z,
+    };
+    let origin = DVec3::from_array(c.origin);
+    let n = cols as usize * rows as usize;
+    let mut positions = Vec::with_capacity(n);
+    let mut pinned = Vec::with_capacity(n);
+    for r in 0..rows {
+        for col in 0..cols {
+            positions.push(origin + DVec3::X * (col as f64 * spacing[0]) + down * (r as f64 * spacing[1]));
+            let (left, right, top, bottom) = (col == 0, col == cols - 1, r == 0, r == rows - 1);
+            pinned.push(match c.pin {
+                ClothPins::None => false,
+                ClothPins::TopRow => top,
+                ClothPins::TopCorners => top && (left || right),
+                ClothPins::LeftColumn => left,
+                ClothPins::Corners => (top || bottom) && (left || right),
+            });
+        }
+    }
+    for p in &c.pinned {
+        pinned[(p[0] + p[1] * cols) as usize] = true;
+    }
+    ObjectModel {
+        kind: ObjectKind::Cloth,
+        name: c.name.clone(),
+        dims: c.resolution,
+        spacing,
+        stiffness: c.stiffness.to_array(),
+        rest_scale: c.rest_scale.to_array(),
+        damping: c.damping,
+        mass: c.mass,
+        drag: c.drag,
+        friction: c.friction,
+        margin: c.collision_margin,
+        stretch_limit: c.stretch_limit,
+        self_distance: c
+            .self_collision
+            .then(|| c.self_collision_distance.unwrap_or(0.5 * spacing[0].min(spacing[1]))),
+        rope_radius: 0.0,
+        ring_weights: default_ring_weights(),
+        velocities: vec![DVec3::ZERO; n],
+        positions,
+        pinned,
+    }
+}
+
+fn rope(r: &Rope) -> ObjectModel {
+    let n = r.nodes as usize;
+    let (start, end) = (DVec3::from_array(r.start), DVec3::from_array(r.end));
+    let segment = start.distance(end) / (n - 1) as f64;
+    let positions: Vec<DVec3> = (0..n).map(|i| start.lerp(end, i as f64 / (n - 1) as f64)).collect();
+    let mut pinned: Vec<bool> = (0..n)
+        .map(|i| match r.pin {
+            RopePins::None => false,
+            RopePins::First => i == 0,
+            RopePins::Last => i == n - 1,
+            RopePins::Both => i == 0 || i == n - 1,
+        })
+        .collect();
+    for &p in &r.pinned {
+        pinned[p as usize] = true;
+    }
+    let mut ring_weights = default_ring_weights();
+    if let Some(w) = &r.ring_weights {
+        for (dst, src) in ring_weights.iter_mut().zip(w) {
+            *dst = *src;
+        }
+    }
+    ObjectModel {
+        kind: ObjectKind::Rope,
+        name: r.name.clone(),
+        dims: [r.nodes, 1],
+        spacing: [segment, segment],
+        stiffness: [r.stiffness, 0.0, r.bending_stiffness],
+        rest_scale: [r.rest_scale, 1.0, r.rest_scale],
+        damping: r.damping,
+        mass: r.mass,
+        drag: r.drag,
+        friction: r.friction,
+        margin: r.radius,
+        stretch_limit: r.stretch_limit,
+        self_distance: r.self_collision.then(|| r.self_collision_distance.unwrap_or(2.0 * r.radius)),
+        rope_radius: r.radius,
+        ring_weights,
+        velocities: vec![DVec3::ZERO; n],
+        positions,
+        pinned,
+    }
+}

@@ -1,0 +1,265 @@
+//! Scenes: the TOML preset format (these types), loading with `--set` overrides (`load`), range
+//! checks (`validate`) and the conversion to the simulation model (`build`).
+//!
+//! Every table rejects unknown keys. Units are SI: metres, seconds, kilograms, newtons.
+
+mod build;
+mod load;
+mod validate;
+
+pub use build::to_model;
+pub use load::{apply_override, load, parse};
+
+use serde::{Deserialize, Serialize};
+
+/// A whole scene: settings, wind, sphere colliders, cloths and ropes.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, Default)]
+#[serde(deny_unknown_fields)]
+pub struct Scene {
+    #[serde(default)]
+    pub sim: SimSettings,
+    #[serde(default)]
+    pub wind: Wind,
+    #[serde(default, rename = "sphere", skip_serializing_if = "Vec::is_empty")]
+    pub spheres: Vec<Sphere>,
+    #[serde(default, rename = "cloth", skip_serializing_if = "Vec::is_empty")]
+    pub cloths: Vec<Cloth>,
+    #[serde(default, rename = "rope", skip_serializing_if = "Vec::is_empty")]
+    pub ropes: Vec<Rope>,
+}
+
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SimSettings {
+    /// Substeps per frame.
+    #[serde(default = "defaults::substeps")]
+    pub substeps: u32,
+    /// Simulated time per frame [s].
+    #[serde(default = "defaults::frame_dt")]
+    pub frame_dt: f64,
+    /// Gravitational acceleration [m/s^2].
+    #[serde(default = "defaults::gravity")]
+    pub gravity: [f64; 3],
+}
+
+impl Default for SimSettings {
+    fn default() -> Self {
+        Self { substeps: defaults::substeps(), frame_dt: defaults::frame_dt(), gravity: defaults::gravity() }
+    }
+}
+
+/// The paper's wind: a cone from `origin` along `direction`. At `reference_distance` along the
+/// axis the force is full within `full_force_radius` of the axis and falls to zero over a further
+/// `attenuation_radius`.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Wind {
+    #[serde(default)]
+    pub enabled: bool,
+    /// Apex of the cone [m].
+    #[serde(default)]
+    pub origin: [f64; 3],
+    /// Axis of the cone (normalised on load).
+    #[serde(default = "defaults::wind_direction")]
+    pub direction: [f64; 3],
+    /// Force on each particle at full strength [N].
+    #[serde(default)]
+    pub force: f64,
+    /// [m]
+    #[serde(default = "defaults::one")]
+    pub full_force_radius: f64,
+    /// [m]
+    #[serde(default = "defaults::one")]
+    pub attenuation_radius: f64,
+    /// [m]
+    #[serde(default = "defaults::one")]
+    pub reference_distance: f64,
+}
+
+impl Default for Wind {
+    fn default() -> Self {
+        Self {
+            enabled: false,
+            origin: [0.0; 3],
+            direction: defaults::wind_direction(),
+            force: 0.0,
+            full_force_radius: 1.0,
+            attenuation_radius: 1.0,
+            reference_distance: 1.0,
+        }
+    }
+}
+
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Sphere {
+    /// [m]
+    pub center: [f64; 3],
+    /// [m]
+    pub radius: f64,
+}
+
+/// One value per spring type.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct PerSpring {
+    pub structural: f64,
+    pub shear: f64,
+    pub bending: f64,
+}
+
+impl PerSpring {
+    pub fn to_array(self) -> [f64; 3] {
+        [self.structural, self.shear, self.bending]
+    }
+}
+
+/// How a cloth grid is laid out at the start.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default)]
+#[serde(rename_all = "snake_case")]
+pub enum Orientation {
+    /// Columns along +x, rows along -y (a hanging curtain or flag).
+    #[default]
+    Vertical,
+    /// Columns along +x, rows along +z (a towel lying flat).
+    Horizontal,
+}
+
+/// Which cloth particles are pinned, besides any listed in `pinned`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default)]
+#[serde(rename_all = "snake_case")]
+pub enum ClothPins {
+    #[default]
+    None,
+    TopRow,
+    TopCorners,
+    LeftColumn,
+    Corners,
+}
+
+/// Which rope nodes are pinned, besides any listed in `pinned`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default)]
+#[serde(rename_all = "snake_case")]
+pub enum RopePins {
+    #[default]
+    None,
+    First,
+    Last,
+    Both,
+}
+
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Cloth {
+    pub name: String,
+    /// Particles along a row and along a column: [columns, rows].
+    pub resolution: [u32; 2],
+    /// Width and height of the grid [m].
+    pub size: [f64; 2],
+    /// Position of the particle at column 0, row 0 [m].
+    pub origin: [f64; 3],
+    #[serde(default)]
+    pub orientation: Orientation,
+    /// Mass of each particle [kg].
+    pub mass: f64,
+    /// Spring stiffness per type [N/m].
+    pub stiffness: PerSpring,
+    /// Rest length per type as a multiple of the grid distance (1 = the initial layout).
+    #[serde(default = "defaults::rest_scale")]
+    pub rest_scale: PerSpring,
+    /// Dashpot along every spring [N s/m].
+    #[serde(default)]
+    pub damping: f64,
+    /// Stokes drag coefficient [N s/m].
+    #[serde(default)]
+    pub drag: f64,
+    /// Maximum elongation of structural and shear springs, as a fraction of rest length.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub stretch_limit: Option<f64>,
+    /// Fraction of tangential velocity removed on sphere contact, 0..1.
+    #[serde(default)]
+    pub friction: f64,
+    /// Distance kept from sphere surfaces [m].
+    #[serde(default = "defaults::margin")]
+    pub collision_margin: f64,
+    #[serde(default)]
+    pub self_collision: bool,
+    /// Self-collision distance [m]; default half the smaller grid spacing.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub self_collision_distance: Option<f64>,
+    #[serde(default)]
+    pub pin: ClothPins,
+    /// Further pinned particles as [column, row].
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub pinned: Vec<[u32; 2]>,
+}
+
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Rope {
+    pub name: String,
+    /// Number of nodes.
+    pub nodes: u32,
+    /// First and last node at the start [m]; nodes are evenly spaced between them.
+    pub start: [f64; 3],
+    pub end: [f64; 3],
+    /// Mass of each node [kg].
+    pub mass: f64,
+    /// Stiffness of the springs between neighbouring nodes [N/m].
+    pub stiffness: f64,
+    /// Stiffness of the springs between nodes two apart [N/m].
+    #[serde(default)]
+    pub bending_stiffness: f64,
+    /// Rest length as a multiple of the initial node spacing.
+    #[serde(default = "defaults::one")]
+    pub rest_scale: f64,
+    /// Dashpot along every spring [N s/m].
+    #[serde(default)]
+    pub damping: f64,
+    /// Stokes drag coefficient [N s/m].
+    #[serde(default)]
+    pub drag: f64,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub stretch_limit: Option<f64>,
+    #[serde(default)]
+    pub friction: f64,
+    /// Tube radius [m]; also the distance kept from sphere surfaces.
+    pub radius: f64,
+    /// Offsets of the 8 tube vertices around a node in (side, up) units of the radius; default a circle.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub ring_weights: Option<Vec<[f64; 2]>>,
+    #[serde(default)]
+    pub self_collision: bool,
+    /// Self-collision distance [m]; default the tube diameter.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub self_collision_distance: Option<f64>,
+    #[serde(default)]
+    pub pin: RopePins,
+    /// Further pinned node indices.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub pinned: Vec<u32>,
+}
+
+mod defaults {
+    pub fn substeps() -> u32 {
+        16
+    }
+    pub fn frame_dt() -> f64 {
+        1.0 / 60.0
+    }
+    pub fn gravity() -> [f64; 3] {
+        [0.0, -9.81, 0.0]
+    }
+    pub fn wind_direction() -> [f64; 3] {
+        [0.0, 0.0, -1.0]
+    }
+    pub fn one() -> f64 {
+        1.0
+    }
+    pub fn margin() -> f64 {
+        0.01
+    }
+    pub fn rest_scale() -> super::PerSpring {
+        super::PerSpring { structural: 1.0, shear: 1.0, bending: 1.0 }
+    }
+}

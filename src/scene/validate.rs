@@ -1,0 +1,185 @@
+//! Range checks on a parsed scene. The first violation is reported as one line:
+//! `key = value: what is allowed (unit)`.
+
+use super::{Cloth, Rope, Scene};
+
+/// Largest grid side / rope length accepted before the device-memory check; beyond this the
+/// particle index arithmetic (32-bit) would overflow.
+const MAX_PARTICLES: u64 = 1 << 28;
+
+type Check = Result<(), String>;
+
+fn finite(key: &str, v: f64) -> Check {
+    if v.is_finite() {
+        Ok(())
+    } else {
+        Err(format!("{key} = {v}: must be a finite number"))
+    }
+}
+
+fn positive(key: &str, v: f64, unit: &str) -> Check {
+    if v.is_finite() && v > 0.0 {
+        Ok(())
+    } else {
+        Err(format!("{key} = {v}: must be > 0 ({unit})"))
+    }
+}
+
+fn non_negative(key: &str, v: f64, unit: &str) -> Check {
+    if v.is_finite() && v >= 0.0 {
+        Ok(())
+    } else {
+        Err(format!("{key} = {v}: must be >= 0 ({unit})"))
+    }
+}
+
+fn unit_interval(key: &str, v: f64) -> Check {
+    if (0.0..=1.0).contains(&v) {
+        Ok(())
+    } else {
+        Err(format!("{key} = {v}: must be between 0 and 1"))
+    }
+}
+
+fn vector(key: &str, v: [f64; 3]) -> Check {
+    if v.iter().all(|x| x.is_finite()) {
+        Ok(())
+    } else {
+        Err(format!("{key} = {v:?}: must be finite"))
+    }
+}
+
+pub(super) fn check(scene: &Scene) -> Check {
+    let s = &scene.sim;
+    if !(1..=4096).contains(&s.substeps) {
+        return Err(format!("sim.substeps = {}: must be between 1 and 4096", s.substeps));
+    }
+    if !(s.frame_dt.is_finite() && s.frame_dt > 0.0 && s.frame_dt <= 1.0) {
+        return Err(format!("sim.frame_dt = {}: must be > 0 and <= 1 (s)", s.frame_dt));
+    }
+    vector("sim.gravity", s.gravity)?;
+
+    let w = &scene.wind;
+    vector("wind.origin", w.origin)?;
+    vector("wind.direction", w.direction)?;
+    finite("wind.force", w.force)?;
+    non_negative("wind.full_force_radius", w.full_force_radius, "m")?;
+    non_negative("wind.attenuation_radius", w.attenuation_radius, "m")?;
+    positive("wind.reference_distance", w.reference_distance, "m")?;
+    if w.enabled && w.direction.iter().map(|x| x * x).sum::<f64>() == 0.0 {
+        return Err("wind.direction = [0, 0, 0]: must not be zero".into());
+    }
+
+    for (i, sphere) in scene.spheres.iter().enumerate() {
+        vector(&format!("sphere[{i}].center"), sphere.center)?;
+        positive(&format!("sphere[{i}].radius"), sphere.radius, "m")?;
+    }
+
+    let mut names = std::collections::HashSet::new();
+    for (i, c) in scene.cloths.iter().enumerate() {
+        check_cloth(&format!("cloth[{i}]"), c)?;
+        if !names.insert(c.name.as_str()) {
+            return Err(format!("cloth[{i}].name = \"{}\": another object has this name", c.name));
+        }
+    }
+    for (i, r) in scene.ropes.iter().enumerate() {
+        check_rope(&format!("rope[{i}]"), r)?;
+        if !names.insert(r.name.as_str()) {
+            return Err(format!("rope[{i}].name = \"{}\": another object has this name", r.name));
+        }
+    }
+    Ok(())
+}
+
+fn check_cloth(at: &str, c: &Cloth) -> Check {
+    if c.name.trim().is_empty() {
+        return Err(format!("{at}.name: must not be empty"));
+    }
+    let [cols, rows] = c.resolution;
+    if cols < 2 || rows < 2 {
+        return Err(format!("{at}.resolution = [{cols}, {rows}]: each side must be at least 2 particles"));
+    }
+    if cols as u64 * rows as u64 > MAX_PARTICLES {
+        return Err(format!(
+            "{at}.resolution = [{cols}, {rows}]: {} particles is more than the {MAX_PARTICLES} an object may have",
+            cols as u64 * rows as u64
+        ));
+    }
+    positive(&format!("{at}.size[0]"), c.size[0], "m")?;
+    positive(&format!("{at}.size[1]"), c.size[1], "m")?;
+    vector(&format!("{at}.origin"), c.origin)?;
+    positive(&format!("{at}.mass"), c.mass, "kg per particle")?;
+    for (name, k) in [
+        ("structural", c.stiffness.structural),
+        ("shear", c.stiffness.shear),
+        ("bending", c.stiffness.bending),
+    ] {
+        non_negative(&format!("{at}.stiffness.{name}"), k, "N/m")?;
+    }
+    for (name, k) in [
+        ("structural", c.rest_scale.structural),
+        ("shear", c.rest_scale.shear),
+        ("bending", c.rest_scale.bending),
+    ] {
+        positive(&format!("{at}.rest_scale.{name}"), k, "multiple of the grid distance")?;
+    }
+    non_negative(&format!("{at}.damping"), c.damping, "N s/m")?;
+    non_negative(&format!("{at}.drag"), c.drag, "N s/m")?;
+    if let Some(l) = c.stretch_limit {
+        non_negative(&format!("{at}.stretch_limit"), l, "fraction of rest length")?;
+    }
+    unit_interval(&format!("{at}.friction"), c.friction)?;
+    non_negative(&format!("{at}.collision_margin"), c.collision_margin, "m")?;
+    if let Some(d) = c.self_collision_distance {
+        positive(&format!("{at}.self_collision_distance"), d, "m")?;
+    }
+    for (k, p) in c.pinned.iter().enumerate() {
+        if p[0] >= cols || p[1] >= rows {
+            return Err(format!("{at}.pinned[{k}] = [{}, {}]: outside the {cols} x {rows} grid", p[0], p[1]));
+        }
+    }
+    Ok(())
+}
+
+fn check_rope(at: &str, r: &Rope) -> Check {
+    if r.name.trim().is_empty() {
+        return Err(format!("{at}.name: must not be empty"));
+    }
+    if r.nodes < 2 || r.nodes as u64 > MAX_PARTICLES / 8 {
+        return Err(format!("{at}.nodes = {}: must be between 2 and {}", r.nodes, MAX_PARTICLES / 8));
+    }
+    vector(&format!("{at}.start"), r.start)?;
+    vector(&format!("{at}.end"), r.end)?;
+    if r.start == r.end {
+        return Err(format!("{at}.end = {:?}: must differ from start", r.end));
+    }
+    positive(&format!("{at}.mass"), r.mass, "kg per node")?;
+    non_negative(&format!("{at}.stiffness"), r.stiffness, "N/m")?;
+    non_negative(&format!("{at}.bending_stiffness"), r.bending_stiffness, "N/m")?;
+    positive(&format!("{at}.rest_scale"), r.rest_scale, "multiple of the node spacing")?;
+    non_negative(&format!("{at}.damping"), r.damping, "N s/m")?;
+    non_negative(&format!("{at}.drag"), r.drag, "N s/m")?;
+    if let Some(l) = r.stretch_limit {
+        non_negative(&format!("{at}.stretch_limit"), l, "fraction of rest length")?;
+    }
+    unit_interval(&format!("{at}.friction"), r.friction)?;
+    positive(&format!("{at}.radius"), r.radius, "m")?;
+    if let Some(w) = &r.ring_weights {
+        if w.len() != 8 || w.iter().flatten().any(|x| !x.is_finite()) {
+            return Err(format!("{at}.ring_weights: must be 8 finite [side, up] pairs"));
+        }
+    }
+    if let Some(d) = r.self_collision_distance {
+        positive(&format!("{at}.self_collision_distance"), d, "m")?;
+    }
+    for (k, &p) in r.pinned.iter().enumerate() {
+        if p >= r.nodes {
+            return Err(format!(
+                "{at}.pinned[{k}] = {p}: a rope of {} nodes has indices 0..{}",
+                r.nodes,
+                r.nodes - 1
+            ));
+        }
+    }
+    Ok(())
+}

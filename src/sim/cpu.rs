@@ -1,0 +1,332 @@
+//! CPU reference of the model in `sim::model`, in f64 and plain Rust, used by the tests to check
+//! the GPU simulation. It follows the model's definition (below), not the shader code.
+//!
+//! One substep of each object:
+//! 1. Physics (symplectic Euler): for a free particle, F = m g + wind(x) - c v + sum over its
+//!    springs of [k (d - L) + b ((v_j - v_i) . u)] u, with u the unit vector to the neighbour, d
+//!    the distance and L the rest length; then v' = v + F/m dt, x' = x + v' dt. Pinned particles
+//!    keep their position and have zero velocity.
+//! 2. Constraints, Jacobi on the physics result: each free particle sums (a) for every structural
+//!    and shear spring stretched past (1 + limit) L, half the excess towards the neighbour (all of
+//!    it when the neighbour is pinned), and (b) for every particle nearer than the self-collision
+//!    distance s (except pairs nearer than s at rest), half the overlap away from it (all of it when
+//!    that one is pinned). x += correction, v += correction / dt. Then, sphere by sphere: a
+//!    particle within radius + margin is moved onto that distance along the centre->particle line,
+//!    its approaching normal velocity is removed and its tangential velocity scaled by (1 - friction).
+//!
+//! After the frame's last substep, cloth normals (angle-weighted over the four structural edges)
+//! and rope tube vertices are computed from the final positions.
+//!
+//! Inputs are rounded to f32 once at construction, so the reference simulates exactly the scene
+//! the GPU receives; everything after that is f64.
+
+use super::gpu_types::ROPE_RING;
+use super::model::{ObjectKind, ObjectModel, SimModel, SphereModel, WindModel};
+use glam::DVec3;
+
+/// State of one object in the reference.
+#[derive(Debug, Clone)]
+pub struct CpuObject {
+    pub x: Vec<DVec3>,
+    pub v: Vec<DVec3>,
+    /// Surface vertex positions and normals (cloth: per particle; rope: ROPE_RING per node),
+    /// valid after `step_frame`.
+    pub surface: Vec<(DVec3, DVec3)>,
+}
+
+pub struct CpuSim {
+    model: SimModel,
+    dt: f64,
+    objects: Vec<CpuObject>,
+}
+
+fn r32(x: f64) -> f64 {
+    x as f32 as f64
+}
+
+fn r32v(v: DVec3) -> DVec3 {
+    DVec3::new(r32(v.x), r32(v.y), r32(v.z))
+}
+
+/// The model as the GPU receives it: every parameter and initial value rounded to f32.
+fn rounded(model: &SimModel) -> SimModel {
+    let mut m = model.clone();
+    m.gravity = r32v(m.gravity);
+    m.wind = m.wind.map(|w| WindModel {
+        origin: r32v(w.origin),
+        direction: r32v(w.direction),
+        force: r32(w.force),
+        cos_full: r32(w.cos_full),
+        cos_att: r32(w.cos_att),
+    });
+    m.spheres =
+        m.spheres.iter().map(|s| SphereModel { center: r32v(s.center), radius: r32(s.radius) }).collect();
+    for o in &mut m.objects {
+        o.spacing = o.spacing.map(r32);
+        o.stiffness = o.stiffness.map(r32);
+        o.rest_scale = o.rest_scale.map(r32);
+        for v in
+            [&mut o.damping, &mut o.mass, &mut o.drag, &mut o.friction, &mut o.margin, &mut o.rope_radius]
+        {
+            *v = r32(*v);
+        }
+        o.stretch_limit = o.stretch_limit.map(r32);
+        o.self_distance = o.self_distance.map(r32);
+        o.ring_weights = o.ring_weights.map(|w| w.map(r32));
+        o.positions.iter_mut().for_each(|p| *p = r32v(*p));
+        o.velocities.iter_mut().for_each(|p| *p = r32v(*p));
+    }
+    m
+}
+
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum SpringType {
+    Structural = 0,
+    Shear = 1,
+    Bending = 2,
+}
+
+/// A spring from one particle: the neighbour's index, the type, and the grid offset.
+struct Spring {
+    other: usize,
+    kind: SpringType,
+    offset: (i64, i64),
+}
+
+/// The springs of particle (c, r): structural to the 4 direct neighbours, shear to the 4
+/// diagonal ones, bending to the 4 at distance two; only those inside the grid.
+fn springs(o: &ObjectModel, c: i64, r: i64) -> Vec<Spring> {
+    let (cols, rows) = (o.dims[0] as i64, o.dims[1] as i64);
+    let mut out = Vec::with_capacity(12);
+    let groups: [(SpringType, [(i64, i64); 4]); 3] = [
+        (SpringType::Structural, [(1, 0), (-1, 0), (0, 1), (0, -1)]),
+        (SpringType::Shear, [(1, 1), (-1, -1), (1, -1), (-1, 1)]),
+        (SpringType::Bending, [(2, 0), (-2, 0), (0, 2), (0, -2)]),
+    ];
+    for (kind, offsets) in groups {
+        for (dc, dr) in offsets {
+            let (nc, nr) = (c + dc, r + dr);
+            if nc >= 0 && nr >= 0 && nc < cols && nr < rows {
+                out.push(Spring { other: (nc + nr * cols) as usize, kind, offset: (dc, dr) });
+            }
+        }
+    }
+    out
+}
+
+fn rest_length(o: &ObjectModel, s: &Spring) -> f64 {
+    let dx = s.offset.0 as f64 * o.spacing[0];
+    let dy = s.offset.1 as f64 * o.spacing[1];
+    o.rest_scale[s.kind as usize] * (dx * dx + dy * dy).sqrt()
+}
+
+fn wind_at(wind: &Option<WindModel>, x: DVec3) -> DVec3 {
+    let Some(w) = wind else { return DVec3::ZERO };
+    let to_x = x - w.origin;
+    let d = to_x.length();
+    if d <= 0.0 {
+        return DVec3::ZERO;
+    }
+    let cosine = w.direction.dot(to_x / d);
+    let ratio = if cosine >= w.cos_full {
+        1.0
+    } else if cosine <= w.cos_att {
+        0.0
+    } else {
+        (cosine - w.cos_att) / (w.cos_full - w.cos_att)
+    };
+    w.direction * w.force * ratio
+}
+
+impl CpuSim {
+    pub fn new(model: &SimModel) -> Self {
+        let model = rounded(model);
+        let dt = r32(model.dt());
+        let objects = model
+            .objects
+            .iter()
+            .map(|o| CpuObject {
+                x: o.positions.clone(),
+                v: o.velocities
+                    .iter()
+                    .zip(&o.pinned)
+                    .map(|(v, &p)| if p { DVec3::ZERO } else { *v })
+                    .collect(),
+                surface: vec![(DVec3::ZERO, DVec3::ZERO); o.surface_count()],
+            })
+            .collect();
+        Self { model, dt, objects }
+    }
+
+    pub fn objects(&self) -> &[CpuObject] {
+        &self.objects
+    }
+
+    /// One frame: `substeps` substeps, then the surface (normals, rope vertices).
+    pub fn step_frame(&mut self) {
+        for _ in 0..self.model.substeps {
+            self.substep();
+        }
+        for (o, state) in self.model.objects.iter().zip(&mut self.objects) {
+            state.surface = match o.kind {
+                ObjectKind::Cloth => cloth_surface(o, &state.x),
+                ObjectKind::Rope => rope_surface(o, &state.x),
+            };
+        }
+    }
+
+    pub fn substep(&mut self) {
+        let m = &self.model;
+        for (o, state) in m.objects.iter().zip(&mut self.objects) {
+            let (px, pv) = physics(m, o, self.dt, &state.x, &state.v);
+            let (cx, cv) = constraints(m, o, self.dt, &px, &pv);
+            state.x = cx;
+            state.v = cv;
+        }
+    }
+}
+
+fn physics(m: &SimModel, o: &ObjectModel, dt: f64, x: &[DVec3], v: &[DVec3]) -> (Vec<DVec3>, Vec<DVec3>) {
+    let cols = o.dims[0] as usize;
+    let mut nx = x.to_vec();
+    let mut nv = vec![DVec3::ZERO; x.len()];
+    for i in 0..x.len() {
+        if o.pinned[i] {
+            continue;
+        }
+        let mut force = m.gravity * o.mass + wind_at(&m.wind, x[i]) - v[i] * o.drag;
+        for s in springs(o, (i % cols) as i64, (i / cols) as i64) {
+            let k = o.stiffness[s.kind as usize];
+            if k == 0.0 && o.damping == 0.0 {
+                continue;
+            }
+            let delta = x[s.other] - x[i];
+            let d = delta.length();
+            if d <= 0.0 {
+                continue;
+            }
+            let u = delta / d;
+            let stretch = k * (d - rest_length(o, &s));
+            let damping = o.damping * (v[s.other] - v[i]).dot(u);
+            force += u * (stretch + damping);
+        }
+        nv[i] = v[i] + force / o.mass * dt;
+        nx[i] = x[i] + nv[i] * dt;
+    }
+    (nx, nv)
+}
+
+fn constraints(m: &SimModel, o: &ObjectModel, dt: f64, x: &[DVec3], v: &[DVec3]) -> (Vec<DVec3>, Vec<DVec3>) {
+    let cols = o.dims[0] as usize;
+    let mut nx = x.to_vec();
+    let mut nv = vec![DVec3::ZERO; x.len()];
+    let share = |j: usize| if o.pinned[j] { 1.0 } else { 0.5 };
+    for i in 0..x.len() {
+        if o.pinned[i] {
+            continue;
+        }
+        let (c, r) = ((i % cols) as i64, (i / cols) as i64);
+        let mut correction = DVec3::ZERO;
+        if let Some(limit) = o.stretch_limit {
+            for s in springs(o, c, r) {
+                if s.kind == SpringType::Bending || o.stiffness[s.kind as usize] == 0.0 {
+                    continue;
+                }
+                let delta = x[s.other] - x[i];
+                let d = delta.length();
+                let excess = d - rest_length(o, &s) * (1.0 + limit);
+                if excess > 0.0 {
+                    correction += delta / d * excess * share(s.other);
+                }
+            }
+        }
+        if let Some(reach) = o.self_distance {
+            for j in 0..x.len() {
+                let rest_c = ((j % cols) as i64 - c) as f64 * o.spacing[0];
+                let rest_r = ((j / cols) as i64 - r) as f64 * o.spacing[1];
+                if rest_c * rest_c + rest_r * rest_r < reach * reach {
+                    continue; // itself and neighbours that are this close at rest
+                }
+                let delta = x[j] - x[i];
+                let d = delta.length();
+                if d > 0.0 && d < reach {
+                    correction += delta / d * (d - reach) * share(j);
+                }
+            }
+        }
+        let mut p = x[i] + correction;
+        let mut vel = v[i] + correction / dt;
+        for sphere in &m.spheres {
+            let reach = sphere.radius + o.margin;
+            let from_c = p - sphere.center;
+            let d = from_c.length();
+            if d < reach {
+                let n = if d > 0.0 { from_c / d } else { DVec3::Y };
+                p = sphere.center + n * reach;
+                let vn = vel.dot(n);
+                let tangential = vel - n * vn;
+                vel = tangential * (1.0 - o.friction) + n * vn.max(0.0);
+            }
+        }
+        nx[i] = p;
+        nv[i] = vel;
+    }
+    (nx, nv)
+}
+
+/// Angle-weighted normals from the (up to) four structural edges around each particle.
+fn cloth_surface(o: &ObjectModel, x: &[DVec3]) -> Vec<(DVec3, DVec3)> {
+    let (cols, rows) = (o.dims[0] as i64, o.dims[1] as i64);
+    let around = [(1, 0), (0, 1), (-1, 0), (0, -1)];
+    (0..x.len())
+        .map(|i| {
+            let (c, r) = (i as i64 % cols, i as i64 / cols);
+            let edges: Vec<Option<DVec3>> = around
+                .iter()
+                .map(|(dc, dr)| {
+                    let (nc, nr) = (c + dc, r + dr);
+                    if nc < 0 || nr < 0 || nc >= cols || nr >= rows {
+                        return None;
+                    }
+                    let e = x[(nc + nr * cols) as usize] - x[i];
+                    (e.length() > 0.0).then(|| e.normalize())
+                })
+                .collect();
+            let mut sum = DVec3::ZERO;
+            for k in 0..4 {
+                if let (Some(a), Some(b)) = (edges[k], edges[(k + 1) % 4]) {
+                    let cr = a.cross(b);
+                    if cr.length() > 0.0 {
+                        sum += cr.normalize() * a.dot(b).clamp(-1.0, 1.0).acos();
+                    }
+                }
+            }
+            let n = if sum.length() > 0.0 { sum.normalize() } else { DVec3::Z };
+            (x[i], n)
+        })
+        .collect()
+}
+
+/// ROPE_RING vertices around each node on the (forward, side, up) frame of the paper.
+fn rope_surface(o: &ObjectModel, x: &[DVec3]) -> Vec<(DVec3, DVec3)> {
+    let n = x.len();
+    let unit_or = |v: DVec3, fallback: DVec3| if v.length() > 1e-12 { v.normalize() } else { fallback };
+    let mut out = Vec::with_capacity(n * ROPE_RING);
+    for i in 0..n {
+        let to_next = if i + 1 < n { unit_or(x[i + 1] - x[i], DVec3::ZERO) } else { DVec3::ZERO };
+        let from_prev = if i > 0 { unit_or(x[i] - x[i - 1], DVec3::ZERO) } else { DVec3::ZERO };
+        let forward = unit_or(to_next + from_prev, unit_or(to_next, DVec3::X));
+        let side = forward.cross(DVec3::Y);
+        let side = if side.length() > 1e-6 {
+            side.normalize()
+        } else {
+            DVec3::new(forward.y, -forward.x, 0.0).normalize()
+        };
+        let up = forward.cross(side).normalize();
+        for w in &o.ring_weights {
+            let offset = side * w[0] + up * w[1];
+            out.push((x[i] + offset * o.rope_radius, unit_or(offset, up)));
+        }
+    }
+    out
+}

@@ -1,0 +1,591 @@
+//! The simulation on Vulkan compute.
+//!
+//! Buffers per object: `state[0]` (A, the state between substeps and frames), `state[1]` (B, the
+//! physics output), `surface` (what the renderer draws), `params`. Shared: `globals`, `spheres`.
+//!
+//! One frame is one command buffer:
+//! ```text
+//! for each substep:   physics      A -> B   (all objects)
+//!                     barrier  B: ComputeWrite -> ComputeReadWrite   (constraints read B)
+//!                              A: ComputeRead  -> ComputeWrite       (constraints overwrite A)
+//!                     constraints  B -> A   (all objects)
+//!                     barrier  A: ComputeWrite -> ComputeReadWrite   (next physics reads A)
+//!                              B: ComputeRead  -> ComputeWrite       (next physics overwrites B)
+//! surface stage:      cloth normals / rope vertices  A -> surface
+//!                     barrier  surface: ComputeWrite -> the caller's consumer (compute, vertex input)
+//! ```
+//! Both hazards of the ping-pong are named explicitly: the read-after-write on the buffer just
+//! written and the write-after-read on the buffer just read. Uploads and readbacks end with a
+//! barrier back to compute, so frames recorded after them need no barrier of their own.
+
+use super::gpu_types::{
+    Globals, ObjectParams, Particle, SurfaceVertex, OBJ_SELF_COLLISION, OBJ_STRETCH_LIMIT,
+};
+use super::model::{ObjectKind, ObjectModel, SimModel};
+use crate::error::UserError;
+use crate::shaders;
+use crate::vk::{
+    Access, BindingSet, BindingSetLayout, Buffer, BufferBarrier, BufferUsage, CommandSlot, ComputePipeline,
+    DescriptorArena, GpuContext, MemoryKind, Recorder, TimestampPool, VkError,
+};
+use anyhow::{Context as _, Result};
+
+/// Workgroup shape of the cloth stages (the paper's 16 x 16) and of the rope stages (1-D).
+const CLOTH_GROUP: [u32; 2] = [16, 16];
+const ROPE_GROUP: u32 = 64;
+/// Bindings per set, in the order of `glsl/include/bindings.glsl`.
+const BINDINGS: u32 = 6;
+
+/// GPU time of one frame by stage, from timestamps [ms].
+#[derive(Debug, Clone, Copy, Default, PartialEq, serde::Serialize)]
+pub struct FrameTiming {
+    pub total_ms: f64,
+    pub physics_ms: f64,
+    pub constraints_ms: f64,
+    pub surface_ms: f64,
+}
+
+/// An object's state read back from the GPU.
+#[derive(Debug, Clone)]
+pub struct ObjectState {
+    pub particles: Vec<Particle>,
+    pub surface: Vec<SurfaceVertex>,
+}
+
+struct Pipelines {
+    physics: [ComputePipeline; 2], // [cloth, rope]
+    constraints: [ComputePipeline; 2],
+    cloth_normals: ComputePipeline,
+    rope_vertices: ComputePipeline,
+}
+
+impl Pipelines {
+    fn new(ctx: &GpuContext, layout: &BindingSetLayout) -> Result<Self> {
+        let load = |name: &str, spec: &[u32]| -> Result<ComputePipeline> {
+            let spirv = shaders::embedded(name)?;
+            ComputePipeline::new(ctx, name, &spirv, layout, spec)
+                .with_context(|| format!("creating pipeline {name}"))
+        };
+        let cloth = [CLOTH_GROUP[0], CLOTH_GROUP[1]];
+        let rope = [ROPE_GROUP, 1];
+        Ok(Self {
+            physics: [load("physics.comp", &cloth)?, load("physics.comp", &rope)?],
+            constraints: [load("constraints.comp", &cloth)?, load("constraints.comp", &rope)?],
+            cloth_normals: load("cloth_normals.comp", &[])?,
+            rope_vertices: load("rope_vertices.comp", &[])?,
+        })
+    }
+
+    fn destroy(self, ctx: &GpuContext) {
+        for p in self.physics.into_iter().chain(self.constraints) {
+            p.destroy(ctx);
+        }
+        self.cloth_normals.destroy(ctx);
+        self.rope_vertices.destroy(ctx);
+    }
+}
+
+struct GpuObject {
+    kind: ObjectKind,
+    particles: u32,
+    surface_len: u32,
+    step_groups: [u32; 3],
+    surface_groups: [u32; 3],
+    params: Buffer,
+    state: [Buffer; 2],
+    surface: Buffer,
+    /// [A -> B (physics), B -> A (constraints); surface uses set 0 (reads A)].
+    sets: [BindingSet; 2],
+}
+
+impl GpuObject {
+    fn kind_index(&self) -> usize {
+        match self.kind {
+            ObjectKind::Cloth => 0,
+            ObjectKind::Rope => 1,
+        }
+    }
+}
+
+pub struct GpuSim {
+    pipelines: Pipelines,
+    layout: BindingSetLayout,
+    arena: DescriptorArena,
+    globals: Buffer,
+    spheres: Buffer,
+    objects: Vec<GpuObject>,
+    slot: CommandSlot,
+    timestamps: Option<TimestampPool>,
+    substeps: u32,
+    frame_dt: f64,
+    frames: u64,
+}
+
+/// Bytes of GPU memory an object needs: two state buffers, the surface, the parameters.
+fn object_bytes(o: &ObjectModel) -> u64 {
+    let particles = o.particle_count() as u64;
+    2 * particles * std::mem::size_of::<Particle>() as u64
+        + o.surface_count() as u64 * std::mem::size_of::<SurfaceVertex>() as u64
+        + std::mem::size_of::<ObjectParams>() as u64
+}
+
+fn gib(bytes: u64) -> String {
+    format!("{:.2} GiB", bytes as f64 / (1u64 << 30) as f64)
+}
+
+/// Refuses scenes the device cannot hold or dispatch, before allocating anything.
+fn check_fits(ctx: &GpuContext, model: &SimModel) -> Result<(), UserError> {
+    let info = ctx.info();
+    let total: u64 = model.objects.iter().map(object_bytes).sum();
+    for o in &model.objects {
+        let state = o.particle_count() as u64 * std::mem::size_of::<Particle>() as u64;
+        let surface = o.surface_count() as u64 * std::mem::size_of::<SurfaceVertex>() as u64;
+        if state.max(surface) > info.max_storage_buffer_range {
+            return Err(UserError(format!(
+                "{kind:?} '{name}' ({c} x {r} particles) is too large: one buffer would be {}, the device's largest storage buffer is {}",
+                gib(state.max(surface)),
+                gib(info.max_storage_buffer_range),
+                kind = o.kind,
+                name = o.name,
+                c = o.dims[0],
+                r = o.dims[1],
+            )));
+        }
+        let groups = step_groups(o);
+        if groups.iter().zip(info.max_workgroup_count).any(|(g, max)| *g > max) {
+            return Err(UserError(format!(
+                "{:?} '{}' ({} x {}) needs more workgroups than the device dispatches",
+                o.kind, o.name, o.dims[0], o.dims[1]
+            )));
+        }
+    }
+    if total > info.device_local_bytes {
+        return Err(UserError(format!(
+            "the scene needs {} of GPU memory; {} has {}",
+            gib(total),
+            info.name,
+            gib(info.device_local_bytes)
+        )));
+    }
+    Ok(())
+}
+
+fn step_groups(o: &ObjectModel) -> [u32; 3] {
+    match o.kind {
+        ObjectKind::Cloth => [o.dims[0].div_ceil(CLOTH_GROUP[0]), o.dims[1].div_ceil(CLOTH_GROUP[1]), 1],
+        ObjectKind::Rope => [o.dims[0].div_ceil(ROPE_GROUP), 1, 1],
+    }
+}
+
+fn surface_groups(o: &ObjectModel) -> [u32; 3] {
+    match o.kind {
+        ObjectKind::Cloth => step_groups(o),
+        ObjectKind::Rope => [(o.surface_count() as u32).div_ceil(64), 1, 1],
+    }
+}
+
+fn f3(v: glam::DVec3) -> [f32; 3] {
+    v.as_vec3().to_array()
+}
+
+fn globals(model: &SimModel) -> Globals {
+    let wind = model.wind;
+    Globals {
+        gravity: f3(model.gravity),
+        dt: model.dt() as f32,
+        wind_origin: wind.map(|w| f3(w.origin)).unwrap_or_default(),
+        wind_force: wind.map(|w| w.force as f32).unwrap_or(0.0),
+        wind_dir: wind.map(|w| f3(w.direction)).unwrap_or([0.0, 0.0, 1.0]),
+        wind_cos_full: wind.map(|w| w.cos_full as f32).unwrap_or(1.0),
+        wind_cos_att: wind.map(|w| w.cos_att as f32).unwrap_or(1.0),
+        wind_enabled: wind.is_some() as u32,
+        sphere_count: model.spheres.len() as u32,
+        pad0: 0,
+    }
+}
+
+fn object_params(o: &ObjectModel) -> ObjectParams {
+    let mut flags = 0;
+    if o.stretch_limit.is_some() {
+        flags |= OBJ_STRETCH_LIMIT;
+    }
+    if o.self_distance.is_some() {
+        flags |= OBJ_SELF_COLLISION;
+    }
+    ObjectParams {
+        dims: o.dims,
+        spacing: o.spacing.map(|s| s as f32),
+        stiffness: [o.stiffness[0] as f32, o.stiffness[1] as f32, o.stiffness[2] as f32, o.damping as f32],
+        rest_scale: [o.rest_scale[0] as f32, o.rest_scale[1] as f32, o.rest_scale[2] as f32, 0.0],
+        mass: o.mass as f32,
+        drag: o.drag as f32,
+        stretch_limit: o.stretch_limit.unwrap_or(0.0) as f32,
+        friction: o.friction as f32,
+        margin: o.margin as f32,
+        self_distance: o.self_distance.unwrap_or(0.0) as f32,
+        rope_radius: o.rope_radius as f32,
+        flags,
+        ring_weights: o.ring_weights.map(|w| w.map(|x| x as f32)),
+    }
+}
+
+fn particles(o: &ObjectModel) -> Vec<Particle> {
+    o.positions
+        .iter()
+        .zip(&o.velocities)
+        .zip(&o.pinned)
+        .map(|((x, v), &pinned)| {
+            let x = x.as_vec3();
+            let v = if pinned { glam::Vec3::ZERO } else { v.as_vec3() };
+            Particle { pos: [x.x, x.y, x.z, pinned as u32 as f32], vel: [v.x, v.y, v.z, 0.0] }
+        })
+        .collect()
+}
+
+impl GpuSim {
+    /// Allocates and uploads the scene. Fails with a `UserError` when it cannot fit the device.
+    pub fn new(ctx: &GpuContext, model: &SimModel) -> Result<Self> {
+        check_fits(ctx, model)?;
+        let layout = BindingSetLayout::storage_buffers(ctx, BINDINGS)?;
+        let mut sim = Self {
+            pipelines: match Pipelines::new(ctx, &layout) {
+                Ok(p) => p,
+                Err(e) => {
+                    layout.destroy(ctx);
+                    return Err(e);
+                }
+            },
+            arena: DescriptorArena::new(ctx, 2 * model.objects.len() as u32, BINDINGS)?,
+            globals: Buffer::new(ctx, "globals", 64, BufferUsage::STORAGE, MemoryKind::Upload)?,
+            spheres: Buffer::new(
+                ctx,
+                "spheres",
+                16 * model.spheres.len().max(1) as u64,
+                BufferUsage::STORAGE,
+                MemoryKind::Upload,
+            )?,
+            layout,
+            objects: Vec::new(),
+            slot: CommandSlot::new(ctx, "frame")?,
+            timestamps: TimestampPool::new(ctx, 2 * model.substeps + 2)?,
+            substeps: model.substeps,
+            frame_dt: model.frame_dt,
+            frames: 0,
+        };
+        // From here `sim` owns everything created; on error it is destroyed whole.
+        match sim.populate(ctx, model) {
+            Ok(()) => Ok(sim),
+            Err(e) => {
+                let _ = ctx.wait_idle();
+                sim.destroy(ctx);
+                Err(e)
+            }
+        }
+    }
+
+    fn populate(&mut self, ctx: &GpuContext, model: &SimModel) -> Result<()> {
+        self.globals.write(0, &[globals(model)])?;
+        let spheres: Vec<[f32; 4]> = model
+            .spheres
+            .iter()
+            .map(|s| [s.center.x as f32, s.center.y as f32, s.center.z as f32, s.radius as f32])
+            .collect();
+        self.spheres.write(0, &spheres)?;
+        for o in &model.objects {
+            let obj = self.create_object(ctx, o)?;
+            self.objects.push(obj);
+        }
+        let initial: Vec<Vec<Particle>> = model.objects.iter().map(particles).collect();
+        self.upload_states(ctx, &initial)
+    }
+
+    fn create_object(&mut self, ctx: &GpuContext, o: &ObjectModel) -> Result<GpuObject> {
+        let n = o.particle_count() as u64;
+        let state_usage = BufferUsage::STORAGE | BufferUsage::TRANSFER_SRC | BufferUsage::TRANSFER_DST;
+        let state_bytes = n * std::mem::size_of::<Particle>() as u64;
+        // Buffers created so far are freed if a later one fails.
+        let mut made: Vec<Buffer> = Vec::new();
+        let result = (|| -> Result<[BindingSet; 2], VkError> {
+            let mut params = Buffer::new(
+                ctx,
+                &format!("{}.params", o.name),
+                144,
+                BufferUsage::STORAGE,
+                MemoryKind::Upload,
+            )?;
+            params.write(0, &[object_params(o)])?;
+            made.push(params);
+            made.push(Buffer::new(
+                ctx,
+                &format!("{}.state_a", o.name),
+                state_bytes,
+                state_usage,
+                MemoryKind::GpuOnly,
+            )?);
+            made.push(Buffer::new(
+                ctx,
+                &format!("{}.state_b", o.name),
+                state_bytes,
+                state_usage,
+                MemoryKind::GpuOnly,
+            )?);
+            made.push(Buffer::new(
+                ctx,
+                &format!("{}.surface", o.name),
+                o.surface_count() as u64 * std::mem::size_of::<SurfaceVertex>() as u64,
+                BufferUsage::STORAGE | BufferUsage::VERTEX | BufferUsage::TRANSFER_SRC,
+                MemoryKind::GpuOnly,
+            )?);
+            let [params, a, b, surface] = [&made[0], &made[1], &made[2], &made[3]];
+            let forward = self.arena.allocate(
+                ctx,
+                &self.layout,
+                &[&self.globals, params, a, b, &self.spheres, surface],
+            )?;
+            let backward = self.arena.allocate(
+                ctx,
+                &self.layout,
+                &[&self.globals, params, b, a, &self.spheres, surface],
+            )?;
+            Ok([forward, backward])
+        })();
+        match result {
+            Ok(sets) => {
+                let mut it = made.into_iter();
+                let (params, a, b, surface) = (it.next(), it.next(), it.next(), it.next());
+                let (Some(params), Some(a), Some(b), Some(surface)) = (params, a, b, surface) else {
+                    unreachable!("four buffers were made")
+                };
+                Ok(GpuObject {
+                    kind: o.kind,
+                    particles: n as u32,
+                    surface_len: o.surface_count() as u32,
+                    step_groups: step_groups(o),
+                    surface_groups: surface_groups(o),
+                    params,
+                    state: [a, b],
+                    surface,
+                    sets,
+                })
+            }
+            Err(e) => {
+                made.into_iter().for_each(|b| b.destroy(ctx));
+                Err(anyhow::Error::new(e).context(format!("allocating {:?} '{}'", o.kind, o.name)))
+            }
+        }
+    }
+
+    /// Replaces every object's state (positions, velocities, pins) with `states[i]`.
+    pub fn upload_states(&mut self, ctx: &GpuContext, states: &[Vec<Particle>]) -> Result<()> {
+        anyhow::ensure!(states.len() == self.objects.len(), "one state per object");
+        for (s, o) in states.iter().zip(&self.objects) {
+            anyhow::ensure!(s.len() == o.particles as usize, "state size does not match the object");
+        }
+        let bytes: u64 = states.iter().map(|s| std::mem::size_of_val(s.as_slice()) as u64).sum();
+        let mut staging =
+            Buffer::new(ctx, "upload staging", bytes, BufferUsage::TRANSFER_SRC, MemoryKind::Upload)?;
+        self.slot.wait(ctx)?;
+        let result = (|| -> Result<(), VkError> {
+            let mut offset = 0;
+            for s in states {
+                staging.write(offset, s)?;
+                offset += std::mem::size_of_val(s.as_slice()) as u64;
+            }
+            ctx.one_shot("upload", |rec| {
+                let mut offset = 0;
+                for (s, o) in states.iter().zip(&self.objects) {
+                    let size = std::mem::size_of_val(s.as_slice()) as u64;
+                    rec.copy_buffer_region(&staging, offset, &o.state[0], 0, size);
+                    offset += size;
+                }
+                let to_compute: Vec<_> = self
+                    .objects
+                    .iter()
+                    .map(|o| BufferBarrier::new(&o.state[0], Access::TransferWrite, Access::ComputeReadWrite))
+                    .collect();
+                rec.barrier(&to_compute);
+                Ok(())
+            })
+        })();
+        staging.destroy(ctx);
+        result.context("uploading the simulation state")
+    }
+
+    /// Records one frame (all substeps and the surface stage) into `rec`. `surface_consumer` is
+    /// the access that reads the surface buffers next (vertex input when drawing).
+    pub fn record_frame(&self, rec: &mut Recorder<'_>, surface_consumer: Access) {
+        let ts = self.timestamps.as_ref();
+        if let Some(pool) = ts {
+            rec.reset_timestamps(pool);
+            rec.timestamp(pool, 0);
+        }
+        for s in 0..self.substeps {
+            for o in &self.objects {
+                rec.dispatch(&self.pipelines.physics[o.kind_index()], o.sets[0], o.step_groups);
+            }
+            if let Some(pool) = ts {
+                rec.timestamp(pool, 1 + 2 * s);
+            }
+            rec.barrier(&self.ping_pong_barriers(1));
+            for o in &self.objects {
+                rec.dispatch(&self.pipelines.constraints[o.kind_index()], o.sets[1], o.step_groups);
+            }
+            if let Some(pool) = ts {
+                rec.timestamp(pool, 2 + 2 * s);
+            }
+            rec.barrier(&self.ping_pong_barriers(0));
+        }
+        for o in &self.objects {
+            let pipeline = match o.kind {
+                ObjectKind::Cloth => &self.pipelines.cloth_normals,
+                ObjectKind::Rope => &self.pipelines.rope_vertices,
+            };
+            rec.dispatch(pipeline, o.sets[0], o.surface_groups);
+        }
+        if let Some(pool) = ts {
+            rec.timestamp(pool, 1 + 2 * self.substeps);
+        }
+        let to_consumer: Vec<_> = self
+            .objects
+            .iter()
+            .map(|o| BufferBarrier::new(&o.surface, Access::ComputeWrite, surface_consumer))
+            .collect();
+        rec.barrier(&to_consumer);
+    }
+
+    /// Barriers after a stage that wrote `state[written]` and read the other state buffer.
+    fn ping_pong_barriers(&self, written: usize) -> Vec<BufferBarrier<'_>> {
+        self.objects
+            .iter()
+            .flat_map(|o| {
+                [
+                    BufferBarrier::new(&o.state[written], Access::ComputeWrite, Access::ComputeReadWrite),
+                    BufferBarrier::new(&o.state[1 - written], Access::ComputeRead, Access::ComputeWrite),
+                ]
+            })
+            .collect()
+    }
+
+    /// Simulates one frame headless and waits for it; returns its GPU timing when available.
+    pub fn step_frame(&mut self, ctx: &GpuContext) -> Result<Option<FrameTiming>> {
+        let mut rec = self.slot.begin(ctx)?;
+        self.record_frame(&mut rec, Access::ComputeReadWrite);
+        self.slot.submit(ctx, rec)?;
+        self.slot.wait(ctx)?;
+        self.frames += 1;
+        self.read_timing(ctx)
+    }
+
+    /// Per-stage GPU time of the last completed frame.
+    pub fn read_timing(&self, ctx: &GpuContext) -> Result<Option<FrameTiming>> {
+        let Some(pool) = &self.timestamps else { return Ok(None) };
+        let t = pool.read_ns(ctx, 2 * self.substeps + 2)?;
+        let ms = |a: f64, b: f64| (b - a).max(0.0) * 1e-6;
+        let mut timing = FrameTiming::default();
+        for s in 0..self.substeps as usize {
+            timing.physics_ms += ms(t[2 * s], t[2 * s + 1]);
+            timing.constraints_ms += ms(t[2 * s + 1], t[2 * s + 2]);
+        }
+        let last = t.len() - 1;
+        timing.surface_ms = ms(t[last - 1], t[last]);
+        timing.total_ms = ms(t[0], t[last]);
+        Ok(Some(timing))
+    }
+
+    /// Copies every object's state and surface back to the host.
+    pub fn read_states(&mut self, ctx: &GpuContext) -> Result<Vec<ObjectState>> {
+        self.slot.wait(ctx)?;
+        let p = std::mem::size_of::<Particle>() as u64;
+        let s = std::mem::size_of::<SurfaceVertex>() as u64;
+        let bytes: u64 = self.objects.iter().map(|o| o.particles as u64 * p + o.surface_len as u64 * s).sum();
+        let readback = Buffer::new(ctx, "readback", bytes, BufferUsage::TRANSFER_DST, MemoryKind::Readback)?;
+        let result = (|| -> Result<Vec<ObjectState>> {
+            ctx.one_shot("readback", |rec| {
+                let to_copy: Vec<_> = self
+                    .objects
+                    .iter()
+                    .flat_map(|o| {
+                        [
+                            BufferBarrier::new(&o.state[0], Access::ComputeWrite, Access::TransferRead),
+                            BufferBarrier::new(&o.surface, Access::ComputeWrite, Access::TransferRead),
+                        ]
+                    })
+                    .collect();
+                rec.barrier(&to_copy);
+                let mut offset = 0;
+                for o in &self.objects {
+                    rec.copy_buffer_region(&o.state[0], 0, &readback, offset, o.particles as u64 * p);
+                    offset += o.particles as u64 * p;
+                    rec.copy_buffer_region(&o.surface, 0, &readback, offset, o.surface_len as u64 * s);
+                    offset += o.surface_len as u64 * s;
+                }
+                let back: Vec<_> = self
+                    .objects
+                    .iter()
+                    .flat_map(|o| {
+                        [
+                            BufferBarrier::new(&o.state[0], Access::TransferRead, Access::ComputeReadWrite),
+                            BufferBarrier::new(&o.surface, Access::TransferRead, Access::ComputeWrite),
+                        ]
+                    })
+                    .chain([BufferBarrier::new(&readback, Access::TransferWrite, Access::HostRead)])
+                    .collect();
+                rec.barrier(&back);
+                Ok(())
+            })?;
+            let words: Vec<u8> = readback.read::<u8>(bytes as usize)?;
+            let mut at = 0usize;
+            let mut take = |len: usize| {
+                let slice = &words[at..at + len];
+                at += len;
+                slice
+            };
+            Ok(self
+                .objects
+                .iter()
+                .map(|o| ObjectState {
+                    particles: bytemuck::pod_collect_to_vec(take(o.particles as usize * p as usize)),
+                    surface: bytemuck::pod_collect_to_vec(take(o.surface_len as usize * s as usize)),
+                })
+                .collect())
+        })();
+        readback.destroy(ctx);
+        result.context("reading the simulation state back")
+    }
+
+    /// Simulated time so far [s].
+    pub fn time(&self) -> f64 {
+        self.frames as f64 * self.frame_dt
+    }
+
+    pub fn frames(&self) -> u64 {
+        self.frames
+    }
+
+    pub fn substeps_done(&self) -> u64 {
+        self.frames * self.substeps as u64
+    }
+
+    /// Frees everything after waiting for the last frame.
+    pub fn destroy(mut self, ctx: &GpuContext) {
+        if self.slot.wait(ctx).is_err() {
+            let _ = ctx.wait_idle();
+        }
+        for o in self.objects {
+            o.params.destroy(ctx);
+            let [a, b] = o.state;
+            a.destroy(ctx);
+            b.destroy(ctx);
+            o.surface.destroy(ctx);
+        }
+        self.globals.destroy(ctx);
+        self.spheres.destroy(ctx);
+        self.arena.destroy(ctx);
+        self.pipelines.destroy(ctx);
+        self.layout.destroy(ctx);
+        if let Some(t) = self.timestamps {
+            t.destroy(ctx);
+        }
+        self.slot.destroy(ctx);
+    }
+}

@@ -1,0 +1,83 @@
+//! Rust mirrors of the std430 structs in `glsl/include/layout.glsl` (the source of truth).
+//! Each is `#[repr(C)]` + `Pod` with explicit padding and a `const` size assert; `tests/layout.rs`
+//! compares every member offset (and array stride) with the compiled SPIR-V.
+
+/// A struct whose layout must agree with a GLSL struct of the same name.
+pub trait GpuLayout {
+    const NAME: &'static str;
+    const SIZE: usize;
+    /// (member name, byte offset) in declaration order.
+    fn offsets() -> Vec<(&'static str, usize)>;
+}
+
+macro_rules! gpu_struct {
+    ($(#[$meta:meta])* $name:ident, size $size:expr, { $($(#[$fmeta:meta])* $field:ident : $ty:ty,)* }) => {
+        $(#[$meta])*
+        #[repr(C)]
+        #[derive(Clone, Copy, Debug, Default, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
+        pub struct $name { $($(#[$fmeta])* pub $field: $ty,)* }
+        const _: () = assert!(std::mem::size_of::<$name>() == $size);
+        impl GpuLayout for $name {
+            const NAME: &'static str = stringify!($name);
+            const SIZE: usize = $size;
+            fn offsets() -> Vec<(&'static str, usize)> {
+                vec![$((stringify!($field), std::mem::offset_of!($name, $field)),)*]
+            }
+        }
+    };
+}
+
+/// Tube vertices around each rope node (`ROPE_RING` in the header).
+pub const ROPE_RING: usize = 8;
+/// `ObjectParams::flags` bits (`OBJ_*` in the header).
+pub const OBJ_STRETCH_LIMIT: u32 = 1;
+pub const OBJ_SELF_COLLISION: u32 = 2;
+
+gpu_struct!(
+    /// One simulated particle (cloth particle or rope node).
+    Particle, size 32, {
+    /// xyz position [m]; w = 1 pinned, 0 free.
+    pos: [f32; 4],
+    /// xyz velocity [m/s].
+    vel: [f32; 4],
+});
+
+gpu_struct!(
+    /// A drawable vertex with its normal (cloth particle or rope tube vertex).
+    SurfaceVertex, size 32, {
+    pos: [f32; 4],
+    normal: [f32; 4],
+});
+
+gpu_struct!(
+    /// Scene-wide parameters.
+    Globals, size 64, {
+    gravity: [f32; 3],
+    dt: f32,
+    wind_origin: [f32; 3],
+    wind_force: f32,
+    wind_dir: [f32; 3],
+    wind_cos_full: f32,
+    wind_cos_att: f32,
+    wind_enabled: u32,
+    sphere_count: u32,
+    pad0: u32,
+});
+
+gpu_struct!(
+    /// Per-object parameters.
+    ObjectParams, size 144, {
+    dims: [u32; 2],
+    spacing: [f32; 2],
+    stiffness: [f32; 4],
+    rest_scale: [f32; 4],
+    mass: f32,
+    drag: f32,
+    stretch_limit: f32,
+    friction: f32,
+    margin: f32,
+    self_distance: f32,
+    rope_radius: f32,
+    flags: u32,
+    ring_weights: [[f32; 2]; ROPE_RING],
+});

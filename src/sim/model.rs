@@ -1,0 +1,109 @@
+//! The physical model both simulators run: the GPU one (`sim::gpu`) and the f64 CPU reference
+//! (`sim::cpu`). Built from a scene preset by `scene::build`, or directly by tests.
+//! Units: metres, seconds, kilograms, newtons.
+
+use glam::DVec3;
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum ObjectKind {
+    Cloth,
+    Rope,
+}
+
+/// One cloth grid or rope (a rope is a grid of `nodes x 1`).
+#[derive(Debug, Clone, PartialEq)]
+pub struct ObjectModel {
+    pub kind: ObjectKind,
+    pub name: String,
+    /// Columns and rows of the particle grid; particle (c, r) has index c + r * columns.
+    pub dims: [u32; 2],
+    /// Rest distance between grid neighbours along columns and rows [m].
+    pub spacing: [f64; 2],
+    /// Spring stiffness for structural, shear and bending springs [N/m].
+    pub stiffness: [f64; 3],
+    /// Rest length of each spring type as a multiple of its grid distance.
+    pub rest_scale: [f64; 3],
+    /// Dashpot along every spring [N s/m].
+    pub damping: f64,
+    /// Mass of each particle [kg].
+    pub mass: f64,
+    /// Stokes drag coefficient: force -drag * v [N s/m].
+    pub drag: f64,
+    /// Fraction of tangential velocity removed on sphere contact, 0..1.
+    pub friction: f64,
+    /// Distance kept from sphere surfaces [m].
+    pub margin: f64,
+    /// Maximum elongation of structural and shear springs as a fraction of rest length.
+    pub stretch_limit: Option<f64>,
+    /// Self-collision distance [m].
+    pub self_distance: Option<f64>,
+    /// Rope tube radius [m] (rope only).
+    pub rope_radius: f64,
+    /// Rope tube vertex offsets in (side, up) units of the radius (rope only).
+    pub ring_weights: [[f64; 2]; crate::sim::gpu_types::ROPE_RING],
+    /// Initial state, one entry per particle.
+    pub positions: Vec<DVec3>,
+    pub velocities: Vec<DVec3>,
+    pub pinned: Vec<bool>,
+}
+
+impl ObjectModel {
+    pub fn particle_count(&self) -> usize {
+        self.dims[0] as usize * self.dims[1] as usize
+    }
+
+    /// Number of drawable surface vertices: one per cloth particle, a ring per rope node.
+    pub fn surface_count(&self) -> usize {
+        match self.kind {
+            ObjectKind::Cloth => self.particle_count(),
+            ObjectKind::Rope => self.particle_count() * crate::sim::gpu_types::ROPE_RING,
+        }
+    }
+}
+
+/// The paper's wind cone, resolved to cosines of its two half-angles.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct WindModel {
+    pub origin: DVec3,
+    /// Unit axis of the cone.
+    pub direction: DVec3,
+    /// Force on each particle at full strength [N].
+    pub force: f64,
+    /// Cosine of the half-angle inside which the force is full.
+    pub cos_full: f64,
+    /// Cosine of the half-angle where the force has fallen to zero.
+    pub cos_att: f64,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SphereModel {
+    pub center: DVec3,
+    pub radius: f64,
+}
+
+#[derive(Debug, Clone, PartialEq)]
+pub struct SimModel {
+    pub gravity: DVec3,
+    /// Simulated time per frame [s].
+    pub frame_dt: f64,
+    pub substeps: u32,
+    pub wind: Option<WindModel>,
+    pub spheres: Vec<SphereModel>,
+    pub objects: Vec<ObjectModel>,
+}
+
+impl SimModel {
+    /// Length of one substep [s].
+    pub fn dt(&self) -> f64 {
+        self.frame_dt / self.substeps as f64
+    }
+}
+
+/// The paper's default ring: eight vertices evenly around the node.
+pub fn default_ring_weights() -> [[f64; 2]; crate::sim::gpu_types::ROPE_RING] {
+    std::array::from_fn(|k| {
+        let a = k as f64 * std::f64::consts::TAU / crate::sim::gpu_types::ROPE_RING as f64;
+        [a.cos(), a.sin()]
+    })
+}

@@ -1,0 +1,244 @@
+//! The GPU context: entry, instance, optional validation, device, queue, allocator and a command
+//! pool. It is the single owner of their destruction order (see the module docs of `vk`).
+
+use super::debug::{messenger_callback, ValidationCanary};
+use super::device::{self, DeviceInfo};
+use super::error::{Check, VkError};
+use ash::vk;
+use gpu_allocator::vulkan::{Allocator, AllocatorCreateDesc};
+use std::ffi::{c_char, CStr};
+use std::mem::ManuallyDrop;
+use std::sync::{Arc, Mutex, MutexGuard};
+
+const VALIDATION_LAYER: &CStr = c"VK_LAYER_KHRONOS_validation";
+
+/// How to create a context.
+#[derive(Debug, Clone, Default)]
+pub struct ContextOptions {
+    /// Enable VK_LAYER_KHRONOS_validation with synchronization validation.
+    pub validation: bool,
+    /// Device index or part of its name; `None` picks the most capable kind.
+    pub device: Option<String>,
+}
+
+pub struct GpuContext {
+    // Field order is not relied on: Drop tears down explicitly in reverse creation order.
+    _entry: ash::Entry,
+    pub(crate) instance: ash::Instance,
+    debug: Option<(ash::ext::debug_utils::Instance, vk::DebugUtilsMessengerEXT)>,
+    pub(crate) debug_device: Option<ash::ext::debug_utils::Device>,
+    canary: Arc<ValidationCanary>,
+    pub(crate) device: ash::Device,
+    pub(crate) queue: vk::Queue,
+    pub(crate) command_pool: vk::CommandPool,
+    allocator: ManuallyDrop<Mutex<Allocator>>,
+    info: DeviceInfo,
+}
+
+impl GpuContext {
+    pub fn new(options: &ContextOptions) -> Result<Self, VkError> {
+        // SAFETY: loading the system Vulkan loader; no other Vulkan state exists yet.
+        let entry = unsafe { ash::Entry::load() }.map_err(|e| VkError::Loader(e.to_string()))?;
+        let canary = Arc::new(ValidationCanary::default());
+
+        let mut layers: Vec<*const c_char> = Vec::new();
+        let mut extensions: Vec<*const c_char> = Vec::new();
+        if options.validation {
+            // SAFETY: plain enumeration on a loaded entry.
+            let available = unsafe { entry.enumerate_instance_layer_properties() }
+                .check("vkEnumerateInstanceLayerProperties")?;
+            if !available.iter().any(|l| l.layer_name_as_c_str() == Ok(VALIDATION_LAYER)) {
+                return Err(VkError::NoValidationLayer);
+            }
+            layers.push(VALIDATION_LAYER.as_ptr());
+            extensions.push(ash::ext::debug_utils::NAME.as_ptr());
+            extensions.push(ash::ext::validation_features::NAME.as_ptr());
+        }
+
+        let app = vk::ApplicationInfo::default()
+            .application_name(c"msdsim")
+            .engine_name(c"msdsim")
+            .api_version(vk::API_VERSION_1_3);
+        let enabled = [vk::ValidationFeatureEnableEXT::SYNCHRONIZATION_VALIDATION];
+        let mut features = vk::ValidationFeaturesEXT::default().enabled_validation_features(&enabled);
+        let mut messenger_info = messenger_create_info(&canary);
+        let mut create = vk::InstanceCreateInfo::default()
+            .application_info(&app)
+            .enabled_layer_names(&layers)
+            .enabled_extension_names(&extensions);
+        if options.validation {
+            create = create.push_next(&mut features).push_next(&mut messenger_info);
+        }
+        // SAFETY: every pointer in `create` refers to locals that outlive the call.
+        let instance = unsafe { entry.create_instance(&create, None) }.check("vkCreateInstance")?;
+
+        let debug = if options.validation {
+            let loader = ash::ext::debug_utils::Instance::new(&entry, &instance);
+            // SAFETY: the canary outlives the messenger: both are destroyed in Drop, messenger first.
+            match unsafe { loader.create_debug_utils_messenger(&messenger_create_info(&canary), None) } {
+                Ok(m) => Some((loader, m)),
+                Err(e) => {
+                    // SAFETY: nothing else was created from this instance yet.
+                    unsafe { instance.destroy_instance(None) };
+                    return Err(VkError::from_call("vkCreateDebugUtilsMessengerEXT", e));
+                }
+            }
+        } else {
+            None
+        };
+
+        // From here on a failure must unwind what exists; build the rest in a helper.
+        match Self::open_device(&instance, options) {
+            Ok((candidate, device, allocator, command_pool)) => {
+                let queue_family = candidate.queue_family;
+                // SAFETY: the device was created with one queue in this family.
+                let queue = unsafe { device.get_device_queue(queue_family, 0) };
+                let debug_device =
+                    debug.as_ref().map(|_| ash::ext::debug_utils::Device::new(&instance, &device));
+                log::info!("GPU device: {}", candidate.info);
+                Ok(Self {
+                    _entry: entry,
+                    instance,
+                    debug,
+                    debug_device,
+                    canary,
+                    device,
+                    queue,
+                    command_pool,
+                    allocator: ManuallyDrop::new(Mutex::new(allocator)),
+                    info: candidate.info,
+                })
+            }
+            Err(e) => {
+                // SAFETY: tearing down what this function created, in reverse order.
+                unsafe {
+                    if let Some((loader, m)) = &debug {
+                        loader.destroy_debug_utils_messenger(*m, None);
+                    }
+                    instance.destroy_instance(None);
+                }
+                Err(e)
+            }
+        }
+    }
+
+    fn open_device(
+        instance: &ash::Instance,
+        options: &ContextOptions,
+    ) -> Result<(device::Candidate, ash::Device, Allocator, vk::CommandPool), VkError> {
+        let (list, skipped) = device::candidates(instance)?;
+        let candidate = device::choose(list, &skipped, options.device.as_deref())?;
+        let priorities = [1.0f32];
+        let queues = [vk::DeviceQueueCreateInfo::default()
+            .queue_family_index(candidate.queue_family)
+            .queue_priorities(&priorities)];
+        let mut f13 = vk::PhysicalDeviceVulkan13Features::default().synchronization2(true).maintenance4(true);
+        let create = vk::DeviceCreateInfo::default().queue_create_infos(&queues).push_next(&mut f13);
+        // SAFETY: the physical device came from this instance; pointers outlive the call.
+        let device =
+            unsafe { instance.create_device(candidate.physical, &create, None) }.check("vkCreateDevice")?;
+        let allocator = Allocator::new(&AllocatorCreateDesc {
+            instance: instance.clone(),
+            device: device.clone(),
+            physical_device: candidate.physical,
+            debug_settings: gpu_allocator::AllocatorDebugSettings {
+                log_leaks_on_shutdown: true,
+                ..Default::default()
+            },
+            buffer_device_address: false,
+            allocation_sizes: Default::default(),
+        });
+        let allocator = match allocator {
+            Ok(a) => a,
+            Err(source) => {
+                // SAFETY: nothing was created from the device yet.
+                unsafe { device.destroy_device(None) };
+                return Err(VkError::Allocation { what: "the allocator".into(), source });
+            }
+        };
+        let pool_info = vk::CommandPoolCreateInfo::default()
+            .queue_family_index(candidate.queue_family)
+            .flags(vk::CommandPoolCreateFlags::RESET_COMMAND_BUFFER);
+        // SAFETY: valid device; the pool is destroyed in Drop before the device.
+        match unsafe { device.create_command_pool(&pool_info, None) }.check("vkCreateCommandPool") {
+            Ok(pool) => Ok((candidate, device, allocator, pool)),
+            Err(e) => {
+                drop(allocator);
+                // SAFETY: the allocator holding device memory is gone; nothing else exists.
+                unsafe { device.destroy_device(None) };
+                Err(e)
+            }
+        }
+    }
+
+    pub fn info(&self) -> &DeviceInfo {
+        &self.info
+    }
+
+    /// Validation warnings and errors counted so far (always zero without validation).
+    pub fn canary(&self) -> &ValidationCanary {
+        &self.canary
+    }
+
+    pub fn validation_enabled(&self) -> bool {
+        self.debug.is_some()
+    }
+
+    pub(crate) fn allocator(&self) -> MutexGuard<'_, Allocator> {
+        self.allocator.lock().unwrap_or_else(|e| e.into_inner())
+    }
+
+    /// Names of the allocations that are still alive (the allocator's leak report).
+    pub fn live_allocations(&self) -> Vec<String> {
+        self.allocator().generate_report().allocations.into_iter().map(|a| a.name).collect()
+    }
+
+    /// Waits until the queue has finished all submitted work.
+    pub fn wait_idle(&self) -> Result<(), VkError> {
+        // SAFETY: valid device; no other thread submits to this queue.
+        unsafe { self.device.device_wait_idle() }.check("vkDeviceWaitIdle")
+    }
+
+    /// Gives a Vulkan object a name shown in validation messages (when validation is on).
+    pub(crate) fn set_name<H: vk::Handle>(&self, handle: H, name: &str) {
+        if let Some(debug) = &self.debug_device {
+            let Ok(name) = std::ffi::CString::new(name) else { return };
+            let info = vk::DebugUtilsObjectNameInfoEXT::default().object_handle(handle).object_name(&name);
+            // SAFETY: `handle` is a live object of this device; naming has no other effect.
+            let _ = unsafe { debug.set_debug_utils_object_name(&info) };
+        }
+    }
+}
+
+fn messenger_create_info(canary: &Arc<ValidationCanary>) -> vk::DebugUtilsMessengerCreateInfoEXT<'static> {
+    vk::DebugUtilsMessengerCreateInfoEXT::default()
+        .message_severity(
+            vk::DebugUtilsMessageSeverityFlagsEXT::ERROR
+                | vk::DebugUtilsMessageSeverityFlagsEXT::WARNING
+                | vk::DebugUtilsMessageSeverityFlagsEXT::INFO,
+        )
+        .message_type(
+            vk::DebugUtilsMessageTypeFlagsEXT::GENERAL
+                | vk::DebugUtilsMessageTypeFlagsEXT::VALIDATION
+                | vk::DebugUtilsMessageTypeFlagsEXT::PERFORMANCE,
+        )
+        .pfn_user_callback(Some(messenger_callback))
+        .user_data(Arc::as_ptr(canary) as *mut std::ffi::c_void)
+}
+
+impl Drop for GpuContext {
+    fn drop(&mut self) {
+        // SAFETY: reverse creation order after the GPU is idle; every child object has been
+        // destroyed by its owner's `destroy` (leaks are reported by the allocator below).
+        unsafe {
+            let _ = self.device.device_wait_idle();
+            self.device.destroy_command_pool(self.command_pool, None);
+            ManuallyDrop::drop(&mut self.allocator);
+            self.device.destroy_device(None);
+            if let Some((loader, messenger)) = self.debug.take() {
+                loader.destroy_debug_utils_messenger(messenger, None);
+            }
+            self.instance.destroy_instance(None);
+        }
+    }
+}

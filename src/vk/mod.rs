@@ -1,0 +1,33 @@
+//! Thin, safe-ish wrappers over raw Vulkan (ash). All `unsafe` in the crate lives in this module.
+//!
+//! Invariants:
+//! - [`GpuContext`] is the one owner of destruction order: entry -> instance -> debug messenger ->
+//!   device -> allocator are created in that order and destroyed in reverse after `device_wait_idle`.
+//!   Every other object is freed through a consuming `destroy(self, &GpuContext)`; a resource that
+//!   is dropped without it shows up in the allocator's leak report.
+//! - Every allocation is named; the allocator logs leaks on shutdown and
+//!   [`GpuContext::live_allocations`] exposes the same report to tests.
+//! - Barriers go through [`barrier`]: call sites name accesses ([`Access`]), and one place maps them
+//!   to synchronization2 stage/access masks. No ALL_COMMANDS barriers.
+//! - Validation (with synchronization validation) is opt-in per context; the debug messenger counts
+//!   validation warnings and errors in a [`ValidationCanary`] that tests assert to be zero.
+
+mod barrier;
+mod buffer;
+mod commands;
+mod context;
+mod debug;
+mod device;
+mod error;
+mod pipeline;
+mod query;
+
+pub use barrier::{Access, BufferBarrier};
+pub use buffer::{Buffer, BufferUsage, MemoryKind};
+pub use commands::{CommandSlot, Recorder};
+pub use context::{ContextOptions, GpuContext};
+pub use debug::ValidationCanary;
+pub use device::{DeviceInfo, DeviceKind};
+pub use error::VkError;
+pub use pipeline::{BindingSet, BindingSetLayout, ComputePipeline, DescriptorArena};
+pub use query::TimestampPool;

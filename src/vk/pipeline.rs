@@ -1,0 +1,170 @@
+//! Compute pipelines and their binding sets (descriptor sets of storage buffers only).
+
+use super::buffer::Buffer;
+use super::context::GpuContext;
+use super::error::{Check, VkError};
+use ash::vk;
+
+/// A descriptor set layout of `count` storage buffers at bindings 0..count, for compute.
+pub struct BindingSetLayout {
+    pub(crate) raw: vk::DescriptorSetLayout,
+    count: u32,
+}
+
+impl BindingSetLayout {
+    pub fn storage_buffers(ctx: &GpuContext, count: u32) -> Result<Self, VkError> {
+        let bindings: Vec<_> = (0..count)
+            .map(|i| {
+                vk::DescriptorSetLayoutBinding::default()
+                    .binding(i)
+                    .descriptor_type(vk::DescriptorType::STORAGE_BUFFER)
+                    .descriptor_count(1)
+                    .stage_flags(vk::ShaderStageFlags::COMPUTE)
+            })
+            .collect();
+        let info = vk::DescriptorSetLayoutCreateInfo::default().bindings(&bindings);
+        // SAFETY: valid device; destroyed in `destroy`.
+        let raw = unsafe { ctx.device.create_descriptor_set_layout(&info, None) }
+            .check("vkCreateDescriptorSetLayout")?;
+        Ok(Self { raw, count })
+    }
+
+    pub fn count(&self) -> u32 {
+        self.count
+    }
+
+    pub fn destroy(self, ctx: &GpuContext) {
+        // SAFETY: no pipeline layout is created from it after this, and sets using it are freed
+        // with their arena.
+        unsafe { ctx.device.destroy_descriptor_set_layout(self.raw, None) };
+    }
+}
+
+/// A bound set of buffers; valid until its `DescriptorArena` is destroyed.
+#[derive(Clone, Copy, Debug)]
+pub struct BindingSet {
+    pub(crate) raw: vk::DescriptorSet,
+}
+
+/// A descriptor pool for a fixed number of binding sets.
+pub struct DescriptorArena {
+    raw: vk::DescriptorPool,
+}
+
+impl DescriptorArena {
+    pub fn new(ctx: &GpuContext, max_sets: u32, buffers_per_set: u32) -> Result<Self, VkError> {
+        let sizes = [vk::DescriptorPoolSize {
+            ty: vk::DescriptorType::STORAGE_BUFFER,
+            descriptor_count: (max_sets * buffers_per_set).max(1),
+        }];
+        let info = vk::DescriptorPoolCreateInfo::default().max_sets(max_sets.max(1)).pool_sizes(&sizes);
+        // SAFETY: valid device; destroyed in `destroy`.
+        let raw =
+            unsafe { ctx.device.create_descriptor_pool(&info, None) }.check("vkCreateDescriptorPool")?;
+        Ok(Self { raw })
+    }
+
+    /// Allocates a set binding `buffers[i]` at binding `i`.
+    pub fn allocate(
+        &mut self,
+        ctx: &GpuContext,
+        layout: &BindingSetLayout,
+        buffers: &[&Buffer],
+    ) -> Result<BindingSet, VkError> {
+        assert_eq!(buffers.len() as u32, layout.count, "binding count must match the layout");
+        let layouts = [layout.raw];
+        let info = vk::DescriptorSetAllocateInfo::default().descriptor_pool(self.raw).set_layouts(&layouts);
+        // SAFETY: the pool and layout belong to this device.
+        let raw = unsafe { ctx.device.allocate_descriptor_sets(&info) }.check("vkAllocateDescriptorSets")?[0];
+        let infos: Vec<[vk::DescriptorBufferInfo; 1]> = buffers
+            .iter()
+            .map(|b| [vk::DescriptorBufferInfo { buffer: b.raw, offset: 0, range: vk::WHOLE_SIZE }])
+            .collect();
+        let writes: Vec<_> = infos
+            .iter()
+            .enumerate()
+            .map(|(i, info)| {
+                vk::WriteDescriptorSet::default()
+                    .dst_set(raw)
+                    .dst_binding(i as u32)
+                    .descriptor_type(vk::DescriptorType::STORAGE_BUFFER)
+                    .buffer_info(info)
+            })
+            .collect();
+        // SAFETY: the set was just allocated and is not in use by the GPU.
+        unsafe { ctx.device.update_descriptor_sets(&writes, &[]) };
+        Ok(BindingSet { raw })
+    }
+
+    pub fn destroy(self, ctx: &GpuContext) {
+        // SAFETY: no pending submission uses the sets (callers wait first).
+        unsafe { ctx.device.destroy_descriptor_pool(self.raw, None) };
+    }
+}
+
+/// A compute pipeline with its own pipeline layout (one binding set, no push constants).
+pub struct ComputePipeline {
+    pub(crate) raw: vk::Pipeline,
+    pub(crate) layout: vk::PipelineLayout,
+}
+
+impl ComputePipeline {
+    /// Builds a pipeline from SPIR-V; `specialization[i]` is the u32 constant with id `i`.
+    pub fn new(
+        ctx: &GpuContext,
+        name: &str,
+        spirv: &[u32],
+        set_layout: &BindingSetLayout,
+        specialization: &[u32],
+    ) -> Result<Self, VkError> {
+        let module_info = vk::ShaderModuleCreateInfo::default().code(spirv);
+        // SAFETY: valid device; the module is destroyed below, after pipeline creation.
+        let module =
+            unsafe { ctx.device.create_shader_module(&module_info, None) }.check("vkCreateShaderModule")?;
+        let set_layouts = [set_layout.raw];
+        let layout_info = vk::PipelineLayoutCreateInfo::default().set_layouts(&set_layouts);
+        // SAFETY: valid device and set layout.
+        let layout = match unsafe { ctx.device.create_pipeline_layout(&layout_info, None) } {
+            Ok(l) => l,
+            Err(e) => {
+                // SAFETY: the module is unused.
+                unsafe { ctx.device.destroy_shader_module(module, None) };
+                return Err(VkError::from_call("vkCreatePipelineLayout", e));
+            }
+        };
+        let entries: Vec<_> = (0..specialization.len() as u32)
+            .map(|i| vk::SpecializationMapEntry { constant_id: i, offset: 4 * i, size: 4 })
+            .collect();
+        let data: &[u8] = bytemuck::cast_slice(specialization);
+        let spec = vk::SpecializationInfo::default().map_entries(&entries).data(data);
+        let stage = vk::PipelineShaderStageCreateInfo::default()
+            .stage(vk::ShaderStageFlags::COMPUTE)
+            .module(module)
+            .name(c"main")
+            .specialization_info(&spec);
+        let info = [vk::ComputePipelineCreateInfo::default().stage(stage).layout(layout)];
+        // SAFETY: all referenced objects are live for the call; the module may be destroyed after.
+        let created = unsafe { ctx.device.create_compute_pipelines(vk::PipelineCache::null(), &info, None) };
+        // SAFETY: pipeline creation has finished with the module.
+        unsafe { ctx.device.destroy_shader_module(module, None) };
+        match created {
+            Ok(p) => {
+                ctx.set_name(p[0], name);
+                Ok(Self { raw: p[0], layout })
+            }
+            Err((_, e)) => {
+                // SAFETY: the layout is unused.
+                unsafe { ctx.device.destroy_pipeline_layout(layout, None) };
+                Err(VkError::from_call("vkCreateComputePipelines", e))
+            }
+        }
+    }
+
+    pub fn destroy(self, ctx: &GpuContext) {
+        // SAFETY: no pending submission uses the pipeline (callers wait or defer the release).
+        unsafe {
+            ctx.device.destroy_pipeline(self.raw, None);
+            ctx.device.destroy_pipeline_layout(self.layout, None);
+        }
+    }
+}

@@ -1,0 +1,54 @@
+//! GPU timestamps.
+
+use super::context::GpuContext;
+use super::error::{Check, VkError};
+use ash::vk;
+
+pub struct TimestampPool {
+    pub(crate) raw: vk::QueryPool,
+    capacity: u32,
+    period_ns: f64,
+}
+
+impl TimestampPool {
+    /// A pool of `capacity` timestamps, or `None` when the device's queue has no timestamps.
+    pub fn new(ctx: &GpuContext, capacity: u32) -> Result<Option<Self>, VkError> {
+        let Some(period_ns) = ctx.info().timestamp_period_ns else {
+            return Ok(None);
+        };
+        let info = vk::QueryPoolCreateInfo::default()
+            .query_type(vk::QueryType::TIMESTAMP)
+            .query_count(capacity.max(1));
+        // SAFETY: valid device; destroyed in `destroy`.
+        let raw = unsafe { ctx.device.create_query_pool(&info, None) }.check("vkCreateQueryPool")?;
+        Ok(Some(Self { raw, capacity: capacity.max(1), period_ns }))
+    }
+
+    pub fn capacity(&self) -> u32 {
+        self.capacity
+    }
+
+    /// Reads the first `count` timestamps in nanoseconds (after the submission's fence).
+    pub fn read_ns(&self, ctx: &GpuContext, count: u32) -> Result<Vec<f64>, VkError> {
+        let mut ticks = vec![0u64; count.min(self.capacity) as usize];
+        if ticks.is_empty() {
+            return Ok(Vec::new());
+        }
+        // SAFETY: the queries were written by a submission that has completed.
+        unsafe {
+            ctx.device.get_query_pool_results(
+                self.raw,
+                0,
+                &mut ticks,
+                vk::QueryResultFlags::TYPE_64 | vk::QueryResultFlags::WAIT,
+            )
+        }
+        .check("vkGetQueryPoolResults")?;
+        Ok(ticks.iter().map(|&t| t as f64 * self.period_ns).collect())
+    }
+
+    pub fn destroy(self, ctx: &GpuContext) {
+        // SAFETY: no pending submission uses the pool (callers wait first).
+        unsafe { ctx.device.destroy_query_pool(self.raw, None) };
+    }
+}
