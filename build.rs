@@ -50,7 +50,8 @@ fn main() {
         }
     }
     if !failures.is_empty() {
-        panic!("shader compilation failed:\n{}", failures.join("\n"));
+        eprintln!("shader compilation failed:\n{}", failures.join("\n"));
+        std::process::exit(1);
     }
     table.push_str("];\n");
     std::fs::write(out.join("shaders.rs"), table).expect("cannot write shaders.rs");

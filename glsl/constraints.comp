@@ -3,6 +3,9 @@
 // Constraint stage (Jacobi: every correction is computed from p_in, the physics output):
 // stretch limit on structural and shear springs, brute-force self-collision, then sphere
 // colliders with friction, and the velocity update. Reads p_in, writes p_out.
+// The corrections of all n_active constraints of a particle are averaged (Jacobi averaging):
+// summing them, as sequential Gauss-Seidel would, overshoots when several act at once and
+// diverges.
 #include "bindings.glsl"
 #include "springs.glsl"
 
@@ -21,6 +24,7 @@ void main() {
     vec3 x = p.pos.xyz;
     vec3 v = p.vel.xyz;
     vec3 correction = vec3(0.0);
+    uint n_active = 0u;
 
     // Springs may not stretch past (1 + stretch_limit) * rest: each end moves half the excess
     // (all of it when the other end is pinned).
@@ -34,6 +38,7 @@ void main() {
             float excess = d - rest_length(spring, obj.spacing, obj.rest_scale) * (1.0 + obj.stretch_limit);
             if (excess > 0.0) {
                 correction += (to_j / d) * (excess * (is_pinned(uint(j)) ? 1.0 : 0.5));
+                n_active += 1u;
             }
         }
     }
@@ -51,10 +56,12 @@ void main() {
             float d = length(to_j);
             if (d < reach && d > 0.0) {
                 correction += (to_j / d) * ((d - reach) * (is_pinned(j) ? 1.0 : 0.5));
+                n_active += 1u;
             }
         }
     }
 
+    if (n_active > 1u) correction /= float(n_active);
     x += correction;
     v += correction / g.dt;  // velocity follows the position correction
 

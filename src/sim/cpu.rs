@@ -10,7 +10,8 @@
 //!    and shear spring stretched past (1 + limit) L, half the excess towards the neighbour (all of
 //!    it when the neighbour is pinned), and (b) for every particle nearer than the self-collision
 //!    distance s (except pairs nearer than s at rest), half the overlap away from it (all of it when
-//!    that one is pinned). x += correction, v += correction / dt. Then, sphere by sphere: a
+//!    that one is pinned). The correction is the mean of these (Jacobi averaging);
+//!    x += correction, v += correction / dt. Then, sphere by sphere: a
 //!    particle within radius + margin is moved onto that distance along the centre->particle line,
 //!    its approaching normal velocity is removed and its tangential velocity scaled by (1 - friction).
 //!
@@ -162,6 +163,14 @@ impl CpuSim {
         &self.objects
     }
 
+    /// Replaces the state of object `index` (positions and velocities, one per particle).
+    pub fn set_state(&mut self, index: usize, x: Vec<DVec3>, v: Vec<DVec3>) {
+        let o = &mut self.objects[index];
+        assert!(x.len() == o.x.len() && v.len() == o.v.len(), "state size must match the object");
+        o.x = x;
+        o.v = v;
+    }
+
     /// One frame: `substeps` substeps, then the surface (normals, rope vertices).
     pub fn step_frame(&mut self) {
         for _ in 0..self.model.substeps {
@@ -227,6 +236,7 @@ fn constraints(m: &SimModel, o: &ObjectModel, dt: f64, x: &[DVec3], v: &[DVec3])
         }
         let (c, r) = ((i % cols) as i64, (i / cols) as i64);
         let mut correction = DVec3::ZERO;
+        let mut active = 0u32;
         if let Some(limit) = o.stretch_limit {
             for s in springs(o, c, r) {
                 if s.kind == SpringType::Bending || o.stiffness[s.kind as usize] == 0.0 {
@@ -237,6 +247,7 @@ fn constraints(m: &SimModel, o: &ObjectModel, dt: f64, x: &[DVec3], v: &[DVec3])
                 let excess = d - rest_length(o, &s) * (1.0 + limit);
                 if excess > 0.0 {
                     correction += delta / d * excess * share(s.other);
+                    active += 1;
                 }
             }
         }
@@ -251,8 +262,12 @@ fn constraints(m: &SimModel, o: &ObjectModel, dt: f64, x: &[DVec3], v: &[DVec3])
                 let d = delta.length();
                 if d > 0.0 && d < reach {
                     correction += delta / d * (d - reach) * share(j);
+                    active += 1;
                 }
             }
+        }
+        if active > 1 {
+            correction /= active as f64;
         }
         let mut p = x[i] + correction;
         let mut vel = v[i] + correction / dt;

@@ -1,0 +1,225 @@
+//! Shared test harness: a validated GPU context that fails loudly without a device, model
+//! builders, and GPU-vs-CPU comparison helpers.
+#![allow(dead_code)] // each test binary uses a different subset
+
+use glam::DVec3;
+use msdsim::sim::cpu::{CpuObject, CpuSim};
+use msdsim::sim::gpu::{GpuSim, ObjectState};
+use msdsim::sim::model::{default_ring_weights, ObjectKind, ObjectModel, SimModel, SphereModel, WindModel};
+use msdsim::vk::{ContextOptions, GpuContext};
+
+/// A context with validation and synchronization validation. Panics (never skips) when no
+/// Vulkan device or validation layer is available.
+pub fn gpu() -> GpuContext {
+    let options = ContextOptions { validation: true, device: std::env::var("MSDSIM_DEVICE").ok() };
+    GpuContext::new(&options).unwrap_or_else(|e| {
+        panic!(
+            "GPU tests need a Vulkan device and the validation layer (Debian: mesa-vulkan-drivers \
+             vulkan-validationlayers libvulkan1), but creating the context failed: {e}"
+        )
+    })
+}
+
+/// Fails the test if validation reported anything or an allocation is still alive.
+pub fn assert_clean(ctx: &GpuContext) {
+    let count = ctx.canary().count();
+    assert_eq!(count, 0, "{count} validation message(s): {:#?}", ctx.canary().messages());
+    let live = ctx.live_allocations();
+    assert!(live.is_empty(), "allocations leaked: {live:?}");
+}
+
+/// A deterministic pseudo-random number in [-1, 1) from an integer seed.
+pub fn noise(seed: u64) -> f64 {
+    let mut x = seed.wrapping_mul(0x9E37_79B9_7F4A_7C15).wrapping_add(0xD1B5_4A32_D192_ED03);
+    x ^= x >> 31;
+    x = x.wrapping_mul(0xBF58_476D_1CE4_E5B9);
+    x ^= x >> 29;
+    (x >> 11) as f64 / (1u64 << 52) as f64 - 1.0
+}
+
+/// Random offsets of up to `amplitude` per coordinate.
+pub fn jitter(positions: &mut [DVec3], amplitude: f64, seed: u64) {
+    for (i, p) in positions.iter_mut().enumerate() {
+        let s = seed.wrapping_mul(1000).wrapping_add(3 * i as u64);
+        *p += DVec3::new(noise(s), noise(s + 1), noise(s + 2)) * amplitude;
+    }
+}
+
+/// A flat cloth in the xy-plane (rows going down -y) with every feature off.
+pub fn cloth(cols: u32, rows: u32, spacing: f64) -> ObjectModel {
+    let n = (cols * rows) as usize;
+    let positions = (0..n)
+        .map(|i| {
+            let (c, r) = (i as u32 % cols, i as u32 / cols);
+            DVec3::new(c as f64 * spacing, 1.0 - r as f64 * spacing, 0.0)
+        })
+        .collect();
+    ObjectModel {
+        kind: ObjectKind::Cloth,
+        name: format!("cloth{cols}x{rows}"),
+        dims: [cols, rows],
+        spacing: [spacing, spacing],
+        stiffness: [0.0; 3],
+        rest_scale: [1.0; 3],
+        damping: 0.0,
+        mass: 0.01,
+        drag: 0.0,
+        friction: 0.0,
+        margin: 0.0,
+        stretch_limit: None,
+        self_distance: None,
+        rope_radius: 0.0,
+        ring_weights: default_ring_weights(),
+        positions,
+        velocities: vec![DVec3::ZERO; n],
+        pinned: vec![false; n],
+    }
+}
+
+/// A straight rope along +x with every feature off.
+pub fn rope(nodes: u32, spacing: f64) -> ObjectModel {
+    let n = nodes as usize;
+    ObjectModel {
+        kind: ObjectKind::Rope,
+        name: format!("rope{nodes}"),
+        dims: [nodes, 1],
+        spacing: [spacing, spacing],
+        stiffness: [0.0; 3],
+        rest_scale: [1.0; 3],
+        damping: 0.0,
+        mass: 0.01,
+        drag: 0.0,
+        friction: 0.0,
+        margin: 0.01,
+        stretch_limit: None,
+        self_distance: None,
+        rope_radius: 0.01,
+        ring_weights: default_ring_weights(),
+        positions: (0..n).map(|i| DVec3::new(i as f64 * spacing - 0.5, 1.0, 0.0)).collect(),
+        velocities: vec![DVec3::ZERO; n],
+        pinned: vec![false; n],
+    }
+}
+
+/// A scene with the given objects, no gravity, no wind, no spheres, 16 substeps per 1/60 s.
+pub fn scene(objects: Vec<ObjectModel>) -> SimModel {
+    SimModel {
+        gravity: DVec3::ZERO,
+        frame_dt: 1.0 / 60.0,
+        substeps: 16,
+        wind: None,
+        spheres: Vec::new(),
+        objects,
+    }
+}
+
+pub fn sphere(center: [f64; 3], radius: f64) -> SphereModel {
+    SphereModel { center: DVec3::from_array(center), radius }
+}
+
+/// A wind cone from `origin` along `direction` with the given full-force and attenuation
+/// half-angles (radians).
+pub fn wind(origin: [f64; 3], direction: [f64; 3], force: f64, full: f64, att: f64) -> WindModel {
+    WindModel {
+        origin: DVec3::from_array(origin),
+        direction: DVec3::from_array(direction).normalize(),
+        force,
+        cos_full: full.cos(),
+        cos_att: att.cos(),
+    }
+}
+
+/// Largest distance between GPU and CPU positions, velocities and surface (positions and
+/// normals) over all objects.
+#[derive(Debug, Default, Clone, Copy)]
+pub struct Deviation {
+    pub position: f64,
+    pub velocity: f64,
+    pub surface: f64,
+    pub normal: f64,
+}
+
+impl Deviation {
+    fn max(self, o: Deviation) -> Deviation {
+        Deviation {
+            position: self.position.max(o.position),
+            velocity: self.velocity.max(o.velocity),
+            surface: self.surface.max(o.surface),
+            normal: self.normal.max(o.normal),
+        }
+    }
+}
+
+fn v3(a: [f32; 4]) -> DVec3 {
+    DVec3::new(a[0] as f64, a[1] as f64, a[2] as f64)
+}
+
+pub fn deviation(gpu: &[ObjectState], cpu: &[CpuObject]) -> Deviation {
+    let mut d = Deviation::default();
+    for (g, c) in gpu.iter().zip(cpu) {
+        for (p, (x, v)) in g.particles.iter().zip(c.x.iter().zip(&c.v)) {
+            d.position = d.position.max(v3(p.pos).distance(*x));
+            d.velocity = d.velocity.max(v3(p.vel).distance(*v));
+        }
+        for (s, (x, n)) in g.surface.iter().zip(&c.surface) {
+            d.surface = d.surface.max(v3(s.pos).distance(*x));
+            d.normal = d.normal.max(v3(s.normal).distance(*n));
+        }
+    }
+    d
+}
+
+/// How the reference follows the GPU.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Mode {
+    /// Both run from the initial state for all frames (for smooth dynamics).
+    FreeRunning,
+    /// After every frame the reference restarts from the GPU's state (read back exactly), so
+    /// each frame's 16 substeps are compared from a common start (for chaotic contact scenes).
+    Resync,
+}
+
+/// Runs `frames` frames on the GPU and the CPU reference, comparing after every frame; returns
+/// the largest deviation seen and the final GPU state.
+pub fn compare(
+    ctx: &GpuContext,
+    model: &SimModel,
+    frames: usize,
+    mode: Mode,
+) -> (Deviation, Vec<ObjectState>) {
+    let mut gpu = GpuSim::new(ctx, model).expect("creating the GPU simulation");
+    let mut cpu = CpuSim::new(model);
+    let mut worst = Deviation::default();
+    let mut last = Vec::new();
+    for _ in 0..frames {
+        gpu.step_frame(ctx).expect("GPU frame");
+        cpu.step_frame();
+        last = gpu.read_states(ctx).expect("readback");
+        worst = worst.max(deviation(&last, cpu.objects()));
+        if mode == Mode::Resync {
+            for (i, state) in last.iter().enumerate() {
+                let x = state.particles.iter().map(|p| v3(p.pos)).collect();
+                let v = state.particles.iter().map(|p| v3(p.vel)).collect();
+                cpu.set_state(i, x, v);
+            }
+        }
+    }
+    gpu.destroy(ctx);
+    (worst, last)
+}
+
+/// Runs the GPU simulation alone for `frames` frames, calling `each` with the state after each.
+pub fn run_gpu(
+    ctx: &GpuContext,
+    model: &SimModel,
+    frames: usize,
+    mut each: impl FnMut(usize, &[ObjectState]),
+) {
+    let mut gpu = GpuSim::new(ctx, model).expect("creating the GPU simulation");
+    for f in 0..frames {
+        gpu.step_frame(ctx).expect("GPU frame");
+        let states = gpu.read_states(ctx).expect("readback");
+        each(f, &states);
+    }
+    gpu.destroy(ctx);
+}
