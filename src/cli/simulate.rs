@@ -2,7 +2,7 @@
 
 use crate::error::UserError;
 use crate::scene;
-use crate::sim::gpu::{FrameTiming, GpuSim};
+use crate::sim::gpu::{self, FrameTiming, GpuSim};
 use crate::sim::model::ObjectKind;
 use crate::vk::{ContextOptions, GpuContext};
 use anyhow::{Context as _, Result};
@@ -56,12 +56,13 @@ struct ObjectOut<'a> {
 
 pub fn run(args: &SimulateArgs, options: &ContextOptions) -> Result<()> {
     let scene = scene::load(&args.preset, &args.overrides)?;
-    let model = scene::to_model(&scene);
     // Claim the output file before simulating, so a bad path fails before any work is done.
     let out = args.out.as_deref().map(OutFile::create).transpose()?;
 
     let ctx = GpuContext::new(options)?;
     println!("device: {}", ctx.info());
+    gpu::check_fits(ctx.info(), &scene::shapes(&scene))?;
+    let model = scene::to_model(&scene);
     println!(
         "preset: {} ({} objects, {} spheres, {} substeps of {:.3} ms per frame)",
         args.preset.display(),

@@ -1,8 +1,25 @@
 //! Scene preset -> simulation model: initial positions, pins, derived wind cone.
 
 use super::{Cloth, ClothPins, Orientation, Rope, RopePins, Scene};
-use crate::sim::model::{default_ring_weights, ObjectKind, ObjectModel, SimModel, SphereModel, WindModel};
+use crate::sim::model::{
+    default_ring_weights, ObjectKind, ObjectModel, ObjectShape, SimModel, SphereModel, WindModel,
+};
 use glam::DVec3;
+
+/// The size of every object of a validated scene, cloths first, without building particles.
+pub fn shapes(scene: &Scene) -> Vec<ObjectShape> {
+    let cloths = scene.cloths.iter().map(|c| ObjectShape {
+        kind: ObjectKind::Cloth,
+        name: c.name.clone(),
+        dims: c.resolution,
+    });
+    let ropes = scene.ropes.iter().map(|r| ObjectShape {
+        kind: ObjectKind::Rope,
+        name: r.name.clone(),
+        dims: [r.nodes, 1],
+    });
+    cloths.chain(ropes).collect()
+}
 
 /// Builds the model of a validated scene.
 pub fn to_model(scene: &Scene) -> SimModel {

@@ -7,7 +7,7 @@ mod build;
 mod load;
 mod validate;
 
-pub use build::to_model;
+pub use build::{shapes, to_model};
 pub use load::{apply_override, load, parse};
 
 use serde::{Deserialize, Serialize};

@@ -62,7 +62,9 @@ pub fn compile_glsl(path: &Path, include_dir: &Path) -> Result<CompiledShader, C
     let compiler = shaderc::Compiler::new().map_err(|e| fail(format!("shaderc: {e}"), vec![]))?;
     let mut options = shaderc::CompileOptions::new().map_err(|e| fail(format!("shaderc: {e}"), vec![]))?;
     options.set_target_env(shaderc::TargetEnv::Vulkan, shaderc::EnvVersion::Vulkan1_3 as u32);
-    options.set_optimization_level(shaderc::OptimizationLevel::Performance);
+    // No spirv-opt: it strips the struct and member names that `reflect` uses to check layouts
+    // against the Rust mirrors, and the Vulkan drivers optimise SPIR-V themselves.
+    options.set_optimization_level(shaderc::OptimizationLevel::Zero);
     options.set_include_callback(|requested, _kind, requesting, _depth| {
         let from = Path::new(requesting).parent().unwrap_or(Path::new("."));
         let candidates = [from.join(requested), include_dir.join(requested)];

@@ -21,12 +21,12 @@
 use super::gpu_types::{
     Globals, ObjectParams, Particle, SurfaceVertex, OBJ_SELF_COLLISION, OBJ_STRETCH_LIMIT,
 };
-use super::model::{ObjectKind, ObjectModel, SimModel};
+use super::model::{ObjectKind, ObjectModel, ObjectShape, SimModel};
 use crate::error::UserError;
 use crate::shaders;
 use crate::vk::{
     Access, BindingSet, BindingSetLayout, Buffer, BufferBarrier, BufferUsage, CommandSlot, ComputePipeline,
-    DescriptorArena, GpuContext, MemoryKind, Recorder, TimestampPool, VkError,
+    DescriptorArena, DeviceInfo, GpuContext, MemoryKind, Recorder, TimestampPool, VkError,
 };
 use anyhow::{Context as _, Result};
 
@@ -122,10 +122,9 @@ pub struct GpuSim {
 }
 
 /// Bytes of GPU memory an object needs: two state buffers, the surface, the parameters.
-fn object_bytes(o: &ObjectModel) -> u64 {
-    let particles = o.particle_count() as u64;
-    2 * particles * std::mem::size_of::<Particle>() as u64
-        + o.surface_count() as u64 * std::mem::size_of::<SurfaceVertex>() as u64
+fn object_bytes(o: &ObjectShape) -> u64 {
+    2 * o.particle_count() * std::mem::size_of::<Particle>() as u64
+        + o.surface_count() * std::mem::size_of::<SurfaceVertex>() as u64
         + std::mem::size_of::<ObjectParams>() as u64
 }
 
@@ -133,54 +132,55 @@ fn gib(bytes: u64) -> String {
     format!("{:.2} GiB", bytes as f64 / (1u64 << 30) as f64)
 }
 
-/// Refuses scenes the device cannot hold or dispatch, before allocating anything.
-fn check_fits(ctx: &GpuContext, model: &SimModel) -> Result<(), UserError> {
-    let info = ctx.info();
-    let total: u64 = model.objects.iter().map(object_bytes).sum();
-    for o in &model.objects {
-        let state = o.particle_count() as u64 * std::mem::size_of::<Particle>() as u64;
-        let surface = o.surface_count() as u64 * std::mem::size_of::<SurfaceVertex>() as u64;
-        if state.max(surface) > info.max_storage_buffer_range {
-            return Err(UserError(format!(
-                "{kind:?} '{name}' ({c} x {r} particles) is too large: one buffer would be {}, the device's largest storage buffer is {}",
-                gib(state.max(surface)),
-                gib(info.max_storage_buffer_range),
-                kind = o.kind,
-                name = o.name,
-                c = o.dims[0],
-                r = o.dims[1],
-            )));
-        }
-        let groups = step_groups(o);
-        if groups.iter().zip(info.max_workgroup_count).any(|(g, max)| *g > max) {
-            return Err(UserError(format!(
-                "{:?} '{}' ({} x {}) needs more workgroups than the device dispatches",
-                o.kind, o.name, o.dims[0], o.dims[1]
-            )));
-        }
-    }
+/// Refuses objects the device cannot hold or dispatch. Needs only the shapes, so callers can
+/// check before building particle arrays.
+pub fn check_fits(info: &DeviceInfo, shapes: &[ObjectShape]) -> Result<(), UserError> {
+    let total: u64 = shapes.iter().map(object_bytes).sum();
     if total > info.device_local_bytes {
         return Err(UserError(format!(
-            "the scene needs {} of GPU memory; {} has {}",
+            "the scene is too large for the device: it needs {} of GPU memory, {} has {}",
             gib(total),
             info.name,
             gib(info.device_local_bytes)
         )));
     }
+    for o in shapes {
+        let what = format!("{} '{}' ({} x {})", o.kind.label(), o.name, o.dims[0], o.dims[1]);
+        let state = o.particle_count() * std::mem::size_of::<Particle>() as u64;
+        let surface = o.surface_count() * std::mem::size_of::<SurfaceVertex>() as u64;
+        if state.max(surface) > info.max_storage_buffer_range {
+            return Err(UserError(format!(
+                "{what} is too large for the device: one buffer would be {}, {} binds at most {}",
+                gib(state.max(surface)),
+                info.name,
+                gib(info.max_storage_buffer_range),
+            )));
+        }
+        if step_groups(o)
+            .iter()
+            .chain(&surface_groups(o))
+            .zip(info.max_workgroup_count.iter().cycle())
+            .any(|(g, max)| g > max)
+        {
+            return Err(UserError(format!(
+                "{what} is too large for the device: it needs more workgroups than one dispatch allows"
+            )));
+        }
+    }
     Ok(())
 }
 
-fn step_groups(o: &ObjectModel) -> [u32; 3] {
+fn step_groups(o: &ObjectShape) -> [u32; 3] {
     match o.kind {
         ObjectKind::Cloth => [o.dims[0].div_ceil(CLOTH_GROUP[0]), o.dims[1].div_ceil(CLOTH_GROUP[1]), 1],
         ObjectKind::Rope => [o.dims[0].div_ceil(ROPE_GROUP), 1, 1],
     }
 }
 
-fn surface_groups(o: &ObjectModel) -> [u32; 3] {
+fn surface_groups(o: &ObjectShape) -> [u32; 3] {
     match o.kind {
         ObjectKind::Cloth => step_groups(o),
-        ObjectKind::Rope => [(o.surface_count() as u32).div_ceil(64), 1, 1],
+        ObjectKind::Rope => [o.surface_count().div_ceil(ROPE_GROUP as u64) as u32, 1, 1],
     }
 }
 
@@ -245,7 +245,7 @@ fn particles(o: &ObjectModel) -> Vec<Particle> {
 impl GpuSim {
     /// Allocates and uploads the scene. Fails with a `UserError` when it cannot fit the device.
     pub fn new(ctx: &GpuContext, model: &SimModel) -> Result<Self> {
-        check_fits(ctx, model)?;
+        check_fits(ctx.info(), &model.objects.iter().map(ObjectModel::shape).collect::<Vec<_>>())?;
         let layout = BindingSetLayout::storage_buffers(ctx, BINDINGS)?;
         let mut sim = Self {
             pipelines: match Pipelines::new(ctx, &layout) {
@@ -360,8 +360,8 @@ impl GpuSim {
                     kind: o.kind,
                     particles: n as u32,
                     surface_len: o.surface_count() as u32,
-                    step_groups: step_groups(o),
-                    surface_groups: surface_groups(o),
+                    step_groups: step_groups(&o.shape()),
+                    surface_groups: surface_groups(&o.shape()),
                     params,
                     state: [a, b],
                     surface,
@@ -370,7 +370,7 @@ impl GpuSim {
             }
             Err(e) => {
                 made.into_iter().for_each(|b| b.destroy(ctx));
-                Err(anyhow::Error::new(e).context(format!("allocating {:?} '{}'", o.kind, o.name)))
+                Err(anyhow::Error::new(e).context(format!("allocating {} '{}'", o.kind.label(), o.name)))
             }
         }
     }

@@ -11,6 +11,37 @@ pub enum ObjectKind {
     Rope,
 }
 
+impl ObjectKind {
+    pub fn label(self) -> &'static str {
+        match self {
+            ObjectKind::Cloth => "cloth",
+            ObjectKind::Rope => "rope",
+        }
+    }
+}
+
+/// What an object's size is, without its particles: enough to check it fits a device.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ObjectShape {
+    pub kind: ObjectKind,
+    pub name: String,
+    pub dims: [u32; 2],
+}
+
+impl ObjectShape {
+    pub fn particle_count(&self) -> u64 {
+        self.dims[0] as u64 * self.dims[1] as u64
+    }
+
+    /// Number of drawable surface vertices: one per cloth particle, a ring per rope node.
+    pub fn surface_count(&self) -> u64 {
+        match self.kind {
+            ObjectKind::Cloth => self.particle_count(),
+            ObjectKind::Rope => self.particle_count() * crate::sim::gpu_types::ROPE_RING as u64,
+        }
+    }
+}
+
 /// One cloth grid or rope (a rope is a grid of `nodes x 1`).
 #[derive(Debug, Clone, PartialEq)]
 pub struct ObjectModel {
@@ -49,16 +80,16 @@ pub struct ObjectModel {
 }
 
 impl ObjectModel {
-    pub fn particle_count(&self) -> usize {
-        self.dims[0] as usize * self.dims[1] as usize
+    pub fn shape(&self) -> ObjectShape {
+        ObjectShape { kind: self.kind, name: self.name.clone(), dims: self.dims }
     }
 
-    /// Number of drawable surface vertices: one per cloth particle, a ring per rope node.
+    pub fn particle_count(&self) -> usize {
+        self.shape().particle_count() as usize
+    }
+
     pub fn surface_count(&self) -> usize {
-        match self.kind {
-            ObjectKind::Cloth => self.particle_count(),
-            ObjectKind::Rope => self.particle_count() * crate::sim::gpu_types::ROPE_RING,
-        }
+        self.shape().surface_count() as usize
     }
 }
 

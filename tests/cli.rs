@@ -1,0 +1,179 @@
+//! The binary on good and bad input: bad input exits with code 2 and one line that names the
+//! problem, never a panic or a validation message. Runs with --validation.
+
+use std::path::Path;
+use std::process::{Command, Output};
+
+const GOOD: &str = r#"
+[sim]
+substeps = 4
+[[sphere]]
+center = [0.0, 0.0, 0.0]
+radius = 0.2
+[[cloth]]
+name = "c"
+resolution = [5, 4]
+size = [0.4, 0.3]
+origin = [-0.2, 0.5, 0.0]
+mass = 0.01
+stiffness = { structural = 100.0, shear = 20.0, bending = 5.0 }
+pin = "top_row"
+[[rope]]
+name = "r"
+nodes = 6
+start = [0.0, 0.6, 0.1]
+end = [0.3, 0.6, 0.1]
+mass = 0.01
+stiffness = 100.0
+radius = 0.01
+"#;
+
+fn msdsim(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_msdsim"))
+        .arg("--validation")
+        .args(args)
+        .output()
+        .expect("running the msdsim binary")
+}
+
+fn write(dir: &Path, name: &str, text: &str) -> String {
+    let path = dir.join(name);
+    std::fs::write(&path, text).expect("writing a test preset");
+    path.display().to_string()
+}
+
+/// Runs `args` and checks: exit code 2, one stderr line containing every `needle`, no panic.
+fn rejects(args: &[&str], needles: &[&str]) {
+    let out = msdsim(args);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{args:?}: expected exit code 2; stderr:\n{stderr}");
+    assert!(
+        !stderr.contains("panicked") && !stderr.contains("internal error"),
+        "{args:?} panicked:\n{stderr}"
+    );
+    assert!(!stderr.to_lowercase().contains("validation"), "{args:?}: validation message:\n{stderr}");
+    let lines: Vec<&str> = stderr.lines().filter(|l| !l.trim().is_empty()).collect();
+    assert_eq!(lines.len(), 1, "{args:?}: expected one line, got:\n{stderr}");
+    for needle in needles {
+        assert!(stderr.contains(needle), "{args:?}: {needle:?} not in: {stderr}");
+    }
+}
+
+#[test]
+fn good_preset_runs_and_writes_the_state() {
+    let dir = tempfile::tempdir().unwrap();
+    let preset = write(dir.path(), "good.toml", GOOD);
+    let out_path = dir.path().join("state.json");
+    let out = msdsim(&[
+        "simulate",
+        "--preset",
+        &preset,
+        "--frames",
+        "3",
+        "--set",
+        "sim.substeps=8",
+        "--out",
+        out_path.to_str().unwrap(),
+    ]);
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert!(out.status.success(), "exit {:?}\n{}", out.status, String::from_utf8_lossy(&out.stderr));
+    assert!(stdout.contains("frame      3  gpu"), "per-frame GPU time missing:\n{stdout}");
+    assert!(stdout.contains("GPU frame time: mean"), "summary missing:\n{stdout}");
+    let state: serde_json::Value = serde_json::from_slice(&std::fs::read(&out_path).unwrap()).unwrap();
+    assert_eq!(state["substeps"], 24, "3 frames of the overridden 8 substeps");
+    assert!((state["time"].as_f64().unwrap() - 3.0 / 60.0).abs() < 1e-9);
+    let objects = state["objects"].as_array().unwrap();
+    assert_eq!(objects.len(), 2);
+    assert_eq!(objects[0]["kind"], "cloth");
+    assert_eq!(objects[0]["dims"], serde_json::json!([5, 4]));
+    assert_eq!(objects[0]["positions"].as_array().unwrap().len(), 20);
+    assert_eq!(objects[1]["kind"], "rope");
+    assert_eq!(objects[1]["velocities"].as_array().unwrap().len(), 6);
+}
+
+#[test]
+fn malformed_toml() {
+    let dir = tempfile::tempdir().unwrap();
+    let p = write(dir.path(), "bad.toml", "[sim\nsubsteps = 4\n");
+    rejects(&["simulate", "--preset", &p], &["bad.toml", "line 1"]);
+}
+
+#[test]
+fn unknown_key() {
+    let dir = tempfile::tempdir().unwrap();
+    let p = write(
+        dir.path(),
+        "k.toml",
+        &GOOD.replace("mass = 0.01\nstiffness = {", "mass = 0.01\nmas = 1\nstiffness = {"),
+    );
+    rejects(&["simulate", "--preset", &p], &["k.toml", "cloth[0]", "unknown field `mas`"]);
+}
+
+#[test]
+fn negative_mass() {
+    let dir = tempfile::tempdir().unwrap();
+    let p = write(dir.path(), "m.toml", &GOOD.replacen("mass = 0.01", "mass = -1.0", 1));
+    rejects(&["simulate", "--preset", &p], &["m.toml", "cloth[0].mass = -1", "must be > 0"]);
+}
+
+#[test]
+fn zero_resolution() {
+    let dir = tempfile::tempdir().unwrap();
+    let p = write(dir.path(), "z.toml", &GOOD.replace("resolution = [5, 4]", "resolution = [0, 4]"));
+    rejects(&["simulate", "--preset", &p], &["z.toml", "cloth[0].resolution"]);
+}
+
+#[test]
+fn grid_too_large_for_device_memory() {
+    let dir = tempfile::tempdir().unwrap();
+    let p =
+        write(dir.path(), "big.toml", &GOOD.replace("resolution = [5, 4]", "resolution = [16384, 16384]"));
+    rejects(&["simulate", "--preset", &p], &["too large for the device"]);
+}
+
+#[test]
+fn missing_file() {
+    rejects(
+        &["simulate", "--preset", "/nonexistent/preset.toml"],
+        &["/nonexistent/preset.toml", "cannot read"],
+    );
+}
+
+#[test]
+fn bad_override() {
+    let dir = tempfile::tempdir().unwrap();
+    let p = write(dir.path(), "o.toml", GOOD);
+    rejects(&["simulate", "--preset", &p, "--set", "sim.substeps=zero"], &["sim.substeps", "invalid type"]);
+    rejects(&["simulate", "--preset", &p, "--set", "cloth.nosuch.mass=1"], &["cloth", "nosuch"]);
+    rejects(&["simulate", "--preset", &p, "--set", "sim.substeps"], &["KEY=VALUE"]);
+    rejects(&["simulate", "--preset", &p, "--set", "sim.substeps=0"], &["sim.substeps = 0"]);
+}
+
+#[test]
+fn bad_arguments() {
+    let dir = tempfile::tempdir().unwrap();
+    let p = write(dir.path(), "a.toml", GOOD);
+    let out = msdsim(&["simulate", "--preset", &p, "--frames", "-3"]);
+    assert_eq!(out.status.code(), Some(2), "clap rejects a negative frame count with code 2");
+    rejects(&["simulate", "--preset", &p, "--device", "no-such-gpu"], &["no-such-gpu"]);
+    rejects(
+        &["simulate", "--preset", &p, "--out", "/nonexistent/dir/state.json"],
+        &["--out", "cannot write"],
+    );
+}
+
+/// Without any Vulkan driver the binary fails with a clear message (exit 1), and the test
+/// harness, which uses the same context creation, fails loudly rather than skipping.
+#[test]
+fn no_vulkan_device_is_a_clear_failure() {
+    let out = Command::new(env!("CARGO_BIN_EXE_msdsim"))
+        .arg("devices")
+        .env("VK_DRIVER_FILES", "/nonexistent/icd.json")
+        .env("VK_ICD_FILENAMES", "/nonexistent/icd.json")
+        .output()
+        .expect("running the msdsim binary");
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(1), "stderr: {stderr}");
+    assert!(stderr.contains("Vulkan"), "unclear message: {stderr}");
+    assert!(!stderr.contains("panicked"), "panicked: {stderr}");
+}
