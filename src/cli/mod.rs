@@ -46,7 +46,15 @@ pub fn run(cli: Cli) -> Result<()> {
         Command::Simulate(args) => simulate::run(&args, &options),
         Command::Devices => {
             let ctx = GpuContext::new(&options)?;
-            println!("chosen: {}", ctx.info());
+            let (devices, skipped) = ctx.devices()?;
+            for (i, d) in devices.iter().enumerate() {
+                let mark = if d.name == ctx.info().name { "*" } else { " " };
+                println!("{mark} [{i}] {d}");
+            }
+            for s in skipped {
+                println!("  (skipped) {s}");
+            }
+            println!("* = chosen (select another with --device INDEX|NAME or MSDSIM_DEVICE)");
             check_validation(&ctx)
         }
     }

@@ -175,6 +175,13 @@ impl GpuContext {
         &self.info
     }
 
+    /// Every device that qualifies, in the order `--device INDEX` counts them, and the reasons
+    /// the others were skipped.
+    pub fn devices(&self) -> Result<(Vec<DeviceInfo>, Vec<String>), VkError> {
+        let (list, skipped) = device::candidates(&self.instance)?;
+        Ok((list.into_iter().map(|c| c.info).collect(), skipped))
+    }
+
     /// Validation warnings and errors counted so far (always zero without validation).
     pub fn canary(&self) -> &ValidationCanary {
         &self.canary
