@@ -24,7 +24,7 @@ pub fn parse(text: &str, origin: &str, overrides: &[String]) -> Result<Scene, Us
                 format!("line {line}, column {column}: ")
             })
             .unwrap_or_default();
-        UserError(format!("{origin}: {at}{}", e.message().trim()))
+        UserError(format!("{origin}: {at}{}", one_line(e.message())))
     })?;
     for spec in overrides {
         apply_override(&mut table, spec).map_err(|e| UserError(format!("--set {spec}: {e}")))?;
@@ -32,7 +32,7 @@ pub fn parse(text: &str, origin: &str, overrides: &[String]) -> Result<Scene, Us
     let origin = if overrides.is_empty() { origin.to_string() } else { format!("{origin} (with --set)") };
     let scene: Scene = serde_path_to_error::deserialize(toml::Value::Table(table)).map_err(|e| {
         let path = e.path().to_string();
-        let message = e.inner().message().trim().to_string();
+        let message = one_line(e.inner().message());
         if path == "." {
             UserError(format!("{origin}: {message}"))
         } else {
@@ -90,6 +90,11 @@ fn set_path(table: &mut toml::Table, path: &[&str], value: toml::Value, walked: 
     }
 }
 
+/// A message folded onto one line.
+fn one_line(message: &str) -> String {
+    message.trim().lines().map(str::trim).filter(|l| !l.is_empty()).collect::<Vec<_>>().join("; ")
+}
+
 fn select<'a>(items: &'a mut [toml::Value], selector: &str) -> Option<&'a mut toml::Value> {
     if let Ok(i) = selector.parse::<usize>() {
         return items.get_mut(i);
@@ -103,4 +108,87 @@ fn parse_value(raw: &str) -> toml::Value {
         .ok()
         .and_then(|mut t| t.remove("v"))
         .unwrap_or_else(|| toml::Value::String(raw.to_string()))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const BASE: &str = r#"
+[sim]
+substeps = 4
+[[cloth]]
+name = "a"
+resolution = [3, 3]
+size = [1.0, 1.0]
+origin = [0.0, 0.0, 0.0]
+mass = 0.1
+stiffness = { structural = 1.0, shear = 1.0, bending = 1.0 }
+[[cloth]]
+name = "b"
+resolution = [3, 3]
+size = [1.0, 1.0]
+origin = [0.0, 0.0, 0.0]
+mass = 0.1
+stiffness = { structural = 1.0, shear = 1.0, bending = 1.0 }
+"#;
+
+    fn with(overrides: &[&str]) -> Result<Scene, UserError> {
+        parse(BASE, "t.toml", &overrides.iter().map(|s| s.to_string()).collect::<Vec<_>>())
+    }
+
+    #[test]
+    fn overrides_reach_tables_array_entries_and_inline_tables() {
+        let s = with(&[
+            "sim.substeps=32",
+            "cloth.1.mass=0.5",
+            "cloth.a.stiffness.shear=7",
+            "cloth[1].origin=[1, 2, 3]",
+            "sim.gravity = [0, -1, 0]",
+            "cloth.a.pin=top_row",
+        ])
+        .unwrap();
+        assert_eq!(s.sim.substeps, 32);
+        assert_eq!(s.cloths[1].mass, 0.5);
+        assert_eq!(s.cloths[0].stiffness.shear, 7.0);
+        assert_eq!(s.cloths[1].origin, [1.0, 2.0, 3.0]);
+        assert_eq!(s.sim.gravity, [0.0, -1.0, 0.0]);
+        assert_eq!(s.cloths[0].pin, super::super::ClothPins::TopRow);
+    }
+
+    #[test]
+    fn override_errors_name_the_key() {
+        assert!(with(&["cloth.c.mass=1"]).unwrap_err().0.contains("cloth has no entry \"c\""));
+        assert!(with(&["cloth.5.mass=1"]).unwrap_err().0.contains("no entry \"5\""));
+        assert!(with(&["sim.substeps.x=1"]).unwrap_err().0.contains("sim.substeps is a value"));
+        assert!(with(&["sim..x=1"]).unwrap_err().0.contains("malformed key"));
+        let e = with(&["sim.substepz=1"]).unwrap_err().0;
+        assert!(e.contains("t.toml (with --set): sim.substepz: unknown field"), "{e}");
+    }
+
+    #[test]
+    fn syntax_errors_give_line_and_column() {
+        let e = parse("[sim]\nsubsteps = = 3\n", "x.toml", &[]).unwrap_err().0;
+        assert!(e.starts_with("x.toml: line 2, column"), "{e}");
+        assert!(!e.contains('\n'), "one line: {e}");
+    }
+
+    #[test]
+    fn range_errors_name_key_value_and_unit() {
+        let e = with(&["cloth.b.stiffness.bending=-2"]).unwrap_err().0;
+        assert_eq!(e, "t.toml (with --set): cloth[1].stiffness.bending = -2: must be >= 0 (N/m)");
+        let e = with(&["cloth.a.name=\"b\""]).unwrap_err().0;
+        assert!(e.contains("another object has this name"), "{e}");
+        let e = with(&["cloth.a.pinned=[[3, 0]]"]).unwrap_err().0;
+        assert!(e.contains("cloth[0].pinned[0] = [3, 0]: outside the 3 x 3 grid"), "{e}");
+        let e = with(&["cloth.a.mass=nan"]).unwrap_err().0;
+        assert!(e.contains("cloth[0].mass = NaN"), "{e}");
+    }
+
+    #[test]
+    fn a_scene_survives_a_toml_round_trip() {
+        let s = with(&["cloth.a.stretch_limit=0.1", "cloth.b.pinned=[[1, 1]]"]).unwrap();
+        let text = toml::to_string(&s).unwrap();
+        assert_eq!(parse(&text, "round.toml", &[]).unwrap(), s);
+    }
 }
