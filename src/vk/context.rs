@@ -70,7 +70,14 @@ impl GpuContext {
             create = create.push_next(&mut features).push_next(&mut messenger_info);
         }
         // SAFETY: every pointer in `create` refers to locals that outlive the call.
-        let instance = unsafe { entry.create_instance(&create, None) }.check("vkCreateInstance")?;
+        let instance = unsafe { entry.create_instance(&create, None) }.map_err(|e| match e {
+            vk::Result::ERROR_INCOMPATIBLE_DRIVER => VkError::NoDevice(
+                "the Vulkan loader found no driver; install one (Debian: mesa-vulkan-drivers provides lavapipe), \
+                 or point VK_DRIVER_FILES at the driver's ICD file"
+                    .into(),
+            ),
+            e => VkError::from_call("vkCreateInstance", e),
+        })?;
 
         let debug = if options.validation {
             let loader = ash::ext::debug_utils::Instance::new(&entry, &instance);
