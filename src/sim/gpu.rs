@@ -300,77 +300,62 @@ impl GpuSim {
     }
 
     fn create_object(&mut self, ctx: &GpuContext, o: &ObjectModel) -> Result<GpuObject> {
-        let n = o.particle_count() as u64;
+        let context = || format!("allocating {} '{}'", o.kind.label(), o.name);
+        let state_bytes = o.particle_count() as u64 * std::mem::size_of::<Particle>() as u64;
         let state_usage = BufferUsage::STORAGE | BufferUsage::TRANSFER_SRC | BufferUsage::TRANSFER_DST;
-        let state_bytes = n * std::mem::size_of::<Particle>() as u64;
-        // Buffers created so far are freed if a later one fails.
-        let mut made: Vec<Buffer> = Vec::new();
-        let result = (|| -> Result<[BindingSet; 2], VkError> {
-            let mut params = Buffer::new(
-                ctx,
-                &format!("{}.params", o.name),
-                144,
-                BufferUsage::STORAGE,
-                MemoryKind::Upload,
-            )?;
-            params.write(0, &[object_params(o)])?;
-            made.push(params);
-            made.push(Buffer::new(
-                ctx,
-                &format!("{}.state_a", o.name),
-                state_bytes,
-                state_usage,
-                MemoryKind::GpuOnly,
-            )?);
-            made.push(Buffer::new(
-                ctx,
-                &format!("{}.state_b", o.name),
-                state_bytes,
-                state_usage,
-                MemoryKind::GpuOnly,
-            )?);
-            made.push(Buffer::new(
-                ctx,
-                &format!("{}.surface", o.name),
+        let specs = [
+            ("params", std::mem::size_of::<ObjectParams>() as u64, BufferUsage::STORAGE, MemoryKind::Upload),
+            ("state_a", state_bytes, state_usage, MemoryKind::GpuOnly),
+            ("state_b", state_bytes, state_usage, MemoryKind::GpuOnly),
+            (
+                "surface",
                 o.surface_count() as u64 * std::mem::size_of::<SurfaceVertex>() as u64,
                 BufferUsage::STORAGE | BufferUsage::VERTEX | BufferUsage::TRANSFER_SRC,
                 MemoryKind::GpuOnly,
-            )?);
-            let [params, a, b, surface] = [&made[0], &made[1], &made[2], &made[3]];
+            ),
+        ];
+        let mut made = Vec::with_capacity(specs.len());
+        for (suffix, size, usage, memory) in specs {
+            match Buffer::new(ctx, &format!("{}.{suffix}", o.name), size, usage, memory) {
+                Ok(b) => made.push(b),
+                Err(e) => {
+                    made.into_iter().for_each(|b| b.destroy(ctx));
+                    return Err(anyhow::Error::new(e).context(context()));
+                }
+            }
+        }
+        let Ok([mut params, a, b, surface]) = <[Buffer; 4]>::try_from(made) else {
+            unreachable!("one buffer per spec")
+        };
+        let sets = (|| -> Result<[BindingSet; 2], VkError> {
+            params.write(0, &[object_params(o)])?;
             let forward = self.arena.allocate(
                 ctx,
                 &self.layout,
-                &[&self.globals, params, a, b, &self.spheres, surface],
+                &[&self.globals, &params, &a, &b, &self.spheres, &surface],
             )?;
             let backward = self.arena.allocate(
                 ctx,
                 &self.layout,
-                &[&self.globals, params, b, a, &self.spheres, surface],
+                &[&self.globals, &params, &b, &a, &self.spheres, &surface],
             )?;
             Ok([forward, backward])
         })();
-        match result {
-            Ok(sets) => {
-                let mut it = made.into_iter();
-                let (params, a, b, surface) = (it.next(), it.next(), it.next(), it.next());
-                let (Some(params), Some(a), Some(b), Some(surface)) = (params, a, b, surface) else {
-                    unreachable!("four buffers were made")
-                };
-                Ok(GpuObject {
-                    kind: o.kind,
-                    particles: n as u32,
-                    surface_len: o.surface_count() as u32,
-                    step_groups: step_groups(&o.shape()),
-                    surface_groups: surface_groups(&o.shape()),
-                    params,
-                    state: [a, b],
-                    surface,
-                    sets,
-                })
-            }
+        match sets {
+            Ok(sets) => Ok(GpuObject {
+                kind: o.kind,
+                particles: o.particle_count() as u32,
+                surface_len: o.surface_count() as u32,
+                step_groups: step_groups(&o.shape()),
+                surface_groups: surface_groups(&o.shape()),
+                params,
+                state: [a, b],
+                surface,
+                sets,
+            }),
             Err(e) => {
-                made.into_iter().for_each(|b| b.destroy(ctx));
-                Err(anyhow::Error::new(e).context(format!("allocating {} '{}'", o.kind.label(), o.name)))
+                [params, a, b, surface].into_iter().for_each(|b| b.destroy(ctx));
+                Err(anyhow::Error::new(e).context(context()))
             }
         }
     }

@@ -45,44 +45,13 @@ pub fn jitter(positions: &mut [DVec3], amplitude: f64, seed: u64) {
     }
 }
 
-/// A flat cloth in the xy-plane (rows going down -y) with every feature off.
-pub fn cloth(cols: u32, rows: u32, spacing: f64) -> ObjectModel {
-    let n = (cols * rows) as usize;
-    let positions = (0..n)
-        .map(|i| {
-            let (c, r) = (i as u32 % cols, i as u32 / cols);
-            DVec3::new(c as f64 * spacing, 1.0 - r as f64 * spacing, 0.0)
-        })
-        .collect();
+/// An object with every feature off: no springs, drag, friction, limits or pins.
+fn plain(kind: ObjectKind, name: String, dims: [u32; 2], spacing: f64, positions: Vec<DVec3>) -> ObjectModel {
+    let n = positions.len();
     ObjectModel {
-        kind: ObjectKind::Cloth,
-        name: format!("cloth{cols}x{rows}"),
-        dims: [cols, rows],
-        spacing: [spacing, spacing],
-        stiffness: [0.0; 3],
-        rest_scale: [1.0; 3],
-        damping: 0.0,
-        mass: 0.01,
-        drag: 0.0,
-        friction: 0.0,
-        margin: 0.0,
-        stretch_limit: None,
-        self_distance: None,
-        rope_radius: 0.0,
-        ring_weights: default_ring_weights(),
-        positions,
-        velocities: vec![DVec3::ZERO; n],
-        pinned: vec![false; n],
-    }
-}
-
-/// A straight rope along +x with every feature off.
-pub fn rope(nodes: u32, spacing: f64) -> ObjectModel {
-    let n = nodes as usize;
-    ObjectModel {
-        kind: ObjectKind::Rope,
-        name: format!("rope{nodes}"),
-        dims: [nodes, 1],
+        kind,
+        name,
+        dims,
         spacing: [spacing, spacing],
         stiffness: [0.0; 3],
         rest_scale: [1.0; 3],
@@ -95,10 +64,26 @@ pub fn rope(nodes: u32, spacing: f64) -> ObjectModel {
         self_distance: None,
         rope_radius: 0.01,
         ring_weights: default_ring_weights(),
-        positions: (0..n).map(|i| DVec3::new(i as f64 * spacing - 0.5, 1.0, 0.0)).collect(),
+        positions,
         velocities: vec![DVec3::ZERO; n],
         pinned: vec![false; n],
     }
+}
+
+/// A flat cloth in the xy-plane (rows going down -y) with every feature off.
+pub fn cloth(cols: u32, rows: u32, spacing: f64) -> ObjectModel {
+    let positions = (0..cols * rows)
+        .map(|i| DVec3::new((i % cols) as f64 * spacing, 1.0 - (i / cols) as f64 * spacing, 0.0))
+        .collect();
+    let mut c = plain(ObjectKind::Cloth, format!("cloth{cols}x{rows}"), [cols, rows], spacing, positions);
+    c.margin = 0.0;
+    c
+}
+
+/// A straight rope along +x with every feature off.
+pub fn rope(nodes: u32, spacing: f64) -> ObjectModel {
+    let positions = (0..nodes).map(|i| DVec3::new(i as f64 * spacing - 0.5, 1.0, 0.0)).collect();
+    plain(ObjectKind::Rope, format!("rope{nodes}"), [nodes, 1], spacing, positions)
 }
 
 /// A scene with the given objects, no gravity, no wind, no spheres, 16 substeps per 1/60 s.
