@@ -61,18 +61,41 @@ struct Pipelines {
 
 impl Pipelines {
     fn new(ctx: &GpuContext, layout: &BindingSetLayout) -> Result<Self> {
-        let load = |name: &str, spec: &[u32]| -> Result<ComputePipeline> {
-            let spirv = shaders::embedded(name)?;
-            ComputePipeline::new(ctx, name, &spirv, layout, spec)
-                .with_context(|| format!("creating pipeline {name}"))
-        };
         let cloth = [CLOTH_GROUP[0], CLOTH_GROUP[1]];
         let rope = [ROPE_GROUP, 1];
+        let specs: [(&str, &[u32]); 6] = [
+            ("physics.comp", &cloth),
+            ("physics.comp", &rope),
+            ("constraints.comp", &cloth),
+            ("constraints.comp", &rope),
+            ("cloth_normals.comp", &[]),
+            ("rope_vertices.comp", &[]),
+        ];
+        let mut made = Vec::with_capacity(specs.len());
+        for (name, spec) in specs {
+            let pipeline = shaders::embedded(name).and_then(|spirv| {
+                ComputePipeline::new(ctx, name, &spirv, layout, spec)
+                    .with_context(|| format!("creating pipeline {name}"))
+            });
+            match pipeline {
+                Ok(p) => made.push(p),
+                Err(e) => {
+                    made.into_iter().for_each(|p: ComputePipeline| p.destroy(ctx));
+                    return Err(e);
+                }
+            }
+        }
+        let Ok(
+            [physics_cloth, physics_rope, constraints_cloth, constraints_rope, cloth_normals, rope_vertices],
+        ) = <[ComputePipeline; 6]>::try_from(made)
+        else {
+            unreachable!("one pipeline per spec")
+        };
         Ok(Self {
-            physics: [load("physics.comp", &cloth)?, load("physics.comp", &rope)?],
-            constraints: [load("constraints.comp", &cloth)?, load("constraints.comp", &rope)?],
-            cloth_normals: load("cloth_normals.comp", &[])?,
-            rope_vertices: load("rope_vertices.comp", &[])?,
+            physics: [physics_cloth, physics_rope],
+            constraints: [constraints_cloth, constraints_rope],
+            cloth_normals,
+            rope_vertices,
         })
     }
 
@@ -242,32 +265,91 @@ fn particles(o: &ObjectModel) -> Vec<Particle> {
         .collect()
 }
 
+/// The scene-independent parts of a `GpuSim`, each present once created, so a failure part-way
+/// frees exactly what exists.
+#[derive(Default)]
+struct Parts {
+    layout: Option<BindingSetLayout>,
+    pipelines: Option<Pipelines>,
+    arena: Option<DescriptorArena>,
+    globals: Option<Buffer>,
+    spheres: Option<Buffer>,
+    slot: Option<CommandSlot>,
+    timestamps: Option<TimestampPool>,
+}
+
+impl Parts {
+    fn create(&mut self, ctx: &GpuContext, model: &SimModel) -> Result<()> {
+        let layout = self.layout.insert(BindingSetLayout::storage_buffers(ctx, BINDINGS)?);
+        self.pipelines = Some(Pipelines::new(ctx, layout)?);
+        self.arena = Some(DescriptorArena::new(ctx, 2 * model.objects.len() as u32, BINDINGS)?);
+        let globals_size = std::mem::size_of::<Globals>() as u64;
+        self.globals =
+            Some(Buffer::new(ctx, "globals", globals_size, BufferUsage::STORAGE, MemoryKind::Upload)?);
+        let spheres_size = 16 * model.spheres.len().max(1) as u64;
+        self.spheres =
+            Some(Buffer::new(ctx, "spheres", spheres_size, BufferUsage::STORAGE, MemoryKind::Upload)?);
+        self.slot = Some(CommandSlot::new(ctx, "frame")?);
+        self.timestamps = TimestampPool::new(ctx, 2 * model.substeps + 2)?;
+        Ok(())
+    }
+
+    fn destroy(self, ctx: &GpuContext) {
+        if let Some(t) = self.timestamps {
+            t.destroy(ctx);
+        }
+        if let Some(s) = self.slot {
+            s.destroy(ctx);
+        }
+        if let Some(b) = self.spheres {
+            b.destroy(ctx);
+        }
+        if let Some(b) = self.globals {
+            b.destroy(ctx);
+        }
+        if let Some(a) = self.arena {
+            a.destroy(ctx);
+        }
+        if let Some(p) = self.pipelines {
+            p.destroy(ctx);
+        }
+        if let Some(l) = self.layout {
+            l.destroy(ctx);
+        }
+    }
+}
+
 impl GpuSim {
     /// Allocates and uploads the scene. Fails with a `UserError` when it cannot fit the device.
+    /// On any failure everything created so far is freed.
     pub fn new(ctx: &GpuContext, model: &SimModel) -> Result<Self> {
         check_fits(ctx.info(), &model.objects.iter().map(ObjectModel::shape).collect::<Vec<_>>())?;
-        let layout = BindingSetLayout::storage_buffers(ctx, BINDINGS)?;
+        let mut parts = Parts::default();
+        if let Err(e) = parts.create(ctx, model) {
+            parts.destroy(ctx);
+            return Err(e);
+        }
+        let Parts {
+            layout: Some(layout),
+            pipelines: Some(pipelines),
+            arena: Some(arena),
+            globals: Some(globals),
+            spheres: Some(spheres),
+            slot: Some(slot),
+            timestamps,
+        } = parts
+        else {
+            unreachable!("Parts::create fills every part or fails")
+        };
         let mut sim = Self {
-            pipelines: match Pipelines::new(ctx, &layout) {
-                Ok(p) => p,
-                Err(e) => {
-                    layout.destroy(ctx);
-                    return Err(e);
-                }
-            },
-            arena: DescriptorArena::new(ctx, 2 * model.objects.len() as u32, BINDINGS)?,
-            globals: Buffer::new(ctx, "globals", 64, BufferUsage::STORAGE, MemoryKind::Upload)?,
-            spheres: Buffer::new(
-                ctx,
-                "spheres",
-                16 * model.spheres.len().max(1) as u64,
-                BufferUsage::STORAGE,
-                MemoryKind::Upload,
-            )?,
+            pipelines,
             layout,
+            arena,
+            globals,
+            spheres,
             objects: Vec::new(),
-            slot: CommandSlot::new(ctx, "frame")?,
-            timestamps: TimestampPool::new(ctx, 2 * model.substeps + 2)?,
+            slot,
+            timestamps,
             substeps: model.substeps,
             frame_dt: model.frame_dt,
             frames: 0,
@@ -563,14 +645,15 @@ impl GpuSim {
             b.destroy(ctx);
             o.surface.destroy(ctx);
         }
-        self.globals.destroy(ctx);
-        self.spheres.destroy(ctx);
-        self.arena.destroy(ctx);
-        self.pipelines.destroy(ctx);
-        self.layout.destroy(ctx);
-        if let Some(t) = self.timestamps {
-            t.destroy(ctx);
+        Parts {
+            layout: Some(self.layout),
+            pipelines: Some(self.pipelines),
+            arena: Some(self.arena),
+            globals: Some(self.globals),
+            spheres: Some(self.spheres),
+            slot: Some(self.slot),
+            timestamps: self.timestamps,
         }
-        self.slot.destroy(ctx);
+        .destroy(ctx);
     }
 }
