@@ -35,6 +35,8 @@ const CLOTH_GROUP: [u32; 2] = [16, 16];
 const ROPE_GROUP: u32 = 64;
 /// Bindings per set, in the order of `glsl/include/bindings.glsl`.
 const BINDINGS: u32 = 6;
+/// Frames that may be in flight at once (each has its own timestamps).
+pub const FRAME_SLOTS: usize = 2;
 
 /// GPU time of one frame by stage, from timestamps [ms].
 #[derive(Debug, Clone, Copy, Default, PartialEq, serde::Serialize)]
@@ -138,10 +140,13 @@ pub struct GpuSim {
     spheres: Buffer,
     objects: Vec<GpuObject>,
     slot: CommandSlot,
-    timestamps: Option<TimestampPool>,
+    /// One pool per frame slot (empty when the device has no timestamps).
+    timestamps: Vec<TimestampPool>,
     substeps: u32,
     frame_dt: f64,
     frames: u64,
+    /// Particle writes (object, index, value) applied at the start of the next recorded frame.
+    pending_writes: Vec<(usize, u32, Particle)>,
 }
 
 /// Bytes of GPU memory an object needs: two state buffers, the surface, the parameters.
@@ -252,7 +257,16 @@ fn object_params(o: &ObjectModel) -> ObjectParams {
     }
 }
 
-fn particles(o: &ObjectModel) -> Vec<Particle> {
+fn sphere_data(model: &SimModel) -> Vec<[f32; 4]> {
+    model
+        .spheres
+        .iter()
+        .map(|s| [s.center.x as f32, s.center.y as f32, s.center.z as f32, s.radius as f32])
+        .collect()
+}
+
+/// The initial particles of an object (positions, velocities, pinned flags).
+pub fn particles(o: &ObjectModel) -> Vec<Particle> {
     o.positions
         .iter()
         .zip(&o.velocities)
@@ -275,7 +289,7 @@ struct Parts {
     globals: Option<Buffer>,
     spheres: Option<Buffer>,
     slot: Option<CommandSlot>,
-    timestamps: Option<TimestampPool>,
+    timestamps: Vec<TimestampPool>,
 }
 
 impl Parts {
@@ -290,12 +304,17 @@ impl Parts {
         self.spheres =
             Some(Buffer::new(ctx, "spheres", spheres_size, BufferUsage::STORAGE, MemoryKind::Upload)?);
         self.slot = Some(CommandSlot::new(ctx, "frame")?);
-        self.timestamps = TimestampPool::new(ctx, 2 * model.substeps + 2)?;
+        for _ in 0..FRAME_SLOTS {
+            match TimestampPool::new(ctx, 2 * model.substeps + 2)? {
+                Some(pool) => self.timestamps.push(pool),
+                None => break,
+            }
+        }
         Ok(())
     }
 
     fn destroy(self, ctx: &GpuContext) {
-        if let Some(t) = self.timestamps {
+        for t in self.timestamps {
             t.destroy(ctx);
         }
         if let Some(s) = self.slot {
@@ -353,6 +372,7 @@ impl GpuSim {
             substeps: model.substeps,
             frame_dt: model.frame_dt,
             frames: 0,
+            pending_writes: Vec::new(),
         };
         // From here `sim` owns everything created; on error it is destroyed whole.
         match sim.populate(ctx, model) {
@@ -367,12 +387,7 @@ impl GpuSim {
 
     fn populate(&mut self, ctx: &GpuContext, model: &SimModel) -> Result<()> {
         self.globals.write(0, &[globals(model)])?;
-        let spheres: Vec<[f32; 4]> = model
-            .spheres
-            .iter()
-            .map(|s| [s.center.x as f32, s.center.y as f32, s.center.z as f32, s.radius as f32])
-            .collect();
-        self.spheres.write(0, &spheres)?;
+        self.spheres.write(0, &sphere_data(model))?;
         for o in &model.objects {
             let obj = self.create_object(ctx, o)?;
             self.objects.push(obj);
@@ -479,12 +494,51 @@ impl GpuSim {
     }
 
     /// Records one frame (all substeps and the surface stage) into `rec`. `surface_consumer` is
-    /// the access that reads the surface buffers next (vertex input when drawing).
-    pub fn record_frame(&self, rec: &mut Recorder<'_>, surface_consumer: Access) {
-        let ts = self.timestamps.as_ref();
+    /// the access that reads the surface buffers after this frame (vertex input when drawing);
+    /// `slot` (below `FRAME_SLOTS`) picks the timestamp pool, read back with `read_timing`
+    /// after this submission's fence. Pending particle writes are applied first.
+    pub fn record_frame(&mut self, rec: &mut Recorder<'_>, surface_consumer: Access, slot: usize) {
+        let ts = self.timestamps.get(slot);
         if let Some(pool) = ts {
             rec.reset_timestamps(pool);
             rec.timestamp(pool, 0);
+        }
+        if !self.pending_writes.is_empty() {
+            let objects = &self.objects;
+            let touched: Vec<usize> = {
+                let mut t: Vec<usize> = self.pending_writes.iter().map(|w| w.0).collect();
+                t.sort_unstable();
+                t.dedup();
+                t
+            };
+            rec.barrier(
+                &touched
+                    .iter()
+                    .map(|&o| {
+                        BufferBarrier::new(
+                            &objects[o].state[0],
+                            Access::ComputeReadWrite,
+                            Access::TransferWrite,
+                        )
+                    })
+                    .collect::<Vec<_>>(),
+            );
+            for (o, index, p) in self.pending_writes.drain(..) {
+                let size = std::mem::size_of::<Particle>() as u64;
+                rec.update_buffer(&objects[o].state[0], index as u64 * size, bytemuck::bytes_of(&p));
+            }
+            rec.barrier(
+                &touched
+                    .iter()
+                    .map(|&o| {
+                        BufferBarrier::new(
+                            &objects[o].state[0],
+                            Access::TransferWrite,
+                            Access::ComputeReadWrite,
+                        )
+                    })
+                    .collect::<Vec<_>>(),
+            );
         }
         for s in 0..self.substeps {
             for o in &self.objects {
@@ -502,6 +556,11 @@ impl GpuSim {
             }
             rec.barrier(&self.ping_pong_barriers(0));
         }
+        // The previous frame's consumer may still read the surface: order it before the rewrite.
+        let surfaces = |src, dst| -> Vec<_> {
+            self.objects.iter().map(|o| BufferBarrier::new(&o.surface, src, dst)).collect()
+        };
+        rec.barrier(&surfaces(surface_consumer, Access::ComputeWrite));
         for o in &self.objects {
             let pipeline = match o.kind {
                 ObjectKind::Cloth => &self.pipelines.cloth_normals,
@@ -512,12 +571,51 @@ impl GpuSim {
         if let Some(pool) = ts {
             rec.timestamp(pool, 1 + 2 * self.substeps);
         }
-        let to_consumer: Vec<_> = self
-            .objects
-            .iter()
-            .map(|o| BufferBarrier::new(&o.surface, Access::ComputeWrite, surface_consumer))
-            .collect();
-        rec.barrier(&to_consumer);
+        rec.barrier(&surfaces(Access::ComputeWrite, surface_consumer));
+        self.frames += 1;
+    }
+
+    /// Writes one particle (position, velocity, pinned flag) at the start of the next frame.
+    pub fn set_particle(&mut self, object: usize, index: u32, particle: Particle) {
+        if self.objects.get(object).is_some_and(|o| index < o.particles) {
+            self.pending_writes.retain(|w| (w.0, w.1) != (object, index));
+            self.pending_writes.push((object, index, particle));
+        }
+    }
+
+    /// Rewrites the parameters (gravity, dt, wind, spheres, per-object parameters) of a model with
+    /// the same objects and sphere count. The caller makes sure no frame in flight reads them
+    /// (wait idle first).
+    pub fn update_params(&mut self, model: &SimModel) -> Result<()> {
+        anyhow::ensure!(
+            model.objects.len() == self.objects.len() && model.spheres.len() <= self.sphere_capacity(),
+            "the scene's objects or spheres changed: rebuild the simulation instead"
+        );
+        anyhow::ensure!(
+            model.substeps == self.substeps,
+            "the substep count changed: rebuild the simulation instead"
+        );
+        self.globals.write(0, &[globals(model)])?;
+        self.spheres.write(0, &sphere_data(model))?;
+        for (gpu, o) in self.objects.iter_mut().zip(&model.objects) {
+            anyhow::ensure!(o.dims[0] * o.dims[1] == gpu.particles, "object '{}' changed size", o.name);
+            gpu.params.write(0, &[object_params(o)])?;
+        }
+        self.frame_dt = model.frame_dt;
+        Ok(())
+    }
+
+    fn sphere_capacity(&self) -> usize {
+        (self.spheres.size() / 16) as usize
+    }
+
+    /// The surface buffer of object `i` (vertex buffer of `SurfaceVertex`) and its vertex count.
+    pub fn surface(&self, i: usize) -> (&Buffer, u32) {
+        (&self.objects[i].surface, self.objects[i].surface_len)
+    }
+
+    pub fn object_count(&self) -> usize {
+        self.objects.len()
     }
 
     /// Barriers after a stage that wrote `state[written]` and read the other state buffer.
@@ -535,17 +633,17 @@ impl GpuSim {
 
     /// Simulates one frame headless and waits for it; returns its GPU timing when available.
     pub fn step_frame(&mut self, ctx: &GpuContext) -> Result<Option<FrameTiming>> {
+        self.slot.wait(ctx)?;
         let mut rec = self.slot.begin(ctx)?;
-        self.record_frame(&mut rec, Access::ComputeReadWrite);
+        self.record_frame(&mut rec, Access::ComputeReadWrite, 0);
         self.slot.submit(ctx, rec)?;
         self.slot.wait(ctx)?;
-        self.frames += 1;
-        self.read_timing(ctx)
+        self.read_timing(ctx, 0)
     }
 
-    /// Per-stage GPU time of the last completed frame.
-    pub fn read_timing(&self, ctx: &GpuContext) -> Result<Option<FrameTiming>> {
-        let Some(pool) = &self.timestamps else { return Ok(None) };
+    /// Per-stage GPU time of the last frame recorded with timestamp `slot`, after its fence.
+    pub fn read_timing(&self, ctx: &GpuContext, slot: usize) -> Result<Option<FrameTiming>> {
+        let Some(pool) = self.timestamps.get(slot) else { return Ok(None) };
         let t = pool.read_ns(ctx, 2 * self.substeps + 2)?;
         let ms = |a: f64, b: f64| (b - a).max(0.0) * 1e-6;
         let mut timing = FrameTiming::default();

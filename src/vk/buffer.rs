@@ -27,6 +27,7 @@ impl BufferUsage {
     pub const TRANSFER_DST: Self = Self(vk::BufferUsageFlags::TRANSFER_DST);
     pub const VERTEX: Self = Self(vk::BufferUsageFlags::VERTEX_BUFFER);
     pub const INDEX: Self = Self(vk::BufferUsageFlags::INDEX_BUFFER);
+    pub const UNIFORM: Self = Self(vk::BufferUsageFlags::UNIFORM_BUFFER);
 }
 
 impl std::ops::BitOr for BufferUsage {

@@ -1,11 +1,13 @@
-//! The GPU context: entry, instance, optional validation, device, queue, allocator and a command
-//! pool. It is the single owner of their destruction order (see the module docs of `vk`).
+//! The GPU context: entry, instance, optional validation, optional window surface, device, queue,
+//! allocator and a command pool. It is the single owner of their destruction order (see the
+//! module docs of `vk`).
 
 use super::debug::{messenger_callback, ValidationCanary};
 use super::device::{self, DeviceInfo};
 use super::error::{Check, VkError};
 use ash::vk;
 use gpu_allocator::vulkan::{Allocator, AllocatorCreateDesc};
+use raw_window_handle::{RawDisplayHandle, RawWindowHandle};
 use std::ffi::{c_char, CStr};
 use std::mem::ManuallyDrop;
 use std::sync::{Arc, Mutex, MutexGuard};
@@ -21,6 +23,19 @@ pub struct ContextOptions {
     pub device: Option<String>,
 }
 
+/// A window to present to: its platform handles.
+#[derive(Debug, Clone, Copy)]
+pub struct WindowHandles {
+    pub display: RawDisplayHandle,
+    pub window: RawWindowHandle,
+}
+
+pub(crate) struct Surface {
+    pub loader: ash::khr::surface::Instance,
+    pub raw: vk::SurfaceKHR,
+    pub swapchain_loader: ash::khr::swapchain::Device,
+}
+
 pub struct GpuContext {
     // Field order is not relied on: Drop tears down explicitly in reverse creation order.
     _entry: ash::Entry,
@@ -28,21 +43,38 @@ pub struct GpuContext {
     debug: Option<(ash::ext::debug_utils::Instance, vk::DebugUtilsMessengerEXT)>,
     pub(crate) debug_device: Option<ash::ext::debug_utils::Device>,
     canary: Arc<ValidationCanary>,
+    pub(crate) physical: vk::PhysicalDevice,
     pub(crate) device: ash::Device,
     pub(crate) queue: vk::Queue,
     pub(crate) command_pool: vk::CommandPool,
-    allocator: ManuallyDrop<Mutex<Allocator>>,
+    pub(crate) surface: Option<Surface>,
+    allocator: ManuallyDrop<Arc<Mutex<Allocator>>>,
     info: DeviceInfo,
 }
 
 impl GpuContext {
+    /// A headless context.
     pub fn new(options: &ContextOptions) -> Result<Self, VkError> {
+        Self::create(options, None)
+    }
+
+    /// A context that can present to `window` (the device chosen must support it).
+    pub fn with_window(options: &ContextOptions, window: WindowHandles) -> Result<Self, VkError> {
+        Self::create(options, Some(window))
+    }
+
+    fn create(options: &ContextOptions, window: Option<WindowHandles>) -> Result<Self, VkError> {
         // SAFETY: loading the system Vulkan loader; no other Vulkan state exists yet.
         let entry = unsafe { ash::Entry::load() }.map_err(|e| VkError::Loader(e.to_string()))?;
         let canary = Arc::new(ValidationCanary::default());
 
         let mut layers: Vec<*const c_char> = Vec::new();
         let mut extensions: Vec<*const c_char> = Vec::new();
+        if let Some(w) = window {
+            let required = ash_window::enumerate_required_extensions(w.display)
+                .map_err(|e| VkError::from_call("vkEnumerateInstanceExtensionProperties (surface)", e))?;
+            extensions.extend_from_slice(required);
+        }
         if options.validation {
             // SAFETY: plain enumeration on a loaded entry.
             let available = unsafe { entry.enumerate_instance_layer_properties() }
@@ -79,29 +111,36 @@ impl GpuContext {
             e => VkError::from_call("vkCreateInstance", e),
         })?;
 
-        let debug = if options.validation {
-            let loader = ash::ext::debug_utils::Instance::new(&entry, &instance);
-            // SAFETY: the canary outlives the messenger: both are destroyed in Drop, messenger first.
-            match unsafe { loader.create_debug_utils_messenger(&messenger_create_info(&canary), None) } {
-                Ok(m) => Some((loader, m)),
-                Err(e) => {
-                    // SAFETY: nothing else was created from this instance yet.
-                    unsafe { instance.destroy_instance(None) };
-                    return Err(VkError::from_call("vkCreateDebugUtilsMessengerEXT", e));
-                }
+        let mut debug = None;
+        let mut surface = None;
+        let rest = (|| -> Result<_, VkError> {
+            if options.validation {
+                let loader = ash::ext::debug_utils::Instance::new(&entry, &instance);
+                // SAFETY: the canary outlives the messenger: both are destroyed in Drop, messenger first.
+                let m = unsafe { loader.create_debug_utils_messenger(&messenger_create_info(&canary), None) }
+                    .check("vkCreateDebugUtilsMessengerEXT")?;
+                debug = Some((loader, m));
             }
-        } else {
-            None
-        };
-
-        // From here on a failure must unwind what exists; build the rest in a helper.
-        match Self::open_device(&instance, options) {
+            if let Some(w) = window {
+                // SAFETY: the handles come from a live window that outlives the context (the app
+                // drops the context before the window).
+                let raw = unsafe { ash_window::create_surface(&entry, &instance, w.display, w.window, None) }
+                    .check("vkCreateSurfaceKHR")?;
+                surface = Some((ash::khr::surface::Instance::new(&entry, &instance), raw));
+            }
+            Self::open_device(&instance, options, surface.as_ref())
+        })();
+        match rest {
             Ok((candidate, device, allocator, command_pool)) => {
-                let queue_family = candidate.queue_family;
                 // SAFETY: the device was created with one queue in this family.
-                let queue = unsafe { device.get_device_queue(queue_family, 0) };
+                let queue = unsafe { device.get_device_queue(candidate.queue_family, 0) };
                 let debug_device =
                     debug.as_ref().map(|_| ash::ext::debug_utils::Device::new(&instance, &device));
+                let surface = surface.map(|(loader, raw)| Surface {
+                    loader,
+                    raw,
+                    swapchain_loader: ash::khr::swapchain::Device::new(&instance, &device),
+                });
                 log::info!("GPU device: {}", candidate.info);
                 Ok(Self {
                     _entry: entry,
@@ -109,16 +148,21 @@ impl GpuContext {
                     debug,
                     debug_device,
                     canary,
+                    physical: candidate.physical,
                     device,
                     queue,
                     command_pool,
-                    allocator: ManuallyDrop::new(Mutex::new(allocator)),
+                    surface,
+                    allocator: ManuallyDrop::new(Arc::new(Mutex::new(allocator))),
                     info: candidate.info,
                 })
             }
             Err(e) => {
                 // SAFETY: tearing down what this function created, in reverse order.
                 unsafe {
+                    if let Some((loader, raw)) = &surface {
+                        loader.destroy_surface(*raw, None);
+                    }
                     if let Some((loader, m)) = &debug {
                         loader.destroy_debug_utils_messenger(*m, None);
                     }
@@ -132,15 +176,31 @@ impl GpuContext {
     fn open_device(
         instance: &ash::Instance,
         options: &ContextOptions,
+        surface: Option<&(ash::khr::surface::Instance, vk::SurfaceKHR)>,
     ) -> Result<(device::Candidate, ash::Device, Allocator, vk::CommandPool), VkError> {
-        let (list, skipped) = device::candidates(instance)?;
+        let presents = |physical: vk::PhysicalDevice, family: u32| match surface {
+            // SAFETY: valid physical device, family index and surface of this instance.
+            Some((loader, raw)) => {
+                unsafe { loader.get_physical_device_surface_support(physical, family, *raw) }.unwrap_or(false)
+            }
+            None => true,
+        };
+        let (list, skipped) = device::candidates(instance, &presents)?;
         let candidate = device::choose(list, &skipped, options.device.as_deref())?;
         let priorities = [1.0f32];
         let queues = [vk::DeviceQueueCreateInfo::default()
             .queue_family_index(candidate.queue_family)
             .queue_priorities(&priorities)];
-        let mut f13 = vk::PhysicalDeviceVulkan13Features::default().synchronization2(true).maintenance4(true);
-        let create = vk::DeviceCreateInfo::default().queue_create_infos(&queues).push_next(&mut f13);
+        let mut f13 = vk::PhysicalDeviceVulkan13Features::default()
+            .synchronization2(true)
+            .maintenance4(true)
+            .dynamic_rendering(true);
+        let extensions: Vec<*const c_char> =
+            if surface.is_some() { vec![ash::khr::swapchain::NAME.as_ptr()] } else { Vec::new() };
+        let create = vk::DeviceCreateInfo::default()
+            .queue_create_infos(&queues)
+            .enabled_extension_names(&extensions)
+            .push_next(&mut f13);
         // SAFETY: the physical device came from this instance; pointers outlive the call.
         let device =
             unsafe { instance.create_device(candidate.physical, &create, None) }.check("vkCreateDevice")?;
@@ -185,7 +245,7 @@ impl GpuContext {
     /// Every device that qualifies, in the order `--device INDEX` counts them, and the reasons
     /// the others were skipped.
     pub fn devices(&self) -> Result<(Vec<DeviceInfo>, Vec<String>), VkError> {
-        let (list, skipped) = device::candidates(&self.instance)?;
+        let (list, skipped) = device::candidates(&self.instance, &|_, _| true)?;
         Ok((list.into_iter().map(|c| c.info).collect(), skipped))
     }
 
@@ -200,6 +260,11 @@ impl GpuContext {
 
     pub(crate) fn allocator(&self) -> MutexGuard<'_, Allocator> {
         self.allocator.lock().unwrap_or_else(|e| e.into_inner())
+    }
+
+    /// The shared allocator, for the UI renderer (which must be destroyed before the context).
+    pub(crate) fn allocator_handle(&self) -> Arc<Mutex<Allocator>> {
+        Arc::clone(&self.allocator)
     }
 
     /// Names of the allocations that are still alive (the allocator's leak report).
@@ -247,8 +312,15 @@ impl Drop for GpuContext {
         unsafe {
             let _ = self.device.device_wait_idle();
             self.device.destroy_command_pool(self.command_pool, None);
-            ManuallyDrop::drop(&mut self.allocator);
+            let allocator = ManuallyDrop::take(&mut self.allocator);
+            if Arc::strong_count(&allocator) > 1 {
+                log::error!("the allocator is still shared at shutdown (a UI renderer was not destroyed)");
+            }
+            drop(allocator);
             self.device.destroy_device(None);
+            if let Some(surface) = self.surface.take() {
+                surface.loader.destroy_surface(surface.raw, None);
+            }
             if let Some((loader, messenger)) = self.debug.take() {
                 loader.destroy_debug_utils_messenger(messenger, None);
             }

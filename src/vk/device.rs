@@ -58,7 +58,10 @@ pub(crate) struct Candidate {
 /// Lists the devices that support what the simulator needs (Vulkan 1.3 with synchronization2,
 /// maintenance4 (workgroup sizes from specialization constants) and
 /// a queue family with graphics and compute), with the reasons others were skipped.
-pub(crate) fn candidates(instance: &ash::Instance) -> Result<(Vec<Candidate>, Vec<String>), VkError> {
+pub(crate) fn candidates(
+    instance: &ash::Instance,
+    presents: &dyn Fn(vk::PhysicalDevice, u32) -> bool,
+) -> Result<(Vec<Candidate>, Vec<String>), VkError> {
     // SAFETY: `instance` is a live instance; the returned handles live as long as it does.
     let physicals = unsafe { instance.enumerate_physical_devices() }.check("vkEnumeratePhysicalDevices")?;
     let mut found = Vec::new();
@@ -78,7 +81,9 @@ pub(crate) fn candidates(instance: &ash::Instance) -> Result<(Vec<Candidate>, Ve
             )
         };
         let props = props2.properties;
-        let sync2 = f13.synchronization2 == vk::TRUE && f13.maintenance4 == vk::TRUE;
+        let sync2 = f13.synchronization2 == vk::TRUE
+            && f13.maintenance4 == vk::TRUE
+            && f13.dynamic_rendering == vk::TRUE;
         let name = props
             .device_name_as_c_str()
             .map(|s| s.to_string_lossy().into_owned())
@@ -92,12 +97,18 @@ pub(crate) fn candidates(instance: &ash::Instance) -> Result<(Vec<Candidate>, Ve
         .to_string();
         let api = props.api_version;
         if api < vk::API_VERSION_1_3 || !sync2 {
-            skipped.push(format!("{name}: needs Vulkan 1.3 with synchronization2 and maintenance4"));
+            skipped.push(format!(
+                "{name}: needs Vulkan 1.3 with synchronization2, maintenance4 and dynamic rendering"
+            ));
             continue;
         }
         let wanted = vk::QueueFlags::GRAPHICS | vk::QueueFlags::COMPUTE;
-        let Some(queue_family) = families.iter().position(|f| f.queue_flags.contains(wanted)) else {
-            skipped.push(format!("{name}: no queue family with graphics and compute"));
+        let Some(queue_family) = (0..families.len())
+            .find(|&i| families[i].queue_flags.contains(wanted) && presents(physical, i as u32))
+        else {
+            skipped.push(format!(
+                "{name}: no queue family with graphics, compute and presentation to the window"
+            ));
             continue;
         };
         let valid_bits = families[queue_family].timestamp_valid_bits;

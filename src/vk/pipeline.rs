@@ -5,32 +5,64 @@ use super::context::GpuContext;
 use super::error::{Check, VkError};
 use ash::vk;
 
-/// A descriptor set layout of `count` storage buffers at bindings 0..count, for compute.
+/// What a binding holds.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum BindingKind {
+    /// A storage buffer read or written by compute shaders.
+    ComputeStorage,
+    /// A uniform buffer read by vertex and fragment shaders.
+    GraphicsUniform,
+}
+
+impl BindingKind {
+    fn descriptor_type(self) -> vk::DescriptorType {
+        match self {
+            BindingKind::ComputeStorage => vk::DescriptorType::STORAGE_BUFFER,
+            BindingKind::GraphicsUniform => vk::DescriptorType::UNIFORM_BUFFER,
+        }
+    }
+
+    fn stages(self) -> vk::ShaderStageFlags {
+        match self {
+            BindingKind::ComputeStorage => vk::ShaderStageFlags::COMPUTE,
+            BindingKind::GraphicsUniform => vk::ShaderStageFlags::VERTEX | vk::ShaderStageFlags::FRAGMENT,
+        }
+    }
+}
+
+/// A descriptor set layout: binding `i` holds one buffer of `kinds[i]`.
 pub struct BindingSetLayout {
     pub(crate) raw: vk::DescriptorSetLayout,
-    count: u32,
+    kinds: Vec<BindingKind>,
 }
 
 impl BindingSetLayout {
+    /// `count` compute storage buffers at bindings 0..count.
     pub fn storage_buffers(ctx: &GpuContext, count: u32) -> Result<Self, VkError> {
-        let bindings: Vec<_> = (0..count)
-            .map(|i| {
+        Self::new(ctx, &vec![BindingKind::ComputeStorage; count as usize])
+    }
+
+    pub fn new(ctx: &GpuContext, kinds: &[BindingKind]) -> Result<Self, VkError> {
+        let bindings: Vec<_> = kinds
+            .iter()
+            .enumerate()
+            .map(|(i, kind)| {
                 vk::DescriptorSetLayoutBinding::default()
-                    .binding(i)
-                    .descriptor_type(vk::DescriptorType::STORAGE_BUFFER)
+                    .binding(i as u32)
+                    .descriptor_type(kind.descriptor_type())
                     .descriptor_count(1)
-                    .stage_flags(vk::ShaderStageFlags::COMPUTE)
+                    .stage_flags(kind.stages())
             })
             .collect();
         let info = vk::DescriptorSetLayoutCreateInfo::default().bindings(&bindings);
         // SAFETY: valid device; destroyed in `destroy`.
         let raw = unsafe { ctx.device.create_descriptor_set_layout(&info, None) }
             .check("vkCreateDescriptorSetLayout")?;
-        Ok(Self { raw, count })
+        Ok(Self { raw, kinds: kinds.to_vec() })
     }
 
     pub fn count(&self) -> u32 {
-        self.count
+        self.kinds.len() as u32
     }
 
     pub fn destroy(self, ctx: &GpuContext) {
@@ -52,11 +84,13 @@ pub struct DescriptorArena {
 }
 
 impl DescriptorArena {
+    /// A pool for `max_sets` sets of up to `buffers_per_set` buffers of any kind.
     pub fn new(ctx: &GpuContext, max_sets: u32, buffers_per_set: u32) -> Result<Self, VkError> {
-        let sizes = [vk::DescriptorPoolSize {
-            ty: vk::DescriptorType::STORAGE_BUFFER,
-            descriptor_count: (max_sets * buffers_per_set).max(1),
-        }];
+        let count = (max_sets * buffers_per_set).max(1);
+        let sizes = [
+            vk::DescriptorPoolSize { ty: vk::DescriptorType::STORAGE_BUFFER, descriptor_count: count },
+            vk::DescriptorPoolSize { ty: vk::DescriptorType::UNIFORM_BUFFER, descriptor_count: count },
+        ];
         let info = vk::DescriptorPoolCreateInfo::default().max_sets(max_sets.max(1)).pool_sizes(&sizes);
         // SAFETY: valid device; destroyed in `destroy`.
         let raw =
@@ -71,7 +105,7 @@ impl DescriptorArena {
         layout: &BindingSetLayout,
         buffers: &[&Buffer],
     ) -> Result<BindingSet, VkError> {
-        assert_eq!(buffers.len() as u32, layout.count, "binding count must match the layout");
+        assert_eq!(buffers.len(), layout.kinds.len(), "binding count must match the layout");
         let layouts = [layout.raw];
         let info = vk::DescriptorSetAllocateInfo::default().descriptor_pool(self.raw).set_layouts(&layouts);
         // SAFETY: the pool and layout belong to this device.
@@ -87,7 +121,7 @@ impl DescriptorArena {
                 vk::WriteDescriptorSet::default()
                     .dst_set(raw)
                     .dst_binding(i as u32)
-                    .descriptor_type(vk::DescriptorType::STORAGE_BUFFER)
+                    .descriptor_type(layout.kinds[i].descriptor_type())
                     .buffer_info(info)
             })
             .collect();
