@@ -13,9 +13,11 @@ void main() {
     uint i = cell.x + cell.y * obj.dims.x;
     vec3 x = p_in[i].pos.xyz;
 
-    // Edges to the structural neighbours in turning order; each consecutive pair that exists
-    // contributes its unit cross product weighted by the angle between the two edges.
-    const ivec2 ring[4] = ivec2[4](ivec2(1, 0), ivec2(0, 1), ivec2(-1, 0), ivec2(0, -1));
+    // Edges to the structural neighbours in turning order (+column, -row, -column, +row); each
+    // consecutive pair that exists contributes its unit cross product weighted by the angle
+    // between the two edges. With this order the normal of a vertical cloth (rows going down)
+    // points to +z and that of a horizontal one (rows along +z) points up.
+    const ivec2 ring[4] = ivec2[4](ivec2(1, 0), ivec2(0, -1), ivec2(-1, 0), ivec2(0, 1));
     vec3 edge[4];
     bool has[4];
     for (int k = 0; k < 4; ++k) {

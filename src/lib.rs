@@ -2,11 +2,14 @@
 //!
 //! Layers, bottom up: `vk` (the only place with `unsafe` and ash), `shaders` (GLSL compile and
 //! SPIR-V layout reading), `sim` (model, GPU simulation, CPU reference), `scene` (TOML presets),
-//! `cli` (the commands).
+//! `render` (drawing), `ui` (the ImGui editor), `app` (the windowed app), `cli` (the commands).
 
+pub mod app;
 pub mod cli;
 pub mod error;
+pub mod render;
 pub mod scene;
 pub mod shaders;
 pub mod sim;
+pub mod ui;
 pub mod vk;

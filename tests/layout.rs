@@ -3,7 +3,7 @@
 //! array stride of arrays of it.
 
 use msdsim::shaders::{self, reflect};
-use msdsim::sim::gpu_types::{Globals, GpuLayout, ObjectParams, Particle, SurfaceVertex};
+use msdsim::sim::gpu_types::{Camera, Draw, Globals, GpuLayout, ObjectParams, Particle, SurfaceVertex};
 
 fn check<T: GpuLayout>(found: &mut Vec<&'static str>) {
     for name in shaders::embedded_names() {
@@ -29,7 +29,11 @@ fn rust_mirrors_match_the_shader_layouts() {
     check::<SurfaceVertex>(&mut found);
     check::<Globals>(&mut found);
     check::<ObjectParams>(&mut found);
-    for name in [Particle::NAME, SurfaceVertex::NAME, Globals::NAME, ObjectParams::NAME] {
+    check::<Camera>(&mut found);
+    check::<Draw>(&mut found);
+    for name in
+        [Particle::NAME, SurfaceVertex::NAME, Globals::NAME, ObjectParams::NAME, Camera::NAME, Draw::NAME]
+    {
         assert!(found.contains(&name), "no shader declares {name}: the check would be vacuous");
     }
 }

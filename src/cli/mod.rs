@@ -22,11 +22,13 @@ pub struct Cli {
     #[arg(long, global = true, env = "MSDSIM_DEVICE")]
     pub device: Option<String>,
     #[command(subcommand)]
-    pub command: Command,
+    pub command: Option<Command>,
 }
 
 #[derive(Debug, Subcommand)]
 pub enum Command {
+    /// Open the app: the simulation drawn live with the scene editor (the default command).
+    App(AppCommand),
     /// Run a preset headless, print per-frame GPU time and a summary, optionally save the state.
     Simulate(simulate::SimulateArgs),
     /// List the Vulkan devices and which one would be chosen.
@@ -42,7 +44,8 @@ impl Cli {
 /// Runs a parsed command line.
 pub fn run(cli: Cli) -> Result<()> {
     let options = cli.context_options();
-    match cli.command {
+    match cli.command.unwrap_or(Command::App(AppCommand::default())) {
+        Command::App(args) => args.run(&options),
         Command::Simulate(args) => simulate::run(&args, &options),
         Command::Devices => {
             let ctx = GpuContext::new(&options)?;
@@ -57,6 +60,59 @@ pub fn run(cli: Cli) -> Result<()> {
             println!("* = chosen (select another with --device INDEX|NAME or MSDSIM_DEVICE)");
             check_validation(&ctx)
         }
+    }
+}
+
+#[derive(Debug, clap::Args, Default)]
+pub struct AppCommand {
+    /// Scene preset (TOML); default: the built-in playground scene.
+    #[arg(long, value_name = "FILE")]
+    pub preset: Option<std::path::PathBuf>,
+    /// Override a preset value (repeatable), as for `simulate`.
+    #[arg(long = "set", value_name = "KEY=VALUE")]
+    pub overrides: Vec<String>,
+    /// Window size in pixels.
+    #[arg(long, value_name = "WxH", value_parser = parse_size, default_value = "1280x800")]
+    pub size: Option<[u32; 2]>,
+    /// Present without waiting for vertical sync (mailbox or immediate when available).
+    #[arg(long)]
+    pub no_vsync: bool,
+    /// Start paused.
+    #[arg(long)]
+    pub paused: bool,
+    /// Render this many frames, then exit.
+    #[arg(long)]
+    pub frames: Option<u64>,
+    /// Write the last frame (after --frames N, default 1) as a PNG, then exit.
+    #[arg(long, value_name = "FILE.png")]
+    pub screenshot: Option<std::path::PathBuf>,
+    /// Resize, minimise and restore the window on a script, then exit (a test of the swapchain).
+    #[arg(long, hide = true)]
+    pub exercise_window: bool,
+}
+
+fn parse_size(s: &str) -> Result<[u32; 2], String> {
+    let (w, h) = s.split_once(['x', 'X']).ok_or("expected WIDTHxHEIGHT, e.g. 1280x800")?;
+    let parse = |v: &str| v.trim().parse::<u32>().ok().filter(|v| (64..=16384).contains(v));
+    match (parse(w), parse(h)) {
+        (Some(w), Some(h)) => Ok([w, h]),
+        _ => Err("each side must be between 64 and 16384 pixels".into()),
+    }
+}
+
+impl AppCommand {
+    fn run(self, options: &ContextOptions) -> Result<()> {
+        let scene = crate::app::load_scene(self.preset.as_ref(), &self.overrides)?;
+        let args = crate::app::AppArgs {
+            preset_label: crate::app::preset_label(self.preset.as_ref()),
+            size: self.size.unwrap_or([1280, 800]),
+            vsync: !self.no_vsync,
+            paused: self.paused,
+            frames: self.frames.or(self.screenshot.as_ref().map(|_| 1)),
+            screenshot: self.screenshot,
+            exercise_window: self.exercise_window,
+        };
+        crate::app::run(options, args, scene)
     }
 }
 

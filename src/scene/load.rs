@@ -12,6 +12,24 @@ pub fn load(path: &Path, overrides: &[String]) -> Result<Scene, UserError> {
     parse(&text, &path.display().to_string(), overrides)
 }
 
+/// Writes a scene as a preset (atomically: a temporary file, then a rename). What it writes
+/// loads back to the identical scene.
+pub fn save(scene: &Scene, path: &Path) -> anyhow::Result<()> {
+    use anyhow::Context as _;
+    let text = toml::to_string_pretty(scene).context("serialising the scene")?;
+    let header = "# Saved by msdsim. Units: metres, seconds, kilograms, newtons.\n\n";
+    let mut tmp = path.as_os_str().to_owned();
+    tmp.push(".partial");
+    let tmp = std::path::PathBuf::from(tmp);
+    std::fs::write(&tmp, format!("{header}{text}")).and_then(|_| std::fs::rename(&tmp, path)).map_err(
+        |e| {
+            let _ = std::fs::remove_file(&tmp);
+            UserError(format!("{}: cannot write the preset: {e}", path.display()))
+        },
+    )?;
+    Ok(())
+}
+
 /// Parses preset text; `origin` names it in error messages.
 pub fn parse(text: &str, origin: &str, overrides: &[String]) -> Result<Scene, UserError> {
     let mut table: toml::Table = text.parse().map_err(|e: toml::de::Error| {

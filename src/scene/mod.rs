@@ -8,7 +8,8 @@ mod load;
 mod validate;
 
 pub use build::{shapes, to_model};
-pub use load::{apply_override, load, parse};
+pub use load::{apply_override, load, parse, save};
+pub use validate::check as validate;
 
 use serde::{Deserialize, Serialize};
 
@@ -20,6 +21,8 @@ pub struct Scene {
     pub sim: SimSettings,
     #[serde(default)]
     pub wind: Wind,
+    #[serde(default)]
+    pub light: Light,
     #[serde(default, rename = "sphere", skip_serializing_if = "Vec::is_empty")]
     pub spheres: Vec<Sphere>,
     #[serde(default, rename = "cloth", skip_serializing_if = "Vec::is_empty")]
@@ -87,6 +90,27 @@ impl Default for Wind {
             attenuation_radius: 1.0,
             reference_distance: 1.0,
         }
+    }
+}
+
+/// The scene light (drawing only).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Light {
+    /// [m]
+    #[serde(default = "defaults::light_position")]
+    pub position: [f64; 3],
+    /// Linear RGB, 0..1.
+    #[serde(default = "defaults::white")]
+    pub color: [f64; 3],
+    /// Ambient fraction of the material colour, 0..1.
+    #[serde(default = "defaults::ambient")]
+    pub ambient: f64,
+}
+
+impl Default for Light {
+    fn default() -> Self {
+        Self { position: defaults::light_position(), color: defaults::white(), ambient: defaults::ambient() }
     }
 }
 
@@ -192,6 +216,12 @@ pub struct Cloth {
     /// Further pinned particles as [column, row].
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub pinned: Vec<[u32; 2]>,
+    /// Linear RGB of the side the normals point to, 0..1 (drawing only).
+    #[serde(default = "defaults::cloth_color")]
+    pub color: [f64; 3],
+    /// Linear RGB of the other side, 0..1 (drawing only).
+    #[serde(default = "defaults::cloth_back_color")]
+    pub back_color: [f64; 3],
 }
 
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -238,6 +268,9 @@ pub struct Rope {
     /// Further pinned node indices.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub pinned: Vec<u32>,
+    /// Linear RGB, 0..1 (drawing only).
+    #[serde(default = "defaults::rope_color")]
+    pub color: [f64; 3],
 }
 
 mod defaults {
@@ -258,6 +291,24 @@ mod defaults {
     }
     pub fn margin() -> f64 {
         0.01
+    }
+    pub fn light_position() -> [f64; 3] {
+        [2.0, 4.0, 3.0]
+    }
+    pub fn white() -> [f64; 3] {
+        [1.0, 1.0, 1.0]
+    }
+    pub fn ambient() -> f64 {
+        0.25
+    }
+    pub fn cloth_color() -> [f64; 3] {
+        [0.75, 0.18, 0.16]
+    }
+    pub fn cloth_back_color() -> [f64; 3] {
+        [0.85, 0.72, 0.45]
+    }
+    pub fn rope_color() -> [f64; 3] {
+        [0.72, 0.58, 0.36]
     }
     pub fn rest_scale() -> super::PerSpring {
         super::PerSpring { structural: 1.0, shear: 1.0, bending: 1.0 }

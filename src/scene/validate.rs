@@ -49,7 +49,16 @@ fn vector(key: &str, v: [f64; 3]) -> Check {
     }
 }
 
-pub(super) fn check(scene: &Scene) -> Check {
+fn color(key: &str, c: [f64; 3]) -> Check {
+    if c.iter().all(|x| (0.0..=1.0).contains(x)) {
+        Ok(())
+    } else {
+        Err(format!("{key} = {c:?}: each channel must be between 0 and 1"))
+    }
+}
+
+/// Checks every range of a scene; the error names the first key out of range.
+pub fn check(scene: &Scene) -> Check {
     let s = &scene.sim;
     if !(1..=4096).contains(&s.substeps) {
         return Err(format!("sim.substeps = {}: must be between 1 and 4096", s.substeps));
@@ -69,6 +78,10 @@ pub(super) fn check(scene: &Scene) -> Check {
     if w.enabled && w.direction.iter().map(|x| x * x).sum::<f64>() == 0.0 {
         return Err("wind.direction = [0, 0, 0]: must not be zero".into());
     }
+
+    vector("light.position", scene.light.position)?;
+    color("light.color", scene.light.color)?;
+    unit_interval("light.ambient", scene.light.ambient)?;
 
     for (i, sphere) in scene.spheres.iter().enumerate() {
         vector(&format!("sphere[{i}].center"), sphere.center)?;
@@ -133,6 +146,8 @@ fn check_cloth(at: &str, c: &Cloth) -> Check {
     if let Some(d) = c.self_collision_distance {
         positive(&format!("{at}.self_collision_distance"), d, "m")?;
     }
+    color(&format!("{at}.color"), c.color)?;
+    color(&format!("{at}.back_color"), c.back_color)?;
     for (k, p) in c.pinned.iter().enumerate() {
         if p[0] >= cols || p[1] >= rows {
             return Err(format!("{at}.pinned[{k}] = [{}, {}]: outside the {cols} x {rows} grid", p[0], p[1]));
@@ -172,6 +187,7 @@ fn check_rope(at: &str, r: &Rope) -> Check {
     if let Some(d) = r.self_collision_distance {
         positive(&format!("{at}.self_collision_distance"), d, "m")?;
     }
+    color(&format!("{at}.color"), r.color)?;
     for (k, &p) in r.pinned.iter().enumerate() {
         if p >= r.nodes {
             return Err(format!(

@@ -292,7 +292,7 @@ fn constraints(m: &SimModel, o: &ObjectModel, dt: f64, x: &[DVec3], v: &[DVec3])
 /// Angle-weighted normals from the (up to) four structural edges around each particle.
 fn cloth_surface(o: &ObjectModel, x: &[DVec3]) -> Vec<(DVec3, DVec3)> {
     let (cols, rows) = (o.dims[0] as i64, o.dims[1] as i64);
-    let around = [(1, 0), (0, 1), (-1, 0), (0, -1)];
+    let around = [(1, 0), (0, -1), (-1, 0), (0, 1)];
     (0..x.len())
         .map(|i| {
             let (c, r) = (i as i64 % cols, i as i64 / cols);

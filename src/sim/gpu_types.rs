@@ -81,3 +81,21 @@ gpu_struct!(
     flags: u32,
     ring_weights: [[f32; 2]; ROPE_RING],
 });
+
+gpu_struct!(
+    /// Per-frame camera and light for the scene shaders (`render.glsl`, std140).
+    Camera, size 112, {
+    view_proj: [[f32; 4]; 4],
+    eye: [f32; 4],
+    light_pos: [f32; 4],
+    light_color: [f32; 4],
+});
+
+gpu_struct!(
+    /// Per-draw push constants of the scene shaders (`render.glsl`).
+    Draw, size 112, {
+    model: [[f32; 4]; 4],
+    front: [f32; 4],
+    back: [f32; 4],
+    params: [f32; 4],
+});

@@ -1,0 +1,147 @@
+//! The native app: a winit window with the Vulkan renderer and the ImGui scene editor over the
+//! GPU simulation. `viewer` holds the per-frame work, `sim_host` applies edits, `input` maps the
+//! mouse and keyboard.
+
+mod input;
+mod sim_host;
+mod viewer;
+
+pub use sim_host::{Applied, SimHost};
+pub use viewer::{preset_label, write_png};
+
+use crate::error::UserError;
+use crate::scene::{self, Scene};
+use crate::vk::ContextOptions;
+use anyhow::Result;
+use std::path::PathBuf;
+use std::sync::Arc;
+use viewer::{Outcome, Viewer};
+use winit::application::ApplicationHandler;
+use winit::event::WindowEvent;
+use winit::event_loop::{ActiveEventLoop, ControlFlow, EventLoop};
+use winit::window::{Window, WindowId};
+
+/// The scene the app opens without `--preset`.
+pub const DEFAULT_PRESET: &str = include_str!("../../presets/playground.toml");
+
+#[derive(Debug, Clone)]
+pub struct AppArgs {
+    /// Label of the preset in the editor's file field.
+    pub preset_label: String,
+    pub size: [u32; 2],
+    pub vsync: bool,
+    pub paused: bool,
+    /// Render this many frames, then exit (with `screenshot`: capture the last one).
+    pub frames: Option<u64>,
+    pub screenshot: Option<PathBuf>,
+    /// Resize, minimise and restore the window on a script, then exit (for tests).
+    pub exercise_window: bool,
+}
+
+/// Loads the preset (or the built-in default scene) with overrides.
+pub fn load_scene(preset: Option<&PathBuf>, overrides: &[String]) -> Result<Scene, UserError> {
+    match preset {
+        Some(path) => scene::load(path, overrides),
+        None => scene::parse(DEFAULT_PRESET, "the default scene (presets/playground.toml)", overrides),
+    }
+}
+
+struct Handler {
+    options: ContextOptions,
+    args: AppArgs,
+    scene: Option<Scene>,
+    viewer: Option<Viewer>,
+    error: Option<anyhow::Error>,
+    report: Option<(u32, Option<String>, Vec<String>)>,
+}
+
+impl Handler {
+    fn stop(&mut self, event_loop: &ActiveEventLoop, error: Option<anyhow::Error>) {
+        if self.error.is_none() {
+            self.error = error;
+        }
+        if let Some(v) = self.viewer.take() {
+            self.report = Some(v.finish());
+        }
+        event_loop.exit();
+    }
+}
+
+impl ApplicationHandler for Handler {
+    fn resumed(&mut self, event_loop: &ActiveEventLoop) {
+        if self.viewer.is_some() {
+            return;
+        }
+        let Some(scene) = self.scene.take() else { return };
+        let attributes = Window::default_attributes()
+            .with_title("msdsim: mass-spring cloth and ropes")
+            .with_inner_size(winit::dpi::PhysicalSize::new(self.args.size[0], self.args.size[1]));
+        let window = match event_loop.create_window(attributes) {
+            Ok(w) => Arc::new(w),
+            Err(e) => return self.stop(event_loop, Some(anyhow::anyhow!("cannot open a window: {e}"))),
+        };
+        match Viewer::new(window, &self.options, self.args.clone(), scene) {
+            Ok(v) => {
+                v.window().request_redraw();
+                self.viewer = Some(v);
+            }
+            Err(e) => self.stop(event_loop, Some(e)),
+        }
+    }
+
+    fn window_event(&mut self, event_loop: &ActiveEventLoop, _id: WindowId, event: WindowEvent) {
+        let Some(viewer) = self.viewer.as_mut() else { return };
+        if let WindowEvent::RedrawRequested = event {
+            match viewer.frame() {
+                Ok(Outcome::Continue) => {}
+                Ok(Outcome::Exit) => self.stop(event_loop, None),
+                Err(e) => self.stop(event_loop, Some(e)),
+            }
+            return;
+        }
+        if viewer.handle_event(&event) {
+            self.stop(event_loop, None);
+        }
+    }
+
+    fn about_to_wait(&mut self, event_loop: &ActiveEventLoop) {
+        if let Some(v) = &self.viewer {
+            event_loop.set_control_flow(ControlFlow::Poll);
+            v.window().request_redraw();
+        }
+    }
+}
+
+/// Opens the window and runs until it is closed (or the scripted frames are done).
+pub fn run(options: &ContextOptions, args: AppArgs, scene: Scene) -> Result<()> {
+    let event_loop = EventLoop::new().map_err(|e| {
+        UserError(format!(
+            "no display to open a window on ({e}); run headless instead: `msdsim simulate --preset FILE`, \
+             or `msdsim devices`"
+        ))
+    })?;
+    let mut handler = Handler {
+        options: options.clone(),
+        args,
+        scene: Some(scene),
+        viewer: None,
+        error: None,
+        report: None,
+    };
+    event_loop.run_app(&mut handler).map_err(|e| anyhow::anyhow!("the window's event loop failed: {e}"))?;
+    if let Some(v) = handler.viewer.take() {
+        handler.report = Some(v.finish());
+    }
+    if let Some(e) = handler.error {
+        return Err(e);
+    }
+    if let Some((count, first, leaks)) = handler.report {
+        if count > 0 {
+            anyhow::bail!("{count} Vulkan validation message(s); first: {}", first.unwrap_or_default());
+        }
+        if !leaks.is_empty() {
+            anyhow::bail!("GPU allocations leaked: {leaks:?}");
+        }
+    }
+    Ok(())
+}

@@ -1,0 +1,135 @@
+//! The simulation behind the app: the scene being edited, its model and the GPU simulation.
+//! Edits are applied by kind: parameter changes rewrite the GPU parameters in place (the state
+//! is kept); a new substep count rebuilds the simulation and carries the state over; anything
+//! that changes the particles' layout (sizes, positions, pins, objects, sphere count) rebuilds
+//! and starts from the new initial state.
+
+use crate::render::SceneRenderer;
+use crate::scene::{self, Scene};
+use crate::sim::gpu::{self, GpuSim};
+use crate::sim::model::SimModel;
+use crate::vk::GpuContext;
+use anyhow::Result;
+
+/// What applying an edit did.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Applied {
+    Nothing,
+    /// Parameters rewritten in place; the state is kept.
+    Parameters,
+    /// Rebuilt with the state carried over (substeps changed).
+    RebuiltKeepingState,
+    /// Rebuilt from the scene's initial state.
+    Rebuilt,
+}
+
+pub struct SimHost {
+    scene: Scene,
+    model: SimModel,
+    sim: GpuSim,
+}
+
+/// The parts of a scene that fix the particles' layout and the buffers' sizes.
+fn layout_key(s: &Scene) -> String {
+    let cloths: Vec<_> = s
+        .cloths
+        .iter()
+        .map(|c| {
+            format!(
+                "{:?}{:?}{:?}{:?}{:?}{:?}",
+                c.resolution, c.size, c.origin, c.orientation, c.pin, c.pinned
+            )
+        })
+        .collect();
+    let ropes: Vec<_> = s
+        .ropes
+        .iter()
+        .map(|r| format!("{}{:?}{:?}{:?}{:?}", r.nodes, r.start, r.end, r.pin, r.pinned))
+        .collect();
+    format!("{cloths:?}{ropes:?}{}", s.spheres.len())
+}
+
+impl SimHost {
+    pub fn new(ctx: &GpuContext, scene: Scene, renderer: &mut SceneRenderer) -> Result<Self> {
+        gpu::check_fits(ctx.info(), &scene::shapes(&scene))?;
+        let model = scene::to_model(&scene);
+        let sim = GpuSim::new(ctx, &model)?;
+        if let Err(e) = renderer.set_objects(ctx, &scene::shapes(&scene)) {
+            sim.destroy(ctx);
+            return Err(e);
+        }
+        Ok(Self { scene, model, sim })
+    }
+
+    pub fn scene(&self) -> &Scene {
+        &self.scene
+    }
+
+    pub fn model(&self) -> &SimModel {
+        &self.model
+    }
+
+    pub fn sim(&self) -> &GpuSim {
+        &self.sim
+    }
+
+    pub fn sim_mut(&mut self) -> &mut GpuSim {
+        &mut self.sim
+    }
+
+    /// Applies an edited scene. An invalid or too large scene is refused with the reason and
+    /// the running simulation is left as it was.
+    pub fn apply(
+        &mut self,
+        ctx: &GpuContext,
+        renderer: &mut SceneRenderer,
+        edited: Scene,
+    ) -> Result<Applied> {
+        if edited == self.scene {
+            return Ok(Applied::Nothing);
+        }
+        scene::validate(&edited).map_err(crate::error::UserError)?;
+        let same_layout = layout_key(&edited) == layout_key(&self.scene);
+        if same_layout && edited.sim.substeps == self.scene.sim.substeps {
+            ctx.wait_idle()?;
+            let model = scene::to_model(&edited);
+            self.sim.update_params(&model)?;
+            self.model = model;
+            self.scene = edited;
+            return Ok(Applied::Parameters);
+        }
+        gpu::check_fits(ctx.info(), &scene::shapes(&edited))?;
+        ctx.wait_idle()?;
+        let model = scene::to_model(&edited);
+        let carried = if same_layout { Some(self.sim.read_states(ctx)?) } else { None };
+        let mut sim = GpuSim::new(ctx, &model)?;
+        if let Some(states) = &carried {
+            let particles: Vec<_> = states.iter().map(|s| s.particles.clone()).collect();
+            if let Err(e) = sim.upload_states(ctx, &particles) {
+                sim.destroy(ctx);
+                return Err(e);
+            }
+        }
+        if let Err(e) = renderer.set_objects(ctx, &scene::shapes(&edited)) {
+            sim.destroy(ctx);
+            // The renderer's index buffers are gone: restore them for the old scene.
+            renderer.set_objects(ctx, &scene::shapes(&self.scene))?;
+            return Err(e);
+        }
+        std::mem::replace(&mut self.sim, sim).destroy(ctx);
+        self.model = model;
+        self.scene = edited;
+        Ok(if carried.is_some() { Applied::RebuiltKeepingState } else { Applied::Rebuilt })
+    }
+
+    /// Puts every object back to the scene's initial state.
+    pub fn reset(&mut self, ctx: &GpuContext) -> Result<()> {
+        ctx.wait_idle()?;
+        let initial: Vec<_> = self.model.objects.iter().map(gpu::particles).collect();
+        self.sim.upload_states(ctx, &initial)
+    }
+
+    pub fn destroy(self, ctx: &GpuContext) {
+        self.sim.destroy(ctx);
+    }
+}

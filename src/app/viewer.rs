@@ -1,0 +1,691 @@
+//! The windowed app: one command buffer per frame records the simulation substeps (compute),
+//! the simulation's compute -> vertex-input barrier on the surface buffers, the scene draws and
+//! ImGui, with two frames in flight.
+//!
+//! Frame slot `s` owns a command buffer + fence, an "image available" semaphore, timestamps and
+//! the camera uniform buffer of the renderer; the host writes a slot's resources only after
+//! waiting for its fence. Edits that touch GPU parameters or rebuild the simulation wait for
+//! the device to be idle first. Teardown (Drop) waits idle, then frees the UI renderer, scene
+//! renderer, simulation, frame slots and swapchain, before the context and last the window.
+
+use super::input::{pick, Grab, Input, KeyAction};
+use super::sim_host::{Applied, SimHost};
+use super::AppArgs;
+use crate::render::camera::OrbitCamera;
+use crate::render::{DrawItem, SceneRenderer, Shape};
+use crate::scene::{self, Scene};
+use crate::sim::gpu::FRAME_SLOTS;
+use crate::sim::gpu_types::{Camera, Particle};
+use crate::ui::{self, Action, EditorState, Stats};
+use crate::vk::{
+    Access, Acquired, Buffer, BufferBarrier, BufferUsage, CommandSlot, ContextOptions, Format, GpuContext,
+    ImageBarrier, MemoryKind, Semaphore, Swapchain, TimestampPool, UiRenderer, WindowHandles,
+};
+use anyhow::{Context as _, Result};
+use glam::{Mat4, Quat, Vec3};
+use imgui_winit_support::{HiDpiMode, WinitPlatform};
+use raw_window_handle::{HasDisplayHandle, HasWindowHandle};
+use std::path::PathBuf;
+use std::sync::Arc;
+use std::time::Instant;
+use winit::dpi::PhysicalSize;
+use winit::event::WindowEvent;
+use winit::window::Window;
+
+const SKY: [f32; 4] = [0.09, 0.10, 0.12, 1.0];
+
+struct FrameSlot {
+    cmd: CommandSlot,
+    available: Semaphore,
+    /// Render-stage timestamps: before the scene, after the scene, after the UI.
+    timestamps: Option<TimestampPool>,
+    /// What the last submission of this slot recorded, for reading its timings.
+    used: bool,
+    simulated: bool,
+}
+
+/// What the event loop should do after a frame.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub enum Outcome {
+    Continue,
+    Exit,
+}
+
+pub struct Viewer {
+    // Declared before `window`: fields drop in order, so the context (and its surface) goes
+    // before the window it presents to.
+    ctx: GpuContext,
+    swapchain: Option<Swapchain>,
+    frames: Vec<FrameSlot>,
+    ui_renderer: Option<UiRenderer>,
+    renderer: Option<SceneRenderer>,
+    host: Option<SimHost>,
+    imgui: imgui::Context,
+    platform: WinitPlatform,
+    window: Arc<Window>,
+
+    args: AppArgs,
+    camera: OrbitCamera,
+    input: Input,
+    editor: EditorState,
+    stats: Stats,
+    recreate: bool,
+    minimized: bool,
+    frame: u64,
+    /// Redraw ticks, counted even while minimised (drives `--exercise-window`).
+    tick: u64,
+    last: Instant,
+    step_once: bool,
+    screenshot: Option<Buffer>,
+    /// The UI's edited scene and actions, applied at the start of the next frame.
+    pending_scene: Option<Scene>,
+    pending_actions: Vec<Action>,
+}
+
+impl Viewer {
+    pub fn new(window: Arc<Window>, options: &ContextOptions, args: AppArgs, scene: Scene) -> Result<Self> {
+        let handles = WindowHandles {
+            display: window.display_handle().context("the window's display handle")?.as_raw(),
+            window: window.window_handle().context("the window handle")?.as_raw(),
+        };
+        let ctx = GpuContext::with_window(options, handles)?;
+        let size = window.inner_size();
+        let swapchain = Swapchain::new(&ctx, [size.width, size.height], args.vsync, None)?;
+        let mut imgui = imgui::Context::create();
+        imgui.set_ini_filename(None);
+        let mut platform = WinitPlatform::new(&mut imgui);
+        platform.attach_window(imgui.io_mut(), &window, HiDpiMode::Default);
+        let stats = Stats { device: ctx.info().to_string(), ..Default::default() };
+        let mut viewer = Self {
+            ctx,
+            swapchain: Some(swapchain),
+            frames: Vec::new(),
+            ui_renderer: None,
+            renderer: None,
+            host: None,
+            imgui,
+            platform,
+            window,
+            editor: EditorState {
+                preset_path: args.preset_label.clone(),
+                cloth_preset_path: "presets/towel.toml".into(),
+                paused: args.paused,
+                shaders_note: String::new(),
+                ..Default::default()
+            },
+            args,
+            camera: OrbitCamera::default(),
+            input: Input::default(),
+            stats,
+            recreate: false,
+            minimized: false,
+            frame: 0,
+            tick: 0,
+            last: Instant::now(),
+            step_once: false,
+            screenshot: None,
+            pending_scene: None,
+            pending_actions: Vec::new(),
+        };
+        // `viewer` owns what exists so far: a failure below is cleaned up by its Drop.
+        viewer.init(scene)?;
+        Ok(viewer)
+    }
+
+    fn init(&mut self, scene: Scene) -> Result<()> {
+        let ctx = &self.ctx;
+        for _ in 0..FRAME_SLOTS {
+            self.frames.push(FrameSlot {
+                cmd: CommandSlot::new(ctx, "frame")?,
+                available: Semaphore::new(ctx)?,
+                timestamps: TimestampPool::new(ctx, 3)?,
+                used: false,
+                simulated: false,
+            });
+        }
+        let format = self.swapchain.as_ref().map(|s| s.format()).unwrap_or(Format::Bgra8Unorm);
+        self.ui_renderer = Some(UiRenderer::new(ctx, &mut self.imgui, format, Format::Depth32, FRAME_SLOTS)?);
+        let renderer = self.renderer.insert(SceneRenderer::new(ctx, format, Format::Depth32)?);
+        self.host = Some(SimHost::new(ctx, scene, renderer)?);
+        self.fit_camera();
+        Ok(())
+    }
+
+    pub fn window(&self) -> &Window {
+        &self.window
+    }
+
+    fn host(&self) -> &SimHost {
+        self.host.as_ref().expect("the host exists after init")
+    }
+
+    /// Handles a window event; returns true when the app should quit.
+    pub fn handle_event(&mut self, event: &WindowEvent) -> bool {
+        let wrapped: winit::event::Event<()> =
+            winit::event::Event::WindowEvent { window_id: self.window.id(), event: event.clone() };
+        self.platform.handle_event(self.imgui.io_mut(), &self.window, &wrapped);
+        let io = self.imgui.io();
+        let (ui_mouse, ui_keys) = (io.want_capture_mouse, io.want_capture_keyboard);
+        self.input.handle(event, &mut self.camera, ui_mouse, ui_keys);
+        match event {
+            WindowEvent::CloseRequested => return true,
+            WindowEvent::Resized(size) => self.resized(*size),
+            _ => {}
+        }
+        self.input.actions.contains(&KeyAction::Quit)
+    }
+
+    fn resized(&mut self, size: PhysicalSize<u32>) {
+        self.minimized = size.width == 0 || size.height == 0;
+        self.recreate = true;
+    }
+
+    fn fit_camera(&mut self) {
+        let Some(host) = &self.host else { return };
+        let mut min = Vec3::splat(f32::MAX);
+        let mut max = Vec3::splat(f32::MIN);
+        for o in &host.model().objects {
+            for p in &o.positions {
+                min = min.min(p.as_vec3());
+                max = max.max(p.as_vec3());
+            }
+        }
+        for s in &host.model().spheres {
+            min = min.min((s.center - s.radius).as_vec3());
+            max = max.max((s.center + s.radius).as_vec3());
+        }
+        if min.x <= max.x {
+            self.camera.fit(min, max);
+        }
+    }
+
+    fn message(&mut self, text: impl Into<String>, error: bool) {
+        let text = text.into();
+        if error {
+            log::warn!("{text}");
+        } else {
+            log::info!("{text}");
+        }
+        self.editor.message = Some((text, error));
+    }
+
+    /// Applies an edited scene, reporting refusals in the editor.
+    fn apply(&mut self, edited: Scene) {
+        let (Some(host), Some(renderer)) = (self.host.as_mut(), self.renderer.as_mut()) else { return };
+        match host.apply(&self.ctx, renderer, edited) {
+            Ok(Applied::Rebuilt) => self.message("scene rebuilt from its initial state", false),
+            Ok(Applied::RebuiltKeepingState) => self.message("simulation rebuilt; state kept", false),
+            Ok(_) => {}
+            Err(e) => self.message(format!("not applied: {e:#}"), true),
+        }
+    }
+
+    fn run_action(&mut self, action: Action) {
+        match action {
+            Action::TogglePause => self.editor.paused = !self.editor.paused,
+            Action::Step => {
+                self.editor.paused = true;
+                self.step_once = true;
+            }
+            Action::Reset => {
+                if let Some(host) = self.host.as_mut() {
+                    if let Err(e) = host.reset(&self.ctx) {
+                        self.message(format!("reset failed: {e:#}"), true);
+                    }
+                }
+            }
+            Action::FitCamera => self.fit_camera(),
+            Action::ResetCamera => self.camera = OrbitCamera::default(),
+            Action::Load(path) => match scene::load(&path, &[]) {
+                Ok(loaded) => {
+                    self.apply(loaded);
+                    self.fit_camera();
+                    self.message(format!("loaded {}", path.display()), false);
+                }
+                Err(e) => self.message(e.to_string(), true),
+            },
+            Action::Save(path) => match scene::save(self.host().scene(), &path) {
+                Ok(()) => self.message(format!("saved {}", path.display()), false),
+                Err(e) => self.message(format!("{e:#}"), true),
+            },
+            Action::AddClothFromPreset(path) => match scene::load(&path, &[]) {
+                Ok(from) if from.cloths.is_empty() => {
+                    self.message(format!("{} has no cloth", path.display()), true)
+                }
+                Ok(from) => {
+                    let mut edited = self.host().scene().clone();
+                    for mut c in from.cloths {
+                        if edited.cloths.iter().any(|o| o.name == c.name)
+                            || edited.ropes.iter().any(|o| o.name == c.name)
+                        {
+                            c.name = crate::ui::unique_name(&edited, &c.name);
+                        }
+                        edited.cloths.push(c);
+                    }
+                    self.apply(edited);
+                }
+                Err(e) => self.message(e.to_string(), true),
+            },
+        }
+    }
+
+    fn key_actions(&mut self) -> bool {
+        let mut quit = false;
+        for a in std::mem::take(&mut self.input.actions) {
+            match a {
+                KeyAction::TogglePause => self.run_action(Action::TogglePause),
+                KeyAction::Step => self.run_action(Action::Step),
+                KeyAction::Reset => self.run_action(Action::Reset),
+                KeyAction::Fit => self.fit_camera(),
+                KeyAction::ResetCamera => self.camera = OrbitCamera::default(),
+                KeyAction::Quit => quit = true,
+            }
+        }
+        quit
+    }
+
+    /// Picks, drags and releases particles (after the UI, before recording).
+    fn update_grab(&mut self) {
+        let size = self.window.inner_size();
+        let (origin, dir) = self.camera.ray(self.input.cursor, [size.width as f32, size.height as f32]);
+        if std::mem::take(&mut self.input.pick_requested) {
+            let Some(host) = self.host.as_mut() else { return };
+            match host.sim_mut().read_states(&self.ctx) {
+                Ok(states) => match pick(&states, origin, dir) {
+                    Some((object, index, depth, was_pinned)) => {
+                        self.input.grab =
+                            Some(Grab { object, index, depth, was_pinned, target: origin + dir * depth })
+                    }
+                    None => self.input.pick_missed(),
+                },
+                Err(e) => self.message(format!("picking failed: {e:#}"), true),
+            }
+        }
+        let particle = |target: Vec3, pinned: bool| Particle {
+            pos: [target.x, target.y, target.z, pinned as u32 as f32],
+            vel: [0.0; 4],
+        };
+        if let Some(grab) = self.input.grab.as_mut() {
+            grab.target = origin + dir * grab.depth;
+            let (object, index, target) = (grab.object, grab.index, grab.target);
+            if let Some(host) = self.host.as_mut() {
+                host.sim_mut().set_particle(object, index, particle(target, true));
+            }
+        }
+        if let Some(released) = self.input.released.take() {
+            if let Some(host) = self.host.as_mut() {
+                host.sim_mut().set_particle(
+                    released.object,
+                    released.index,
+                    particle(released.target, released.was_pinned),
+                );
+            }
+        }
+    }
+
+    fn draw_items(&self) -> Vec<DrawItem> {
+        let scene = self.host().scene();
+        let f = |c: [f64; 3]| c.map(|x| x as f32);
+        let mut items = Vec::new();
+        for (i, c) in scene.cloths.iter().enumerate() {
+            items.push(DrawItem {
+                shape: Shape::Surface(i),
+                model: Mat4::IDENTITY,
+                front: f(c.color),
+                back: f(c.back_color),
+                lit: true,
+            });
+        }
+        for (j, r) in scene.ropes.iter().enumerate() {
+            let i = scene.cloths.len() + j;
+            items.push(DrawItem {
+                shape: Shape::Surface(i),
+                model: Mat4::IDENTITY,
+                front: f(r.color),
+                back: f(r.color),
+                lit: true,
+            });
+        }
+        for s in &scene.spheres {
+            let model = Mat4::from_scale_rotation_translation(
+                Vec3::splat(s.radius as f32),
+                Quat::IDENTITY,
+                Vec3::from_array(s.center.map(|x| x as f32)),
+            );
+            items.push(DrawItem {
+                shape: Shape::Sphere,
+                model,
+                front: [0.45, 0.5, 0.58],
+                back: [0.45, 0.5, 0.58],
+                lit: true,
+            });
+        }
+        let light = Vec3::from_array(scene.light.position.map(|x| x as f32));
+        items.push(DrawItem {
+            shape: Shape::Sphere,
+            model: Mat4::from_scale_rotation_translation(Vec3::splat(0.06), Quat::IDENTITY, light),
+            front: [1.0, 0.9, 0.5],
+            back: [1.0, 0.9, 0.5],
+            lit: false,
+        });
+        if scene.wind.enabled {
+            let dir = Vec3::from_array(scene.wind.direction.map(|x| x as f32)).normalize_or(Vec3::Z);
+            let model = Mat4::from_scale_rotation_translation(
+                Vec3::new(0.12, 0.12, 0.35),
+                Quat::from_rotation_arc(Vec3::Z, dir),
+                Vec3::from_array(scene.wind.origin.map(|x| x as f32)),
+            );
+            items.push(DrawItem {
+                shape: Shape::Cone,
+                model,
+                front: [0.25, 0.45, 0.95],
+                back: [0.25, 0.45, 0.95],
+                lit: true,
+            });
+        }
+        if let Some(g) = self.input.grab {
+            let model = Mat4::from_scale_rotation_translation(Vec3::splat(0.015), Quat::IDENTITY, g.target);
+            items.push(DrawItem {
+                shape: Shape::Cube,
+                model,
+                front: [1.0, 0.85, 0.1],
+                back: [1.0, 0.85, 0.1],
+                lit: false,
+            });
+        }
+        items
+    }
+
+    /// The scripted window exercise of `--exercise-window`: resizes, a minimise and restore
+    /// cycle, then exit.
+    fn exercise(&mut self) -> Outcome {
+        let sizes = [(4, [700, 500]), (8, [420, 300]), (12, [900, 650]), (28, [640, 480])];
+        for (at, [w, h]) in sizes {
+            if self.tick == at {
+                let _ = self.window.request_inner_size(PhysicalSize::new(w, h));
+            }
+        }
+        match self.tick {
+            16 => {
+                self.window.set_minimized(true);
+                // Without a window manager the request may do nothing: report the zero size a
+                // minimised window gets, as the platform would.
+                self.resized(PhysicalSize::new(0, 0));
+            }
+            22 => {
+                self.window.set_minimized(false);
+                self.resized(self.window.inner_size());
+            }
+            40 => return Outcome::Exit,
+            _ => {}
+        }
+        Outcome::Continue
+    }
+
+    /// One frame: UI, edits, simulation, drawing, presentation.
+    pub fn frame(&mut self) -> Result<Outcome> {
+        self.tick += 1;
+        let now = Instant::now();
+        let dt = (now - self.last).as_secs_f64();
+        self.last = now;
+        self.stats.cpu_frame_ms = if self.stats.cpu_frame_ms == 0.0 {
+            dt * 1e3
+        } else {
+            0.9 * self.stats.cpu_frame_ms + 0.1 * dt * 1e3
+        };
+        if self.args.exercise_window && self.exercise() == Outcome::Exit {
+            return Ok(Outcome::Exit);
+        }
+        if self.key_actions() {
+            return Ok(Outcome::Exit);
+        }
+        if self.minimized {
+            return Ok(Outcome::Continue);
+        }
+        if self.recreate || self.swapchain.is_none() {
+            let size = self.window.inner_size();
+            if size.width == 0 || size.height == 0 {
+                self.minimized = true;
+                return Ok(Outcome::Continue);
+            }
+            self.ctx.wait_idle()?;
+            let old = self.swapchain.take();
+            self.swapchain =
+                Some(Swapchain::new(&self.ctx, [size.width, size.height], self.args.vsync, old)?);
+            self.recreate = false;
+        }
+
+        let slot = (self.frame % FRAME_SLOTS as u64) as usize;
+        self.frames[slot].cmd.wait(&self.ctx)?;
+        self.read_timings(slot)?;
+
+        let swapchain = self.swapchain.as_ref().expect("created above");
+        let image = match swapchain.acquire(&self.ctx, &self.frames[slot].available)? {
+            Acquired::Image(i) => i,
+            Acquired::OutOfDate => {
+                self.recreate = true;
+                return Ok(Outcome::Continue);
+            }
+        };
+
+        // Edits and actions from the previous frame's UI, then input.
+        if let Some(edited) = self.pending_scene.take() {
+            self.apply(edited);
+        }
+        for a in std::mem::take(&mut self.pending_actions) {
+            self.run_action(a);
+        }
+        self.input.fly(&mut self.camera, dt as f32);
+        self.update_grab();
+
+        let run_sim = !self.editor.paused || std::mem::take(&mut self.step_once);
+        let extent = self.swapchain.as_ref().expect("created above").extent();
+        let scene = self.host().scene();
+        let camera = Camera {
+            view_proj: self.camera.view_proj(extent[0] as f32 / extent[1].max(1) as f32).to_cols_array_2d(),
+            eye: self.camera.eye().extend(1.0).to_array(),
+            light_pos: [
+                scene.light.position[0] as f32,
+                scene.light.position[1] as f32,
+                scene.light.position[2] as f32,
+                1.0,
+            ],
+            light_color: [
+                scene.light.color[0] as f32,
+                scene.light.color[1] as f32,
+                scene.light.color[2] as f32,
+                scene.light.ambient as f32,
+            ],
+        };
+        let items = self.draw_items();
+        self.renderer.as_mut().expect("renderer").set_camera(slot, &camera)?;
+        let capture = self.screenshot_due();
+        if capture && self.screenshot.is_none() {
+            let bytes = extent[0] as u64 * extent[1] as u64 * 4;
+            self.screenshot = Some(Buffer::new(
+                &self.ctx,
+                "screenshot",
+                bytes,
+                BufferUsage::TRANSFER_DST,
+                MemoryKind::Readback,
+            )?);
+        }
+
+        // The UI edits a copy of the scene, applied at the start of the next frame. From here on
+        // `draw_data` borrows `self.imgui`, so only other fields are touched.
+        self.platform.prepare_frame(self.imgui.io_mut(), &self.window).context("preparing the UI frame")?;
+        let ui = self.imgui.new_frame();
+        let mut edited = self.host.as_ref().expect("host").scene().clone();
+        self.pending_actions = ui::build(ui, &mut self.editor, &mut edited, &self.stats);
+        if edited != *self.host.as_ref().expect("host").scene() {
+            self.pending_scene = Some(edited);
+        }
+        self.platform.prepare_render(ui, &self.window);
+        let draw_data = self.imgui.render();
+
+        let frame = &mut self.frames[slot];
+        let mut rec = frame.cmd.begin(&self.ctx)?;
+        let host = self.host.as_mut().expect("host");
+        if run_sim {
+            host.sim_mut().record_frame(&mut rec, Access::VertexInput, slot);
+        }
+        let swapchain = self.swapchain.as_ref().expect("created above");
+        if let Some(pool) = &frame.timestamps {
+            rec.reset_timestamps(pool);
+            rec.timestamp_after_drawing(pool, 0);
+        }
+        rec.image_barrier(&[
+            ImageBarrier::new(swapchain.image(image), Access::Acquired, Access::ColorAttachment),
+            ImageBarrier::discarding(
+                swapchain.depth().image(),
+                Access::DepthAttachment,
+                Access::DepthAttachment,
+            ),
+        ]);
+        rec.begin_rendering(swapchain.view(image), swapchain.depth().view(), extent, SKY);
+        self.renderer.as_ref().expect("renderer").record(&mut rec, slot, host.sim(), &items, true);
+        if let Some(pool) = &frame.timestamps {
+            rec.timestamp_after_drawing(pool, 1);
+        }
+        self.ui_renderer.as_mut().expect("ui renderer").draw(&mut rec, draw_data)?;
+        rec.end_rendering();
+        if let Some(pool) = &frame.timestamps {
+            rec.timestamp_after_drawing(pool, 2);
+        }
+        match (&self.screenshot, capture) {
+            (Some(buffer), true) => {
+                rec.image_barrier(&[ImageBarrier::new(
+                    swapchain.image(image),
+                    Access::ColorAttachment,
+                    Access::TransferRead,
+                )]);
+                rec.copy_image_to_buffer(swapchain.image(image), extent, buffer);
+                rec.image_barrier(&[ImageBarrier::new(
+                    swapchain.image(image),
+                    Access::TransferRead,
+                    Access::Present,
+                )]);
+                rec.barrier(&[BufferBarrier::new(buffer, Access::TransferWrite, Access::HostRead)]);
+            }
+            _ => rec.image_barrier(&[ImageBarrier::new(
+                swapchain.image(image),
+                Access::ColorAttachment,
+                Access::Present,
+            )]),
+        }
+        frame.cmd.submit_with(&self.ctx, rec, Some(&frame.available), Some(swapchain.finished(image)))?;
+        frame.used = true;
+        frame.simulated = run_sim;
+        if !swapchain.present(&self.ctx, image)? {
+            self.recreate = true;
+        }
+        self.frame += 1;
+        let host = self.host.as_ref().expect("host");
+        self.stats.simulated_time = host.sim().time();
+        self.stats.particles = host.model().objects.iter().map(|o| o.particle_count() as u64).sum();
+
+        if capture {
+            self.frames[slot].cmd.wait(&self.ctx)?;
+            self.write_screenshot(extent, swapchain_is_bgra(self.swapchain.as_ref()))?;
+            return Ok(Outcome::Exit);
+        }
+        if self.args.frames.is_some_and(|n| self.frame >= n) && self.args.screenshot.is_none() {
+            return Ok(Outcome::Exit);
+        }
+        Ok(Outcome::Continue)
+    }
+
+    fn screenshot_due(&self) -> bool {
+        self.args.screenshot.is_some() && self.args.frames.is_none_or(|n| self.frame + 1 >= n)
+    }
+
+    fn read_timings(&mut self, slot: usize) -> Result<()> {
+        let frame = &self.frames[slot];
+        if !frame.used {
+            return Ok(());
+        }
+        if frame.simulated {
+            self.stats.sim = self.host().sim().read_timing(&self.ctx, slot)?;
+        }
+        if let Some(pool) = &frame.timestamps {
+            let t = pool.read_ns(&self.ctx, 3)?;
+            self.stats.render_ms = Some((t[1] - t[0]).max(0.0) * 1e-6);
+            self.stats.ui_ms = Some((t[2] - t[1]).max(0.0) * 1e-6);
+        }
+        Ok(())
+    }
+
+    fn write_screenshot(&self, extent: [u32; 2], bgra: bool) -> Result<()> {
+        let (Some(path), Some(buffer)) = (&self.args.screenshot, &self.screenshot) else { return Ok(()) };
+        let mut pixels: Vec<u8> = buffer.read::<u8>((extent[0] * extent[1] * 4) as usize)?;
+        for px in pixels.chunks_exact_mut(4) {
+            if bgra {
+                px.swap(0, 2);
+            }
+            px[3] = 255;
+        }
+        write_png(path, extent, &pixels)
+    }
+
+    /// Waits for the GPU and frees everything in order (also run by Drop).
+    fn teardown(&mut self) {
+        let _ = self.ctx.wait_idle();
+        if let Some(u) = self.ui_renderer.take() {
+            u.destroy(&self.ctx);
+        }
+        if let Some(h) = self.host.take() {
+            h.destroy(&self.ctx);
+        }
+        if let Some(r) = self.renderer.take() {
+            r.destroy(&self.ctx);
+        }
+        if let Some(b) = self.screenshot.take() {
+            b.destroy(&self.ctx);
+        }
+        for f in self.frames.drain(..) {
+            f.cmd.destroy(&self.ctx);
+            f.available.destroy(&self.ctx);
+            if let Some(t) = f.timestamps {
+                t.destroy(&self.ctx);
+            }
+        }
+        if let Some(s) = self.swapchain.take() {
+            s.destroy(&self.ctx);
+        }
+    }
+
+    /// Validation messages so far and allocations still alive after teardown.
+    pub fn finish(mut self) -> (u32, Option<String>, Vec<String>) {
+        self.teardown();
+        let canary = self.ctx.canary();
+        (canary.count(), canary.messages().first().cloned(), self.ctx.live_allocations())
+    }
+}
+
+impl Drop for Viewer {
+    fn drop(&mut self) {
+        self.teardown();
+    }
+}
+
+fn swapchain_is_bgra(s: Option<&Swapchain>) -> bool {
+    s.is_some_and(|s| s.format() == Format::Bgra8Unorm)
+}
+
+/// Writes RGBA8 pixels as a PNG.
+pub fn write_png(path: &std::path::Path, extent: [u32; 2], rgba: &[u8]) -> Result<()> {
+    let file = std::fs::File::create(path).map_err(|e| {
+        crate::error::UserError(format!("--screenshot {}: cannot write: {e}", path.display()))
+    })?;
+    let mut encoder = png::Encoder::new(std::io::BufWriter::new(file), extent[0], extent[1]);
+    encoder.set_color(png::ColorType::Rgba);
+    encoder.set_depth(png::BitDepth::Eight);
+    let mut writer = encoder.write_header().context("writing the PNG header")?;
+    writer.write_image_data(rgba).context("writing the PNG")?;
+    Ok(())
+}
+
+/// The path shown in the editor's preset field for a preset argument.
+pub fn preset_label(path: Option<&PathBuf>) -> String {
+    path.map(|p| p.display().to_string()).unwrap_or_else(|| "presets/playground.toml".into())
+}

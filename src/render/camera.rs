@@ -1,0 +1,118 @@
+//! An orbit camera: it looks at `target` from `distance` along a direction given by yaw and
+//! pitch. Dragging orbits, shift-dragging pans, the wheel zooms, WASD/QE fly the target.
+
+use glam::{Mat4, Vec3, Vec4};
+
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct OrbitCamera {
+    pub target: Vec3,
+    /// Radians around +y.
+    pub yaw: f32,
+    /// Radians above the horizon.
+    pub pitch: f32,
+    /// Metres from the target.
+    pub distance: f32,
+    /// Vertical field of view, radians.
+    pub fov: f32,
+}
+
+impl Default for OrbitCamera {
+    fn default() -> Self {
+        Self {
+            target: Vec3::new(0.0, 1.0, 0.0),
+            yaw: 0.35,
+            pitch: 0.25,
+            distance: 4.5,
+            fov: 45f32.to_radians(),
+        }
+    }
+}
+
+impl OrbitCamera {
+    /// Unit vector from the target to the eye.
+    fn back(&self) -> Vec3 {
+        Vec3::new(self.pitch.cos() * self.yaw.sin(), self.pitch.sin(), self.pitch.cos() * self.yaw.cos())
+    }
+
+    pub fn eye(&self) -> Vec3 {
+        self.target + self.back() * self.distance
+    }
+
+    pub fn view(&self) -> Mat4 {
+        glam::camera::rh::view::look_at_mat4(self.eye(), self.target, Vec3::Y)
+    }
+
+    /// Projection for Vulkan clip space (y down, depth 0..1).
+    pub fn projection(&self, aspect: f32) -> Mat4 {
+        glam::camera::rh::proj::vulkan::perspective(self.fov, aspect.max(1e-3), 0.02, 200.0)
+    }
+
+    pub fn view_proj(&self, aspect: f32) -> Mat4 {
+        self.projection(aspect) * self.view()
+    }
+
+    /// Orbits by a drag of (dx, dy) pixels.
+    pub fn orbit(&mut self, dx: f32, dy: f32) {
+        self.yaw -= dx * 0.008;
+        self.pitch = (self.pitch + dy * 0.008).clamp(-1.55, 1.55);
+    }
+
+    /// Pans by a drag of (dx, dy) pixels, moving the target in the view plane.
+    pub fn pan(&mut self, dx: f32, dy: f32) {
+        let right = self.back().cross(Vec3::Y).normalize_or_zero();
+        let up = right.cross(self.back()).normalize_or_zero();
+        let scale = self.distance * 0.0015;
+        self.target += (right * dx - up * dy) * scale;
+    }
+
+    /// Zooms by wheel `steps` (positive: closer).
+    pub fn zoom(&mut self, steps: f32) {
+        self.distance = (self.distance * 0.9f32.powf(steps)).clamp(0.05, 500.0);
+    }
+
+    /// Moves the target along the view: `forward`, `right`, `up` in -1..1, for `dt` seconds.
+    pub fn fly(&mut self, forward: f32, right: f32, up: f32, dt: f32) {
+        let ahead = -Vec3::new(self.back().x, 0.0, self.back().z).normalize_or_zero();
+        let side = ahead.cross(Vec3::Y);
+        let speed = self.distance.max(0.5) * 0.8;
+        self.target += (ahead * forward + side * right + Vec3::Y * up) * speed * dt;
+    }
+
+    /// Frames the box [min, max] from the current direction.
+    pub fn fit(&mut self, min: Vec3, max: Vec3) {
+        self.target = (min + max) * 0.5;
+        let radius = ((max - min).length() * 0.5).max(0.1);
+        self.distance = radius / (self.fov * 0.5).sin() * 1.1;
+    }
+
+    /// The world-space ray through a pixel: (origin, unit direction).
+    pub fn ray(&self, pixel: [f32; 2], size: [f32; 2]) -> (Vec3, Vec3) {
+        let ndc = [2.0 * pixel[0] / size[0].max(1.0) - 1.0, 2.0 * pixel[1] / size[1].max(1.0) - 1.0];
+        let inverse = self.view_proj(size[0] / size[1].max(1.0)).inverse();
+        let near = inverse * Vec4::new(ndc[0], ndc[1], 0.0, 1.0);
+        let far = inverse * Vec4::new(ndc[0], ndc[1], 1.0, 1.0);
+        let (near, far) = (near.truncate() / near.w, far.truncate() / far.w);
+        (near, (far - near).normalize_or_zero())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_ray_through_the_centre_hits_the_target() {
+        let cam = OrbitCamera::default();
+        let (origin, dir) = cam.ray([400.0, 300.0], [800.0, 600.0]);
+        let to_target = cam.target - origin;
+        assert!(to_target.cross(dir).length() < 1e-3 * to_target.length(), "{origin} {dir}");
+        assert!(to_target.dot(dir) > 0.0);
+    }
+
+    #[test]
+    fn a_point_above_the_target_projects_above_the_centre() {
+        let cam = OrbitCamera::default();
+        let clip = cam.view_proj(1.0) * (cam.target + Vec3::Y * 0.1).extend(1.0);
+        assert!(clip.y / clip.w < 0.0, "Vulkan clip space has y down");
+    }
+}

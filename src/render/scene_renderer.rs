@@ -1,0 +1,232 @@
+//! Records the scene draws into a dynamic rendering: simulation surfaces (straight from their
+//! compute buffers, after the simulation's compute -> vertex-input barrier), primitive meshes
+//! for colliders and gizmos, and the ground grid.
+//!
+//! Per frame slot it owns a camera uniform buffer, written by the host only after that slot's
+//! fence, so no frame in flight reads a buffer being written.
+
+use super::mesh::{self, MeshData};
+use crate::shaders;
+use crate::sim::gpu::{GpuSim, FRAME_SLOTS};
+use crate::sim::gpu_types::{Camera, Draw, SurfaceVertex};
+use crate::sim::model::{ObjectKind, ObjectShape};
+use crate::vk::{
+    BindingKind, BindingSet, BindingSetLayout, Buffer, BufferUsage, DescriptorArena, Format, GpuContext,
+    GraphicsDesc, GraphicsPipeline, MemoryKind, Recorder, Topology, VertexFormat, VertexLayout,
+};
+use anyhow::{Context as _, Result};
+use glam::Mat4;
+
+/// What to draw.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Shape {
+    Sphere,
+    Cone,
+    Cube,
+    /// The surface of simulation object `i` (cloth mesh or rope tube).
+    Surface(usize),
+}
+
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct DrawItem {
+    pub shape: Shape,
+    pub model: Mat4,
+    pub front: [f32; 3],
+    pub back: [f32; 3],
+    pub lit: bool,
+}
+
+/// A mesh in host-visible buffers (small, written once).
+struct GpuMesh {
+    vertices: Buffer,
+    indices: Buffer,
+    count: u32,
+}
+
+impl GpuMesh {
+    fn new(ctx: &GpuContext, name: &str, data: &MeshData) -> Result<Self> {
+        let mut vertices = Buffer::new(
+            ctx,
+            &format!("{name}.vertices"),
+            std::mem::size_of_val(data.vertices.as_slice()) as u64,
+            BufferUsage::VERTEX,
+            MemoryKind::Upload,
+        )?;
+        let indices = Self::indices(ctx, name, &data.indices);
+        let mut indices = match indices {
+            Ok(i) => i,
+            Err(e) => {
+                vertices.destroy(ctx);
+                return Err(e);
+            }
+        };
+        vertices.write(0, &data.vertices)?;
+        indices.write(0, &data.indices)?;
+        Ok(Self { vertices, indices, count: data.indices.len() as u32 })
+    }
+
+    fn indices(ctx: &GpuContext, name: &str, indices: &[u32]) -> Result<Buffer> {
+        Ok(Buffer::new(
+            ctx,
+            &format!("{name}.indices"),
+            4 * indices.len() as u64,
+            BufferUsage::INDEX,
+            MemoryKind::Upload,
+        )?)
+    }
+
+    fn destroy(self, ctx: &GpuContext) {
+        self.vertices.destroy(ctx);
+        self.indices.destroy(ctx);
+    }
+}
+
+pub struct SceneRenderer {
+    triangles: GraphicsPipeline,
+    lines: GraphicsPipeline,
+    layout: BindingSetLayout,
+    arena: DescriptorArena,
+    cameras: Vec<Buffer>,
+    sets: Vec<BindingSet>,
+    sphere: GpuMesh,
+    cone: GpuMesh,
+    cube: GpuMesh,
+    grid: GpuMesh,
+    /// Index buffers of the simulation objects' surfaces, with their index counts.
+    surfaces: Vec<(Buffer, u32)>,
+}
+
+impl SceneRenderer {
+    pub fn new(ctx: &GpuContext, color: Format, depth: Format) -> Result<Self> {
+        let layout = BindingSetLayout::new(ctx, &[BindingKind::GraphicsUniform])?;
+        let vertex = shaders::embedded("mesh.vert")?;
+        let fragment = shaders::embedded("mesh.frag")?;
+        let stride = std::mem::size_of::<SurfaceVertex>() as u32;
+        let attributes = [(0, VertexFormat::Float32x4, 0), (1, VertexFormat::Float32x4, 16)];
+        let desc = |name, topology| GraphicsDesc {
+            name,
+            vertex: &vertex,
+            fragment: &fragment,
+            vertices: VertexLayout { stride, attributes: &attributes },
+            topology,
+            color,
+            depth,
+            depth_write: true,
+            set_layout: &layout,
+            push_constant_bytes: std::mem::size_of::<Draw>() as u32,
+        };
+        let triangles = GraphicsPipeline::new(ctx, &desc("scene triangles", Topology::Triangles))?;
+        let lines = GraphicsPipeline::new(ctx, &desc("scene lines", Topology::Lines))?;
+        let mut arena = DescriptorArena::new(ctx, FRAME_SLOTS as u32, 1)?;
+        let mut cameras = Vec::new();
+        let mut sets = Vec::new();
+        for slot in 0..FRAME_SLOTS {
+            let buffer = Buffer::new(
+                ctx,
+                &format!("camera[{slot}]"),
+                std::mem::size_of::<Camera>() as u64,
+                BufferUsage::UNIFORM,
+                MemoryKind::Upload,
+            )?;
+            sets.push(arena.allocate(ctx, &layout, &[&buffer])?);
+            cameras.push(buffer);
+        }
+        Ok(Self {
+            sphere: GpuMesh::new(ctx, "sphere", &mesh::sphere(24, 32))?,
+            cone: GpuMesh::new(ctx, "cone", &mesh::cone(32))?,
+            cube: GpuMesh::new(ctx, "cube", &mesh::cube())?,
+            grid: GpuMesh::new(ctx, "grid", &mesh::grid_lines(5.0, 0.25))?,
+            triangles,
+            lines,
+            layout,
+            arena,
+            cameras,
+            sets,
+            surfaces: Vec::new(),
+        })
+    }
+
+    /// Builds the index buffers for a simulation's objects (after it is created or rebuilt; the
+    /// device must be idle).
+    pub fn set_objects(&mut self, ctx: &GpuContext, shapes: &[ObjectShape]) -> Result<()> {
+        for (b, _) in self.surfaces.drain(..) {
+            b.destroy(ctx);
+        }
+        for s in shapes {
+            let indices = match s.kind {
+                ObjectKind::Cloth => mesh::cloth_indices(s.dims[0], s.dims[1]),
+                ObjectKind::Rope => mesh::rope_indices(s.dims[0]),
+            };
+            let mut buffer = GpuMesh::indices(ctx, &format!("{}.indices", s.name), &indices)
+                .with_context(|| format!("index buffer of '{}'", s.name))?;
+            buffer.write(0, &indices)?;
+            self.surfaces.push((buffer, indices.len() as u32));
+        }
+        Ok(())
+    }
+
+    /// Writes the camera of frame `slot` (after that slot's fence).
+    pub fn set_camera(&mut self, slot: usize, camera: &Camera) -> Result<()> {
+        Ok(self.cameras[slot].write(0, std::slice::from_ref(camera))?)
+    }
+
+    /// Records the grid and `items` into the current rendering.
+    pub fn record(&self, rec: &mut Recorder<'_>, slot: usize, sim: &GpuSim, items: &[DrawItem], grid: bool) {
+        let push = |rec: &mut Recorder<'_>, pipeline: &GraphicsPipeline, item: &DrawItem| {
+            let draw = Draw {
+                model: item.model.to_cols_array_2d(),
+                front: [item.front[0], item.front[1], item.front[2], 1.0],
+                back: [item.back[0], item.back[1], item.back[2], 1.0],
+                params: [item.lit as u32 as f32, 0.0, 0.0, 0.0],
+            };
+            rec.push_constants(pipeline, bytemuck::bytes_of(&draw));
+        };
+        if grid {
+            rec.bind_graphics(&self.lines, self.sets[slot]);
+            let item = DrawItem {
+                shape: Shape::Cube,
+                model: Mat4::IDENTITY,
+                front: [0.42; 3],
+                back: [0.42; 3],
+                lit: false,
+            };
+            push(rec, &self.lines, &item);
+            rec.draw_indexed(&self.grid.vertices, &self.grid.indices, self.grid.count, 1);
+        }
+        rec.bind_graphics(&self.triangles, self.sets[slot]);
+        for item in items {
+            push(rec, &self.triangles, item);
+            match item.shape {
+                Shape::Sphere => {
+                    rec.draw_indexed(&self.sphere.vertices, &self.sphere.indices, self.sphere.count, 1)
+                }
+                Shape::Cone => rec.draw_indexed(&self.cone.vertices, &self.cone.indices, self.cone.count, 1),
+                Shape::Cube => rec.draw_indexed(&self.cube.vertices, &self.cube.indices, self.cube.count, 1),
+                Shape::Surface(i) => {
+                    if let Some((indices, count)) = self.surfaces.get(i) {
+                        if i < sim.object_count() {
+                            rec.draw_indexed(sim.surface(i).0, indices, *count, 1);
+                        }
+                    }
+                }
+            }
+        }
+    }
+
+    /// Frees everything; the device must be idle.
+    pub fn destroy(self, ctx: &GpuContext) {
+        for (b, _) in self.surfaces {
+            b.destroy(ctx);
+        }
+        for m in [self.sphere, self.cone, self.cube, self.grid] {
+            m.destroy(ctx);
+        }
+        for c in self.cameras {
+            c.destroy(ctx);
+        }
+        self.arena.destroy(ctx);
+        self.triangles.destroy(ctx);
+        self.lines.destroy(ctx);
+        self.layout.destroy(ctx);
+    }
+}

@@ -1,0 +1,357 @@
+//! The editor panels: simulation controls, wind, light, the object list with add and remove,
+//! a panel per selected object with every parameter, preset load/save, and stats.
+
+use super::widgets::{choice, color, drag, drag3, int, optional};
+use crate::scene::{Cloth, ClothPins, Orientation, PerSpring, Rope, RopePins, Scene, Sphere};
+use crate::sim::gpu::FrameTiming;
+use imgui::{Condition, TreeNodeFlags, Ui};
+use std::path::PathBuf;
+
+/// What the user asked for besides editing values.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Action {
+    TogglePause,
+    Step,
+    Reset,
+    FitCamera,
+    ResetCamera,
+    Load(PathBuf),
+    Save(PathBuf),
+    AddClothFromPreset(PathBuf),
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Selection {
+    #[default]
+    None,
+    Cloth(usize),
+    Rope(usize),
+    Sphere(usize),
+}
+
+/// Editor state that is not part of the scene.
+#[derive(Debug, Clone, Default)]
+pub struct EditorState {
+    pub selected: Selection,
+    pub preset_path: String,
+    pub cloth_preset_path: String,
+    /// The last status line and whether it is an error.
+    pub message: Option<(String, bool)>,
+    pub paused: bool,
+    pub shaders_note: String,
+}
+
+/// Timings shown in the stats panel.
+#[derive(Debug, Clone, Default)]
+pub struct Stats {
+    pub device: String,
+    pub cpu_frame_ms: f64,
+    pub sim: Option<FrameTiming>,
+    pub render_ms: Option<f64>,
+    pub ui_ms: Option<f64>,
+    pub particles: u64,
+    pub simulated_time: f64,
+}
+
+/// Builds the editor windows over `scene` (edited in place) and returns the actions.
+pub fn build(ui: &Ui, state: &mut EditorState, scene: &mut Scene, stats: &Stats) -> Vec<Action> {
+    let mut actions = Vec::new();
+    ui.window("Scene")
+        .position([10.0, 10.0], Condition::FirstUseEver)
+        .size([360.0, 620.0], Condition::FirstUseEver)
+        .build(|| {
+            simulation_panel(ui, state, scene, &mut actions);
+            if ui.collapsing_header("Wind", TreeNodeFlags::empty()) {
+                let w = &mut scene.wind;
+                ui.checkbox("enabled##wind", &mut w.enabled);
+                drag3(ui, "origin [m]##wind", &mut w.origin, 0.01);
+                drag3(ui, "direction##wind", &mut w.direction, 0.01);
+                drag(ui, "force [N]##wind", &mut w.force, 0.001, -10.0, 10.0);
+                drag(ui, "full-force radius [m]", &mut w.full_force_radius, 0.01, 0.0, 100.0);
+                drag(ui, "attenuation radius [m]", &mut w.attenuation_radius, 0.01, 0.0, 100.0);
+                drag(ui, "reference distance [m]", &mut w.reference_distance, 0.01, 0.01, 100.0);
+            }
+            if ui.collapsing_header("Light", TreeNodeFlags::empty()) {
+                drag3(ui, "position [m]##light", &mut scene.light.position, 0.02);
+                color(ui, "colour##light", &mut scene.light.color);
+                drag(ui, "ambient", &mut scene.light.ambient, 0.01, 0.0, 1.0);
+            }
+            if ui.collapsing_header("Objects", TreeNodeFlags::DEFAULT_OPEN) {
+                object_list(ui, state, scene);
+                ui.separator();
+                selected_panel(ui, state, scene);
+            }
+            if ui.collapsing_header("Presets", TreeNodeFlags::DEFAULT_OPEN) {
+                ui.input_text("file##preset", &mut state.preset_path).build();
+                if ui.button("Load") {
+                    actions.push(Action::Load(PathBuf::from(&state.preset_path)));
+                }
+                ui.same_line();
+                if ui.button("Save") {
+                    actions.push(Action::Save(PathBuf::from(&state.preset_path)));
+                }
+                ui.input_text("cloth preset##add", &mut state.cloth_preset_path).build();
+                if ui.button("Add cloths from that preset") {
+                    actions.push(Action::AddClothFromPreset(PathBuf::from(&state.cloth_preset_path)));
+                }
+            }
+            if let Some((text, error)) = &state.message {
+                let colour = if *error { [1.0, 0.45, 0.4, 1.0] } else { [0.6, 0.9, 0.6, 1.0] };
+                ui.text_wrapped_colored(colour, text);
+            }
+        });
+    stats_window(ui, stats, state);
+    actions
+}
+
+trait TextWrappedColored {
+    fn text_wrapped_colored(&self, colour: [f32; 4], text: &str);
+}
+
+impl TextWrappedColored for Ui {
+    fn text_wrapped_colored(&self, colour: [f32; 4], text: &str) {
+        let _c = self.push_style_color(imgui::StyleColor::Text, colour);
+        self.text_wrapped(text);
+    }
+}
+
+fn simulation_panel(ui: &Ui, state: &EditorState, scene: &mut Scene, actions: &mut Vec<Action>) {
+    if !ui.collapsing_header("Simulation", TreeNodeFlags::DEFAULT_OPEN) {
+        return;
+    }
+    if ui.button(if state.paused { "Resume (space)" } else { "Pause (space)" }) {
+        actions.push(Action::TogglePause);
+    }
+    ui.same_line();
+    if ui.button("Step (N)") {
+        actions.push(Action::Step);
+    }
+    ui.same_line();
+    if ui.button("Reset (Ctrl+R)") {
+        actions.push(Action::Reset);
+    }
+    if ui.button("Fit camera (F)") {
+        actions.push(Action::FitCamera);
+    }
+    ui.same_line();
+    if ui.button("Reset camera (Home)") {
+        actions.push(Action::ResetCamera);
+    }
+    int(ui, "substeps", &mut scene.sim.substeps, 1, 4096);
+    let mut ms = scene.sim.frame_dt * 1e3;
+    if drag(ui, "frame dt [ms]", &mut ms, 0.05, 0.1, 1000.0) {
+        scene.sim.frame_dt = ms * 1e-3;
+    }
+    ui.text(format!("substep dt: {:.4} ms", scene.sim.frame_dt * 1e3 / scene.sim.substeps as f64));
+    drag3(ui, "gravity [m/s^2]", &mut scene.sim.gravity, 0.05);
+}
+
+fn object_list(ui: &Ui, state: &mut EditorState, scene: &mut Scene) {
+    let mut pick = |label: String, sel: Selection| {
+        if ui.selectable_config(&label).selected(state.selected == sel).build() {
+            state.selected = sel;
+        }
+    };
+    for (i, c) in scene.cloths.iter().enumerate() {
+        pick(format!("cloth  {}##c{i}", c.name), Selection::Cloth(i));
+    }
+    for (i, r) in scene.ropes.iter().enumerate() {
+        pick(format!("rope   {}##r{i}", r.name), Selection::Rope(i));
+    }
+    for (i, s) in scene.spheres.iter().enumerate() {
+        pick(format!("sphere {i} (r {:.2} m)##s{i}", s.radius), Selection::Sphere(i));
+    }
+    if ui.button("+ cloth") {
+        scene.cloths.push(new_cloth(unique_name(scene, "cloth")));
+        state.selected = Selection::Cloth(scene.cloths.len() - 1);
+    }
+    ui.same_line();
+    if ui.button("+ rope") {
+        scene.ropes.push(new_rope(unique_name(scene, "rope")));
+        state.selected = Selection::Rope(scene.ropes.len() - 1);
+    }
+    ui.same_line();
+    if ui.button("+ sphere") {
+        scene.spheres.push(Sphere { center: [0.0, 0.5, 0.0], radius: 0.25 });
+        state.selected = Selection::Sphere(scene.spheres.len() - 1);
+    }
+    ui.same_line();
+    if ui.button("remove") {
+        match state.selected {
+            Selection::Cloth(i) if i < scene.cloths.len() => drop(scene.cloths.remove(i)),
+            Selection::Rope(i) if i < scene.ropes.len() => drop(scene.ropes.remove(i)),
+            Selection::Sphere(i) if i < scene.spheres.len() => drop(scene.spheres.remove(i)),
+            _ => {}
+        }
+        state.selected = Selection::None;
+    }
+}
+
+/// A name not used by any object, from `base`.
+pub fn unique_name(scene: &Scene, base: &str) -> String {
+    let taken = |n: &str| scene.cloths.iter().any(|c| c.name == n) || scene.ropes.iter().any(|r| r.name == n);
+    (1..).map(|i| format!("{base}{i}")).find(|n| !taken(n)).unwrap_or_else(|| base.to_string())
+}
+
+fn selected_panel(ui: &Ui, state: &EditorState, scene: &mut Scene) {
+    match state.selected {
+        Selection::Cloth(i) if i < scene.cloths.len() => cloth_panel(ui, &mut scene.cloths[i]),
+        Selection::Rope(i) if i < scene.ropes.len() => rope_panel(ui, &mut scene.ropes[i]),
+        Selection::Sphere(i) if i < scene.spheres.len() => {
+            let s = &mut scene.spheres[i];
+            drag3(ui, "centre [m]", &mut s.center, 0.01);
+            drag(ui, "radius [m]", &mut s.radius, 0.005, 0.001, 100.0);
+        }
+        _ => ui.text_disabled("select an object to edit it"),
+    }
+}
+
+fn springs(ui: &Ui, label: &str, v: &mut PerSpring, speed: f32, min: f64, max: f64) {
+    ui.text(label);
+    drag(ui, &format!("structural##{label}"), &mut v.structural, speed, min, max);
+    drag(ui, &format!("shear##{label}"), &mut v.shear, speed, min, max);
+    drag(ui, &format!("bending##{label}"), &mut v.bending, speed, min, max);
+}
+
+fn cloth_panel(ui: &Ui, c: &mut Cloth) {
+    ui.text(format!("cloth '{}'", c.name));
+    int(ui, "columns", &mut c.resolution[0], 2, 4096);
+    int(ui, "rows", &mut c.resolution[1], 2, 4096);
+    drag(ui, "width [m]", &mut c.size[0], 0.01, 0.01, 100.0);
+    drag(ui, "height [m]", &mut c.size[1], 0.01, 0.01, 100.0);
+    drag3(ui, "origin [m]", &mut c.origin, 0.01);
+    choice(ui, "orientation", &mut c.orientation, &[Orientation::Vertical, Orientation::Horizontal]);
+    choice(
+        ui,
+        "pins",
+        &mut c.pin,
+        &[
+            ClothPins::None,
+            ClothPins::TopRow,
+            ClothPins::TopCorners,
+            ClothPins::LeftColumn,
+            ClothPins::Corners,
+        ],
+    );
+    drag(ui, "mass [kg/particle]", &mut c.mass, 0.0005, 1e-6, 100.0);
+    springs(ui, "stiffness [N/m]", &mut c.stiffness, 1.0, 0.0, 1e6);
+    springs(ui, "rest length scale", &mut c.rest_scale, 0.005, 0.05, 10.0);
+    drag(ui, "spring damping [N s/m]", &mut c.damping, 0.0005, 0.0, 100.0);
+    drag(ui, "drag [N s/m]", &mut c.drag, 0.0005, 0.0, 100.0);
+    optional(ui, "stretch limit", &mut c.stretch_limit, 0.1, 0.005, 10.0);
+    drag(ui, "friction", &mut c.friction, 0.01, 0.0, 1.0);
+    drag(ui, "collision margin [m]", &mut c.collision_margin, 0.001, 0.0, 10.0);
+    ui.checkbox("self-collision", &mut c.self_collision);
+    if c.self_collision {
+        let default =
+            0.5 * (c.size[0] / (c.resolution[0] - 1) as f64).min(c.size[1] / (c.resolution[1] - 1) as f64);
+        optional(ui, "self-collision distance [m]", &mut c.self_collision_distance, default, 0.001, 10.0);
+    }
+    color(ui, "front colour", &mut c.color);
+    color(ui, "back colour", &mut c.back_color);
+}
+
+fn rope_panel(ui: &Ui, r: &mut Rope) {
+    ui.text(format!("rope '{}'", r.name));
+    int(ui, "nodes", &mut r.nodes, 2, 1 << 20);
+    drag3(ui, "start [m]", &mut r.start, 0.01);
+    drag3(ui, "end [m]", &mut r.end, 0.01);
+    choice(ui, "pins", &mut r.pin, &[RopePins::None, RopePins::First, RopePins::Last, RopePins::Both]);
+    drag(ui, "mass [kg/node]", &mut r.mass, 0.0005, 1e-6, 100.0);
+    drag(ui, "stiffness [N/m]", &mut r.stiffness, 1.0, 0.0, 1e6);
+    drag(ui, "bending stiffness [N/m]", &mut r.bending_stiffness, 0.1, 0.0, 1e6);
+    drag(ui, "rest length scale", &mut r.rest_scale, 0.005, 0.05, 10.0);
+    drag(ui, "spring damping [N s/m]", &mut r.damping, 0.0005, 0.0, 100.0);
+    drag(ui, "drag [N s/m]", &mut r.drag, 0.0005, 0.0, 100.0);
+    optional(ui, "stretch limit", &mut r.stretch_limit, 0.05, 0.005, 10.0);
+    drag(ui, "friction", &mut r.friction, 0.01, 0.0, 1.0);
+    drag(ui, "radius [m]", &mut r.radius, 0.001, 0.001, 10.0);
+    ui.checkbox("self-collision", &mut r.self_collision);
+    if r.self_collision {
+        optional(
+            ui,
+            "self-collision distance [m]",
+            &mut r.self_collision_distance,
+            2.0 * r.radius,
+            0.001,
+            10.0,
+        );
+    }
+    color(ui, "colour", &mut r.color);
+}
+
+fn new_cloth(name: String) -> Cloth {
+    Cloth {
+        name,
+        resolution: [32, 32],
+        size: [1.0, 1.0],
+        origin: [-0.5, 1.8, 0.5],
+        orientation: Orientation::Vertical,
+        mass: 0.01,
+        stiffness: PerSpring { structural: 300.0, shear: 80.0, bending: 20.0 },
+        rest_scale: PerSpring { structural: 1.0, shear: 1.0, bending: 1.0 },
+        damping: 0.005,
+        drag: 0.002,
+        stretch_limit: Some(0.1),
+        friction: 0.3,
+        collision_margin: 0.01,
+        self_collision: false,
+        self_collision_distance: None,
+        pin: ClothPins::TopCorners,
+        pinned: Vec::new(),
+        color: [0.2, 0.45, 0.75],
+        back_color: [0.8, 0.8, 0.75],
+    }
+}
+
+fn new_rope(name: String) -> Rope {
+    Rope {
+        name,
+        nodes: 48,
+        start: [-0.6, 1.8, -0.5],
+        end: [0.6, 1.8, -0.5],
+        mass: 0.01,
+        stiffness: 600.0,
+        bending_stiffness: 2.0,
+        rest_scale: 1.0,
+        damping: 0.01,
+        drag: 0.005,
+        stretch_limit: Some(0.05),
+        friction: 0.5,
+        radius: 0.02,
+        ring_weights: None,
+        self_collision: false,
+        self_collision_distance: None,
+        pin: RopePins::First,
+        pinned: Vec::new(),
+        color: [0.72, 0.58, 0.36],
+    }
+}
+
+fn stats_window(ui: &Ui, stats: &Stats, state: &EditorState) {
+    ui.window("Stats")
+        .position([380.0, 10.0], Condition::FirstUseEver)
+        .size([300.0, 200.0], Condition::FirstUseEver)
+        .build(|| {
+            ui.text(&stats.device);
+            ui.text(format!(
+                "frame {:.2} ms ({:.0} fps), t = {:.2} s, {} particles",
+                stats.cpu_frame_ms,
+                1e3 / stats.cpu_frame_ms.max(1e-6),
+                stats.simulated_time,
+                stats.particles
+            ));
+            ui.separator();
+            ui.text("GPU time per frame (timestamps):");
+            let ms = |v: Option<f64>| v.map(|v| format!("{v:.3} ms")).unwrap_or_else(|| "-".into());
+            ui.text(format!("  physics      {}", ms(stats.sim.map(|s| s.physics_ms))));
+            ui.text(format!("  constraints  {}", ms(stats.sim.map(|s| s.constraints_ms))));
+            ui.text(format!("  rope verts / normals {}", ms(stats.sim.map(|s| s.surface_ms))));
+            ui.text(format!("  render       {}", ms(stats.render_ms)));
+            ui.text(format!("  UI           {}", ms(stats.ui_ms)));
+            if !state.shaders_note.is_empty() {
+                ui.separator();
+                ui.text_wrapped(&state.shaders_note);
+            }
+        });
+}
