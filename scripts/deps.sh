@@ -5,9 +5,11 @@ set -euo pipefail
 
 build=(build-essential pkg-config libshaderc-dev)
 vulkan=(libvulkan1 mesa-vulkan-drivers)
+window=(libx11-6 libx11-xcb1 libxcursor1 libxi6 libxrandr2 libxkbcommon-x11-0)
 case "${1:-test}" in
-  run | bench) wanted=("${build[@]}" "${vulkan[@]}") ;;
-  test) wanted=("${build[@]}" "${vulkan[@]}" vulkan-validationlayers) ;;
+  run) wanted=("${build[@]}" "${vulkan[@]}" "${window[@]}") ;;
+  bench) wanted=("${build[@]}" "${vulkan[@]}") ;;
+  test) wanted=("${build[@]}" "${vulkan[@]}" "${window[@]}" vulkan-validationlayers xvfb xauth) ;;
   *) echo "usage: $0 run|test|bench" >&2; exit 2 ;;
 esac
 

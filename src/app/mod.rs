@@ -36,6 +36,8 @@ pub struct AppArgs {
     pub screenshot: Option<PathBuf>,
     /// Resize, minimise and restore the window on a script, then exit (for tests).
     pub exercise_window: bool,
+    /// Hide the stats window (its timings differ run to run).
+    pub hide_stats: bool,
 }
 
 /// Loads the preset (or the built-in default scene) with overrides.

@@ -110,6 +110,7 @@ impl Viewer {
                 preset_path: args.preset_label.clone(),
                 cloth_preset_path: "presets/towel.toml".into(),
                 paused: args.paused,
+                hide_stats: args.hide_stats,
                 shaders_note: String::new(),
                 ..Default::default()
             },

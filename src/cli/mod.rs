@@ -86,6 +86,9 @@ pub struct AppCommand {
     /// Write the last frame (after --frames N, default 1) as a PNG, then exit.
     #[arg(long, value_name = "FILE.png")]
     pub screenshot: Option<std::path::PathBuf>,
+    /// Hide the stats window (for screenshots that must not change from run to run).
+    #[arg(long)]
+    pub no_stats: bool,
     /// Resize, minimise and restore the window on a script, then exit (a test of the swapchain).
     #[arg(long, hide = true)]
     pub exercise_window: bool,
@@ -111,6 +114,7 @@ impl AppCommand {
             frames: self.frames.or(self.screenshot.as_ref().map(|_| 1)),
             screenshot: self.screenshot,
             exercise_window: self.exercise_window,
+            hide_stats: self.no_stats,
         };
         crate::app::run(options, args, scene)
     }

@@ -39,6 +39,8 @@ pub struct EditorState {
     pub message: Option<(String, bool)>,
     pub paused: bool,
     pub shaders_note: String,
+    /// Hide the stats window (reproducible screenshots).
+    pub hide_stats: bool,
 }
 
 /// Timings shown in the stats panel.
@@ -100,7 +102,9 @@ pub fn build(ui: &Ui, state: &mut EditorState, scene: &mut Scene, stats: &Stats)
                 ui.text_wrapped_colored(colour, text);
             }
         });
-    stats_window(ui, stats, state);
+    if !state.hide_stats {
+        stats_window(ui, stats, state);
+    }
     actions
 }
 
