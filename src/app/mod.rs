@@ -6,6 +6,7 @@ mod input;
 mod sim_host;
 mod viewer;
 
+pub use input::pick;
 pub use sim_host::{Applied, SimHost};
 pub use viewer::{preset_label, write_png};
 
