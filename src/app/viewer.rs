@@ -213,7 +213,12 @@ impl Viewer {
     /// Applies an edited scene, reporting refusals in the editor.
     fn apply(&mut self, edited: Scene) {
         let (Some(host), Some(renderer)) = (self.host.as_mut(), self.renderer.as_mut()) else { return };
-        match host.apply(&self.ctx, renderer, edited) {
+        let applied = host.apply(&self.ctx, renderer, edited);
+        if matches!(applied, Ok(Applied::Rebuilt | Applied::RebuiltKeepingState)) {
+            // The new simulation's timestamp pools were never written: waiting on them would hang.
+            self.frames.iter_mut().for_each(|f| f.simulated = false);
+        }
+        match applied {
             Ok(Applied::Rebuilt) => self.message("scene rebuilt from its initial state", false),
             Ok(Applied::RebuiltKeepingState) => self.message("simulation rebuilt; state kept", false),
             Ok(_) => {}
