@@ -107,6 +107,14 @@ fn resizes_and_minimize_restore_are_clean() {
     app(&["--preset", "presets/flag.toml", "--size", "640x480", "--exercise-window"]);
 }
 
+/// The editor's code paths with frames in flight: a parameter edit (in place), a substep
+/// change (rebuild keeping the state), a new sphere (rebuild), reset, save and load; the app
+/// fails if any edit is refused or anything reaches validation.
+#[test]
+fn editor_edits_rebuilds_reset_save_and_load_are_clean() {
+    app(&["--preset", "presets/rope.toml", "--size", "640x480", "--exercise-editor"]);
+}
+
 /// Without a display the app says which headless commands to use and exits with code 2.
 #[test]
 fn without_a_display_the_app_names_the_headless_commands() {

@@ -39,6 +39,8 @@ pub struct AppArgs {
     pub exercise_window: bool,
     /// Hide the stats window (its timings differ run to run).
     pub hide_stats: bool,
+    /// Apply edits through the editor's code paths on a script, then exit (for tests).
+    pub exercise_editor: bool,
 }
 
 /// Loads the preset (or the built-in default scene) with overrides.

@@ -428,6 +428,55 @@ impl Viewer {
         Outcome::Continue
     }
 
+    /// The scripted editor exercise of `--exercise-editor`: the editor's code paths (a parameter
+    /// edit, a substep change, a layout change, reset, save and load) with frames in flight, then
+    /// exit. Any refusal is an error.
+    fn exercise_editor(&mut self) -> Result<Outcome> {
+        let mut scene = self.host().scene().clone();
+        let saved = std::env::temp_dir().join(format!("msdsim-exercise-{}.toml", std::process::id()));
+        let expect = |host: &SimHost, what: &str, ok: bool| {
+            if ok {
+                Ok(())
+            } else {
+                Err(anyhow::anyhow!("exercise: {what} did not apply ({:?})", host.scene().sim))
+            }
+        };
+        match self.tick {
+            3 => {
+                for c in &mut scene.cloths {
+                    c.stiffness.structural *= 1.5;
+                }
+                scene.sim.gravity[0] = 1.0;
+                self.pending_scene = Some(scene);
+            }
+            6 => {
+                scene.sim.substeps += 1;
+                self.pending_scene = Some(scene);
+            }
+            9 => {
+                scene.spheres.push(scene::Sphere { center: [0.0, 0.2, 0.4], radius: 0.1 });
+                self.pending_scene = Some(scene);
+            }
+            12 => self.pending_actions.push(Action::Reset),
+            14 => self.pending_actions.push(Action::Save(saved.clone())),
+            16 => {
+                self.pending_actions.push(Action::Load(saved.clone()));
+            }
+            20 => {
+                let host = self.host();
+                expect(host, "the stiffness edit", host.scene().sim.gravity[0] == 1.0)?;
+                expect(host, "the new sphere", host.scene().spheres.iter().any(|s| s.radius == 0.1))?;
+                let _ = std::fs::remove_file(&saved);
+                if let Some((text, true)) = &self.editor.message {
+                    anyhow::bail!("exercise: the editor reported an error: {text}");
+                }
+                return Ok(Outcome::Exit);
+            }
+            _ => {}
+        }
+        Ok(Outcome::Continue)
+    }
+
     /// One frame: UI, edits, simulation, drawing, presentation.
     pub fn frame(&mut self) -> Result<Outcome> {
         self.tick += 1;
@@ -440,6 +489,9 @@ impl Viewer {
             0.9 * self.stats.cpu_frame_ms + 0.1 * dt * 1e3
         };
         if self.args.exercise_window && self.exercise() == Outcome::Exit {
+            return Ok(Outcome::Exit);
+        }
+        if self.args.exercise_editor && self.exercise_editor()? == Outcome::Exit {
             return Ok(Outcome::Exit);
         }
         if self.key_actions() {

@@ -92,6 +92,9 @@ pub struct AppCommand {
     /// Resize, minimise and restore the window on a script, then exit (a test of the swapchain).
     #[arg(long, hide = true)]
     pub exercise_window: bool,
+    /// Apply edits, a reset, a save and a load on a script, then exit (a test of the editor).
+    #[arg(long, hide = true)]
+    pub exercise_editor: bool,
 }
 
 fn parse_size(s: &str) -> Result<[u32; 2], String> {
@@ -115,6 +118,7 @@ impl AppCommand {
             screenshot: self.screenshot,
             exercise_window: self.exercise_window,
             hide_stats: self.no_stats,
+            exercise_editor: self.exercise_editor,
         };
         crate::app::run(options, args, scene)
     }
