@@ -1,39 +1,37 @@
-//! The Rust mirrors in `sim::gpu_types` against the std430 layouts the shaders were compiled
-//! with: every member offset of every struct, in every embedded shader that uses it, and the
-//! array stride of arrays of it.
+//! The Rust mirrors in `sim::gpu_types` against the std430/std140 layouts the shaders were
+//! compiled with: every member offset of every shared struct, in every embedded shader that
+//! uses it, and the array stride of arrays of it (the same check hot reload applies).
 
-use msdsim::shaders::{self, reflect};
-use msdsim::sim::gpu_types::{Camera, Draw, Globals, GpuLayout, ObjectParams, Particle, SurfaceVertex};
-
-fn check<T: GpuLayout>(found: &mut Vec<&'static str>) {
-    for name in shaders::embedded_names() {
-        let words = shaders::embedded(name).expect("embedded SPIR-V");
-        for layout in reflect::struct_layouts(&words).into_iter().filter(|l| l.name == T::NAME) {
-            let spirv: Vec<(String, usize)> =
-                layout.members.iter().map(|(n, o)| (n.clone(), *o as usize)).collect();
-            let rust: Vec<(String, usize)> =
-                T::offsets().into_iter().map(|(n, o)| (n.to_string(), o)).collect();
-            assert_eq!(spirv, rust, "{} in {name}: SPIR-V (left) vs Rust (right) member offsets", T::NAME);
-            for stride in layout.array_strides {
-                assert_eq!(stride as usize, T::SIZE, "{} in {name}: array stride vs Rust size", T::NAME);
-            }
-            found.push(T::NAME);
-        }
-    }
-}
+use msdsim::shaders::{self, layout_check};
 
 #[test]
 fn rust_mirrors_match_the_shader_layouts() {
     let mut found = Vec::new();
-    check::<Particle>(&mut found);
-    check::<SurfaceVertex>(&mut found);
-    check::<Globals>(&mut found);
-    check::<ObjectParams>(&mut found);
-    check::<Camera>(&mut found);
-    check::<Draw>(&mut found);
-    for name in
-        [Particle::NAME, SurfaceVertex::NAME, Globals::NAME, ObjectParams::NAME, Camera::NAME, Draw::NAME]
-    {
+    for name in shaders::embedded_names() {
+        let words = shaders::embedded(name).expect("embedded SPIR-V");
+        found.extend(layout_check::check(&words).unwrap_or_else(|e| panic!("{name}: {e}")));
+    }
+    for (name, ..) in layout_check::host_layouts() {
         assert!(found.contains(&name), "no shader declares {name}: the check would be vacuous");
     }
+}
+
+/// The check sees a changed offset (so it can fail).
+#[test]
+fn a_shifted_member_is_refused() {
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("glsl");
+    let tmp = tempfile::tempdir().unwrap();
+    std::fs::create_dir(tmp.path().join("include")).unwrap();
+    for f in ["layout.glsl", "bindings.glsl", "springs.glsl"] {
+        std::fs::copy(dir.join("include").join(f), tmp.path().join("include").join(f)).unwrap();
+    }
+    std::fs::copy(dir.join("physics.comp"), tmp.path().join("physics.comp")).unwrap();
+    let header = tmp.path().join("include/layout.glsl");
+    let text = std::fs::read_to_string(&header).unwrap();
+    std::fs::write(&header, text.replace("    float mass; ", "    float extra; float mass; ")).unwrap();
+    let compiled =
+        shaders::compile::compile_glsl(&tmp.path().join("physics.comp"), &tmp.path().join("include"))
+            .unwrap();
+    let err = layout_check::check(&compiled.spirv).unwrap_err();
+    assert!(err.contains("ObjectParams"), "{err}");
 }

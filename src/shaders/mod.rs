@@ -2,7 +2,11 @@
 //! small SPIR-V reader for checking struct layouts against the Rust mirrors.
 
 pub mod compile;
+pub mod layout_check;
 pub mod reflect;
+mod set;
+
+pub use set::{Changes, ShaderSet};
 
 mod embedded {
     include!(concat!(env!("OUT_DIR"), "/shaders.rs"));

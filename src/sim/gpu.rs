@@ -23,12 +23,13 @@ use super::gpu_types::{
 };
 use super::model::{ObjectKind, ObjectModel, ObjectShape, SimModel};
 use crate::error::UserError;
-use crate::shaders;
+use crate::shaders::ShaderSet;
 use crate::vk::{
     Access, BindingSet, BindingSetLayout, Buffer, BufferBarrier, BufferUsage, CommandSlot, ComputePipeline,
-    DescriptorArena, DeviceInfo, GpuContext, MemoryKind, Recorder, TimestampPool, VkError,
+    DescriptorArena, DeviceInfo, GpuContext, MemoryKind, Recorder, Retired, TimestampPool, VkError,
 };
 use anyhow::{Context as _, Result};
+use std::collections::HashMap;
 
 /// Workgroup shape of the cloth stages (the paper's 16 x 16) and of the rope stages (1-D).
 const CLOTH_GROUP: [u32; 2] = [16, 16];
@@ -54,59 +55,110 @@ pub struct ObjectState {
     pub surface: Vec<SurfaceVertex>,
 }
 
+/// The compute pipelines: (shader, workgroup specialization) per slot of `Pipelines::list`.
+const PIPELINE_SPECS: [(&str, [u32; 2]); 6] = [
+    ("physics.comp", CLOTH_GROUP),
+    ("physics.comp", [ROPE_GROUP, 1]),
+    ("constraints.comp", CLOTH_GROUP),
+    ("constraints.comp", [ROPE_GROUP, 1]),
+    ("cloth_normals.comp", [0, 0]),
+    ("rope_vertices.comp", [0, 0]),
+];
+
 struct Pipelines {
-    physics: [ComputePipeline; 2], // [cloth, rope]
-    constraints: [ComputePipeline; 2],
-    cloth_normals: ComputePipeline,
-    rope_vertices: ComputePipeline,
+    /// One per entry of `PIPELINE_SPECS`.
+    list: Vec<ComputePipeline>,
 }
 
 impl Pipelines {
-    fn new(ctx: &GpuContext, layout: &BindingSetLayout) -> Result<Self> {
-        let cloth = [CLOTH_GROUP[0], CLOTH_GROUP[1]];
-        let rope = [ROPE_GROUP, 1];
-        let specs: [(&str, &[u32]); 6] = [
-            ("physics.comp", &cloth),
-            ("physics.comp", &rope),
-            ("constraints.comp", &cloth),
-            ("constraints.comp", &rope),
-            ("cloth_normals.comp", &[]),
-            ("rope_vertices.comp", &[]),
-        ];
-        let mut made = Vec::with_capacity(specs.len());
-        for (name, spec) in specs {
-            let pipeline = shaders::embedded(name).and_then(|spirv| {
-                ComputePipeline::new(ctx, name, &spirv, layout, spec)
-                    .with_context(|| format!("creating pipeline {name}"))
+    fn new(ctx: &GpuContext, layout: &BindingSetLayout, shaders: &mut ShaderSet) -> Result<Self> {
+        let mut list = Vec::with_capacity(PIPELINE_SPECS.len());
+        let mut compiled: HashMap<&str, Vec<u32>> = HashMap::new();
+        for (name, group) in PIPELINE_SPECS {
+            let pipeline = match compiled.get(name) {
+                Some(w) => Ok(w.clone()),
+                None => shaders.load_or_embedded(name),
+            }
+            .and_then(|words| {
+                compiled.insert(name, words.clone());
+                Self::create(ctx, layout, name, &words, group)
             });
             match pipeline {
-                Ok(p) => made.push(p),
+                Ok(p) => list.push(p),
                 Err(e) => {
-                    made.into_iter().for_each(|p: ComputePipeline| p.destroy(ctx));
+                    list.into_iter().for_each(|p: ComputePipeline| p.destroy(ctx));
                     return Err(e);
                 }
             }
         }
-        let Ok(
-            [physics_cloth, physics_rope, constraints_cloth, constraints_rope, cloth_normals, rope_vertices],
-        ) = <[ComputePipeline; 6]>::try_from(made)
-        else {
-            unreachable!("one pipeline per spec")
-        };
-        Ok(Self {
-            physics: [physics_cloth, physics_rope],
-            constraints: [constraints_cloth, constraints_rope],
-            cloth_normals,
-            rope_vertices,
-        })
+        Ok(Self { list })
+    }
+
+    fn create(
+        ctx: &GpuContext,
+        layout: &BindingSetLayout,
+        name: &str,
+        words: &[u32],
+        group: [u32; 2],
+    ) -> Result<ComputePipeline> {
+        let spec: &[u32] = if group == [0, 0] { &[] } else { &group };
+        ComputePipeline::new(ctx, name, words, layout, spec)
+            .with_context(|| format!("creating pipeline {name}"))
+    }
+
+    /// Rebuilds the pipelines of the `changed` shaders that compile; returns the names
+    /// reloaded and the replaced pipelines (still possibly in use by frames in flight).
+    fn reload(
+        &mut self,
+        ctx: &GpuContext,
+        layout: &BindingSetLayout,
+        shaders: &mut ShaderSet,
+        changed: &[String],
+    ) -> (Vec<String>, Vec<Retired>) {
+        let mut reloaded = Vec::new();
+        let mut retired = Vec::new();
+        for name in changed {
+            let slots: Vec<usize> =
+                (0..PIPELINE_SPECS.len()).filter(|&i| PIPELINE_SPECS[i].0 == name).collect();
+            if slots.is_empty() {
+                continue;
+            }
+            let Ok(words) = shaders.load(name) else { continue }; // error recorded in `shaders`
+            let mut fresh = Vec::new();
+            for &i in &slots {
+                match Self::create(ctx, layout, name, &words, PIPELINE_SPECS[i].1) {
+                    Ok(p) => fresh.push((i, p)),
+                    Err(e) => log::error!("shader {name}: {e:#}"),
+                }
+            }
+            if fresh.len() == slots.len() {
+                for (i, p) in fresh {
+                    retired.push(Retired::Compute(std::mem::replace(&mut self.list[i], p)));
+                }
+                reloaded.push(name.clone());
+            } else {
+                fresh.into_iter().for_each(|(_, p)| p.destroy(ctx));
+            }
+        }
+        (reloaded, retired)
+    }
+
+    fn physics(&self, kind: ObjectKind) -> &ComputePipeline {
+        &self.list[kind as usize]
+    }
+
+    fn constraints(&self, kind: ObjectKind) -> &ComputePipeline {
+        &self.list[2 + kind as usize]
+    }
+
+    fn surface(&self, kind: ObjectKind) -> &ComputePipeline {
+        &self.list[4 + kind as usize]
     }
 
     fn destroy(self, ctx: &GpuContext) {
-        for p in self.physics.into_iter().chain(self.constraints) {
+        for p in self.list {
             p.destroy(ctx);
         }
-        self.cloth_normals.destroy(ctx);
-        self.rope_vertices.destroy(ctx);
     }
 }
 
@@ -121,15 +173,6 @@ struct GpuObject {
     surface: Buffer,
     /// [A -> B (physics), B -> A (constraints); surface uses set 0 (reads A)].
     sets: [BindingSet; 2],
-}
-
-impl GpuObject {
-    fn kind_index(&self) -> usize {
-        match self.kind {
-            ObjectKind::Cloth => 0,
-            ObjectKind::Rope => 1,
-        }
-    }
 }
 
 pub struct GpuSim {
@@ -293,9 +336,9 @@ struct Parts {
 }
 
 impl Parts {
-    fn create(&mut self, ctx: &GpuContext, model: &SimModel) -> Result<()> {
+    fn create(&mut self, ctx: &GpuContext, model: &SimModel, shaders: &mut ShaderSet) -> Result<()> {
         let layout = self.layout.insert(BindingSetLayout::storage_buffers(ctx, BINDINGS)?);
-        self.pipelines = Some(Pipelines::new(ctx, layout)?);
+        self.pipelines = Some(Pipelines::new(ctx, layout, shaders)?);
         self.arena = Some(DescriptorArena::new(ctx, 2 * model.objects.len() as u32, BINDINGS)?);
         let globals_size = std::mem::size_of::<Globals>() as u64;
         self.globals =
@@ -339,12 +382,17 @@ impl Parts {
 }
 
 impl GpuSim {
-    /// Allocates and uploads the scene. Fails with a `UserError` when it cannot fit the device.
-    /// On any failure everything created so far is freed.
+    /// Allocates and uploads the scene with the embedded shaders. Fails with a `UserError`
+    /// when it cannot fit the device. On any failure everything created so far is freed.
     pub fn new(ctx: &GpuContext, model: &SimModel) -> Result<Self> {
+        Self::with_shaders(ctx, model, &mut ShaderSet::embedded())
+    }
+
+    /// Like `new`, with shaders from `shaders` (a watched directory for hot reload).
+    pub fn with_shaders(ctx: &GpuContext, model: &SimModel, shaders: &mut ShaderSet) -> Result<Self> {
         check_fits(ctx.info(), &model.objects.iter().map(ObjectModel::shape).collect::<Vec<_>>())?;
         let mut parts = Parts::default();
-        if let Err(e) = parts.create(ctx, model) {
+        if let Err(e) = parts.create(ctx, model, shaders) {
             parts.destroy(ctx);
             return Err(e);
         }
@@ -542,14 +590,14 @@ impl GpuSim {
         }
         for s in 0..self.substeps {
             for o in &self.objects {
-                rec.dispatch(&self.pipelines.physics[o.kind_index()], o.sets[0], o.step_groups);
+                rec.dispatch(self.pipelines.physics(o.kind), o.sets[0], o.step_groups);
             }
             if let Some(pool) = ts {
                 rec.timestamp(pool, 1 + 2 * s);
             }
             rec.barrier(&self.ping_pong_barriers(1));
             for o in &self.objects {
-                rec.dispatch(&self.pipelines.constraints[o.kind_index()], o.sets[1], o.step_groups);
+                rec.dispatch(self.pipelines.constraints(o.kind), o.sets[1], o.step_groups);
             }
             if let Some(pool) = ts {
                 rec.timestamp(pool, 2 + 2 * s);
@@ -562,17 +610,26 @@ impl GpuSim {
         };
         rec.barrier(&surfaces(surface_consumer, Access::ComputeWrite));
         for o in &self.objects {
-            let pipeline = match o.kind {
-                ObjectKind::Cloth => &self.pipelines.cloth_normals,
-                ObjectKind::Rope => &self.pipelines.rope_vertices,
-            };
-            rec.dispatch(pipeline, o.sets[0], o.surface_groups);
+            rec.dispatch(self.pipelines.surface(o.kind), o.sets[0], o.surface_groups);
         }
         if let Some(pool) = ts {
             rec.timestamp(pool, 1 + 2 * self.substeps);
         }
         rec.barrier(&surfaces(Access::ComputeWrite, surface_consumer));
         self.frames += 1;
+    }
+
+    /// Rebuilds the pipelines of the `changed` shaders (names like "physics.comp") from
+    /// `shaders`. A shader that fails keeps its running pipeline (the error is in `shaders`).
+    /// Returns the shaders reloaded and the replaced pipelines, which frames recorded before
+    /// this call may still use: destroy them once those frames have completed.
+    pub fn reload(
+        &mut self,
+        ctx: &GpuContext,
+        shaders: &mut ShaderSet,
+        changed: &[String],
+    ) -> (Vec<String>, Vec<Retired>) {
+        self.pipelines.reload(ctx, &self.layout, shaders, changed)
     }
 
     /// Writes one particle (position, velocity, pinned flag) at the start of the next frame.

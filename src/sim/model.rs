@@ -7,8 +7,8 @@ use glam::DVec3;
 #[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
 #[serde(rename_all = "lowercase")]
 pub enum ObjectKind {
-    Cloth,
-    Rope,
+    Cloth = 0,
+    Rope = 1,
 }
 
 impl ObjectKind {

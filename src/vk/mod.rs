@@ -23,6 +23,7 @@ mod graphics;
 mod image;
 mod pipeline;
 mod query;
+mod retire;
 mod swapchain;
 mod sync;
 mod ui;
@@ -38,6 +39,7 @@ pub use graphics::{GraphicsDesc, GraphicsPipeline, Topology, VertexFormat, Verte
 pub use image::{Format, Image, ImageRef, ViewRef};
 pub use pipeline::{BindingKind, BindingSet, BindingSetLayout, ComputePipeline, DescriptorArena};
 pub use query::TimestampPool;
+pub use retire::{RetireQueue, Retired};
 pub use swapchain::{Acquired, Swapchain};
 pub use sync::Semaphore;
 pub use ui::UiRenderer;
