@@ -41,6 +41,8 @@ pub struct AppArgs {
     pub hide_stats: bool,
     /// Apply edits through the editor's code paths on a script, then exit (for tests).
     pub exercise_editor: bool,
+    /// Shader folder to compile and watch (`None`: the source tree's glsl/ when present).
+    pub shaders: Option<PathBuf>,
 }
 
 /// Loads the preset (or the built-in default scene) with overrides.
@@ -85,7 +87,14 @@ impl ApplicationHandler for Handler {
             Ok(w) => Arc::new(w),
             Err(e) => return self.stop(event_loop, Some(anyhow::anyhow!("cannot open a window: {e}"))),
         };
-        match Viewer::new(window, &self.options, self.args.clone(), scene) {
+        let shaders = match &self.args.shaders {
+            Some(dir) => match crate::shaders::ShaderSet::directory(dir) {
+                Ok(s) => s,
+                Err(e) => return self.stop(event_loop, Some(e)),
+            },
+            None => crate::shaders::ShaderSet::default_for_build(),
+        };
+        match Viewer::new(window, &self.options, self.args.clone(), scene, shaders) {
             Ok(v) => {
                 v.window().request_redraw();
                 self.viewer = Some(v);

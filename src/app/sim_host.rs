@@ -6,6 +6,7 @@
 
 use crate::render::SceneRenderer;
 use crate::scene::{self, Scene};
+use crate::shaders::ShaderSet;
 use crate::sim::gpu::{self, GpuSim};
 use crate::sim::model::SimModel;
 use crate::vk::GpuContext;
@@ -50,10 +51,15 @@ fn layout_key(s: &Scene) -> String {
 }
 
 impl SimHost {
-    pub fn new(ctx: &GpuContext, scene: Scene, renderer: &mut SceneRenderer) -> Result<Self> {
+    pub fn new(
+        ctx: &GpuContext,
+        scene: Scene,
+        renderer: &mut SceneRenderer,
+        shaders: &mut ShaderSet,
+    ) -> Result<Self> {
         gpu::check_fits(ctx.info(), &scene::shapes(&scene))?;
         let model = scene::to_model(&scene);
-        let sim = GpuSim::new(ctx, &model)?;
+        let sim = GpuSim::with_shaders(ctx, &model, shaders)?;
         if let Err(e) = renderer.set_objects(ctx, &scene::shapes(&scene)) {
             sim.destroy(ctx);
             return Err(e);
@@ -83,6 +89,7 @@ impl SimHost {
         &mut self,
         ctx: &GpuContext,
         renderer: &mut SceneRenderer,
+        shaders: &mut ShaderSet,
         edited: Scene,
     ) -> Result<Applied> {
         if edited == self.scene {
@@ -102,7 +109,7 @@ impl SimHost {
         ctx.wait_idle()?;
         let model = scene::to_model(&edited);
         let carried = if same_layout { Some(self.sim.read_states(ctx)?) } else { None };
-        let mut sim = GpuSim::new(ctx, &model)?;
+        let mut sim = GpuSim::with_shaders(ctx, &model, shaders)?;
         if let Some(states) = &carried {
             let particles: Vec<_> = states.iter().map(|s| s.particles.clone()).collect();
             if let Err(e) = sim.upload_states(ctx, &particles) {

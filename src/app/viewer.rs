@@ -14,12 +14,13 @@ use super::AppArgs;
 use crate::render::camera::OrbitCamera;
 use crate::render::{DrawItem, SceneRenderer, Shape};
 use crate::scene::{self, Scene};
+use crate::shaders::ShaderSet;
 use crate::sim::gpu::FRAME_SLOTS;
 use crate::sim::gpu_types::{Camera, Particle};
 use crate::ui::{self, Action, EditorState, Stats};
 use crate::vk::{
     Access, Acquired, Buffer, BufferBarrier, BufferUsage, CommandSlot, ContextOptions, Format, GpuContext,
-    ImageBarrier, MemoryKind, Semaphore, Swapchain, TimestampPool, UiRenderer, WindowHandles,
+    ImageBarrier, MemoryKind, RetireQueue, Semaphore, Swapchain, TimestampPool, UiRenderer, WindowHandles,
 };
 use anyhow::{Context as _, Result};
 use glam::{Mat4, Quat, Vec3};
@@ -60,6 +61,11 @@ pub struct Viewer {
     ui_renderer: Option<UiRenderer>,
     renderer: Option<SceneRenderer>,
     host: Option<SimHost>,
+    /// Pipelines replaced by hot reload, freed once their frames have completed.
+    retired: RetireQueue,
+    shaders: ShaderSet,
+    /// A reload waiting for its first frame to be submitted: (shaders, first change seen).
+    reload_pending: Option<(Vec<String>, Instant)>,
     imgui: imgui::Context,
     platform: WinitPlatform,
     window: Arc<Window>,
@@ -83,7 +89,13 @@ pub struct Viewer {
 }
 
 impl Viewer {
-    pub fn new(window: Arc<Window>, options: &ContextOptions, args: AppArgs, scene: Scene) -> Result<Self> {
+    pub fn new(
+        window: Arc<Window>,
+        options: &ContextOptions,
+        args: AppArgs,
+        scene: Scene,
+        shaders: ShaderSet,
+    ) -> Result<Self> {
         let handles = WindowHandles {
             display: window.display_handle().context("the window's display handle")?.as_raw(),
             window: window.window_handle().context("the window handle")?.as_raw(),
@@ -103,6 +115,9 @@ impl Viewer {
             ui_renderer: None,
             renderer: None,
             host: None,
+            retired: RetireQueue::default(),
+            shaders,
+            reload_pending: None,
             imgui,
             platform,
             window,
@@ -146,8 +161,11 @@ impl Viewer {
         }
         let format = self.swapchain.as_ref().map(|s| s.format()).unwrap_or(Format::Bgra8Unorm);
         self.ui_renderer = Some(UiRenderer::new(ctx, &mut self.imgui, format, Format::Depth32, FRAME_SLOTS)?);
-        let renderer = self.renderer.insert(SceneRenderer::new(ctx, format, Format::Depth32)?);
-        self.host = Some(SimHost::new(ctx, scene, renderer)?);
+        let renderer =
+            self.renderer.insert(SceneRenderer::new(ctx, format, Format::Depth32, &mut self.shaders)?);
+        self.host = Some(SimHost::new(ctx, scene, renderer, &mut self.shaders)?);
+        self.editor.shaders_note = self.shaders.status();
+        log::info!("{}", self.editor.shaders_note);
         self.fit_camera();
         Ok(())
     }
@@ -213,7 +231,7 @@ impl Viewer {
     /// Applies an edited scene, reporting refusals in the editor.
     fn apply(&mut self, edited: Scene) {
         let (Some(host), Some(renderer)) = (self.host.as_mut(), self.renderer.as_mut()) else { return };
-        let applied = host.apply(&self.ctx, renderer, edited);
+        let applied = host.apply(&self.ctx, renderer, &mut self.shaders, edited);
         if matches!(applied, Ok(Applied::Rebuilt | Applied::RebuiltKeepingState)) {
             // The new simulation's timestamp pools were never written: waiting on them would hang.
             self.frames.iter_mut().for_each(|f| f.simulated = false);
@@ -272,6 +290,27 @@ impl Viewer {
                 }
                 Err(e) => self.message(e.to_string(), true),
             },
+        }
+    }
+
+    /// Recompiles shaders changed on disk and swaps their pipelines; the old pipelines wait in
+    /// `retired` for the frames recorded before this one.
+    fn hot_reload(&mut self) {
+        let changes = self.shaders.changes();
+        if changes.shaders.is_empty() {
+            return;
+        }
+        let (Some(host), Some(renderer)) = (self.host.as_mut(), self.renderer.as_mut()) else { return };
+        let (mut reloaded, old) = host.sim_mut().reload(&self.ctx, &mut self.shaders, &changes.shaders);
+        self.retired.push(self.frame, old);
+        let (scene_reloaded, old) = renderer.reload(&self.ctx, &mut self.shaders, &changes.shaders);
+        self.retired.push(self.frame, old);
+        if scene_reloaded {
+            reloaded.extend(["mesh.vert".to_string(), "mesh.frag".to_string()]);
+        }
+        reloaded.retain(|n| changes.shaders.contains(n));
+        if !reloaded.is_empty() {
+            self.reload_pending = Some((reloaded, changes.since.unwrap_or_else(Instant::now)));
         }
     }
 
@@ -516,6 +555,10 @@ impl Viewer {
         let slot = (self.frame % FRAME_SLOTS as u64) as usize;
         self.frames[slot].cmd.wait(&self.ctx)?;
         self.read_timings(slot)?;
+        // Every frame before the previous one has been waited for (this slot now, the other at
+        // the previous frame): retired pipelines they used can go.
+        self.retired.release(&self.ctx, self.frame.saturating_sub(1));
+        self.hot_reload();
 
         let swapchain = self.swapchain.as_ref().expect("created above");
         let image = match swapchain.acquire(&self.ctx, &self.frames[slot].available)? {
@@ -574,6 +617,7 @@ impl Viewer {
         self.platform.prepare_frame(self.imgui.io_mut(), &self.window).context("preparing the UI frame")?;
         let ui = self.imgui.new_frame();
         let mut edited = self.host.as_ref().expect("host").scene().clone();
+        self.editor.shader_errors = self.shaders.errors().map(|(_, e)| e.clone()).collect();
         self.pending_actions = ui::build(ui, &mut self.editor, &mut edited, &self.stats);
         if edited != *self.host.as_ref().expect("host").scene() {
             self.pending_scene = Some(edited);
@@ -634,6 +678,13 @@ impl Viewer {
         frame.cmd.submit_with(&self.ctx, rec, Some(&frame.available), Some(swapchain.finished(image)))?;
         frame.used = true;
         frame.simulated = run_sim;
+        if let Some((names, since)) = self.reload_pending.take() {
+            log::info!(
+                "hot reload: {} in use {:.0} ms after the save",
+                names.join(", "),
+                since.elapsed().as_secs_f64() * 1e3
+            );
+        }
         if !swapchain.present(&self.ctx, image)? {
             self.recreate = true;
         }
@@ -700,6 +751,7 @@ impl Viewer {
         if let Some(b) = self.screenshot.take() {
             b.destroy(&self.ctx);
         }
+        std::mem::take(&mut self.retired).destroy(&self.ctx);
         for f in self.frames.drain(..) {
             f.cmd.destroy(&self.ctx);
             f.available.destroy(&self.ctx);

@@ -86,6 +86,10 @@ pub struct AppCommand {
     /// Write the last frame (after --frames N, default 1) as a PNG, then exit.
     #[arg(long, value_name = "FILE.png")]
     pub screenshot: Option<std::path::PathBuf>,
+    /// Shader folder to compile and watch for hot reload (default: the source tree's glsl/
+    /// when it exists, else the shaders built into the binary with reload off).
+    #[arg(long, value_name = "DIR")]
+    pub shaders: Option<std::path::PathBuf>,
     /// Hide the stats window (for screenshots that must not change from run to run).
     #[arg(long)]
     pub no_stats: bool,
@@ -119,6 +123,7 @@ impl AppCommand {
             exercise_window: self.exercise_window,
             hide_stats: self.no_stats,
             exercise_editor: self.exercise_editor,
+            shaders: self.shaders,
         };
         crate::app::run(options, args, scene)
     }

@@ -6,13 +6,13 @@
 //! fence, so no frame in flight reads a buffer being written.
 
 use super::mesh::{self, MeshData};
-use crate::shaders;
+use crate::shaders::ShaderSet;
 use crate::sim::gpu::{GpuSim, FRAME_SLOTS};
 use crate::sim::gpu_types::{Camera, Draw, SurfaceVertex};
 use crate::sim::model::{ObjectKind, ObjectShape};
 use crate::vk::{
     BindingKind, BindingSet, BindingSetLayout, Buffer, BufferUsage, DescriptorArena, Format, GpuContext,
-    GraphicsDesc, GraphicsPipeline, MemoryKind, Recorder, Topology, VertexFormat, VertexLayout,
+    GraphicsDesc, GraphicsPipeline, MemoryKind, Recorder, Retired, Topology, VertexFormat, VertexLayout,
 };
 use anyhow::{Context as _, Result};
 use glam::Mat4;
@@ -84,6 +84,8 @@ impl GpuMesh {
 pub struct SceneRenderer {
     triangles: GraphicsPipeline,
     lines: GraphicsPipeline,
+    color: Format,
+    depth: Format,
     layout: BindingSetLayout,
     arena: DescriptorArena,
     cameras: Vec<Buffer>,
@@ -97,26 +99,11 @@ pub struct SceneRenderer {
 }
 
 impl SceneRenderer {
-    pub fn new(ctx: &GpuContext, color: Format, depth: Format) -> Result<Self> {
+    pub fn new(ctx: &GpuContext, color: Format, depth: Format, shaders: &mut ShaderSet) -> Result<Self> {
         let layout = BindingSetLayout::new(ctx, &[BindingKind::GraphicsUniform])?;
-        let vertex = shaders::embedded("mesh.vert")?;
-        let fragment = shaders::embedded("mesh.frag")?;
-        let stride = std::mem::size_of::<SurfaceVertex>() as u32;
-        let attributes = [(0, VertexFormat::Float32x4, 0), (1, VertexFormat::Float32x4, 16)];
-        let desc = |name, topology| GraphicsDesc {
-            name,
-            vertex: &vertex,
-            fragment: &fragment,
-            vertices: VertexLayout { stride, attributes: &attributes },
-            topology,
-            color,
-            depth,
-            depth_write: true,
-            set_layout: &layout,
-            push_constant_bytes: std::mem::size_of::<Draw>() as u32,
-        };
-        let triangles = GraphicsPipeline::new(ctx, &desc("scene triangles", Topology::Triangles))?;
-        let lines = GraphicsPipeline::new(ctx, &desc("scene lines", Topology::Lines))?;
+        let vertex = shaders.load_or_embedded("mesh.vert")?;
+        let fragment = shaders.load_or_embedded("mesh.frag")?;
+        let (triangles, lines) = Self::pipelines(ctx, &layout, color, depth, &vertex, &fragment)?;
         let mut arena = DescriptorArena::new(ctx, FRAME_SLOTS as u32, 1)?;
         let mut cameras = Vec::new();
         let mut sets = Vec::new();
@@ -132,6 +119,8 @@ impl SceneRenderer {
             cameras.push(buffer);
         }
         Ok(Self {
+            color,
+            depth,
             sphere: GpuMesh::new(ctx, "sphere", &mesh::sphere(24, 32))?,
             cone: GpuMesh::new(ctx, "cone", &mesh::cone(32))?,
             cube: GpuMesh::new(ctx, "cube", &mesh::cube())?,
@@ -144,6 +133,68 @@ impl SceneRenderer {
             sets,
             surfaces: Vec::new(),
         })
+    }
+
+    fn pipelines(
+        ctx: &GpuContext,
+        layout: &BindingSetLayout,
+        color: Format,
+        depth: Format,
+        vertex: &[u32],
+        fragment: &[u32],
+    ) -> Result<(GraphicsPipeline, GraphicsPipeline)> {
+        let stride = std::mem::size_of::<SurfaceVertex>() as u32;
+        let attributes = [(0, VertexFormat::Float32x4, 0), (1, VertexFormat::Float32x4, 16)];
+        let desc = |name, topology| GraphicsDesc {
+            name,
+            vertex,
+            fragment,
+            vertices: VertexLayout { stride, attributes: &attributes },
+            topology,
+            color,
+            depth,
+            depth_write: true,
+            set_layout: layout,
+            push_constant_bytes: std::mem::size_of::<Draw>() as u32,
+        };
+        let triangles = GraphicsPipeline::new(ctx, &desc("scene triangles", Topology::Triangles))?;
+        match GraphicsPipeline::new(ctx, &desc("scene lines", Topology::Lines)) {
+            Ok(lines) => Ok((triangles, lines)),
+            Err(e) => {
+                triangles.destroy(ctx);
+                Err(e.into())
+            }
+        }
+    }
+
+    /// Rebuilds the scene pipelines when `changed` names one of their shaders and both
+    /// compile; returns whether it did and the replaced pipelines (free them once the frames
+    /// recorded before have completed).
+    pub fn reload(
+        &mut self,
+        ctx: &GpuContext,
+        shaders: &mut ShaderSet,
+        changed: &[String],
+    ) -> (bool, Vec<Retired>) {
+        if !changed.iter().any(|n| n == "mesh.vert" || n == "mesh.frag") {
+            return (false, Vec::new());
+        }
+        let (Ok(vertex), Ok(fragment)) = (shaders.load("mesh.vert"), shaders.load("mesh.frag")) else {
+            return (false, Vec::new());
+        };
+        match Self::pipelines(ctx, &self.layout, self.color, self.depth, &vertex, &fragment) {
+            Ok((triangles, lines)) => {
+                let old = [
+                    std::mem::replace(&mut self.triangles, triangles),
+                    std::mem::replace(&mut self.lines, lines),
+                ];
+                (true, old.into_iter().map(Retired::Graphics).collect())
+            }
+            Err(e) => {
+                log::error!("scene pipelines: {e:#}");
+                (false, Vec::new())
+            }
+        }
     }
 
     /// Builds the index buffers for a simulation's objects (after it is created or rebuilt; the

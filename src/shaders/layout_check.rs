@@ -5,10 +5,18 @@
 use super::reflect::struct_layouts;
 use crate::sim::gpu_types::{Camera, Draw, Globals, GpuLayout, ObjectParams, Particle, SurfaceVertex};
 
-/// (name, size, member offsets) of every struct shared with the shaders.
-pub fn host_layouts() -> Vec<(&'static str, usize, Vec<(&'static str, usize)>)> {
-    fn one<T: GpuLayout>() -> (&'static str, usize, Vec<(&'static str, usize)>) {
-        (T::NAME, T::SIZE, T::offsets())
+/// A struct the host shares with the shaders.
+pub struct HostLayout {
+    pub name: &'static str,
+    pub size: usize,
+    /// (member name, byte offset) in declaration order.
+    pub offsets: Vec<(&'static str, usize)>,
+}
+
+/// Every struct shared with the shaders.
+pub fn host_layouts() -> Vec<HostLayout> {
+    fn one<T: GpuLayout>() -> HostLayout {
+        HostLayout { name: T::NAME, size: T::SIZE, offsets: T::offsets() }
     }
     vec![
         one::<Particle>(),
@@ -25,7 +33,9 @@ pub fn check(words: &[u32]) -> Result<Vec<&'static str>, String> {
     let host = host_layouts();
     let mut found = Vec::new();
     for layout in struct_layouts(words) {
-        let Some((name, size, offsets)) = host.iter().find(|(n, ..)| *n == layout.name) else { continue };
+        let Some(HostLayout { name, size, offsets }) = host.iter().find(|h| h.name == layout.name) else {
+            continue;
+        };
         let spirv: Vec<(&str, usize)> =
             layout.members.iter().map(|(m, o)| (m.as_str(), *o as usize)).collect();
         if spirv.len() != offsets.len() {

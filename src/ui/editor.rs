@@ -41,6 +41,8 @@ pub struct EditorState {
     pub shaders_note: String,
     /// Hide the stats window (reproducible screenshots).
     pub hide_stats: bool,
+    /// Shader compile errors (the running pipelines are the last good ones).
+    pub shader_errors: Vec<String>,
 }
 
 /// Timings shown in the stats panel.
@@ -104,6 +106,9 @@ pub fn build(ui: &Ui, state: &mut EditorState, scene: &mut Scene, stats: &Stats)
         });
     if !state.hide_stats {
         stats_window(ui, stats, state);
+    }
+    if !state.shader_errors.is_empty() {
+        shader_errors(ui, &state.shader_errors);
     }
     actions
 }
@@ -330,6 +335,21 @@ fn new_rope(name: String) -> Rope {
         pinned: Vec::new(),
         color: [0.72, 0.58, 0.36],
     }
+}
+
+/// The compile errors overlay: shown while any shader fails; fixing the file clears it.
+fn shader_errors(ui: &Ui, errors: &[String]) {
+    let size = ui.io().display_size;
+    ui.window("Shader errors (the last good pipelines keep running)")
+        .position([size[0] * 0.5, size[1] - 12.0], Condition::Always)
+        .position_pivot([0.5, 1.0])
+        .size([size[0] * 0.8, 0.0], Condition::Always)
+        .collapsible(false)
+        .build(|| {
+            for e in errors {
+                ui.text_wrapped_colored([1.0, 0.45, 0.4, 1.0], e);
+            }
+        });
 }
 
 fn stats_window(ui: &Ui, stats: &Stats, state: &EditorState) {
