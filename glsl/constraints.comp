@@ -11,6 +11,19 @@
 
 layout(local_size_x_id = 0, local_size_y_id = 1, local_size_z = 1) in;
 
+// Adds the push from particle j when it is within `reach` of x (and not a rest-state neighbour).
+void self_contact(uvec2 cell, vec3 x, uint j, float reach, inout vec3 correction, inout uint n_active) {
+    ivec2 other = ivec2(int(j % obj.dims.x), int(j / obj.dims.x));
+    vec2 rest = vec2(other - ivec2(cell)) * obj.spacing;
+    if (dot(rest, rest) < reach * reach) return;  // includes j == this particle
+    vec3 to_j = p_in[j].pos.xyz - x;
+    float d = length(to_j);
+    if (d < reach && d > 0.0) {
+        correction += (to_j / d) * ((d - reach) * (is_pinned(j) ? 1.0 : 0.5));
+        n_active += 1u;
+    }
+}
+
 void main() {
     uvec2 cell = gl_GlobalInvocationID.xy;
     if (cell.x >= obj.dims.x || cell.y >= obj.dims.y) return;
@@ -45,19 +58,31 @@ void main() {
 
     // Self-collision: particles closer than self_distance push apart, except pairs that are
     // closer than that in the rest state (grid neighbours), which the springs already keep.
+    // Candidates come from the spatial hash (the 27 cells around this one) or, as the reference,
+    // from every particle.
     if ((obj.flags & OBJ_SELF_COLLISION) != 0u) {
         float reach = obj.self_distance;
-        uint n = particle_count();
-        for (uint j = 0u; j < n; ++j) {
-            ivec2 other = ivec2(int(j % obj.dims.x), int(j / obj.dims.x));
-            vec2 rest = vec2(other - ivec2(cell)) * obj.spacing;
-            if (dot(rest, rest) < reach * reach) continue;  // includes j == i
-            vec3 to_j = p_in[j].pos.xyz - x;
-            float d = length(to_j);
-            if (d < reach && d > 0.0) {
-                correction += (to_j / d) * ((d - reach) * (is_pinned(j) ? 1.0 : 0.5));
-                n_active += 1u;
+        if ((obj.flags & OBJ_SELF_HASH) != 0u) {
+            ivec3 home = ivec3(floor(x * obj.cell_inv));
+            uint seen[27];
+            uint n_seen = 0u;
+            for (int dz = -1; dz <= 1; ++dz)
+            for (int dy = -1; dy <= 1; ++dy)
+            for (int dx = -1; dx <= 1; ++dx) {
+                uint h = cell_hash(home + ivec3(dx, dy, dz), obj.hash_mask);
+                bool again = false;
+                for (uint k = 0u; k < n_seen; ++k) again = again || seen[k] == h;
+                if (again) continue;  // two neighbour cells in one bucket: visit it once
+                seen[n_seen++] = h;
+                uint end = starts[h] + counts[h];
+                for (uint at = starts[h]; at < end; ++at) {
+                    uint j = sorted[at];
+                    self_contact(cell, x, j, reach, correction, n_active);
+                }
             }
+        } else {
+            uint n = particle_count();
+            for (uint j = 0u; j < n; ++j) self_contact(cell, x, j, reach, correction, n_active);
         }
     }
 

@@ -10,6 +10,12 @@ layout(std430, set = 0, binding = 2) readonly buffer StateIn { Particle p_in[]; 
 layout(std430, set = 0, binding = 3) writeonly buffer StateOut { Particle p_out[]; };
 layout(std430, set = 0, binding = 4) readonly buffer SphereBuf { vec4 spheres[]; }; // xyz centre, w radius
 layout(std430, set = 0, binding = 5) writeonly buffer SurfaceBuf { SurfaceVertex surface[]; };
+// Spatial hash of the self-collision (objects without it bind a placeholder).
+layout(std430, set = 0, binding = 6) buffer HashCellRank { uvec2 cell_rank[]; }; // per particle: bucket, rank in it
+layout(std430, set = 0, binding = 7) buffer HashCounts { uint counts[]; };       // per bucket: particles in it
+layout(std430, set = 0, binding = 8) buffer HashStarts { uint starts[]; };       // per bucket: first slot in `sorted`
+layout(std430, set = 0, binding = 9) buffer HashSorted { uint sorted[]; };       // particle indices by bucket
+layout(std430, set = 0, binding = 10) buffer HashBlocks { uint block_sums[]; };  // scan: per-block totals
 
 uint particle_count() { return obj.dims.x * obj.dims.y; }
 bool is_pinned(uint i) { return p_in[i].pos.w > 0.5; }

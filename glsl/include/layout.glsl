@@ -10,7 +10,8 @@
 
 // Bits of ObjectParams.flags.
 #define OBJ_STRETCH_LIMIT  1u   // enforce the maximum spring elongation
-#define OBJ_SELF_COLLISION 2u   // brute-force particle-particle self-collision
+#define OBJ_SELF_COLLISION 2u   // particle-particle self-collision
+#define OBJ_SELF_HASH      4u   // ... found through the spatial hash (else brute force)
 
 struct Particle {
     vec4 pos;   // xyz position [m]; w = 1 pinned, 0 free
@@ -47,6 +48,15 @@ struct ObjectParams {
     float rope_radius;     // rope tube radius [m]
     uint flags;            // OBJ_* bits
     vec2 ring_weights[ROPE_RING]; // rope tube vertex offsets in (side, up) units of rope_radius
+    uint hash_mask;        // spatial hash table size - 1 (a power of two minus one)
+    float cell_inv;        // 1 / hash cell edge [1/m]; the edge is at least self_distance
+    uint pad0;
+    uint pad1;
 };
+
+// The spatial hash of a grid cell (Teschner et al. 2003).
+uint cell_hash(ivec3 c, uint mask) {
+    return ((uint(c.x) * 73856093u) ^ (uint(c.y) * 19349663u) ^ (uint(c.z) * 83492791u)) & mask;
+}
 
 #endif

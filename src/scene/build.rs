@@ -45,6 +45,7 @@ pub fn to_model(scene: &Scene) -> SimModel {
             .map(|s| SphereModel { center: DVec3::from_array(s.center), radius: s.radius })
             .collect(),
         objects: scene.cloths.iter().map(cloth).chain(scene.ropes.iter().map(rope)).collect(),
+        self_collision: scene.sim.self_collision,
     }
 }
 

@@ -43,11 +43,20 @@ pub struct SimSettings {
     /// Gravitational acceleration [m/s^2].
     #[serde(default = "defaults::gravity")]
     pub gravity: [f64; 3],
+    /// How self-collision finds candidate pairs: "hash" (spatial hash, O(N)) or "brute_force"
+    /// (every pair, O(N^2), the reference).
+    #[serde(default)]
+    pub self_collision: crate::sim::model::SelfCollisionMethod,
 }
 
 impl Default for SimSettings {
     fn default() -> Self {
-        Self { substeps: defaults::substeps(), frame_dt: defaults::frame_dt(), gravity: defaults::gravity() }
+        Self {
+            substeps: defaults::substeps(),
+            frame_dt: defaults::frame_dt(),
+            gravity: defaults::gravity(),
+            self_collision: Default::default(),
+        }
     }
 }
 

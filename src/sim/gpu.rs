@@ -19,9 +19,9 @@
 //! barrier back to compute, so frames recorded after them need no barrier of their own.
 
 use super::gpu_types::{
-    Globals, ObjectParams, Particle, SurfaceVertex, OBJ_SELF_COLLISION, OBJ_STRETCH_LIMIT,
+    Globals, ObjectParams, Particle, SurfaceVertex, OBJ_SELF_COLLISION, OBJ_SELF_HASH, OBJ_STRETCH_LIMIT,
 };
-use super::model::{ObjectKind, ObjectModel, ObjectShape, SimModel};
+use super::model::{ObjectKind, ObjectModel, ObjectShape, SelfCollisionMethod, SimModel};
 use crate::error::UserError;
 use crate::shaders::ShaderSet;
 use crate::vk::{
@@ -35,7 +35,16 @@ use std::collections::HashMap;
 const CLOTH_GROUP: [u32; 2] = [16, 16];
 const ROPE_GROUP: u32 = 64;
 /// Bindings per set, in the order of `glsl/include/bindings.glsl`.
-const BINDINGS: u32 = 6;
+const BINDINGS: u32 = 11;
+/// Spatial hash table sizes: the scan handles 2048 buckets per block and 2048 blocks.
+const SCAN_BLOCK: u64 = 2048;
+const MAX_TABLE: u64 = SCAN_BLOCK * SCAN_BLOCK;
+
+/// Buckets of the spatial hash of an object of `particles` particles: a power of two, at
+/// least twice the particle count (load factor <= 1/2), within the scan's capacity.
+fn hash_table_size(particles: u64) -> u64 {
+    (2 * particles).next_power_of_two().clamp(SCAN_BLOCK, MAX_TABLE)
+}
 /// Frames that may be in flight at once (each has its own timestamps).
 pub const FRAME_SLOTS: usize = 2;
 
@@ -55,14 +64,20 @@ pub struct ObjectState {
     pub surface: Vec<SurfaceVertex>,
 }
 
-/// The compute pipelines: (shader, workgroup specialization) per slot of `Pipelines::list`.
-const PIPELINE_SPECS: [(&str, [u32; 2]); 6] = [
-    ("physics.comp", CLOTH_GROUP),
-    ("physics.comp", [ROPE_GROUP, 1]),
-    ("constraints.comp", CLOTH_GROUP),
-    ("constraints.comp", [ROPE_GROUP, 1]),
-    ("cloth_normals.comp", [0, 0]),
-    ("rope_vertices.comp", [0, 0]),
+/// The compute pipelines: (shader, specialization constants) per slot of `Pipelines::list`.
+/// The step shaders take their workgroup shape; the scan takes its phase.
+const PIPELINE_SPECS: [(&str, &[u32]); 11] = [
+    ("physics.comp", &CLOTH_GROUP),
+    ("physics.comp", &[ROPE_GROUP, 1]),
+    ("constraints.comp", &CLOTH_GROUP),
+    ("constraints.comp", &[ROPE_GROUP, 1]),
+    ("cloth_normals.comp", &[]),
+    ("rope_vertices.comp", &[]),
+    ("hash_count.comp", &[]),
+    ("hash_scan.comp", &[0]),
+    ("hash_scan.comp", &[1]),
+    ("hash_scan.comp", &[2]),
+    ("hash_scatter.comp", &[]),
 ];
 
 struct Pipelines {
@@ -74,14 +89,14 @@ impl Pipelines {
     fn new(ctx: &GpuContext, layout: &BindingSetLayout, shaders: &mut ShaderSet) -> Result<Self> {
         let mut list = Vec::with_capacity(PIPELINE_SPECS.len());
         let mut compiled: HashMap<&str, Vec<u32>> = HashMap::new();
-        for (name, group) in PIPELINE_SPECS {
+        for (name, spec) in PIPELINE_SPECS {
             let pipeline = match compiled.get(name) {
                 Some(w) => Ok(w.clone()),
                 None => shaders.load_or_embedded(name),
             }
             .and_then(|words| {
                 compiled.insert(name, words.clone());
-                Self::create(ctx, layout, name, &words, group)
+                Self::create(ctx, layout, name, &words, spec)
             });
             match pipeline {
                 Ok(p) => list.push(p),
@@ -99,9 +114,8 @@ impl Pipelines {
         layout: &BindingSetLayout,
         name: &str,
         words: &[u32],
-        group: [u32; 2],
+        spec: &[u32],
     ) -> Result<ComputePipeline> {
-        let spec: &[u32] = if group == [0, 0] { &[] } else { &group };
         ComputePipeline::new(ctx, name, words, layout, spec)
             .with_context(|| format!("creating pipeline {name}"))
     }
@@ -155,6 +169,18 @@ impl Pipelines {
         &self.list[4 + kind as usize]
     }
 
+    fn hash_count(&self) -> &ComputePipeline {
+        &self.list[6]
+    }
+
+    fn hash_scan(&self, phase: usize) -> &ComputePipeline {
+        &self.list[7 + phase]
+    }
+
+    fn hash_scatter(&self) -> &ComputePipeline {
+        &self.list[10]
+    }
+
     fn destroy(self, ctx: &GpuContext) {
         for p in self.list {
             p.destroy(ctx);
@@ -171,8 +197,58 @@ struct GpuObject {
     params: Buffer,
     state: [Buffer; 2],
     surface: Buffer,
-    /// [A -> B (physics), B -> A (constraints); surface uses set 0 (reads A)].
+    /// The spatial hash, when the object uses it for self-collision.
+    hash: Option<HashBuffers>,
+    /// [A -> B (physics), B -> A (constraints, hash passes); surface uses set 0 (reads A)].
     sets: [BindingSet; 2],
+}
+
+/// The spatial hash of one object (bindings 6..=10).
+struct HashBuffers {
+    cell_rank: Buffer,
+    counts: Buffer,
+    starts: Buffer,
+    sorted: Buffer,
+    block_sums: Buffer,
+    buckets: u32,
+}
+
+impl HashBuffers {
+    fn new(ctx: &GpuContext, name: &str, particles: u64) -> Result<Self> {
+        let buckets = hash_table_size(particles);
+        let storage = BufferUsage::STORAGE;
+        let specs = [
+            ("cell_rank", 8 * particles, storage),
+            ("counts", 4 * buckets, storage | BufferUsage::TRANSFER_DST),
+            ("starts", 4 * buckets, storage),
+            ("sorted", 4 * particles, storage),
+            ("block_sums", 4 * buckets.div_ceil(SCAN_BLOCK), storage),
+        ];
+        let mut made = Vec::with_capacity(specs.len());
+        for (suffix, size, usage) in specs {
+            match Buffer::new(ctx, &format!("{name}.hash.{suffix}"), size, usage, MemoryKind::GpuOnly) {
+                Ok(b) => made.push(b),
+                Err(e) => {
+                    made.into_iter().for_each(|b| b.destroy(ctx));
+                    return Err(e.into());
+                }
+            }
+        }
+        let Ok([cell_rank, counts, starts, sorted, block_sums]) = <[Buffer; 5]>::try_from(made) else {
+            unreachable!("one buffer per spec")
+        };
+        Ok(Self { cell_rank, counts, starts, sorted, block_sums, buckets: buckets as u32 })
+    }
+
+    fn buffers(&self) -> [&Buffer; 5] {
+        [&self.cell_rank, &self.counts, &self.starts, &self.sorted, &self.block_sums]
+    }
+
+    fn destroy(self, ctx: &GpuContext) {
+        for b in [self.cell_rank, self.counts, self.starts, self.sorted, self.block_sums] {
+            b.destroy(ctx);
+        }
+    }
 }
 
 pub struct GpuSim {
@@ -185,6 +261,8 @@ pub struct GpuSim {
     slot: CommandSlot,
     /// One pool per frame slot (empty when the device has no timestamps).
     timestamps: Vec<TimestampPool>,
+    placeholder: Buffer,
+    self_collision: SelfCollisionMethod,
     substeps: u32,
     frame_dt: f64,
     frames: u64,
@@ -192,11 +270,15 @@ pub struct GpuSim {
     pending_writes: Vec<(usize, u32, Particle)>,
 }
 
-/// Bytes of GPU memory an object needs: two state buffers, the surface, the parameters.
+/// Bytes of GPU memory an object needs: two state buffers, the surface, the parameters (and
+/// the spatial hash, counted for every object: an upper bound).
 fn object_bytes(o: &ObjectShape) -> u64 {
-    2 * o.particle_count() * std::mem::size_of::<Particle>() as u64
+    let n = o.particle_count();
+    2 * n * std::mem::size_of::<Particle>() as u64
         + o.surface_count() * std::mem::size_of::<SurfaceVertex>() as u64
         + std::mem::size_of::<ObjectParams>() as u64
+        + 12 * n
+        + 8 * hash_table_size(n)
 }
 
 fn gib(bytes: u64) -> String {
@@ -275,14 +357,19 @@ fn globals(model: &SimModel) -> Globals {
     }
 }
 
-fn object_params(o: &ObjectModel) -> ObjectParams {
+fn object_params(o: &ObjectModel, method: SelfCollisionMethod) -> ObjectParams {
     let mut flags = 0;
     if o.stretch_limit.is_some() {
         flags |= OBJ_STRETCH_LIMIT;
     }
     if o.self_distance.is_some() {
         flags |= OBJ_SELF_COLLISION;
+        if method == SelfCollisionMethod::Hash {
+            flags |= OBJ_SELF_HASH;
+        }
     }
+    let buckets = hash_table_size(o.particle_count() as u64) as u32;
+    let cell = o.self_distance.unwrap_or(1.0).max(1e-6);
     ObjectParams {
         dims: o.dims,
         spacing: o.spacing.map(|s| s as f32),
@@ -297,6 +384,10 @@ fn object_params(o: &ObjectModel) -> ObjectParams {
         rope_radius: o.rope_radius as f32,
         flags,
         ring_weights: o.ring_weights.map(|w| w.map(|x| x as f32)),
+        hash_mask: buckets - 1,
+        cell_inv: (1.0 / cell) as f32,
+        pad0: 0,
+        pad1: 0,
     }
 }
 
@@ -333,6 +424,8 @@ struct Parts {
     spheres: Option<Buffer>,
     slot: Option<CommandSlot>,
     timestamps: Vec<TimestampPool>,
+    /// Bound in place of the spatial hash buffers of objects that do not use one.
+    placeholder: Option<Buffer>,
 }
 
 impl Parts {
@@ -347,6 +440,8 @@ impl Parts {
         self.spheres =
             Some(Buffer::new(ctx, "spheres", spheres_size, BufferUsage::STORAGE, MemoryKind::Upload)?);
         self.slot = Some(CommandSlot::new(ctx, "frame")?);
+        self.placeholder =
+            Some(Buffer::new(ctx, "hash placeholder", 16, BufferUsage::STORAGE, MemoryKind::GpuOnly)?);
         for _ in 0..FRAME_SLOTS {
             match TimestampPool::new(ctx, 2 * model.substeps + 2)? {
                 Some(pool) => self.timestamps.push(pool),
@@ -357,6 +452,9 @@ impl Parts {
     }
 
     fn destroy(self, ctx: &GpuContext) {
+        if let Some(b) = self.placeholder {
+            b.destroy(ctx);
+        }
         for t in self.timestamps {
             t.destroy(ctx);
         }
@@ -404,6 +502,7 @@ impl GpuSim {
             spheres: Some(spheres),
             slot: Some(slot),
             timestamps,
+            placeholder: Some(placeholder),
         } = parts
         else {
             unreachable!("Parts::create fills every part or fails")
@@ -417,6 +516,8 @@ impl GpuSim {
             objects: Vec::new(),
             slot,
             timestamps,
+            placeholder,
+            self_collision: model.self_collision,
             substeps: model.substeps,
             frame_dt: model.frame_dt,
             frames: 0,
@@ -472,18 +573,31 @@ impl GpuSim {
         let Ok([mut params, a, b, surface]) = <[Buffer; 4]>::try_from(made) else {
             unreachable!("one buffer per spec")
         };
+        let hash = if o.self_distance.is_some() && self.self_collision == SelfCollisionMethod::Hash {
+            match HashBuffers::new(ctx, &o.name, o.particle_count() as u64) {
+                Ok(h) => Some(h),
+                Err(e) => {
+                    [params, a, b, surface].into_iter().for_each(|b| b.destroy(ctx));
+                    return Err(e.context(context()));
+                }
+            }
+        } else {
+            None
+        };
         let sets = (|| -> Result<[BindingSet; 2], VkError> {
-            params.write(0, &[object_params(o)])?;
-            let forward = self.arena.allocate(
-                ctx,
-                &self.layout,
-                &[&self.globals, &params, &a, &b, &self.spheres, &surface],
-            )?;
-            let backward = self.arena.allocate(
-                ctx,
-                &self.layout,
-                &[&self.globals, &params, &b, &a, &self.spheres, &surface],
-            )?;
+            params.write(0, &[object_params(o, self.self_collision)])?;
+            let p = &self.placeholder;
+            let [cell_rank, counts, starts, sorted, blocks] =
+                hash.as_ref().map(|h| h.buffers()).unwrap_or([p; 5]);
+            let shared = [&self.globals, &params];
+            let tail = [&self.spheres, &surface, cell_rank, counts, starts, sorted, blocks];
+            let set = |arena: &mut DescriptorArena, from: &Buffer, to: &Buffer| {
+                let bindings: Vec<&Buffer> =
+                    shared.iter().copied().chain([from, to]).chain(tail.iter().copied()).collect();
+                arena.allocate(ctx, &self.layout, &bindings)
+            };
+            let forward = set(&mut self.arena, &a, &b)?;
+            let backward = set(&mut self.arena, &b, &a)?;
             Ok([forward, backward])
         })();
         match sets {
@@ -496,13 +610,86 @@ impl GpuSim {
                 params,
                 state: [a, b],
                 surface,
+                hash,
                 sets,
             }),
             Err(e) => {
                 [params, a, b, surface].into_iter().for_each(|b| b.destroy(ctx));
+                if let Some(h) = hash {
+                    h.destroy(ctx);
+                }
                 Err(anyhow::Error::new(e).context(context()))
             }
         }
+    }
+
+    /// Builds the spatial hash of every object that uses one from the physics output (B):
+    /// clear, count, scan, scatter, each stage ordered after the one before by a barrier on
+    /// exactly the buffers it reads.
+    fn record_hash_build(&self, rec: &mut Recorder<'_>) {
+        let hashed: Vec<(&GpuObject, &HashBuffers)> =
+            self.objects.iter().filter_map(|o| o.hash.as_ref().map(|h| (o, h))).collect();
+        if hashed.is_empty() {
+            return;
+        }
+        let each = |f: &dyn Fn(&HashBuffers) -> Vec<BufferBarrier<'_>>| -> Vec<BufferBarrier<'_>> {
+            hashed.iter().flat_map(|(_, h)| f(h)).collect()
+        };
+        // The previous substep's passes and constraints read these; now they are rewritten.
+        rec.barrier(&each(&|h| {
+            let mut v = vec![BufferBarrier::new(&h.counts, Access::ComputeRead, Access::TransferWrite)];
+            v.extend(
+                [&h.cell_rank, &h.starts, &h.sorted, &h.block_sums]
+                    .map(|b| BufferBarrier::new(b, Access::ComputeRead, Access::ComputeWrite)),
+            );
+            v
+        }));
+        for (_, h) in &hashed {
+            rec.fill_buffer(&h.counts, 0);
+        }
+        rec.barrier(&each(&|h| {
+            vec![BufferBarrier::new(&h.counts, Access::TransferWrite, Access::ComputeReadWrite)]
+        }));
+        for (o, _) in &hashed {
+            rec.dispatch(self.pipelines.hash_count(), o.sets[1], [o.particles.div_ceil(256), 1, 1]);
+        }
+        rec.barrier(&each(&|h| {
+            vec![
+                BufferBarrier::new(&h.counts, Access::ComputeWrite, Access::ComputeRead),
+                BufferBarrier::new(&h.cell_rank, Access::ComputeWrite, Access::ComputeRead),
+            ]
+        }));
+        for (o, h) in &hashed {
+            rec.dispatch(
+                self.pipelines.hash_scan(0),
+                o.sets[1],
+                [h.buckets.div_ceil(SCAN_BLOCK as u32), 1, 1],
+            );
+        }
+        rec.barrier(&each(&|h| {
+            vec![
+                BufferBarrier::new(&h.starts, Access::ComputeWrite, Access::ComputeReadWrite),
+                BufferBarrier::new(&h.block_sums, Access::ComputeWrite, Access::ComputeReadWrite),
+            ]
+        }));
+        for (o, _) in &hashed {
+            rec.dispatch(self.pipelines.hash_scan(1), o.sets[1], [1, 1, 1]);
+        }
+        rec.barrier(&each(&|h| {
+            vec![BufferBarrier::new(&h.block_sums, Access::ComputeWrite, Access::ComputeRead)]
+        }));
+        for (o, h) in &hashed {
+            rec.dispatch(self.pipelines.hash_scan(2), o.sets[1], [h.buckets.div_ceil(512), 1, 1]);
+        }
+        rec.barrier(&each(&|h| {
+            vec![BufferBarrier::new(&h.starts, Access::ComputeWrite, Access::ComputeRead)]
+        }));
+        for (o, _) in &hashed {
+            rec.dispatch(self.pipelines.hash_scatter(), o.sets[1], [o.particles.div_ceil(256), 1, 1]);
+        }
+        rec.barrier(&each(&|h| {
+            vec![BufferBarrier::new(&h.sorted, Access::ComputeWrite, Access::ComputeRead)]
+        }));
     }
 
     /// Replaces every object's state (positions, velocities, pins) with `states[i]`.
@@ -596,6 +783,7 @@ impl GpuSim {
                 rec.timestamp(pool, 1 + 2 * s);
             }
             rec.barrier(&self.ping_pong_barriers(1));
+            self.record_hash_build(rec);
             for o in &self.objects {
                 rec.dispatch(self.pipelines.constraints(o.kind), o.sets[1], o.step_groups);
             }
@@ -656,7 +844,7 @@ impl GpuSim {
         self.spheres.write(0, &sphere_data(model))?;
         for (gpu, o) in self.objects.iter_mut().zip(&model.objects) {
             anyhow::ensure!(o.dims[0] * o.dims[1] == gpu.particles, "object '{}' changed size", o.name);
-            gpu.params.write(0, &[object_params(o)])?;
+            gpu.params.write(0, &[object_params(o, model.self_collision)])?;
         }
         self.frame_dt = model.frame_dt;
         Ok(())
@@ -799,6 +987,9 @@ impl GpuSim {
             a.destroy(ctx);
             b.destroy(ctx);
             o.surface.destroy(ctx);
+            if let Some(h) = o.hash {
+                h.destroy(ctx);
+            }
         }
         Parts {
             layout: Some(self.layout),
@@ -808,6 +999,7 @@ impl GpuSim {
             spheres: Some(self.spheres),
             slot: Some(self.slot),
             timestamps: self.timestamps,
+            placeholder: Some(self.placeholder),
         }
         .destroy(ctx);
     }

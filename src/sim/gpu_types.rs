@@ -32,6 +32,7 @@ pub const ROPE_RING: usize = 8;
 /// `ObjectParams::flags` bits (`OBJ_*` in the header).
 pub const OBJ_STRETCH_LIMIT: u32 = 1;
 pub const OBJ_SELF_COLLISION: u32 = 2;
+pub const OBJ_SELF_HASH: u32 = 4;
 
 gpu_struct!(
     /// One simulated particle (cloth particle or rope node).
@@ -66,7 +67,7 @@ gpu_struct!(
 
 gpu_struct!(
     /// Per-object parameters.
-    ObjectParams, size 144, {
+    ObjectParams, size 160, {
     dims: [u32; 2],
     spacing: [f32; 2],
     stiffness: [f32; 4],
@@ -80,6 +81,10 @@ gpu_struct!(
     rope_radius: f32,
     flags: u32,
     ring_weights: [[f32; 2]; ROPE_RING],
+    hash_mask: u32,
+    cell_inv: f32,
+    pad0: u32,
+    pad1: u32,
 });
 
 gpu_struct!(

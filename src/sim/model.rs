@@ -113,6 +113,17 @@ pub struct SphereModel {
     pub radius: f64,
 }
 
+/// How self-collision finds its candidate pairs.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize, serde::Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum SelfCollisionMethod {
+    /// A spatial hash rebuilt every substep: O(N).
+    #[default]
+    Hash,
+    /// Every pair: O(N^2), the reference.
+    BruteForce,
+}
+
 #[derive(Debug, Clone, PartialEq)]
 pub struct SimModel {
     pub gravity: DVec3,
@@ -122,6 +133,7 @@ pub struct SimModel {
     pub wind: Option<WindModel>,
     pub spheres: Vec<SphereModel>,
     pub objects: Vec<ObjectModel>,
+    pub self_collision: SelfCollisionMethod,
 }
 
 impl SimModel {

@@ -198,6 +198,12 @@ impl Recorder<'_> {
         unsafe { self.ctx.device.cmd_copy_buffer(self.cb, src.raw, dst.raw, &region) };
     }
 
+    /// Fills the whole of `buffer` with the 32-bit `value`.
+    pub fn fill_buffer(&mut self, buffer: &Buffer, value: u32) {
+        // SAFETY: recording state, outside rendering; the buffer is live.
+        unsafe { self.ctx.device.cmd_fill_buffer(self.cb, buffer.raw, 0, vk::WHOLE_SIZE, value) };
+    }
+
     /// Writes `data` (at most 65536 bytes, a multiple of 4) into `buffer` at `offset`, inline in
     /// the command buffer.
     pub fn update_buffer(&mut self, buffer: &Buffer, offset: u64, data: &[u8]) {

@@ -95,6 +95,7 @@ pub fn scene(objects: Vec<ObjectModel>) -> SimModel {
         wind: None,
         spheres: Vec::new(),
         objects,
+        self_collision: Default::default(),
     }
 }
 

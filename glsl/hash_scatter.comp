@@ -1,0 +1,14 @@
+#version 460
+#extension GL_GOOGLE_include_directive : require
+// Spatial hash, pass 3 of 3: each particle writes its index at its bucket's start + its rank.
+// Reads cell_rank[], starts[]; writes sorted[].
+#include "bindings.glsl"
+
+layout(local_size_x = 256) in;
+
+void main() {
+    uint i = gl_GlobalInvocationID.x;
+    if (i >= particle_count()) return;
+    uvec2 cr = cell_rank[i];
+    sorted[starts[cr.x] + cr.y] = i;
+}
