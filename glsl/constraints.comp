@@ -63,21 +63,22 @@ void main() {
     if ((obj.flags & OBJ_SELF_COLLISION) != 0u) {
         float reach = obj.self_distance;
         if ((obj.flags & OBJ_SELF_HASH) != 0u) {
-            ivec3 home = ivec3(floor(x * obj.cell_inv));
-            uint seen[27];
-            uint n_seen = 0u;
-            for (int dz = -1; dz <= 1; ++dz)
-            for (int dy = -1; dy <= 1; ++dy)
-            for (int dx = -1; dx <= 1; ++dx) {
-                uint h = cell_hash(home + ivec3(dx, dy, dz), obj.hash_mask);
+            // Cells are 2 * reach wide, so every particle within reach lies in the 2 x 2 x 2
+            // block of cells nearest to x. Buckets two cells share are visited once.
+            ivec3 base = ivec3(floor(x * obj.cell_inv - 0.5));
+            uint seen[8];
+            for (int c = 0; c < 8; ++c) {
+                uint h = cell_hash(base + ivec3(c & 1, (c >> 1) & 1, c >> 2), obj.hash_mask);
+                seen[c] = h;
                 bool again = false;
-                for (uint k = 0u; k < n_seen; ++k) again = again || seen[k] == h;
-                if (again) continue;  // two neighbour cells in one bucket: visit it once
-                seen[n_seen++] = h;
-                uint end = starts[h] + counts[h];
+                for (int k = 0; k < c; ++k) again = again || seen[k] == h;
+                if (again) continue;
+                uint end = starts[h + 1u];
                 for (uint at = starts[h]; at < end; ++at) {
-                    uint j = sorted[at];
-                    self_contact(cell, x, j, reach, correction, n_active);
+                    vec4 e = sorted[at];
+                    if (distance(e.xyz, x) < reach) {
+                        self_contact(cell, x, floatBitsToUint(e.w), reach, correction, n_active);
+                    }
                 }
             }
         } else {

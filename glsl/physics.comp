@@ -2,6 +2,8 @@
 #extension GL_GOOGLE_include_directive : require
 // Physics stage: forces (gravity, springs with damping, wind cone, Stokes drag) and symplectic
 // Euler. Reads p_in (state at the start of the substep), writes p_out; one thread per particle.
+// For objects whose self-collision uses the spatial hash it also counts each new position into
+// its bucket (counts[] were zeroed by the previous substep's scan) and records its rank there.
 #include "bindings.glsl"
 #include "springs.glsl"
 
@@ -27,6 +29,13 @@ vec3 wind_force(vec3 x) {
     return g.wind_dir * (g.wind_force * ratio);
 }
 
+// The first pass of the spatial hash: take a rank in the bucket of the new position.
+void count_into_bucket(uint i, vec3 x_new) {
+    if ((obj.flags & OBJ_SELF_HASH) == 0u) return;
+    uint h = cell_hash(ivec3(floor(x_new * obj.cell_inv)), obj.hash_mask);
+    cell_rank[i] = uvec2(h, atomicAdd(counts[h], 1u));
+}
+
 void main() {
     uvec2 cell = gl_GlobalInvocationID.xy;
     if (cell.x >= obj.dims.x || cell.y >= obj.dims.y) return;
@@ -35,6 +44,7 @@ void main() {
     Particle p = p_in[i];
     if (p.pos.w > 0.5) {  // pinned: keep the position, no velocity
         p_out[i] = Particle(p.pos, vec4(0.0));
+        count_into_bucket(i, p.pos.xyz);
         return;
     }
     vec3 x = p.pos.xyz;
@@ -57,5 +67,7 @@ void main() {
     }
 
     vec3 v_new = v + force * (g.dt / obj.mass);
-    p_out[i] = Particle(vec4(x + v_new * g.dt, 0.0), vec4(v_new, 0.0));
+    vec3 x_new = x + v_new * g.dt;
+    p_out[i] = Particle(vec4(x_new, 0.0), vec4(v_new, 0.0));
+    count_into_bucket(i, x_new);
 }

@@ -5,6 +5,7 @@
 //! `render` (drawing), `ui` (the ImGui editor), `app` (the windowed app), `cli` (the commands).
 
 pub mod app;
+pub mod bench;
 pub mod cli;
 pub mod error;
 pub mod render;

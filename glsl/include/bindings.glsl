@@ -12,9 +12,9 @@ layout(std430, set = 0, binding = 4) readonly buffer SphereBuf { vec4 spheres[];
 layout(std430, set = 0, binding = 5) writeonly buffer SurfaceBuf { SurfaceVertex surface[]; };
 // Spatial hash of the self-collision (objects without it bind a placeholder).
 layout(std430, set = 0, binding = 6) buffer HashCellRank { uvec2 cell_rank[]; }; // per particle: bucket, rank in it
-layout(std430, set = 0, binding = 7) buffer HashCounts { uint counts[]; };       // per bucket: particles in it
-layout(std430, set = 0, binding = 8) buffer HashStarts { uint starts[]; };       // per bucket: first slot in `sorted`
-layout(std430, set = 0, binding = 9) buffer HashSorted { uint sorted[]; };       // particle indices by bucket
+layout(std430, set = 0, binding = 7) buffer HashCounts { uint counts[]; };       // per bucket: particles in it (zero between substeps)
+layout(std430, set = 0, binding = 8) buffer HashStarts { uint starts[]; };       // per bucket + 1: first slot in `sorted` (the last: the total)
+layout(std430, set = 0, binding = 9) buffer HashSorted { vec4 sorted[]; };       // by bucket: xyz position, w index bits
 layout(std430, set = 0, binding = 10) buffer HashBlocks { uint block_sums[]; };  // scan: per-block totals
 
 uint particle_count() { return obj.dims.x * obj.dims.y; }

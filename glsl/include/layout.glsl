@@ -49,7 +49,7 @@ struct ObjectParams {
     uint flags;            // OBJ_* bits
     vec2 ring_weights[ROPE_RING]; // rope tube vertex offsets in (side, up) units of rope_radius
     uint hash_mask;        // spatial hash table size - 1 (a power of two minus one)
-    float cell_inv;        // 1 / hash cell edge [1/m]; the edge is at least self_distance
+    float cell_inv;        // 1 / hash cell edge [1/m]; the edge is twice self_distance
     uint pad0;
     uint pad1;
 };

@@ -1,5 +1,6 @@
 //! Command-line interface.
 
+mod bench;
 mod simulate;
 
 use crate::vk::{ContextOptions, GpuContext};
@@ -31,6 +32,8 @@ pub enum Command {
     App(AppCommand),
     /// Run a preset headless, print per-frame GPU time and a summary, optionally save the state.
     Simulate(simulate::SimulateArgs),
+    /// Time a matrix of scenes with GPU timestamps; write bench.md and bench.csv.
+    Bench(bench::BenchArgs),
     /// List the Vulkan devices and which one would be chosen.
     Devices,
 }
@@ -47,6 +50,7 @@ pub fn run(cli: Cli) -> Result<()> {
     match cli.command.unwrap_or(Command::App(AppCommand::default())) {
         Command::App(args) => args.run(&options),
         Command::Simulate(args) => simulate::run(&args, &options),
+        Command::Bench(args) => bench::run(&args, &options),
         Command::Devices => {
             let ctx = GpuContext::new(&options)?;
             let (devices, skipped) = ctx.devices()?;

@@ -36,14 +36,14 @@ const CLOTH_GROUP: [u32; 2] = [16, 16];
 const ROPE_GROUP: u32 = 64;
 /// Bindings per set, in the order of `glsl/include/bindings.glsl`.
 const BINDINGS: u32 = 11;
-/// Spatial hash table sizes: the scan handles 2048 buckets per block and 2048 blocks.
-const SCAN_BLOCK: u64 = 2048;
+/// Spatial hash table sizes: the scan handles 8192 buckets per block and 8192 blocks.
+const SCAN_BLOCK: u64 = 8192;
 const MAX_TABLE: u64 = SCAN_BLOCK * SCAN_BLOCK;
 
 /// Buckets of the spatial hash of an object of `particles` particles: a power of two, at
 /// least twice the particle count (load factor <= 1/2), within the scan's capacity.
 fn hash_table_size(particles: u64) -> u64 {
-    (2 * particles).next_power_of_two().clamp(SCAN_BLOCK, MAX_TABLE)
+    (2 * particles).next_power_of_two().clamp(1024, MAX_TABLE)
 }
 /// Frames that may be in flight at once (each has its own timestamps).
 pub const FRAME_SLOTS: usize = 2;
@@ -66,14 +66,13 @@ pub struct ObjectState {
 
 /// The compute pipelines: (shader, specialization constants) per slot of `Pipelines::list`.
 /// The step shaders take their workgroup shape; the scan takes its phase.
-const PIPELINE_SPECS: [(&str, &[u32]); 11] = [
+const PIPELINE_SPECS: [(&str, &[u32]); 10] = [
     ("physics.comp", &CLOTH_GROUP),
     ("physics.comp", &[ROPE_GROUP, 1]),
     ("constraints.comp", &CLOTH_GROUP),
     ("constraints.comp", &[ROPE_GROUP, 1]),
     ("cloth_normals.comp", &[]),
     ("rope_vertices.comp", &[]),
-    ("hash_count.comp", &[]),
     ("hash_scan.comp", &[0]),
     ("hash_scan.comp", &[1]),
     ("hash_scan.comp", &[2]),
@@ -169,16 +168,12 @@ impl Pipelines {
         &self.list[4 + kind as usize]
     }
 
-    fn hash_count(&self) -> &ComputePipeline {
-        &self.list[6]
-    }
-
     fn hash_scan(&self, phase: usize) -> &ComputePipeline {
-        &self.list[7 + phase]
+        &self.list[6 + phase]
     }
 
     fn hash_scatter(&self) -> &ComputePipeline {
-        &self.list[10]
+        &self.list[9]
     }
 
     fn destroy(self, ctx: &GpuContext) {
@@ -197,10 +192,28 @@ struct GpuObject {
     params: Buffer,
     state: [Buffer; 2],
     surface: Buffer,
-    /// The spatial hash, when the object uses it for self-collision.
-    hash: Option<HashBuffers>,
+    /// The spatial hash, or a placeholder bound in its place.
+    hash: HashStorage,
     /// [A -> B (physics), B -> A (constraints, hash passes); surface uses set 0 (reads A)].
     sets: [BindingSet; 2],
+}
+
+/// What an object binds at the spatial hash bindings.
+enum HashStorage {
+    Buffers(HashBuffers),
+    /// A 16-byte buffer bound at all five bindings of an object without a spatial hash. The
+    /// shaders reach it only behind a flag, but may (statically) write it, so it is ordered
+    /// like the state buffers; one per object, so objects' dispatches never share it.
+    Placeholder(Buffer),
+}
+
+impl HashStorage {
+    fn buffers(&self) -> Option<&HashBuffers> {
+        match self {
+            HashStorage::Buffers(h) => Some(h),
+            HashStorage::Placeholder(_) => None,
+        }
+    }
 }
 
 /// The spatial hash of one object (bindings 6..=10).
@@ -220,8 +233,8 @@ impl HashBuffers {
         let specs = [
             ("cell_rank", 8 * particles, storage),
             ("counts", 4 * buckets, storage | BufferUsage::TRANSFER_DST),
-            ("starts", 4 * buckets, storage),
-            ("sorted", 4 * particles, storage),
+            ("starts", 4 * (buckets + 1), storage),
+            ("sorted", 16 * particles, storage),
             ("block_sums", 4 * buckets.div_ceil(SCAN_BLOCK), storage),
         ];
         let mut made = Vec::with_capacity(specs.len());
@@ -261,8 +274,8 @@ pub struct GpuSim {
     slot: CommandSlot,
     /// One pool per frame slot (empty when the device has no timestamps).
     timestamps: Vec<TimestampPool>,
-    placeholder: Buffer,
     self_collision: SelfCollisionMethod,
+    stage_timing: bool,
     substeps: u32,
     frame_dt: f64,
     frames: u64,
@@ -277,8 +290,9 @@ fn object_bytes(o: &ObjectShape) -> u64 {
     2 * n * std::mem::size_of::<Particle>() as u64
         + o.surface_count() * std::mem::size_of::<SurfaceVertex>() as u64
         + std::mem::size_of::<ObjectParams>() as u64
-        + 12 * n
+        + 24 * n
         + 8 * hash_table_size(n)
+        + 4
 }
 
 fn gib(bytes: u64) -> String {
@@ -369,7 +383,7 @@ fn object_params(o: &ObjectModel, method: SelfCollisionMethod) -> ObjectParams {
         }
     }
     let buckets = hash_table_size(o.particle_count() as u64) as u32;
-    let cell = o.self_distance.unwrap_or(1.0).max(1e-6);
+    let cell = 2.0 * o.self_distance.unwrap_or(1.0).max(1e-6);
     ObjectParams {
         dims: o.dims,
         spacing: o.spacing.map(|s| s as f32),
@@ -424,8 +438,6 @@ struct Parts {
     spheres: Option<Buffer>,
     slot: Option<CommandSlot>,
     timestamps: Vec<TimestampPool>,
-    /// Bound in place of the spatial hash buffers of objects that do not use one.
-    placeholder: Option<Buffer>,
 }
 
 impl Parts {
@@ -440,8 +452,6 @@ impl Parts {
         self.spheres =
             Some(Buffer::new(ctx, "spheres", spheres_size, BufferUsage::STORAGE, MemoryKind::Upload)?);
         self.slot = Some(CommandSlot::new(ctx, "frame")?);
-        self.placeholder =
-            Some(Buffer::new(ctx, "hash placeholder", 16, BufferUsage::STORAGE, MemoryKind::GpuOnly)?);
         for _ in 0..FRAME_SLOTS {
             match TimestampPool::new(ctx, 2 * model.substeps + 2)? {
                 Some(pool) => self.timestamps.push(pool),
@@ -452,9 +462,6 @@ impl Parts {
     }
 
     fn destroy(self, ctx: &GpuContext) {
-        if let Some(b) = self.placeholder {
-            b.destroy(ctx);
-        }
         for t in self.timestamps {
             t.destroy(ctx);
         }
@@ -502,7 +509,6 @@ impl GpuSim {
             spheres: Some(spheres),
             slot: Some(slot),
             timestamps,
-            placeholder: Some(placeholder),
         } = parts
         else {
             unreachable!("Parts::create fills every part or fails")
@@ -516,8 +522,8 @@ impl GpuSim {
             objects: Vec::new(),
             slot,
             timestamps,
-            placeholder,
             self_collision: model.self_collision,
+            stage_timing: true,
             substeps: model.substeps,
             frame_dt: model.frame_dt,
             frames: 0,
@@ -574,21 +580,31 @@ impl GpuSim {
             unreachable!("one buffer per spec")
         };
         let hash = if o.self_distance.is_some() && self.self_collision == SelfCollisionMethod::Hash {
-            match HashBuffers::new(ctx, &o.name, o.particle_count() as u64) {
-                Ok(h) => Some(h),
-                Err(e) => {
-                    [params, a, b, surface].into_iter().for_each(|b| b.destroy(ctx));
-                    return Err(e.context(context()));
-                }
-            }
+            HashBuffers::new(ctx, &o.name, o.particle_count() as u64).map(HashStorage::Buffers)
         } else {
-            None
+            Buffer::new(
+                ctx,
+                &format!("{}.hash.placeholder", o.name),
+                16,
+                BufferUsage::STORAGE,
+                MemoryKind::GpuOnly,
+            )
+            .map(HashStorage::Placeholder)
+            .map_err(anyhow::Error::from)
+        };
+        let hash = match hash {
+            Ok(h) => h,
+            Err(e) => {
+                [params, a, b, surface].into_iter().for_each(|b| b.destroy(ctx));
+                return Err(e.context(context()));
+            }
         };
         let sets = (|| -> Result<[BindingSet; 2], VkError> {
             params.write(0, &[object_params(o, self.self_collision)])?;
-            let p = &self.placeholder;
-            let [cell_rank, counts, starts, sorted, blocks] =
-                hash.as_ref().map(|h| h.buffers()).unwrap_or([p; 5]);
+            let [cell_rank, counts, starts, sorted, blocks] = match &hash {
+                HashStorage::Buffers(h) => h.buffers(),
+                HashStorage::Placeholder(p) => [p; 5],
+            };
             let shared = [&self.globals, &params];
             let tail = [&self.spheres, &surface, cell_rank, counts, starts, sorted, blocks];
             let set = |arena: &mut DescriptorArena, from: &Buffer, to: &Buffer| {
@@ -615,50 +631,56 @@ impl GpuSim {
             }),
             Err(e) => {
                 [params, a, b, surface].into_iter().for_each(|b| b.destroy(ctx));
-                if let Some(h) = hash {
-                    h.destroy(ctx);
+                match hash {
+                    HashStorage::Buffers(h) => h.destroy(ctx),
+                    HashStorage::Placeholder(p) => p.destroy(ctx),
                 }
                 Err(anyhow::Error::new(e).context(context()))
             }
         }
     }
 
-    /// Builds the spatial hash of every object that uses one from the physics output (B):
-    /// clear, count, scan, scatter, each stage ordered after the one before by a barrier on
-    /// exactly the buffers it reads.
+    /// The objects that use the spatial hash, with their hash buffers.
+    fn hashed(&self) -> Vec<(&GpuObject, &HashBuffers)> {
+        self.objects.iter().filter_map(|o| o.hash.buffers().map(|h| (o, h))).collect()
+    }
+
+    /// Barriers of the spatial hash buffers around the physics stage, which counts into them:
+    /// `before` (after the previous constraints) or after it.
+    fn hash_barriers_at_physics(&self, before: bool) -> Vec<BufferBarrier<'_>> {
+        self.hashed()
+            .into_iter()
+            .flat_map(|(_, h)| {
+                if before {
+                    // The scan zeroed the counts; the scatter read the ranks.
+                    vec![
+                        BufferBarrier::new(&h.counts, Access::ComputeWrite, Access::ComputeReadWrite),
+                        BufferBarrier::new(&h.cell_rank, Access::ComputeRead, Access::ComputeWrite),
+                    ]
+                } else {
+                    // The scan reads the counts and rewrites the starts the last query read.
+                    vec![
+                        BufferBarrier::new(&h.counts, Access::ComputeWrite, Access::ComputeReadWrite),
+                        BufferBarrier::new(&h.cell_rank, Access::ComputeWrite, Access::ComputeRead),
+                        BufferBarrier::new(&h.starts, Access::ComputeRead, Access::ComputeWrite),
+                        BufferBarrier::new(&h.block_sums, Access::ComputeRead, Access::ComputeWrite),
+                    ]
+                }
+            })
+            .collect()
+    }
+
+    /// The rest of the spatial hash after the physics stage counted the particles: the scan
+    /// (one dispatch for tables of one block, else three) and the scatter, each ordered after
+    /// the one before by a barrier on exactly the buffers it reads.
     fn record_hash_build(&self, rec: &mut Recorder<'_>) {
-        let hashed: Vec<(&GpuObject, &HashBuffers)> =
-            self.objects.iter().filter_map(|o| o.hash.as_ref().map(|h| (o, h))).collect();
+        let hashed = self.hashed();
         if hashed.is_empty() {
             return;
         }
         let each = |f: &dyn Fn(&HashBuffers) -> Vec<BufferBarrier<'_>>| -> Vec<BufferBarrier<'_>> {
             hashed.iter().flat_map(|(_, h)| f(h)).collect()
         };
-        // The previous substep's passes and constraints read these; now they are rewritten.
-        rec.barrier(&each(&|h| {
-            let mut v = vec![BufferBarrier::new(&h.counts, Access::ComputeRead, Access::TransferWrite)];
-            v.extend(
-                [&h.cell_rank, &h.starts, &h.sorted, &h.block_sums]
-                    .map(|b| BufferBarrier::new(b, Access::ComputeRead, Access::ComputeWrite)),
-            );
-            v
-        }));
-        for (_, h) in &hashed {
-            rec.fill_buffer(&h.counts, 0);
-        }
-        rec.barrier(&each(&|h| {
-            vec![BufferBarrier::new(&h.counts, Access::TransferWrite, Access::ComputeReadWrite)]
-        }));
-        for (o, _) in &hashed {
-            rec.dispatch(self.pipelines.hash_count(), o.sets[1], [o.particles.div_ceil(256), 1, 1]);
-        }
-        rec.barrier(&each(&|h| {
-            vec![
-                BufferBarrier::new(&h.counts, Access::ComputeWrite, Access::ComputeRead),
-                BufferBarrier::new(&h.cell_rank, Access::ComputeWrite, Access::ComputeRead),
-            ]
-        }));
         for (o, h) in &hashed {
             rec.dispatch(
                 self.pipelines.hash_scan(0),
@@ -666,23 +688,29 @@ impl GpuSim {
                 [h.buckets.div_ceil(SCAN_BLOCK as u32), 1, 1],
             );
         }
+        let multi: Vec<_> = hashed.iter().filter(|(_, h)| h.buckets as u64 > SCAN_BLOCK).collect();
+        if !multi.is_empty() {
+            rec.barrier(&each(&|h| {
+                vec![
+                    BufferBarrier::new(&h.starts, Access::ComputeWrite, Access::ComputeReadWrite),
+                    BufferBarrier::new(&h.block_sums, Access::ComputeWrite, Access::ComputeReadWrite),
+                ]
+            }));
+            for (o, _) in &multi {
+                rec.dispatch(self.pipelines.hash_scan(1), o.sets[1], [1, 1, 1]);
+            }
+            rec.barrier(&each(&|h| {
+                vec![BufferBarrier::new(&h.block_sums, Access::ComputeWrite, Access::ComputeRead)]
+            }));
+            for (o, h) in &multi {
+                rec.dispatch(self.pipelines.hash_scan(2), o.sets[1], [(h.buckets + 1).div_ceil(512), 1, 1]);
+            }
+        }
         rec.barrier(&each(&|h| {
             vec![
-                BufferBarrier::new(&h.starts, Access::ComputeWrite, Access::ComputeReadWrite),
-                BufferBarrier::new(&h.block_sums, Access::ComputeWrite, Access::ComputeReadWrite),
+                BufferBarrier::new(&h.starts, Access::ComputeWrite, Access::ComputeRead),
+                BufferBarrier::new(&h.sorted, Access::ComputeRead, Access::ComputeWrite),
             ]
-        }));
-        for (o, _) in &hashed {
-            rec.dispatch(self.pipelines.hash_scan(1), o.sets[1], [1, 1, 1]);
-        }
-        rec.barrier(&each(&|h| {
-            vec![BufferBarrier::new(&h.block_sums, Access::ComputeWrite, Access::ComputeRead)]
-        }));
-        for (o, h) in &hashed {
-            rec.dispatch(self.pipelines.hash_scan(2), o.sets[1], [h.buckets.div_ceil(512), 1, 1]);
-        }
-        rec.barrier(&each(&|h| {
-            vec![BufferBarrier::new(&h.starts, Access::ComputeWrite, Access::ComputeRead)]
         }));
         for (o, _) in &hashed {
             rec.dispatch(self.pipelines.hash_scatter(), o.sets[1], [o.particles.div_ceil(256), 1, 1]);
@@ -715,10 +743,26 @@ impl GpuSim {
                     rec.copy_buffer_region(&staging, offset, &o.state[0], 0, size);
                     offset += size;
                 }
+                // The spatial hash counts start at zero (the scan re-zeroes them every substep).
+                let hashed = self.hashed();
+                rec.barrier(
+                    &hashed
+                        .iter()
+                        .map(|(_, h)| {
+                            BufferBarrier::new(&h.counts, Access::ComputeReadWrite, Access::TransferWrite)
+                        })
+                        .collect::<Vec<_>>(),
+                );
+                for (_, h) in &hashed {
+                    rec.fill_buffer(&h.counts, 0);
+                }
                 let to_compute: Vec<_> = self
                     .objects
                     .iter()
                     .map(|o| BufferBarrier::new(&o.state[0], Access::TransferWrite, Access::ComputeReadWrite))
+                    .chain(hashed.iter().map(|(_, h)| {
+                        BufferBarrier::new(&h.counts, Access::TransferWrite, Access::ComputeReadWrite)
+                    }))
                     .collect();
                 rec.barrier(&to_compute);
                 Ok(())
@@ -775,19 +819,23 @@ impl GpuSim {
                     .collect::<Vec<_>>(),
             );
         }
+        let stages = self.stage_timing;
         for s in 0..self.substeps {
+            rec.barrier(&self.hash_barriers_at_physics(true));
             for o in &self.objects {
                 rec.dispatch(self.pipelines.physics(o.kind), o.sets[0], o.step_groups);
             }
-            if let Some(pool) = ts {
+            if let Some(pool) = ts.filter(|_| stages) {
                 rec.timestamp(pool, 1 + 2 * s);
             }
-            rec.barrier(&self.ping_pong_barriers(1));
+            let mut after_physics = self.ping_pong_barriers(1);
+            after_physics.extend(self.hash_barriers_at_physics(false));
+            rec.barrier(&after_physics);
             self.record_hash_build(rec);
             for o in &self.objects {
                 rec.dispatch(self.pipelines.constraints(o.kind), o.sets[1], o.step_groups);
             }
-            if let Some(pool) = ts {
+            if let Some(pool) = ts.filter(|_| stages) {
                 rec.timestamp(pool, 2 + 2 * s);
             }
             rec.barrier(&self.ping_pong_barriers(0));
@@ -818,6 +866,13 @@ impl GpuSim {
         changed: &[String],
     ) -> (Vec<String>, Vec<Retired>) {
         self.pipelines.reload(ctx, &self.layout, shaders, changed)
+    }
+
+    /// With `false`, frames carry only a start and an end timestamp (the per-stage timestamps
+    /// between dispatches are left out, so the total is not inflated by them); the stage times
+    /// then read as zero.
+    pub fn set_stage_timing(&mut self, on: bool) {
+        self.stage_timing = on;
     }
 
     /// Writes one particle (position, velocity, pinned flag) at the start of the next frame.
@@ -863,15 +918,24 @@ impl GpuSim {
         self.objects.len()
     }
 
-    /// Barriers after a stage that wrote `state[written]` and read the other state buffer.
+    /// Barriers after a stage that wrote `state[written]` and read the other state buffer (and
+    /// the placeholders of objects without a spatial hash, which the shaders may write).
     fn ping_pong_barriers(&self, written: usize) -> Vec<BufferBarrier<'_>> {
         self.objects
             .iter()
             .flat_map(|o| {
+                let placeholder = match &o.hash {
+                    HashStorage::Placeholder(b) => {
+                        Some(BufferBarrier::new(b, Access::ComputeReadWrite, Access::ComputeReadWrite))
+                    }
+                    HashStorage::Buffers(_) => None,
+                };
                 [
                     BufferBarrier::new(&o.state[written], Access::ComputeWrite, Access::ComputeReadWrite),
                     BufferBarrier::new(&o.state[1 - written], Access::ComputeRead, Access::ComputeWrite),
                 ]
+                .into_iter()
+                .chain(placeholder)
             })
             .collect()
     }
@@ -892,13 +956,15 @@ impl GpuSim {
         let t = pool.read_ns(ctx, 2 * self.substeps + 2)?;
         let ms = |a: f64, b: f64| (b - a).max(0.0) * 1e-6;
         let mut timing = FrameTiming::default();
-        for s in 0..self.substeps as usize {
-            timing.physics_ms += ms(t[2 * s], t[2 * s + 1]);
-            timing.constraints_ms += ms(t[2 * s + 1], t[2 * s + 2]);
-        }
         let last = t.len() - 1;
-        timing.surface_ms = ms(t[last - 1], t[last]);
         timing.total_ms = ms(t[0], t[last]);
+        if self.stage_timing {
+            for s in 0..self.substeps as usize {
+                timing.physics_ms += ms(t[2 * s], t[2 * s + 1]);
+                timing.constraints_ms += ms(t[2 * s + 1], t[2 * s + 2]);
+            }
+            timing.surface_ms = ms(t[last - 1], t[last]);
+        }
         Ok(Some(timing))
     }
 
@@ -987,8 +1053,9 @@ impl GpuSim {
             a.destroy(ctx);
             b.destroy(ctx);
             o.surface.destroy(ctx);
-            if let Some(h) = o.hash {
-                h.destroy(ctx);
+            match o.hash {
+                HashStorage::Buffers(h) => h.destroy(ctx),
+                HashStorage::Placeholder(b) => b.destroy(ctx),
             }
         }
         Parts {
@@ -999,7 +1066,6 @@ impl GpuSim {
             spheres: Some(self.spheres),
             slot: Some(self.slot),
             timestamps: self.timestamps,
-            placeholder: Some(self.placeholder),
         }
         .destroy(ctx);
     }

@@ -1,0 +1,78 @@
+//! `msdsim bench`: a matrix of generated scenes timed with GPU timestamps, a bandwidth probe
+//! for the roofline, and the Markdown and CSV reports.
+
+pub mod bandwidth;
+pub mod cases;
+pub mod report;
+
+use crate::scene;
+use crate::sim::gpu::{FrameTiming, GpuSim};
+use crate::vk::GpuContext;
+use anyhow::{Context as _, Result};
+
+/// Median and spread of one quantity over the measured frames [ms].
+#[derive(Debug, Clone, Copy, Default, serde::Serialize)]
+pub struct Spread {
+    pub median: f64,
+    pub p10: f64,
+    pub p90: f64,
+}
+
+impl Spread {
+    pub fn of(values: &[f64]) -> Self {
+        let mut v = values.to_vec();
+        v.sort_by(f64::total_cmp);
+        let at = |q: f64| v.get(((v.len() - 1) as f64 * q).round() as usize).copied().unwrap_or(0.0);
+        Self { median: at(0.5), p10: at(0.1), p90: at(0.9) }
+    }
+}
+
+/// The measurement of one case.
+#[derive(Debug, Clone, serde::Serialize)]
+pub struct Measurement {
+    pub group: String,
+    pub case: String,
+    pub particles: u64,
+    pub substeps: u32,
+    pub frames: usize,
+    pub total: Spread,
+    pub physics: Spread,
+    pub constraints: Spread,
+    pub surface: Spread,
+}
+
+/// Runs `case` for `warmup` frames, then measures `frames` frames twice: with only a start and
+/// an end timestamp per frame (the totals), then with timestamps between the stages (the
+/// per-stage times; those timestamps cost a little themselves, so totals come from the first).
+pub fn measure(ctx: &GpuContext, case: &cases::Case, warmup: usize, frames: usize) -> Result<Measurement> {
+    let model = scene::to_model(&case.scene);
+    let mut sim = GpuSim::new(ctx, &model).with_context(|| format!("setting up {}", case.name))?;
+    let run = (|| -> Result<(Vec<FrameTiming>, Vec<FrameTiming>)> {
+        for _ in 0..warmup {
+            sim.step_frame(ctx)?;
+        }
+        let mut timed = |stages: bool| -> Result<Vec<FrameTiming>> {
+            sim.set_stage_timing(stages);
+            (0..frames)
+                .map(|_| sim.step_frame(ctx)?.context("the device has no timestamps: nothing to measure"))
+                .collect()
+        };
+        let totals = timed(false)?;
+        let stages = timed(true)?;
+        Ok((totals, stages))
+    })();
+    sim.destroy(ctx);
+    let (totals, timings) = run?;
+    let spread = |f: fn(&FrameTiming) -> f64| Spread::of(&timings.iter().map(f).collect::<Vec<_>>());
+    Ok(Measurement {
+        group: case.group.to_string(),
+        case: case.name.clone(),
+        particles: model.objects.iter().map(|o| o.particle_count() as u64).sum(),
+        substeps: model.substeps,
+        frames,
+        total: Spread::of(&totals.iter().map(|t| t.total_ms).collect::<Vec<_>>()),
+        physics: spread(|t| t.physics_ms),
+        constraints: spread(|t| t.constraints_ms),
+        surface: spread(|t| t.surface_ms),
+    })
+}

@@ -1,0 +1,109 @@
+//! The benchmark reports: a Markdown table (with a roofline column per stage) and a CSV, both
+//! headed by the device, driver, date and command line. Frame totals come from frames with
+//! only a start and an end timestamp; stage times from frames with timestamps between stages.
+//!
+//! Roofline: the fewest bytes a stage must move per particle and substep, over the measured
+//! copy bandwidth. Physics reads and writes each particle once (32 + 32 bytes); so does the
+//! constraint stage, plus the spatial hash when self-collision is on (count: read 32, write 8;
+//! scatter: read 8 + 4, write 4; the query reads its bucket range, about 16 more); the surface
+//! stage reads each particle and writes each surface vertex (32 bytes).
+
+use super::Measurement;
+use std::fmt::Write as _;
+
+pub struct Header {
+    pub device: String,
+    pub driver: String,
+    pub command: String,
+    pub date: String,
+    /// Measured copy bandwidth [bytes/s] and the buffer size it was measured with.
+    pub bandwidth: Option<(f64, u64)>,
+}
+
+/// Ideal bytes per substep of the physics and constraint stages.
+pub fn ideal_bytes(m: &Measurement, hashed: bool) -> (f64, f64) {
+    let n = m.particles as f64;
+    let physics = 64.0 * n;
+    let constraints = 64.0 * n + if hashed { 72.0 * n } else { 0.0 };
+    (physics, constraints)
+}
+
+fn us(ms: f64) -> String {
+    format!("{:.1}", ms * 1e3)
+}
+
+pub fn markdown(header: &Header, rows: &[(Measurement, bool)]) -> String {
+    let mut out = String::new();
+    let _ = writeln!(out, "Device: {} ({}); {}", header.device, header.driver, header.date);
+    let _ = writeln!(out, "Command: `{}`", header.command);
+    if let Some((bw, bytes)) = header.bandwidth {
+        let _ = writeln!(
+            out,
+            "Measured copy bandwidth: {:.0} GB/s ({} MiB buffer, read + write)",
+            bw * 1e-9,
+            bytes >> 20
+        );
+    }
+    let _ = writeln!(out);
+    let _ = writeln!(
+        out,
+        "| case | particles | ms/frame (median) | p10 - p90 | frames/s | physics ms | constraints ms | surface ms | physics us/substep (roofline) | constraints us/substep (roofline) |"
+    );
+    let _ = writeln!(out, "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|");
+    for (m, hashed) in rows {
+        let sub = m.substeps as f64;
+        let roof =
+            |bytes: f64| header.bandwidth.map(|(bw, _)| us(bytes / bw * 1e3)).unwrap_or_else(|| "-".into());
+        let (pb, cb) = ideal_bytes(m, *hashed);
+        let _ = writeln!(
+            out,
+            "| {} | {} | {:.3} | {:.3} - {:.3} | {:.0} | {:.3} | {:.3} | {:.3} | {} ({}) | {} ({}) |",
+            m.case,
+            m.particles,
+            m.total.median,
+            m.total.p10,
+            m.total.p90,
+            1e3 / m.total.median.max(1e-9),
+            m.physics.median,
+            m.constraints.median,
+            m.surface.median,
+            us(m.physics.median / sub),
+            roof(pb),
+            us(m.constraints.median / sub),
+            roof(cb),
+        );
+    }
+    out
+}
+
+pub fn csv(header: &Header, rows: &[(Measurement, bool)]) -> String {
+    let mut out = String::new();
+    let _ = writeln!(out, "# device: {}", header.device);
+    let _ = writeln!(out, "# driver: {}", header.driver);
+    let _ = writeln!(out, "# date: {}", header.date);
+    let _ = writeln!(out, "# command: {}", header.command);
+    if let Some((bw, _)) = header.bandwidth {
+        let _ = writeln!(out, "# copy_bandwidth_bytes_per_s: {bw:.0}");
+    }
+    let _ = writeln!(
+        out,
+        "group,case,particles,substeps,frames,total_median_ms,total_p10_ms,total_p90_ms,physics_median_ms,physics_p10_ms,physics_p90_ms,constraints_median_ms,constraints_p10_ms,constraints_p90_ms,surface_median_ms,surface_p10_ms,surface_p90_ms"
+    );
+    for (m, _) in rows {
+        let s = |x: &super::Spread| format!("{:.6},{:.6},{:.6}", x.median, x.p10, x.p90);
+        let _ = writeln!(
+            out,
+            "{},\"{}\",{},{},{},{},{},{},{}",
+            m.group,
+            m.case,
+            m.particles,
+            m.substeps,
+            m.frames,
+            s(&m.total),
+            s(&m.physics),
+            s(&m.constraints),
+            s(&m.surface)
+        );
+    }
+    out
+}

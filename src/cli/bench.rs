@@ -1,0 +1,87 @@
+//! `msdsim bench`: times the benchmark matrix and writes the reports.
+
+use crate::bench::{self, cases, report};
+use crate::vk::{ContextOptions, GpuContext};
+use anyhow::{Context as _, Result};
+use clap::Args;
+use std::path::PathBuf;
+
+#[derive(Debug, Args)]
+pub struct BenchArgs {
+    /// Frames measured per case (after the warm-up); at least 100.
+    #[arg(long, default_value_t = 100, value_parser = clap::value_parser!(u64).range(100..=100_000))]
+    pub frames: u64,
+    /// Frames run before measuring.
+    #[arg(long, default_value_t = 20)]
+    pub warmup: u64,
+    /// Only the smallest sizes (for a CPU device such as lavapipe).
+    #[arg(long)]
+    pub quick: bool,
+    /// Only cases whose name contains this text.
+    #[arg(long)]
+    pub filter: Option<String>,
+    /// Folder for bench.md and bench.csv.
+    #[arg(long, default_value = "bench-results")]
+    pub out: PathBuf,
+}
+
+pub fn run(args: &BenchArgs, options: &ContextOptions) -> Result<()> {
+    std::fs::create_dir_all(&args.out)
+        .map_err(|e| crate::error::UserError(format!("--out {}: {e}", args.out.display())))?;
+    let ctx = GpuContext::new(options)?;
+    let info = ctx.info().clone();
+    eprintln!("device: {info}");
+    let cases: Vec<_> = cases::matrix(args.quick)
+        .into_iter()
+        .filter(|c| args.filter.as_ref().is_none_or(|f| c.name.contains(f.as_str())))
+        .collect();
+    let bar = indicatif::ProgressBar::new(cases.len() as u64 + 1);
+    bar.set_style(
+        indicatif::ProgressStyle::with_template("{elapsed_precise} [{bar:30}] {pos}/{len} {msg}")
+            .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar()),
+    );
+    bar.set_message("copy bandwidth");
+    let bandwidth = bench::bandwidth::measure(&ctx, 512 << 20, 21).context("measuring the copy bandwidth")?;
+    bar.inc(1);
+    let mut rows = Vec::new();
+    for case in &cases {
+        bar.set_message(case.name.clone());
+        let m = bench::measure(&ctx, case, args.warmup as usize, args.frames as usize)?;
+        let hashed = case.scene.cloths.iter().any(|c| c.self_collision)
+            || case.scene.ropes.iter().any(|r| r.self_collision);
+        rows.push((m, hashed));
+        bar.inc(1);
+    }
+    bar.finish_and_clear();
+    let header = report::Header {
+        device: info.name.clone(),
+        driver: format!("{}, Vulkan {}", info.driver, info.api_version),
+        command: std::env::args().collect::<Vec<_>>().join(" "),
+        date: date(),
+        bandwidth: Some(bandwidth),
+    };
+    let md = report::markdown(&header, &rows);
+    std::fs::write(args.out.join("bench.md"), &md).context("writing bench.md")?;
+    std::fs::write(args.out.join("bench.csv"), report::csv(&header, &rows)).context("writing bench.csv")?;
+    println!("{md}");
+    eprintln!("wrote {0}/bench.md and {0}/bench.csv", args.out.display());
+    crate::cli::check_validation(&ctx)
+}
+
+/// UTC date and time of the run, from the system clock.
+fn date() -> String {
+    let secs =
+        std::time::SystemTime::now().duration_since(std::time::UNIX_EPOCH).map(|d| d.as_secs()).unwrap_or(0);
+    let (days, rem) = (secs / 86400, secs % 86400);
+    // Civil date from days since 1970-01-01 (Howard Hinnant's algorithm).
+    let z = days as i64 + 719_468;
+    let era = z.div_euclid(146_097);
+    let doe = z.rem_euclid(146_097);
+    let yoe = (doe - doe / 1460 + doe / 36_524 - doe / 146_096) / 365;
+    let doy = doe - (365 * yoe + yoe / 4 - yoe / 100);
+    let mp = (5 * doy + 2) / 153;
+    let d = doy - (153 * mp + 2) / 5 + 1;
+    let m = if mp < 10 { mp + 3 } else { mp - 9 };
+    let y = yoe + era * 400 + (m <= 2) as i64;
+    format!("{y:04}-{m:02}-{d:02} {:02}:{:02} UTC", rem / 3600, rem % 3600 / 60)
+}
