@@ -200,7 +200,7 @@ struct GpuObject {
 
 /// What an object binds at the spatial hash bindings.
 enum HashStorage {
-    Buffers(HashBuffers),
+    Buffers(Box<HashBuffers>),
     /// A 16-byte buffer bound at all five bindings of an object without a spatial hash. The
     /// shaders reach it only behind a flag, but may (statically) write it, so it is ordered
     /// like the state buffers; one per object, so objects' dispatches never share it.
@@ -580,7 +580,8 @@ impl GpuSim {
             unreachable!("one buffer per spec")
         };
         let hash = if o.self_distance.is_some() && self.self_collision == SelfCollisionMethod::Hash {
-            HashBuffers::new(ctx, &o.name, o.particle_count() as u64).map(HashStorage::Buffers)
+            HashBuffers::new(ctx, &o.name, o.particle_count() as u64)
+                .map(|h| HashStorage::Buffers(Box::new(h)))
         } else {
             Buffer::new(
                 ctx,
