@@ -42,11 +42,18 @@ pub fn run(args: &BenchArgs, options: &ContextOptions) -> Result<()> {
     );
     bar.set_message("copy bandwidth");
     let bandwidth = bench::bandwidth::measure(&ctx, 512 << 20, 21).context("measuring the copy bandwidth")?;
+    if bar.is_hidden() {
+        eprintln!("copy bandwidth: {:.0} GB/s", bandwidth.0 * 1e-9);
+    }
     bar.inc(1);
     let mut rows = Vec::new();
     for case in &cases {
         bar.set_message(case.name.clone());
         let m = bench::measure(&ctx, case, args.warmup as usize, args.frames as usize)?;
+        if bar.is_hidden() {
+            // Not a terminal (a log): a line per case instead of the bar.
+            eprintln!("[{}/{}] {}: {:.3} ms/frame", rows.len() + 1, cases.len(), case.name, m.total.median);
+        }
         let hashed = case.scene.cloths.iter().any(|c| c.self_collision)
             || case.scene.ropes.iter().any(|r| r.self_collision);
         rows.push((m, hashed));

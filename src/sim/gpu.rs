@@ -954,17 +954,22 @@ impl GpuSim {
     /// Per-stage GPU time of the last frame recorded with timestamp `slot`, after its fence.
     pub fn read_timing(&self, ctx: &GpuContext, slot: usize) -> Result<Option<FrameTiming>> {
         let Some(pool) = self.timestamps.get(slot) else { return Ok(None) };
-        let t = pool.read_ns(ctx, 2 * self.substeps + 2)?;
         let ms = |a: f64, b: f64| (b - a).max(0.0) * 1e-6;
+        let last = 1 + 2 * self.substeps;
         let mut timing = FrameTiming::default();
-        let last = t.len() - 1;
-        timing.total_ms = ms(t[0], t[last]);
         if self.stage_timing {
+            let t = pool.read_ns(ctx, last + 1)?;
             for s in 0..self.substeps as usize {
                 timing.physics_ms += ms(t[2 * s], t[2 * s + 1]);
                 timing.constraints_ms += ms(t[2 * s + 1], t[2 * s + 2]);
             }
-            timing.surface_ms = ms(t[last - 1], t[last]);
+            timing.surface_ms = ms(t[last as usize - 1], t[last as usize]);
+            timing.total_ms = ms(t[0], t[last as usize]);
+        } else {
+            // Only the first and the last timestamps were written.
+            let start = pool.read_range_ns(ctx, 0, 1)?;
+            let end = pool.read_range_ns(ctx, last, 1)?;
+            timing.total_ms = ms(start[0], end[0]);
         }
         Ok(Some(timing))
     }

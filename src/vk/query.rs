@@ -30,7 +30,15 @@ impl TimestampPool {
 
     /// Reads the first `count` timestamps in nanoseconds (after the submission's fence).
     pub fn read_ns(&self, ctx: &GpuContext, count: u32) -> Result<Vec<f64>, VkError> {
-        let mut ticks = vec![0u64; count.min(self.capacity) as usize];
+        self.read_range_ns(ctx, 0, count)
+    }
+
+    /// Reads timestamps `first..first + count` in nanoseconds. Every one of them must have been
+    /// written by a completed submission: the read waits for each (forever, for one never
+    /// written).
+    pub fn read_range_ns(&self, ctx: &GpuContext, first: u32, count: u32) -> Result<Vec<f64>, VkError> {
+        let count = count.min(self.capacity.saturating_sub(first));
+        let mut ticks = vec![0u64; count as usize];
         if ticks.is_empty() {
             return Ok(Vec::new());
         }
@@ -38,7 +46,7 @@ impl TimestampPool {
         unsafe {
             ctx.device.get_query_pool_results(
                 self.raw,
-                0,
+                first,
                 &mut ticks,
                 vk::QueryResultFlags::TYPE_64 | vk::QueryResultFlags::WAIT,
             )
