@@ -67,9 +67,12 @@ fn edit_break_restore_and_a_refused_header_change() {
     let tmp = tempfile::tempdir().unwrap();
     let dir = tmp.path().join("glsl");
     copy_dir(&Path::new(env!("CARGO_MANIFEST_DIR")).join("glsl"), &dir);
-    let physics = dir.join("physics.comp");
+    // The physics code lives in a header that physics.comp and fused.comp (the small-object
+    // path this scene takes) both include.
+    let physics = dir.join("include/physics_body.glsl");
     let original = std::fs::read_to_string(&physics).unwrap();
     assert!(original.contains("const float GRAVITY_SCALE = 1.0;"), "the physics shader's gravity knob");
+    let both = ["fused.comp".to_string(), "physics.comp".to_string()];
 
     let ctx = gpu();
     let mut shaders = ShaderSet::directory(&dir).unwrap();
@@ -85,10 +88,7 @@ fn edit_break_restore_and_a_refused_header_change() {
     // Edit a constant: gravity doubles, the state carries on.
     std::fs::write(&physics, original.replace("GRAVITY_SCALE = 1.0;", "GRAVITY_SCALE = 2.0;")).unwrap();
     let (changed, reloaded) = rig.reload();
-    assert_eq!(
-        (changed.as_slice(), reloaded.as_slice()),
-        (&["physics.comp".to_string()][..], &["physics.comp".to_string()][..])
-    );
+    assert_eq!((changed.as_slice(), reloaded.as_slice()), (&both[..], &both[..]));
     assert!(!rig.retired.is_empty(), "the old pipelines wait for their frames");
     let a = rig.acceleration();
     assert!(close(a, -19.62), "after the edit: {a}");
@@ -99,16 +99,18 @@ fn edit_break_restore_and_a_refused_header_change() {
     let (_, reloaded) = rig.reload();
     assert!(reloaded.is_empty(), "a broken shader must not be swapped in");
     let errors: Vec<_> = rig.shaders.errors().map(|(n, e)| (n.clone(), e.clone())).collect();
-    assert_eq!(errors.len(), 1, "{errors:?}");
+    assert_eq!(errors.len(), 2, "both shaders including the header fail: {errors:?}");
     let line = original.lines().position(|l| l.contains("vec3 v_new = v + force")).unwrap() + 1;
-    assert!(errors[0].1.contains(&format!("physics.comp:{line}:")), "file:line in {:?}", errors[0].1);
+    for (_, e) in &errors {
+        assert!(e.contains(&format!("physics_body.glsl:{line}:")), "file:line in {e:?}");
+    }
     let a = rig.acceleration();
     assert!(close(a, -19.62), "the last good pipeline still runs: {a}");
 
     // Restoring the file recovers and clears the error.
     std::fs::write(&physics, &original).unwrap();
     let (_, reloaded) = rig.reload();
-    assert_eq!(reloaded, ["physics.comp"]);
+    assert_eq!(reloaded, both);
     assert_eq!(rig.shaders.errors().count(), 0);
     let a = rig.acceleration();
     assert!(close(a, -9.81), "after restoring: {a}");

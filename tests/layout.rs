@@ -22,8 +22,9 @@ fn a_shifted_member_is_refused() {
     let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("glsl");
     let tmp = tempfile::tempdir().unwrap();
     std::fs::create_dir(tmp.path().join("include")).unwrap();
-    for f in ["layout.glsl", "bindings.glsl", "springs.glsl"] {
-        std::fs::copy(dir.join("include").join(f), tmp.path().join("include").join(f)).unwrap();
+    for entry in std::fs::read_dir(dir.join("include")).unwrap() {
+        let entry = entry.unwrap();
+        std::fs::copy(entry.path(), tmp.path().join("include").join(entry.file_name())).unwrap();
     }
     std::fs::copy(dir.join("physics.comp"), tmp.path().join("physics.comp")).unwrap();
     let header = tmp.path().join("include/layout.glsl");

@@ -31,7 +31,7 @@ struct Globals {
     float wind_cos_att;                        // cos of the half-angle where the force reaches 0
     uint wind_enabled;                         // 0 or 1
     uint sphere_count;                         // spheres[] entries in use
-    uint pad0;
+    uint substeps;                             // per frame (the fused shader loops over them)
 };
 
 struct ObjectParams {

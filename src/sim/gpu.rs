@@ -66,7 +66,7 @@ pub struct ObjectState {
 
 /// The compute pipelines: (shader, specialization constants) per slot of `Pipelines::list`.
 /// The step shaders take their workgroup shape; the scan takes its phase.
-const PIPELINE_SPECS: [(&str, &[u32]); 10] = [
+const PIPELINE_SPECS: [(&str, &[u32]); 11] = [
     ("physics.comp", &CLOTH_GROUP),
     ("physics.comp", &[ROPE_GROUP, 1]),
     ("constraints.comp", &CLOTH_GROUP),
@@ -77,7 +77,12 @@ const PIPELINE_SPECS: [(&str, &[u32]); 10] = [
     ("hash_scan.comp", &[1]),
     ("hash_scan.comp", &[2]),
     ("hash_scatter.comp", &[]),
+    ("fused.comp", &[]),
 ];
+
+/// Objects of at most this many particles (and no spatial hash) run all of a frame's substeps
+/// in one single-workgroup dispatch (`fused.comp`, 1024 threads, a few particles each).
+pub const FUSED_MAX: u32 = 4096;
 
 struct Pipelines {
     /// One per entry of `PIPELINE_SPECS`.
@@ -174,6 +179,10 @@ impl Pipelines {
 
     fn hash_scatter(&self) -> &ComputePipeline {
         &self.list[9]
+    }
+
+    fn fused(&self) -> &ComputePipeline {
+        &self.list[10]
     }
 
     fn destroy(self, ctx: &GpuContext) {
@@ -276,6 +285,8 @@ pub struct GpuSim {
     timestamps: Vec<TimestampPool>,
     self_collision: SelfCollisionMethod,
     stage_timing: bool,
+    /// Small objects run their substeps fused into one dispatch (see `FUSED_MAX`).
+    fused: bool,
     substeps: u32,
     frame_dt: f64,
     frames: u64,
@@ -367,7 +378,7 @@ fn globals(model: &SimModel) -> Globals {
         wind_cos_att: wind.map(|w| w.cos_att as f32).unwrap_or(1.0),
         wind_enabled: wind.is_some() as u32,
         sphere_count: model.spheres.len() as u32,
-        pad0: 0,
+        substeps: model.substeps,
     }
 }
 
@@ -524,6 +535,7 @@ impl GpuSim {
             timestamps,
             self_collision: model.self_collision,
             stage_timing: true,
+            fused: true,
             substeps: model.substeps,
             frame_dt: model.frame_dt,
             frames: 0,
@@ -821,9 +833,35 @@ impl GpuSim {
             );
         }
         let stages = self.stage_timing;
+        // Small objects: every substep in one dispatch each. The state ends in A, as on the
+        // per-stage path; the barrier orders it (and B) for the surface stage and next frame.
+        let fused: Vec<&GpuObject> = self.objects.iter().filter(|o| self.is_fused(o)).collect();
+        for o in &fused {
+            rec.dispatch(self.pipelines.fused(), o.sets[0], [1, 1, 1]);
+        }
+        if !fused.is_empty() {
+            rec.barrier(
+                &fused
+                    .iter()
+                    .flat_map(|o| {
+                        let placeholder = match &o.hash {
+                            HashStorage::Placeholder(b) => Some(b),
+                            HashStorage::Buffers(_) => None,
+                        };
+                        [&o.state[0], &o.state[1]].into_iter().chain(placeholder).map(|b| {
+                            BufferBarrier::new(b, Access::ComputeReadWrite, Access::ComputeReadWrite)
+                        })
+                    })
+                    .collect::<Vec<_>>(),
+            );
+        }
+        let stepped = fused.len() < self.objects.len();
         for s in 0..self.substeps {
+            if !stepped {
+                break;
+            }
             rec.barrier(&self.hash_barriers_at_physics(true));
-            for o in &self.objects {
+            for o in self.objects.iter().filter(|o| !self.is_fused(o)) {
                 rec.dispatch(self.pipelines.physics(o.kind), o.sets[0], o.step_groups);
             }
             if let Some(pool) = ts.filter(|_| stages) {
@@ -833,13 +871,20 @@ impl GpuSim {
             after_physics.extend(self.hash_barriers_at_physics(false));
             rec.barrier(&after_physics);
             self.record_hash_build(rec);
-            for o in &self.objects {
+            for o in self.objects.iter().filter(|o| !self.is_fused(o)) {
                 rec.dispatch(self.pipelines.constraints(o.kind), o.sets[1], o.step_groups);
             }
             if let Some(pool) = ts.filter(|_| stages) {
                 rec.timestamp(pool, 2 + 2 * s);
             }
             rec.barrier(&self.ping_pong_barriers(0));
+        }
+        if let Some(pool) = ts.filter(|_| stages && !stepped) {
+            // All fused: the simulation time counts as physics, the stages are not separable.
+            for s in 0..self.substeps {
+                rec.timestamp(pool, 1 + 2 * s);
+                rec.timestamp(pool, 2 + 2 * s);
+            }
         }
         // The previous frame's consumer may still read the surface: order it before the rewrite.
         let surfaces = |src, dst| -> Vec<_> {
@@ -867,6 +912,16 @@ impl GpuSim {
         changed: &[String],
     ) -> (Vec<String>, Vec<Retired>) {
         self.pipelines.reload(ctx, &self.layout, shaders, changed)
+    }
+
+    /// With `false`, every object takes the per-stage path (the reference for the fused one).
+    pub fn set_fused(&mut self, on: bool) {
+        self.fused = on;
+    }
+
+    /// Whether object `o` runs fused substeps.
+    fn is_fused(&self, o: &GpuObject) -> bool {
+        self.fused && o.particles <= FUSED_MAX && matches!(o.hash, HashStorage::Placeholder(_))
     }
 
     /// With `false`, frames carry only a start and an end timestamp (the per-stage timestamps
@@ -924,6 +979,7 @@ impl GpuSim {
     fn ping_pong_barriers(&self, written: usize) -> Vec<BufferBarrier<'_>> {
         self.objects
             .iter()
+            .filter(|o| !self.is_fused(o))
             .flat_map(|o| {
                 let placeholder = match &o.hash {
                     HashStorage::Placeholder(b) => {

@@ -62,7 +62,7 @@ gpu_struct!(
     wind_cos_att: f32,
     wind_enabled: u32,
     sphere_count: u32,
-    pad0: u32,
+    substeps: u32,
 });
 
 gpu_struct!(

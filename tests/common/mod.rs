@@ -173,7 +173,19 @@ pub fn compare(
     frames: usize,
     mode: Mode,
 ) -> (Deviation, Vec<ObjectState>) {
+    compare_path(ctx, model, frames, mode, true)
+}
+
+/// `compare` with the fused small-object path on or off (off: every object per stage).
+pub fn compare_path(
+    ctx: &GpuContext,
+    model: &SimModel,
+    frames: usize,
+    mode: Mode,
+    fused: bool,
+) -> (Deviation, Vec<ObjectState>) {
     let mut gpu = GpuSim::new(ctx, model).expect("creating the GPU simulation");
+    gpu.set_fused(fused);
     let mut cpu = CpuSim::new(model);
     let mut worst = Deviation::default();
     let mut last = Vec::new();
