@@ -81,8 +81,11 @@ const PIPELINE_SPECS: [(&str, &[u32]); 11] = [
 ];
 
 /// Objects of at most this many particles (and no spatial hash) run all of a frame's substeps
-/// in one single-workgroup dispatch (`fused.comp`, 1024 threads, a few particles each).
-pub const FUSED_MAX: u32 = 4096;
+/// in one single-workgroup dispatch (`fused.comp`). Measured on an H100 with the limit at
+/// 4096 (docs/bench/h100/bench-fused-up-to-4096.md): fused wins at 256 particles (0.111 vs
+/// 0.136 ms per frame), breaks even at 1024 and loses at 2500 (0.606 vs 0.191 ms), where one
+/// workgroup on one SM, reading neighbours through L2, is slower than a dispatch per stage.
+pub const FUSED_MAX: u32 = 512;
 
 struct Pipelines {
     /// One per entry of `PIPELINE_SPECS`.
