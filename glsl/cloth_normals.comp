@@ -1,7 +1,8 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
 // Surface stage for cloth, once per frame after the last substep: angle-weighted smoothed
-// normals from the final positions. Reads p_in (the state buffer), writes surface[].
+// normals from the final positions, and the runtime guard. Reads p_in (the state buffer),
+// writes surface[] and the guard.
 #include "bindings.glsl"
 #include "springs.glsl"
 
@@ -11,6 +12,7 @@ void main() {
     uvec2 cell = gl_GlobalInvocationID.xy;
     if (cell.x >= obj.dims.x || cell.y >= obj.dims.y) return;
     uint i = cell.x + cell.y * obj.dims.x;
+    guard_check(i, p_in[i]);
     vec3 x = p_in[i].pos.xyz;
 
     // Edges to the structural neighbours in turning order (+column, -row, -column, +row); each

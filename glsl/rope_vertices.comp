@@ -2,7 +2,8 @@
 #extension GL_GOOGLE_include_directive : require
 // Surface stage for ropes, once per frame: ROPE_RING tube vertices around each node, on a frame
 // built from the directions to the previous and next nodes (the paper's section IV-C).
-// Reads p_in (the state buffer), writes surface[node * ROPE_RING + k]. One thread per vertex.
+// Reads p_in (the state buffer), writes surface[node * ROPE_RING + k] and the runtime guard
+// (first vertex of each node). One thread per vertex.
 #include "bindings.glsl"
 
 layout(local_size_x = 64, local_size_y = 1, local_size_z = 1) in;
@@ -19,6 +20,7 @@ void main() {
     uint node = vtx / ROPE_RING;
     uint k = vtx % ROPE_RING;
 
+    if (k == 0u) guard_check(node, p_in[node]);
     vec3 x = p_in[node].pos.xyz;
     vec3 prev = p_in[node > 0u ? node - 1u : node].pos.xyz;
     vec3 next = p_in[node + 1u < nodes ? node + 1u : node].pos.xyz;

@@ -12,4 +12,6 @@ pub mod exit {
     pub const BAD_INPUT: i32 = 2;
     /// Anything else: no device, device lost, I/O failure.
     pub const FAILURE: i32 = 1;
+    /// The runtime guard stopped an unstable simulation.
+    pub const UNSTABLE: i32 = 3;
 }

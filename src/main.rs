@@ -1,5 +1,6 @@
 //! The `msdsim` binary: parses the command line, runs it, and turns errors into a one-line
-//! message and an exit code (2: bad input, 1: other failures). No panic reaches the user.
+//! message and an exit code (2: bad input, 3: the runtime guard stopped an unstable
+//! simulation, 1: other failures). No panic reaches the user.
 
 use clap::Parser;
 use msdsim::error::{exit, UserError};
@@ -17,7 +18,9 @@ fn main() {
         Ok(Err(e)) => {
             let line = format!("{e:#}").replace('\n', " ");
             eprintln!("msdsim: error: {line}");
-            if e.chain().any(|c| c.is::<UserError>() || is_selector_error(c)) {
+            if e.chain().any(|c| c.is::<msdsim::sim::stability::GuardTrip>()) {
+                exit::UNSTABLE
+            } else if e.chain().any(|c| c.is::<UserError>() || is_selector_error(c)) {
                 exit::BAD_INPUT
             } else {
                 exit::FAILURE

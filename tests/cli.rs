@@ -177,3 +177,25 @@ fn no_vulkan_device_is_a_clear_failure() {
     assert!(stderr.contains("no usable Vulkan device"), "unclear message: {stderr}");
     assert!(!stderr.contains("panicked"), "panicked: {stderr}");
 }
+
+/// An unstable preset (springs far too stiff for the substep) is stopped by the runtime guard:
+/// exit code 3 and one line that says what happened and what to change.
+#[test]
+fn an_unstable_scene_exits_3_with_advice() {
+    let dir = tempfile::tempdir().unwrap();
+    let unstable = GOOD
+        .replace(
+            "stiffness = { structural = 100.0, shear = 20.0, bending = 5.0 }",
+            "stiffness = { structural = 50000.0, shear = 20.0, bending = 5.0 }",
+        )
+        .replace("mass = 0.01\nstiffness = {", "mass = 0.0001\nstiffness = {");
+    let p = write(dir.path(), "unstable.toml", &unstable);
+    let out = msdsim(&["simulate", "--preset", &p, "--frames", "60", "--quiet"]);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert_eq!(out.status.code(), Some(3), "stderr: {stderr}");
+    assert_eq!(stderr.lines().count(), 1, "{stderr}");
+    assert!(stderr.contains("cloth 'c'") && stderr.contains("substeps"), "{stderr}");
+    assert!(!stderr.to_lowercase().contains("validation") && !stderr.contains("panicked"), "{stderr}");
+    assert!(stdout.contains("PAST IT"), "the prediction is printed before the run:\n{stdout}");
+}

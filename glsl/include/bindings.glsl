@@ -23,6 +23,18 @@ layout(std430, set = 0, binding = 7) buffer HashCounts { uint counts[]; };      
 layout(std430, set = 0, binding = 8) buffer HashStarts { uint starts[]; };       // per bucket + 1: first slot in `sorted` (the last: the total)
 layout(std430, set = 0, binding = 9) buffer HashSorted { vec4 sorted[]; };       // by bucket: xyz position, w index bits
 layout(std430, set = 0, binding = 10) buffer HashBlocks { uint block_sums[]; };  // scan: per-block totals
+// The runtime guard of the object, read by the host after each frame.
+layout(std430, set = 0, binding = 11) buffer GuardBuf { uint guard_flags; uint guard_first; }; // GUARD_* bits, lowest bad index
+
+// Flags particle i when its state is non-finite or runs away (called once per frame).
+void guard_check(uint i, Particle p) {
+    bool bad = any(isnan(p.pos.xyz)) || any(isinf(p.pos.xyz)) || any(isnan(p.vel.xyz)) || any(isinf(p.vel.xyz));
+    uint flag = bad ? GUARD_NON_FINITE : (dot(p.vel.xyz, p.vel.xyz) > g.guard_speed * g.guard_speed ? GUARD_RUNAWAY : 0u);
+    if (flag != 0u) {
+        atomicOr(guard_flags, flag);
+        atomicMin(guard_first, i);
+    }
+}
 
 uint particle_count() { return obj.dims.x * obj.dims.y; }
 bool is_pinned(uint i) { return p_in[i].pos.w > 0.5; }

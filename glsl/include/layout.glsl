@@ -32,7 +32,15 @@ struct Globals {
     uint wind_enabled;                         // 0 or 1
     uint sphere_count;                         // spheres[] entries in use
     uint substeps;                             // per frame (the fused shader loops over them)
+    float guard_speed;                         // a particle faster than this [m/s] has run away
+    uint pad1;
+    uint pad2;
+    uint pad3;
 };
+
+// Bits of the runtime guard (GuardBuf.flags).
+#define GUARD_NON_FINITE 1u   // a position or velocity is NaN or infinite
+#define GUARD_RUNAWAY    2u   // a speed above Globals.guard_speed
 
 struct ObjectParams {
     uvec2 dims;            // grid columns, rows (a rope is nodes x 1)

@@ -709,17 +709,25 @@ impl Viewer {
     }
 
     fn read_timings(&mut self, slot: usize) -> Result<()> {
-        let frame = &self.frames[slot];
-        if !frame.used {
+        let (used, simulated) = (self.frames[slot].used, self.frames[slot].simulated);
+        if !used {
             return Ok(());
         }
-        if frame.simulated {
-            self.stats.sim = self.host().sim().read_timing(&self.ctx, slot)?;
-        }
-        if let Some(pool) = &frame.timestamps {
+        if let Some(pool) = &self.frames[slot].timestamps {
             let t = pool.read_ns(&self.ctx, 3)?;
             self.stats.render_ms = Some((t[1] - t[0]).max(0.0) * 1e-6);
             self.stats.ui_ms = Some((t[2] - t[1]).max(0.0) * 1e-6);
+        }
+        if simulated {
+            self.stats.sim = self.host().sim().read_timing(&self.ctx, slot)?;
+            // The runtime guard: an unstable simulation pauses with what happened and what to
+            // change. (The guard is shared by the frames in flight; a trip the other frame sets
+            // while this one clears it is reported by the next frame, since the state stays bad.)
+            let trip = self.host.as_mut().expect("host").sim_mut().check_guard()?;
+            if let Some(trip) = trip {
+                self.editor.paused = true;
+                self.message(trip.to_string(), true);
+            }
         }
         Ok(())
     }

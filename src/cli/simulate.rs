@@ -4,6 +4,7 @@ use crate::error::UserError;
 use crate::scene;
 use crate::sim::gpu::{self, FrameTiming, GpuSim};
 use crate::sim::model::ObjectKind;
+use crate::sim::stability;
 use crate::vk::{ContextOptions, GpuContext};
 use anyhow::{Context as _, Result};
 use clap::Args;
@@ -71,6 +72,22 @@ pub fn run(args: &SimulateArgs, options: &ContextOptions) -> Result<()> {
         model.substeps,
         model.dt() * 1e3
     );
+    for p in stability::predict(&model) {
+        let dt = model.dt();
+        let verdict = if dt <= p.dt_max {
+            "within it".to_string()
+        } else {
+            format!("PAST IT: expect a blow-up; use at least {} substeps", p.min_substeps(model.frame_dt))
+        };
+        println!(
+            "stability: {} '{}': w_max <= {:.0} rad/s, explicit limit dt <= {:.3} ms; substep {:.3} ms is {verdict}",
+            p.kind.label(),
+            p.name,
+            p.omega_max,
+            p.dt_max * 1e3,
+            dt * 1e3
+        );
+    }
     let mut sim = GpuSim::new(&ctx, &model)?;
     let result = simulate(&ctx, &mut sim, args, &model, out);
     sim.destroy(&ctx);

@@ -46,6 +46,7 @@ pub fn to_model(scene: &Scene) -> SimModel {
             .collect(),
         objects: scene.cloths.iter().map(cloth).chain(scene.ropes.iter().map(rope)).collect(),
         self_collision: scene.sim.self_collision,
+        max_speed: scene.sim.max_speed,
     }
 }
 

@@ -47,6 +47,9 @@ pub struct SimSettings {
     /// (every pair, O(N^2), the reference).
     #[serde(default)]
     pub self_collision: crate::sim::model::SelfCollisionMethod,
+    /// The runtime guard stops the simulation when a particle moves faster than this [m/s].
+    #[serde(default = "defaults::max_speed")]
+    pub max_speed: f64,
 }
 
 impl Default for SimSettings {
@@ -56,6 +59,7 @@ impl Default for SimSettings {
             frame_dt: defaults::frame_dt(),
             gravity: defaults::gravity(),
             self_collision: Default::default(),
+            max_speed: defaults::max_speed(),
         }
     }
 }
@@ -291,6 +295,9 @@ mod defaults {
     }
     pub fn gravity() -> [f64; 3] {
         [0.0, -9.81, 0.0]
+    }
+    pub fn max_speed() -> f64 {
+        100.0
     }
     pub fn wind_direction() -> [f64; 3] {
         [0.0, 0.0, -1.0]

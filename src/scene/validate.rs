@@ -67,6 +67,7 @@ pub fn check(scene: &Scene) -> Check {
         return Err(format!("sim.frame_dt = {}: must be > 0 and <= 1 (s)", s.frame_dt));
     }
     vector("sim.gravity", s.gravity)?;
+    positive("sim.max_speed", s.max_speed, "m/s")?;
 
     let w = &scene.wind;
     vector("wind.origin", w.origin)?;

@@ -19,9 +19,11 @@
 //! barrier back to compute, so frames recorded after them need no barrier of their own.
 
 use super::gpu_types::{
-    Globals, ObjectParams, Particle, SurfaceVertex, OBJ_SELF_COLLISION, OBJ_SELF_HASH, OBJ_STRETCH_LIMIT,
+    Globals, ObjectParams, Particle, SurfaceVertex, GUARD_NON_FINITE, OBJ_SELF_COLLISION, OBJ_SELF_HASH,
+    OBJ_STRETCH_LIMIT,
 };
 use super::model::{ObjectKind, ObjectModel, ObjectShape, SelfCollisionMethod, SimModel};
+use super::stability::GuardTrip;
 use crate::error::UserError;
 use crate::shaders::ShaderSet;
 use crate::vk::{
@@ -35,7 +37,9 @@ use std::collections::HashMap;
 const CLOTH_GROUP: [u32; 2] = [16, 16];
 const ROPE_GROUP: u32 = 64;
 /// Bindings per set, in the order of `glsl/include/bindings.glsl`.
-const BINDINGS: u32 = 11;
+const BINDINGS: u32 = 12;
+/// A cleared guard: no flags, no flagged particle.
+const GUARD_CLEAR: [u32; 4] = [0, u32::MAX, 0, 0];
 /// Spatial hash table sizes: the scan handles 8192 buckets per block and 8192 blocks.
 const SCAN_BLOCK: u64 = 8192;
 const MAX_TABLE: u64 = SCAN_BLOCK * SCAN_BLOCK;
@@ -206,6 +210,8 @@ struct GpuObject {
     surface: Buffer,
     /// The spatial hash, or a placeholder bound in its place.
     hash: HashStorage,
+    /// The runtime guard (flags, first flagged particle), host-visible, read after each frame.
+    guard: Buffer,
     /// [A -> B (physics), B -> A (constraints, hash passes); surface uses set 0 (reads A)].
     sets: [BindingSet; 2],
 }
@@ -295,6 +301,8 @@ pub struct GpuSim {
     frames: u64,
     /// Particle writes (object, index, value) applied at the start of the next recorded frame.
     pending_writes: Vec<(usize, u32, Particle)>,
+    /// The model the simulation runs, without particles (for the guard's reports).
+    model: SimModel,
 }
 
 /// Bytes of GPU memory an object needs: two state buffers, the surface, the parameters (and
@@ -382,6 +390,10 @@ fn globals(model: &SimModel) -> Globals {
         wind_enabled: wind.is_some() as u32,
         sphere_count: model.spheres.len() as u32,
         substeps: model.substeps,
+        guard_speed: model.max_speed as f32,
+        pad1: 0,
+        pad2: 0,
+        pad3: 0,
     }
 }
 
@@ -543,6 +555,7 @@ impl GpuSim {
             frame_dt: model.frame_dt,
             frames: 0,
             pending_writes: Vec::new(),
+            model: model.without_particles(),
         };
         // From here `sim` owns everything created; on error it is destroyed whole.
         match sim.populate(ctx, model) {
@@ -615,14 +628,28 @@ impl GpuSim {
                 return Err(e.context(context()));
             }
         };
+        let guard =
+            Buffer::new(ctx, &format!("{}.guard", o.name), 16, BufferUsage::STORAGE, MemoryKind::Readback);
+        let mut guard = match guard {
+            Ok(g) => g,
+            Err(e) => {
+                [params, a, b, surface].into_iter().for_each(|b| b.destroy(ctx));
+                match hash {
+                    HashStorage::Buffers(h) => h.destroy(ctx),
+                    HashStorage::Placeholder(p) => p.destroy(ctx),
+                }
+                return Err(anyhow::Error::new(e).context(context()));
+            }
+        };
         let sets = (|| -> Result<[BindingSet; 2], VkError> {
+            guard.write(0, &GUARD_CLEAR)?;
             params.write(0, &[object_params(o, self.self_collision)])?;
             let [cell_rank, counts, starts, sorted, blocks] = match &hash {
                 HashStorage::Buffers(h) => h.buffers(),
                 HashStorage::Placeholder(p) => [p; 5],
             };
             let shared = [&self.globals, &params];
-            let tail = [&self.spheres, &surface, cell_rank, counts, starts, sorted, blocks];
+            let tail = [&self.spheres, &surface, cell_rank, counts, starts, sorted, blocks, &guard];
             let set = |arena: &mut DescriptorArena, from: &Buffer, to: &Buffer| {
                 let bindings: Vec<&Buffer> =
                     shared.iter().copied().chain([from, to]).chain(tail.iter().copied()).collect();
@@ -643,10 +670,11 @@ impl GpuSim {
                 state: [a, b],
                 surface,
                 hash,
+                guard,
                 sets,
             }),
             Err(e) => {
-                [params, a, b, surface].into_iter().for_each(|b| b.destroy(ctx));
+                [params, a, b, surface, guard].into_iter().for_each(|b| b.destroy(ctx));
                 match hash {
                     HashStorage::Buffers(h) => h.destroy(ctx),
                     HashStorage::Placeholder(p) => p.destroy(ctx),
@@ -900,7 +928,11 @@ impl GpuSim {
         if let Some(pool) = ts {
             rec.timestamp(pool, 1 + 2 * self.substeps);
         }
-        rec.barrier(&surfaces(Access::ComputeWrite, surface_consumer));
+        let mut end = surfaces(Access::ComputeWrite, surface_consumer);
+        end.extend(
+            self.objects.iter().map(|o| BufferBarrier::new(&o.guard, Access::ComputeWrite, Access::HostRead)),
+        );
+        rec.barrier(&end);
         self.frames += 1;
     }
 
@@ -961,6 +993,7 @@ impl GpuSim {
             gpu.params.write(0, &[object_params(o, model.self_collision)])?;
         }
         self.frame_dt = model.frame_dt;
+        self.model = model.without_particles();
         Ok(())
     }
 
@@ -1007,7 +1040,25 @@ impl GpuSim {
         self.record_frame(&mut rec, Access::ComputeReadWrite, 0);
         self.slot.submit(ctx, rec)?;
         self.slot.wait(ctx)?;
+        if let Some(trip) = self.check_guard()? {
+            return Err(trip.into());
+        }
         self.read_timing(ctx, 0)
+    }
+
+    /// Reads the runtime guard of every object (after the fence of the last recorded frame):
+    /// the first object whose state went non-finite or ran away, as a report with advice. The
+    /// guard is cleared, so a resumed simulation reports again only if it trips again.
+    pub fn check_guard(&mut self) -> Result<Option<GuardTrip>> {
+        for (i, o) in self.objects.iter_mut().enumerate() {
+            let [flags, first] = o.guard.read::<u32>(2)?[..] else { unreachable!("two words read") };
+            if flags != 0 {
+                o.guard.write(0, &GUARD_CLEAR)?;
+                let time = self.frames as f64 * self.frame_dt;
+                return Ok(Some(GuardTrip::new(&self.model, i, first, flags & GUARD_NON_FINITE != 0, time)));
+            }
+        }
+        Ok(None)
     }
 
     /// Per-stage GPU time of the last frame recorded with timestamp `slot`, after its fence.
@@ -1118,6 +1169,7 @@ impl GpuSim {
             a.destroy(ctx);
             b.destroy(ctx);
             o.surface.destroy(ctx);
+            o.guard.destroy(ctx);
             match o.hash {
                 HashStorage::Buffers(h) => h.destroy(ctx),
                 HashStorage::Placeholder(b) => b.destroy(ctx),

@@ -52,7 +52,7 @@ gpu_struct!(
 
 gpu_struct!(
     /// Scene-wide parameters.
-    Globals, size 64, {
+    Globals, size 80, {
     gravity: [f32; 3],
     dt: f32,
     wind_origin: [f32; 3],
@@ -63,7 +63,15 @@ gpu_struct!(
     wind_enabled: u32,
     sphere_count: u32,
     substeps: u32,
+    guard_speed: f32,
+    pad1: u32,
+    pad2: u32,
+    pad3: u32,
 });
+
+/// Runtime guard bits (`GUARD_*` in the header).
+pub const GUARD_NON_FINITE: u32 = 1;
+pub const GUARD_RUNAWAY: u32 = 2;
 
 gpu_struct!(
     /// Per-object parameters.

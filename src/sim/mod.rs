@@ -5,3 +5,4 @@ pub mod cpu;
 pub mod gpu;
 pub mod gpu_types;
 pub mod model;
+pub mod stability;

@@ -134,12 +134,47 @@ pub struct SimModel {
     pub spheres: Vec<SphereModel>,
     pub objects: Vec<ObjectModel>,
     pub self_collision: SelfCollisionMethod,
+    /// The runtime guard stops a simulation whose particles move faster than this [m/s].
+    pub max_speed: f64,
 }
 
 impl SimModel {
     /// Length of one substep [s].
     pub fn dt(&self) -> f64 {
         self.frame_dt / self.substeps as f64
+    }
+
+    /// The model without its particle arrays (initial positions, velocities, pins): what is
+    /// needed to describe the simulation, at a fraction of the size.
+    pub fn without_particles(&self) -> SimModel {
+        SimModel {
+            objects: self
+                .objects
+                .iter()
+                .map(|o| ObjectModel {
+                    kind: o.kind,
+                    name: o.name.clone(),
+                    dims: o.dims,
+                    spacing: o.spacing,
+                    stiffness: o.stiffness,
+                    rest_scale: o.rest_scale,
+                    damping: o.damping,
+                    mass: o.mass,
+                    drag: o.drag,
+                    friction: o.friction,
+                    margin: o.margin,
+                    stretch_limit: o.stretch_limit,
+                    self_distance: o.self_distance,
+                    rope_radius: o.rope_radius,
+                    ring_weights: o.ring_weights,
+                    positions: Vec::new(),
+                    velocities: Vec::new(),
+                    pinned: Vec::new(),
+                })
+                .collect(),
+            spheres: self.spheres.clone(),
+            ..*self
+        }
     }
 }
 

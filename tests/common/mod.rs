@@ -96,6 +96,7 @@ pub fn scene(objects: Vec<ObjectModel>) -> SimModel {
         spheres: Vec::new(),
         objects,
         self_collision: Default::default(),
+        max_speed: 100.0,
     }
 }
 

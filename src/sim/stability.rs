@@ -1,0 +1,126 @@
+//! Stability: the predicted explicit limit of each object and the runtime guard's report.
+//!
+//! Prediction: for symplectic Euler a mode of angular frequency w is stable while w dt <= 2.
+//! The stiffness matrix of a spring network satisfies (Gershgorin) lambda_max <= max over
+//! particles of 2 * sum of the stiffnesses of its springs, so w_max <= sqrt(2 sum k / m); for a
+//! chain this is the exact highest mode (sqrt(4k/m)). Drag and damping are left out.
+
+use super::model::{ObjectKind, ObjectModel, SimModel};
+
+/// The predicted explicit limit of one object.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Prediction {
+    pub name: String,
+    pub kind: ObjectKind,
+    /// Upper bound of the highest angular frequency [rad/s].
+    pub omega_max: f64,
+    /// Largest stable substep, 2 / omega_max [s].
+    pub dt_max: f64,
+}
+
+impl Prediction {
+    /// Fewest substeps per frame that keep `frame_dt / substeps` within the limit.
+    pub fn min_substeps(&self, frame_dt: f64) -> u32 {
+        (frame_dt / self.dt_max).ceil().max(1.0) as u32
+    }
+}
+
+/// Sum of the spring stiffnesses of the best-connected particle [N/m].
+fn max_stiffness_sum(o: &ObjectModel) -> f64 {
+    let [cols, rows] = o.dims;
+    let count = |span: u32, reach: u32| {
+        if span > 2 * reach {
+            2.0
+        } else if span > reach {
+            1.0
+        } else {
+            0.0
+        }
+    };
+    let (x1, y1, x2, y2) = (count(cols, 1), count(rows, 1), count(cols, 2), count(rows, 2));
+    let shear = if cols > 1 && rows > 1 { 4.0f64.min(x1 * y1 * 2.0) } else { 0.0 };
+    o.stiffness[0] * (x1 + y1) + o.stiffness[1] * shear + o.stiffness[2] * (x2 + y2)
+}
+
+pub fn predict(model: &SimModel) -> Vec<Prediction> {
+    model
+        .objects
+        .iter()
+        .map(|o| {
+            let omega_max = (2.0 * max_stiffness_sum(o) / o.mass).sqrt();
+            Prediction {
+                name: o.name.clone(),
+                kind: o.kind,
+                omega_max,
+                dt_max: if omega_max > 0.0 { 2.0 / omega_max } else { f64::INFINITY },
+            }
+        })
+        .collect()
+}
+
+/// The runtime guard caught an object's state going non-finite or running away.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[error(
+    "{kind} '{name}' {what} at t = {time:.3} s (particle {particle}); the simulation stopped. {advice}",
+    kind = kind.label()
+)]
+pub struct GuardTrip {
+    pub name: String,
+    pub kind: ObjectKind,
+    /// First flagged particle (lowest index).
+    pub particle: u32,
+    pub what: String,
+    pub time: f64,
+    pub advice: String,
+}
+
+impl GuardTrip {
+    /// Builds the report: what happened and what to change.
+    pub fn new(model: &SimModel, object: usize, particle: u32, non_finite: bool, time: f64) -> Self {
+        let o = &model.objects[object];
+        let what = if non_finite {
+            "blew up (a position or velocity is no longer a finite number)".to_string()
+        } else {
+            format!("ran away (a particle moves faster than sim.max_speed = {} m/s)", model.max_speed)
+        };
+        let p = &predict(model)[object];
+        let dt = model.dt();
+        let advice = if dt > p.dt_max {
+            format!(
+                "The substep ({:.3} ms) is past the explicit stability limit predicted for it ({:.3} ms, w_max = {:.0} rad/s): \
+                 use at least {} substeps per frame (sim.substeps, now {}), or softer springs or heavier particles.",
+                dt * 1e3,
+                p.dt_max * 1e3,
+                p.omega_max,
+                p.min_substeps(model.frame_dt),
+                model.substeps
+            )
+        } else {
+            format!(
+                "The substep is within the predicted spring limit, so look at the constraints and contacts: \
+                 try more substeps (sim.substeps, now {}), a smaller stretch limit correction, or slower colliders.",
+                model.substeps
+            )
+        };
+        Self { name: o.name.clone(), kind: o.kind, particle, what, time, advice }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::scene;
+
+    #[test]
+    fn a_chain_predicts_its_exact_highest_mode() {
+        let mut s = scene::parse(
+            "[[rope]]\nname = \"r\"\nnodes = 50\nstart = [0, 0, 0]\nend = [1, 0, 0]\nmass = 0.01\nstiffness = 100.0\nradius = 0.01\n",
+            "t",
+            &[],
+        )
+        .unwrap();
+        s.ropes[0].bending_stiffness = 0.0;
+        let p = &predict(&scene::to_model(&s))[0];
+        assert!((p.omega_max - (4.0f64 * 100.0 / 0.01).sqrt()).abs() < 1e-9, "{p:?}");
+    }
+}
