@@ -371,6 +371,10 @@ impl Viewer {
     fn draw_items(&self) -> Vec<DrawItem> {
         let scene = self.host().scene();
         let f = |c: [f64; 3]| c.map(|x| x as f32);
+        let v = |c: [f64; 3]| Vec3::from_array(f(c));
+        let placed = |scale: Vec3, rotation: Quat, at: Vec3| {
+            Mat4::from_scale_rotation_translation(scale, rotation, at)
+        };
         let mut items = Vec::new();
         for (i, c) in scene.cloths.iter().enumerate() {
             items.push(DrawItem {
@@ -382,61 +386,31 @@ impl Viewer {
             });
         }
         for (j, r) in scene.ropes.iter().enumerate() {
-            let i = scene.cloths.len() + j;
-            items.push(DrawItem {
-                shape: Shape::Surface(i),
-                model: Mat4::IDENTITY,
-                front: f(r.color),
-                back: f(r.color),
-                lit: true,
-            });
+            items.push(DrawItem::solid(
+                Shape::Surface(scene.cloths.len() + j),
+                Mat4::IDENTITY,
+                f(r.color),
+                true,
+            ));
         }
         for s in &scene.spheres {
-            let model = Mat4::from_scale_rotation_translation(
-                Vec3::splat(s.radius as f32),
-                Quat::IDENTITY,
-                Vec3::from_array(s.center.map(|x| x as f32)),
-            );
-            items.push(DrawItem {
-                shape: Shape::Sphere,
-                model,
-                front: [0.45, 0.5, 0.58],
-                back: [0.45, 0.5, 0.58],
-                lit: true,
-            });
+            let model = placed(Vec3::splat(s.radius as f32), Quat::IDENTITY, v(s.center));
+            items.push(DrawItem::solid(Shape::Sphere, model, [0.45, 0.5, 0.58], true));
         }
-        let light = Vec3::from_array(scene.light.position.map(|x| x as f32));
-        items.push(DrawItem {
-            shape: Shape::Sphere,
-            model: Mat4::from_scale_rotation_translation(Vec3::splat(0.06), Quat::IDENTITY, light),
-            front: [1.0, 0.9, 0.5],
-            back: [1.0, 0.9, 0.5],
-            lit: false,
-        });
+        let light = placed(Vec3::splat(0.06), Quat::IDENTITY, v(scene.light.position));
+        items.push(DrawItem::solid(Shape::Sphere, light, [1.0, 0.9, 0.5], false));
         if scene.wind.enabled {
-            let dir = Vec3::from_array(scene.wind.direction.map(|x| x as f32)).normalize_or(Vec3::Z);
-            let model = Mat4::from_scale_rotation_translation(
+            let dir = v(scene.wind.direction).normalize_or(Vec3::Z);
+            let model = placed(
                 Vec3::new(0.12, 0.12, 0.35),
                 Quat::from_rotation_arc(Vec3::Z, dir),
-                Vec3::from_array(scene.wind.origin.map(|x| x as f32)),
+                v(scene.wind.origin),
             );
-            items.push(DrawItem {
-                shape: Shape::Cone,
-                model,
-                front: [0.25, 0.45, 0.95],
-                back: [0.25, 0.45, 0.95],
-                lit: true,
-            });
+            items.push(DrawItem::solid(Shape::Cone, model, [0.25, 0.45, 0.95], true));
         }
         if let Some(g) = self.input.grab {
-            let model = Mat4::from_scale_rotation_translation(Vec3::splat(0.015), Quat::IDENTITY, g.target);
-            items.push(DrawItem {
-                shape: Shape::Cube,
-                model,
-                front: [1.0, 0.85, 0.1],
-                back: [1.0, 0.85, 0.1],
-                lit: false,
-            });
+            let model = placed(Vec3::splat(0.015), Quat::IDENTITY, g.target);
+            items.push(DrawItem::solid(Shape::Cube, model, [1.0, 0.85, 0.1], false));
         }
         items
     }

@@ -36,6 +36,13 @@ pub struct DrawItem {
     pub lit: bool,
 }
 
+impl DrawItem {
+    /// One colour on both sides.
+    pub fn solid(shape: Shape, model: Mat4, color: [f32; 3], lit: bool) -> Self {
+        Self { shape, model, front: color, back: color, lit }
+    }
+}
+
 /// A mesh in host-visible buffers (small, written once).
 struct GpuMesh {
     vertices: Buffer,

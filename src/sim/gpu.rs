@@ -834,34 +834,15 @@ impl GpuSim {
                 t.dedup();
                 t
             };
-            rec.barrier(
-                &touched
-                    .iter()
-                    .map(|&o| {
-                        BufferBarrier::new(
-                            &objects[o].state[0],
-                            Access::ComputeReadWrite,
-                            Access::TransferWrite,
-                        )
-                    })
-                    .collect::<Vec<_>>(),
-            );
+            let around = |src, dst| -> Vec<BufferBarrier<'_>> {
+                touched.iter().map(|&o| BufferBarrier::new(&objects[o].state[0], src, dst)).collect()
+            };
+            rec.barrier(&around(Access::ComputeReadWrite, Access::TransferWrite));
             for (o, index, p) in self.pending_writes.drain(..) {
                 let size = std::mem::size_of::<Particle>() as u64;
                 rec.update_buffer(&objects[o].state[0], index as u64 * size, bytemuck::bytes_of(&p));
             }
-            rec.barrier(
-                &touched
-                    .iter()
-                    .map(|&o| {
-                        BufferBarrier::new(
-                            &objects[o].state[0],
-                            Access::TransferWrite,
-                            Access::ComputeReadWrite,
-                        )
-                    })
-                    .collect::<Vec<_>>(),
-            );
+            rec.barrier(&around(Access::TransferWrite, Access::ComputeReadWrite));
         }
         let stages = self.stage_timing;
         // Small objects: every substep in one dispatch each. The state ends in A, as on the
