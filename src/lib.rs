@@ -12,5 +12,6 @@ pub mod render;
 pub mod scene;
 pub mod shaders;
 pub mod sim;
+pub mod study;
 pub mod ui;
 pub mod vk;

@@ -199,3 +199,25 @@ fn an_unstable_scene_exits_3_with_advice() {
     assert!(!stderr.to_lowercase().contains("validation") && !stderr.contains("panicked"), "{stderr}");
     assert!(stdout.contains("PAST IT"), "the prediction is printed before the run:\n{stdout}");
 }
+
+/// `stability` sweeps stiffness x substeps and writes the CSV and the SVG map; the stiffest,
+/// coarsest cell is unstable and predicted so, the softest, finest one stable.
+#[test]
+fn stability_map_writes_csv_and_svg() {
+    let dir = tempfile::tempdir().unwrap();
+    let out_dir = dir.path().join("map");
+    let out = msdsim(&["stability", "--points", "3", "--frames", "10", "--out", out_dir.to_str().unwrap()]);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let csv = std::fs::read_to_string(out_dir.join("stability.csv")).unwrap();
+    let rows: Vec<&str> = csv.lines().filter(|l| !l.starts_with('#')).skip(1).collect();
+    assert_eq!(rows.len(), 9, "{csv}");
+    let stiffest_coarsest = rows.iter().find(|r| r.starts_with("100,1,")).expect("k x 100 at 1 substep");
+    assert!(
+        stiffest_coarsest.contains(",false,") && !stiffest_coarsest.ends_with("stable"),
+        "{stiffest_coarsest}"
+    );
+    let softest_finest = rows.iter().find(|r| r.starts_with("0.01,64,")).expect("k x 0.01 at 64 substeps");
+    assert!(softest_finest.ends_with(",true,stable"), "{softest_finest}");
+    let svg = std::fs::read_to_string(out_dir.join("stability.svg")).unwrap();
+    assert!(svg.starts_with("<svg") && svg.contains("predicted unstable"));
+}

@@ -2,6 +2,7 @@
 
 mod bench;
 mod simulate;
+mod stability;
 
 use crate::vk::{ContextOptions, GpuContext};
 use anyhow::Result;
@@ -34,6 +35,8 @@ pub enum Command {
     Simulate(simulate::SimulateArgs),
     /// Time a matrix of scenes with GPU timestamps; write bench.md and bench.csv.
     Bench(bench::BenchArgs),
+    /// Sweep stiffness against substeps and map where the simulation is stable (CSV + SVG).
+    Stability(stability::StabilityArgs),
     /// List the Vulkan devices and which one would be chosen.
     Devices,
 }
@@ -51,6 +54,7 @@ pub fn run(cli: Cli) -> Result<()> {
         Command::App(args) => args.run(&options),
         Command::Simulate(args) => simulate::run(&args, &options),
         Command::Bench(args) => bench::run(&args, &options),
+        Command::Stability(args) => stability::run(&args, &options),
         Command::Devices => {
             let ctx = GpuContext::new(&options)?;
             let (devices, skipped) = ctx.devices()?;
