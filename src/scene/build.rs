@@ -52,7 +52,7 @@ pub fn to_model(scene: &Scene) -> SimModel {
 
 fn cloth(c: &Cloth) -> ObjectModel {
     let [cols, rows] = c.resolution;
-    let spacing = [c.size[0] / (cols - 1) as f64, c.size[1] / (rows - 1) as f64];
+    let spacing = c.spacing();
     let down = match c.orientation {
         Orientation::Vertical => DVec3::NEG_Y,
         Orientation::Horizontal => DVec3::Z,
@@ -92,7 +92,7 @@ fn cloth(c: &Cloth) -> ObjectModel {
         stretch_limit: c.stretch_limit,
         self_distance: c
             .self_collision
-            .then(|| c.self_collision_distance.unwrap_or(0.5 * spacing[0].min(spacing[1]))),
+            .then(|| c.self_collision_distance.unwrap_or_else(|| c.default_self_collision_distance())),
         rope_radius: 0.0,
         ring_weights: default_ring_weights(),
         velocities: vec![DVec3::ZERO; n],

@@ -237,6 +237,19 @@ pub struct Cloth {
     pub back_color: [f64; 3],
 }
 
+impl Cloth {
+    /// Rest distance between grid neighbours along columns and rows [m].
+    pub fn spacing(&self) -> [f64; 2] {
+        [self.size[0] / (self.resolution[0] - 1) as f64, self.size[1] / (self.resolution[1] - 1) as f64]
+    }
+
+    /// The self-collision distance when none is given: half the smaller grid spacing [m].
+    pub fn default_self_collision_distance(&self) -> f64 {
+        let [x, y] = self.spacing();
+        0.5 * x.min(y)
+    }
+}
+
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Rope {

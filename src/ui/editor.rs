@@ -252,8 +252,7 @@ fn cloth_panel(ui: &Ui, c: &mut Cloth) {
     drag(ui, "collision margin [m]", &mut c.collision_margin, 0.001, 0.0, 10.0);
     ui.checkbox("self-collision", &mut c.self_collision);
     if c.self_collision {
-        let default =
-            0.5 * (c.size[0] / (c.resolution[0] - 1) as f64).min(c.size[1] / (c.resolution[1] - 1) as f64);
+        let default = c.default_self_collision_distance();
         optional(ui, "self-collision distance [m]", &mut c.self_collision_distance, default, 0.001, 10.0);
     }
     color(ui, "front colour", &mut c.color);
