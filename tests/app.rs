@@ -2,6 +2,9 @@
 //! synchronization validation: the app exits non-zero on any validation message or leaked
 //! allocation, so every run here also checks those.
 
+mod common;
+
+use common::copy_dir;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
@@ -176,17 +179,4 @@ fn the_app_reloads_an_edited_shader_and_survives_a_broken_one() {
     let status = child.wait().unwrap();
     assert!(status.success(), "the app failed ({status}):\n{log}");
     assert!(!log.contains("vulkan validation"), "validation messages:\n{log}");
-}
-
-fn copy_dir(from: &Path, to: &Path) {
-    std::fs::create_dir_all(to).unwrap();
-    for entry in std::fs::read_dir(from).unwrap() {
-        let entry = entry.unwrap();
-        let target = to.join(entry.file_name());
-        if entry.file_type().unwrap().is_dir() {
-            copy_dir(&entry.path(), &target);
-        } else {
-            std::fs::copy(entry.path(), target).unwrap();
-        }
-    }
 }

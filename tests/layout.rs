@@ -2,6 +2,8 @@
 //! compiled with: every member offset of every shared struct, in every embedded shader that
 //! uses it, and the array stride of arrays of it (the same check hot reload applies).
 
+mod common;
+
 use msdsim::shaders::{self, layout_check};
 
 #[test]
@@ -21,12 +23,7 @@ fn rust_mirrors_match_the_shader_layouts() {
 fn a_shifted_member_is_refused() {
     let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("glsl");
     let tmp = tempfile::tempdir().unwrap();
-    std::fs::create_dir(tmp.path().join("include")).unwrap();
-    for entry in std::fs::read_dir(dir.join("include")).unwrap() {
-        let entry = entry.unwrap();
-        std::fs::copy(entry.path(), tmp.path().join("include").join(entry.file_name())).unwrap();
-    }
-    std::fs::copy(dir.join("physics.comp"), tmp.path().join("physics.comp")).unwrap();
+    common::copy_dir(&dir, tmp.path());
     let header = tmp.path().join("include/layout.glsl");
     let text = std::fs::read_to_string(&header).unwrap();
     std::fs::write(&header, text.replace("    float mass; ", "    float extra; float mass; ")).unwrap();
