@@ -50,6 +50,56 @@ pub struct SimSettings {
     /// The runtime guard stops the simulation when a particle moves faster than this [m/s].
     #[serde(default = "defaults::max_speed")]
     pub max_speed: f64,
+    /// "symplectic_euler" (the paper's), "verlet", "xpbd", "implicit", or "auto": the cheapest
+    /// method and substep count that meets `tolerance`, from a short calibration.
+    #[serde(default)]
+    pub integrator: IntegratorChoice,
+    /// Solver iterations per substep (xpbd and implicit).
+    #[serde(default = "defaults::iterations")]
+    pub iterations: u32,
+    /// XPBD Jacobi relaxation factor, between 0 and 2.
+    #[serde(default = "defaults::one")]
+    pub relaxation: f64,
+    /// With integrator = "auto": the largest acceptable position error, as a fraction of the
+    /// object's size (RMS over particles, after the calibration time).
+    #[serde(default = "defaults::tolerance")]
+    pub tolerance: f64,
+}
+
+/// `sim.integrator`: a method, or "auto".
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum IntegratorChoice {
+    #[default]
+    SymplecticEuler,
+    Verlet,
+    Xpbd,
+    Implicit,
+    Auto,
+}
+
+impl IntegratorChoice {
+    /// The method, or None for "auto".
+    pub fn method(self) -> Option<crate::sim::model::Integrator> {
+        use crate::sim::model::Integrator;
+        match self {
+            IntegratorChoice::SymplecticEuler => Some(Integrator::SymplecticEuler),
+            IntegratorChoice::Verlet => Some(Integrator::Verlet),
+            IntegratorChoice::Xpbd => Some(Integrator::Xpbd),
+            IntegratorChoice::Implicit => Some(Integrator::Implicit),
+            IntegratorChoice::Auto => None,
+        }
+    }
+
+    pub fn from_method(m: crate::sim::model::Integrator) -> Self {
+        use crate::sim::model::Integrator;
+        match m {
+            Integrator::SymplecticEuler => IntegratorChoice::SymplecticEuler,
+            Integrator::Verlet => IntegratorChoice::Verlet,
+            Integrator::Xpbd => IntegratorChoice::Xpbd,
+            Integrator::Implicit => IntegratorChoice::Implicit,
+        }
+    }
 }
 
 impl Default for SimSettings {
@@ -60,6 +110,10 @@ impl Default for SimSettings {
             gravity: defaults::gravity(),
             self_collision: Default::default(),
             max_speed: defaults::max_speed(),
+            integrator: Default::default(),
+            iterations: defaults::iterations(),
+            relaxation: 1.0,
+            tolerance: defaults::tolerance(),
         }
     }
 }
@@ -311,6 +365,12 @@ mod defaults {
     }
     pub fn max_speed() -> f64 {
         100.0
+    }
+    pub fn iterations() -> u32 {
+        10
+    }
+    pub fn tolerance() -> f64 {
+        0.01
     }
     pub fn wind_direction() -> [f64; 3] {
         [0.0, 0.0, -1.0]

@@ -68,6 +68,18 @@ pub fn check(scene: &Scene) -> Check {
     }
     vector("sim.gravity", s.gravity)?;
     positive("sim.max_speed", s.max_speed, "m/s")?;
+    if !(1..=1000).contains(&s.iterations) {
+        return Err(format!("sim.iterations = {}: must be between 1 and 1000", s.iterations));
+    }
+    if !(s.relaxation > 0.0 && s.relaxation < 2.0) {
+        return Err(format!("sim.relaxation = {}: must be between 0 and 2 (exclusive)", s.relaxation));
+    }
+    if !(s.tolerance.is_finite() && s.tolerance > 0.0 && s.tolerance < 1.0) {
+        return Err(format!(
+            "sim.tolerance = {}: must be between 0 and 1 (a fraction of the object's size)",
+            s.tolerance
+        ));
+    }
 
     let w = &scene.wind;
     vector("wind.origin", w.origin)?;

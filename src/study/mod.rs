@@ -1,3 +1,4 @@
-//! Studies of the simulation's behaviour: the stability map (stiffness x substep sweep).
+//! Studies of the simulation's behaviour: the accuracy metric, the stability map.
 
+pub mod accuracy;
 pub mod stability_map;

@@ -97,6 +97,9 @@ pub fn scene(objects: Vec<ObjectModel>) -> SimModel {
         objects,
         self_collision: Default::default(),
         max_speed: 100.0,
+        integrator: Default::default(),
+        iterations: 10,
+        relaxation: 1.0,
     }
 }
 

@@ -2,10 +2,10 @@
 //! the GPU simulation. It follows the model's definition (below), not the shader code.
 //!
 //! One substep of each object:
-//! 1. Physics (symplectic Euler): for a free particle, F = m g + wind(x) - c v + sum over its
-//!    springs of [k (d - L) + b ((v_j - v_i) . u)] u, with u the unit vector to the neighbour, d
-//!    the distance and L the rest length; then v' = v + F/m dt, x' = x + v' dt. Pinned particles
-//!    keep their position and have zero velocity.
+//! 1. The integrator (`integrators.rs`, one of `model::Integrator`) advances the spring network:
+//!    forces F = m g + wind(x) - c v + sum over its springs of [k (d - L) + b ((v_j - v_i) . u)] u,
+//!    with u the unit vector to the neighbour, d the distance and L the rest length. Pinned
+//!    particles keep their position and have zero velocity.
 //! 2. Constraints, Jacobi on the physics result: each free particle sums (a) for every structural
 //!    and shear spring stretched past (1 + limit) L, half the excess towards the neighbour (all of
 //!    it when the neighbour is pinned), and (b) for every particle nearer than the self-collision
@@ -20,6 +20,10 @@
 //!
 //! Inputs are rounded to f32 once at construction, so the reference simulates exactly the scene
 //! the GPU receives; everything after that is f64.
+
+mod integrators;
+
+pub use integrators::{energy, max_strain};
 
 use super::gpu_types::ROPE_RING;
 use super::model::{ObjectKind, ObjectModel, SimModel, SphereModel, WindModel};
@@ -87,11 +91,13 @@ enum SpringType {
     Bending = 2,
 }
 
-/// A spring from one particle: the neighbour's index, the type, and the grid offset.
+/// A spring from one particle: the neighbour's index, the type, the grid offset, and its slot
+/// in the full list of 12 (the order of `glsl/include/springs.glsl`).
 struct Spring {
     other: usize,
     kind: SpringType,
     offset: (i64, i64),
+    slot: usize,
 }
 
 /// The springs of particle (c, r): structural to the 4 direct neighbours, shear to the 4
@@ -104,11 +110,16 @@ fn springs(o: &ObjectModel, c: i64, r: i64) -> Vec<Spring> {
         (SpringType::Shear, [(1, 1), (-1, -1), (1, -1), (-1, 1)]),
         (SpringType::Bending, [(2, 0), (-2, 0), (0, 2), (0, -2)]),
     ];
-    for (kind, offsets) in groups {
-        for (dc, dr) in offsets {
+    for (g, (kind, offsets)) in groups.into_iter().enumerate() {
+        for (k, (dc, dr)) in offsets.into_iter().enumerate() {
             let (nc, nr) = (c + dc, r + dr);
             if nc >= 0 && nr >= 0 && nc < cols && nr < rows {
-                out.push(Spring { other: (nc + nr * cols) as usize, kind, offset: (dc, dr) });
+                out.push(Spring {
+                    other: (nc + nr * cols) as usize,
+                    kind,
+                    offset: (dc, dr),
+                    slot: 4 * g + k,
+                });
             }
         }
     }
@@ -187,42 +198,12 @@ impl CpuSim {
     pub fn substep(&mut self) {
         let m = &self.model;
         for (o, state) in m.objects.iter().zip(&mut self.objects) {
-            let (px, pv) = physics(m, o, self.dt, &state.x, &state.v);
+            let (px, pv) = integrators::advance(m, o, self.dt, &state.x, &state.v);
             let (cx, cv) = constraints(m, o, self.dt, &px, &pv);
             state.x = cx;
             state.v = cv;
         }
     }
-}
-
-fn physics(m: &SimModel, o: &ObjectModel, dt: f64, x: &[DVec3], v: &[DVec3]) -> (Vec<DVec3>, Vec<DVec3>) {
-    let cols = o.dims[0] as usize;
-    let mut nx = x.to_vec();
-    let mut nv = vec![DVec3::ZERO; x.len()];
-    for i in 0..x.len() {
-        if o.pinned[i] {
-            continue;
-        }
-        let mut force = m.gravity * o.mass + wind_at(&m.wind, x[i]) - v[i] * o.drag;
-        for s in springs(o, (i % cols) as i64, (i / cols) as i64) {
-            let k = o.stiffness[s.kind as usize];
-            if k == 0.0 && o.damping == 0.0 {
-                continue;
-            }
-            let delta = x[s.other] - x[i];
-            let d = delta.length();
-            if d <= 0.0 {
-                continue;
-            }
-            let u = delta / d;
-            let stretch = k * (d - rest_length(o, &s));
-            let damping = o.damping * (v[s.other] - v[i]).dot(u);
-            force += u * (stretch + damping);
-        }
-        nv[i] = v[i] + force / o.mass * dt;
-        nx[i] = x[i] + nv[i] * dt;
-    }
-    (nx, nv)
 }
 
 fn constraints(m: &SimModel, o: &ObjectModel, dt: f64, x: &[DVec3], v: &[DVec3]) -> (Vec<DVec3>, Vec<DVec3>) {

@@ -1,0 +1,228 @@
+//! The integrators of the CPU reference: each advances one object by one substep, before the
+//! constraint stage. They follow `model::Integrator`'s definitions; the GPU runs the same
+//! iterations (Jacobi order, relaxation, Chebyshev schedule), so the two agree to rounding.
+
+use super::{rest_length, springs, wind_at, Spring};
+use crate::sim::model::{Integrator, ObjectModel, SimModel};
+use crate::sim::stability::chebyshev_rho;
+use glam::DVec3;
+
+type State = (Vec<DVec3>, Vec<DVec3>);
+
+/// One substep of `o` from (x, v) with the model's integrator.
+pub(super) fn advance(m: &SimModel, o: &ObjectModel, dt: f64, x: &[DVec3], v: &[DVec3]) -> State {
+    match m.integrator {
+        Integrator::SymplecticEuler => explicit(m, o, dt, x, v, false),
+        Integrator::Verlet => explicit(m, o, dt, x, v, true),
+        Integrator::Xpbd => xpbd(m, o, dt, x, v),
+        Integrator::Implicit => implicit(m, o, dt, x, v),
+    }
+}
+
+fn grid(o: &ObjectModel, i: usize) -> (i64, i64) {
+    let cols = o.dims[0] as usize;
+    ((i % cols) as i64, (i / cols) as i64)
+}
+
+/// Gravity, wind and drag on particle i at (x, v) [N].
+fn external(m: &SimModel, o: &ObjectModel, x: DVec3, v: DVec3) -> DVec3 {
+    m.gravity * o.mass + wind_at(&m.wind, x) - v * o.drag
+}
+
+/// The springs' force on particle i: elastic (with `elastic`) and dashpot parts [N].
+fn spring_force(o: &ObjectModel, i: usize, x: &[DVec3], v: &[DVec3], elastic: bool) -> DVec3 {
+    let (c, r) = grid(o, i);
+    let mut force = DVec3::ZERO;
+    for s in springs(o, c, r) {
+        let k = if elastic { o.stiffness[s.kind as usize] } else { 0.0 };
+        if k == 0.0 && o.damping == 0.0 {
+            continue;
+        }
+        let delta = x[s.other] - x[i];
+        let d = delta.length();
+        if d <= 0.0 {
+            continue;
+        }
+        let u = delta / d;
+        force += u * (k * (d - rest_length(o, &s)) + o.damping * (v[s.other] - v[i]).dot(u));
+    }
+    force
+}
+
+/// Symplectic Euler, or position Verlet (`verlet`): forces at the half-drifted positions
+/// x + v dt / 2, the kick, then the second half of the drift with the new velocity.
+fn explicit(m: &SimModel, o: &ObjectModel, dt: f64, x: &[DVec3], v: &[DVec3], verlet: bool) -> State {
+    let drift = if verlet { 0.5 * dt } else { 0.0 };
+    let at: Vec<DVec3> = x.iter().zip(v).map(|(x, v)| *x + *v * drift).collect();
+    let mut nx = x.to_vec();
+    let mut nv = vec![DVec3::ZERO; x.len()];
+    for i in 0..x.len() {
+        if o.pinned[i] {
+            continue;
+        }
+        let force = external(m, o, at[i], v[i]) + spring_force(o, i, &at, v, true);
+        nv[i] = v[i] + force / o.mass * dt;
+        nx[i] = at[i] + nv[i] * (dt - drift);
+    }
+    (nx, nv)
+}
+
+/// The inertial prediction y = x + dt v + dt^2 F / m of the position-based methods, with F the
+/// external forces (and the springs' dashpots for the implicit method, which treats damping
+/// explicitly; XPBD handles it in its constraints).
+fn predict(m: &SimModel, o: &ObjectModel, dt: f64, x: &[DVec3], v: &[DVec3], dashpots: bool) -> Vec<DVec3> {
+    (0..x.len())
+        .map(|i| {
+            if o.pinned[i] {
+                return x[i];
+            }
+            let mut force = external(m, o, x[i], v[i]);
+            if dashpots && o.damping != 0.0 {
+                force += spring_force(o, i, x, v, false);
+            }
+            x[i] + (v[i] + force / o.mass * dt) * dt
+        })
+        .collect()
+}
+
+/// Positions after the solve, with the velocity that reaches them: v = (p - x) / dt.
+fn finish(o: &ObjectModel, dt: f64, x: &[DVec3], p: Vec<DVec3>) -> State {
+    let v = (0..x.len()).map(|i| if o.pinned[i] { DVec3::ZERO } else { (p[i] - x[i]) / dt }).collect();
+    (p, v)
+}
+
+/// XPBD with Jacobi iterations. Each spring of stiffness k > 0 is a distance constraint
+/// C = |p_i - p_j| - L with compliance 1/k (alpha~ = 1 / (k dt^2)) and damping gamma = b / (k dt).
+/// Each particle keeps its own copy of the multipliers of its springs; an iteration computes,
+/// from the previous iterate, every constraint's dlambda = (-C - alpha~ lambda - gamma n.(dp_i -
+/// dp_j)) / ((1 + gamma)(w_i + w_j) + alpha~), and moves the particle by the mean of its
+/// corrections w_i n dlambda times the relaxation factor (its multiplier copies advance by the
+/// same factor). At convergence the copies agree and the result is implicit Euler.
+fn xpbd(m: &SimModel, o: &ObjectModel, dt: f64, x: &[DVec3], v: &[DVec3]) -> State {
+    let n = x.len();
+    let mut p = predict(m, o, dt, x, v, false);
+    let mut lambda = vec![[0.0f64; 12]; n];
+    let w = |j: usize| if o.pinned[j] { 0.0 } else { 1.0 / o.mass };
+    for _ in 0..m.iterations {
+        let mut next = p.clone();
+        for i in 0..n {
+            if o.pinned[i] {
+                continue;
+            }
+            let (c, r) = grid(o, i);
+            let mut sum = DVec3::ZERO;
+            let mut count = 0u32;
+            let mut dl = [0.0f64; 12];
+            for s in springs(o, c, r) {
+                let k = o.stiffness[s.kind as usize];
+                if k == 0.0 {
+                    continue;
+                }
+                let delta = p[i] - p[s.other];
+                let d = delta.length();
+                if d <= 0.0 {
+                    continue;
+                }
+                let normal = delta / d;
+                let alpha = 1.0 / (k * dt * dt);
+                let gamma = o.damping / (k * dt);
+                let moved = normal.dot((p[i] - x[i]) - (p[s.other] - x[s.other]));
+                let cons = d - rest_length(o, &s);
+                dl[s.slot] = (-cons - alpha * lambda[i][s.slot] - gamma * moved)
+                    / ((1.0 + gamma) * (w(i) + w(s.other)) + alpha);
+                sum += normal * (w(i) * dl[s.slot]);
+                count += 1;
+            }
+            if count > 0 {
+                let scale = m.relaxation / count as f64;
+                next[i] = p[i] + sum * scale;
+                for (l, d) in lambda[i].iter_mut().zip(dl) {
+                    *l += d * scale;
+                }
+            }
+        }
+        p = next;
+    }
+    finish(o, dt, x, p)
+}
+
+/// Chebyshev weight of iteration `k` (0-based) for a Jacobi radius `rho` (Wang 2015).
+pub fn chebyshev_omega(k: u32, rho: f64) -> f64 {
+    let mut omega = 1.0;
+    for step in 1..=k {
+        omega = if step == 1 { 2.0 / (2.0 - rho * rho) } else { 4.0 / (4.0 - rho * rho * omega) };
+    }
+    omega
+}
+
+/// Implicit Euler by projective dynamics: minimise |p - y|^2_M / (2 dt^2) + sum k/2 |p_i - p_j -
+/// d_s|^2 over p, with d_s the spring's rest-length projection of the current p_i - p_j (local
+/// step). One Jacobi sweep of the global system per iteration (diagonal m / dt^2 + sum k),
+/// accelerated by Chebyshev with the radius `chebyshev_rho`.
+fn implicit(m: &SimModel, o: &ObjectModel, dt: f64, x: &[DVec3], v: &[DVec3]) -> State {
+    let n = x.len();
+    let y = predict(m, o, dt, x, v, true);
+    let inertia = o.mass / (dt * dt);
+    let rho = chebyshev_rho(o, dt);
+    let mut prev = y.clone();
+    let mut p = y.clone();
+    for k in 0..m.iterations {
+        let omega = chebyshev_omega(k, rho);
+        let mut next = p.clone();
+        for i in 0..n {
+            if o.pinned[i] {
+                continue;
+            }
+            let (c, r) = grid(o, i);
+            let mut rhs = y[i] * inertia;
+            let mut diag = inertia;
+            for s in springs(o, c, r) {
+                let k = o.stiffness[s.kind as usize];
+                if k == 0.0 {
+                    continue;
+                }
+                let delta = p[i] - p[s.other];
+                let d = delta.length();
+                let target = if d > 0.0 { delta * (rest_length(o, &s) / d) } else { DVec3::ZERO };
+                rhs += (p[s.other] + target) * k;
+                diag += k;
+            }
+            let jacobi = rhs / diag;
+            next[i] = prev[i] + (jacobi - prev[i]) * omega;
+        }
+        prev = std::mem::replace(&mut p, next);
+    }
+    finish(o, dt, x, p)
+}
+
+/// Total energy of an object [J]: kinetic, elastic (each spring once) and gravitational
+/// (relative to height 0 along -g).
+pub fn energy(m: &SimModel, o: &ObjectModel, x: &[DVec3], v: &[DVec3]) -> f64 {
+    let mut e = 0.0;
+    for i in 0..x.len() {
+        e += 0.5 * o.mass * v[i].length_squared() - o.mass * m.gravity.dot(x[i]);
+        let (c, r) = grid(o, i);
+        for s in springs(o, c, r).iter().filter(|s| counted_once(s)) {
+            let stretch = (x[s.other] - x[i]).length() - rest_length(o, s);
+            e += 0.5 * o.stiffness[s.kind as usize] * stretch * stretch;
+        }
+    }
+    e
+}
+
+/// Largest |d / L - 1| over the structural springs.
+pub fn max_strain(o: &ObjectModel, x: &[DVec3]) -> f64 {
+    let mut worst = 0.0f64;
+    for i in 0..x.len() {
+        let (c, r) = grid(o, i);
+        for s in springs(o, c, r).iter().filter(|s| counted_once(s) && s.slot < 4) {
+            worst = worst.max(((x[s.other] - x[i]).length() / rest_length(o, s) - 1.0).abs());
+        }
+    }
+    worst
+}
+
+/// Each spring appears from both ends; the even slots are the forward direction.
+fn counted_once(s: &Spring) -> bool {
+    s.slot % 2 == 0
+}
