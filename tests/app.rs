@@ -146,6 +146,8 @@ fn the_app_reloads_an_edited_shader_and_survives_a_broken_one() {
     copy_dir(&Path::new(env!("CARGO_MANIFEST_DIR")).join("glsl"), &dir);
     let body = dir.join("include/physics_body.glsl");
     let original = std::fs::read_to_string(&body).unwrap();
+    let forces = dir.join("include/forces.glsl");
+    let forces_original = std::fs::read_to_string(&forces).unwrap();
     let mut child = Command::new("xvfb-run")
         .args(["-a", "-s", "-screen 0 1280x1024x24", env!("CARGO_BIN_EXE_msdsim"), "--validation", "app"])
         .args(["--preset", "presets/rope.toml", "--size", "480x360", "--frames", "1500", "--shaders"])
@@ -169,7 +171,7 @@ fn the_app_reloads_an_edited_shader_and_survives_a_broken_one() {
         false
     };
     assert!(wait_for("hot reload on", &mut log), "no 'hot reload on' line:\n{log}");
-    std::fs::write(&body, original.replace("GRAVITY_SCALE = 1.0;", "GRAVITY_SCALE = 2.0;")).unwrap();
+    std::fs::write(&forces, forces_original.replace("GRAVITY_SCALE = 1.0;", "GRAVITY_SCALE = 2.0;")).unwrap();
     assert!(wait_for("after the save", &mut log), "no reload reported:\n{log}");
     std::fs::write(&body, original.replace("vec3 v_new = v + force", "vec3 v_new = v + forse")).unwrap();
     assert!(wait_for("physics_body.glsl:", &mut log), "no compile error reported:\n{log}");

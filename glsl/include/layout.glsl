@@ -33,9 +33,9 @@ struct Globals {
     uint sphere_count;                         // spheres[] entries in use
     uint substeps;                             // per frame (the fused shader loops over them)
     float guard_speed;                         // a particle faster than this [m/s] has run away
-    uint pad1;
-    uint pad2;
-    uint pad3;
+    uint iterations;                           // solver iterations per substep (xpbd, implicit)
+    float relaxation;                          // XPBD Jacobi relaxation factor
+    uint pad0;
 };
 
 // Bits of the runtime guard (GuardBuf.flags).
@@ -58,8 +58,8 @@ struct ObjectParams {
     vec2 ring_weights[ROPE_RING]; // rope tube vertex offsets in (side, up) units of rope_radius
     uint hash_mask;        // spatial hash table size - 1 (a power of two minus one)
     float cell_inv;        // 1 / hash cell edge [1/m]; the edge is twice self_distance
+    float cheb_rho;        // implicit integrator: Chebyshev radius (sim::stability::chebyshev_rho)
     uint pad0;
-    uint pad1;
 };
 
 // The spatial hash of a grid cell (Teschner et al. 2003).

@@ -1,6 +1,7 @@
 //! The simulation behind the app: the scene being edited, its model and the GPU simulation.
 //! Edits are applied by kind: parameter changes rewrite the GPU parameters in place (the state
-//! is kept); a new substep count rebuilds the simulation and carries the state over; anything
+//! is kept); a new substep count, integrator or self-collision method rebuilds the simulation
+//! and carries the state over; anything
 //! that changes the particles' layout (sizes, positions, pins, objects, sphere count) rebuilds
 //! and starts from the new initial state.
 
@@ -18,7 +19,7 @@ pub enum Applied {
     Nothing,
     /// Parameters rewritten in place; the state is kept.
     Parameters,
-    /// Rebuilt with the state carried over (substeps changed).
+    /// Rebuilt with the state carried over (substeps, integrator or self-collision method changed).
     RebuiltKeepingState,
     /// Rebuilt from the scene's initial state.
     Rebuilt,
@@ -97,7 +98,10 @@ impl SimHost {
         }
         scene::validate(&edited).map_err(crate::error::UserError)?;
         let same_layout = layout_key(&edited) == layout_key(&self.scene);
-        if same_layout && edited.sim.substeps == self.scene.sim.substeps {
+        let (old, new) = (&self.scene.sim, &edited.sim);
+        let same_pipelines = (old.substeps, old.integrator, old.self_collision)
+            == (new.substeps, new.integrator, new.self_collision);
+        if same_layout && same_pipelines {
             ctx.wait_idle()?;
             let model = scene::to_model(&edited);
             self.sim.update_params(&model)?;

@@ -64,9 +64,9 @@ gpu_struct!(
     sphere_count: u32,
     substeps: u32,
     guard_speed: f32,
-    pad1: u32,
-    pad2: u32,
-    pad3: u32,
+    iterations: u32,
+    relaxation: f32,
+    pad0: u32,
 });
 
 /// Runtime guard bits (`GUARD_*` in the header).
@@ -91,8 +91,8 @@ gpu_struct!(
     ring_weights: [[f32; 2]; ROPE_RING],
     hash_mask: u32,
     cell_inv: f32,
+    cheb_rho: f32,
     pad0: u32,
-    pad1: u32,
 });
 
 gpu_struct!(

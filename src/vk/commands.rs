@@ -152,6 +152,19 @@ pub struct Recorder<'a> {
 impl Recorder<'_> {
     /// Binds a compute pipeline and its binding set and dispatches `groups` workgroups.
     pub fn dispatch(&mut self, pipeline: &ComputePipeline, set: BindingSet, groups: [u32; 3]) {
+        self.dispatch_with(pipeline, set, groups, &[]);
+    }
+
+    /// `dispatch` with push constants (`push` words from offset 0, at most
+    /// `COMPUTE_PUSH_BYTES`; more are dropped).
+    pub fn dispatch_with(
+        &mut self,
+        pipeline: &ComputePipeline,
+        set: BindingSet,
+        groups: [u32; 3],
+        push: &[u32],
+    ) {
+        let push = &push[..push.len().min(super::pipeline::COMPUTE_PUSH_BYTES as usize / 4)];
         // SAFETY: recording state; pipeline, layout and set belong to this device and outlive
         // the submission (their owners destroy them only after waiting).
         unsafe {
@@ -165,6 +178,15 @@ impl Recorder<'_> {
                 &[set.raw],
                 &[],
             );
+            if !push.is_empty() {
+                d.cmd_push_constants(
+                    self.cb,
+                    pipeline.layout,
+                    vk::ShaderStageFlags::COMPUTE,
+                    0,
+                    bytemuck::cast_slice(push),
+                );
+            }
             d.cmd_dispatch(self.cb, groups[0], groups[1], groups[2]);
         }
     }

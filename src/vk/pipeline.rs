@@ -72,8 +72,9 @@ impl BindingSetLayout {
     }
 }
 
-/// A bound set of buffers; valid until its `DescriptorArena` is destroyed.
-#[derive(Clone, Copy, Debug)]
+/// A bound set of buffers; valid until its `DescriptorArena` is destroyed. The default is a
+/// null set, never bound.
+#[derive(Clone, Copy, Debug, Default)]
 pub struct BindingSet {
     pub(crate) raw: vk::DescriptorSet,
 }
@@ -136,7 +137,11 @@ impl DescriptorArena {
     }
 }
 
-/// A compute pipeline with its own pipeline layout (one binding set, no push constants).
+/// Bytes of push constants every compute pipeline layout offers (`Recorder::dispatch_with`).
+pub const COMPUTE_PUSH_BYTES: u32 = 16;
+
+/// A compute pipeline with its own pipeline layout (one binding set, `COMPUTE_PUSH_BYTES` of
+/// push constants, which shaders may leave undeclared).
 pub struct ComputePipeline {
     pub(crate) raw: vk::Pipeline,
     pub(crate) layout: vk::PipelineLayout,
@@ -156,7 +161,13 @@ impl ComputePipeline {
         let module =
             unsafe { ctx.device.create_shader_module(&module_info, None) }.check("vkCreateShaderModule")?;
         let set_layouts = [set_layout.raw];
-        let layout_info = vk::PipelineLayoutCreateInfo::default().set_layouts(&set_layouts);
+        let ranges = [vk::PushConstantRange {
+            stage_flags: vk::ShaderStageFlags::COMPUTE,
+            offset: 0,
+            size: COMPUTE_PUSH_BYTES,
+        }];
+        let layout_info =
+            vk::PipelineLayoutCreateInfo::default().set_layouts(&set_layouts).push_constant_ranges(&ranges);
         // SAFETY: valid device and set layout.
         let layout = match unsafe { ctx.device.create_pipeline_layout(&layout_info, None) } {
             Ok(l) => l,

@@ -1,0 +1,57 @@
+#version 460
+#extension GL_GOOGLE_include_directive : require
+// One iteration of implicit Euler by projective dynamics (sim::cpu::integrators::implicit has
+// the derivation), one thread per particle: the local step (each spring's rest-length
+// projection) and one Jacobi sweep of the global system, Chebyshev-accelerated. Iterate slices
+// rotate: iteration k reads slice k % 3 (and the one before, (k + 2) % 3), writes (k + 1) % 3.
+// aux[i] holds the prediction y; p_in the substep's start.
+#include "bindings.glsl"
+#include "springs.glsl"
+
+layout(local_size_x_id = 0, local_size_y_id = 1, local_size_z = 1) in;
+
+#include "solver_end.glsl"
+
+// Chebyshev weight of iteration k for the Jacobi radius rho (Wang 2015).
+float chebyshev_omega(uint k, float rho) {
+    float omega = 1.0;
+    for (uint step = 1u; step <= k; ++step) {
+        omega = step == 1u ? 2.0 / (2.0 - rho * rho) : 4.0 / (4.0 - rho * rho * omega);
+    }
+    return omega;
+}
+
+void main() {
+    uvec2 cell = gl_GlobalInvocationID.xy;
+    if (cell.x >= obj.dims.x || cell.y >= obj.dims.y) return;
+    uint i = cell.x + cell.y * obj.dims.x;
+    uint n = particle_count();
+    uint cur = (it.k % 3u) * n;
+    uint prev = it.k == 0u ? cur : ((it.k + 2u) % 3u) * n;
+    uint next = ((it.k + 1u) % 3u) * n;
+    vec4 pi = iter[cur + i];
+    vec3 x = pi.xyz;
+    bool pinned = pi.w > 0.5;
+    if (!pinned) {
+        float inertia = obj.mass / (g.dt * g.dt);
+        vec3 rhs = aux[i].xyz * inertia;
+        float diag = inertia;
+        for (int s = 0; s < 12; ++s) {
+            ivec3 spring = SPRINGS[s];
+            float k = obj.stiffness[spring.z];
+            if (k == 0.0) continue;
+            int j = neighbour(ivec2(cell), spring.xy, obj.dims);
+            if (j < 0) continue;
+            vec3 pj = iter[cur + uint(j)].xyz;
+            vec3 delta = pi.xyz - pj;
+            float d = length(delta);
+            vec3 target = d > 0.0 ? delta * (rest_length(spring, obj.spacing, obj.rest_scale) / d) : vec3(0.0);
+            rhs += k * (pj + target);
+            diag += k;
+        }
+        vec3 before = iter[prev + i].xyz;
+        x = before + chebyshev_omega(it.k, obj.cheb_rho) * (rhs / diag - before);
+    }
+    iter[next + i] = vec4(x, pi.w);
+    if (last_iteration()) finish_particle(i, x, pinned);
+}

@@ -1,0 +1,31 @@
+// Forces that do not come from springs: gravity, the paper's wind cone, Stokes drag.
+// Include after bindings.glsl.
+#ifndef MSD_FORCES_GLSL
+#define MSD_FORCES_GLSL
+
+// Scales gravity for every object (1 = as the scene says). A knob to try hot reload with:
+// edit it while the app runs and the cloth falls faster or slower at once.
+const float GRAVITY_SCALE = 1.0;
+
+// The paper's wind: a cone from wind_origin along wind_dir, full force inside the full-force
+// half-angle, falling linearly (in the cosine) to zero at the attenuation half-angle.
+vec3 wind_force(vec3 x) {
+    vec3 to_x = x - g.wind_origin;
+    float d = length(to_x);
+    if (g.wind_enabled == 0u || d <= 0.0) return vec3(0.0);
+    float c = dot(g.wind_dir, to_x / d);
+    float ratio;
+    if (g.wind_cos_full > g.wind_cos_att) {
+        ratio = clamp((c - g.wind_cos_att) / (g.wind_cos_full - g.wind_cos_att), 0.0, 1.0);
+    } else {
+        ratio = c >= g.wind_cos_full ? 1.0 : 0.0;
+    }
+    return g.wind_dir * (g.wind_force * ratio);
+}
+
+// Gravity, wind and drag on a particle at x moving at v [N].
+vec3 external_force(vec3 x, vec3 v) {
+    return obj.mass * GRAVITY_SCALE * g.gravity + wind_force(x) - obj.drag * v;
+}
+
+#endif

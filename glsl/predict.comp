@@ -1,0 +1,45 @@
+#version 460
+#extension GL_GOOGLE_include_directive : require
+// First pass of a substep of the iterative integrators (XPBD, implicit), one thread per
+// particle: the inertial prediction y = x + dt (v + dt F / m) from p_in (the state at the start
+// of the substep) into the first iterate slice, with F the external forces (and, for the
+// implicit method, which treats damping explicitly, the springs' dashpots). Resets the solver's
+// auxiliary data: XPBD's multipliers to zero, the implicit method's copy of y.
+#include "bindings.glsl"
+#include "springs.glsl"
+#include "forces.glsl"
+
+layout(local_size_x_id = 0, local_size_y_id = 1, local_size_z = 1) in;
+// The implicit method's prediction (else XPBD's).
+layout(constant_id = 2) const bool IMPLICIT = false;
+
+void main() {
+    uvec2 cell = gl_GlobalInvocationID.xy;
+    if (cell.x >= obj.dims.x || cell.y >= obj.dims.y) return;
+    uint i = cell.x + cell.y * obj.dims.x;
+    Particle p = p_in[i];
+    vec3 x = p.pos.xyz;
+    vec3 v = p.vel.xyz;
+    vec3 y = x;
+    if (p.pos.w <= 0.5) {
+        vec3 force = external_force(x, v);
+        if (IMPLICIT && obj.stiffness.w != 0.0) {
+            for (int s = 0; s < 12; ++s) {
+                int j = neighbour(ivec2(cell), SPRINGS[s].xy, obj.dims);
+                if (j < 0) continue;
+                vec3 to_j = p_in[j].pos.xyz - x;
+                float d = length(to_j);
+                if (d <= 0.0) continue;
+                vec3 dir = to_j / d;
+                force += (obj.stiffness.w * dot(p_in[j].vel.xyz - v, dir)) * dir;
+            }
+        }
+        y = x + (v + force * (g.dt / obj.mass)) * g.dt;
+    }
+    iter[i] = vec4(y, p.pos.w);
+    if (IMPLICIT) {
+        aux[i] = vec4(y, 0.0);
+    } else {
+        for (uint q = 0u; q < 3u; ++q) aux[3u * i + q] = vec4(0.0);
+    }
+}

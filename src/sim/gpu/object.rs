@@ -1,0 +1,408 @@
+//! The GPU buffers and binding sets of one simulated object, the parameters it is given, and
+//! the checks that it fits the device.
+
+use super::{BINDINGS, CLOTH_GROUP, ROPE_GROUP};
+use crate::error::UserError;
+use crate::sim::gpu_types::{
+    Globals, ObjectParams, Particle, SurfaceVertex, OBJ_SELF_COLLISION, OBJ_SELF_HASH, OBJ_STRETCH_LIMIT,
+};
+use crate::sim::model::{Integrator, ObjectKind, ObjectModel, ObjectShape, SelfCollisionMethod, SimModel};
+use crate::sim::stability::chebyshev_rho;
+use crate::vk::{
+    BindingSet, BindingSetLayout, Buffer, BufferUsage, DescriptorArena, DeviceInfo, GpuContext, MemoryKind,
+    VkError,
+};
+use anyhow::Result;
+
+/// A cleared guard: no flags, no flagged particle.
+pub(super) const GUARD_CLEAR: [u32; 4] = [0, u32::MAX, 0, 0];
+/// Spatial hash table sizes: the scan handles 8192 buckets per block and 8192 blocks.
+pub(super) const SCAN_BLOCK: u64 = 8192;
+const MAX_TABLE: u64 = SCAN_BLOCK * SCAN_BLOCK;
+
+/// Buckets of the spatial hash of an object of `particles` particles: a power of two, at
+/// least twice the particle count (load factor <= 1/2), within the scan's capacity.
+fn hash_table_size(particles: u64) -> u64 {
+    (2 * particles).next_power_of_two().clamp(1024, MAX_TABLE)
+}
+
+/// Creates buffers `(suffix, size, usage)` named `{name}.{suffix}`, all or none.
+fn buffers<const N: usize>(
+    ctx: &GpuContext,
+    name: &str,
+    specs: [(&str, u64, BufferUsage, MemoryKind); N],
+) -> Result<[Buffer; N], VkError> {
+    let mut made = Vec::with_capacity(N);
+    for (suffix, size, usage, memory) in specs {
+        match Buffer::new(ctx, &format!("{name}.{suffix}"), size, usage, memory) {
+            Ok(b) => made.push(b),
+            Err(e) => {
+                made.into_iter().for_each(|b| b.destroy(ctx));
+                return Err(e);
+            }
+        }
+    }
+    match <[Buffer; N]>::try_from(made) {
+        Ok(all) => Ok(all),
+        Err(_) => unreachable!("one buffer per spec"),
+    }
+}
+
+/// The spatial hash of one object (bindings 6..=10).
+pub(super) struct HashBuffers {
+    pub cell_rank: Buffer,
+    pub counts: Buffer,
+    pub starts: Buffer,
+    pub sorted: Buffer,
+    pub block_sums: Buffer,
+    pub buckets: u32,
+}
+
+impl HashBuffers {
+    fn new(ctx: &GpuContext, name: &str, particles: u64) -> Result<Self, VkError> {
+        let buckets = hash_table_size(particles);
+        let (storage, gpu) = (BufferUsage::STORAGE, MemoryKind::GpuOnly);
+        let [cell_rank, counts, starts, sorted, block_sums] = buffers(
+            ctx,
+            &format!("{name}.hash"),
+            [
+                ("cell_rank", 8 * particles, storage, gpu),
+                ("counts", 4 * buckets, storage | BufferUsage::TRANSFER_DST, gpu),
+                ("starts", 4 * (buckets + 1), storage, gpu),
+                ("sorted", 16 * particles, storage, gpu),
+                ("block_sums", 4 * buckets.div_ceil(SCAN_BLOCK), storage, gpu),
+            ],
+        )?;
+        Ok(Self { cell_rank, counts, starts, sorted, block_sums, buckets: buckets as u32 })
+    }
+
+    fn buffers(&self) -> [&Buffer; 5] {
+        [&self.cell_rank, &self.counts, &self.starts, &self.sorted, &self.block_sums]
+    }
+
+    fn destroy(self, ctx: &GpuContext) {
+        for b in [self.cell_rank, self.counts, self.starts, self.sorted, self.block_sums] {
+            b.destroy(ctx);
+        }
+    }
+}
+
+/// The iterates and auxiliary data of an iterative integrator (bindings 12, 13).
+pub(super) struct SolverBuffers {
+    pub iter: Buffer,
+    pub aux: Buffer,
+}
+
+impl SolverBuffers {
+    /// Vec4s per particle: (iterate slices, auxiliary) of each iterative method.
+    fn vec4s(method: Integrator) -> Option<(u64, u64)> {
+        match method {
+            Integrator::Xpbd => Some((2, 3)),
+            Integrator::Implicit => Some((3, 1)),
+            Integrator::SymplecticEuler | Integrator::Verlet => None,
+        }
+    }
+
+    fn new(
+        ctx: &GpuContext,
+        name: &str,
+        particles: u64,
+        method: Integrator,
+    ) -> Result<Option<Self>, VkError> {
+        let Some((slices, aux)) = Self::vec4s(method) else { return Ok(None) };
+        let (storage, gpu) = (BufferUsage::STORAGE, MemoryKind::GpuOnly);
+        let [iter, aux] = buffers(
+            ctx,
+            &format!("{name}.solver"),
+            [("iter", 16 * slices * particles, storage, gpu), ("aux", 16 * aux * particles, storage, gpu)],
+        )?;
+        Ok(Some(Self { iter, aux }))
+    }
+}
+
+pub(super) struct GpuObject {
+    pub kind: ObjectKind,
+    pub particles: u32,
+    pub surface_len: u32,
+    pub step_groups: [u32; 3],
+    pub surface_groups: [u32; 3],
+    pub params: Buffer,
+    pub state: [Buffer; 2],
+    pub surface: Buffer,
+    pub hash: Option<Box<HashBuffers>>,
+    pub solver: Option<SolverBuffers>,
+    /// 16 bytes bound at the spatial hash and solver bindings the object does not use. The
+    /// shaders reach it only behind a flag but may (statically) write it, so it is ordered like
+    /// the state buffers; one per object, so objects' dispatches never share it.
+    pub placeholder: Buffer,
+    /// The runtime guard (flags, first flagged particle), host-visible, read after each frame.
+    pub guard: Buffer,
+    /// [A -> B (physics), B -> A (constraints, hash passes); surface uses set 0 (reads A)].
+    pub sets: [BindingSet; 2],
+}
+
+impl GpuObject {
+    /// Allocates the object's buffers and binding sets, all or nothing.
+    pub fn new(
+        ctx: &GpuContext,
+        layout: &BindingSetLayout,
+        arena: &mut DescriptorArena,
+        shared: [&Buffer; 2],
+        o: &ObjectModel,
+        model: &SimModel,
+    ) -> Result<Self, VkError> {
+        let [globals, spheres] = shared;
+        let n = o.particle_count() as u64;
+        let state_bytes = n * std::mem::size_of::<Particle>() as u64;
+        let state_usage = BufferUsage::STORAGE | BufferUsage::TRANSFER_SRC | BufferUsage::TRANSFER_DST;
+        let surface_bytes = o.surface_count() as u64 * std::mem::size_of::<SurfaceVertex>() as u64;
+        let [mut params, a, b, surface, mut guard, placeholder] = buffers(
+            ctx,
+            &o.name,
+            [
+                (
+                    "params",
+                    std::mem::size_of::<ObjectParams>() as u64,
+                    BufferUsage::STORAGE,
+                    MemoryKind::Upload,
+                ),
+                ("state_a", state_bytes, state_usage, MemoryKind::GpuOnly),
+                ("state_b", state_bytes, state_usage, MemoryKind::GpuOnly),
+                (
+                    "surface",
+                    surface_bytes,
+                    BufferUsage::STORAGE | BufferUsage::VERTEX | BufferUsage::TRANSFER_SRC,
+                    MemoryKind::GpuOnly,
+                ),
+                ("guard", 16, BufferUsage::STORAGE, MemoryKind::Readback),
+                ("placeholder", 16, BufferUsage::STORAGE, MemoryKind::GpuOnly),
+            ],
+        )?;
+        let mut hash = None;
+        let mut solver = None;
+        let sets = (|| -> Result<[BindingSet; 2], VkError> {
+            guard.write(0, &GUARD_CLEAR)?;
+            params.write(0, &[object_params(o, model)])?;
+            if o.self_distance.is_some() && model.self_collision == SelfCollisionMethod::Hash {
+                hash = Some(Box::new(HashBuffers::new(ctx, &o.name, n)?));
+            }
+            solver = SolverBuffers::new(ctx, &o.name, n, model.integrator)?;
+            let p = &placeholder;
+            let [cell_rank, counts, starts, sorted, blocks] = match &hash {
+                Some(h) => h.buffers(),
+                None => [p; 5],
+            };
+            let [iter, aux] = match &solver {
+                Some(s) => [&s.iter, &s.aux],
+                None => [p; 2],
+            };
+            let set = |arena: &mut DescriptorArena, from: &Buffer, to: &Buffer| {
+                let bindings = [
+                    globals, &params, from, to, spheres, &surface, cell_rank, counts, starts, sorted, blocks,
+                    &guard, iter, aux,
+                ];
+                debug_assert_eq!(bindings.len() as u32, BINDINGS);
+                arena.allocate(ctx, layout, &bindings)
+            };
+            Ok([set(arena, &a, &b)?, set(arena, &b, &a)?])
+        })();
+        let object = |sets| Self {
+            kind: o.kind,
+            particles: n as u32,
+            surface_len: o.surface_count() as u32,
+            step_groups: step_groups(&o.shape()),
+            surface_groups: surface_groups(&o.shape()),
+            params,
+            state: [a, b],
+            surface,
+            hash,
+            solver,
+            placeholder,
+            guard,
+            sets,
+        };
+        match sets {
+            Ok(sets) => Ok(object(sets)),
+            Err(e) => {
+                // Descriptor sets belong to the arena; everything else is freed here.
+                object([BindingSet::default(); 2]).destroy(ctx);
+                Err(e)
+            }
+        }
+    }
+
+    /// Buffers that a stage may write through the hash and solver bindings besides its state
+    /// output: ordered between stages like the state buffers.
+    pub fn scratch(&self) -> Vec<&Buffer> {
+        let mut out = vec![&self.placeholder];
+        if let Some(s) = &self.solver {
+            out.extend([&s.iter, &s.aux]);
+        }
+        out
+    }
+
+    pub fn destroy(self, ctx: &GpuContext) {
+        let [a, b] = self.state;
+        for buffer in [self.params, a, b, self.surface, self.guard, self.placeholder] {
+            buffer.destroy(ctx);
+        }
+        if let Some(h) = self.hash {
+            h.destroy(ctx);
+        }
+        if let Some(s) = self.solver {
+            s.iter.destroy(ctx);
+            s.aux.destroy(ctx);
+        }
+    }
+}
+
+/// Bytes of GPU memory an object needs: two state buffers, the surface, the parameters (and
+/// the spatial hash and the largest solver, counted for every object: an upper bound).
+fn object_bytes(o: &ObjectShape) -> u64 {
+    let n = o.particle_count();
+    2 * n * std::mem::size_of::<Particle>() as u64
+        + o.surface_count() * std::mem::size_of::<SurfaceVertex>() as u64
+        + std::mem::size_of::<ObjectParams>() as u64
+        + 24 * n
+        + 8 * hash_table_size(n)
+        + 4
+        + 5 * 16 * n
+}
+
+fn gib(bytes: u64) -> String {
+    format!("{:.2} GiB", bytes as f64 / (1u64 << 30) as f64)
+}
+
+/// Refuses objects the device cannot hold or dispatch. Needs only the shapes, so callers can
+/// check before building particle arrays.
+pub fn check_fits(info: &DeviceInfo, shapes: &[ObjectShape]) -> Result<(), UserError> {
+    let total: u64 = shapes.iter().map(object_bytes).sum();
+    if total > info.device_local_bytes {
+        return Err(UserError(format!(
+            "the scene is too large for the device: it needs {} of GPU memory, {} has {}",
+            gib(total),
+            info.name,
+            gib(info.device_local_bytes)
+        )));
+    }
+    for o in shapes {
+        let what = format!("{} '{}' ({} x {})", o.kind.label(), o.name, o.dims[0], o.dims[1]);
+        // The largest buffer: a state, the surface, or three iterate slices.
+        let state = o.particle_count() * std::mem::size_of::<Particle>() as u64;
+        let surface = o.surface_count() * std::mem::size_of::<SurfaceVertex>() as u64;
+        let largest = state.max(surface).max(3 * 16 * o.particle_count());
+        if largest > info.max_storage_buffer_range {
+            return Err(UserError(format!(
+                "{what} is too large for the device: one buffer would be {}, {} binds at most {}",
+                gib(largest),
+                info.name,
+                gib(info.max_storage_buffer_range),
+            )));
+        }
+        if step_groups(o)
+            .iter()
+            .chain(&surface_groups(o))
+            .zip(info.max_workgroup_count.iter().cycle())
+            .any(|(g, max)| g > max)
+        {
+            return Err(UserError(format!(
+                "{what} is too large for the device: it needs more workgroups than one dispatch allows"
+            )));
+        }
+    }
+    Ok(())
+}
+
+fn step_groups(o: &ObjectShape) -> [u32; 3] {
+    match o.kind {
+        ObjectKind::Cloth => [o.dims[0].div_ceil(CLOTH_GROUP[0]), o.dims[1].div_ceil(CLOTH_GROUP[1]), 1],
+        ObjectKind::Rope => [o.dims[0].div_ceil(ROPE_GROUP), 1, 1],
+    }
+}
+
+fn surface_groups(o: &ObjectShape) -> [u32; 3] {
+    match o.kind {
+        ObjectKind::Cloth => step_groups(o),
+        ObjectKind::Rope => [o.surface_count().div_ceil(ROPE_GROUP as u64) as u32, 1, 1],
+    }
+}
+
+fn f3(v: glam::DVec3) -> [f32; 3] {
+    v.as_vec3().to_array()
+}
+
+pub(super) fn globals(model: &SimModel) -> Globals {
+    let wind = model.wind;
+    Globals {
+        gravity: f3(model.gravity),
+        dt: model.dt() as f32,
+        wind_origin: wind.map(|w| f3(w.origin)).unwrap_or_default(),
+        wind_force: wind.map(|w| w.force as f32).unwrap_or(0.0),
+        wind_dir: wind.map(|w| f3(w.direction)).unwrap_or([0.0, 0.0, 1.0]),
+        wind_cos_full: wind.map(|w| w.cos_full as f32).unwrap_or(1.0),
+        wind_cos_att: wind.map(|w| w.cos_att as f32).unwrap_or(1.0),
+        wind_enabled: wind.is_some() as u32,
+        sphere_count: model.spheres.len() as u32,
+        substeps: model.substeps,
+        guard_speed: model.max_speed as f32,
+        iterations: model.iterations,
+        relaxation: model.relaxation as f32,
+        pad0: 0,
+    }
+}
+
+pub(super) fn object_params(o: &ObjectModel, model: &SimModel) -> ObjectParams {
+    let mut flags = 0;
+    if o.stretch_limit.is_some() {
+        flags |= OBJ_STRETCH_LIMIT;
+    }
+    if o.self_distance.is_some() {
+        flags |= OBJ_SELF_COLLISION;
+        if model.self_collision == SelfCollisionMethod::Hash {
+            flags |= OBJ_SELF_HASH;
+        }
+    }
+    let buckets = hash_table_size(o.particle_count() as u64) as u32;
+    let cell = 2.0 * o.self_distance.unwrap_or(1.0).max(1e-6);
+    ObjectParams {
+        dims: o.dims,
+        spacing: o.spacing.map(|s| s as f32),
+        stiffness: [o.stiffness[0] as f32, o.stiffness[1] as f32, o.stiffness[2] as f32, o.damping as f32],
+        rest_scale: [o.rest_scale[0] as f32, o.rest_scale[1] as f32, o.rest_scale[2] as f32, 0.0],
+        mass: o.mass as f32,
+        drag: o.drag as f32,
+        stretch_limit: o.stretch_limit.unwrap_or(0.0) as f32,
+        friction: o.friction as f32,
+        margin: o.margin as f32,
+        self_distance: o.self_distance.unwrap_or(0.0) as f32,
+        rope_radius: o.rope_radius as f32,
+        flags,
+        ring_weights: o.ring_weights.map(|w| w.map(|x| x as f32)),
+        hash_mask: buckets - 1,
+        cell_inv: (1.0 / cell) as f32,
+        cheb_rho: chebyshev_rho(o, model.dt()) as f32,
+        pad0: 0,
+    }
+}
+
+pub(super) fn sphere_data(model: &SimModel) -> Vec<[f32; 4]> {
+    model
+        .spheres
+        .iter()
+        .map(|s| [s.center.x as f32, s.center.y as f32, s.center.z as f32, s.radius as f32])
+        .collect()
+}
+
+/// The initial particles of an object (positions, velocities, pinned flags).
+pub fn particles(o: &ObjectModel) -> Vec<Particle> {
+    o.positions
+        .iter()
+        .zip(&o.velocities)
+        .zip(&o.pinned)
+        .map(|((x, v), &pinned)| {
+            let x = x.as_vec3();
+            let v = if pinned { glam::Vec3::ZERO } else { v.as_vec3() };
+            Particle { pos: [x.x, x.y, x.z, pinned as u32 as f32], vel: [v.x, v.y, v.z, 0.0] }
+        })
+        .collect()
+}
