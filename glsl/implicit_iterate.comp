@@ -4,7 +4,8 @@
 // the derivation), one thread per particle: the local step (each spring's rest-length
 // projection) and one Jacobi sweep of the global system, Chebyshev-accelerated. Iterate slices
 // rotate: iteration k reads slice k % 3 (and the one before, (k + 2) % 3), writes (k + 1) % 3.
-// aux[i] holds the prediction y; p_in the substep's start.
+// p_in holds the substep's start x; the iterates and aux[i] (the prediction y) are
+// displacements from it (see predict.comp).
 #include "bindings.glsl"
 #include "springs.glsl"
 
@@ -29,10 +30,11 @@ void main() {
     uint cur = (it.k % 3u) * n;
     uint prev = it.k == 0u ? cur : ((it.k + 2u) % 3u) * n;
     uint next = ((it.k + 1u) % 3u) * n;
-    vec4 pi = iter[cur + i];
-    vec3 x = pi.xyz;
-    bool pinned = pi.w > 0.5;
+    vec4 di = iter[cur + i];
+    vec3 dx = di.xyz;
+    bool pinned = di.w > 0.5;
     if (!pinned) {
+        vec3 x = p_in[i].pos.xyz;
         float inertia = obj.mass / (g.dt * g.dt);
         vec3 rhs = aux[i].xyz * inertia;
         float diag = inertia;
@@ -42,16 +44,16 @@ void main() {
             if (k == 0.0) continue;
             int j = neighbour(ivec2(cell), spring.xy, obj.dims);
             if (j < 0) continue;
-            vec3 pj = iter[cur + uint(j)].xyz;
-            vec3 delta = pi.xyz - pj;
+            vec3 pj = (p_in[j].pos.xyz - x) + iter[cur + uint(j)].xyz;  // p_j - x_i
+            vec3 delta = dx - pj;                                       // p_i - p_j
             float d = length(delta);
             vec3 target = d > 0.0 ? delta * (rest_length(spring, obj.spacing, obj.rest_scale) / d) : vec3(0.0);
             rhs += k * (pj + target);
             diag += k;
         }
         vec3 before = iter[prev + i].xyz;
-        x = before + chebyshev_omega(it.k, obj.cheb_rho) * (rhs / diag - before);
+        dx = before + chebyshev_omega(it.k, obj.cheb_rho) * (rhs / diag - before);
     }
-    iter[next + i] = vec4(x, pi.w);
-    if (last_iteration()) finish_particle(i, x, pinned);
+    iter[next + i] = vec4(dx, di.w);
+    if (last_iteration()) finish_particle(i, dx, pinned);
 }
