@@ -1,6 +1,7 @@
 //! Command-line interface.
 
 mod bench;
+mod chart;
 mod simulate;
 mod stability;
 
@@ -35,6 +36,8 @@ pub enum Command {
     Simulate(simulate::SimulateArgs),
     /// Time a matrix of scenes with GPU timestamps; write bench.md and bench.csv.
     Bench(bench::BenchArgs),
+    /// Chart accuracy against GPU cost for every integrator x substeps x iterations (CSV + SVG).
+    Chart(chart::ChartArgs),
     /// Sweep stiffness against substeps and map where the simulation is stable (CSV + SVG).
     Stability(stability::StabilityArgs),
     /// List the Vulkan devices and which one would be chosen.
@@ -54,6 +57,7 @@ pub fn run(cli: Cli) -> Result<()> {
         Command::App(args) => args.run(&options),
         Command::Simulate(args) => simulate::run(&args, &options),
         Command::Bench(args) => bench::run(&args, &options),
+        Command::Chart(args) => chart::run(&args, &options),
         Command::Stability(args) => stability::run(&args, &options),
         Command::Devices => {
             let ctx = GpuContext::new(&options)?;
