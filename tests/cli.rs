@@ -200,24 +200,83 @@ fn an_unstable_scene_exits_3_with_advice() {
     assert!(stdout.contains("PAST IT"), "the prediction is printed before the run:\n{stdout}");
 }
 
-/// `stability` sweeps stiffness x substeps and writes the CSV and the SVG map; the stiffest,
-/// coarsest cell is unstable and predicted so, the softest, finest one stable.
+/// `stability` sweeps stiffness x substeps per method and writes the CSV and an SVG map each;
+/// for symplectic Euler the stiffest, coarsest cell is unstable and predicted so, the softest,
+/// finest one stable; the implicit method is stable in every cell, four decades of stiffness
+/// at 1 to 64 substeps.
 #[test]
 fn stability_map_writes_csv_and_svg() {
     let dir = tempfile::tempdir().unwrap();
     let out_dir = dir.path().join("map");
-    let out = msdsim(&["stability", "--points", "3", "--frames", "10", "--out", out_dir.to_str().unwrap()]);
+    let out = msdsim(&[
+        "stability",
+        "--methods",
+        "symplectic_euler,implicit",
+        "--points",
+        "3",
+        "--frames",
+        "10",
+        "--out",
+        out_dir.to_str().unwrap(),
+    ]);
     assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
     let csv = std::fs::read_to_string(out_dir.join("stability.csv")).unwrap();
     let rows: Vec<&str> = csv.lines().filter(|l| !l.starts_with('#')).skip(1).collect();
-    assert_eq!(rows.len(), 9, "{csv}");
-    let stiffest_coarsest = rows.iter().find(|r| r.starts_with("100,1,")).expect("k x 100 at 1 substep");
+    assert_eq!(rows.len(), 18, "{csv}");
+    let euler = |prefix: &str| {
+        let key = format!("symplectic_euler,{prefix}");
+        *rows.iter().find(|r| r.starts_with(&key)).unwrap_or_else(|| panic!("no row {key}"))
+    };
+    let stiffest_coarsest = euler("100,1,");
     assert!(
         stiffest_coarsest.contains(",false,") && !stiffest_coarsest.ends_with("stable"),
         "{stiffest_coarsest}"
     );
-    let softest_finest = rows.iter().find(|r| r.starts_with("0.01,64,")).expect("k x 0.01 at 64 substeps");
-    assert!(softest_finest.ends_with(",true,stable"), "{softest_finest}");
-    let svg = std::fs::read_to_string(out_dir.join("stability.svg")).unwrap();
-    assert!(svg.starts_with("<svg") && svg.contains("predicted unstable"));
+    assert!(euler("0.01,64,").ends_with(",true,stable"), "{}", euler("0.01,64,"));
+    let implicit: Vec<&&str> = rows.iter().filter(|r| r.starts_with("implicit,")).collect();
+    assert_eq!(implicit.len(), 9);
+    assert!(implicit.iter().all(|r| r.ends_with(",true,stable")), "{implicit:#?}");
+    for method in ["symplectic_euler", "implicit"] {
+        let svg = std::fs::read_to_string(out_dir.join(format!("stability-{method}.svg"))).unwrap();
+        assert!(svg.starts_with("<svg") && svg.contains("predicted unstable"));
+    }
+}
+
+/// `chart` on a tiny sweep: one row per setting with finite errors and costs for the stable
+/// ones, a Pareto front, and an SVG with a curve per method.
+#[test]
+fn chart_writes_csv_and_svg() {
+    let dir = tempfile::tempdir().unwrap();
+    let out_dir = dir.path().join("chart");
+    let out = msdsim(&[
+        "chart",
+        "--scenes",
+        "rope",
+        "--substeps",
+        "2,8",
+        "--iterations",
+        "3",
+        "--reference-substeps",
+        "64",
+        "--out",
+        out_dir.to_str().unwrap(),
+    ]);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let csv = std::fs::read_to_string(out_dir.join("chart.csv")).unwrap();
+    let rows: Vec<Vec<&str>> =
+        csv.lines().filter(|l| !l.starts_with('#')).skip(1).map(|l| l.split(',').collect()).collect();
+    assert_eq!(rows.len(), 8, "4 methods x 2 substep counts:\n{csv}");
+    for r in &rows {
+        let cost: f64 = r[5].parse().unwrap();
+        assert!(cost > 0.0, "GPU time per simulated second: {r:?}");
+        if r[r.len() - 1].is_empty() {
+            let rms: f64 = r[6].parse().unwrap();
+            assert!(rms.is_finite() && rms > 0.0, "{r:?}");
+        }
+    }
+    assert!(rows.iter().any(|r| r[r.len() - 2] == "true"), "a Pareto front:\n{csv}");
+    let svg = std::fs::read_to_string(out_dir.join("chart-rope.svg")).unwrap();
+    for label in ["symplectic_euler", "verlet", "xpbd (3 it.)", "implicit (3 it.)", "Pareto front"] {
+        assert!(svg.contains(label), "{label} in the chart");
+    }
 }

@@ -93,7 +93,7 @@ fn builtin(names: &[String], overrides: &[String]) -> Result<Vec<(String, Scene)
     Ok(scenes)
 }
 
-pub fn method(name: &str) -> Result<Integrator, UserError> {
+pub(super) fn method(name: &str) -> Result<Integrator, UserError> {
     Integrator::ALL.into_iter().find(|m| m.label() == name).ok_or_else(|| {
         let names: Vec<_> = Integrator::ALL.iter().map(|m| m.label()).collect();
         UserError(format!("unknown integrator '{name}': use one of {}", names.join(", ")))

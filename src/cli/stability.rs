@@ -1,4 +1,4 @@
-//! `msdsim stability`: the stability map of a scene (symplectic Euler).
+//! `msdsim stability`: the stability map of a scene, per integrator.
 
 use crate::scene;
 use crate::study::stability_map::{self, Sweep};
@@ -15,6 +15,9 @@ pub struct StabilityArgs {
     /// Override a preset value (repeatable), as for `simulate`.
     #[arg(long = "set", value_name = "KEY=VALUE")]
     pub overrides: Vec<String>,
+    /// Integrators to map (one map each).
+    #[arg(long, value_delimiter = ',', default_value = "symplectic_euler,verlet,xpbd,implicit")]
+    pub methods: Vec<String>,
     /// Stiffness scales and substep counts per axis.
     #[arg(long, default_value_t = 9, value_parser = clap::value_parser!(u64).range(2..=64))]
     pub points: u64,
@@ -27,7 +30,7 @@ pub struct StabilityArgs {
     /// Largest structural strain (|length / rest - 1|) at the end still counted as stable.
     #[arg(long, default_value_t = 1.0)]
     pub max_strain: f64,
-    /// Folder for stability.csv and stability.svg.
+    /// Folder for stability.csv and stability-METHOD.svg.
     #[arg(long, default_value = "stability-results")]
     pub out: PathBuf,
 }
@@ -44,33 +47,52 @@ pub fn run(args: &StabilityArgs, options: &ContextOptions) -> Result<()> {
             scene::parse(DEFAULT_SCENE, "presets/curtain.toml", &overrides)?
         }
     };
+    let methods = args.methods.iter().map(|m| super::chart::method(m)).collect::<Result<Vec<_>, _>>()?;
     std::fs::create_dir_all(&args.out)
         .map_err(|e| crate::error::UserError(format!("--out {}: {e}", args.out.display())))?;
     let ctx = GpuContext::new(options)?;
     let sweep = Sweep::new(args.points as usize, args.decades, args.frames as usize, args.max_strain);
     let total = sweep.scales.len() * sweep.substeps.len();
-    let bar = indicatif::ProgressBar::new(total as u64);
-    let cells = stability_map::run(&ctx, &base, &sweep, |c| {
-        bar.set_message(format!("k x {:.3}, {} substeps: {:?}", c.stiffness_scale, c.substeps, c.outcome));
-        bar.inc(1);
-    })?;
-    bar.finish_and_clear();
-    let agree = cells
-        .iter()
-        .filter(|c| c.predicted_stable() == (c.outcome == stability_map::Outcome::Stable))
-        .count();
+    let mut all = Vec::new();
+    let mut summary = Vec::new();
+    for method in methods {
+        let bar = indicatif::ProgressBar::new(total as u64);
+        let cells = stability_map::run(&ctx, &base, method, &sweep, |c| {
+            bar.set_message(format!(
+                "{}: k x {:.3}, {} substeps: {:?}",
+                method.label(),
+                c.stiffness_scale,
+                c.substeps,
+                c.outcome
+            ));
+            bar.inc(1);
+        })?;
+        bar.finish_and_clear();
+        let stable = cells.iter().filter(|c| c.outcome == stability_map::Outcome::Stable).count();
+        let agree = cells
+            .iter()
+            .filter(|c| c.predicted_stable() == (c.outcome == stability_map::Outcome::Stable))
+            .count();
+        summary.push(format!(
+            "{}: stable in {stable} of {total} cells; the prediction agrees in {agree} of {total}",
+            method.label()
+        ));
+        let title = format!("Stability map: {} ({} frames per cell)", method.label(), args.frames);
+        let file = format!("stability-{}.svg", method.label());
+        std::fs::write(args.out.join(&file), stability_map::svg(&cells, &sweep, &title))
+            .with_context(|| format!("writing {file}"))?;
+        all.extend(cells);
+    }
     let header = format!(
-        "device: {}\ncommand: {}\nmethod: symplectic Euler, {} frames per cell\nprediction agrees with the measurement in {agree} of {total} cells",
+        "device: {}\ncommand: {}\n{} frames per cell\n{}",
         ctx.info(),
         std::env::args().collect::<Vec<_>>().join(" "),
-        args.frames
+        args.frames,
+        summary.join("\n")
     );
-    std::fs::write(args.out.join("stability.csv"), stability_map::csv(&cells, &header))
+    std::fs::write(args.out.join("stability.csv"), stability_map::csv(&all, &header))
         .context("writing stability.csv")?;
-    let title = format!("Stability map: symplectic Euler ({} frames per cell)", args.frames);
-    std::fs::write(args.out.join("stability.svg"), stability_map::svg(&cells, &sweep, &title))
-        .context("writing stability.svg")?;
     println!("{header}");
-    println!("wrote {0}/stability.csv and {0}/stability.svg", args.out.display());
+    println!("wrote {0}/stability.csv and {0}/stability-METHOD.svg", args.out.display());
     crate::cli::check_validation(&ctx)
 }

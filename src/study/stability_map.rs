@@ -1,12 +1,13 @@
 //! The stability map: sweeps a stiffness scale (rows) against the substep count (columns) on a
-//! scene, runs each cell on the GPU and classifies it: stable, non-finite (NaN), runaway (a speed
+//! scene with one integrator, runs each cell on the GPU and classifies it: stable, non-finite (NaN), runaway (a speed
 //! past `sim.max_speed`: energy blowing up) or over-stretched (a structural spring strained past a
 //! bound at the end). Each cell also carries the predicted explicit limit's verdict
-//! (w_max dt <= 2). Writes a CSV and an SVG heat map.
+//! (w_max dt <= 2; the iterative methods are predicted stable everywhere). Writes a CSV and an
+//! SVG heat map.
 
 use crate::scene::{self, Scene};
 use crate::sim::gpu::GpuSim;
-use crate::sim::model::ObjectKind;
+use crate::sim::model::{Integrator, ObjectKind};
 use crate::sim::stability::{predict, GuardTrip};
 use crate::vk::GpuContext;
 use anyhow::Result;
@@ -43,6 +44,7 @@ impl Outcome {
 
 #[derive(Debug, Clone)]
 pub struct Cell {
+    pub method: Integrator,
     pub stiffness_scale: f64,
     pub substeps: u32,
     pub dt: f64,
@@ -53,7 +55,7 @@ pub struct Cell {
 
 impl Cell {
     pub fn predicted_stable(&self) -> bool {
-        self.dt <= self.dt_max
+        self.method.iterative() || self.dt <= self.dt_max
     }
 }
 
@@ -81,9 +83,10 @@ impl Sweep {
     }
 }
 
-fn scaled(base: &Scene, scale: f64, substeps: u32) -> Scene {
+fn scaled(base: &Scene, method: Integrator, scale: f64, substeps: u32) -> Scene {
     let mut s = base.clone();
     s.sim.substeps = substeps;
+    s.sim.integrator = crate::scene::IntegratorChoice::from_method(method);
     for c in &mut s.cloths {
         c.stiffness.structural *= scale;
         c.stiffness.shear *= scale;
@@ -117,17 +120,18 @@ fn max_strain(model: &crate::sim::model::SimModel, states: &[crate::sim::gpu::Ob
     worst
 }
 
-/// Runs the sweep; `progress` is called after each cell.
+/// Runs the sweep with `method`; `progress` is called after each cell.
 pub fn run(
     ctx: &GpuContext,
     base: &Scene,
+    method: Integrator,
     sweep: &Sweep,
     mut progress: impl FnMut(&Cell),
 ) -> Result<Vec<Cell>> {
     let mut cells = Vec::new();
     for &scale in &sweep.scales {
         for &substeps in &sweep.substeps {
-            let scene = scaled(base, scale, substeps);
+            let scene = scaled(base, method, scale, substeps);
             scene::validate(&scene).map_err(crate::error::UserError)?;
             let model = scene::to_model(&scene);
             let dt_max = predict(&model).iter().map(|p| p.dt_max).fold(f64::INFINITY, f64::min);
@@ -150,7 +154,8 @@ pub fn run(
                 })
             })();
             sim.destroy(ctx);
-            let cell = Cell { stiffness_scale: scale, substeps, dt: model.dt(), dt_max, outcome: run? };
+            let cell =
+                Cell { method, stiffness_scale: scale, substeps, dt: model.dt(), dt_max, outcome: run? };
             progress(&cell);
             cells.push(cell);
         }
@@ -163,11 +168,12 @@ pub fn csv(cells: &[Cell], header: &str) -> String {
     for line in header.lines() {
         let _ = writeln!(out, "# {line}");
     }
-    let _ = writeln!(out, "stiffness_scale,substeps,dt_s,predicted_dt_max_s,predicted_stable,outcome");
+    let _ = writeln!(out, "method,stiffness_scale,substeps,dt_s,predicted_dt_max_s,predicted_stable,outcome");
     for c in cells {
         let _ = writeln!(
             out,
-            "{},{},{:.6e},{:.6e},{},{}",
+            "{},{},{},{:.6e},{:.6e},{},{}",
+            c.method.label(),
             c.stiffness_scale,
             c.substeps,
             c.dt,
