@@ -280,3 +280,36 @@ fn chart_writes_csv_and_svg() {
         assert!(svg.contains(label), "{label} in the chart");
     }
 }
+
+/// `integrator = "auto"` calibrates, says what it picked (a method whose measured error meets
+/// the tolerance) and simulates with it; a tolerance finer than its reference can certify is
+/// refused with exit code 2 and the reason, before any simulation.
+#[test]
+fn auto_integrator_picks_a_method_within_the_tolerance() {
+    let args = |tol: &str| {
+        msdsim(&[
+            "simulate",
+            "--preset",
+            "presets/curtain.toml",
+            "--frames",
+            "5",
+            "--quiet",
+            "--set",
+            "cloth.0.resolution=[10, 10]",
+            "--set",
+            "sim.integrator=\"auto\"",
+            "--set",
+            &format!("sim.tolerance={tol}"),
+        ])
+    };
+    let out = args("0.01");
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let line = stdout.lines().find(|l| l.contains("picked")).unwrap_or_else(|| panic!("no pick:\n{stdout}"));
+    let error: f64 = line.split("error ").nth(1).and_then(|s| s.split(' ').next()).unwrap().parse().unwrap();
+    assert!(error <= 0.01, "{line}");
+    let out = args("1e-9");
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{stderr}");
+    assert!(stderr.contains("sim.tolerance") && !stderr.contains("panicked"), "{stderr}");
+}

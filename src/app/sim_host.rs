@@ -31,6 +31,16 @@ pub struct SimHost {
     sim: GpuSim,
 }
 
+/// The model of a scene, calibrated first when it asks for `integrator = "auto"` (the pick is
+/// logged).
+fn model_for(ctx: &GpuContext, scene: &Scene) -> Result<SimModel> {
+    let (model, picked) = crate::study::auto::model_for(ctx, scene)?;
+    if let Some(p) = picked {
+        log::info!("{p}");
+    }
+    Ok(model)
+}
+
 /// The parts of a scene that fix the particles' layout and the buffers' sizes.
 fn layout_key(s: &Scene) -> String {
     let cloths: Vec<_> = s
@@ -59,7 +69,7 @@ impl SimHost {
         shaders: &mut ShaderSet,
     ) -> Result<Self> {
         gpu::check_fits(ctx.info(), &scene::shapes(&scene))?;
-        let model = scene::to_model(&scene);
+        let model = model_for(ctx, &scene)?;
         let sim = GpuSim::with_shaders(ctx, &model, shaders)?;
         if let Err(e) = renderer.set_objects(ctx, &scene::shapes(&scene)) {
             sim.destroy(ctx);
@@ -99,9 +109,9 @@ impl SimHost {
         scene::validate(&edited).map_err(crate::error::UserError)?;
         let same_layout = layout_key(&edited) == layout_key(&self.scene);
         let (old, new) = (&self.scene.sim, &edited.sim);
-        let same_pipelines = (old.substeps, old.integrator, old.self_collision)
-            == (new.substeps, new.integrator, new.self_collision);
-        if same_layout && same_pipelines {
+        let same_pipelines = (old.substeps, old.integrator, old.self_collision, old.tolerance)
+            == (new.substeps, new.integrator, new.self_collision, new.tolerance);
+        if same_layout && same_pipelines && new.integrator.method().is_some() {
             ctx.wait_idle()?;
             let model = scene::to_model(&edited);
             self.sim.update_params(&model)?;
@@ -111,7 +121,7 @@ impl SimHost {
         }
         gpu::check_fits(ctx.info(), &scene::shapes(&edited))?;
         ctx.wait_idle()?;
-        let model = scene::to_model(&edited);
+        let model = model_for(ctx, &edited)?;
         let carried = if same_layout { Some(self.sim.read_states(ctx)?) } else { None };
         let mut sim = GpuSim::with_shaders(ctx, &model, shaders)?;
         if let Some(states) = &carried {

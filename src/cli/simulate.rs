@@ -63,16 +63,25 @@ pub fn run(args: &SimulateArgs, options: &ContextOptions) -> Result<()> {
     let ctx = GpuContext::new(options)?;
     println!("device: {}", ctx.info());
     gpu::check_fits(ctx.info(), &scene::shapes(&scene))?;
-    let model = scene::to_model(&scene);
+    let (model, picked) = crate::study::auto::model_for(&ctx, &scene)?;
+    if let Some(p) = picked {
+        println!("{p}");
+    }
     println!(
-        "preset: {} ({} objects, {} spheres, {} substeps of {:.3} ms per frame)",
+        "preset: {} ({} objects, {} spheres, {} with {} substeps of {:.3} ms per frame{})",
         args.preset.display(),
         model.objects.len(),
         model.spheres.len(),
+        model.integrator.label(),
         model.substeps,
-        model.dt() * 1e3
+        model.dt() * 1e3,
+        if model.integrator.iterative() {
+            format!(", {} iterations", model.iterations)
+        } else {
+            String::new()
+        }
     );
-    for p in stability::predict(&model) {
+    for p in stability::predict(&model).into_iter().filter(|_| !model.integrator.iterative()) {
         let dt = model.dt();
         let verdict = if dt <= p.dt_max {
             "within it".to_string()

@@ -4,7 +4,7 @@
 //! (`accuracy`). Writes a CSV and an SVG (plotters): error against cost, one curve per method,
 //! the Pareto front marked.
 
-use super::accuracy::{self, Error, Reference, TIMES};
+use super::accuracy::{self, Error, Reference, Samples, TIMES};
 use crate::sim::cpu;
 use crate::sim::gpu::{GpuSim, ObjectState};
 use crate::sim::model::{Integrator, SimModel};
@@ -55,7 +55,7 @@ pub struct Point {
     pub dt: f64,
     /// GPU time per simulated second [ms/s].
     pub gpu_ms_per_s: f64,
-    /// At each of `TIMES` (absent past a guard trip).
+    /// At each sample time (`TIMES` in the chart; absent past a guard trip).
     pub errors: Vec<Error>,
     /// Largest structural strain at the sample times.
     pub max_strain: f64,
@@ -68,7 +68,7 @@ pub struct Point {
 impl Point {
     /// The error the chart plots: the largest RMS error over the sample times.
     pub fn error(&self) -> f64 {
-        if self.unstable.is_some() || self.errors.len() < TIMES.len() {
+        if self.unstable.is_some() || self.errors.is_empty() {
             return f64::INFINITY;
         }
         self.errors.iter().map(|e| e.rms).fold(0.0, f64::max)
@@ -86,12 +86,14 @@ fn energy(model: &SimModel, x: &[Vec<DVec3>], v: &[Vec<DVec3>]) -> f64 {
     model.objects.iter().zip(x.iter().zip(v)).map(|(o, (x, v))| cpu::energy(model, o, x, v)).sum()
 }
 
-/// Runs one setting on the GPU.
-fn run_point(
+/// Runs one setting of `base` on the GPU until the last of `times`, measuring its cost and its
+/// error against `reference` (positions at each of `times`).
+pub fn run_point(
     ctx: &GpuContext,
     scene: &str,
     base: &SimModel,
-    reference: &Reference,
+    times: &[f64],
+    reference: &Samples,
     (method, substeps, iterations): (Integrator, u32, u32),
 ) -> Result<Point> {
     let mut model = base.clone();
@@ -117,7 +119,7 @@ fn run_point(
         };
         let mut gpu_ms = 0.0;
         let mut frame = 0;
-        for (k, &t) in TIMES.iter().enumerate() {
+        for (k, &t) in times.iter().enumerate() {
             while frame < accuracy::frames_until(&model, t) {
                 match sim.step_frame(ctx) {
                     Ok(Some(timing)) => gpu_ms += timing.total_ms,
@@ -136,11 +138,11 @@ fn run_point(
                 frame += 1;
             }
             let (x, v) = positions(&sim.read_states(ctx)?);
-            point.errors.push(accuracy::error(&model, &x, &reference.samples[k]));
+            point.errors.push(accuracy::error(&model, &x, &reference[k]));
             for (o, x) in model.objects.iter().zip(&x) {
                 point.max_strain = point.max_strain.max(cpu::max_strain(o, x));
             }
-            if k + 1 == TIMES.len() {
+            if k + 1 == times.len() {
                 point.energy_change = energy(&model, &x, &v) - start_energy;
             }
         }
@@ -163,7 +165,7 @@ pub fn run(
     let reference = accuracy::reference(model, &TIMES, sweep.reference_substeps);
     let mut points = Vec::new();
     for setting in sweep.settings() {
-        let point = run_point(ctx, scene, model, &reference, setting)
+        let point = run_point(ctx, scene, model, &TIMES, &reference.samples, setting)
             .with_context(|| format!("chart of {scene}: {setting:?}"))?;
         progress(&point);
         points.push(point);

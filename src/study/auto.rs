@@ -1,0 +1,178 @@
+//! `sim.integrator = "auto"`: a short calibration that picks the cheapest integrator, substep
+//! count and iteration count whose error stays within `sim.tolerance`.
+//!
+//! The scene runs for `CALIBRATION_S` on the GPU with each candidate; its error is the RMS
+//! position error over the particles at the end, normalised by the object's size (as in the
+//! accuracy chart), against a reference: position Verlet at `REFERENCE_SUBSTEPS` per frame on
+//! the GPU (the scene may be far too large for the CPU reference), checked against the same at
+//! half the substeps. For each method (and iteration count) the substep count doubles from 1 to
+//! 64 until the tolerance is met (the explicit methods start at their predicted stability
+//! limit: a scene's stretch limit can hold an unstable one together through a short
+//! calibration, jittering); of the settings that meet it, the one with the least GPU time per
+//! simulated second (timestamps) wins.
+
+use super::accuracy::Samples;
+use super::chart::{run_point, Point};
+use crate::error::UserError;
+use crate::scene::{self, Scene};
+use crate::sim::gpu::GpuSim;
+use crate::sim::model::{Integrator, SimModel};
+use crate::vk::GpuContext;
+use anyhow::Result;
+use glam::DVec3;
+
+/// Simulated time of the calibration [s].
+pub const CALIBRATION_S: f64 = 0.5;
+const REFERENCE_SUBSTEPS: u32 = 256;
+const SUBSTEPS: [u32; 7] = [1, 2, 4, 8, 16, 32, 64];
+const ITERATIONS: [u32; 2] = [4, 10];
+
+/// What the calibration picked and why.
+#[derive(Debug, Clone)]
+pub struct Pick {
+    pub method: Integrator,
+    pub substeps: u32,
+    pub iterations: u32,
+    pub error: f64,
+    pub gpu_ms_per_s: f64,
+    /// Every setting tried, in order.
+    pub tried: Vec<Point>,
+    /// The reference's own error estimate.
+    pub reference_error: f64,
+}
+
+impl Pick {
+    pub fn describe(&self, tolerance: f64) -> String {
+        let iterations =
+            if self.method.iterative() { format!(", {} iterations", self.iterations) } else { String::new() };
+        format!(
+            "integrator = \"auto\" picked {} with {} substeps{iterations}: error {:.2e} of the object's size after {CALIBRATION_S} s (tolerance {tolerance:.1e}), {:.2} ms of GPU time per simulated second; {} settings tried",
+            self.method.label(),
+            self.substeps,
+            self.error,
+            self.gpu_ms_per_s,
+            self.tried.len()
+        )
+    }
+
+    /// The model with the pick applied.
+    pub fn apply(&self, model: &SimModel) -> SimModel {
+        let mut m = model.clone();
+        m.integrator = self.method;
+        m.substeps = self.substeps;
+        m.iterations = self.iterations.max(1);
+        m
+    }
+}
+
+/// Positions of every object after `t` seconds of Verlet at `substeps` per frame on the GPU.
+fn gpu_reference(ctx: &GpuContext, model: &SimModel, t: f64, substeps: u32) -> Result<Vec<Vec<DVec3>>> {
+    let mut m = model.clone();
+    m.integrator = Integrator::Verlet;
+    m.substeps = substeps;
+    let mut sim = GpuSim::new(ctx, &m)?;
+    let result = (|| -> Result<Vec<Vec<DVec3>>> {
+        for _ in 0..super::accuracy::frames_until(&m, t) {
+            sim.step_frame(ctx)?;
+        }
+        Ok(sim
+            .read_states(ctx)?
+            .iter()
+            .map(|s| {
+                s.particles
+                    .iter()
+                    .map(|p| DVec3::new(p.pos[0] as f64, p.pos[1] as f64, p.pos[2] as f64))
+                    .collect()
+            })
+            .collect())
+    })();
+    sim.destroy(ctx);
+    result
+}
+
+/// Calibrates `model` for `tolerance`; `progress` is called after each setting.
+pub fn calibrate(
+    ctx: &GpuContext,
+    model: &SimModel,
+    tolerance: f64,
+    mut progress: impl FnMut(&Point),
+) -> Result<Pick> {
+    let fine = gpu_reference(ctx, model, CALIBRATION_S, REFERENCE_SUBSTEPS)?;
+    let coarse = gpu_reference(ctx, model, CALIBRATION_S, REFERENCE_SUBSTEPS / 2)?;
+    let reference_error = super::accuracy::error(model, &coarse, &fine).rms / 3.0;
+    if reference_error > 0.3 * tolerance {
+        return Err(UserError(format!(
+            "sim.tolerance = {tolerance:.1e} is finer than the calibration can certify on this scene: its reference (Verlet at {REFERENCE_SUBSTEPS} substeps per frame) is itself only good to about {reference_error:.1e}; choose a larger tolerance or an integrator and substep count by hand"
+        ))
+        .into());
+    }
+    let reference: Samples = vec![fine];
+    let mut curves: Vec<(Integrator, u32)> = Vec::new();
+    for m in Integrator::ALL {
+        if m.iterative() {
+            curves.extend(ITERATIONS.iter().map(|&i| (m, i)));
+        } else {
+            curves.push((m, 0));
+        }
+    }
+    let mut tried = Vec::new();
+    let mut best: Option<Point> = None;
+    let min_explicit = crate::sim::stability::predict(model)
+        .iter()
+        .map(|p| p.min_substeps(model.frame_dt))
+        .max()
+        .unwrap_or(1);
+    for (method, iterations) in curves {
+        let start = if method.iterative() { 1 } else { min_explicit };
+        for substeps in SUBSTEPS.into_iter().filter(|&s| s >= start) {
+            let point =
+                run_point(ctx, "auto", model, &[CALIBRATION_S], &reference, (method, substeps, iterations))?;
+            progress(&point);
+            let ok = point.error() <= tolerance;
+            if ok && best.as_ref().is_none_or(|b| point.gpu_ms_per_s < b.gpu_ms_per_s) {
+                best = Some(point.clone());
+            }
+            tried.push(point);
+            if ok {
+                break;
+            }
+        }
+    }
+    let Some(best) = best else {
+        let closest = tried.iter().map(Point::error).fold(f64::INFINITY, f64::min);
+        return Err(UserError(format!(
+            "no integrator met sim.tolerance = {tolerance:.1e} within 64 substeps per frame (the best error was {closest:.2e}): raise the tolerance, or set sim.integrator and sim.substeps by hand"
+        ))
+        .into());
+    };
+    Ok(Pick {
+        method: best.method,
+        substeps: best.substeps,
+        iterations: best.iterations,
+        error: best.error(),
+        gpu_ms_per_s: best.gpu_ms_per_s,
+        tried,
+        reference_error,
+    })
+}
+
+/// The model of a validated scene, calibrated when it asks for `integrator = "auto"`; the
+/// description of the pick comes with it.
+pub fn model_for(ctx: &GpuContext, scene: &Scene) -> Result<(SimModel, Option<String>)> {
+    let model = scene::to_model(scene);
+    if scene.sim.integrator.method().is_some() {
+        return Ok((model, None));
+    }
+    crate::sim::gpu::check_fits(ctx.info(), &scene::shapes(scene))?;
+    let tolerance = scene.sim.tolerance;
+    let pick = calibrate(ctx, &model, tolerance, |p| {
+        log::info!(
+            "auto: {} {} substeps {} iterations: error {:.2e}",
+            p.method.label(),
+            p.substeps,
+            p.iterations,
+            p.error()
+        )
+    })?;
+    Ok((pick.apply(&model), Some(pick.describe(tolerance))))
+}
