@@ -108,10 +108,20 @@ impl GuardTrip {
         };
         let p = &predict(model)[object];
         let dt = model.dt();
-        let advice = if dt > p.dt_max {
+        let advice = if model.integrator.iterative() {
+            format!(
+                "The {} integrator is stable for any spring stiffness, so look at what it treats explicitly and at the \
+                 constraints: strong spring damping (explicit in the implicit method's prediction), drag, contacts; try \
+                 more substeps (sim.substeps, now {}) or more iterations (sim.iterations, now {}).",
+                model.integrator.label(),
+                model.substeps,
+                model.iterations
+            )
+        } else if dt > p.dt_max {
             format!(
                 "The substep ({:.3} ms) is past the explicit stability limit predicted for it ({:.3} ms, w_max = {:.0} rad/s): \
-                 use at least {} substeps per frame (sim.substeps, now {}), or softer springs or heavier particles.",
+                 use at least {} substeps per frame (sim.substeps, now {}), sim.integrator = \"implicit\" or \"xpbd\" \
+                 (stable at any stiffness), or softer springs or heavier particles.",
                 dt * 1e3,
                 p.dt_max * 1e3,
                 p.omega_max,
