@@ -4,7 +4,7 @@
 
 use super::{rest_length, springs, wind_at, Spring};
 use crate::sim::model::{Integrator, ObjectModel, SimModel};
-use crate::sim::stability::chebyshev_rho;
+use crate::sim::stability::{chebyshev_rho, CHEBYSHEV_START, JACOBI_DAMPING};
 use glam::DVec3;
 
 type State = (Vec<DVec3>, Vec<DVec3>);
@@ -157,8 +157,9 @@ pub fn chebyshev_omega(k: u32, rho: f64) -> f64 {
 
 /// Implicit Euler by projective dynamics: minimise |p - y|^2_M / (2 dt^2) + sum k/2 |p_i - p_j -
 /// d_s|^2 over p, with d_s the spring's rest-length projection of the current p_i - p_j (local
-/// step). One Jacobi sweep of the global system per iteration (diagonal m / dt^2 + sum k),
-/// accelerated by Chebyshev with the radius `chebyshev_rho`.
+/// step). One damped Jacobi sweep of the global system per iteration (diagonal m / dt^2 + sum k,
+/// moving `JACOBI_DAMPING` of the way), accelerated by Chebyshev with the radius
+/// `chebyshev_rho` from iteration `CHEBYSHEV_START` on.
 fn implicit(m: &SimModel, o: &ObjectModel, dt: f64, x: &[DVec3], v: &[DVec3]) -> State {
     let n = x.len();
     let y = predict(m, o, dt, x, v, true);
@@ -167,7 +168,7 @@ fn implicit(m: &SimModel, o: &ObjectModel, dt: f64, x: &[DVec3], v: &[DVec3]) ->
     let mut prev = y.clone();
     let mut p = y.clone();
     for k in 0..m.iterations {
-        let omega = chebyshev_omega(k, rho);
+        let omega = if k < CHEBYSHEV_START { 1.0 } else { chebyshev_omega(k - CHEBYSHEV_START, rho) };
         let mut next = p.clone();
         for i in 0..n {
             if o.pinned[i] {
@@ -187,8 +188,8 @@ fn implicit(m: &SimModel, o: &ObjectModel, dt: f64, x: &[DVec3], v: &[DVec3]) ->
                 rhs += (p[s.other] + target) * k;
                 diag += k;
             }
-            let jacobi = rhs / diag;
-            next[i] = prev[i] + (jacobi - prev[i]) * omega;
+            let damped = p[i] + (rhs / diag - p[i]) * JACOBI_DAMPING;
+            next[i] = prev[i] + (damped - prev[i]) * omega;
         }
         prev = std::mem::replace(&mut p, next);
     }
