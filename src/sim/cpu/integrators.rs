@@ -24,6 +24,15 @@ fn grid(o: &ObjectModel, i: usize) -> (i64, i64) {
     ((i % cols) as i64, (i / cols) as i64)
 }
 
+/// The springs of particle i that have a stiffness, with it (the solvers' constraints).
+fn elastic_springs(o: &ObjectModel, i: usize) -> impl Iterator<Item = (Spring, f64)> + '_ {
+    let (c, r) = grid(o, i);
+    springs(o, c, r).into_iter().filter_map(move |s| {
+        let k = o.stiffness[s.kind as usize];
+        (k != 0.0).then_some((s, k))
+    })
+}
+
 /// Gravity, wind and drag on particle i at (x, v) [N].
 fn external(m: &SimModel, o: &ObjectModel, x: DVec3, v: DVec3) -> DVec3 {
     m.gravity * o.mass + wind_at(&m.wind, x) - v * o.drag
@@ -109,15 +118,10 @@ fn xpbd(m: &SimModel, o: &ObjectModel, dt: f64, x: &[DVec3], v: &[DVec3]) -> Sta
             if o.pinned[i] {
                 continue;
             }
-            let (c, r) = grid(o, i);
             let mut sum = DVec3::ZERO;
             let mut count = 0u32;
             let mut dl = [0.0f64; 12];
-            for s in springs(o, c, r) {
-                let k = o.stiffness[s.kind as usize];
-                if k == 0.0 {
-                    continue;
-                }
+            for (s, k) in elastic_springs(o, i) {
                 let delta = p[i] - p[s.other];
                 let d = delta.length();
                 if d <= 0.0 {
@@ -174,14 +178,9 @@ fn implicit(m: &SimModel, o: &ObjectModel, dt: f64, x: &[DVec3], v: &[DVec3]) ->
             if o.pinned[i] {
                 continue;
             }
-            let (c, r) = grid(o, i);
             let mut rhs = y[i] * inertia;
             let mut diag = inertia;
-            for s in springs(o, c, r) {
-                let k = o.stiffness[s.kind as usize];
-                if k == 0.0 {
-                    continue;
-                }
+            for (s, k) in elastic_springs(o, i) {
                 let delta = p[i] - p[s.other];
                 let d = delta.length();
                 let target = if d > 0.0 { delta * (rest_length(o, &s) / d) } else { DVec3::ZERO };
