@@ -15,7 +15,7 @@ use super::accuracy::Samples;
 use super::chart::{run_point, Point};
 use crate::error::UserError;
 use crate::scene::{self, Scene};
-use crate::sim::gpu::GpuSim;
+use crate::sim::gpu::{GpuSim, ObjectState};
 use crate::sim::model::{Integrator, SimModel};
 use crate::vk::GpuContext;
 use anyhow::Result;
@@ -75,16 +75,7 @@ fn gpu_reference(ctx: &GpuContext, model: &SimModel, t: f64, substeps: u32) -> R
         for _ in 0..super::accuracy::frames_until(&m, t) {
             sim.step_frame(ctx)?;
         }
-        Ok(sim
-            .read_states(ctx)?
-            .iter()
-            .map(|s| {
-                s.particles
-                    .iter()
-                    .map(|p| DVec3::new(p.pos[0] as f64, p.pos[1] as f64, p.pos[2] as f64))
-                    .collect()
-            })
-            .collect())
+        Ok(sim.read_states(ctx)?.iter().map(ObjectState::positions).collect())
     })();
     sim.destroy(ctx);
     result

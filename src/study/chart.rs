@@ -76,10 +76,10 @@ impl Point {
 }
 
 fn positions(states: &[ObjectState]) -> (Vec<Vec<DVec3>>, Vec<Vec<DVec3>>) {
-    let v3 = |a: [f32; 4]| DVec3::new(a[0] as f64, a[1] as f64, a[2] as f64);
-    let x = states.iter().map(|s| s.particles.iter().map(|p| v3(p.pos)).collect()).collect();
-    let v = states.iter().map(|s| s.particles.iter().map(|p| v3(p.vel)).collect()).collect();
-    (x, v)
+    (
+        states.iter().map(ObjectState::positions).collect(),
+        states.iter().map(ObjectState::velocities).collect(),
+    )
 }
 
 fn energy(model: &SimModel, x: &[Vec<DVec3>], v: &[Vec<DVec3>]) -> f64 {

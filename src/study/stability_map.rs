@@ -6,8 +6,9 @@
 //! SVG heat map.
 
 use crate::scene::{self, Scene};
+use crate::sim::cpu;
 use crate::sim::gpu::GpuSim;
-use crate::sim::model::{Integrator, ObjectKind};
+use crate::sim::model::Integrator;
 use crate::sim::stability::{predict, GuardTrip};
 use crate::vk::GpuContext;
 use anyhow::Result;
@@ -101,23 +102,7 @@ fn scaled(base: &Scene, method: Integrator, scale: f64, substeps: u32) -> Scene 
 
 /// Largest |length / rest - 1| over the structural springs of every object.
 fn max_strain(model: &crate::sim::model::SimModel, states: &[crate::sim::gpu::ObjectState]) -> f64 {
-    let mut worst: f64 = 0.0;
-    for (o, s) in model.objects.iter().zip(states) {
-        let [cols, rows] = [o.dims[0] as usize, o.dims[1] as usize];
-        let p = |c: usize, r: usize| glam::Vec3::from_slice(&s.particles[c + r * cols].pos[..3]).as_dvec3();
-        for r in 0..rows {
-            for c in 0..cols {
-                for (dc, dr, rest) in
-                    [(1, 0, o.spacing[0] * o.rest_scale[0]), (0, 1, o.spacing[1] * o.rest_scale[0])]
-                {
-                    if c + dc < cols && r + dr < rows && (o.kind == ObjectKind::Cloth || dr == 0) {
-                        worst = worst.max((p(c, r).distance(p(c + dc, r + dr)) / rest - 1.0).abs());
-                    }
-                }
-            }
-        }
-    }
-    worst
+    model.objects.iter().zip(states).map(|(o, s)| cpu::max_strain(o, &s.positions())).fold(0.0, f64::max)
 }
 
 /// Runs the sweep with `method`; `progress` is called after each cell.

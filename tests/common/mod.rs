@@ -200,9 +200,7 @@ pub fn compare_path(
         worst = worst.max(deviation(&last, cpu.objects()));
         if mode == Mode::Resync {
             for (i, state) in last.iter().enumerate() {
-                let x = state.particles.iter().map(|p| v3(p.pos)).collect();
-                let v = state.particles.iter().map(|p| v3(p.vel)).collect();
-                cpu.set_state(i, x, v);
+                cpu.set_state(i, state.positions(), state.velocities());
             }
         }
     }

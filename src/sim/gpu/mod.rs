@@ -63,6 +63,18 @@ pub struct ObjectState {
     pub surface: Vec<SurfaceVertex>,
 }
 
+impl ObjectState {
+    /// Particle positions in f64 (for the CPU-side metrics).
+    pub fn positions(&self) -> Vec<glam::DVec3> {
+        self.particles.iter().map(|p| glam::Vec3::from_slice(&p.pos[..3]).as_dvec3()).collect()
+    }
+
+    /// Particle velocities in f64.
+    pub fn velocities(&self) -> Vec<glam::DVec3> {
+        self.particles.iter().map(|p| glam::Vec3::from_slice(&p.vel[..3]).as_dvec3()).collect()
+    }
+}
+
 /// Objects of at most this many particles (and no spatial hash) run all of a frame's substeps
 /// in one single-workgroup dispatch (`fused.comp`). Measured on an H100 with the limit at
 /// 4096 (docs/bench/h100/bench-fused-up-to-4096.md): fused wins at 256 particles (0.111 vs
