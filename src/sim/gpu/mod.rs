@@ -95,12 +95,11 @@ pub struct GpuSim {
     stage_timing: bool,
     /// Small objects run their substeps fused into one dispatch (see `FUSED_MAX`).
     fused: bool,
-    substeps: u32,
-    frame_dt: f64,
     frames: u64,
     /// Particle writes (object, index, value) applied at the start of the next recorded frame.
     pending_writes: Vec<(usize, u32, Particle)>,
-    /// The model the simulation runs, without particles (for the guard's reports).
+    /// The model the simulation runs, without particles (substeps, integrator, the guard's
+    /// reports).
     model: SimModel,
 }
 
@@ -201,8 +200,6 @@ impl GpuSim {
             timestamps,
             stage_timing: true,
             fused: true,
-            substeps: model.substeps,
-            frame_dt: model.frame_dt,
             frames: 0,
             pending_writes: Vec::new(),
             model: model.without_particles(),
@@ -417,7 +414,7 @@ impl GpuSim {
             );
         }
         let stepped = fused.len() < self.objects.len();
-        for s in 0..self.substeps {
+        for s in 0..self.model.substeps {
             if !stepped {
                 break;
             }
@@ -440,7 +437,7 @@ impl GpuSim {
         }
         if let Some(pool) = ts.filter(|_| stages && !stepped) {
             // All fused: the simulation time counts as physics, the stages are not separable.
-            for s in 0..self.substeps {
+            for s in 0..self.model.substeps {
                 rec.timestamp(pool, 1 + 2 * s);
                 rec.timestamp(pool, 2 + 2 * s);
             }
@@ -454,7 +451,7 @@ impl GpuSim {
             rec.dispatch(self.pipelines.get(Stage::Surface(o.kind)), o.sets[0], o.surface_groups);
         }
         if let Some(pool) = ts {
-            rec.timestamp(pool, 1 + 2 * self.substeps);
+            rec.timestamp(pool, 1 + 2 * self.model.substeps);
         }
         let mut end = surfaces(Access::ComputeWrite, surface_consumer);
         end.extend(
@@ -549,7 +546,7 @@ impl GpuSim {
             "the scene's objects or spheres changed: rebuild the simulation instead"
         );
         anyhow::ensure!(
-            model.substeps == self.substeps
+            model.substeps == self.model.substeps
                 && model.integrator == self.model.integrator
                 && model.self_collision == self.model.self_collision,
             "the substep count, integrator or self-collision method changed: rebuild the simulation instead"
@@ -560,7 +557,6 @@ impl GpuSim {
             anyhow::ensure!(o.dims[0] * o.dims[1] == gpu.particles, "object '{}' changed size", o.name);
             gpu.params.write(0, &[object_params(o, model)])?;
         }
-        self.frame_dt = model.frame_dt;
         self.model = model.without_particles();
         Ok(())
     }
@@ -620,7 +616,7 @@ impl GpuSim {
             let [flags, first] = o.guard.read::<u32>(2)?[..] else { unreachable!("two words read") };
             if flags != 0 {
                 o.guard.write(0, &GUARD_CLEAR)?;
-                let time = self.frames as f64 * self.frame_dt;
+                let time = self.frames as f64 * self.model.frame_dt;
                 return Ok(Some(GuardTrip::new(&self.model, i, first, flags & GUARD_NON_FINITE != 0, time)));
             }
         }
@@ -631,11 +627,11 @@ impl GpuSim {
     pub fn read_timing(&self, ctx: &GpuContext, slot: usize) -> Result<Option<FrameTiming>> {
         let Some(pool) = self.timestamps.get(slot) else { return Ok(None) };
         let ms = |a: f64, b: f64| (b - a).max(0.0) * 1e-6;
-        let last = 1 + 2 * self.substeps;
+        let last = 1 + 2 * self.model.substeps;
         let mut timing = FrameTiming::default();
         if self.stage_timing {
             let t = pool.read_ns(ctx, last + 1)?;
-            for s in 0..self.substeps as usize {
+            for s in 0..self.model.substeps as usize {
                 timing.physics_ms += ms(t[2 * s], t[2 * s + 1]);
                 timing.constraints_ms += ms(t[2 * s + 1], t[2 * s + 2]);
             }
@@ -713,7 +709,7 @@ impl GpuSim {
 
     /// Simulated time so far [s].
     pub fn time(&self) -> f64 {
-        self.frames as f64 * self.frame_dt
+        self.frames as f64 * self.model.frame_dt
     }
 
     pub fn frames(&self) -> u64 {
@@ -721,7 +717,7 @@ impl GpuSim {
     }
 
     pub fn substeps_done(&self) -> u64 {
-        self.frames * self.substeps as u64
+        self.frames * self.model.substeps as u64
     }
 
     /// Frees everything after waiting for the last frame.
