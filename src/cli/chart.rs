@@ -24,12 +24,12 @@ pub struct ChartArgs {
     pub overrides: Vec<String>,
     /// Integrators to sweep.
     #[arg(long, value_delimiter = ',', default_value = "symplectic_euler,verlet,xpbd,implicit")]
-    pub methods: Vec<String>,
+    pub methods: Vec<Integrator>,
     /// Substeps per 1/60 s frame.
-    #[arg(long, value_delimiter = ',', default_value = "1,2,4,8,16,32,64")]
+    #[arg(long, value_delimiter = ',', default_value = "1,2,4,8,16,32,64", value_parser = clap::value_parser!(u32).range(1..=4096))]
     pub substeps: Vec<u32>,
     /// Solver iterations per substep (xpbd, implicit).
-    #[arg(long, value_delimiter = ',', default_value = "2,5,10,30")]
+    #[arg(long, value_delimiter = ',', default_value = "2,5,10,30", value_parser = clap::value_parser!(u32).range(1..=1000))]
     pub iterations: Vec<u32>,
     /// Substeps per frame of the CPU reference (position Verlet in f64).
     #[arg(long, default_value_t = 256, value_parser = clap::value_parser!(u32).range(2..=4096))]
@@ -93,13 +93,6 @@ fn builtin(names: &[String], overrides: &[String]) -> Result<Vec<(String, Scene)
     Ok(scenes)
 }
 
-pub(super) fn method(name: &str) -> Result<Integrator, UserError> {
-    Integrator::ALL.into_iter().find(|m| m.label() == name).ok_or_else(|| {
-        let names: Vec<_> = Integrator::ALL.iter().map(|m| m.label()).collect();
-        UserError(format!("unknown integrator '{name}': use one of {}", names.join(", ")))
-    })
-}
-
 pub fn run(args: &ChartArgs, options: &ContextOptions) -> Result<()> {
     let scenes = match &args.preset {
         Some(p) => {
@@ -109,16 +102,8 @@ pub fn run(args: &ChartArgs, options: &ContextOptions) -> Result<()> {
         }
         None => builtin(&args.scenes, &args.overrides)?,
     };
-    let methods = args.methods.iter().map(|m| method(m)).collect::<Result<Vec<_>, _>>()?;
-    for (&s, what) in
-        args.substeps.iter().map(|s| (s, "substeps")).chain(args.iterations.iter().map(|i| (i, "iterations")))
-    {
-        if !(1..=4096).contains(&s) {
-            return Err(UserError(format!("--{what} {s}: must be between 1 and 4096")).into());
-        }
-    }
     let sweep = Sweep {
-        methods,
+        methods: args.methods.clone(),
         substeps: args.substeps.clone(),
         iterations: args.iterations.clone(),
         reference_substeps: args.reference_substeps,

@@ -1,6 +1,7 @@
 //! `msdsim stability`: the stability map of a scene, per integrator.
 
 use crate::scene;
+use crate::sim::model::Integrator;
 use crate::study::stability_map::{self, Sweep};
 use crate::vk::{ContextOptions, GpuContext};
 use anyhow::{Context as _, Result};
@@ -17,7 +18,7 @@ pub struct StabilityArgs {
     pub overrides: Vec<String>,
     /// Integrators to map (one map each).
     #[arg(long, value_delimiter = ',', default_value = "symplectic_euler,verlet,xpbd,implicit")]
-    pub methods: Vec<String>,
+    pub methods: Vec<Integrator>,
     /// Stiffness scales and substep counts per axis.
     #[arg(long, default_value_t = 9, value_parser = clap::value_parser!(u64).range(2..=64))]
     pub points: u64,
@@ -47,7 +48,6 @@ pub fn run(args: &StabilityArgs, options: &ContextOptions) -> Result<()> {
             scene::parse(DEFAULT_SCENE, "presets/curtain.toml", &overrides)?
         }
     };
-    let methods = args.methods.iter().map(|m| super::chart::method(m)).collect::<Result<Vec<_>, _>>()?;
     std::fs::create_dir_all(&args.out)
         .map_err(|e| crate::error::UserError(format!("--out {}: {e}", args.out.display())))?;
     let ctx = GpuContext::new(options)?;
@@ -55,7 +55,7 @@ pub fn run(args: &StabilityArgs, options: &ContextOptions) -> Result<()> {
     let total = sweep.scales.len() * sweep.substeps.len();
     let mut all = Vec::new();
     let mut summary = Vec::new();
-    for method in methods {
+    for &method in &args.methods {
         let bar = indicatif::ProgressBar::new(total as u64);
         let cells = stability_map::run(&ctx, &base, method, &sweep, |c| {
             bar.set_message(format!(

@@ -126,8 +126,11 @@ pub enum SelfCollisionMethod {
 
 /// How a substep advances the spring network (`sim.integrator`). Every method is followed by
 /// the same constraint stage (stretch limit, self-collision, spheres).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default, serde::Serialize, serde::Deserialize)]
+#[derive(
+    Debug, Clone, Copy, PartialEq, Eq, Hash, Default, serde::Serialize, serde::Deserialize, clap::ValueEnum,
+)]
 #[serde(rename_all = "snake_case")]
+#[value(rename_all = "snake_case")]
 pub enum Integrator {
     /// The paper's: v += a(x, v) dt, then x += v dt. First order, explicit.
     #[default]
