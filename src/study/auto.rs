@@ -30,11 +30,8 @@ const ITERATIONS: [u32; 2] = [4, 10];
 /// What the calibration picked and why.
 #[derive(Debug, Clone)]
 pub struct Pick {
-    pub method: Integrator,
-    pub substeps: u32,
-    pub iterations: u32,
-    pub error: f64,
-    pub gpu_ms_per_s: f64,
+    /// The cheapest setting within the tolerance.
+    pub best: Point,
     /// Every setting tried, in order.
     pub tried: Vec<Point>,
     /// The reference's own error estimate.
@@ -43,14 +40,15 @@ pub struct Pick {
 
 impl Pick {
     pub fn describe(&self, tolerance: f64) -> String {
+        let b = &self.best;
         let iterations =
-            if self.method.iterative() { format!(", {} iterations", self.iterations) } else { String::new() };
+            if b.method.iterative() { format!(", {} iterations", b.iterations) } else { String::new() };
         format!(
             "integrator = \"auto\" picked {} with {} substeps{iterations}: error {:.2e} of the object's size after {CALIBRATION_S} s (tolerance {tolerance:.1e}), {:.2} ms of GPU time per simulated second; {} settings tried",
-            self.method.label(),
-            self.substeps,
-            self.error,
-            self.gpu_ms_per_s,
+            b.method.label(),
+            b.substeps,
+            b.error(),
+            b.gpu_ms_per_s,
             self.tried.len()
         )
     }
@@ -58,9 +56,9 @@ impl Pick {
     /// The model with the pick applied.
     pub fn apply(&self, model: &SimModel) -> SimModel {
         let mut m = model.clone();
-        m.integrator = self.method;
-        m.substeps = self.substeps;
-        m.iterations = self.iterations.max(1);
+        m.integrator = self.best.method;
+        m.substeps = self.best.substeps;
+        m.iterations = self.best.iterations.max(1);
         m
     }
 }
@@ -136,15 +134,7 @@ pub fn calibrate(
         ))
         .into());
     };
-    Ok(Pick {
-        method: best.method,
-        substeps: best.substeps,
-        iterations: best.iterations,
-        error: best.error(),
-        gpu_ms_per_s: best.gpu_ms_per_s,
-        tried,
-        reference_error,
-    })
+    Ok(Pick { best, tried, reference_error })
 }
 
 /// The model of a validated scene, calibrated when it asks for `integrator = "auto"`; the

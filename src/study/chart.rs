@@ -301,7 +301,6 @@ pub fn svg(points: &[Point], title: &str) -> Result<String> {
             .y_label_formatter(&|v| format!("{v:.0e}"))
             .draw()?;
         let mut curves: Vec<(Integrator, u32)> = points.iter().map(|p| (p.method, p.iterations)).collect();
-        curves.dedup();
         curves.sort_by_key(|c| (c.0 as u32, c.1));
         curves.dedup();
         for (method, iterations) in curves {
