@@ -13,6 +13,8 @@
 #include "bindings.glsl"
 #include "springs.glsl"
 #include "forces.glsl"
+#define IN(i) p_in[i]
+#include "spring_forces.glsl"
 
 layout(local_size_x_id = 0, local_size_y_id = 1, local_size_z = 1) in;
 // The implicit method's prediction (else XPBD's).
@@ -28,17 +30,7 @@ void main() {
     vec3 dy = vec3(0.0);  // y - x
     if (p.pos.w <= 0.5) {
         vec3 force = external_force(x, v);
-        if (IMPLICIT && obj.stiffness.w != 0.0) {
-            for (int s = 0; s < 12; ++s) {
-                int j = neighbour(ivec2(cell), SPRINGS[s].xy, obj.dims);
-                if (j < 0) continue;
-                vec3 to_j = p_in[j].pos.xyz - x;
-                float d = length(to_j);
-                if (d <= 0.0) continue;
-                vec3 dir = to_j / d;
-                force += (obj.stiffness.w * dot(p_in[j].vel.xyz - v, dir)) * dir;
-            }
-        }
+        if (IMPLICIT) add_spring_forces(cell, x, v, 0.0, false, force);
         dy = (v + force * (g.dt / obj.mass)) * g.dt;
     }
     iter[i] = vec4(dy, p.pos.w);

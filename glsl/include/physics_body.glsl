@@ -9,6 +9,7 @@
 #define MSD_PHYSICS_BODY_GLSL
 #include "forces.glsl"
 #include "hash_count.glsl"
+#include "spring_forces.glsl"
 
 // Position Verlet instead of symplectic Euler (a pipeline per choice).
 layout(constant_id = 2) const bool VERLET = false;
@@ -26,20 +27,7 @@ void physics_particle(uvec2 cell) {
     vec3 v = p.vel.xyz;
 
     vec3 force = external_force(x, v);
-    for (int s = 0; s < 12; ++s) {
-        ivec3 spring = SPRINGS[s];
-        float k = obj.stiffness[spring.z];
-        if (k == 0.0 && obj.stiffness.w == 0.0) continue;
-        int j = neighbour(ivec2(cell), spring.xy, obj.dims);
-        if (j < 0) continue;
-        vec3 to_j = IN(j).pos.xyz + drift * IN(j).vel.xyz - x;
-        float d = length(to_j);
-        if (d <= 0.0) continue;
-        vec3 dir = to_j / d;
-        float rest = rest_length(spring, obj.spacing, obj.rest_scale);
-        float damping = obj.stiffness.w * dot(IN(j).vel.xyz - v, dir);
-        force += (k * (d - rest) + damping) * dir;  // Hooke's law plus a dashpot along the spring
-    }
+    add_spring_forces(cell, x, v, drift, true, force);
 
     vec3 v_new = v + force * (g.dt / obj.mass);
     vec3 x_new = x + v_new * (g.dt - drift);
