@@ -1,34 +1,189 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
-// Fused substeps for a small object (at most FUSED_MAX particles, without a spatial hash): one
-// workgroup runs every substep of the frame, physics (A -> B) then constraints (B -> A), the
-// same code as physics.comp and constraints.comp. The phases are ordered by barrier() with
-// memory barriers on the coherent state buffers instead of pipeline barriers, which removes
-// the per-stage dispatch and barrier latency that bounds small scenes.
+// Every substep of a frame for one object in one workgroup, with the state in registers and
+// shared memory: physics, the self-collision hash and the constraints of all substeps run
+// without a dispatch or a pipeline barrier between them (what bounds small scenes), and
+// without global memory traffic between the first load and the last store.
+//
+// Thread t owns particles t, t + THREADS, ... (at most MAX_SLOTS): their position, velocity and
+// pin live in its registers. Shared memory holds what neighbours read:
+//   px/py/pz   every particle's position (for physics drifted by physics_drift() times its
+//              velocity, as physics.comp reads its neighbours; for the constraints the new one);
+//   pin_bits   which particles are pinned;
+//   scratch    during physics: the velocities (for the spring dashpots) of the particles one
+//              pass computes plus HALO on each side, in passes of PASS_SLOTS slots when not all
+//              fit; during the constraints: the spatial hash, bucket heads and a linked list.
+// The host (src/sim/gpu/fused.rs) sizes all of it from the object and the device's shared
+// memory and specializes one pipeline per object shape; the step code is physics_body.glsl and
+// constraints_body.glsl, as for the per-stage path, with neighbours read from shared memory.
+// Phases are separated by barrier(); those a scene does not need are left out.
 #define STATE_FUSED
+#define FUSED_SHARED
 #include "bindings.glsl"
 #include "springs.glsl"
 
-layout(local_size_x = 1024) in;
+layout(local_size_x_id = 0) in;
+layout(constant_id = 4) const uint CAP = 1u;         // particles of the object
+layout(constant_id = 5) const uint SCRATCH = 1u;     // words of scratch
+layout(constant_id = 6) const uint BUCKETS = 1u;     // hash buckets (a power of two)
+layout(constant_id = 7) const uint PASS_SLOTS = 1u;  // slots whose physics one pass computes
+layout(constant_id = 8) const uint HALO = 2u;        // largest index distance to a spring neighbour
 
-#define IN(i) p_in[i]
-#define OUT(i) p_out[i]
+const uint THREADS = gl_WorkGroupSize.x;
+const uint MAX_SLOTS = 4u;  // particles per thread at most (FUSED_SLOTS on the host)
+const uint SLOTS = (CAP + THREADS - 1u) / THREADS;
+const uint WINDOW = THREADS * PASS_SLOTS + 2u * HALO;  // velocities staged per pass
+const uint EMPTY = 0xFFFFFFFFu;
+
+shared float px[CAP];
+shared float py[CAP];
+shared float pz[CAP];
+shared uint pin_bits[(CAP + 31u) / 32u];
+shared uint scratch[SCRATCH];
+
+int window_start;  // the particle at scratch[0] in the current physics pass
+
+vec3 spos(uint j) { return vec3(px[j], py[j], pz[j]); }
+void set_spos(uint j, vec3 x) {
+    px[j] = x.x;
+    py[j] = x.y;
+    pz[j] = x.z;
+}
+bool spinned(uint j) { return (pin_bits[j >> 5u] & (1u << (j & 31u))) != 0u; }
+vec3 wvel(uint j) {
+    uint w = uint(int(j) - window_start);
+    return vec3(uintBitsToFloat(scratch[w]), uintBitsToFloat(scratch[WINDOW + w]),
+                uintBitsToFloat(scratch[2u * WINDOW + w]));
+}
+
+#define NPOS(j) spos(uint(j))
+#define NVEL(j) wvel(uint(j))
+#define CPOS(j) spos(uint(j))
+#define CPINNED(j) spinned(uint(j))
+#define HASH_MASK (BUCKETS - 1u)
 #include "physics_body.glsl"
-#undef IN
-#undef OUT
-#define IN(i) p_out[i]
-#define OUT(i) p_in[i]
 #include "constraints_body.glsl"
 
+// The shared spatial hash: scratch[h] is the first particle of bucket h, scratch[BUCKETS + j]
+// the one after particle j (EMPTY ends a list).
+void visit_bucket(uint h, uvec2 cell, vec3 x, float reach, inout vec3 correction, inout uint n_active) {
+    for (uint j = scratch[h]; j != EMPTY; j = scratch[BUCKETS + j]) {
+        self_contact(cell, x, j, reach, correction, n_active);
+    }
+}
+
 void main() {
-    uint n = particle_count();
+    uint t = gl_LocalInvocationID.x;
+    uint n = particle_count();  // == CAP
     uint cols = obj.dims.x;
-    for (uint s = 0u; s < g.substeps; ++s) {
-        for (uint k = gl_LocalInvocationID.x; k < n; k += 1024u) physics_particle(uvec2(k % cols, k / cols));
-        memoryBarrierBuffer();
-        barrier();
-        for (uint k = gl_LocalInvocationID.x; k < n; k += 1024u) constraints_particle(uvec2(k % cols, k / cols));
-        memoryBarrierBuffer();
-        barrier();
+    const uint self_bits = OBJ_SELF_COLLISION | OBJ_SELF_HASH;
+    bool hashed = has(F_SELF) && (obj.flags & self_bits) == self_bits;
+    bool stretch = has(F_STRETCH) && (obj.flags & OBJ_STRETCH_LIMIT) != 0u;
+    bool self_any = has(F_SELF) && (obj.flags & OBJ_SELF_COLLISION) != 0u;
+    bool neighbours = stretch || self_any;  // the constraints read other particles
+    float drift = physics_drift();
+
+    vec3 x[MAX_SLOTS];
+    vec3 v[MAX_SLOTS];
+    vec3 v_new[MAX_SLOTS];
+    bool pinned[MAX_SLOTS];
+    for (uint s = 0u; s < MAX_SLOTS; ++s) {
+        uint k = t + s * THREADS;
+        x[s] = vec3(0.0);
+        v[s] = vec3(0.0);
+        v_new[s] = vec3(0.0);
+        pinned[s] = true;
+        if (s < SLOTS && k < n) {
+            Particle p = p_in[k];
+            pinned[s] = p.pos.w > 0.5;
+            x[s] = p.pos.xyz;
+            v[s] = pinned[s] ? vec3(0.0) : p.vel.xyz;
+        }
+    }
+    for (uint w = t; w < (CAP + 31u) / 32u; w += THREADS) pin_bits[w] = 0u;
+    barrier();
+    for (uint s = 0u; s < SLOTS; ++s) {
+        uint k = t + s * THREADS;
+        if (k >= n) continue;
+        if (pinned[s]) atomicOr(pin_bits[k >> 5u], 1u << (k & 31u));
+        set_spos(k, x[s] + drift * v[s]);
+    }
+
+    for (uint sub = 0u; sub < g.substeps; ++sub) {
+        // Physics: forces on the drifted positions (and, with dashpots, the neighbours'
+        // velocities staged pass by pass), new state into registers.
+        for (uint chunk = 0u; chunk < MAX_SLOTS; ++chunk) {
+            if (chunk * PASS_SLOTS >= SLOTS) break;
+            if (has(F_DAMPING)) {
+                if (chunk > 0u) barrier();  // the pass before has read its window
+                window_start = int(chunk * PASS_SLOTS * THREADS) - int(HALO);
+                for (uint s = 0u; s < SLOTS; ++s) {
+                    uint k = t + s * THREADS;
+                    int w = int(k) - window_start;
+                    if (k < n && w >= 0 && w < int(WINDOW)) {
+                        scratch[w] = floatBitsToUint(v[s].x);
+                        scratch[WINDOW + uint(w)] = floatBitsToUint(v[s].y);
+                        scratch[2u * WINDOW + uint(w)] = floatBitsToUint(v[s].z);
+                    }
+                }
+            }
+            barrier();
+            for (uint s = 0u; s < SLOTS; ++s) {
+                uint k = t + s * THREADS;
+                if (s / PASS_SLOTS != chunk || k >= n || pinned[s]) continue;
+                vec3 xs = x[s] + drift * v[s];
+                vec3 vs = v[s];
+                physics_step(uvec2(k % cols, k / cols), xs, vs);
+                x[s] = xs;
+                v_new[s] = vs;
+            }
+        }
+        for (uint s = 0u; s < SLOTS; ++s) v[s] = v_new[s];
+        barrier();  // every read of this substep's positions and velocities is done
+
+        // Constraints on the new positions: shared for the neighbours, hashed for contacts.
+        if (neighbours) {
+            for (uint s = 0u; s < SLOTS; ++s) {
+                uint k = t + s * THREADS;
+                if (k < n) set_spos(k, x[s]);
+            }
+            if (hashed) {
+                for (uint b = t; b < BUCKETS; b += THREADS) scratch[b] = EMPTY;
+            }
+            barrier();
+            if (hashed) {
+                for (uint s = 0u; s < SLOTS; ++s) {
+                    uint k = t + s * THREADS;
+                    if (k >= n) continue;
+                    uint h = cell_hash(ivec3(floor(x[s] * obj.cell_inv)), BUCKETS - 1u);
+                    scratch[BUCKETS + k] = atomicExchange(scratch[h], k);
+                }
+                barrier();
+            }
+        }
+        for (uint s = 0u; s < SLOTS; ++s) {
+            uint k = t + s * THREADS;
+            if (k >= n || pinned[s]) continue;
+            vec3 xs = x[s];
+            vec3 vs = v[s];
+            if (neighbours) {
+                vec3 correction = constraint_correction(uvec2(k % cols, k / cols), xs);
+                xs += correction;
+                vs += correction / g.dt;  // velocity follows the position correction
+            }
+            collide_spheres(xs, vs);
+            x[s] = xs;
+            v[s] = vs;
+        }
+        if (neighbours) barrier();  // every read of the shared positions and hash is done
+        for (uint s = 0u; s < SLOTS; ++s) {
+            uint k = t + s * THREADS;
+            if (k < n) set_spos(k, x[s] + drift * v[s]);
+        }
+    }
+
+    for (uint s = 0u; s < SLOTS; ++s) {
+        uint k = t + s * THREADS;
+        if (k < n) p_in[k] = Particle(vec4(x[s], pinned[s] ? 1.0 : 0.0), vec4(v[s], 0.0));
     }
 }

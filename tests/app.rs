@@ -4,7 +4,7 @@
 
 mod common;
 
-use common::copy_dir;
+use common::{broken, copy_dir};
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
@@ -173,7 +173,7 @@ fn the_app_reloads_an_edited_shader_and_survives_a_broken_one() {
     assert!(wait_for("hot reload on", &mut log), "no 'hot reload on' line:\n{log}");
     std::fs::write(&forces, forces_original.replace("GRAVITY_SCALE = 1.0;", "GRAVITY_SCALE = 2.0;")).unwrap();
     assert!(wait_for("after the save", &mut log), "no reload reported:\n{log}");
-    std::fs::write(&body, original.replace("vec3 v_new = v + force", "vec3 v_new = v + forse")).unwrap();
+    std::fs::write(&body, broken(&original)).unwrap();
     assert!(wait_for("physics_body.glsl:", &mut log), "no compile error reported:\n{log}");
     std::fs::write(&body, &original).unwrap();
     assert!(wait_for("after the save", &mut log), "no recovery reported:\n{log}");

@@ -347,10 +347,43 @@ fn spatial_hash_finds_every_contact_in_a_crowd() {
     }
 }
 
-/// The fused path (all substeps of a small object in one dispatch) equals the per-stage path:
-/// the same shader code on the same inputs, so they agree to f32 rounding (1e-6 m allowed over
-/// 240 substeps; a missing barrier() between phases reads half-updated neighbours and moves
-/// particles by millimetres). Cloth and rope together, every feature but the spatial hash.
+/// Runs `model` fused (with the layouts planned for `shared_limit` bytes of shared memory) and
+/// per stage for `FRAMES` frames; returns the largest position difference. Asserts that every
+/// object took the fused path.
+fn fused_against_per_stage(model: &SimModel, shared_limit: u32) -> f64 {
+    let ctx = gpu();
+    let mut fused = GpuSim::with_shared_limit(&ctx, model, shared_limit).unwrap();
+    let mut staged = GpuSim::new(&ctx, model).unwrap();
+    staged.set_fused(false);
+    for i in 0..model.objects.len() {
+        assert!(fused.runs_fused(i), "object {i} did not take the fused path");
+        assert!(!staged.runs_fused(i));
+    }
+    let mut worst: f64 = 0.0;
+    for _ in 0..FRAMES {
+        fused.step_frame(&ctx).unwrap();
+        staged.step_frame(&ctx).unwrap();
+        let (a, b) = (fused.read_states(&ctx).unwrap(), staged.read_states(&ctx).unwrap());
+        for (oa, ob) in a.iter().zip(&b) {
+            for (pa, pb) in oa.particles.iter().zip(&ob.particles) {
+                for k in 0..3 {
+                    worst = worst.max((pa.pos[k] - pb.pos[k]).abs() as f64);
+                }
+            }
+        }
+    }
+    fused.destroy(&ctx);
+    staged.destroy(&ctx);
+    assert_clean(&ctx);
+    worst
+}
+
+/// The fused path (all substeps of an object in one workgroup, the state in registers and
+/// shared memory) equals the per-stage path: the same step code on the same inputs, so they
+/// agree to f32 rounding (1e-6 m allowed over 240 substeps; a missing barrier() between phases
+/// reads half-updated neighbours and moves particles by millimetres). Cloth and rope together,
+/// every feature but self-collision (whose contact order differs between the two hashes, which
+/// chaos amplifies: the feature tests check both paths against the reference instead).
 #[test]
 fn fused_substeps_equal_the_per_stage_path() {
     let mut c = jittered_cloth();
@@ -368,28 +401,36 @@ fn fused_substeps_equal_the_per_stage_path() {
     s.gravity = DVec3::new(0.0, -9.81, 0.0);
     s.wind = Some(wind([0.3, 0.8, 1.0], [0.0, 0.0, -1.0], 0.01, 0.3, 0.6));
     s.spheres = vec![sphere([0.3, 0.5, 0.1], 0.15)];
-    let ctx = gpu();
-    let mut fused = GpuSim::new(&ctx, &s).unwrap();
-    let mut staged = GpuSim::new(&ctx, &s).unwrap();
-    staged.set_fused(false);
-    let mut worst: f64 = 0.0;
-    for _ in 0..FRAMES {
-        fused.step_frame(&ctx).unwrap();
-        staged.step_frame(&ctx).unwrap();
-        let (a, b) = (fused.read_states(&ctx).unwrap(), staged.read_states(&ctx).unwrap());
-        for (oa, ob) in a.iter().zip(&b) {
-            for (pa, pb) in oa.particles.iter().zip(&ob.particles) {
-                for k in 0..3 {
-                    worst = worst.max((pa.pos[k] - pb.pos[k]).abs() as f64);
-                }
-            }
-        }
-    }
+    let worst = fused_against_per_stage(&s, u32::MAX);
     println!("fused vs per stage: {worst:e} m");
     assert!(worst <= 1e-6, "the fused path differs from the per-stage path by {worst} m");
-    fused.destroy(&ctx);
-    staged.destroy(&ctx);
-    assert_clean(&ctx);
+}
+
+/// Objects of more particles than threads (two per thread), with the dashpots' velocity
+/// window staged in passes (the layout planned for 24 KiB of shared memory, where a 44 x 25
+/// cloth's window does not fit in one pass), and a rope of 1,100 nodes: equal to the per-stage
+/// path as above.
+#[test]
+fn fused_layouts_in_passes_equal_the_per_stage_path() {
+    let mut c = cloth(44, 25, 0.04);
+    jitter(&mut c.positions, 0.008, 3);
+    c.stiffness = [80.0, 20.0, 5.0];
+    c.damping = 0.01;
+    c.stretch_limit = Some(0.1);
+    c.pinned[0] = true;
+    c.pinned[43] = true;
+    let mut r = rope(1100, 0.01);
+    r.stiffness = [200.0, 0.0, 2.0];
+    r.damping = 0.005;
+    r.pinned[0] = true;
+    let mut s = scene(vec![c, r]);
+    s.gravity = DVec3::new(0.0, -9.81, 0.0);
+    let limit = 24 * 1024;
+    let cloth_shape = msdsim::sim::gpu::FusedShape::plan(&s.objects[0], &s, limit).unwrap();
+    assert!(cloth_shape.pass_slots < cloth_shape.particles.div_ceil(cloth_shape.threads), "{cloth_shape:?}");
+    let worst = fused_against_per_stage(&s, limit);
+    println!("fused in passes vs per stage: {worst:e} m ({cloth_shape:?})");
+    assert!(worst <= 1e-6, "the fused path differs from the per-stage path by {worst} m");
 }
 
 /// A smooth scene for the integrators: a pinned, jittered cloth with all spring types,

@@ -54,8 +54,8 @@ fn edit_break_restore_and_a_refused_header_change() {
     let tmp = tempfile::tempdir().unwrap();
     let dir = tmp.path().join("glsl");
     copy_dir(&Path::new(env!("CARGO_MANIFEST_DIR")).join("glsl"), &dir);
-    // The physics code lives in a header that physics.comp and fused.comp (the small-object
-    // path this scene takes) both include; the gravity knob in one they share with predict.comp
+    // The physics code lives in a header that physics.comp and fused.comp (the path this
+    // small scene takes) both include; the gravity knob in one they share with predict.comp
     // (the iterative integrators', which this scene does not build).
     let physics = dir.join("include/physics_body.glsl");
     let original = std::fs::read_to_string(&physics).unwrap();
@@ -89,12 +89,12 @@ fn edit_break_restore_and_a_refused_header_change() {
     assert!(rig.retired.is_empty(), "released once their frames completed");
 
     // A broken shader: the old pipeline keeps running, the error names the file and line.
-    std::fs::write(&physics, original.replace("vec3 v_new = v + force", "vec3 v_new = v + forse")).unwrap();
+    std::fs::write(&physics, broken(&original)).unwrap();
     let (_, reloaded) = rig.reload();
     assert!(reloaded.is_empty(), "a broken shader must not be swapped in");
     let errors: Vec<_> = rig.shaders.errors().map(|(n, e)| (n.clone(), e.clone())).collect();
     assert_eq!(errors.len(), 2, "both shaders including the header fail: {errors:?}");
-    let line = original.lines().position(|l| l.contains("vec3 v_new = v + force")).unwrap() + 1;
+    let line = original.lines().position(|l| l.contains(BROKEN_LINE)).unwrap() + 1;
     for (_, e) in &errors {
         assert!(e.contains(&format!("physics_body.glsl:{line}:")), "file:line in {e:?}");
     }

@@ -33,3 +33,41 @@ fn a_shifted_member_is_refused() {
     let err = layout_check::check(&compiled.spirv).unwrap_err();
     assert!(err.contains("ObjectParams"), "{err}");
 }
+
+/// The `#define`d constants of the headers (flag bits, feature bits, the rope ring) equal the
+/// host's mirrors in `sim::gpu_types`.
+#[test]
+fn header_constants_match_the_host() {
+    use msdsim::sim::gpu_types as t;
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("glsl/include");
+    let mut defines = std::collections::HashMap::new();
+    for file in ["layout.glsl", "features.glsl"] {
+        for line in std::fs::read_to_string(dir.join(file)).unwrap().lines() {
+            let mut words = line.split_whitespace();
+            if let (Some("#define"), Some(name), Some(value)) = (words.next(), words.next(), words.next()) {
+                if let Ok(v) = value.trim_end_matches('u').parse::<u32>() {
+                    defines.insert(name.to_string(), v);
+                }
+            }
+        }
+    }
+    let host = [
+        ("ROPE_RING", t::ROPE_RING as u32),
+        ("OBJ_STRETCH_LIMIT", t::OBJ_STRETCH_LIMIT),
+        ("OBJ_SELF_COLLISION", t::OBJ_SELF_COLLISION),
+        ("OBJ_SELF_HASH", t::OBJ_SELF_HASH),
+        ("GUARD_NON_FINITE", t::GUARD_NON_FINITE),
+        ("GUARD_RUNAWAY", t::GUARD_RUNAWAY),
+        ("F_STRUCTURAL", t::FEATURE_STRUCTURAL),
+        ("F_SHEAR", t::FEATURE_SHEAR),
+        ("F_BENDING", t::FEATURE_BENDING),
+        ("F_DAMPING", t::FEATURE_DAMPING),
+        ("F_WIND", t::FEATURE_WIND),
+        ("F_SPHERES", t::FEATURE_SPHERES),
+        ("F_STRETCH", t::FEATURE_STRETCH),
+        ("F_SELF", t::FEATURE_SELF),
+    ];
+    for (name, value) in host {
+        assert_eq!(defines.get(name), Some(&value), "{name}: header and host disagree");
+    }
+}

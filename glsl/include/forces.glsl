@@ -2,6 +2,7 @@
 // Include after bindings.glsl.
 #ifndef MSD_FORCES_GLSL
 #define MSD_FORCES_GLSL
+#include "features.glsl"
 
 // Scales gravity for every object (1 = as the scene says). A knob to try hot reload with:
 // edit it while the app runs and the cloth falls faster or slower at once.
@@ -10,6 +11,7 @@ const float GRAVITY_SCALE = 1.0;
 // The paper's wind: a cone from wind_origin along wind_dir, full force inside the full-force
 // half-angle, falling linearly (in the cosine) to zero at the attenuation half-angle.
 vec3 wind_force(vec3 x) {
+    if (!has(F_WIND)) return vec3(0.0);
     vec3 to_x = x - g.wind_origin;
     float d = length(to_x);
     if (g.wind_enabled == 0u || d <= 0.0) return vec3(0.0);

@@ -1,10 +1,11 @@
-// The physics stage for one particle (shared by physics.comp and fused.comp): forces
-// (gravity, springs with damping, wind cone, Stokes drag) and symplectic Euler, or position
-// Verlet (VERLET: the forces at the half-drifted positions x + v dt / 2). Reads IN(i),
-// writes OUT(i): the including shader defines both. For objects whose self-collision uses the
-// spatial hash it also counts the new position into its bucket (counts[] were zeroed by the
-// previous substep's scan) and records its rank there.
-// Include after bindings.glsl and springs.glsl, with IN and OUT defined.
+// The physics stage for one particle: forces (gravity, springs with damping, wind cone, Stokes
+// drag) and symplectic Euler, or position Verlet (VERLET: the forces at the half-drifted
+// positions x + v dt / 2). `physics_step` is the step itself, shared by physics.comp (through
+// `physics_particle`, which reads IN(i) and writes OUT(i)) and fused.comp (which keeps the
+// state in registers and shared memory). For objects whose self-collision uses the spatial
+// hash, `physics_particle` also counts the new position into its bucket (counts[] were zeroed
+// by the previous substep's scan) and records its rank there.
+// Include after bindings.glsl and springs.glsl, with IN and OUT (or NPOS and NVEL) defined.
 #ifndef MSD_PHYSICS_BODY_GLSL
 #define MSD_PHYSICS_BODY_GLSL
 #include "forces.glsl"
@@ -14,6 +15,20 @@
 // Position Verlet instead of symplectic Euler (a pipeline per choice).
 layout(constant_id = 2) const bool VERLET = false;
 
+// How far neighbours are drifted before the forces are evaluated [s].
+float physics_drift() { return VERLET ? 0.5 * g.dt : 0.0; }
+
+// Advances a free particle by one substep: x, its position drifted by physics_drift() times v,
+// becomes the new position; v the new velocity.
+void physics_step(uvec2 cell, inout vec3 x, inout vec3 v) {
+    float drift = physics_drift();
+    vec3 force = external_force(x, v);
+    add_spring_forces(cell, x, v, drift, true, force);
+    v += force * (g.dt / obj.mass);
+    x += v * (g.dt - drift);
+}
+
+#ifdef OUT
 void physics_particle(uvec2 cell) {
     uint i = cell.x + cell.y * obj.dims.x;
     Particle p = IN(i);
@@ -22,17 +37,12 @@ void physics_particle(uvec2 cell) {
         count_into_bucket(i, p.pos.xyz);
         return;
     }
-    float drift = VERLET ? 0.5 * g.dt : 0.0;
-    vec3 x = p.pos.xyz + drift * p.vel.xyz;
+    vec3 x = p.pos.xyz + physics_drift() * p.vel.xyz;
     vec3 v = p.vel.xyz;
-
-    vec3 force = external_force(x, v);
-    add_spring_forces(cell, x, v, drift, true, force);
-
-    vec3 v_new = v + force * (g.dt / obj.mass);
-    vec3 x_new = x + v_new * (g.dt - drift);
-    OUT(i) = Particle(vec4(x_new, 0.0), vec4(v_new, 0.0));
-    count_into_bucket(i, x_new);
+    physics_step(cell, x, v);
+    OUT(i) = Particle(vec4(x, 0.0), vec4(v, 0.0));
+    count_into_bucket(i, x);
 }
+#endif
 
 #endif

@@ -1,24 +1,35 @@
 // Adds the springs' force on the particle at grid `cell`, at position x with velocity v, to
-// `force`: Hooke's law (when `elastic`) plus a dashpot along each spring. Neighbours are read through IN(j), their
-// positions advanced by `drift` times their velocity (position Verlet's half drift; 0 otherwise).
-// Include after bindings.glsl and springs.glsl, with IN defined.
+// `force`: Hooke's law (when `elastic`) plus a dashpot along each spring. Spring types and
+// dashpots the scene does not use are compiled out (features.glsl).
+// A neighbour j is read through NPOS(j) (its position advanced by `drift` times its velocity:
+// position Verlet's half drift, 0 otherwise) and NVEL(j) (its velocity). By default both come
+// from IN(j); the fused shader defines them to read its shared memory instead.
+// Include after bindings.glsl and springs.glsl, with IN (or NPOS and NVEL) defined.
 #ifndef MSD_SPRING_FORCES_GLSL
 #define MSD_SPRING_FORCES_GLSL
+#include "features.glsl"
+
+#ifndef NPOS
+#define NPOS(j) (IN(j).pos.xyz + drift * IN(j).vel.xyz)
+#define NVEL(j) IN(j).vel.xyz
+#endif
 
 void add_spring_forces(uvec2 cell, vec3 x, vec3 v, float drift, bool elastic, inout vec3 force) {
     for (int s = 0; s < 12; ++s) {
         ivec3 spring = SPRINGS[s];
+        if (!has(1u << spring.z)) continue;  // F_STRUCTURAL, F_SHEAR, F_BENDING
         float k = elastic ? obj.stiffness[spring.z] : 0.0;
-        if (k == 0.0 && obj.stiffness.w == 0.0) continue;
+        if (k == 0.0 && !(has(F_DAMPING) && obj.stiffness.w != 0.0)) continue;
         int j = neighbour(ivec2(cell), spring.xy, obj.dims);
         if (j < 0) continue;
-        vec3 to_j = IN(j).pos.xyz + drift * IN(j).vel.xyz - x;
+        vec3 to_j = NPOS(j) - x;
         float d = length(to_j);
         if (d <= 0.0) continue;
         vec3 dir = to_j / d;
         float rest = rest_length(spring, obj.spacing, obj.rest_scale);
-        float damping = obj.stiffness.w * dot(IN(j).vel.xyz - v, dir);
-        force += (k * (d - rest) + damping) * dir;  // Hooke's law plus a dashpot along the spring
+        float f = k * (d - rest);  // Hooke's law
+        if (has(F_DAMPING)) f += obj.stiffness.w * dot(NVEL(j) - v, dir);  // plus a dashpot along the spring
+        force += f * dir;
     }
 }
 

@@ -111,9 +111,11 @@ impl SimHost {
         let (old, new) = (&self.scene.sim, &edited.sim);
         let same_pipelines = (old.substeps, old.integrator, old.self_collision, old.tolerance)
             == (new.substeps, new.integrator, new.self_collision, new.tolerance);
-        if same_layout && same_pipelines && new.integrator.method().is_some() {
+        let in_place = (same_layout && same_pipelines && new.integrator.method().is_some())
+            .then(|| scene::to_model(&edited))
+            .filter(|model| self.sim.takes_params(model));
+        if let Some(model) = in_place {
             ctx.wait_idle()?;
-            let model = scene::to_model(&edited);
             self.sim.update_params(&model)?;
             self.model = model;
             self.scene = edited;

@@ -65,6 +65,11 @@ pub fn run(cli: Cli) -> Result<()> {
             for (i, d) in devices.iter().enumerate() {
                 let mark = if d.name == ctx.info().name { "*" } else { " " };
                 println!("{mark} [{i}] {d}");
+                println!(
+                    "      {:.1} GiB device-local, {} bytes of shared memory per workgroup",
+                    d.device_local_bytes as f64 / (1u64 << 30) as f64,
+                    d.max_shared_memory
+                );
             }
             for s in skipped {
                 println!("  (skipped) {s}");

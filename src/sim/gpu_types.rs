@@ -33,6 +33,15 @@ pub const ROPE_RING: usize = 8;
 pub const OBJ_STRETCH_LIMIT: u32 = 1;
 pub const OBJ_SELF_COLLISION: u32 = 2;
 pub const OBJ_SELF_HASH: u32 = 4;
+/// Bits of the `FEATURES` specialization constant (`F_*` in `glsl/include/features.glsl`).
+pub const FEATURE_STRUCTURAL: u32 = 1;
+pub const FEATURE_SHEAR: u32 = 2;
+pub const FEATURE_BENDING: u32 = 4;
+pub const FEATURE_DAMPING: u32 = 8;
+pub const FEATURE_WIND: u32 = 16;
+pub const FEATURE_SPHERES: u32 = 32;
+pub const FEATURE_STRETCH: u32 = 64;
+pub const FEATURE_SELF: u32 = 128;
 
 gpu_struct!(
     /// One simulated particle (cloth particle or rope node).

@@ -41,6 +41,8 @@ pub struct DeviceInfo {
     pub max_workgroup_count: [u32; 3],
     /// Size of the largest device-local memory heap, in bytes.
     pub device_local_bytes: u64,
+    /// Shared memory a compute workgroup may use, in bytes.
+    pub max_shared_memory: u32,
 }
 
 impl std::fmt::Display for DeviceInfo {
@@ -137,6 +139,7 @@ pub(crate) fn candidates(
                 max_storage_buffer_range: props.limits.max_storage_buffer_range as u64,
                 max_workgroup_count: props.limits.max_compute_work_group_count,
                 device_local_bytes,
+                max_shared_memory: props.limits.max_compute_shared_memory_size,
             },
         });
     }

@@ -22,9 +22,11 @@
 //! written and the write-after-read on the buffer just read. Uploads and readbacks end with a
 //! barrier back to compute, so frames recorded after them need no barrier of their own.
 
+mod fused;
 mod object;
 mod pipelines;
 
+pub use fused::{FusedShape, FUSED_SLOTS};
 pub use object::{check_fits, particles};
 
 use super::gpu_types::{Globals, Particle, SurfaceVertex, GUARD_NON_FINITE};
@@ -75,13 +77,6 @@ impl ObjectState {
     }
 }
 
-/// Objects of at most this many particles (and no spatial hash) run all of a frame's substeps
-/// in one single-workgroup dispatch (`fused.comp`). Measured on an H100 with the limit at
-/// 4096 (docs/bench/h100/bench-fused-up-to-4096.md): fused wins at 256 particles (0.111 vs
-/// 0.136 ms per frame), breaks even at 1024 and loses at 2500 (0.606 vs 0.191 ms), where one
-/// workgroup on one SM, reading neighbours through L2, is slower than a dispatch per stage.
-pub const FUSED_MAX: u32 = 512;
-
 pub struct GpuSim {
     pipelines: Pipelines,
     layout: BindingSetLayout,
@@ -93,8 +88,11 @@ pub struct GpuSim {
     /// One pool per frame slot (empty when the device has no timestamps).
     timestamps: Vec<TimestampPool>,
     stage_timing: bool,
-    /// Small objects run their substeps fused into one dispatch (see `FUSED_MAX`).
+    /// Objects whose layout fits the device's shared memory run their substeps fused into one
+    /// dispatch (`fused.rs`).
     fused: bool,
+    /// The device's shared memory per workgroup [bytes], which decides the fused layouts.
+    shared_limit: u32,
     frames: u64,
     /// Particle writes (object, index, value) applied at the start of the next recorded frame.
     pending_writes: Vec<(usize, u32, Particle)>,
@@ -117,9 +115,15 @@ struct Parts {
 }
 
 impl Parts {
-    fn create(&mut self, ctx: &GpuContext, model: &SimModel, shaders: &mut ShaderSet) -> Result<()> {
+    fn create(
+        &mut self,
+        ctx: &GpuContext,
+        model: &SimModel,
+        shaders: &mut ShaderSet,
+        shared_limit: u32,
+    ) -> Result<()> {
         let layout = self.layout.insert(BindingSetLayout::storage_buffers(ctx, BINDINGS)?);
-        self.pipelines = Some(Pipelines::new(ctx, layout, shaders, &Stage::needed(model))?);
+        self.pipelines = Some(Pipelines::new(ctx, layout, shaders, &Stage::needed(model, shared_limit))?);
         self.arena = Some(DescriptorArena::new(ctx, 2 * model.objects.len() as u32, BINDINGS)?);
         let globals_size = std::mem::size_of::<Globals>() as u64;
         self.globals =
@@ -171,9 +175,21 @@ impl GpuSim {
 
     /// Like `new`, with shaders from `shaders` (a watched directory for hot reload).
     pub fn with_shaders(ctx: &GpuContext, model: &SimModel, shaders: &mut ShaderSet) -> Result<Self> {
+        Self::build(ctx, model, shaders, ctx.info().max_shared_memory)
+    }
+
+    /// Like `new`, with the fused layouts planned for `shared_limit` bytes of shared memory per
+    /// workgroup (at most the device's): smaller limits take the velocity window in passes or
+    /// the per-stage path, for tests and measurements on a device with more.
+    pub fn with_shared_limit(ctx: &GpuContext, model: &SimModel, shared_limit: u32) -> Result<Self> {
+        let limit = shared_limit.min(ctx.info().max_shared_memory);
+        Self::build(ctx, model, &mut ShaderSet::embedded(), limit)
+    }
+
+    fn build(ctx: &GpuContext, model: &SimModel, shaders: &mut ShaderSet, shared_limit: u32) -> Result<Self> {
         check_fits(ctx.info(), &model.objects.iter().map(ObjectModel::shape).collect::<Vec<_>>())?;
         let mut parts = Parts::default();
-        if let Err(e) = parts.create(ctx, model, shaders) {
+        if let Err(e) = parts.create(ctx, model, shaders, shared_limit) {
             parts.destroy(ctx);
             return Err(e);
         }
@@ -200,6 +216,7 @@ impl GpuSim {
             timestamps,
             stage_timing: true,
             fused: true,
+            shared_limit,
             frames: 0,
             pending_writes: Vec::new(),
             model: model.without_particles(),
@@ -219,9 +236,9 @@ impl GpuSim {
         self.globals.write(0, &[globals(model)])?;
         self.spheres.write(0, &sphere_data(model))?;
         for o in &model.objects {
-            let obj =
-                GpuObject::new(ctx, &self.layout, &mut self.arena, [&self.globals, &self.spheres], o, model)
-                    .with_context(|| format!("allocating {} '{}'", o.kind.label(), o.name))?;
+            let shared = [&self.globals, &self.spheres];
+            let obj = GpuObject::new(ctx, &self.layout, &mut self.arena, shared, o, model, self.shared_limit)
+                .with_context(|| format!("allocating {} '{}'", o.kind.label(), o.name))?;
             self.objects.push(obj);
         }
         let initial: Vec<Vec<Particle>> = model.objects.iter().map(particles).collect();
@@ -402,7 +419,13 @@ impl GpuSim {
         let fused: Vec<&GpuObject> = self.objects.iter().filter(|o| self.is_fused(o)).collect();
         let verlet = self.model.integrator == Integrator::Verlet;
         for o in &fused {
-            rec.dispatch(self.pipelines.get(Stage::Fused(verlet)), o.sets[0], [1, 1, 1]);
+            if let Some(shape) = o.fused {
+                rec.dispatch(
+                    self.pipelines.get(Stage::Fused(verlet, o.features, shape)),
+                    o.sets[0],
+                    [1, 1, 1],
+                );
+            }
         }
         if !fused.is_empty() {
             rec.barrier(
@@ -428,7 +451,11 @@ impl GpuSim {
             rec.barrier(&after_physics);
             self.record_hash_build(rec);
             for o in self.objects.iter().filter(|o| !self.is_fused(o)) {
-                rec.dispatch(self.pipelines.get(Stage::Constraints(o.kind)), o.sets[1], o.step_groups);
+                rec.dispatch(
+                    self.pipelines.get(Stage::Constraints(o.kind, o.features)),
+                    o.sets[1],
+                    o.step_groups,
+                );
             }
             if let Some(pool) = ts.filter(|_| stages) {
                 rec.timestamp(pool, 2 + 2 * s);
@@ -472,7 +499,7 @@ impl GpuSim {
                 let verlet = method == Integrator::Verlet;
                 for o in &stepped {
                     rec.dispatch(
-                        self.pipelines.get(Stage::Physics(o.kind, verlet)),
+                        self.pipelines.get(Stage::Physics(o.kind, verlet, o.features)),
                         o.sets[0],
                         o.step_groups,
                     );
@@ -484,7 +511,11 @@ impl GpuSim {
         };
         let implicit = method == Integrator::Implicit;
         for o in &stepped {
-            rec.dispatch(self.pipelines.get(Stage::Predict(o.kind, implicit)), o.sets[0], o.step_groups);
+            rec.dispatch(
+                self.pipelines.get(Stage::Predict(o.kind, implicit, o.features)),
+                o.sets[0],
+                o.step_groups,
+            );
         }
         let scratch: Vec<BufferBarrier<'_>> = stepped
             .iter()
@@ -517,9 +548,14 @@ impl GpuSim {
         self.fused = on;
     }
 
+    /// Whether object `object` runs its substeps fused (its layout fits and the path is on).
+    pub fn runs_fused(&self, object: usize) -> bool {
+        self.objects.get(object).is_some_and(|o| self.is_fused(o))
+    }
+
     /// Whether object `o` runs fused substeps.
     fn is_fused(&self, o: &GpuObject) -> bool {
-        self.fused && o.particles <= FUSED_MAX && o.hash.is_none() && !self.model.integrator.iterative()
+        self.fused && o.fused.is_some()
     }
 
     /// With `false`, frames carry only a start and an end timestamp (the per-stage timestamps
@@ -537,24 +573,33 @@ impl GpuSim {
         }
     }
 
-    /// Rewrites the parameters (gravity, dt, wind, spheres, per-object parameters) of a model with
-    /// the same objects and sphere count. The caller makes sure no frame in flight reads them
-    /// (wait idle first).
+    /// Whether `model` differs from the running one only in what `update_params` rewrites: the
+    /// same objects, sphere capacity, substep count, integrator and self-collision method, and
+    /// the same compiled-in features and fused layouts. Otherwise rebuild the simulation.
+    pub fn takes_params(&self, model: &SimModel) -> bool {
+        model.objects.len() == self.objects.len()
+            && model.spheres.len() <= self.sphere_capacity()
+            && model.substeps == self.model.substeps
+            && model.integrator == self.model.integrator
+            && model.self_collision == self.model.self_collision
+            && self.objects.iter().zip(&model.objects).all(|(gpu, o)| {
+                o.particle_count() as u32 == gpu.particles
+                    && fused::features(o, model) == gpu.features
+                    && FusedShape::plan(o, model, self.shared_limit) == gpu.fused
+            })
+    }
+
+    /// Rewrites the parameters (gravity, dt, wind, spheres, per-object parameters) of a model
+    /// that `takes_params`. The caller makes sure no frame in flight reads them (wait idle
+    /// first).
     pub fn update_params(&mut self, model: &SimModel) -> Result<()> {
         anyhow::ensure!(
-            model.objects.len() == self.objects.len() && model.spheres.len() <= self.sphere_capacity(),
-            "the scene's objects or spheres changed: rebuild the simulation instead"
-        );
-        anyhow::ensure!(
-            model.substeps == self.model.substeps
-                && model.integrator == self.model.integrator
-                && model.self_collision == self.model.self_collision,
-            "the substep count, integrator or self-collision method changed: rebuild the simulation instead"
+            self.takes_params(model),
+            "the objects, spheres, substeps, integrator, self-collision method or the features in use changed: rebuild the simulation instead"
         );
         self.globals.write(0, &[globals(model)])?;
         self.spheres.write(0, &sphere_data(model))?;
         for (gpu, o) in self.objects.iter_mut().zip(&model.objects) {
-            anyhow::ensure!(o.dims[0] * o.dims[1] == gpu.particles, "object '{}' changed size", o.name);
             gpu.params.write(0, &[object_params(o, model)])?;
         }
         self.model = model.without_particles();

@@ -1,6 +1,7 @@
 //! The GPU buffers and binding sets of one simulated object, the parameters it is given, and
 //! the checks that it fits the device.
 
+use super::fused::{features, FusedShape};
 use super::{BINDINGS, CLOTH_GROUP, ROPE_GROUP};
 use crate::error::UserError;
 use crate::sim::gpu_types::{
@@ -139,6 +140,10 @@ pub(super) struct GpuObject {
     pub guard: Buffer,
     /// [A -> B (physics), B -> A (constraints, hash passes); surface uses set 0 (reads A)].
     pub sets: [BindingSet; 2],
+    /// The features its step pipelines compile in (`fused::features`).
+    pub features: u32,
+    /// Its layout on the fused path, when it fits `shared_limit` (`FusedShape::plan`).
+    pub fused: Option<FusedShape>,
 }
 
 impl GpuObject {
@@ -150,6 +155,7 @@ impl GpuObject {
         shared: [&Buffer; 2],
         o: &ObjectModel,
         model: &SimModel,
+        shared_limit: u32,
     ) -> Result<Self, VkError> {
         let [globals, spheres] = shared;
         let n = o.particle_count() as u64;
@@ -220,6 +226,8 @@ impl GpuObject {
             placeholder,
             guard,
             sets,
+            features: features(o, model),
+            fused: FusedShape::plan(o, model, shared_limit),
         };
         match sets {
             Ok(sets) => Ok(object(sets)),

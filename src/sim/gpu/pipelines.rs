@@ -1,29 +1,33 @@
 //! The compute pipelines of a simulation, created for what its model uses: a scene without
-//! self-collision builds no spatial hash pipelines, an explicit integrator no solver pipelines.
+//! self-collision builds no spatial hash pipelines, an explicit integrator no solver pipelines,
+//! and the step shaders are specialized with the features each object uses (`FEATURES`,
+//! `glsl/include/features.glsl`), so what a scene does not use is compiled out.
 
-use super::{CLOTH_GROUP, FUSED_MAX, ROPE_GROUP};
+use super::fused::{features, FusedShape};
+use super::{CLOTH_GROUP, ROPE_GROUP};
 use crate::shaders::ShaderSet;
-use crate::sim::model::{Integrator, ObjectKind, SelfCollisionMethod, SimModel};
+use crate::sim::model::{Integrator, ObjectKind, ObjectModel, SelfCollisionMethod, SimModel};
 use crate::vk::{BindingSetLayout, ComputePipeline, GpuContext, Retired};
 use anyhow::{Context as _, Result};
 use std::collections::HashMap;
 
-/// One compute pipeline: a shader with its specialization constants.
+/// One compute pipeline: a shader with its specialization constants. `u32` fields are the
+/// `FEATURES` bits (`fused::features`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub(super) enum Stage {
     /// Forces and the explicit step (`verlet`: position Verlet, else symplectic Euler).
-    Physics(ObjectKind, bool),
+    Physics(ObjectKind, bool, u32),
     /// The inertial prediction of the iterative integrators (`implicit`, else XPBD).
-    Predict(ObjectKind, bool),
+    Predict(ObjectKind, bool, u32),
     XpbdIterate(ObjectKind),
     ImplicitIterate(ObjectKind),
-    Constraints(ObjectKind),
+    Constraints(ObjectKind, u32),
     /// Cloth normals or rope tube vertices (and the runtime guard).
     Surface(ObjectKind),
     HashScan(u32),
     HashScatter,
-    /// Every substep of a small object in one workgroup (`verlet` as for `Physics`).
-    Fused(bool),
+    /// Every substep of an object in one workgroup (`verlet` as for `Physics`).
+    Fused(bool, u32, FusedShape),
 }
 
 fn group(kind: ObjectKind) -> Vec<u32> {
@@ -40,56 +44,61 @@ impl Stage {
             Stage::Predict(..) => "predict.comp",
             Stage::XpbdIterate(_) => "xpbd_iterate.comp",
             Stage::ImplicitIterate(_) => "implicit_iterate.comp",
-            Stage::Constraints(_) => "constraints.comp",
+            Stage::Constraints(..) => "constraints.comp",
             Stage::Surface(ObjectKind::Cloth) => "cloth_normals.comp",
             Stage::Surface(ObjectKind::Rope) => "rope_vertices.comp",
             Stage::HashScan(_) => "hash_scan.comp",
             Stage::HashScatter => "hash_scatter.comp",
-            Stage::Fused(_) => "fused.comp",
+            Stage::Fused(..) => "fused.comp",
         }
     }
 
-    /// Constant `i` has id `i`: the step shaders take their workgroup shape (ids 0, 1) and a
-    /// variant flag (id 2); the scan takes its phase.
+    /// Constant `i` has id `i`: the step shaders take their workgroup shape (ids 0, 1), a
+    /// variant flag (id 2) and the features (id 3); the scan takes its phase; the fused kernel
+    /// its layout (`FusedShape::specialization`).
     fn specialization(self) -> Vec<u32> {
         match self {
-            Stage::Physics(kind, flag) | Stage::Predict(kind, flag) => {
-                [group(kind), vec![flag as u32]].concat()
+            Stage::Physics(kind, flag, f) | Stage::Predict(kind, flag, f) => {
+                [group(kind), vec![flag as u32, f]].concat()
             }
-            Stage::XpbdIterate(kind) | Stage::ImplicitIterate(kind) | Stage::Constraints(kind) => group(kind),
+            Stage::Constraints(kind, f) => [group(kind), vec![0, f]].concat(),
+            Stage::XpbdIterate(kind) | Stage::ImplicitIterate(kind) => group(kind),
             Stage::Surface(_) | Stage::HashScatter => Vec::new(),
             Stage::HashScan(phase) => vec![phase],
-            Stage::Fused(verlet) => vec![0, 0, verlet as u32],
+            Stage::Fused(verlet, f, shape) => shape.specialization(verlet, f),
         }
     }
 
-    /// The pipelines `model` needs.
-    pub(super) fn needed(model: &SimModel) -> Vec<Stage> {
-        let mut kinds: Vec<ObjectKind> = model.objects.iter().map(|o| o.kind).collect();
-        kinds.sort_by_key(|k| *k as u32);
-        kinds.dedup();
-        let verlet = model.integrator == Integrator::Verlet;
-        let mut stages = Vec::new();
-        for &kind in &kinds {
-            match model.integrator {
-                Integrator::SymplecticEuler | Integrator::Verlet => stages.push(Stage::Physics(kind, verlet)),
-                Integrator::Xpbd => stages.extend([Stage::Predict(kind, false), Stage::XpbdIterate(kind)]),
-                Integrator::Implicit => {
-                    stages.extend([Stage::Predict(kind, true), Stage::ImplicitIterate(kind)])
-                }
-            }
-            stages.extend([Stage::Constraints(kind), Stage::Surface(kind)]);
-        }
+    /// The step stages of object `o` (physics or the solver, constraints, the fused kernel
+    /// when `fused` is its layout), specialized for the features it uses.
+    pub(super) fn of_object(o: &ObjectModel, model: &SimModel, fused: Option<FusedShape>) -> Vec<Stage> {
+        let (kind, f) = (o.kind, features(o, model));
+        let mut stages = match model.integrator {
+            Integrator::SymplecticEuler => vec![Stage::Physics(kind, false, f)],
+            Integrator::Verlet => vec![Stage::Physics(kind, true, f)],
+            Integrator::Xpbd => vec![Stage::Predict(kind, false, f), Stage::XpbdIterate(kind)],
+            Integrator::Implicit => vec![Stage::Predict(kind, true, f), Stage::ImplicitIterate(kind)],
+        };
+        stages.extend([Stage::Constraints(kind, f), Stage::Surface(kind)]);
+        stages.extend(fused.map(|shape| Stage::Fused(model.integrator == Integrator::Verlet, f, shape)));
+        stages
+    }
+
+    /// The pipelines `model` needs on a device with `shared_limit` bytes of shared memory per
+    /// workgroup (which decides the fused layouts).
+    pub(super) fn needed(model: &SimModel, shared_limit: u32) -> Vec<Stage> {
+        let mut stages: Vec<Stage> = model
+            .objects
+            .iter()
+            .flat_map(|o| Stage::of_object(o, model, FusedShape::plan(o, model, shared_limit)))
+            .collect();
         if model.self_collision == SelfCollisionMethod::Hash
             && model.objects.iter().any(|o| o.self_distance.is_some())
         {
             stages.extend([Stage::HashScan(0), Stage::HashScan(1), Stage::HashScan(2), Stage::HashScatter]);
         }
-        if !model.integrator.iterative()
-            && model.objects.iter().any(|o| o.particle_count() as u32 <= FUSED_MAX)
-        {
-            stages.push(Stage::Fused(verlet));
-        }
+        let mut seen = std::collections::HashSet::new();
+        stages.retain(|s| seen.insert(*s));
         stages
     }
 }

@@ -1,0 +1,23 @@
+// What a scene uses, compiled in or out: a specialization constant (id 3) that the host sets
+// per object from its model (src/sim/gpu/pipelines.rs, `features`). A feature the scene does
+// not use is removed from the pipeline, not skipped at run time. The runtime flags (wind on,
+// sphere count, ObjectParams.flags) still apply inside a compiled-in feature. Shaders created
+// without the constant (default: everything) behave as before.
+// The bits are mirrored in src/sim/gpu_types.rs (FEATURE_*).
+#ifndef MSD_FEATURES_GLSL
+#define MSD_FEATURES_GLSL
+
+#define F_STRUCTURAL 1u   // structural springs (stiffness or damping along them)
+#define F_SHEAR      2u   // shear springs
+#define F_BENDING    4u   // bending springs
+#define F_DAMPING    8u   // spring dashpots (read the neighbours' velocities)
+#define F_WIND       16u  // the wind cone
+#define F_SPHERES    32u  // sphere colliders
+#define F_STRETCH    64u  // the stretch limit
+#define F_SELF       128u // self-collision (ObjectParams.flags: through the hash or every pair)
+
+layout(constant_id = 3) const uint FEATURES = 0xFFu;
+
+bool has(uint feature) { return (FEATURES & feature) != 0u; }
+
+#endif

@@ -1,0 +1,119 @@
+//! Which objects run every substep of a frame in one workgroup (`glsl/fused.comp`), and the
+//! shared memory layout that kernel is specialized with; and the features a scene compiles in.
+//!
+//! The fused kernel keeps each particle's state in the registers of the thread that owns it
+//! and what its neighbours read in shared memory: positions (12 bytes a particle), pin bits,
+//! and a scratch area that holds the velocities the spring dashpots read during physics (in
+//! passes when they do not all fit) and the self-collision hash during the constraints. An
+//! object takes that path when the layout fits the device's shared memory per workgroup (48 KiB
+//! on NVIDIA: a 50 x 50 cloth with dashpots and the hash fits; 32 KiB on lavapipe) and its
+//! integrator is explicit; others run a dispatch per stage.
+
+use crate::sim::gpu_types::{
+    FEATURE_BENDING, FEATURE_DAMPING, FEATURE_SELF, FEATURE_SHEAR, FEATURE_SPHERES, FEATURE_STRETCH,
+    FEATURE_STRUCTURAL, FEATURE_WIND,
+};
+use crate::sim::model::{ObjectModel, SelfCollisionMethod, SimModel};
+
+/// Particles one thread of the fused kernel owns at most (`MAX_SLOTS` in the shader).
+pub const FUSED_SLOTS: u32 = 4;
+/// Threads of a fused workgroup at most (the Vulkan minimum of maxComputeWorkGroupInvocations
+/// is 128; lavapipe and NVIDIA allow 1024).
+const MAX_THREADS: u32 = 1024;
+/// Shared memory left to the compiler's own use [bytes].
+const SHARED_MARGIN: u32 = 256;
+/// Fewest hash buckets worth a shared hash.
+const MIN_BUCKETS: u32 = 32;
+
+/// The features object `o` uses in `model` (the `FEATURES` specialization constant): spring
+/// types with stiffness or dashpots, dashpots, wind, spheres, the stretch limit, self-collision.
+pub fn features(o: &ObjectModel, model: &SimModel) -> u32 {
+    let mut f = 0;
+    for (bit, k) in [FEATURE_STRUCTURAL, FEATURE_SHEAR, FEATURE_BENDING].into_iter().zip(o.stiffness) {
+        if k != 0.0 || o.damping != 0.0 {
+            f |= bit;
+        }
+    }
+    let uses = [
+        (FEATURE_DAMPING, o.damping != 0.0),
+        (FEATURE_WIND, model.wind.is_some()),
+        (FEATURE_SPHERES, !model.spheres.is_empty()),
+        (FEATURE_STRETCH, o.stretch_limit.is_some()),
+        (FEATURE_SELF, o.self_distance.is_some()),
+    ];
+    uses.into_iter().filter(|(_, on)| *on).fold(f, |f, (bit, _)| f | bit)
+}
+
+/// The specialization of `fused.comp` for one object (ids 0 and 4..=8; 2 and 3, the integrator
+/// and the features, come from the stage).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub struct FusedShape {
+    /// Workgroup size: a multiple of 32, at most 1024.
+    pub threads: u32,
+    pub particles: u32,
+    /// Words of scratch: the largest of the velocity window and the hash.
+    pub scratch: u32,
+    /// Shared hash buckets (a power of two; 1 without the hash).
+    pub buckets: u32,
+    /// Slots per physics pass (the velocity window covers `threads * pass_slots` particles).
+    pub pass_slots: u32,
+    /// Largest index distance from a particle to a spring neighbour.
+    pub halo: u32,
+}
+
+impl FusedShape {
+    /// The layout of object `o` in `model` for a device with `shared_limit` bytes of shared
+    /// memory per workgroup, or `None` when the object does not fit (or its integrator is
+    /// iterative): it then runs per stage.
+    pub fn plan(o: &ObjectModel, model: &SimModel, shared_limit: u32) -> Option<Self> {
+        if model.integrator.iterative() {
+            return None;
+        }
+        let n = o.particle_count() as u32;
+        if n == 0 || n > FUSED_SLOTS * MAX_THREADS {
+            return None;
+        }
+        let slots = n.div_ceil(MAX_THREADS);
+        let threads = n.div_ceil(slots).next_multiple_of(32);
+        let halo = if o.dims[1] > 1 { 2 * o.dims[0] } else { 2 };
+        let budget = shared_limit.saturating_sub(SHARED_MARGIN);
+        let fixed = 12 * n + 4 * n.div_ceil(32);
+        let words = budget.checked_sub(fixed)? / 4;
+        let damped = o.damping != 0.0;
+        let window = |q: u32| 3 * (threads * q + 2 * halo);
+        let pass_slots = if damped { (1..=slots).rev().find(|&q| window(q) <= words)? } else { slots };
+        let hashed = o.self_distance.is_some() && model.self_collision == SelfCollisionMethod::Hash;
+        let buckets = if hashed {
+            let most = words.checked_sub(n)?;
+            let b = (2 * n).next_power_of_two().min(1 << most.max(1).ilog2());
+            (b >= MIN_BUCKETS).then_some(b)?
+        } else {
+            1
+        };
+        let scratch = [if damped { window(pass_slots) } else { 0 }, if hashed { buckets + n } else { 0 }, 1]
+            .into_iter()
+            .max()
+            .unwrap_or(1);
+        Some(Self { threads, particles: n, scratch, buckets, pass_slots, halo })
+    }
+
+    /// Shared memory the kernel declares [bytes].
+    pub fn shared_bytes(&self) -> u32 {
+        12 * self.particles + 4 * self.particles.div_ceil(32) + 4 * self.scratch
+    }
+
+    /// Specialization constants 0..=8 (index = id) with the integrator flag and the features.
+    pub fn specialization(&self, verlet: bool, features: u32) -> Vec<u32> {
+        vec![
+            self.threads,
+            0,
+            verlet as u32,
+            features,
+            self.particles,
+            self.scratch,
+            self.buckets,
+            self.pass_slots,
+            self.halo,
+        ]
+    }
+}
