@@ -1,5 +1,6 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
+#extension GL_EXT_control_flow_attributes : require
 // Constraint stage, one thread per particle: reads p_in (the physics output, and the spatial
 // hash built from it), writes p_out. The work itself is in constraints_body.glsl (shared with
 // fused.comp).

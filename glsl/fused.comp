@@ -1,5 +1,6 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
+#extension GL_EXT_control_flow_attributes : require
 // Every substep of a frame for one object in one workgroup, with the state in registers and
 // shared memory: physics, the self-collision hash and the constraints of all substeps run
 // without a dispatch or a pipeline barrier between them (what bounds small scenes), and
@@ -68,7 +69,7 @@ vec3 wvel(uint j) {
 // the one after particle j (EMPTY ends a list).
 void visit_bucket(uint h, uvec2 cell, vec3 x, float reach, inout vec3 correction, inout uint n_active) {
     for (uint j = scratch[h]; j != EMPTY; j = scratch[BUCKETS + j]) {
-        self_contact(cell, x, j, reach, correction, n_active);
+        if (distance(spos(j), x) < reach) self_contact(cell, x, j, reach, correction, n_active);
     }
 }
 
@@ -87,7 +88,7 @@ void main() {
     vec3 v[MAX_SLOTS];
     vec3 v_new[MAX_SLOTS];
     bool pinned[MAX_SLOTS];
-    for (uint s = 0u; s < MAX_SLOTS; ++s) {
+    [[unroll]] for (uint s = 0u; s < MAX_SLOTS; ++s) {
         uint k = t + s * THREADS;
         x[s] = vec3(0.0);
         v[s] = vec3(0.0);
@@ -102,7 +103,8 @@ void main() {
     }
     for (uint w = t; w < (CAP + 31u) / 32u; w += THREADS) pin_bits[w] = 0u;
     barrier();
-    for (uint s = 0u; s < SLOTS; ++s) {
+    [[unroll]] for (uint s = 0u; s < MAX_SLOTS; ++s) {
+        if (s >= SLOTS) break;
         uint k = t + s * THREADS;
         if (k >= n) continue;
         if (pinned[s]) atomicOr(pin_bits[k >> 5u], 1u << (k & 31u));
@@ -112,12 +114,13 @@ void main() {
     for (uint sub = 0u; sub < g.substeps; ++sub) {
         // Physics: forces on the drifted positions (and, with dashpots, the neighbours'
         // velocities staged pass by pass), new state into registers.
-        for (uint chunk = 0u; chunk < MAX_SLOTS; ++chunk) {
+        [[unroll]] for (uint chunk = 0u; chunk < MAX_SLOTS; ++chunk) {
             if (chunk * PASS_SLOTS >= SLOTS) break;
             if (has(F_DAMPING)) {
                 if (chunk > 0u) barrier();  // the pass before has read its window
                 window_start = int(chunk * PASS_SLOTS * THREADS) - int(HALO);
-                for (uint s = 0u; s < SLOTS; ++s) {
+                [[unroll]] for (uint s = 0u; s < MAX_SLOTS; ++s) {
+                    if (s >= SLOTS) break;
                     uint k = t + s * THREADS;
                     int w = int(k) - window_start;
                     if (k < n && w >= 0 && w < int(WINDOW)) {
@@ -128,7 +131,8 @@ void main() {
                 }
             }
             barrier();
-            for (uint s = 0u; s < SLOTS; ++s) {
+            [[unroll]] for (uint s = 0u; s < MAX_SLOTS; ++s) {
+                if (s >= SLOTS) break;
                 uint k = t + s * THREADS;
                 if (s / PASS_SLOTS != chunk || k >= n || pinned[s]) continue;
                 vec3 xs = x[s] + drift * v[s];
@@ -138,12 +142,15 @@ void main() {
                 v_new[s] = vs;
             }
         }
-        for (uint s = 0u; s < SLOTS; ++s) v[s] = v_new[s];
+        [[unroll]] for (uint s = 0u; s < MAX_SLOTS; ++s) {
+            if (s < SLOTS) v[s] = v_new[s];
+        }
         barrier();  // every read of this substep's positions and velocities is done
 
         // Constraints on the new positions: shared for the neighbours, hashed for contacts.
         if (neighbours) {
-            for (uint s = 0u; s < SLOTS; ++s) {
+            [[unroll]] for (uint s = 0u; s < MAX_SLOTS; ++s) {
+                if (s >= SLOTS) break;
                 uint k = t + s * THREADS;
                 if (k < n) set_spos(k, x[s]);
             }
@@ -152,7 +159,8 @@ void main() {
             }
             barrier();
             if (hashed) {
-                for (uint s = 0u; s < SLOTS; ++s) {
+                [[unroll]] for (uint s = 0u; s < MAX_SLOTS; ++s) {
+                    if (s >= SLOTS) break;
                     uint k = t + s * THREADS;
                     if (k >= n) continue;
                     uint h = cell_hash(ivec3(floor(x[s] * obj.cell_inv)), BUCKETS - 1u);
@@ -161,7 +169,8 @@ void main() {
                 barrier();
             }
         }
-        for (uint s = 0u; s < SLOTS; ++s) {
+        [[unroll]] for (uint s = 0u; s < MAX_SLOTS; ++s) {
+            if (s >= SLOTS) break;
             uint k = t + s * THREADS;
             if (k >= n || pinned[s]) continue;
             vec3 xs = x[s];
@@ -176,13 +185,15 @@ void main() {
             v[s] = vs;
         }
         if (neighbours) barrier();  // every read of the shared positions and hash is done
-        for (uint s = 0u; s < SLOTS; ++s) {
+        [[unroll]] for (uint s = 0u; s < MAX_SLOTS; ++s) {
+            if (s >= SLOTS) break;
             uint k = t + s * THREADS;
             if (k < n) set_spos(k, x[s] + drift * v[s]);
         }
     }
 
-    for (uint s = 0u; s < SLOTS; ++s) {
+    [[unroll]] for (uint s = 0u; s < MAX_SLOTS; ++s) {
+        if (s >= SLOTS) break;
         uint k = t + s * THREADS;
         if (k < n) p_in[k] = Particle(vec4(x[s], pinned[s] ? 1.0 : 0.0), vec4(v[s], 0.0));
     }

@@ -1,5 +1,6 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
+#extension GL_EXT_control_flow_attributes : require
 // One iteration of implicit Euler by projective dynamics (sim::cpu::integrators::implicit has
 // the derivation), one thread per particle: the local step (each spring's rest-length
 // projection) and one damped Jacobi sweep of the global system, Chebyshev-accelerated. Iterate slices
@@ -42,7 +43,7 @@ void main() {
         float inertia = obj.mass / (g.dt * g.dt);
         vec3 rhs = aux[i].xyz * inertia;
         float diag = inertia;
-        for (int s = 0; s < 12; ++s) {
+        [[unroll]] for (int s = 0; s < 12; ++s) {
             ivec3 spring = SPRINGS[s];
             float k = obj.stiffness[spring.z];
             if (k == 0.0) continue;

@@ -1,5 +1,6 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
+#extension GL_EXT_control_flow_attributes : require
 // Physics stage, one thread per particle: reads p_in (the state at the start of the substep),
 // writes p_out. The work itself is in physics_body.glsl (shared with fused.comp).
 #include "bindings.glsl"

@@ -1,5 +1,6 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
+#extension GL_EXT_control_flow_attributes : require
 // First pass of a substep of the iterative integrators (XPBD, implicit), one thread per
 // particle: the inertial prediction y = x + dt (v + dt F / m) from p_in (the state x at the
 // start of the substep), with F the external forces (and, for the implicit method, which treats

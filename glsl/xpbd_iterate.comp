@@ -1,5 +1,6 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
+#extension GL_EXT_control_flow_attributes : require
 // One Jacobi iteration of XPBD (sim::cpu::integrators::xpbd has the derivation), one thread
 // per particle: reads iterate slice k % 2, writes the other; each particle keeps its own copy
 // of the 12 multipliers of its springs in aux[3i .. 3i + 2]. p_in holds the substep's start x;
@@ -27,7 +28,7 @@ void main() {
         vec3 sum = vec3(0.0);
         uint count = 0u;
         vec4 dl[3] = vec4[3](vec4(0.0), vec4(0.0), vec4(0.0));
-        for (int s = 0; s < 12; ++s) {
+        [[unroll]] for (int s = 0; s < 12; ++s) {
             ivec3 spring = SPRINGS[s];
             float k = obj.stiffness[spring.z];
             if (k == 0.0) continue;

@@ -24,7 +24,7 @@ mod common;
 use common::*;
 use glam::DVec3;
 use msdsim::sim::cpu::CpuSim;
-use msdsim::sim::gpu::GpuSim;
+use msdsim::sim::gpu::{FusedLimits, FusedShape, GpuSim, FUSED_SLOTS};
 use msdsim::sim::model::{Integrator, SelfCollisionMethod, SimModel};
 
 const FRAMES: usize = 15;
@@ -347,12 +347,12 @@ fn spatial_hash_finds_every_contact_in_a_crowd() {
     }
 }
 
-/// Runs `model` fused (with the layouts planned for `shared_limit` bytes of shared memory) and
+/// Runs `model` fused (with the layouts planned within `limits`) and
 /// per stage for `FRAMES` frames; returns the largest position difference. Asserts that every
 /// object took the fused path.
-fn fused_against_per_stage(model: &SimModel, shared_limit: u32) -> f64 {
+fn fused_against_per_stage(model: &SimModel, limits: FusedLimits) -> f64 {
     let ctx = gpu();
-    let mut fused = GpuSim::with_shared_limit(&ctx, model, shared_limit).unwrap();
+    let mut fused = GpuSim::with_fused_limits(&ctx, model, limits).unwrap();
     let mut staged = GpuSim::new(&ctx, model).unwrap();
     staged.set_fused(false);
     for i in 0..model.objects.len() {
@@ -401,7 +401,7 @@ fn fused_substeps_equal_the_per_stage_path() {
     s.gravity = DVec3::new(0.0, -9.81, 0.0);
     s.wind = Some(wind([0.3, 0.8, 1.0], [0.0, 0.0, -1.0], 0.01, 0.3, 0.6));
     s.spheres = vec![sphere([0.3, 0.5, 0.1], 0.15)];
-    let worst = fused_against_per_stage(&s, u32::MAX);
+    let worst = fused_against_per_stage(&s, FusedLimits { shared_bytes: u32::MAX, slots: 1 });
     println!("fused vs per stage: {worst:e} m");
     assert!(worst <= 1e-6, "the fused path differs from the per-stage path by {worst} m");
 }
@@ -425,8 +425,8 @@ fn fused_layouts_in_passes_equal_the_per_stage_path() {
     r.pinned[0] = true;
     let mut s = scene(vec![c, r]);
     s.gravity = DVec3::new(0.0, -9.81, 0.0);
-    let limit = 24 * 1024;
-    let cloth_shape = msdsim::sim::gpu::FusedShape::plan(&s.objects[0], &s, limit).unwrap();
+    let limit = FusedLimits { shared_bytes: 24 * 1024, slots: FUSED_SLOTS };
+    let cloth_shape = FusedShape::plan(&s.objects[0], &s, limit).unwrap();
     assert!(cloth_shape.pass_slots < cloth_shape.particles.div_ceil(cloth_shape.threads), "{cloth_shape:?}");
     let worst = fused_against_per_stage(&s, limit);
     println!("fused in passes vs per stage: {worst:e} m ({cloth_shape:?})");

@@ -4,18 +4,20 @@
 #define MSD_BINDINGS_GLSL
 #include "layout.glsl"
 
-layout(std430, set = 0, binding = 0) readonly buffer GlobalsBuf { Globals g; };
-layout(std430, set = 0, binding = 1) readonly buffer ObjectBuf { ObjectParams obj; };
-// The fused shader reads and writes both state buffers within one workgroup (coherent);
-// the per-stage shaders read one and write the other.
+// Parameters are never written while a frame runs (restrict: the compiler may keep them in
+// registers across the shaders' stores and barriers).
+layout(std430, set = 0, binding = 0) restrict readonly buffer GlobalsBuf { Globals g; };
+layout(std430, set = 0, binding = 1) restrict readonly buffer ObjectBuf { ObjectParams obj; };
+// The fused shader loads its state from p_in and stores it back there (each thread its own
+// particles); the per-stage shaders read one buffer and write the other.
 #ifdef STATE_FUSED
-layout(std430, set = 0, binding = 2) coherent buffer StateIn { Particle p_in[]; };
-layout(std430, set = 0, binding = 3) coherent buffer StateOut { Particle p_out[]; };
+layout(std430, set = 0, binding = 2) buffer StateIn { Particle p_in[]; };
+layout(std430, set = 0, binding = 3) buffer StateOut { Particle p_out[]; };
 #else
 layout(std430, set = 0, binding = 2) readonly buffer StateIn { Particle p_in[]; };
 layout(std430, set = 0, binding = 3) writeonly buffer StateOut { Particle p_out[]; };
 #endif
-layout(std430, set = 0, binding = 4) readonly buffer SphereBuf { vec4 spheres[]; }; // xyz centre, w radius
+layout(std430, set = 0, binding = 4) restrict readonly buffer SphereBuf { vec4 spheres[]; }; // xyz centre, w radius
 layout(std430, set = 0, binding = 5) writeonly buffer SurfaceBuf { SurfaceVertex surface[]; };
 // Spatial hash of the self-collision (objects without it bind a placeholder).
 layout(std430, set = 0, binding = 6) buffer HashCellRank { uvec2 cell_rank[]; }; // per particle: bucket, rank in it

@@ -46,7 +46,7 @@ vec3 constraint_correction(uvec2 cell, vec3 x) {
     // Springs may not stretch past (1 + stretch_limit) * rest: each end moves half the excess
     // (all of it when the other end is pinned).
     if (has(F_STRETCH) && (obj.flags & OBJ_STRETCH_LIMIT) != 0u) {
-        for (int s = 0; s < 8; ++s) {
+        [[unroll]] for (int s = 0; s < 8; ++s) {
             ivec3 spring = SPRINGS[s];
             int j = neighbour(ivec2(cell), spring.xy, obj.dims);
             if (j < 0 || obj.stiffness[spring.z] == 0.0) continue;
@@ -70,7 +70,7 @@ vec3 constraint_correction(uvec2 cell, vec3 x) {
             // block of cells nearest to x. Buckets two cells share are visited once.
             ivec3 base = ivec3(floor(x * obj.cell_inv - 0.5));
             uint seen[8];
-            for (int c = 0; c < 8; ++c) {
+            [[unroll]] for (int c = 0; c < 8; ++c) {
                 uint h = cell_hash(base + ivec3(c & 1, (c >> 1) & 1, c >> 2), HASH_MASK);
                 seen[c] = h;
                 bool again = false;

@@ -15,7 +15,7 @@
 #endif
 
 void add_spring_forces(uvec2 cell, vec3 x, vec3 v, float drift, bool elastic, inout vec3 force) {
-    for (int s = 0; s < 12; ++s) {
+    [[unroll]] for (int s = 0; s < 12; ++s) {
         ivec3 spring = SPRINGS[s];
         if (!has(1u << spring.z)) continue;  // F_STRUCTURAL, F_SHEAR, F_BENDING
         float k = elastic ? obj.stiffness[spring.z] : 0.0;

@@ -7,7 +7,10 @@
 #define SPRING_SHEAR 1
 #define SPRING_BENDING 2
 
-// xy: grid offset to the other particle, z: spring type.
+// xy: grid offset to the other particle, z: spring type. Indexed by a loop variable, glslang
+// gives each invocation a copy of the array (an "indexable" function variable); the loops over
+// it are marked [[unroll]] (GL_EXT_control_flow_attributes, in every shader that includes
+// this) so the driver can fold the indices into constants.
 const ivec3 SPRINGS[12] = ivec3[12](
     ivec3(1, 0, 0), ivec3(-1, 0, 0), ivec3(0, 1, 0), ivec3(0, -1, 0),
     ivec3(1, 1, 1), ivec3(-1, -1, 1), ivec3(1, -1, 1), ivec3(-1, 1, 1),

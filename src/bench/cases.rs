@@ -160,10 +160,13 @@ fn paper_cases() -> Vec<Case> {
     cases
 }
 
-/// The whole matrix; `quick` keeps the smallest sizes (for a CPU device).
-pub fn matrix(quick: bool) -> Vec<Case> {
-    let cloth_sizes: &[u32] = if quick { &[50] } else { &[50, 128, 256, 512, 1024] };
-    let rope_sizes: &[u32] = if quick { &[256] } else { &[256, 1024, 4096, 16384, 65536] };
+/// Cloth resolutions (particles per side) and rope lengths (nodes) of the full matrix.
+pub const CLOTH_SIZES: [u32; 5] = [50, 128, 256, 512, 1024];
+pub const ROPE_SIZES: [u32; 5] = [256, 1024, 4096, 16384, 65536];
+
+/// The paper's cases, then every variant of cloths of `cloth_sizes` particles per side and of
+/// ropes of `rope_sizes` nodes.
+pub fn matrix(cloth_sizes: &[u32], rope_sizes: &[u32]) -> Vec<Case> {
     let mut cases = paper_cases();
     for &res in cloth_sizes {
         let span = SPACING * (res - 1) as f64;
@@ -190,7 +193,7 @@ pub fn matrix(quick: bool) -> Vec<Case> {
 mod tests {
     #[test]
     fn every_case_is_a_valid_scene() {
-        for case in super::matrix(false) {
+        for case in super::matrix(&super::CLOTH_SIZES, &super::ROPE_SIZES) {
             crate::scene::validate(&case.scene).unwrap_or_else(|e| panic!("{}: {e}", case.name));
         }
     }

@@ -6,7 +6,7 @@ pub mod cases;
 pub mod report;
 
 use crate::scene;
-use crate::sim::gpu::{FrameTiming, GpuSim};
+use crate::sim::gpu::{FrameTiming, FusedLimits, GpuSim};
 use crate::vk::GpuContext;
 use anyhow::{Context as _, Result};
 
@@ -34,6 +34,8 @@ pub struct Measurement {
     pub case: String,
     pub particles: u64,
     pub substeps: u32,
+    /// "fused" when every object ran its substeps in one workgroup, else "per stage".
+    pub path: &'static str,
     pub frames: usize,
     pub total: Spread,
     pub physics: Spread,
@@ -44,9 +46,21 @@ pub struct Measurement {
 /// Runs `case` for `warmup` frames, then measures `frames` frames twice: with only a start and
 /// an end timestamp per frame (the totals), then with timestamps between the stages (the
 /// per-stage times; those timestamps cost a little themselves, so totals come from the first).
-pub fn measure(ctx: &GpuContext, case: &cases::Case, warmup: usize, frames: usize) -> Result<Measurement> {
+/// `fused_slots`: objects of up to that many particles per thread run fused (where they fit the
+/// shared memory; `None`: the default, `Some(0)`: every object per stage).
+pub fn measure(
+    ctx: &GpuContext,
+    case: &cases::Case,
+    warmup: usize,
+    frames: usize,
+    fused_slots: Option<u32>,
+) -> Result<Measurement> {
     let model = scene::to_model(&case.scene);
-    let mut sim = GpuSim::new(ctx, &model).with_context(|| format!("setting up {}", case.name))?;
+    let mut limits = FusedLimits::for_device(ctx.info());
+    limits.slots = fused_slots.unwrap_or(limits.slots);
+    let mut sim = GpuSim::with_fused_limits(ctx, &model, limits)
+        .with_context(|| format!("setting up {}", case.name))?;
+    let path = if (0..model.objects.len()).all(|i| sim.runs_fused(i)) { "fused" } else { "per stage" };
     let run = (|| -> Result<(Vec<FrameTiming>, Vec<FrameTiming>)> {
         for _ in 0..warmup {
             sim.step_frame(ctx)?;
@@ -69,6 +83,7 @@ pub fn measure(ctx: &GpuContext, case: &cases::Case, warmup: usize, frames: usiz
         case: case.name.clone(),
         particles: model.objects.iter().map(|o| o.particle_count() as u64).sum(),
         substeps: model.substeps,
+        path,
         frames,
         total: Spread::of(&totals.iter().map(|t| t.total_ms).collect::<Vec<_>>()),
         physics: spread(|t| t.physics_ms),

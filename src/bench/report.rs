@@ -47,9 +47,9 @@ pub fn markdown(header: &Header, rows: &[(Measurement, bool)]) -> String {
     let _ = writeln!(out);
     let _ = writeln!(
         out,
-        "| case | particles | ms/frame (median) | p10 - p90 | frames/s | physics ms | constraints ms | surface ms | physics us/substep (roofline) | constraints us/substep (roofline) |"
+        "| case | particles | path | ms/frame (median) | p10 - p90 | frames/s | physics ms | constraints ms | surface ms | physics us/substep (roofline) | constraints us/substep (roofline) |"
     );
-    let _ = writeln!(out, "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|");
+    let _ = writeln!(out, "|---|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|");
     for (m, hashed) in rows {
         let sub = m.substeps as f64;
         let roof =
@@ -57,9 +57,10 @@ pub fn markdown(header: &Header, rows: &[(Measurement, bool)]) -> String {
         let (pb, cb) = ideal_bytes(m, *hashed);
         let _ = writeln!(
             out,
-            "| {} | {} | {:.3} | {:.3} - {:.3} | {:.0} | {:.3} | {:.3} | {:.3} | {} ({}) | {} ({}) |",
+            "| {} | {} | {} | {:.3} | {:.3} - {:.3} | {:.0} | {:.3} | {:.3} | {:.3} | {} ({}) | {} ({}) |",
             m.case,
             m.particles,
+            m.path,
             m.total.median,
             m.total.p10,
             m.total.p90,
@@ -87,17 +88,18 @@ pub fn csv(header: &Header, rows: &[(Measurement, bool)]) -> String {
     }
     let _ = writeln!(
         out,
-        "group,case,particles,substeps,frames,total_median_ms,total_p10_ms,total_p90_ms,physics_median_ms,physics_p10_ms,physics_p90_ms,constraints_median_ms,constraints_p10_ms,constraints_p90_ms,surface_median_ms,surface_p10_ms,surface_p90_ms"
+        "group,case,particles,substeps,path,frames,total_median_ms,total_p10_ms,total_p90_ms,physics_median_ms,physics_p10_ms,physics_p90_ms,constraints_median_ms,constraints_p10_ms,constraints_p90_ms,surface_median_ms,surface_p10_ms,surface_p90_ms"
     );
     for (m, _) in rows {
         let s = |x: &super::Spread| format!("{:.6},{:.6},{:.6}", x.median, x.p10, x.p90);
         let _ = writeln!(
             out,
-            "{},\"{}\",{},{},{},{},{},{},{}",
+            "{},\"{}\",{},{},{},{},{},{},{},{}",
             m.group,
             m.case,
             m.particles,
             m.substeps,
+            m.path,
             m.frames,
             s(&m.total),
             s(&m.physics),

@@ -15,11 +15,25 @@ pub struct BenchArgs {
     #[arg(long, default_value_t = 20)]
     pub warmup: u64,
     /// Only the smallest sizes (for a CPU device such as lavapipe).
-    #[arg(long)]
+    #[arg(long, conflicts_with_all = ["cloth_sizes", "rope_sizes"])]
     pub quick: bool,
+    /// Cloth sizes (particles per side) of the matrix [default: 50,128,256,512,1024].
+    #[arg(long, value_delimiter = ',', value_parser = clap::value_parser!(u32).range(2..=4096))]
+    pub cloth_sizes: Option<Vec<u32>>,
+    /// Rope sizes (nodes) of the matrix [default: 256,1024,4096,16384,65536].
+    #[arg(long, value_delimiter = ',', value_parser = clap::value_parser!(u32).range(2..=16_777_216))]
+    pub rope_sizes: Option<Vec<u32>>,
     /// Only cases whose name contains this text.
     #[arg(long)]
     pub filter: Option<String>,
+    /// Run every object per stage (a dispatch per stage and substep), not fused in one
+    /// workgroup where its layout fits: the reference path, for comparison.
+    #[arg(long, conflicts_with = "fused_slots")]
+    pub per_stage: bool,
+    /// Fuse objects of up to this many particles per thread of a 1024-thread workgroup (1 to 4;
+    /// default 1, see docs/PERFORMANCE.md), where they fit the shared memory.
+    #[arg(long, value_parser = clap::value_parser!(u32).range(1..=4))]
+    pub fused_slots: Option<u32>,
     /// Folder for bench.md and bench.csv.
     #[arg(long, default_value = "bench-results")]
     pub out: PathBuf,
@@ -31,7 +45,15 @@ pub fn run(args: &BenchArgs, options: &ContextOptions) -> Result<()> {
     let ctx = GpuContext::new(options)?;
     let info = ctx.info().clone();
     eprintln!("device: {info}");
-    let cases: Vec<_> = cases::matrix(args.quick)
+    let (cloth, rope) = if args.quick {
+        (vec![50], vec![256])
+    } else {
+        (
+            args.cloth_sizes.clone().unwrap_or(cases::CLOTH_SIZES.to_vec()),
+            args.rope_sizes.clone().unwrap_or(cases::ROPE_SIZES.to_vec()),
+        )
+    };
+    let cases: Vec<_> = cases::matrix(&cloth, &rope)
         .into_iter()
         .filter(|c| args.filter.as_ref().is_none_or(|f| c.name.contains(f.as_str())))
         .collect();
@@ -49,7 +71,13 @@ pub fn run(args: &BenchArgs, options: &ContextOptions) -> Result<()> {
     let mut rows = Vec::new();
     for case in &cases {
         bar.set_message(case.name.clone());
-        let m = bench::measure(&ctx, case, args.warmup as usize, args.frames as usize)?;
+        let m = bench::measure(
+            &ctx,
+            case,
+            args.warmup as usize,
+            args.frames as usize,
+            if args.per_stage { Some(0) } else { args.fused_slots },
+        )?;
         if bar.is_hidden() {
             // Not a terminal (a log): a line per case instead of the bar.
             eprintln!("[{}/{}] {}: {:.3} ms/frame", rows.len() + 1, cases.len(), case.name, m.total.median);

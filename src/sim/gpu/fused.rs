@@ -17,6 +17,36 @@ use crate::sim::model::{ObjectModel, SelfCollisionMethod, SimModel};
 
 /// Particles one thread of the fused kernel owns at most (`MAX_SLOTS` in the shader).
 pub const FUSED_SLOTS: u32 = 4;
+/// Particles per thread the fused path takes by default. Measured on an H100
+/// (docs/PERFORMANCE.md, "Fused substeps"): with one particle per thread ropes of 256 to
+/// 1,024 nodes run 2 to 3 times faster fused than per stage and cloths of 256 to 1,024
+/// particles within -10% to +15%; with two or three per thread one workgroup's latency chain
+/// is longer than the per-stage dispatches (a 50 x 50 cloth: 0.31 vs 0.18 ms per frame).
+pub const FUSED_DEFAULT_SLOTS: u32 = 1;
+
+/// What the fused layouts are planned for: shared memory per workgroup [bytes] and particles
+/// per thread at most.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct FusedLimits {
+    pub shared_bytes: u32,
+    pub slots: u32,
+}
+
+impl FusedLimits {
+    /// The device's shared memory and `FUSED_DEFAULT_SLOTS`.
+    pub fn for_device(info: &crate::vk::DeviceInfo) -> Self {
+        Self { shared_bytes: info.max_shared_memory, slots: FUSED_DEFAULT_SLOTS }
+    }
+
+    /// These limits within the device's shared memory and the kernel's `FUSED_SLOTS`.
+    pub fn within(self, info: &crate::vk::DeviceInfo) -> Self {
+        Self {
+            shared_bytes: self.shared_bytes.min(info.max_shared_memory),
+            slots: self.slots.min(FUSED_SLOTS),
+        }
+    }
+}
+
 /// Threads of a fused workgroup at most (the Vulkan minimum of maxComputeWorkGroupInvocations
 /// is 128; lavapipe and NVIDIA allow 1024).
 const MAX_THREADS: u32 = 1024;
@@ -62,21 +92,20 @@ pub struct FusedShape {
 }
 
 impl FusedShape {
-    /// The layout of object `o` in `model` for a device with `shared_limit` bytes of shared
-    /// memory per workgroup, or `None` when the object does not fit (or its integrator is
-    /// iterative): it then runs per stage.
-    pub fn plan(o: &ObjectModel, model: &SimModel, shared_limit: u32) -> Option<Self> {
+    /// The layout of object `o` in `model` within `limits`, or `None` when the object does not
+    /// fit (or its integrator is iterative): it then runs per stage.
+    pub fn plan(o: &ObjectModel, model: &SimModel, limits: FusedLimits) -> Option<Self> {
         if model.integrator.iterative() {
             return None;
         }
         let n = o.particle_count() as u32;
-        if n == 0 || n > FUSED_SLOTS * MAX_THREADS {
+        if n == 0 || n > limits.slots.min(FUSED_SLOTS) * MAX_THREADS {
             return None;
         }
         let slots = n.div_ceil(MAX_THREADS);
         let threads = n.div_ceil(slots).next_multiple_of(32);
         let halo = if o.dims[1] > 1 { 2 * o.dims[0] } else { 2 };
-        let budget = shared_limit.saturating_sub(SHARED_MARGIN);
+        let budget = limits.shared_bytes.saturating_sub(SHARED_MARGIN);
         let fixed = 12 * n + 4 * n.div_ceil(32);
         let words = budget.checked_sub(fixed)? / 4;
         let damped = o.damping != 0.0;
@@ -115,5 +144,79 @@ impl FusedShape {
             self.pass_slots,
             self.halo,
         ]
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::sim::model::Integrator;
+
+    fn kib(k: u32) -> FusedLimits {
+        FusedLimits { shared_bytes: k * 1024, slots: FUSED_SLOTS }
+    }
+
+    fn curtain() -> SimModel {
+        let s = crate::scene::parse(include_str!("../../../presets/curtain.toml"), "curtain.toml", &[])
+            .expect("the curtain preset is valid");
+        crate::scene::to_model(&s)
+    }
+
+    /// The paper's curtain (2,500 particles, dashpots, the hash) fits NVIDIA's 48 KiB: 864
+    /// threads of three slots, the dashpots' velocities staged one slot per pass, 2,048
+    /// buckets; not lavapipe's 32 KiB. Every layout stays within its limit.
+    #[test]
+    fn the_curtain_fits_48_kib_and_not_32() {
+        let m = curtain();
+        let o = &m.objects[0];
+        let shape = FusedShape::plan(o, &m, kib(48)).expect("fits 48 KiB");
+        assert_eq!((shape.threads, shape.particles, shape.buckets), (864, 2500, 2048), "{shape:?}");
+        assert_eq!(shape.pass_slots, 1, "{shape:?}");
+        assert!(shape.shared_bytes() <= 48 * 1024 - SHARED_MARGIN, "{shape:?}");
+        assert_eq!(FusedShape::plan(o, &m, kib(32)), None);
+        let one_slot = FusedLimits { shared_bytes: 48 * 1024, slots: FUSED_DEFAULT_SLOTS };
+        assert_eq!(FusedShape::plan(o, &m, one_slot), None, "2,500 particles need three slots");
+        for limit in (16..=64).map(|k| k * 1024) {
+            if let Some(s) = FusedShape::plan(o, &m, FusedLimits { shared_bytes: limit, slots: FUSED_SLOTS })
+            {
+                assert!(s.shared_bytes() <= limit - SHARED_MARGIN, "{limit}: {s:?}");
+                assert!(s.threads % 32 == 0 && s.threads * FUSED_SLOTS >= s.particles, "{s:?}");
+            }
+        }
+    }
+
+    /// Iterative integrators and objects above FUSED_SLOTS x 1024 particles run per stage.
+    #[test]
+    fn iterative_methods_and_large_objects_are_not_fused() {
+        let mut m = curtain();
+        m.integrator = Integrator::Implicit;
+        assert_eq!(
+            FusedShape::plan(&m.objects[0], &m, FusedLimits { shared_bytes: u32::MAX, slots: FUSED_SLOTS }),
+            None
+        );
+        let mut m = curtain();
+        let o = &mut m.objects[0];
+        o.dims = [65, 64];
+        assert_eq!(
+            FusedShape::plan(&m.objects[0], &m, FusedLimits { shared_bytes: u32::MAX, slots: FUSED_SLOTS }),
+            None
+        );
+    }
+
+    /// Features follow the model: a scene without wind, spheres, dashpots or self-collision
+    /// compiles them out; a spring type without stiffness or dashpots is left out.
+    #[test]
+    fn features_follow_the_model() {
+        let mut m = curtain();
+        let all = features(&m.objects[0], &m);
+        assert_eq!(all & FEATURE_WIND, 0, "the preset has no wind");
+        assert_ne!(all & (FEATURE_SPHERES | FEATURE_SELF | FEATURE_DAMPING | FEATURE_STRETCH), 0);
+        m.spheres.clear();
+        let o = &mut m.objects[0];
+        o.damping = 0.0;
+        o.stiffness[2] = 0.0;
+        o.self_distance = None;
+        let f = features(&m.objects[0], &m);
+        assert_eq!(f, FEATURE_STRUCTURAL | FEATURE_SHEAR | FEATURE_STRETCH);
     }
 }

@@ -26,7 +26,7 @@ mod fused;
 mod object;
 mod pipelines;
 
-pub use fused::{FusedShape, FUSED_SLOTS};
+pub use fused::{FusedLimits, FusedShape, FUSED_DEFAULT_SLOTS, FUSED_SLOTS};
 pub use object::{check_fits, particles};
 
 use super::gpu_types::{Globals, Particle, SurfaceVertex, GUARD_NON_FINITE};
@@ -91,8 +91,8 @@ pub struct GpuSim {
     /// Objects whose layout fits the device's shared memory run their substeps fused into one
     /// dispatch (`fused.rs`).
     fused: bool,
-    /// The device's shared memory per workgroup [bytes], which decides the fused layouts.
-    shared_limit: u32,
+    /// What the fused layouts are planned within.
+    limits: FusedLimits,
     frames: u64,
     /// Particle writes (object, index, value) applied at the start of the next recorded frame.
     pending_writes: Vec<(usize, u32, Particle)>,
@@ -120,10 +120,10 @@ impl Parts {
         ctx: &GpuContext,
         model: &SimModel,
         shaders: &mut ShaderSet,
-        shared_limit: u32,
+        limits: FusedLimits,
     ) -> Result<()> {
         let layout = self.layout.insert(BindingSetLayout::storage_buffers(ctx, BINDINGS)?);
-        self.pipelines = Some(Pipelines::new(ctx, layout, shaders, &Stage::needed(model, shared_limit))?);
+        self.pipelines = Some(Pipelines::new(ctx, layout, shaders, &Stage::needed(model, limits))?);
         self.arena = Some(DescriptorArena::new(ctx, 2 * model.objects.len() as u32, BINDINGS)?);
         let globals_size = std::mem::size_of::<Globals>() as u64;
         self.globals =
@@ -175,21 +175,26 @@ impl GpuSim {
 
     /// Like `new`, with shaders from `shaders` (a watched directory for hot reload).
     pub fn with_shaders(ctx: &GpuContext, model: &SimModel, shaders: &mut ShaderSet) -> Result<Self> {
-        Self::build(ctx, model, shaders, ctx.info().max_shared_memory)
+        Self::build(ctx, model, shaders, FusedLimits::for_device(ctx.info()))
     }
 
-    /// Like `new`, with the fused layouts planned for `shared_limit` bytes of shared memory per
-    /// workgroup (at most the device's): smaller limits take the velocity window in passes or
-    /// the per-stage path, for tests and measurements on a device with more.
-    pub fn with_shared_limit(ctx: &GpuContext, model: &SimModel, shared_limit: u32) -> Result<Self> {
-        let limit = shared_limit.min(ctx.info().max_shared_memory);
-        Self::build(ctx, model, &mut ShaderSet::embedded(), limit)
+    /// Like `new`, with the fused layouts planned within `limits` (themselves within the
+    /// device's shared memory and `FUSED_SLOTS`): more particles per thread than the default,
+    /// or less shared memory (the velocity window in passes), for tests and measurements.
+    pub fn with_fused_limits(ctx: &GpuContext, model: &SimModel, limits: FusedLimits) -> Result<Self> {
+        let limits = limits.within(ctx.info());
+        Self::build(ctx, model, &mut ShaderSet::embedded(), limits)
     }
 
-    fn build(ctx: &GpuContext, model: &SimModel, shaders: &mut ShaderSet, shared_limit: u32) -> Result<Self> {
+    fn build(
+        ctx: &GpuContext,
+        model: &SimModel,
+        shaders: &mut ShaderSet,
+        limits: FusedLimits,
+    ) -> Result<Self> {
         check_fits(ctx.info(), &model.objects.iter().map(ObjectModel::shape).collect::<Vec<_>>())?;
         let mut parts = Parts::default();
-        if let Err(e) = parts.create(ctx, model, shaders, shared_limit) {
+        if let Err(e) = parts.create(ctx, model, shaders, limits) {
             parts.destroy(ctx);
             return Err(e);
         }
@@ -216,7 +221,7 @@ impl GpuSim {
             timestamps,
             stage_timing: true,
             fused: true,
-            shared_limit,
+            limits,
             frames: 0,
             pending_writes: Vec::new(),
             model: model.without_particles(),
@@ -237,7 +242,7 @@ impl GpuSim {
         self.spheres.write(0, &sphere_data(model))?;
         for o in &model.objects {
             let shared = [&self.globals, &self.spheres];
-            let obj = GpuObject::new(ctx, &self.layout, &mut self.arena, shared, o, model, self.shared_limit)
+            let obj = GpuObject::new(ctx, &self.layout, &mut self.arena, shared, o, model, self.limits)
                 .with_context(|| format!("allocating {} '{}'", o.kind.label(), o.name))?;
             self.objects.push(obj);
         }
@@ -585,7 +590,7 @@ impl GpuSim {
             && self.objects.iter().zip(&model.objects).all(|(gpu, o)| {
                 o.particle_count() as u32 == gpu.particles
                     && fused::features(o, model) == gpu.features
-                    && FusedShape::plan(o, model, self.shared_limit) == gpu.fused
+                    && FusedShape::plan(o, model, self.limits) == gpu.fused
             })
     }
 

@@ -1,7 +1,7 @@
 //! The GPU buffers and binding sets of one simulated object, the parameters it is given, and
 //! the checks that it fits the device.
 
-use super::fused::{features, FusedShape};
+use super::fused::{features, FusedLimits, FusedShape};
 use super::{BINDINGS, CLOTH_GROUP, ROPE_GROUP};
 use crate::error::UserError;
 use crate::sim::gpu_types::{
@@ -142,7 +142,7 @@ pub(super) struct GpuObject {
     pub sets: [BindingSet; 2],
     /// The features its step pipelines compile in (`fused::features`).
     pub features: u32,
-    /// Its layout on the fused path, when it fits `shared_limit` (`FusedShape::plan`).
+    /// Its layout on the fused path, when it fits the limits (`FusedShape::plan`).
     pub fused: Option<FusedShape>,
 }
 
@@ -155,7 +155,7 @@ impl GpuObject {
         shared: [&Buffer; 2],
         o: &ObjectModel,
         model: &SimModel,
-        shared_limit: u32,
+        limits: FusedLimits,
     ) -> Result<Self, VkError> {
         let [globals, spheres] = shared;
         let n = o.particle_count() as u64;
@@ -227,7 +227,7 @@ impl GpuObject {
             guard,
             sets,
             features: features(o, model),
-            fused: FusedShape::plan(o, model, shared_limit),
+            fused: FusedShape::plan(o, model, limits),
         };
         match sets {
             Ok(sets) => Ok(object(sets)),

@@ -3,7 +3,7 @@
 //! and the step shaders are specialized with the features each object uses (`FEATURES`,
 //! `glsl/include/features.glsl`), so what a scene does not use is compiled out.
 
-use super::fused::{features, FusedShape};
+use super::fused::{features, FusedLimits, FusedShape};
 use super::{CLOTH_GROUP, ROPE_GROUP};
 use crate::shaders::ShaderSet;
 use crate::sim::model::{Integrator, ObjectKind, ObjectModel, SelfCollisionMethod, SimModel};
@@ -84,13 +84,12 @@ impl Stage {
         stages
     }
 
-    /// The pipelines `model` needs on a device with `shared_limit` bytes of shared memory per
-    /// workgroup (which decides the fused layouts).
-    pub(super) fn needed(model: &SimModel, shared_limit: u32) -> Vec<Stage> {
+    /// The pipelines `model` needs with the fused layouts planned within `limits`.
+    pub(super) fn needed(model: &SimModel, limits: FusedLimits) -> Vec<Stage> {
         let mut stages: Vec<Stage> = model
             .objects
             .iter()
-            .flat_map(|o| Stage::of_object(o, model, FusedShape::plan(o, model, shared_limit)))
+            .flat_map(|o| Stage::of_object(o, model, FusedShape::plan(o, model, limits)))
             .collect();
         if model.self_collision == SelfCollisionMethod::Hash
             && model.objects.iter().any(|o| o.self_distance.is_some())
