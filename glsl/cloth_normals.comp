@@ -2,17 +2,19 @@
 #extension GL_GOOGLE_include_directive : require
 // Surface stage for cloth, once per frame after the last substep: angle-weighted smoothed
 // normals from the final positions, and the runtime guard. Reads p_in (the state buffer),
-// writes surface[] and the guard.
+// writes surface[] and the guard; with DRAWN off (nothing draws the cloth), only the guard.
 #include "bindings.glsl"
 #include "springs.glsl"
 
 layout(local_size_x = 16, local_size_y = 16, local_size_z = 1) in;
+layout(constant_id = 0) const bool DRAWN = true;
 
 void main() {
     uvec2 cell = gl_GlobalInvocationID.xy;
     if (cell.x >= obj.dims.x || cell.y >= obj.dims.y) return;
     uint i = cell.x + cell.y * obj.dims.x;
     guard_check(i, p_in[i]);
+    if (!DRAWN) return;
     vec3 x = p_in[i].pos.xyz;
 
     // Edges to the structural neighbours in turning order (+column, -row, -column, +row); each

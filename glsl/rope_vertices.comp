@@ -3,10 +3,12 @@
 // Surface stage for ropes, once per frame: ROPE_RING tube vertices around each node, on a frame
 // built from the directions to the previous and next nodes (the paper's section IV-C).
 // Reads p_in (the state buffer), writes surface[node * ROPE_RING + k] and the runtime guard
-// (first vertex of each node). One thread per vertex.
+// (first vertex of each node). One thread per vertex; with DRAWN off (nothing draws the
+// rope), only the guard, one thread per node.
 #include "bindings.glsl"
 
 layout(local_size_x = 64, local_size_y = 1, local_size_z = 1) in;
+layout(constant_id = 0) const bool DRAWN = true;
 
 vec3 safe_normalize(vec3 v, vec3 fallback) {
     float len = length(v);
@@ -16,6 +18,10 @@ vec3 safe_normalize(vec3 v, vec3 fallback) {
 void main() {
     uint vtx = gl_GlobalInvocationID.x;
     uint nodes = obj.dims.x;
+    if (!DRAWN) {
+        if (vtx < nodes) guard_check(vtx, p_in[vtx]);
+        return;
+    }
     if (vtx >= nodes * ROPE_RING) return;
     uint node = vtx / ROPE_RING;
     uint k = vtx % ROPE_RING;

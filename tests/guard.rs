@@ -1,6 +1,7 @@
 //! The runtime guard on the GPU (validation and synchronization validation on): a non-finite
 //! or runaway particle is reported after the frame with its object and index; a stable scene
-//! never trips it.
+//! never trips it. Each test runs drawn and headless (`set_drawn(false)`: the surface stage
+//! runs the guard alone).
 
 mod common;
 
@@ -12,12 +13,19 @@ use msdsim::sim::stability::GuardTrip;
 
 #[test]
 fn a_non_finite_particle_trips_the_guard() {
+    for drawn in [true, false] {
+        non_finite(drawn);
+    }
+}
+
+fn non_finite(drawn: bool) {
     let ctx = gpu();
     let mut c = cloth(13, 9, 0.05);
     c.stiffness = [60.0, 20.0, 5.0];
     let mut model = scene(vec![rope(40, 0.025), c]);
     model.gravity = DVec3::new(0.0, -9.81, 0.0);
     let mut sim = GpuSim::new(&ctx, &model).unwrap();
+    sim.set_drawn(drawn);
     for _ in 0..3 {
         sim.step_frame(&ctx).expect("a stable scene does not trip the guard");
     }
@@ -34,14 +42,50 @@ fn a_non_finite_particle_trips_the_guard() {
 
 #[test]
 fn a_runaway_particle_trips_the_guard() {
+    for drawn in [true, false] {
+        runaway(drawn);
+    }
+}
+
+fn runaway(drawn: bool) {
     let ctx = gpu();
     let mut model = scene(vec![rope(40, 0.025)]);
     model.max_speed = 50.0;
     let mut sim = GpuSim::new(&ctx, &model).unwrap();
+    sim.set_drawn(drawn);
     sim.set_particle(0, 7, Particle { pos: [0.0, 1.0, 0.0, 0.0], vel: [80.0, 0.0, 0.0, 0.0] });
     let err = sim.step_frame(&ctx).expect_err("80 m/s is past the 50 m/s bound");
     let trip = err.downcast_ref::<GuardTrip>().expect("a GuardTrip");
     assert!(trip.what.contains("ran away") && trip.particle == 7, "{trip}");
+    sim.destroy(&ctx);
+    assert_clean(&ctx);
+}
+
+/// Headless frames leave the surface as the last drawn frame wrote it while the particles move
+/// on; drawing again brings it up to date.
+#[test]
+fn headless_frames_skip_the_surface() {
+    let ctx = gpu();
+    let mut model = scene(vec![rope(40, 0.025), cloth(13, 9, 0.05)]);
+    model.gravity = DVec3::new(0.0, -9.81, 0.0);
+    let mut sim = GpuSim::new(&ctx, &model).unwrap();
+    sim.step_frame(&ctx).unwrap();
+    let drawn = sim.read_states(&ctx).unwrap();
+    sim.set_drawn(false);
+    sim.step_frame(&ctx).unwrap();
+    let headless = sim.read_states(&ctx).unwrap();
+    sim.set_drawn(true);
+    sim.step_frame(&ctx).unwrap();
+    let again = sim.read_states(&ctx).unwrap();
+    for o in 0..2 {
+        let pos =
+            |s: &[msdsim::sim::gpu::ObjectState]| s[o].particles.iter().map(|p| p.pos).collect::<Vec<_>>();
+        let surf =
+            |s: &[msdsim::sim::gpu::ObjectState]| s[o].surface.iter().map(|v| v.pos).collect::<Vec<_>>();
+        assert_ne!(pos(&drawn), pos(&headless), "object {o}: the particles fall");
+        assert_eq!(surf(&drawn), surf(&headless), "object {o}: a headless frame wrote the surface");
+        assert_ne!(surf(&headless), surf(&again), "object {o}: drawing again updates the surface");
+    }
     sim.destroy(&ctx);
     assert_clean(&ctx);
 }

@@ -60,6 +60,7 @@ pub fn measure(
     limits.slots = fused_slots.unwrap_or(limits.slots);
     let mut sim = GpuSim::with_fused_limits(ctx, &model, limits)
         .with_context(|| format!("setting up {}", case.name))?;
+    sim.set_drawn(false); // headless: the surface stage runs the guard only
     let path = if (0..model.objects.len()).all(|i| sim.runs_fused(i)) { "fused" } else { "per stage" };
     let run = (|| -> Result<(Vec<FrameTiming>, Vec<FrameTiming>)> {
         for _ in 0..warmup {

@@ -93,6 +93,8 @@ pub struct GpuSim {
     fused: bool,
     /// What the fused layouts are planned within.
     limits: FusedLimits,
+    /// Whether the surface stage writes the surface buffers (else it only runs the guard).
+    drawn: bool,
     frames: u64,
     /// Particle writes (object, index, value) applied at the start of the next recorded frame.
     pending_writes: Vec<(usize, u32, Particle)>,
@@ -222,6 +224,7 @@ impl GpuSim {
             stage_timing: true,
             fused: true,
             limits,
+            drawn: true,
             frames: 0,
             pending_writes: Vec::new(),
             model: model.without_particles(),
@@ -480,7 +483,12 @@ impl GpuSim {
         };
         rec.barrier(&surfaces(surface_consumer, Access::ComputeWrite));
         for o in &self.objects {
-            rec.dispatch(self.pipelines.get(Stage::Surface(o.kind)), o.sets[0], o.surface_groups);
+            let (stage, groups) = if self.drawn {
+                (Stage::Surface(o.kind, true), o.surface_groups)
+            } else {
+                (Stage::Surface(o.kind, false), o.step_groups)
+            };
+            rec.dispatch(self.pipelines.get(stage), o.sets[0], groups);
         }
         if let Some(pool) = ts {
             rec.timestamp(pool, 1 + 2 * self.model.substeps);
@@ -551,6 +559,12 @@ impl GpuSim {
     /// With `false`, every object takes the per-stage path (the reference for the fused one).
     pub fn set_fused(&mut self, on: bool) {
         self.fused = on;
+    }
+
+    /// With `false` nothing reads the surface buffers (a headless run): the surface stage only
+    /// runs the guard, and `read_states` returns the surface of the last drawn frame.
+    pub fn set_drawn(&mut self, on: bool) {
+        self.drawn = on;
     }
 
     /// Whether object `object` runs its substeps fused (its layout fits and the path is on).

@@ -22,8 +22,8 @@ pub(super) enum Stage {
     XpbdIterate(ObjectKind),
     ImplicitIterate(ObjectKind),
     Constraints(ObjectKind, u32),
-    /// Cloth normals or rope tube vertices (and the runtime guard).
-    Surface(ObjectKind),
+    /// Cloth normals or rope tube vertices and the runtime guard (`drawn`), or the guard alone.
+    Surface(ObjectKind, bool),
     HashScan(u32),
     HashScatter,
     /// Every substep of an object in one workgroup (`verlet` as for `Physics`).
@@ -45,8 +45,8 @@ impl Stage {
             Stage::XpbdIterate(_) => "xpbd_iterate.comp",
             Stage::ImplicitIterate(_) => "implicit_iterate.comp",
             Stage::Constraints(..) => "constraints.comp",
-            Stage::Surface(ObjectKind::Cloth) => "cloth_normals.comp",
-            Stage::Surface(ObjectKind::Rope) => "rope_vertices.comp",
+            Stage::Surface(ObjectKind::Cloth, _) => "cloth_normals.comp",
+            Stage::Surface(ObjectKind::Rope, _) => "rope_vertices.comp",
             Stage::HashScan(_) => "hash_scan.comp",
             Stage::HashScatter => "hash_scatter.comp",
             Stage::Fused(..) => "fused.comp",
@@ -63,7 +63,8 @@ impl Stage {
             }
             Stage::Constraints(kind, f) => [group(kind), vec![0, f]].concat(),
             Stage::XpbdIterate(kind) | Stage::ImplicitIterate(kind) => group(kind),
-            Stage::Surface(_) | Stage::HashScatter => Vec::new(),
+            Stage::Surface(_, drawn) => vec![drawn as u32],
+            Stage::HashScatter => Vec::new(),
             Stage::HashScan(phase) => vec![phase],
             Stage::Fused(verlet, f, shape) => shape.specialization(verlet, f),
         }
@@ -79,7 +80,7 @@ impl Stage {
             Integrator::Xpbd => vec![Stage::Predict(kind, false, f), Stage::XpbdIterate(kind)],
             Integrator::Implicit => vec![Stage::Predict(kind, true, f), Stage::ImplicitIterate(kind)],
         };
-        stages.extend([Stage::Constraints(kind, f), Stage::Surface(kind)]);
+        stages.extend([Stage::Constraints(kind, f), Stage::Surface(kind, true), Stage::Surface(kind, false)]);
         stages.extend(fused.map(|shape| Stage::Fused(model.integrator == Integrator::Verlet, f, shape)));
         stages
     }
