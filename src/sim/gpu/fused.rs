@@ -74,6 +74,23 @@ pub fn features(o: &ObjectModel, model: &SimModel) -> u32 {
     uses.into_iter().filter(|(_, on)| *on).fold(f, |f, (bit, _)| f | bit)
 }
 
+/// How one object's steps are compiled: the features it uses and its fused layout. Computed
+/// once per object (`ObjectPlan::of`): the pipelines are created for it and the frame records
+/// with it, so the two cannot disagree.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct ObjectPlan {
+    /// The `FEATURES` bits (`features`).
+    pub features: u32,
+    /// Its layout on the fused path, when it fits the limits (`FusedShape::plan`).
+    pub fused: Option<FusedShape>,
+}
+
+impl ObjectPlan {
+    pub fn of(o: &ObjectModel, model: &SimModel, limits: FusedLimits) -> Self {
+        Self { features: features(o, model), fused: FusedShape::plan(o, model, limits) }
+    }
+}
+
 /// The specialization of `fused.comp` for one object (ids 0 and 4..=8; 2 and 3, the integrator
 /// and the features, come from the stage).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]

@@ -26,6 +26,7 @@ mod fused;
 mod object;
 mod pipelines;
 
+use fused::ObjectPlan;
 pub use fused::{FusedLimits, FusedShape, FUSED_DEFAULT_SLOTS, FUSED_SLOTS};
 pub use object::{check_fits, particles};
 
@@ -122,10 +123,10 @@ impl Parts {
         ctx: &GpuContext,
         model: &SimModel,
         shaders: &mut ShaderSet,
-        limits: FusedLimits,
+        plans: &[ObjectPlan],
     ) -> Result<()> {
         let layout = self.layout.insert(BindingSetLayout::storage_buffers(ctx, BINDINGS)?);
-        self.pipelines = Some(Pipelines::new(ctx, layout, shaders, &Stage::needed(model, limits))?);
+        self.pipelines = Some(Pipelines::new(ctx, layout, shaders, &Stage::needed(model, plans))?);
         self.arena = Some(DescriptorArena::new(ctx, 2 * model.objects.len() as u32, BINDINGS)?);
         let globals_size = std::mem::size_of::<Globals>() as u64;
         self.globals =
@@ -195,8 +196,9 @@ impl GpuSim {
         limits: FusedLimits,
     ) -> Result<Self> {
         check_fits(ctx.info(), &model.objects.iter().map(ObjectModel::shape).collect::<Vec<_>>())?;
+        let plans: Vec<ObjectPlan> = model.objects.iter().map(|o| ObjectPlan::of(o, model, limits)).collect();
         let mut parts = Parts::default();
-        if let Err(e) = parts.create(ctx, model, shaders, limits) {
+        if let Err(e) = parts.create(ctx, model, shaders, &plans) {
             parts.destroy(ctx);
             return Err(e);
         }
@@ -230,7 +232,7 @@ impl GpuSim {
             model: model.without_particles(),
         };
         // From here `sim` owns everything created; on error it is destroyed whole.
-        match sim.populate(ctx, model) {
+        match sim.populate(ctx, model, &plans) {
             Ok(()) => Ok(sim),
             Err(e) => {
                 let _ = ctx.wait_idle();
@@ -240,12 +242,12 @@ impl GpuSim {
         }
     }
 
-    fn populate(&mut self, ctx: &GpuContext, model: &SimModel) -> Result<()> {
+    fn populate(&mut self, ctx: &GpuContext, model: &SimModel, plans: &[ObjectPlan]) -> Result<()> {
         self.globals.write(0, &[globals(model)])?;
         self.spheres.write(0, &sphere_data(model))?;
-        for o in &model.objects {
+        for (o, &plan) in model.objects.iter().zip(plans) {
             let shared = [&self.globals, &self.spheres];
-            let obj = GpuObject::new(ctx, &self.layout, &mut self.arena, shared, o, model, self.limits)
+            let obj = GpuObject::new(ctx, &self.layout, &mut self.arena, shared, o, model, plan)
                 .with_context(|| format!("allocating {} '{}'", o.kind.label(), o.name))?;
             self.objects.push(obj);
         }
@@ -427,9 +429,9 @@ impl GpuSim {
         let fused: Vec<&GpuObject> = self.objects.iter().filter(|o| self.is_fused(o)).collect();
         let verlet = self.model.integrator == Integrator::Verlet;
         for o in &fused {
-            if let Some(shape) = o.fused {
+            if let Some(shape) = o.plan.fused {
                 rec.dispatch(
-                    self.pipelines.get(Stage::Fused(verlet, o.features, shape)),
+                    self.pipelines.get(Stage::Fused(verlet, o.plan.features, shape)),
                     o.sets[0],
                     [1, 1, 1],
                 );
@@ -460,7 +462,7 @@ impl GpuSim {
             self.record_hash_build(rec);
             for o in self.objects.iter().filter(|o| !self.is_fused(o)) {
                 rec.dispatch(
-                    self.pipelines.get(Stage::Constraints(o.kind, o.features)),
+                    self.pipelines.get(Stage::Constraints(o.kind, o.plan.features)),
                     o.sets[1],
                     o.step_groups,
                 );
@@ -512,7 +514,7 @@ impl GpuSim {
                 let verlet = method == Integrator::Verlet;
                 for o in &stepped {
                     rec.dispatch(
-                        self.pipelines.get(Stage::Physics(o.kind, verlet, o.features)),
+                        self.pipelines.get(Stage::Physics(o.kind, verlet, o.plan.features)),
                         o.sets[0],
                         o.step_groups,
                     );
@@ -525,7 +527,7 @@ impl GpuSim {
         let implicit = method == Integrator::Implicit;
         for o in &stepped {
             rec.dispatch(
-                self.pipelines.get(Stage::Predict(o.kind, implicit, o.features)),
+                self.pipelines.get(Stage::Predict(o.kind, implicit, o.plan.features)),
                 o.sets[0],
                 o.step_groups,
             );
@@ -574,7 +576,7 @@ impl GpuSim {
 
     /// Whether object `o` runs fused substeps.
     fn is_fused(&self, o: &GpuObject) -> bool {
-        self.fused && o.fused.is_some()
+        self.fused && o.plan.fused.is_some()
     }
 
     /// With `false`, frames carry only a start and an end timestamp (the per-stage timestamps
@@ -603,8 +605,7 @@ impl GpuSim {
             && model.self_collision == self.model.self_collision
             && self.objects.iter().zip(&model.objects).all(|(gpu, o)| {
                 o.particle_count() as u32 == gpu.particles
-                    && fused::features(o, model) == gpu.features
-                    && FusedShape::plan(o, model, self.limits) == gpu.fused
+                    && ObjectPlan::of(o, model, self.limits) == gpu.plan
             })
     }
 

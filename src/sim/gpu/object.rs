@@ -1,7 +1,7 @@
 //! The GPU buffers and binding sets of one simulated object, the parameters it is given, and
 //! the checks that it fits the device.
 
-use super::fused::{features, FusedLimits, FusedShape};
+use super::fused::ObjectPlan;
 use super::{BINDINGS, CLOTH_GROUP, ROPE_GROUP};
 use crate::error::UserError;
 use crate::sim::gpu_types::{
@@ -140,10 +140,8 @@ pub(super) struct GpuObject {
     pub guard: Buffer,
     /// [A -> B (physics), B -> A (constraints, hash passes); surface uses set 0 (reads A)].
     pub sets: [BindingSet; 2],
-    /// The features its step pipelines compile in (`fused::features`).
-    pub features: u32,
-    /// Its layout on the fused path, when it fits the limits (`FusedShape::plan`).
-    pub fused: Option<FusedShape>,
+    /// The features its step pipelines compile in and its fused layout.
+    pub plan: ObjectPlan,
 }
 
 impl GpuObject {
@@ -155,7 +153,7 @@ impl GpuObject {
         shared: [&Buffer; 2],
         o: &ObjectModel,
         model: &SimModel,
-        limits: FusedLimits,
+        plan: ObjectPlan,
     ) -> Result<Self, VkError> {
         let [globals, spheres] = shared;
         let n = o.particle_count() as u64;
@@ -226,8 +224,7 @@ impl GpuObject {
             placeholder,
             guard,
             sets,
-            features: features(o, model),
-            fused: FusedShape::plan(o, model, limits),
+            plan,
         };
         match sets {
             Ok(sets) => Ok(object(sets)),

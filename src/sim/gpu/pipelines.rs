@@ -3,16 +3,16 @@
 //! and the step shaders are specialized with the features each object uses (`FEATURES`,
 //! `glsl/include/features.glsl`), so what a scene does not use is compiled out.
 
-use super::fused::{features, FusedLimits, FusedShape};
+use super::fused::{FusedShape, ObjectPlan};
 use super::{CLOTH_GROUP, ROPE_GROUP};
 use crate::shaders::ShaderSet;
-use crate::sim::model::{Integrator, ObjectKind, ObjectModel, SelfCollisionMethod, SimModel};
+use crate::sim::model::{Integrator, ObjectKind, SelfCollisionMethod, SimModel};
 use crate::vk::{BindingSetLayout, ComputePipeline, GpuContext, Retired};
 use anyhow::{Context as _, Result};
 use std::collections::HashMap;
 
 /// One compute pipeline: a shader with its specialization constants. `u32` fields are the
-/// `FEATURES` bits (`fused::features`).
+/// `FEATURES` bits (`ObjectPlan::features`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub(super) enum Stage {
     /// Forces and the explicit step (`verlet`: position Verlet, else symplectic Euler).
@@ -70,10 +70,11 @@ impl Stage {
         }
     }
 
-    /// The step stages of object `o` (physics or the solver, constraints, the fused kernel
-    /// when `fused` is its layout), specialized for the features it uses.
-    pub(super) fn of_object(o: &ObjectModel, model: &SimModel, fused: Option<FusedShape>) -> Vec<Stage> {
-        let (kind, f) = (o.kind, features(o, model));
+    /// The step stages of an object of `kind` with `plan` (physics or the solver, constraints,
+    /// the surface variants, the fused kernel when it has a layout), specialized for the
+    /// features it uses.
+    pub(super) fn of_object(kind: ObjectKind, model: &SimModel, plan: ObjectPlan) -> Vec<Stage> {
+        let f = plan.features;
         let mut stages = match model.integrator {
             Integrator::SymplecticEuler => vec![Stage::Physics(kind, false, f)],
             Integrator::Verlet => vec![Stage::Physics(kind, true, f)],
@@ -81,16 +82,17 @@ impl Stage {
             Integrator::Implicit => vec![Stage::Predict(kind, true, f), Stage::ImplicitIterate(kind)],
         };
         stages.extend([Stage::Constraints(kind, f), Stage::Surface(kind, true), Stage::Surface(kind, false)]);
-        stages.extend(fused.map(|shape| Stage::Fused(model.integrator == Integrator::Verlet, f, shape)));
+        stages.extend(plan.fused.map(|shape| Stage::Fused(model.integrator == Integrator::Verlet, f, shape)));
         stages
     }
 
-    /// The pipelines `model` needs with the fused layouts planned within `limits`.
-    pub(super) fn needed(model: &SimModel, limits: FusedLimits) -> Vec<Stage> {
+    /// The pipelines `model` needs, its objects planned as `plans` (one per object).
+    pub(super) fn needed(model: &SimModel, plans: &[ObjectPlan]) -> Vec<Stage> {
         let mut stages: Vec<Stage> = model
             .objects
             .iter()
-            .flat_map(|o| Stage::of_object(o, model, FusedShape::plan(o, model, limits)))
+            .zip(plans)
+            .flat_map(|(o, &plan)| Stage::of_object(o.kind, model, plan))
             .collect();
         if model.self_collision == SelfCollisionMethod::Hash
             && model.objects.iter().any(|o| o.self_distance.is_some())
