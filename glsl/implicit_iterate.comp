@@ -3,7 +3,8 @@
 #extension GL_EXT_control_flow_attributes : require
 // One iteration of implicit Euler by projective dynamics (sim::cpu::integrators::implicit has
 // the derivation), one thread per particle: the local step (each spring's rest-length
-// projection) and one damped Jacobi sweep of the global system, Chebyshev-accelerated. Iterate slices
+// projection) and one Jacobi sweep of the global system, damped by obj.jacobi_damping (it
+// follows the substep) and Chebyshev-accelerated. Iterate slices
 // rotate: iteration k reads slice k % 3 (and the one before, (k + 2) % 3), writes (k + 1) % 3.
 // p_in holds the substep's start x; the iterates and aux[i] (the prediction y) are
 // displacements from it (see predict.comp).
@@ -14,8 +15,7 @@ layout(local_size_x_id = 0, local_size_y_id = 1, local_size_z = 1) in;
 
 #include "solver_end.glsl"
 
-// Must equal sim::stability::{JACOBI_DAMPING, CHEBYSHEV_START} (the GPU-vs-CPU tests compare).
-const float JACOBI_DAMPING = 0.5;
+// Must equal sim::stability::CHEBYSHEV_START (the GPU-vs-CPU tests compare).
 const uint CHEBYSHEV_START = 2u;
 
 // Chebyshev weight of iteration k for the Jacobi radius rho (Wang 2015).
@@ -56,7 +56,7 @@ void main() {
             rhs += k * (pj + target);
             diag += k;
         }
-        vec3 damped = dx + (rhs / diag - dx) * JACOBI_DAMPING;
+        vec3 damped = dx + (rhs / diag - dx) * obj.jacobi_damping;
         vec3 before = iter[prev + i].xyz;
         float omega = it.k < CHEBYSHEV_START ? 1.0 : chebyshev_omega(it.k - CHEBYSHEV_START, obj.cheb_rho);
         dx = before + omega * (damped - before);

@@ -1,11 +1,11 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_control_flow_attributes : require
-// First pass of a substep of the iterative integrators (XPBD, implicit), one thread per
-// particle: the inertial prediction y = x + dt (v + dt F / m) from p_in (the state x at the
-// start of the substep), with F the external forces (and, for the implicit method, which treats
-// damping explicitly, the springs' dashpots). Resets the solver's auxiliary data: XPBD's
-// multipliers to zero, the implicit method's copy of y.
+// First pass of a substep of the iterative integrators, one thread per particle: the inertial
+// prediction y = x + dt (v + dt F / m) from p_in (the state x at the start of the substep), with
+// F the external forces (and, for a method that treats damping explicitly, the springs'
+// dashpots). Resets the solver's auxiliary data: a copy of y (KEEP_PREDICTION), else the 12
+// multipliers of XPBD to zero. The constants are the method's row in sim::integrator.
 //
 // The iterates are displacements from the start, p - x, not positions: the velocity p - x over
 // dt then carries no rounding of the absolute position. With positions in f32 (x ~ 1 m, steps
@@ -18,8 +18,8 @@
 #include "spring_forces.glsl"
 
 layout(local_size_x_id = 0, local_size_y_id = 1, local_size_z = 1) in;
-// The implicit method's prediction (else XPBD's).
-layout(constant_id = 2) const bool IMPLICIT = false;
+layout(constant_id = 2) const bool EXPLICIT_DASHPOTS = false;
+layout(constant_id = 4) const bool KEEP_PREDICTION = false;
 
 void main() {
     uvec2 cell = gl_GlobalInvocationID.xy;
@@ -31,11 +31,11 @@ void main() {
     vec3 dy = vec3(0.0);  // y - x
     if (p.pos.w <= 0.5) {
         vec3 force = external_force(x, v);
-        if (IMPLICIT) add_spring_forces(cell, x, v, 0.0, false, force);
+        if (EXPLICIT_DASHPOTS) add_spring_forces(cell, x, v, 0.0, false, force);
         dy = (v + force * (g.dt / obj.mass)) * g.dt;
     }
     iter[i] = vec4(dy, p.pos.w);
-    if (IMPLICIT) {
+    if (KEEP_PREDICTION) {
         aux[i] = vec4(dy, 0.0);
     } else {
         for (uint q = 0u; q < 3u; ++q) aux[3u * i + q] = vec4(0.0);

@@ -475,20 +475,30 @@ fn implicit() {
     check("implicit", &integrator_scene(Integrator::Implicit));
 }
 
-/// Stiff springs at one substep per frame, far past the explicit limit: both iterative methods
-/// stay finite and agree with the reference. Here the iteration count, XPBD's relaxation and
+#[test]
+fn vbd() {
+    check("vbd", &integrator_scene(Integrator::Vbd));
+}
+
+/// The iterative integrators (`sim::integrator`'s table).
+fn iterative() -> impl Iterator<Item = Integrator> {
+    Integrator::ALL.into_iter().filter(|m| m.iterative())
+}
+
+/// Stiff springs at one substep per frame, far past the explicit limit: every iterative method
+/// stays finite and agrees with the reference. Here the iteration count, XPBD's relaxation and
 /// the damping each matter (at 16 substeps of soft springs the solvers converge within two
-/// iterations and the parameters barely show). XPBD's damping is implicit, so it takes 100
-/// times the dashpots; the implicit method's damping is explicit (in the prediction) and takes
-/// 10 times, within its own explicit limit b dt / m * springs < 2.
+/// iterations and the parameters barely show). XPBD's and VBD's damping is implicit, so they
+/// take 100 times the dashpots; the implicit method's damping is explicit (in the prediction)
+/// and takes 10 times, within its own explicit limit b dt / m * springs < 2.
 #[test]
 fn iterative_methods_on_stiff_springs_at_one_substep() {
-    for method in [Integrator::Xpbd, Integrator::Implicit] {
+    for method in iterative() {
         let mut s = integrator_scene(method);
         s.substeps = 1;
         s.objects.iter_mut().for_each(|o| {
             o.stiffness = o.stiffness.map(|k| k * 100.0);
-            o.damping *= if method == Integrator::Xpbd { 100.0 } else { 10.0 };
+            o.damping *= if method == Integrator::Implicit { 10.0 } else { 100.0 };
         });
         let name = format!("{method:?} stiff");
         check(&name, &s);
@@ -513,7 +523,7 @@ fn iterative_methods_on_stiff_springs_at_one_substep() {
 /// on the stretch-limit test.)
 #[test]
 fn everything_with_the_iterative_integrators() {
-    for method in [Integrator::Xpbd, Integrator::Implicit] {
+    for method in iterative() {
         let mut s = integrator_scene(method);
         s.wind = None;
         for o in &mut s.objects {

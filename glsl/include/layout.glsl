@@ -33,8 +33,8 @@ struct Globals {
     uint sphere_count;                         // spheres[] entries in use
     uint substeps;                             // per frame (the fused shader loops over them)
     float guard_speed;                         // a particle faster than this [m/s] has run away
-    uint iterations;                           // solver iterations per substep (xpbd, implicit)
-    float relaxation;                          // XPBD Jacobi relaxation factor
+    uint iterations;                           // solver iterations per substep (iterative methods)
+    float relaxation;                          // XPBD over-relaxation of each Gauss-Seidel correction
     uint pad0;
 };
 
@@ -59,7 +59,7 @@ struct ObjectParams {
     uint hash_mask;        // spatial hash table size - 1 (a power of two minus one)
     float cell_inv;        // 1 / hash cell edge [1/m]; the edge is twice self_distance
     float cheb_rho;        // implicit integrator: Chebyshev radius (sim::stability::chebyshev_rho)
-    uint pad0;
+    float jacobi_damping;  // implicit integrator: Jacobi sweep damping (sim::stability::jacobi_damping)
 };
 
 // The spatial hash of a grid cell (Teschner et al. 2003).

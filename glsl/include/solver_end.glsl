@@ -1,14 +1,26 @@
-// The last iteration of an iterative integrator writes the substep's result from the final
-// displacement dx: the position x_n + dx and the velocity that reaches it, v = dx / dt, into
-// p_out (what the constraint stage reads), and counts it into the spatial hash.
+// What the iteration shaders of the iterative integrators share: the push constants of a pass,
+// the cell a coloured pass's invocation works on, and the end of the substep: the last
+// iteration writes the result from the final displacement dx, the position x_n + dx and the
+// velocity that reaches it, v = dx / dt, into p_out (what the constraint stage reads), and
+// counts it into the spatial hash.
 // Include after bindings.glsl.
 #ifndef MSD_SOLVER_END_GLSL
 #define MSD_SOLVER_END_GLSL
 #include "hash_count.glsl"
 
-layout(push_constant) uniform Iteration { uint k; } it;  // 0-based iteration of this substep
+// k: 0-based iteration of this substep; colour: the vertex colour of a Gauss-Seidel pass.
+layout(push_constant) uniform Iteration { uint k; uint colour; } it;
 
 bool last_iteration() { return it.k + 1u == g.iterations; }
+
+// The grid cell of invocation `id` in a pass over vertex colour it.colour: particle (c, r) has
+// colour (c + 2 r) mod C, C = 5 (3 for one row), as sim::integrator::vertex_colours; the pass
+// dispatches ceil(columns / C) x rows invocations and id.x counts the row's cells of that colour.
+uvec2 coloured_cell(uvec2 id) {
+    uint colours = obj.dims.y == 1u ? 3u : 5u;
+    uint first = (it.colour + colours - (2u * id.y) % colours) % colours;
+    return uvec2(first + colours * id.x, id.y);
+}
 
 void finish_particle(uint i, vec3 dx, bool pinned) {
     vec3 x = p_in[i].pos.xyz + dx;

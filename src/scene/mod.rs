@@ -54,10 +54,10 @@ pub struct SimSettings {
     /// method and substep count that meets `tolerance`, from a short calibration.
     #[serde(default)]
     pub integrator: IntegratorChoice,
-    /// Solver iterations per substep (xpbd and implicit).
+    /// Solver iterations per substep (the iterative methods: xpbd, implicit, vbd).
     #[serde(default = "defaults::iterations")]
     pub iterations: u32,
-    /// XPBD Jacobi relaxation factor, between 0 and 2.
+    /// XPBD over-relaxation of each Gauss-Seidel correction, between 0 and 2.
     #[serde(default = "defaults::one")]
     pub relaxation: f64,
     /// With integrator = "auto": the largest acceptable position error, as a fraction of the
@@ -66,39 +66,60 @@ pub struct SimSettings {
     pub tolerance: f64,
 }
 
-/// `sim.integrator`: a method, or "auto".
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
-#[serde(rename_all = "snake_case")]
+/// `sim.integrator`: a method (by its label in `sim::integrator`'s table), or "auto".
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(try_from = "String", into = "String")]
 pub enum IntegratorChoice {
-    #[default]
-    SymplecticEuler,
-    Verlet,
-    Xpbd,
-    Implicit,
+    Method(crate::sim::model::Integrator),
     Auto,
 }
 
+impl Default for IntegratorChoice {
+    fn default() -> Self {
+        IntegratorChoice::Method(Default::default())
+    }
+}
+
 impl IntegratorChoice {
+    /// Every choice: the methods in the table's order, then "auto".
+    pub fn all() -> Vec<IntegratorChoice> {
+        let methods = crate::sim::model::Integrator::ALL.map(IntegratorChoice::Method);
+        methods.into_iter().chain([IntegratorChoice::Auto]).collect()
+    }
+
     /// The method, or None for "auto".
     pub fn method(self) -> Option<crate::sim::model::Integrator> {
-        use crate::sim::model::Integrator;
         match self {
-            IntegratorChoice::SymplecticEuler => Some(Integrator::SymplecticEuler),
-            IntegratorChoice::Verlet => Some(Integrator::Verlet),
-            IntegratorChoice::Xpbd => Some(Integrator::Xpbd),
-            IntegratorChoice::Implicit => Some(Integrator::Implicit),
+            IntegratorChoice::Method(m) => Some(m),
             IntegratorChoice::Auto => None,
         }
     }
 
-    pub fn from_method(m: crate::sim::model::Integrator) -> Self {
-        use crate::sim::model::Integrator;
-        match m {
-            Integrator::SymplecticEuler => IntegratorChoice::SymplecticEuler,
-            Integrator::Verlet => IntegratorChoice::Verlet,
-            Integrator::Xpbd => IntegratorChoice::Xpbd,
-            Integrator::Implicit => IntegratorChoice::Implicit,
+    pub fn label(self) -> &'static str {
+        match self {
+            IntegratorChoice::Method(m) => m.label(),
+            IntegratorChoice::Auto => "auto",
         }
+    }
+}
+
+impl TryFrom<String> for IntegratorChoice {
+    type Error = String;
+
+    fn try_from(name: String) -> Result<Self, String> {
+        if name == "auto" {
+            return Ok(IntegratorChoice::Auto);
+        }
+        crate::sim::model::Integrator::from_label(&name).map(IntegratorChoice::Method).ok_or_else(|| {
+            let names: Vec<&str> = Self::all().into_iter().map(Self::label).collect();
+            format!("unknown integrator \"{name}\": expected one of {}", names.join(", "))
+        })
+    }
+}
+
+impl From<IntegratorChoice> for String {
+    fn from(c: IntegratorChoice) -> String {
+        c.label().to_string()
     }
 }
 

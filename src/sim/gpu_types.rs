@@ -101,7 +101,7 @@ gpu_struct!(
     hash_mask: u32,
     cell_inv: f32,
     cheb_rho: f32,
-    pad0: u32,
+    jacobi_damping: f32,
 });
 
 gpu_struct!(

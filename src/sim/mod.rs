@@ -1,8 +1,9 @@
-//! The simulation: the model (`model`), the GPU struct mirrors (`gpu_types`), the Vulkan compute
+//! The simulation: the model (`model`), the integrators (`integrator`), the GPU struct mirrors (`gpu_types`), the Vulkan compute
 //! simulation (`gpu`) and the f64 CPU reference (`cpu`).
 
 pub mod cpu;
 pub mod gpu;
 pub mod gpu_types;
+pub mod integrator;
 pub mod model;
 pub mod stability;

@@ -2,6 +2,7 @@
 //! (`sim::cpu`). Built from a scene preset by `scene::build`, or directly by tests.
 //! Units: metres, seconds, kilograms, newtons.
 
+pub use super::integrator::Integrator;
 use glam::DVec3;
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, serde::Serialize)]
@@ -124,57 +125,6 @@ pub enum SelfCollisionMethod {
     BruteForce,
 }
 
-/// How a substep advances the spring network (`sim.integrator`). Every method is followed by
-/// the same constraint stage (stretch limit, self-collision, spheres).
-#[derive(
-    Debug, Clone, Copy, PartialEq, Eq, Hash, Default, serde::Serialize, serde::Deserialize, clap::ValueEnum,
-)]
-#[serde(rename_all = "snake_case")]
-#[value(rename_all = "snake_case")]
-pub enum Integrator {
-    /// The paper's: v += a(x, v) dt, then x += v dt. First order, explicit.
-    #[default]
-    SymplecticEuler,
-    /// Position Verlet (drift-kick-drift): half a step of drift, forces at the midpoint, the
-    /// other half. Second order for conservative forces, explicit, one force pass per substep.
-    Verlet,
-    /// Extended position-based dynamics (Macklin et al. 2016): one distance constraint per spring
-    /// with compliance 1/k and the spring's damping, solved by Jacobi iterations with relaxation.
-    /// Converges to implicit Euler as the iterations grow; stable at any stiffness.
-    Xpbd,
-    /// Implicit Euler by projective dynamics (Liu et al. 2013) with Chebyshev-accelerated Jacobi
-    /// (Wang 2015): stable at any stiffness and step.
-    Implicit,
-}
-
-impl Integrator {
-    pub const ALL: [Integrator; 4] =
-        [Integrator::SymplecticEuler, Integrator::Verlet, Integrator::Xpbd, Integrator::Implicit];
-
-    pub fn label(self) -> &'static str {
-        match self {
-            Integrator::SymplecticEuler => "symplectic_euler",
-            Integrator::Verlet => "verlet",
-            Integrator::Xpbd => "xpbd",
-            Integrator::Implicit => "implicit",
-        }
-    }
-
-    /// Whether the method iterates a solver (`SimModel::iterations` applies).
-    pub fn iterative(self) -> bool {
-        matches!(self, Integrator::Xpbd | Integrator::Implicit)
-    }
-
-    /// Global order of accuracy in the positions as the substep shrinks (with converged
-    /// iterations and no damping).
-    pub fn order(self) -> f64 {
-        match self {
-            Integrator::Verlet => 2.0,
-            _ => 1.0,
-        }
-    }
-}
-
 #[derive(Debug, Clone, PartialEq)]
 pub struct SimModel {
     pub gravity: DVec3,
@@ -188,9 +138,9 @@ pub struct SimModel {
     /// The runtime guard stops a simulation whose particles move faster than this [m/s].
     pub max_speed: f64,
     pub integrator: Integrator,
-    /// Solver iterations per substep (XPBD and implicit only).
+    /// Solver iterations per substep (the iterative methods only).
     pub iterations: u32,
-    /// XPBD: the Jacobi relaxation factor (0..2) applied to each particle's mean correction.
+    /// XPBD: the over-relaxation factor (0..2) of each Gauss-Seidel correction.
     pub relaxation: f64,
 }
 

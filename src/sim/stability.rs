@@ -52,14 +52,21 @@ pub fn jacobi_rho(o: &ObjectModel, dt: f64) -> f64 {
     s / (o.mass / (dt * dt) + s)
 }
 
-/// The implicit integrator's Jacobi sweep moves this fraction of the way to the Jacobi point:
-/// the damped iteration's spectrum lies in [0, 1), so no mode's error flips sign. Undamped, the
-/// modes near -1 (neighbours moving against each other) flip every sweep; with an odd iteration
-/// count the unconverged part of the solve enters the velocity reversed and pumps energy: a
-/// 16 x 16 cloth at one 1/60 s substep blew up at 1 and 3 iterations on the CPU reference, and
-/// at 2 iterations with Chebyshev on the H100 (the accuracy chart). tests/integrators.rs
-/// (`implicit_with_few_iterations_does_not_blow_up`) fails with 1.0 here.
-pub const JACOBI_DAMPING: f64 = 0.5;
+/// The implicit integrator's Jacobi sweeps are damped by `jacobi_damping`: they move that
+/// fraction of the way to the Jacobi point. The undamped iteration's spectrum lies in
+/// [-rho, rho] (rho = `jacobi_rho`); damped by 1 / (1 + rho) it lies in [0, 2 rho / (1 + rho)],
+/// so no mode's error flips sign. Undamped with rho near 1 (stiff springs, long substeps), the
+/// modes near -1 (neighbours moving against each other) flip every sweep, and with an odd
+/// iteration count the unconverged part of the solve enters the velocity reversed and pumps
+/// energy: a 16 x 16 cloth at one 1/60 s substep blew up at 1 and 3 iterations
+/// (tests/integrators.rs, `implicit_with_few_iterations_does_not_blow_up`). There the damping
+/// is 1/2, as it was everywhere before; as the substep shrinks rho falls to 0 and the sweeps
+/// approach plain Jacobi, so a fixed iteration count solves ever more of each substep's
+/// correction and the method converges to implicit Euler (a fixed 1/2 left a fixed fraction
+/// unsolved at every substep: the motion of a softer cloth, whatever the substep).
+pub fn jacobi_damping(o: &ObjectModel, dt: f64) -> f64 {
+    1.0 / (1.0 + jacobi_rho(o, dt))
+}
 
 /// The first iteration Chebyshev accelerates (the iterations before are plain damped Jacobi):
 /// from the first iteration on it diverged at 2 and 3 iterations on the same cloth.
@@ -74,9 +81,10 @@ pub const CHEBYSHEV_START: u32 = 2;
 pub const CHEBYSHEV_RHO_MAX: f64 = 0.9;
 
 /// The radius the implicit integrator's Chebyshev weights use: that of the damped Jacobi
-/// iteration, (1 - damping) + damping * `jacobi_rho`, capped.
+/// iteration, 2 rho / (1 + rho) (`jacobi_damping`), capped.
 pub fn chebyshev_rho(o: &ObjectModel, dt: f64) -> f64 {
-    ((1.0 - JACOBI_DAMPING) + JACOBI_DAMPING * jacobi_rho(o, dt)).min(CHEBYSHEV_RHO_MAX)
+    let rho = jacobi_rho(o, dt);
+    (2.0 * rho / (1.0 + rho)).min(CHEBYSHEV_RHO_MAX)
 }
 
 pub fn predict(model: &SimModel) -> Vec<Prediction> {
@@ -134,7 +142,7 @@ impl GuardTrip {
         } else if dt > p.dt_max {
             format!(
                 "The substep ({:.3} ms) is past the explicit stability limit predicted for it ({:.3} ms, w_max = {:.0} rad/s): \
-                 use at least {} substeps per frame (sim.substeps, now {}), sim.integrator = \"implicit\" or \"xpbd\" \
+                 use at least {} substeps per frame (sim.substeps, now {}), sim.integrator = \"vbd\", \"implicit\" or \"xpbd\" \
                  (stable at any stiffness), or softer springs or heavier particles.",
                 dt * 1e3,
                 p.dt_max * 1e3,

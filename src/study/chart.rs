@@ -252,12 +252,8 @@ pub fn csv(points: &[Point], header: &str) -> String {
 }
 
 fn color(m: Integrator) -> RGBColor {
-    match m {
-        Integrator::SymplecticEuler => RGBColor(31, 119, 180),
-        Integrator::Verlet => RGBColor(44, 160, 44),
-        Integrator::Xpbd => RGBColor(255, 127, 14),
-        Integrator::Implicit => RGBColor(214, 39, 40),
-    }
+    let (r, g, b) = m.method().colour;
+    RGBColor(r, g, b)
 }
 
 /// Error against cost on log axes: a curve per method and iteration count (explicit methods:

@@ -87,7 +87,7 @@ impl Sweep {
 fn scaled(base: &Scene, method: Integrator, scale: f64, substeps: u32) -> Scene {
     let mut s = base.clone();
     s.sim.substeps = substeps;
-    s.sim.integrator = crate::scene::IntegratorChoice::from_method(method);
+    s.sim.integrator = crate::scene::IntegratorChoice::Method(method);
     for c in &mut s.cloths {
         c.stiffness.structural *= scale;
         c.stiffness.shear *= scale;

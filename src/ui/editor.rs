@@ -154,19 +154,18 @@ fn simulation_panel(ui: &Ui, state: &EditorState, scene: &mut Scene, actions: &m
     ui.text(format!("substep dt: {:.4} ms", scene.sim.frame_dt * 1e3 / scene.sim.substeps as f64));
     drag3(ui, "gravity [m/s^2]", &mut scene.sim.gravity, 0.05);
     use crate::scene::IntegratorChoice as I;
-    let all = [I::SymplecticEuler, I::Verlet, I::Xpbd, I::Implicit, I::Auto];
-    choice(ui, "integrator", &mut scene.sim.integrator, &all);
+    choice(ui, "integrator", &mut scene.sim.integrator, &I::all());
     match scene.sim.integrator {
-        I::Xpbd | I::Implicit => {
+        I::Method(m) if m.iterative() => {
             int(ui, "iterations", &mut scene.sim.iterations, 1, 1000);
-            if scene.sim.integrator == I::Xpbd {
+            if m == crate::sim::model::Integrator::Xpbd {
                 drag(ui, "relaxation", &mut scene.sim.relaxation, 0.01, 0.05, 1.95);
             }
         }
+        I::Method(_) => {}
         I::Auto => {
             drag(ui, "tolerance (of size)", &mut scene.sim.tolerance, 0.0005, 1e-4, 0.5);
         }
-        I::SymplecticEuler | I::Verlet => {}
     }
 }
 

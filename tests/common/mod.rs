@@ -248,3 +248,40 @@ pub fn broken(physics_body: &str) -> String {
     assert!(physics_body.contains(line), "physics_body.glsl no longer has `{line}`: update the test");
     physics_body.replace(line, "v += forse * (g.dt / obj.mass);")
 }
+
+/// A chain of 10 nodes, 5 cm apart, hanging straight down from a pin at its top at its rest
+/// lengths, with structural springs only (100 N/m), weak dashpots and a drag that settles it
+/// within a second (c / 2m = 15 /s, about the lowest longitudinal mode's frequency), at 64
+/// substeps per 1/60 s frame with `method` (XPBD 1 iteration, the others 4).
+pub fn hanging_chain(method: msdsim::sim::model::Integrator) -> SimModel {
+    let mut r = rope(10, 0.05);
+    for (i, p) in r.positions.iter_mut().enumerate() {
+        *p = DVec3::new(0.0, 1.0 - 0.05 * i as f64, 0.0);
+    }
+    r.pinned[0] = true;
+    r.stiffness = [100.0, 0.0, 0.0];
+    r.damping = 0.01;
+    r.drag = 0.3;
+    let mut m = scene(vec![r]);
+    m.gravity = DVec3::new(0.0, -9.81, 0.0);
+    m.substeps = 64;
+    m.integrator = method;
+    m.iterations = if method == msdsim::sim::model::Integrator::Xpbd { 1 } else { 4 };
+    m
+}
+
+/// The largest relative difference between each spring's stretch in `x` and the closed form
+/// of a chain at rest: spring s (nodes s, s + 1) carries the weight W_s of the nodes below it
+/// and stretches by W_s / k.
+pub fn static_stretch_error(model: &SimModel, x: &[DVec3]) -> f64 {
+    let o = &model.objects[0];
+    let n = x.len();
+    (0..n - 1)
+        .map(|s| {
+            let weight = (n - 1 - s) as f64 * o.mass * model.gravity.length();
+            let expected = weight / o.stiffness[0];
+            let stretch = x[s + 1].distance(x[s]) - o.spacing[0];
+            (stretch - expected).abs() / expected
+        })
+        .fold(0.0, f64::max)
+}

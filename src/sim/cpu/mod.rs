@@ -2,7 +2,7 @@
 //! the GPU simulation. It follows the model's definition (below), not the shader code.
 //!
 //! One substep of each object:
-//! 1. The integrator (`integrators.rs`, one of `model::Integrator`) advances the spring network:
+//! 1. The integrator (`integrators.rs`, a row of `sim::integrator`'s table) advances the spring network:
 //!    forces F = m g + wind(x) - c v + sum over its springs of [k (d - L) + b ((v_j - v_i) . u)] u,
 //!    with u the unit vector to the neighbour, d the distance and L the rest length. Pinned
 //!    particles keep their position and have zero velocity.
@@ -21,7 +21,7 @@
 //! Inputs are rounded to f32 once at construction, so the reference simulates exactly the scene
 //! the GPU receives; everything after that is f64.
 
-mod integrators;
+pub(crate) mod integrators;
 
 pub use integrators::{energy, max_strain};
 

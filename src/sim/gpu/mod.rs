@@ -23,15 +23,18 @@
 //! barrier back to compute, so frames recorded after them need no barrier of their own.
 
 mod fused;
+mod hash;
 mod object;
 mod pipelines;
+mod step;
 
 use fused::ObjectPlan;
 pub use fused::{FusedLimits, FusedShape, FUSED_DEFAULT_SLOTS, FUSED_SLOTS};
 pub use object::{check_fits, particles};
 
 use super::gpu_types::{Globals, Particle, SurfaceVertex, GUARD_NON_FINITE};
-use super::model::{Integrator, ObjectModel, SimModel};
+use super::integrator::Scheme;
+use super::model::{ObjectModel, SimModel};
 use super::stability::GuardTrip;
 use crate::shaders::ShaderSet;
 use crate::vk::{
@@ -39,7 +42,7 @@ use crate::vk::{
     MemoryKind, Recorder, Retired, TimestampPool, VkError,
 };
 use anyhow::{Context as _, Result};
-use object::{globals, object_params, sphere_data, GpuObject, HashBuffers, GUARD_CLEAR, SCAN_BLOCK};
+use object::{globals, object_params, sphere_data, GpuObject, GUARD_CLEAR};
 use pipelines::{Pipelines, Stage};
 
 /// Workgroup shape of the cloth stages (the paper's 16 x 16) and of the rope stages (1-D).
@@ -255,94 +258,6 @@ impl GpuSim {
         self.upload_states(ctx, &initial)
     }
 
-    /// The objects that use the spatial hash, with their hash buffers.
-    fn hashed(&self) -> Vec<(&GpuObject, &HashBuffers)> {
-        self.objects.iter().filter_map(|o| o.hash.as_deref().map(|h| (o, h))).collect()
-    }
-
-    /// Barriers of the spatial hash buffers around the physics stage, which counts into them:
-    /// `before` (after the previous constraints) or after it.
-    fn hash_barriers_at_physics(&self, before: bool) -> Vec<BufferBarrier<'_>> {
-        self.hashed()
-            .into_iter()
-            .flat_map(|(_, h)| {
-                if before {
-                    // The scan zeroed the counts; the scatter read the ranks.
-                    vec![
-                        BufferBarrier::new(&h.counts, Access::ComputeWrite, Access::ComputeReadWrite),
-                        BufferBarrier::new(&h.cell_rank, Access::ComputeRead, Access::ComputeWrite),
-                    ]
-                } else {
-                    // The scan reads the counts and rewrites the starts the last query read.
-                    vec![
-                        BufferBarrier::new(&h.counts, Access::ComputeWrite, Access::ComputeReadWrite),
-                        BufferBarrier::new(&h.cell_rank, Access::ComputeWrite, Access::ComputeRead),
-                        BufferBarrier::new(&h.starts, Access::ComputeRead, Access::ComputeWrite),
-                        BufferBarrier::new(&h.block_sums, Access::ComputeRead, Access::ComputeWrite),
-                    ]
-                }
-            })
-            .collect()
-    }
-
-    /// The rest of the spatial hash after the physics stage counted the particles: the scan
-    /// (one dispatch for tables of one block, else three) and the scatter, each ordered after
-    /// the one before by a barrier on exactly the buffers it reads.
-    fn record_hash_build(&self, rec: &mut Recorder<'_>) {
-        let hashed = self.hashed();
-        if hashed.is_empty() {
-            return;
-        }
-        let each = |f: &dyn Fn(&HashBuffers) -> Vec<BufferBarrier<'_>>| -> Vec<BufferBarrier<'_>> {
-            hashed.iter().flat_map(|(_, h)| f(h)).collect()
-        };
-        for (o, h) in &hashed {
-            rec.dispatch(
-                self.pipelines.get(Stage::HashScan(0)),
-                o.sets[1],
-                [h.buckets.div_ceil(SCAN_BLOCK as u32), 1, 1],
-            );
-        }
-        let multi: Vec<_> = hashed.iter().filter(|(_, h)| h.buckets as u64 > SCAN_BLOCK).collect();
-        if !multi.is_empty() {
-            rec.barrier(&each(&|h| {
-                vec![
-                    BufferBarrier::new(&h.starts, Access::ComputeWrite, Access::ComputeReadWrite),
-                    BufferBarrier::new(&h.block_sums, Access::ComputeWrite, Access::ComputeReadWrite),
-                ]
-            }));
-            for (o, _) in &multi {
-                rec.dispatch(self.pipelines.get(Stage::HashScan(1)), o.sets[1], [1, 1, 1]);
-            }
-            rec.barrier(&each(&|h| {
-                vec![BufferBarrier::new(&h.block_sums, Access::ComputeWrite, Access::ComputeRead)]
-            }));
-            for (o, h) in &multi {
-                rec.dispatch(
-                    self.pipelines.get(Stage::HashScan(2)),
-                    o.sets[1],
-                    [(h.buckets + 1).div_ceil(512), 1, 1],
-                );
-            }
-        }
-        rec.barrier(&each(&|h| {
-            vec![
-                BufferBarrier::new(&h.starts, Access::ComputeWrite, Access::ComputeRead),
-                BufferBarrier::new(&h.sorted, Access::ComputeRead, Access::ComputeWrite),
-            ]
-        }));
-        for (o, _) in &hashed {
-            rec.dispatch(
-                self.pipelines.get(Stage::HashScatter),
-                o.sets[1],
-                [o.particles.div_ceil(256), 1, 1],
-            );
-        }
-        rec.barrier(&each(&|h| {
-            vec![BufferBarrier::new(&h.sorted, Access::ComputeWrite, Access::ComputeRead)]
-        }));
-    }
-
     /// Replaces every object's state (positions, velocities, pins) with `states[i]`.
     pub fn upload_states(&mut self, ctx: &GpuContext, states: &[Vec<Particle>]) -> Result<()> {
         anyhow::ensure!(states.len() == self.objects.len(), "one state per object");
@@ -427,7 +342,7 @@ impl GpuSim {
         // Small objects: every substep in one dispatch each. The state ends in A, as on the
         // per-stage path; the barrier orders it (and B) for the surface stage and next frame.
         let fused: Vec<&GpuObject> = self.objects.iter().filter(|o| self.is_fused(o)).collect();
-        let verlet = self.model.integrator == Integrator::Verlet;
+        let verlet = self.model.integrator.method().scheme == Scheme::Explicit { verlet: true };
         for o in &fused {
             if let Some(shape) = o.plan.fused {
                 rec.dispatch(
@@ -501,48 +416,6 @@ impl GpuSim {
         );
         rec.barrier(&end);
         self.frames += 1;
-    }
-
-    /// The physics stage of one substep for the objects not fused, A -> B: the explicit
-    /// integrators' single pass, or the prediction and the solver iterations, each iteration
-    /// ordered after the one before on the iterates and auxiliary buffers.
-    fn record_physics(&self, rec: &mut Recorder<'_>) {
-        let stepped: Vec<&GpuObject> = self.objects.iter().filter(|o| !self.is_fused(o)).collect();
-        let method = self.model.integrator;
-        let iterate = match method {
-            Integrator::SymplecticEuler | Integrator::Verlet => {
-                let verlet = method == Integrator::Verlet;
-                for o in &stepped {
-                    rec.dispatch(
-                        self.pipelines.get(Stage::Physics(o.kind, verlet, o.plan.features)),
-                        o.sets[0],
-                        o.step_groups,
-                    );
-                }
-                return;
-            }
-            Integrator::Xpbd => Stage::XpbdIterate,
-            Integrator::Implicit => Stage::ImplicitIterate,
-        };
-        let implicit = method == Integrator::Implicit;
-        for o in &stepped {
-            rec.dispatch(
-                self.pipelines.get(Stage::Predict(o.kind, implicit, o.plan.features)),
-                o.sets[0],
-                o.step_groups,
-            );
-        }
-        let scratch: Vec<BufferBarrier<'_>> = stepped
-            .iter()
-            .flat_map(|o| o.scratch())
-            .map(|b| BufferBarrier::new(b, Access::ComputeReadWrite, Access::ComputeReadWrite))
-            .collect();
-        for k in 0..self.model.iterations {
-            rec.barrier(&scratch);
-            for o in &stepped {
-                rec.dispatch_with(self.pipelines.get(iterate(o.kind)), o.sets[0], o.step_groups, &[k]);
-            }
-        }
     }
 
     /// Rebuilds the pipelines of the `changed` shaders (names like "physics.comp") from

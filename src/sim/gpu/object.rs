@@ -7,8 +7,9 @@ use crate::error::UserError;
 use crate::sim::gpu_types::{
     Globals, ObjectParams, Particle, SurfaceVertex, OBJ_SELF_COLLISION, OBJ_SELF_HASH, OBJ_STRETCH_LIMIT,
 };
+use crate::sim::integrator::vertex_colours;
 use crate::sim::model::{Integrator, ObjectKind, ObjectModel, ObjectShape, SelfCollisionMethod, SimModel};
-use crate::sim::stability::chebyshev_rho;
+use crate::sim::stability::{chebyshev_rho, jacobi_damping};
 use crate::vk::{
     BindingSet, BindingSetLayout, Buffer, BufferUsage, DescriptorArena, DeviceInfo, GpuContext, MemoryKind,
     VkError,
@@ -95,22 +96,14 @@ pub(super) struct SolverBuffers {
 }
 
 impl SolverBuffers {
-    /// Vec4s per particle: (iterate slices, auxiliary) of each iterative method.
-    fn vec4s(method: Integrator) -> Option<(u64, u64)> {
-        match method {
-            Integrator::Xpbd => Some((2, 3)),
-            Integrator::Implicit => Some((3, 1)),
-            Integrator::SymplecticEuler | Integrator::Verlet => None,
-        }
-    }
-
     fn new(
         ctx: &GpuContext,
         name: &str,
         particles: u64,
         method: Integrator,
     ) -> Result<Option<Self>, VkError> {
-        let Some((slices, aux)) = Self::vec4s(method) else { return Ok(None) };
+        let Some(solver) = method.solver() else { return Ok(None) };
+        let (slices, aux) = (solver.slices, solver.aux);
         let (storage, gpu) = (BufferUsage::STORAGE, MemoryKind::GpuOnly);
         let [iter, aux] = buffers(
             ctx,
@@ -126,6 +119,9 @@ pub(super) struct GpuObject {
     pub particles: u32,
     pub surface_len: u32,
     pub step_groups: [u32; 3],
+    /// Vertex colours and the workgroups of a pass over one colour (`vertex_colours`).
+    pub colours: u32,
+    pub colour_groups: [u32; 3],
     pub surface_groups: [u32; 3],
     pub params: Buffer,
     pub state: [Buffer; 2],
@@ -215,6 +211,8 @@ impl GpuObject {
             particles: n as u32,
             surface_len: o.surface_count() as u32,
             step_groups: step_groups(&o.shape()),
+            colours: vertex_colours(o.dims),
+            colour_groups: colour_groups(&o.shape()),
             surface_groups: surface_groups(&o.shape()),
             params,
             state: [a, b],
@@ -325,6 +323,16 @@ fn step_groups(o: &ObjectShape) -> [u32; 3] {
     }
 }
 
+/// Workgroups of a pass over one vertex colour: each row's cells of that colour, at most
+/// ceil(columns / colours) (`coloured_cell` in glsl/include/solver_end.glsl).
+fn colour_groups(o: &ObjectShape) -> [u32; 3] {
+    let columns = o.dims[0].div_ceil(vertex_colours(o.dims));
+    match o.kind {
+        ObjectKind::Cloth => [columns.div_ceil(CLOTH_GROUP[0]), o.dims[1].div_ceil(CLOTH_GROUP[1]), 1],
+        ObjectKind::Rope => [columns.div_ceil(ROPE_GROUP), 1, 1],
+    }
+}
+
 fn surface_groups(o: &ObjectShape) -> [u32; 3] {
     match o.kind {
         ObjectKind::Cloth => step_groups(o),
@@ -386,7 +394,7 @@ pub(super) fn object_params(o: &ObjectModel, model: &SimModel) -> ObjectParams {
         hash_mask: buckets - 1,
         cell_inv: (1.0 / cell) as f32,
         cheb_rho: chebyshev_rho(o, model.dt()) as f32,
-        pad0: 0,
+        jacobi_damping: jacobi_damping(o, model.dt()) as f32,
     }
 }
 

@@ -6,6 +6,7 @@
 use super::fused::{FusedShape, ObjectPlan};
 use super::{CLOTH_GROUP, ROPE_GROUP};
 use crate::shaders::ShaderSet;
+use crate::sim::integrator::{Scheme, Solver};
 use crate::sim::model::{Integrator, ObjectKind, SelfCollisionMethod, SimModel};
 use crate::vk::{BindingSetLayout, ComputePipeline, GpuContext, Retired};
 use anyhow::{Context as _, Result};
@@ -17,10 +18,10 @@ use std::collections::HashMap;
 pub(super) enum Stage {
     /// Forces and the explicit step (`verlet`: position Verlet, else symplectic Euler).
     Physics(ObjectKind, bool, u32),
-    /// The inertial prediction of the iterative integrators (`implicit`, else XPBD).
-    Predict(ObjectKind, bool, u32),
-    XpbdIterate(ObjectKind),
-    ImplicitIterate(ObjectKind),
+    /// The inertial prediction of an iterative integrator.
+    Predict(ObjectKind, Integrator, u32),
+    /// One iteration (or one colour of one) of an iterative integrator's solver.
+    Iterate(ObjectKind, Integrator),
     Constraints(ObjectKind, u32),
     /// Cloth normals or rope tube vertices and the runtime guard (`drawn`), or the guard alone.
     Surface(ObjectKind, bool),
@@ -28,6 +29,14 @@ pub(super) enum Stage {
     HashScatter,
     /// Every substep of an object in one workgroup (`verlet` as for `Physics`).
     Fused(bool, u32, FusedShape),
+}
+
+/// The solver of an iterative method (the stages that take one are created only for those).
+fn solver(method: Integrator) -> Solver {
+    match method.solver() {
+        Some(s) => s,
+        None => unreachable!("{method:?} has no solver stages"),
+    }
 }
 
 fn group(kind: ObjectKind) -> Vec<u32> {
@@ -42,8 +51,7 @@ impl Stage {
         match self {
             Stage::Physics(..) => "physics.comp",
             Stage::Predict(..) => "predict.comp",
-            Stage::XpbdIterate(_) => "xpbd_iterate.comp",
-            Stage::ImplicitIterate(_) => "implicit_iterate.comp",
+            Stage::Iterate(_, method) => solver(method).shader,
             Stage::Constraints(..) => "constraints.comp",
             Stage::Surface(ObjectKind::Cloth, _) => "cloth_normals.comp",
             Stage::Surface(ObjectKind::Rope, _) => "rope_vertices.comp",
@@ -54,15 +62,17 @@ impl Stage {
     }
 
     /// Constant `i` has id `i`: the step shaders take their workgroup shape (ids 0, 1), a
-    /// variant flag (id 2) and the features (id 3); the scan takes its phase; the fused kernel
+    /// variant flag (id 2) and the features (id 3), the prediction also whether it keeps y (id 4); the scan takes its phase; the fused kernel
     /// its layout (`FusedShape::specialization`).
     fn specialization(self) -> Vec<u32> {
         match self {
-            Stage::Physics(kind, flag, f) | Stage::Predict(kind, flag, f) => {
-                [group(kind), vec![flag as u32, f]].concat()
+            Stage::Physics(kind, verlet, f) => [group(kind), vec![verlet as u32, f]].concat(),
+            Stage::Predict(kind, method, f) => {
+                let s = solver(method);
+                [group(kind), vec![s.explicit_dashpots as u32, f, s.keeps_prediction as u32]].concat()
             }
             Stage::Constraints(kind, f) => [group(kind), vec![0, f]].concat(),
-            Stage::XpbdIterate(kind) | Stage::ImplicitIterate(kind) => group(kind),
+            Stage::Iterate(kind, _) => group(kind),
             Stage::Surface(_, drawn) => vec![drawn as u32],
             Stage::HashScatter => Vec::new(),
             Stage::HashScan(phase) => vec![phase],
@@ -75,14 +85,16 @@ impl Stage {
     /// features it uses.
     pub(super) fn of_object(kind: ObjectKind, model: &SimModel, plan: ObjectPlan) -> Vec<Stage> {
         let f = plan.features;
-        let mut stages = match model.integrator {
-            Integrator::SymplecticEuler => vec![Stage::Physics(kind, false, f)],
-            Integrator::Verlet => vec![Stage::Physics(kind, true, f)],
-            Integrator::Xpbd => vec![Stage::Predict(kind, false, f), Stage::XpbdIterate(kind)],
-            Integrator::Implicit => vec![Stage::Predict(kind, true, f), Stage::ImplicitIterate(kind)],
+        let method = model.integrator;
+        let mut stages = match method.method().scheme {
+            Scheme::Explicit { verlet } => {
+                let mut s = vec![Stage::Physics(kind, verlet, f)];
+                s.extend(plan.fused.map(|shape| Stage::Fused(verlet, f, shape)));
+                s
+            }
+            Scheme::Iterative(_) => vec![Stage::Predict(kind, method, f), Stage::Iterate(kind, method)],
         };
         stages.extend([Stage::Constraints(kind, f), Stage::Surface(kind, true), Stage::Surface(kind, false)]);
-        stages.extend(plan.fused.map(|shape| Stage::Fused(model.integrator == Integrator::Verlet, f, shape)));
         stages
     }
 

@@ -1,0 +1,57 @@
+//! Recording the physics stage of one substep for the objects not fused, state A -> B, as the
+//! model's integrator runs it (`sim::integrator`'s table):
+//! - explicit methods: one pass of `physics.comp`;
+//! - iterative methods: the prediction (`predict.comp`: y into the iterates and auxiliary
+//!   buffers), then `iterations` iterations of the solver, each one pass over every particle
+//!   (Jacobi) or one pass per vertex colour (Gauss-Seidel). Every pass is ordered after the one
+//!   before by a barrier on the iterates and auxiliary data, and on what the last iteration
+//!   writes: the result into B and the particles' counts into the spatial hash.
+
+use super::object::GpuObject;
+use super::pipelines::Stage;
+use super::GpuSim;
+use crate::sim::integrator::Scheme;
+use crate::vk::{Access, BufferBarrier, Recorder};
+
+impl GpuSim {
+    pub(super) fn record_physics(&self, rec: &mut Recorder<'_>) {
+        let stepped: Vec<&GpuObject> = self.objects.iter().filter(|o| !self.is_fused(o)).collect();
+        let method = self.model.integrator;
+        let solver = match method.method().scheme {
+            Scheme::Explicit { verlet } => {
+                for o in &stepped {
+                    let stage = Stage::Physics(o.kind, verlet, o.plan.features);
+                    rec.dispatch(self.pipelines.get(stage), o.sets[0], o.step_groups);
+                }
+                return;
+            }
+            Scheme::Iterative(solver) => solver,
+        };
+        for o in &stepped {
+            rec.dispatch(
+                self.pipelines.get(Stage::Predict(o.kind, method, o.plan.features)),
+                o.sets[0],
+                o.step_groups,
+            );
+        }
+        let between_passes: Vec<BufferBarrier<'_>> = stepped
+            .iter()
+            .flat_map(|o| {
+                let hash = o.hash.iter().flat_map(|h| [&h.counts, &h.cell_rank]);
+                o.scratch().into_iter().chain([&o.state[1]]).chain(hash)
+            })
+            .map(|b| BufferBarrier::new(b, Access::ComputeReadWrite, Access::ComputeReadWrite))
+            .collect();
+        let passes = if solver.coloured { stepped.iter().map(|o| o.colours).max().unwrap_or(1) } else { 1 };
+        for k in 0..self.model.iterations {
+            for colour in 0..passes {
+                rec.barrier(&between_passes);
+                for o in stepped.iter().filter(|o| colour < o.colours) {
+                    let groups = if solver.coloured { o.colour_groups } else { o.step_groups };
+                    let pipeline = self.pipelines.get(Stage::Iterate(o.kind, method));
+                    rec.dispatch_with(pipeline, o.sets[0], groups, &[k, colour]);
+                }
+            }
+        }
+    }
+}

@@ -1,0 +1,261 @@
+//! The integrators, each declared once: its variant of `Integrator` and its row of `METHODS`
+//! (name, order, how the GPU runs it, its CPU twin, its chart colour). Everything else (scene
+//! parsing, the editor's list, the CPU reference, the GPU pipelines and buffers, the chart, the
+//! stability map, `auto`) looks a method up here, so a new method is its shader, its CPU twin
+//! (`sim::cpu::integrators`) and one row.
+//!
+//! Every method advances the spring network of one substep and is followed by the same
+//! constraint stage (stretch limit, self-collision, spheres).
+
+use super::cpu::integrators as cpu;
+use super::model::{ObjectModel, SimModel};
+use glam::DVec3;
+
+/// How a substep advances the spring network (`sim.integrator`).
+#[derive(
+    Debug, Clone, Copy, PartialEq, Eq, Hash, Default, serde::Serialize, serde::Deserialize, clap::ValueEnum,
+)]
+#[serde(rename_all = "snake_case")]
+#[value(rename_all = "snake_case")]
+pub enum Integrator {
+    /// The paper's: v += a(x, v) dt, then x += v dt. First order, explicit.
+    #[default]
+    SymplecticEuler,
+    /// Position Verlet (drift-kick-drift): half a step of drift, forces at the midpoint, the
+    /// other half. Second order for conservative forces, explicit, one force pass per substep.
+    Verlet,
+    /// Extended position-based dynamics (Macklin et al. 2016, 2019): one distance constraint per
+    /// spring with compliance 1/k and the spring's damping, vertex-coloured Gauss-Seidel.
+    /// One iteration with small substeps is a consistent first-order method; many iterations
+    /// converge to implicit Euler. Stable at any stiffness.
+    Xpbd,
+    /// Implicit Euler by projective dynamics (Liu et al. 2013) with Chebyshev-accelerated
+    /// Jacobi (Wang 2015), damped and accelerated by the substep's own Jacobi radius.
+    Implicit,
+    /// Vertex Block Descent (Chen et al. 2024): implicit Euler by a 3x3 Newton step per vertex
+    /// on inertia + spring energy (dashpots implicit), vertex-coloured Gauss-Seidel.
+    Vbd,
+}
+
+/// How the GPU runs a method (`sim::gpu`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Scheme {
+    /// One force pass per substep (`physics.comp`; `verlet`: position Verlet's half drifts);
+    /// small objects run every substep fused in one workgroup.
+    Explicit { verlet: bool },
+    /// The inertial prediction (`predict.comp`), then `iterations` passes of the solver.
+    Iterative(Solver),
+}
+
+/// An iterative method's GPU solver.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Solver {
+    /// The iteration shader.
+    pub shader: &'static str,
+    /// The prediction includes the springs' dashpots (damping treated explicitly).
+    pub explicit_dashpots: bool,
+    /// `predict.comp` keeps the prediction y - x in the auxiliary buffer (else it zeroes the 12
+    /// multipliers a particle keeps there).
+    pub keeps_prediction: bool,
+    /// Vec4s per particle of iterate slices and of auxiliary data.
+    pub slices: u64,
+    pub aux: u64,
+    /// Gauss-Seidel over the vertex colours (`vertex_colours`): one pass per colour, each
+    /// seeing the colours before it; else Jacobi, one pass over every particle.
+    pub coloured: bool,
+}
+
+/// One substep of an object from (x, v) on the CPU reference: the new positions and velocities.
+pub type CpuStep = fn(&SimModel, &ObjectModel, f64, &[DVec3], &[DVec3]) -> (Vec<DVec3>, Vec<DVec3>);
+
+/// One integrator's row.
+pub struct Method {
+    pub integrator: Integrator,
+    /// Its name in presets, on the command line and in reports.
+    pub label: &'static str,
+    /// Global order of accuracy in the positions as the substep shrinks (iterative methods:
+    /// with their iterations converged, or at a fixed count as the substep shrinks).
+    pub order: f64,
+    pub scheme: Scheme,
+    /// The CPU reference (`sim::cpu::integrators`).
+    pub cpu: CpuStep,
+    /// Colour of its curves in the accuracy chart (RGB).
+    pub colour: (u8, u8, u8),
+}
+
+const fn solver(
+    shader: &'static str,
+    dashpots: bool,
+    keeps_y: bool,
+    slices: u64,
+    aux: u64,
+    coloured: bool,
+) -> Scheme {
+    Scheme::Iterative(Solver {
+        shader,
+        explicit_dashpots: dashpots,
+        keeps_prediction: keeps_y,
+        slices,
+        aux,
+        coloured,
+    })
+}
+
+/// The table, in the order of `Integrator`'s variants.
+const METHODS: [Method; 5] = [
+    Method {
+        integrator: Integrator::SymplecticEuler,
+        label: "symplectic_euler",
+        order: 1.0,
+        scheme: Scheme::Explicit { verlet: false },
+        cpu: cpu::symplectic_euler,
+        colour: (31, 119, 180),
+    },
+    Method {
+        integrator: Integrator::Verlet,
+        label: "verlet",
+        order: 2.0,
+        scheme: Scheme::Explicit { verlet: true },
+        cpu: cpu::verlet,
+        colour: (44, 160, 44),
+    },
+    Method {
+        integrator: Integrator::Xpbd,
+        label: "xpbd",
+        order: 1.0,
+        // In place (one slice); aux: a copy of the multipliers of the 12 springs per particle.
+        scheme: solver("xpbd_iterate.comp", false, false, 1, 3, true),
+        cpu: cpu::xpbd,
+        colour: (255, 127, 14),
+    },
+    Method {
+        integrator: Integrator::Implicit,
+        label: "implicit",
+        order: 1.0,
+        // Three rotating slices (Chebyshev reads the one before); aux: the prediction.
+        scheme: solver("implicit_iterate.comp", true, true, 3, 1, false),
+        cpu: cpu::implicit,
+        colour: (214, 39, 40),
+    },
+    Method {
+        integrator: Integrator::Vbd,
+        label: "vbd",
+        order: 1.0,
+        // In place (one slice); aux: the prediction.
+        scheme: solver("vbd_iterate.comp", false, true, 1, 1, true),
+        cpu: cpu::vbd,
+        colour: (148, 103, 189),
+    },
+];
+
+impl Integrator {
+    /// Every method, in the table's order.
+    pub const ALL: [Integrator; 5] = [
+        Integrator::SymplecticEuler,
+        Integrator::Verlet,
+        Integrator::Xpbd,
+        Integrator::Implicit,
+        Integrator::Vbd,
+    ];
+
+    /// Its row of the table.
+    pub fn method(self) -> &'static Method {
+        let m = &METHODS[self as usize];
+        debug_assert_eq!(m.integrator, self, "METHODS is in the order of Integrator");
+        m
+    }
+
+    pub fn label(self) -> &'static str {
+        self.method().label
+    }
+
+    /// The method whose label is `name`.
+    pub fn from_label(name: &str) -> Option<Integrator> {
+        Self::ALL.into_iter().find(|m| m.label() == name)
+    }
+
+    /// Whether the method iterates a solver (`SimModel::iterations` applies).
+    pub fn iterative(self) -> bool {
+        self.solver().is_some()
+    }
+
+    /// Its GPU solver, for an iterative method.
+    pub fn solver(self) -> Option<Solver> {
+        match self.method().scheme {
+            Scheme::Iterative(s) => Some(s),
+            Scheme::Explicit { .. } => None,
+        }
+    }
+
+    pub fn order(self) -> f64 {
+        self.method().order
+    }
+}
+
+/// Colours of the vertex colouring the Gauss-Seidel methods sweep: particle (c, r) has colour
+/// (c + 2 r) mod `vertex_colours`. No spring joins two particles of one colour: the offsets of
+/// the 12 springs, (+-1, 0), (0, +-1), (+-1, +-1), (+-1, -+1), (+-2, 0), (0, +-2), give
+/// c + 2 r = +-1, +-2, +-3, -+1, +-2, +-4, none a multiple of 5; a rope (one row) has only
+/// the offsets +-1 and +-2, none a multiple of 3. (`coloured_cell` in glsl/include/solver_end.glsl
+/// is the same rule.)
+pub fn vertex_colours(dims: [u32; 2]) -> u32 {
+    if dims[1] == 1 {
+        3
+    } else {
+        5
+    }
+}
+
+/// The colour of particle (c, r) of a grid of `colours` colours.
+pub fn vertex_colour(c: u32, r: u32, colours: u32) -> u32 {
+    (c + 2 * r) % colours
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_table_is_in_variant_order_and_labels_round_trip() {
+        for m in Integrator::ALL {
+            assert_eq!(m.method().integrator, m);
+            assert_eq!(Integrator::from_label(m.label()), Some(m));
+            let serde_name = toml::Value::try_from(m).unwrap();
+            assert_eq!(serde_name.as_str(), Some(m.label()));
+        }
+    }
+
+    /// No spring joins two particles of one colour, for every spring offset of the grid.
+    #[test]
+    fn the_vertex_colouring_separates_every_spring() {
+        for dims in [[9u32, 7u32], [12, 1]] {
+            let colours = vertex_colours(dims);
+            for r in 0..dims[1] as i64 {
+                for c in 0..dims[0] as i64 {
+                    for (dc, dr) in [
+                        (1, 0),
+                        (0, 1),
+                        (1, 1),
+                        (1, -1),
+                        (2, 0),
+                        (0, 2),
+                        (-1, 0),
+                        (0, -1),
+                        (-1, -1),
+                        (-1, 1),
+                        (-2, 0),
+                        (0, -2),
+                    ] {
+                        let (nc, nr) = (c + dc, r + dr);
+                        if nc < 0 || nr < 0 || nc >= dims[0] as i64 || nr >= dims[1] as i64 {
+                            continue;
+                        }
+                        let a = vertex_colour(c as u32, r as u32, colours);
+                        let b = vertex_colour(nc as u32, nr as u32, colours);
+                        assert_ne!(a, b, "{dims:?}: ({c}, {r}) and ({nc}, {nr}) share colour {a}");
+                    }
+                }
+            }
+        }
+    }
+}
