@@ -1,6 +1,7 @@
 //! `msdsim bench`: times the benchmark matrix and writes the reports.
 
 use crate::bench::{self, cases, report};
+use crate::sim::model::Integrator;
 use crate::vk::{ContextOptions, GpuContext};
 use anyhow::{Context as _, Result};
 use clap::Args;
@@ -34,6 +35,12 @@ pub struct BenchArgs {
     /// default 1, see docs/PERFORMANCE.md), where they fit the shared memory.
     #[arg(long, value_parser = clap::value_parser!(u32).range(1..=4))]
     pub fused_slots: Option<u32>,
+    /// Integrator of every case (the paper's by default).
+    #[arg(long, value_enum, default_value_t = Integrator::SymplecticEuler)]
+    pub integrator: Integrator,
+    /// Solver iterations per substep (the iterative integrators).
+    #[arg(long, default_value_t = 4, value_parser = clap::value_parser!(u32).range(1..=1000))]
+    pub iterations: u32,
     /// Folder for bench.md and bench.csv.
     #[arg(long, default_value = "bench-results")]
     pub out: PathBuf,
@@ -56,6 +63,11 @@ pub fn run(args: &BenchArgs, options: &ContextOptions) -> Result<()> {
     let cases: Vec<_> = cases::matrix(&cloth, &rope)
         .into_iter()
         .filter(|c| args.filter.as_ref().is_none_or(|f| c.name.contains(f.as_str())))
+        .map(|mut c| {
+            c.scene.sim.integrator = crate::scene::IntegratorChoice::Method(args.integrator);
+            c.scene.sim.iterations = args.iterations;
+            c
+        })
         .collect();
     let bar = indicatif::ProgressBar::new(cases.len() as u64 + 1);
     bar.set_style(

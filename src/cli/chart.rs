@@ -23,12 +23,12 @@ pub struct ChartArgs {
     #[arg(long = "set", value_name = "KEY=VALUE")]
     pub overrides: Vec<String>,
     /// Integrators to sweep.
-    #[arg(long, value_delimiter = ',', default_value = "symplectic_euler,verlet,xpbd,implicit")]
+    #[arg(long, value_enum, value_delimiter = ',', default_values_t = Integrator::ALL)]
     pub methods: Vec<Integrator>,
     /// Substeps per 1/60 s frame.
     #[arg(long, value_delimiter = ',', default_value = "1,2,4,8,16,32,64", value_parser = clap::value_parser!(u32).range(1..=4096))]
     pub substeps: Vec<u32>,
-    /// Solver iterations per substep (xpbd, implicit).
+    /// Solver iterations per substep (the iterative methods).
     #[arg(long, value_delimiter = ',', default_value = "2,5,10,30", value_parser = clap::value_parser!(u32).range(1..=1000))]
     pub iterations: Vec<u32>,
     /// Substeps per frame of the CPU reference (position Verlet in f64).

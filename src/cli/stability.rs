@@ -17,7 +17,7 @@ pub struct StabilityArgs {
     #[arg(long = "set", value_name = "KEY=VALUE")]
     pub overrides: Vec<String>,
     /// Integrators to map (one map each).
-    #[arg(long, value_delimiter = ',', default_value = "symplectic_euler,verlet,xpbd,implicit")]
+    #[arg(long, value_enum, value_delimiter = ',', default_values_t = Integrator::ALL)]
     pub methods: Vec<Integrator>,
     /// Stiffness scales and substep counts per axis.
     #[arg(long, default_value_t = 9, value_parser = clap::value_parser!(u64).range(2..=64))]
