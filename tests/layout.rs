@@ -38,6 +38,9 @@ fn a_shifted_member_is_refused() {
 /// host's mirrors in `sim::gpu_types`.
 #[test]
 fn header_constants_match_the_host() {
+    let method_define = |m: msdsim::sim::model::Integrator| -> &'static str {
+        Box::leak(format!("METHOD_{}", m.label().to_uppercase()).into_boxed_str())
+    };
     use msdsim::sim::gpu_types as t;
     let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("glsl/include");
     let mut defines = std::collections::HashMap::new();
@@ -66,7 +69,9 @@ fn header_constants_match_the_host() {
         ("F_SPHERES", t::FEATURE_SPHERES),
         ("F_STRETCH", t::FEATURE_STRETCH),
         ("F_SELF", t::FEATURE_SELF),
-    ];
+    ]
+    .into_iter()
+    .chain(msdsim::sim::model::Integrator::ALL.map(|m| (method_define(m), m as u32)));
     for (name, value) in host {
         assert_eq!(defines.get(name), Some(&value), "{name}: header and host disagree");
     }

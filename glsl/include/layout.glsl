@@ -13,6 +13,13 @@
 #define OBJ_SELF_COLLISION 2u   // particle-particle self-collision
 #define OBJ_SELF_HASH      4u   // ... found through the spatial hash (else brute force)
 
+// Integrators, as sim::integrator::Integrator's discriminants (the fused kernel's SOLVER).
+#define METHOD_SYMPLECTIC_EULER 0u
+#define METHOD_VERLET           1u
+#define METHOD_XPBD             2u
+#define METHOD_IMPLICIT         3u
+#define METHOD_VBD              4u
+
 struct Particle {
     vec4 pos;   // xyz position [m]; w = 1 pinned, 0 free
     vec4 vel;   // xyz velocity [m/s]; w unused (0)

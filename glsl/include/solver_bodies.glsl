@@ -1,0 +1,104 @@
+// The per-particle updates of the iterative integrators (sim::cpu::integrators has their
+// derivations), shared by their per-stage shaders (xpbd_iterate.comp, implicit_iterate.comp,
+// vbd_iterate.comp) and the fused kernel. A particle at grid `cell` with start position x and
+// displacement dx (p - x) reads its neighbour j through SX(j) (j's start position), SD(j) (its
+// displacement) and SPIN(j) (pinned), which each includer defines.
+// Include after bindings.glsl and springs.glsl.
+#ifndef MSD_SOLVER_BODIES_GLSL
+#define MSD_SOLVER_BODIES_GLSL
+
+// XPBD, one Gauss-Seidel visit: the particle's share of each of its springs' updates in turn,
+// with its own copy of the 12 multipliers (lambda[s / 4][s % 4] for spring s).
+void xpbd_particle(uvec2 cell, vec3 x, inout vec3 dx, inout vec4 lambda[3]) {
+    float w_i = 1.0 / obj.mass;
+    [[unroll]] for (int s = 0; s < 12; ++s) {
+        ivec3 spring = SPRINGS[s];
+        float k = obj.stiffness[spring.z];
+        if (k == 0.0) continue;
+        int j = neighbour(ivec2(cell), spring.xy, obj.dims);
+        if (j < 0) continue;
+        vec3 dj = SD(j);
+        vec3 delta = (x - SX(j)) + (dx - dj);  // p_i - p_j
+        float d = length(delta);
+        if (d <= 0.0) continue;
+        vec3 normal = delta / d;
+        float alpha = 1.0 / (k * g.dt * g.dt);
+        float gamma = obj.stiffness.w / (k * g.dt);
+        float moved = dot(normal, dx - dj);
+        float w_j = SPIN(j) ? 0.0 : w_i;
+        float c = d - rest_length(spring, obj.spacing, obj.rest_scale);
+        float lam = lambda[s / 4][s % 4];
+        float d_lambda = g.relaxation * (-c - alpha * lam - gamma * moved) / ((1.0 + gamma) * (w_i + w_j) + alpha);
+        dx += normal * (w_i * d_lambda);
+        lambda[s / 4][s % 4] = lam + d_lambda;
+    }
+}
+
+// VBD, one Gauss-Seidel visit: one Newton step on implicit Euler's incremental potential as a
+// function of the particle's position (inertia towards the prediction dy, springs, dashpots),
+// with its 3x3 Hessian. Returns the new displacement.
+vec3 vbd_particle(uvec2 cell, vec3 x, vec3 dx, vec3 dy) {
+    float inertia = obj.mass / (g.dt * g.dt);
+    float b = obj.stiffness.w;
+    float damp = b / g.dt;  // a dashpot's stiffness on the displacement
+    vec3 force = (dy - dx) * inertia;
+    mat3 hessian = mat3(inertia);
+    [[unroll]] for (int s = 0; s < 12; ++s) {
+        ivec3 spring = SPRINGS[s];
+        float k = obj.stiffness[spring.z];
+        if (k == 0.0 && b == 0.0) continue;
+        int j = neighbour(ivec2(cell), spring.xy, obj.dims);
+        if (j < 0) continue;
+        vec3 dj = SD(j);
+        vec3 delta = (x - SX(j)) + (dx - dj);  // p_i - p_j
+        float d = length(delta);
+        if (d <= 0.0) continue;
+        vec3 n = delta / d;
+        mat3 nn = outerProduct(n, n);
+        float rest = rest_length(spring, obj.spacing, obj.rest_scale);
+        float transverse = max(1.0 - rest / d, 0.0);  // clamped at compression: positive definite
+        force -= n * (k * (d - rest) + damp * dot(n, dx - dj));
+        hessian += nn * (k + damp) + (mat3(1.0) - nn) * (k * transverse);
+    }
+    return dx + inverse(hessian) * force;
+}
+
+// Must equal sim::stability::CHEBYSHEV_START (the GPU-vs-CPU tests compare).
+const uint CHEBYSHEV_START = 2u;
+
+// Chebyshev weight of iteration k for the Jacobi radius rho (Wang 2015).
+float chebyshev_omega(uint k, float rho) {
+    float omega = 1.0;
+    for (uint step = 1u; step <= k; ++step) {
+        omega = step == 1u ? 2.0 / (2.0 - rho * rho) : 4.0 / (4.0 - rho * rho * omega);
+    }
+    return omega;
+}
+
+// The implicit method (projective dynamics), iteration k: the local step (each spring's
+// rest-length projection) and the particle's damped Jacobi sweep of the global system,
+// Chebyshev-accelerated against its displacement `before` of the previous iteration. Returns
+// the new displacement.
+vec3 implicit_particle(uvec2 cell, uint k, vec3 x, vec3 dx, vec3 dy, vec3 before) {
+    float inertia = obj.mass / (g.dt * g.dt);
+    vec3 rhs = dy * inertia;
+    float diag = inertia;
+    [[unroll]] for (int s = 0; s < 12; ++s) {
+        ivec3 spring = SPRINGS[s];
+        float stiffness = obj.stiffness[spring.z];
+        if (stiffness == 0.0) continue;
+        int j = neighbour(ivec2(cell), spring.xy, obj.dims);
+        if (j < 0) continue;
+        vec3 pj = (SX(j) - x) + SD(j);  // p_j - x_i
+        vec3 delta = dx - pj;           // p_i - p_j
+        float d = length(delta);
+        vec3 target = d > 0.0 ? delta * (rest_length(spring, obj.spacing, obj.rest_scale) / d) : vec3(0.0);
+        rhs += stiffness * (pj + target);
+        diag += stiffness;
+    }
+    vec3 damped = dx + (rhs / diag - dx) * obj.jacobi_damping;
+    float omega = k < CHEBYSHEV_START ? 1.0 : chebyshev_omega(k - CHEBYSHEV_START, obj.cheb_rho);
+    return before + omega * (damped - before);
+}
+
+#endif
