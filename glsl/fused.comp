@@ -18,6 +18,14 @@
 // memory and specializes one pipeline per object shape; the step code is physics_body.glsl and
 // constraints_body.glsl, as for the per-stage path, with neighbours read from shared memory.
 // Phases are separated by barrier(); those a scene does not need are left out.
+//
+// The iterative integrators (SOLVER) replace the physics step with the prediction y (read like
+// the physics: neighbours' velocities staged when the implicit method's dashpots read them),
+// then their iterations: the displacements p - x live in registers and, for the neighbours, in
+// scratch (px/py/pz keep the substep's start x); XPBD and VBD visit the vertex colours in turn,
+// a barrier() after each colour; the implicit method's Jacobi sweep computes every new
+// displacement, then a barrier(), the writes, and a barrier(). The updates themselves are
+// solver_bodies.glsl's, as in the per-stage shaders.
 #define STATE_FUSED
 #define FUSED_SHARED
 #include "bindings.glsl"
@@ -29,12 +37,15 @@ layout(constant_id = 5) const uint SCRATCH = 1u;     // words of scratch
 layout(constant_id = 6) const uint BUCKETS = 1u;     // hash buckets (a power of two)
 layout(constant_id = 7) const uint PASS_SLOTS = 1u;  // slots whose physics one pass computes
 layout(constant_id = 8) const uint HALO = 2u;        // largest index distance to a spring neighbour
+layout(constant_id = 9) const uint SOLVER = 0u;      // the integrator (METHOD_*, layout.glsl)
 
 const uint THREADS = gl_WorkGroupSize.x;
 const uint MAX_SLOTS = 4u;  // particles per thread at most (FUSED_SLOTS on the host)
 const uint SLOTS = (CAP + THREADS - 1u) / THREADS;
 const uint WINDOW = THREADS * PASS_SLOTS + 2u * HALO;  // velocities staged per pass
 const uint EMPTY = 0xFFFFFFFFu;
+const bool ITERATIVE = SOLVER == METHOD_XPBD || SOLVER == METHOD_IMPLICIT || SOLVER == METHOD_VBD;
+const bool COLOURED = SOLVER == METHOD_XPBD || SOLVER == METHOD_VBD;
 
 shared float px[CAP];
 shared float py[CAP];
@@ -57,6 +68,16 @@ vec3 wvel(uint j) {
                 uintBitsToFloat(scratch[2u * WINDOW + w]));
 }
 
+// The displacement of particle j during an iterative method's solve (scratch[0 .. 3 CAP)).
+vec3 sdisp(uint j) {
+    return vec3(uintBitsToFloat(scratch[j]), uintBitsToFloat(scratch[CAP + j]), uintBitsToFloat(scratch[2u * CAP + j]));
+}
+void set_sdisp(uint j, vec3 d) {
+    scratch[j] = floatBitsToUint(d.x);
+    scratch[CAP + j] = floatBitsToUint(d.y);
+    scratch[2u * CAP + j] = floatBitsToUint(d.z);
+}
+
 #define NPOS(j) spos(uint(j))
 #define NVEL(j) wvel(uint(j))
 #define CPOS(j) spos(uint(j))
@@ -64,6 +85,11 @@ vec3 wvel(uint j) {
 #define HASH_MASK (BUCKETS - 1u)
 #include "physics_body.glsl"
 #include "constraints_body.glsl"
+#include "predict_body.glsl"
+#define SX(j) spos(uint(j))
+#define SD(j) sdisp(uint(j))
+#define SPIN(j) spinned(uint(j))
+#include "solver_bodies.glsl"
 
 // The shared spatial hash: scratch[h] is the first particle of bucket h, scratch[BUCKETS + j]
 // the one after particle j (EMPTY ends a list).
@@ -83,17 +109,27 @@ void main() {
     bool self_any = has(F_SELF) && (obj.flags & OBJ_SELF_COLLISION) != 0u;
     bool neighbours = stretch || self_any;  // the constraints read other particles
     float drift = physics_drift();
+    // The physics (or the prediction) reads the neighbours' velocities: the dashpots, unless
+    // the method treats them implicitly in its solve.
+    bool stage_velocities = has(F_DAMPING) && (!ITERATIVE || SOLVER == METHOD_IMPLICIT);
+    uint colours = obj.dims.y == 1u ? 3u : 5u;  // sim::integrator::vertex_colours
 
     vec3 x[MAX_SLOTS];
     vec3 v[MAX_SLOTS];
     vec3 v_new[MAX_SLOTS];
     bool pinned[MAX_SLOTS];
+    vec3 dy[MAX_SLOTS];  // iterative methods: the prediction y - x
+    vec3 dx[MAX_SLOTS];  // ... the iterate p - x
+    uint colour[MAX_SLOTS];
     [[unroll]] for (uint s = 0u; s < MAX_SLOTS; ++s) {
         uint k = t + s * THREADS;
         x[s] = vec3(0.0);
         v[s] = vec3(0.0);
         v_new[s] = vec3(0.0);
         pinned[s] = true;
+        dy[s] = vec3(0.0);
+        dx[s] = vec3(0.0);
+        colour[s] = (k % cols + 2u * (k / cols)) % colours;
         if (s < SLOTS && k < n) {
             Particle p = p_in[k];
             pinned[s] = p.pos.w > 0.5;
@@ -116,7 +152,7 @@ void main() {
         // velocities staged pass by pass), new state into registers.
         [[unroll]] for (uint chunk = 0u; chunk < MAX_SLOTS; ++chunk) {
             if (chunk * PASS_SLOTS >= SLOTS) break;
-            if (has(F_DAMPING)) {
+            if (stage_velocities) {
                 if (chunk > 0u) barrier();  // the pass before has read its window
                 window_start = int(chunk * PASS_SLOTS * THREADS) - int(HALO);
                 [[unroll]] for (uint s = 0u; s < MAX_SLOTS; ++s) {
@@ -135,6 +171,10 @@ void main() {
                 if (s >= SLOTS) break;
                 uint k = t + s * THREADS;
                 if (s / PASS_SLOTS != chunk || k >= n || pinned[s]) continue;
+                if (ITERATIVE) {
+                    dy[s] = predicted_displacement(uvec2(k % cols, k / cols), x[s], v[s], SOLVER == METHOD_IMPLICIT);
+                    continue;
+                }
                 vec3 xs = x[s] + drift * v[s];
                 vec3 vs = v[s];
                 physics_step(uvec2(k % cols, k / cols), xs, vs);
@@ -143,9 +183,68 @@ void main() {
             }
         }
         [[unroll]] for (uint s = 0u; s < MAX_SLOTS; ++s) {
-            if (s < SLOTS) v[s] = v_new[s];
+            if (s < SLOTS && !ITERATIVE) v[s] = v_new[s];
         }
         barrier();  // every read of this substep's positions and velocities is done
+
+        if (ITERATIVE) {
+            // The solve, from the prediction; px/py/pz hold the start positions x.
+            vec4 lambda[MAX_SLOTS][3];  // XPBD: each particle's copy of its springs' multipliers
+            vec3 before[MAX_SLOTS];     // implicit: the iterate before (Chebyshev)
+            [[unroll]] for (uint s = 0u; s < MAX_SLOTS; ++s) {
+                if (s >= SLOTS) break;
+                uint k = t + s * THREADS;
+                dx[s] = dy[s];
+                before[s] = dy[s];
+                lambda[s] = vec4[3](vec4(0.0), vec4(0.0), vec4(0.0));
+                if (k < n) set_sdisp(k, dy[s]);
+            }
+            barrier();
+            for (uint it = 0u; it < g.iterations; ++it) {
+                if (COLOURED) {
+                    for (uint c = 0u; c < colours; ++c) {
+                        [[unroll]] for (uint s = 0u; s < MAX_SLOTS; ++s) {
+                            if (s >= SLOTS) break;
+                            uint k = t + s * THREADS;
+                            if (k >= n || pinned[s] || colour[s] != c) continue;
+                            uvec2 cell = uvec2(k % cols, k / cols);
+                            if (SOLVER == METHOD_XPBD) {
+                                xpbd_particle(cell, x[s], dx[s], lambda[s]);
+                            } else {
+                                dx[s] = vbd_particle(cell, x[s], dx[s], dy[s]);
+                            }
+                            set_sdisp(k, dx[s]);
+                        }
+                        barrier();  // the next colour reads this one's displacements
+                    }
+                } else {
+                    vec3 next[MAX_SLOTS];
+                    [[unroll]] for (uint s = 0u; s < MAX_SLOTS; ++s) {
+                        if (s >= SLOTS) break;
+                        uint k = t + s * THREADS;
+                        next[s] = dx[s];
+                        if (k < n && !pinned[s]) {
+                            next[s] = implicit_particle(uvec2(k % cols, k / cols), it, x[s], dx[s], dy[s], before[s]);
+                        }
+                    }
+                    barrier();  // every read of this iteration's displacements is done
+                    [[unroll]] for (uint s = 0u; s < MAX_SLOTS; ++s) {
+                        if (s >= SLOTS) break;
+                        uint k = t + s * THREADS;
+                        before[s] = dx[s];
+                        dx[s] = next[s];
+                        if (k < n) set_sdisp(k, dx[s]);
+                    }
+                    barrier();
+                }
+            }
+            [[unroll]] for (uint s = 0u; s < MAX_SLOTS; ++s) {
+                if (s >= SLOTS) break;
+                if (pinned[s]) continue;
+                x[s] += dx[s];
+                v[s] = dx[s] / g.dt;
+            }
+        }
 
         // Constraints on the new positions: shared for the neighbours, hashed for contacts.
         if (neighbours) {

@@ -13,9 +13,8 @@
 // against the f64 reference after 240 substeps of a falling cloth, versus 1e-6 m here.
 #include "bindings.glsl"
 #include "springs.glsl"
-#include "forces.glsl"
 #define IN(i) p_in[i]
-#include "spring_forces.glsl"
+#include "predict_body.glsl"
 
 layout(local_size_x_id = 0, local_size_y_id = 1, local_size_z = 1) in;
 layout(constant_id = 2) const bool EXPLICIT_DASHPOTS = false;
@@ -29,11 +28,7 @@ void main() {
     vec3 x = p.pos.xyz;
     vec3 v = p.vel.xyz;
     vec3 dy = vec3(0.0);  // y - x
-    if (p.pos.w <= 0.5) {
-        vec3 force = external_force(x, v);
-        if (EXPLICIT_DASHPOTS) add_spring_forces(cell, x, v, 0.0, false, force);
-        dy = (v + force * (g.dt / obj.mass)) * g.dt;
-    }
+    if (p.pos.w <= 0.5) dy = predicted_displacement(cell, x, v, EXPLICIT_DASHPOTS);
     iter[i] = vec4(dy, p.pos.w);
     if (KEEP_PREDICTION) {
         aux[i] = vec4(dy, 0.0);

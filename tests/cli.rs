@@ -265,7 +265,8 @@ fn chart_writes_csv_and_svg() {
     let csv = std::fs::read_to_string(out_dir.join("chart.csv")).unwrap();
     let rows: Vec<Vec<&str>> =
         csv.lines().filter(|l| !l.starts_with('#')).skip(1).map(|l| l.split(',').collect()).collect();
-    assert_eq!(rows.len(), 8, "4 methods x 2 substep counts:\n{csv}");
+    let methods = msdsim::sim::model::Integrator::ALL.len();
+    assert_eq!(rows.len(), 2 * methods, "{methods} methods x 2 substep counts:\n{csv}");
     for r in &rows {
         let cost: f64 = r[5].parse().unwrap();
         assert!(cost > 0.0, "GPU time per simulated second: {r:?}");

@@ -6,14 +6,16 @@
 //! and a scratch area that holds the velocities the spring dashpots read during physics (in
 //! passes when they do not all fit) and the self-collision hash during the constraints. An
 //! object takes that path when the layout fits the device's shared memory per workgroup (48 KiB
-//! on NVIDIA: a 50 x 50 cloth with dashpots and the hash fits; 32 KiB on lavapipe) and its
-//! integrator is explicit; others run a dispatch per stage.
+//! on NVIDIA: a 50 x 50 cloth with dashpots and the hash fits; 32 KiB on lavapipe); others run
+//! a dispatch per stage. The iterative integrators also keep their displacements there (in the
+//! scratch area, 12 bytes a particle, between the physics and the constraints).
 
 use crate::sim::gpu_types::{
     FEATURE_BENDING, FEATURE_DAMPING, FEATURE_SELF, FEATURE_SHEAR, FEATURE_SPHERES, FEATURE_STRETCH,
     FEATURE_STRUCTURAL, FEATURE_WIND,
 };
-use crate::sim::model::{ObjectModel, SelfCollisionMethod, SimModel};
+use crate::sim::integrator::Scheme;
+use crate::sim::model::{Integrator, ObjectModel, SelfCollisionMethod, SimModel};
 
 /// Particles one thread of the fused kernel owns at most (`MAX_SLOTS` in the shader).
 pub const FUSED_SLOTS: u32 = 4;
@@ -110,11 +112,9 @@ pub struct FusedShape {
 
 impl FusedShape {
     /// The layout of object `o` in `model` within `limits`, or `None` when the object does not
-    /// fit (or its integrator is iterative): it then runs per stage.
+    /// fit: it then runs per stage.
     pub fn plan(o: &ObjectModel, model: &SimModel, limits: FusedLimits) -> Option<Self> {
-        if model.integrator.iterative() {
-            return None;
-        }
+        let solver = model.integrator.solver();
         let n = o.particle_count() as u32;
         if n == 0 || n > limits.slots.min(FUSED_SLOTS) * MAX_THREADS {
             return None;
@@ -125,7 +125,13 @@ impl FusedShape {
         let budget = limits.shared_bytes.saturating_sub(SHARED_MARGIN);
         let fixed = 12 * n + 4 * n.div_ceil(32);
         let words = budget.checked_sub(fixed)? / 4;
-        let damped = o.damping != 0.0;
+        // The physics or the prediction reads the neighbours' velocities (the dashpots, unless
+        // the method treats them in its solve).
+        let damped = o.damping != 0.0 && solver.is_none_or(|s| s.explicit_dashpots);
+        let displacements = if solver.is_some() { 3 * n } else { 0 };
+        if displacements > words {
+            return None;
+        }
         let window = |q: u32| 3 * (threads * q + 2 * halo);
         let pass_slots = if damped { (1..=slots).rev().find(|&q| window(q) <= words)? } else { slots };
         let hashed = o.self_distance.is_some() && model.self_collision == SelfCollisionMethod::Hash;
@@ -136,10 +142,15 @@ impl FusedShape {
         } else {
             1
         };
-        let scratch = [if damped { window(pass_slots) } else { 0 }, if hashed { buckets + n } else { 0 }, 1]
-            .into_iter()
-            .max()
-            .unwrap_or(1);
+        let scratch = [
+            if damped { window(pass_slots) } else { 0 },
+            if hashed { buckets + n } else { 0 },
+            displacements,
+            1,
+        ]
+        .into_iter()
+        .max()
+        .unwrap_or(1);
         Some(Self { threads, particles: n, scratch, buckets, pass_slots, halo })
     }
 
@@ -148,8 +159,9 @@ impl FusedShape {
         12 * self.particles + 4 * self.particles.div_ceil(32) + 4 * self.scratch
     }
 
-    /// Specialization constants 0..=8 (index = id) with the integrator flag and the features.
-    pub fn specialization(&self, verlet: bool, features: u32) -> Vec<u32> {
+    /// Specialization constants 0..=9 (index = id) for the integrator and the features.
+    pub fn specialization(&self, method: Integrator, features: u32) -> Vec<u32> {
+        let verlet = method.method().scheme == Scheme::Explicit { verlet: true };
         vec![
             self.threads,
             0,
@@ -160,6 +172,7 @@ impl FusedShape {
             self.buckets,
             self.pass_slots,
             self.halo,
+            method as u32,
         ]
     }
 }
@@ -167,7 +180,6 @@ impl FusedShape {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::sim::model::Integrator;
 
     fn kib(k: u32) -> FusedLimits {
         FusedLimits { shared_bytes: k * 1024, slots: FUSED_SLOTS }
@@ -202,15 +214,18 @@ mod tests {
         }
     }
 
-    /// Iterative integrators and objects above FUSED_SLOTS x 1024 particles run per stage.
+    /// The iterative integrators fuse when their displacements fit too (12 bytes a particle
+    /// more: the curtain then needs more than 48 KiB); objects above FUSED_SLOTS x 1024
+    /// particles run per stage.
     #[test]
-    fn iterative_methods_and_large_objects_are_not_fused() {
-        let mut m = curtain();
-        m.integrator = Integrator::Implicit;
-        assert_eq!(
-            FusedShape::plan(&m.objects[0], &m, FusedLimits { shared_bytes: u32::MAX, slots: FUSED_SLOTS }),
-            None
-        );
+    fn iterative_methods_fuse_where_they_fit_and_large_objects_do_not() {
+        for method in Integrator::ALL.into_iter().filter(|m| m.iterative()) {
+            let mut m = curtain();
+            m.integrator = method;
+            let shape = FusedShape::plan(&m.objects[0], &m, kib(64)).expect("fits 64 KiB");
+            assert!(shape.scratch >= 3 * shape.particles, "{method:?}: {shape:?}");
+            assert_eq!(FusedShape::plan(&m.objects[0], &m, kib(48)), None, "{method:?}");
+        }
         let mut m = curtain();
         let o = &mut m.objects[0];
         o.dims = [65, 64];

@@ -33,7 +33,6 @@ pub use fused::{FusedLimits, FusedShape, FUSED_DEFAULT_SLOTS, FUSED_SLOTS};
 pub use object::{check_fits, particles};
 
 use super::gpu_types::{Globals, Particle, SurfaceVertex, GUARD_NON_FINITE};
-use super::integrator::Scheme;
 use super::model::{ObjectModel, SimModel};
 use super::stability::GuardTrip;
 use crate::shaders::ShaderSet;
@@ -342,11 +341,10 @@ impl GpuSim {
         // Small objects: every substep in one dispatch each. The state ends in A, as on the
         // per-stage path; the barrier orders it (and B) for the surface stage and next frame.
         let fused: Vec<&GpuObject> = self.objects.iter().filter(|o| self.is_fused(o)).collect();
-        let verlet = self.model.integrator.method().scheme == Scheme::Explicit { verlet: true };
         for o in &fused {
             if let Some(shape) = o.plan.fused {
                 rec.dispatch(
-                    self.pipelines.get(Stage::Fused(verlet, o.plan.features, shape)),
+                    self.pipelines.get(Stage::Fused(self.model.integrator, o.plan.features, shape)),
                     o.sets[0],
                     [1, 1, 1],
                 );

@@ -27,8 +27,8 @@ pub(super) enum Stage {
     Surface(ObjectKind, bool),
     HashScan(u32),
     HashScatter,
-    /// Every substep of an object in one workgroup (`verlet` as for `Physics`).
-    Fused(bool, u32, FusedShape),
+    /// Every substep of an object in one workgroup, with the model's integrator.
+    Fused(Integrator, u32, FusedShape),
 }
 
 /// The solver of an iterative method (the stages that take one are created only for those).
@@ -76,7 +76,7 @@ impl Stage {
             Stage::Surface(_, drawn) => vec![drawn as u32],
             Stage::HashScatter => Vec::new(),
             Stage::HashScan(phase) => vec![phase],
-            Stage::Fused(verlet, f, shape) => shape.specialization(verlet, f),
+            Stage::Fused(method, f, shape) => shape.specialization(method, f),
         }
     }
 
@@ -87,14 +87,11 @@ impl Stage {
         let f = plan.features;
         let method = model.integrator;
         let mut stages = match method.method().scheme {
-            Scheme::Explicit { verlet } => {
-                let mut s = vec![Stage::Physics(kind, verlet, f)];
-                s.extend(plan.fused.map(|shape| Stage::Fused(verlet, f, shape)));
-                s
-            }
+            Scheme::Explicit { verlet } => vec![Stage::Physics(kind, verlet, f)],
             Scheme::Iterative(_) => vec![Stage::Predict(kind, method, f), Stage::Iterate(kind, method)],
         };
         stages.extend([Stage::Constraints(kind, f), Stage::Surface(kind, true), Stage::Surface(kind, false)]);
+        stages.extend(plan.fused.map(|shape| Stage::Fused(method, f, shape)));
         stages
     }
 
