@@ -6,8 +6,9 @@
 // without a dispatch or a pipeline barrier between them (what bounds small scenes), and
 // without global memory traffic between the first load and the last store.
 //
-// Thread t owns particles t, t + THREADS, ... (at most MAX_SLOTS): their position, velocity and
-// pin live in its registers. Shared memory holds what neighbours read:
+// Thread t owns the particles of ranks t, t + THREADS, ... (at most MAX_SLOTS; the rank is the
+// index, or for the Gauss-Seidel methods the place in colour order, particle_of_rank): their
+// position, velocity and pin live in its registers. Shared memory holds what neighbours read:
 //   px/py/pz   every particle's position (for physics drifted by physics_drift() times its
 //              velocity, as physics.comp reads its neighbours; for the constraints the new one);
 //   pin_bits   which particles are pinned;
@@ -99,6 +100,44 @@ void visit_bucket(uint h, uvec2 cell, vec3 x, float reach, inout vec3 correction
     }
 }
 
+// Particles of vertex colour c (sim::integrator::vertex_colours: C colours, (x + 2 y) mod C)
+// in row y of a grid of `cols` columns: x runs from the row's first of that colour in steps of C.
+uint colour_first(uint c, uint y, uint C) { return (c + C - (2u * y) % C) % C; }
+uint colour_row_count(uint c, uint y, uint cols, uint C) {
+    uint first = colour_first(c, y, C);
+    return first < cols ? (cols - 1u - first) / C + 1u : 0u;
+}
+// ... in rows [0, y): C consecutive rows hold every column once.
+uint colour_before_row(uint c, uint y, uint cols, uint C) {
+    uint sum = (y / C) * cols;
+    for (uint q = (y / C) * C; q < y; ++q) sum += colour_row_count(c, q, cols, C);
+    return sum;
+}
+
+// The particle of rank r: r itself, or for the Gauss-Seidel methods the particle of rank r in
+// colour order (colour, row, column), so that the particles of a warp share a colour and a
+// colour's pass runs only its own warps (in index order every warp holds all colours and
+// each pass runs every warp at a fifth of its lanes).
+uint particle_of_rank(uint r) {
+    if (!COLOURED || r >= CAP) return r;
+    uint cols = obj.dims.x;
+    uint rows = obj.dims.y;
+    uint C = rows == 1u ? 3u : 5u;
+    uint c = 0u;
+    for (; c + 1u < C; ++c) {
+        uint total = colour_before_row(c, rows, cols, C);
+        if (r < total) break;
+        r -= total;
+    }
+    uint y = (r / cols) * C;
+    r -= (r / cols) * cols;
+    for (uint rc = colour_row_count(c, y, cols, C); r >= rc; rc = colour_row_count(c, y, cols, C)) {
+        r -= rc;
+        y += 1u;
+    }
+    return colour_first(c, y, C) + C * r + y * cols;
+}
+
 void main() {
     uint t = gl_LocalInvocationID.x;
     uint n = particle_count();  // == CAP
@@ -121,8 +160,10 @@ void main() {
     vec3 dy[MAX_SLOTS];  // iterative methods: the prediction y - x
     vec3 dx[MAX_SLOTS];  // ... the iterate p - x
     uint colour[MAX_SLOTS];
+    uint own[MAX_SLOTS];  // the particle of each slot
     [[unroll]] for (uint s = 0u; s < MAX_SLOTS; ++s) {
-        uint k = t + s * THREADS;
+        uint k = particle_of_rank(t + s * THREADS);
+        own[s] = k;
         x[s] = vec3(0.0);
         v[s] = vec3(0.0);
         v_new[s] = vec3(0.0);
@@ -141,7 +182,7 @@ void main() {
     barrier();
     [[unroll]] for (uint s = 0u; s < MAX_SLOTS; ++s) {
         if (s >= SLOTS) break;
-        uint k = t + s * THREADS;
+        uint k = own[s];
         if (k >= n) continue;
         if (pinned[s]) atomicOr(pin_bits[k >> 5u], 1u << (k & 31u));
         set_spos(k, x[s] + drift * v[s]);
@@ -157,7 +198,7 @@ void main() {
                 window_start = int(chunk * PASS_SLOTS * THREADS) - int(HALO);
                 [[unroll]] for (uint s = 0u; s < MAX_SLOTS; ++s) {
                     if (s >= SLOTS) break;
-                    uint k = t + s * THREADS;
+                    uint k = own[s];
                     int w = int(k) - window_start;
                     if (k < n && w >= 0 && w < int(WINDOW)) {
                         scratch[w] = floatBitsToUint(v[s].x);
@@ -169,7 +210,7 @@ void main() {
             barrier();
             [[unroll]] for (uint s = 0u; s < MAX_SLOTS; ++s) {
                 if (s >= SLOTS) break;
-                uint k = t + s * THREADS;
+                uint k = own[s];
                 if (s / PASS_SLOTS != chunk || k >= n || pinned[s]) continue;
                 if (ITERATIVE) {
                     dy[s] = predicted_displacement(uvec2(k % cols, k / cols), x[s], v[s], SOLVER == METHOD_IMPLICIT);
@@ -193,7 +234,7 @@ void main() {
             vec3 before[MAX_SLOTS];     // implicit: the iterate before (Chebyshev)
             [[unroll]] for (uint s = 0u; s < MAX_SLOTS; ++s) {
                 if (s >= SLOTS) break;
-                uint k = t + s * THREADS;
+                uint k = own[s];
                 dx[s] = dy[s];
                 before[s] = dy[s];
                 lambda[s] = vec4[3](vec4(0.0), vec4(0.0), vec4(0.0));
@@ -205,7 +246,7 @@ void main() {
                     for (uint c = 0u; c < colours; ++c) {
                         [[unroll]] for (uint s = 0u; s < MAX_SLOTS; ++s) {
                             if (s >= SLOTS) break;
-                            uint k = t + s * THREADS;
+                            uint k = own[s];
                             if (k >= n || pinned[s] || colour[s] != c) continue;
                             uvec2 cell = uvec2(k % cols, k / cols);
                             if (SOLVER == METHOD_XPBD) {
@@ -221,7 +262,7 @@ void main() {
                     vec3 next[MAX_SLOTS];
                     [[unroll]] for (uint s = 0u; s < MAX_SLOTS; ++s) {
                         if (s >= SLOTS) break;
-                        uint k = t + s * THREADS;
+                        uint k = own[s];
                         next[s] = dx[s];
                         if (k < n && !pinned[s]) {
                             next[s] = implicit_particle(uvec2(k % cols, k / cols), it, x[s], dx[s], dy[s], before[s]);
@@ -230,7 +271,7 @@ void main() {
                     barrier();  // every read of this iteration's displacements is done
                     [[unroll]] for (uint s = 0u; s < MAX_SLOTS; ++s) {
                         if (s >= SLOTS) break;
-                        uint k = t + s * THREADS;
+                        uint k = own[s];
                         before[s] = dx[s];
                         dx[s] = next[s];
                         if (k < n) set_sdisp(k, dx[s]);
@@ -250,7 +291,7 @@ void main() {
         if (neighbours) {
             [[unroll]] for (uint s = 0u; s < MAX_SLOTS; ++s) {
                 if (s >= SLOTS) break;
-                uint k = t + s * THREADS;
+                uint k = own[s];
                 if (k < n) set_spos(k, x[s]);
             }
             if (hashed) {
@@ -260,7 +301,7 @@ void main() {
             if (hashed) {
                 [[unroll]] for (uint s = 0u; s < MAX_SLOTS; ++s) {
                     if (s >= SLOTS) break;
-                    uint k = t + s * THREADS;
+                    uint k = own[s];
                     if (k >= n) continue;
                     uint h = cell_hash(ivec3(floor(x[s] * obj.cell_inv)), BUCKETS - 1u);
                     scratch[BUCKETS + k] = atomicExchange(scratch[h], k);
@@ -270,7 +311,7 @@ void main() {
         }
         [[unroll]] for (uint s = 0u; s < MAX_SLOTS; ++s) {
             if (s >= SLOTS) break;
-            uint k = t + s * THREADS;
+            uint k = own[s];
             if (k >= n || pinned[s]) continue;
             vec3 xs = x[s];
             vec3 vs = v[s];
@@ -286,14 +327,14 @@ void main() {
         if (neighbours) barrier();  // every read of the shared positions and hash is done
         [[unroll]] for (uint s = 0u; s < MAX_SLOTS; ++s) {
             if (s >= SLOTS) break;
-            uint k = t + s * THREADS;
+            uint k = own[s];
             if (k < n) set_spos(k, x[s] + drift * v[s]);
         }
     }
 
     [[unroll]] for (uint s = 0u; s < MAX_SLOTS; ++s) {
         if (s >= SLOTS) break;
-        uint k = t + s * THREADS;
+        uint k = own[s];
         if (k < n) p_in[k] = Particle(vec4(x[s], pinned[s] ? 1.0 : 0.0), vec4(v[s], 0.0));
     }
 }
