@@ -1,5 +1,6 @@
 //! `msdsim bench`: times the benchmark matrix and writes the reports.
 
+use super::stdout::{say, Stdout};
 use crate::bench::{self, cases, report};
 use crate::sim::model::Integrator;
 use crate::vk::{ContextOptions, GpuContext};
@@ -47,6 +48,7 @@ pub struct BenchArgs {
 }
 
 pub fn run(args: &BenchArgs, options: &ContextOptions) -> Result<()> {
+    let mut out = Stdout::default();
     std::fs::create_dir_all(&args.out)
         .map_err(|e| crate::error::UserError(format!("--out {}: {e}", args.out.display())))?;
     let ctx = GpuContext::new(options)?;
@@ -110,7 +112,7 @@ pub fn run(args: &BenchArgs, options: &ContextOptions) -> Result<()> {
     let md = report::markdown(&header, &rows);
     std::fs::write(args.out.join("bench.md"), &md).context("writing bench.md")?;
     std::fs::write(args.out.join("bench.csv"), report::csv(&header, &rows)).context("writing bench.csv")?;
-    println!("{md}");
+    say!(out, "{md}")?;
     eprintln!("wrote {0}/bench.md and {0}/bench.csv", args.out.display());
     crate::cli::check_validation(&ctx)
 }

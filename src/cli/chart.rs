@@ -1,5 +1,6 @@
 //! `msdsim chart`: accuracy against cost for every integrator (CSV + one SVG per scene).
 
+use super::stdout::{say, Stdout};
 use crate::error::UserError;
 use crate::scene::{self, ClothPins, RopePins, Scene};
 use crate::sim::model::Integrator;
@@ -94,6 +95,7 @@ fn builtin(names: &[String], overrides: &[String]) -> Result<Vec<(String, Scene)
 }
 
 pub fn run(args: &ChartArgs, options: &ContextOptions) -> Result<()> {
+    let mut out = Stdout::default();
     let scenes = match &args.preset {
         Some(p) => {
             let name =
@@ -141,14 +143,15 @@ pub fn run(args: &ChartArgs, options: &ContextOptions) -> Result<()> {
             .with_context(|| format!("writing chart-{name}.svg"))?;
         for i in chart::pareto(&points) {
             let p = &points[i];
-            println!(
+            say!(
+                out,
                 "{name} Pareto: {:<16} {:>3} substeps {:>3} iterations  {:>9.3} ms/s  error {:.2e}",
                 p.method.label(),
                 p.substeps,
                 p.iterations,
                 p.gpu_ms_per_s,
                 p.error()
-            );
+            )?;
         }
         notes.push(note);
         all.extend(points);
@@ -160,7 +163,8 @@ pub fn run(args: &ChartArgs, options: &ContextOptions) -> Result<()> {
         notes.join("\n")
     );
     std::fs::write(args.out.join("chart.csv"), chart::csv(&all, &header)).context("writing chart.csv")?;
-    println!("{header}");
-    println!("wrote {}/chart.csv and chart-SCENE.svg", args.out.display());
+    say!(out, "{header}")?;
+    let svgs: Vec<String> = scenes.iter().map(|(name, _)| format!("chart-{name}.svg")).collect();
+    say!(out, "wrote {0}/chart.csv and {1} in {0}", args.out.display(), svgs.join(", "))?;
     crate::cli::check_validation(&ctx)
 }

@@ -2,12 +2,15 @@
 
 mod bench;
 mod chart;
+mod out_file;
 mod simulate;
 mod stability;
+mod stdout;
 
 use crate::vk::{ContextOptions, GpuContext};
 use anyhow::Result;
 use clap::{Parser, Subcommand};
+use stdout::say;
 
 #[derive(Debug, Parser)]
 #[command(
@@ -62,19 +65,21 @@ pub fn run(cli: Cli) -> Result<()> {
         Command::Devices => {
             let ctx = GpuContext::new(&options)?;
             let (devices, skipped) = ctx.devices()?;
+            let mut out = stdout::Stdout::default();
             for (i, d) in devices.iter().enumerate() {
                 let mark = if d.name == ctx.info().name { "*" } else { " " };
-                println!("{mark} [{i}] {d}");
-                println!(
+                say!(out, "{mark} [{i}] {d}")?;
+                say!(
+                    out,
                     "      {:.1} GiB device-local, {} bytes of shared memory per workgroup",
                     d.device_local_bytes as f64 / (1u64 << 30) as f64,
                     d.max_shared_memory
-                );
+                )?;
             }
             for s in skipped {
-                println!("  (skipped) {s}");
+                say!(out, "  (skipped) {s}")?;
             }
-            println!("* = chosen (select another with --device INDEX|NAME or MSDSIM_DEVICE)");
+            say!(out, "* = chosen (select another with --device INDEX|NAME or MSDSIM_DEVICE)")?;
             check_validation(&ctx)
         }
     }

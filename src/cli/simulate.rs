@@ -1,6 +1,7 @@
 //! `msdsim simulate`: headless run of a preset.
 
-use crate::error::UserError;
+use super::out_file::OutFile;
+use super::stdout::{say, Stdout};
 use crate::scene;
 use crate::sim::gpu::{self, FrameTiming, GpuSim};
 use crate::sim::model::ObjectKind;
@@ -8,8 +9,7 @@ use crate::sim::stability;
 use crate::vk::{ContextOptions, GpuContext};
 use anyhow::{Context as _, Result};
 use clap::Args;
-use std::io::Write as _;
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
 #[derive(Debug, Args)]
 pub struct SimulateArgs {
@@ -58,16 +58,18 @@ struct ObjectOut<'a> {
 pub fn run(args: &SimulateArgs, options: &ContextOptions) -> Result<()> {
     let scene = scene::load(&args.preset, &args.overrides)?;
     // Claim the output file before simulating, so a bad path fails before any work is done.
-    let out = args.out.as_deref().map(OutFile::create).transpose()?;
+    let out_file = args.out.as_deref().map(OutFile::claim).transpose()?;
+    let mut out = Stdout::default();
 
     let ctx = GpuContext::new(options)?;
-    println!("device: {}", ctx.info());
+    say!(out, "device: {}", ctx.info())?;
     gpu::check_fits(ctx.info(), &scene::shapes(&scene))?;
     let (model, picked) = crate::study::auto::model_for(&ctx, &scene)?;
     if let Some(p) = picked {
-        println!("{p}");
+        say!(out, "{p}")?;
     }
-    println!(
+    say!(
+        out,
         "preset: {} ({} objects, {} spheres, {} with {} substeps of {:.3} ms per frame{})",
         args.preset.display(),
         model.objects.len(),
@@ -80,7 +82,7 @@ pub fn run(args: &SimulateArgs, options: &ContextOptions) -> Result<()> {
         } else {
             String::new()
         }
-    );
+    )?;
     for p in stability::predict(&model).into_iter().filter(|_| !model.integrator.iterative()) {
         let dt = model.dt();
         let verdict = if dt <= p.dt_max {
@@ -88,17 +90,18 @@ pub fn run(args: &SimulateArgs, options: &ContextOptions) -> Result<()> {
         } else {
             format!("PAST IT: expect a blow-up; use at least {} substeps", p.min_substeps(model.frame_dt))
         };
-        println!(
+        say!(
+            out,
             "stability: {} '{}': w_max <= {:.0} rad/s, explicit limit dt <= {:.3} ms; substep {:.3} ms is {verdict}",
             p.kind.label(),
             p.name,
             p.omega_max,
             p.dt_max * 1e3,
             dt * 1e3
-        );
+        )?;
     }
     let mut sim = GpuSim::new(&ctx, &model)?;
-    let result = simulate(&ctx, &mut sim, args, &model, out);
+    let result = simulate(&ctx, &mut sim, args, &model, &mut out, out_file);
     sim.destroy(&ctx);
     result?;
     crate::cli::check_validation(&ctx)
@@ -109,24 +112,29 @@ fn simulate(
     sim: &mut GpuSim,
     args: &SimulateArgs,
     model: &crate::sim::model::SimModel,
-    out: Option<OutFile>,
+    out: &mut Stdout,
+    out_file: Option<OutFile>,
 ) -> Result<()> {
     let mut timings: Vec<FrameTiming> = Vec::with_capacity(args.frames.min(100_000) as usize);
     for frame in 1..=args.frames {
         let timing = sim.step_frame(ctx).with_context(|| format!("frame {frame}"))?;
         if let Some(t) = timing {
             if !args.quiet {
-                println!(
+                say!(
+                    out,
                     "frame {frame:>6}  gpu {:>8.3} ms  (physics {:.3}, constraints {:.3}, surface {:.3})",
-                    t.total_ms, t.physics_ms, t.constraints_ms, t.surface_ms
-                );
+                    t.total_ms,
+                    t.physics_ms,
+                    t.constraints_ms,
+                    t.surface_ms
+                )?;
             }
             timings.push(t);
         }
     }
-    print_summary(sim, &timings);
+    print_summary(out, sim, &timings)?;
 
-    if let Some(out) = out {
+    if let Some(out_file) = out_file {
         let states = sim.read_states(ctx)?;
         let objects = model
             .objects
@@ -150,16 +158,15 @@ fn simulate(
             substep_dt: model.dt(),
             objects,
         };
-        out.commit(&file)?;
+        out_file.write_json(&file)?;
     }
     Ok(())
 }
 
-fn print_summary(sim: &GpuSim, timings: &[FrameTiming]) {
-    println!("simulated {:.4} s in {} frames ({} substeps)", sim.time(), sim.frames(), sim.substeps_done());
+fn print_summary(out: &mut Stdout, sim: &GpuSim, timings: &[FrameTiming]) -> Result<()> {
+    say!(out, "simulated {:.4} s in {} frames ({} substeps)", sim.time(), sim.frames(), sim.substeps_done())?;
     if timings.is_empty() {
-        println!("GPU timing: not available (the device has no timestamps)");
-        return;
+        return say!(out, "GPU timing: not available (the device has no timestamps)");
     }
     let stat = |f: fn(&FrameTiming) -> f64| {
         let mut v: Vec<f64> = timings.iter().map(f).collect();
@@ -168,45 +175,13 @@ fn print_summary(sim: &GpuSim, timings: &[FrameTiming]) {
         (mean, v[v.len() / 2], v[0], v[v.len() - 1])
     };
     let (mean, median, min, max) = stat(|t| t.total_ms);
-    println!(
+    say!(
+        out,
         "GPU frame time: mean {mean:.3} ms, median {median:.3}, min {min:.3}, max {max:.3} ({:.0} frames/s)",
         1e3 / median.max(1e-9)
-    );
+    )?;
     let (p, ..) = stat(|t| t.physics_ms);
     let (c, ..) = stat(|t| t.constraints_ms);
     let (s, ..) = stat(|t| t.surface_ms);
-    println!("GPU stage means: physics {p:.3} ms, constraints {c:.3} ms, surface {s:.3} ms");
-}
-
-/// An output file claimed up front and written atomically (temporary file, then rename).
-struct OutFile {
-    path: PathBuf,
-    tmp: PathBuf,
-    file: std::fs::File,
-}
-
-impl OutFile {
-    fn create(path: &Path) -> Result<Self> {
-        let mut tmp = path.as_os_str().to_owned();
-        tmp.push(".partial");
-        let tmp = PathBuf::from(tmp);
-        let file = std::fs::File::create(&tmp)
-            .map_err(|e| UserError(format!("--out {}: cannot write: {e}", path.display())))?;
-        Ok(Self { path: path.to_path_buf(), tmp, file })
-    }
-
-    fn commit(mut self, value: &impl serde::Serialize) -> Result<()> {
-        let json = serde_json::to_vec(value).context("serialising the state")?;
-        self.file
-            .write_all(&json)
-            .and_then(|_| self.file.sync_all())
-            .and_then(|_| std::fs::rename(&self.tmp, &self.path))
-            .with_context(|| format!("writing {}", self.path.display()))
-    }
-}
-
-impl Drop for OutFile {
-    fn drop(&mut self) {
-        let _ = std::fs::remove_file(&self.tmp);
-    }
+    say!(out, "GPU stage means: physics {p:.3} ms, constraints {c:.3} ms, surface {s:.3} ms")
 }

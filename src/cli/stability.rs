@@ -1,5 +1,6 @@
 //! `msdsim stability`: the stability map of a scene, per integrator.
 
+use super::stdout::{say, Stdout};
 use crate::scene;
 use crate::sim::model::Integrator;
 use crate::study::stability_map::{self, Sweep};
@@ -39,6 +40,7 @@ pub struct StabilityArgs {
 const DEFAULT_SCENE: &str = include_str!("../../presets/curtain.toml");
 
 pub fn run(args: &StabilityArgs, options: &ContextOptions) -> Result<()> {
+    let mut out = Stdout::default();
     let base = match &args.preset {
         Some(p) => scene::load(p, &args.overrides)?,
         None => {
@@ -92,7 +94,8 @@ pub fn run(args: &StabilityArgs, options: &ContextOptions) -> Result<()> {
     );
     std::fs::write(args.out.join("stability.csv"), stability_map::csv(&all, &header))
         .context("writing stability.csv")?;
-    println!("{header}");
-    println!("wrote {0}/stability.csv and {0}/stability-METHOD.svg", args.out.display());
+    say!(out, "{header}")?;
+    let svgs: Vec<String> = args.methods.iter().map(|m| format!("stability-{}.svg", m.label())).collect();
+    say!(out, "wrote {0}/stability.csv and {1} in {0}", args.out.display(), svgs.join(", "))?;
     crate::cli::check_validation(&ctx)
 }

@@ -1,0 +1,170 @@
+//! Where the binary's output goes: `simulate --out` on odd paths (a folder, a symbolic link, a
+//! FIFO, a run stopped by Ctrl-C), and standard output closed early or full. Runs with
+//! --validation on the Vulkan device (lavapipe in CI).
+
+use std::io::{BufRead as _, BufReader, Read as _};
+use std::os::unix::fs::FileTypeExt as _;
+use std::path::Path;
+use std::process::{Command, Output, Stdio};
+
+const PRESET: &str = r#"
+[sim]
+substeps = 4
+[[cloth]]
+name = "c"
+resolution = [5, 4]
+size = [0.4, 0.3]
+origin = [-0.2, 0.5, 0.0]
+mass = 0.01
+stiffness = { structural = 100.0, shear = 20.0, bending = 5.0 }
+pin = "top_row"
+"#;
+
+fn binary() -> Command {
+    let mut c = Command::new(env!("CARGO_BIN_EXE_msdsim"));
+    c.arg("--validation");
+    c
+}
+
+fn preset(dir: &Path) -> String {
+    let path = dir.join("preset.toml");
+    std::fs::write(&path, PRESET).unwrap();
+    path.display().to_string()
+}
+
+fn simulate(preset: &str, frames: &str, out: &Path) -> Output {
+    binary()
+        .args(["simulate", "--preset", preset, "--frames", frames, "--quiet", "--out", out.to_str().unwrap()])
+        .output()
+        .expect("running msdsim")
+}
+
+/// Parses the state file text: the JSON `simulate --out` writes, for 3 frames.
+fn assert_state(text: &[u8]) {
+    let state: serde_json::Value = serde_json::from_slice(text).expect("the state is JSON");
+    assert_eq!(state["frames"], 3, "{state}");
+}
+
+fn stderr(out: &Output) -> String {
+    String::from_utf8_lossy(&out.stderr).into_owned()
+}
+
+/// Files whose name marks a temporary output left behind.
+fn leftovers(dir: &Path) -> Vec<String> {
+    std::fs::read_dir(dir)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .filter(|n| n.contains("partial"))
+        .collect()
+}
+
+/// A folder is refused before the run (exit 2, one line naming it); nothing is written.
+#[test]
+fn out_on_a_folder_is_refused_before_the_run() {
+    let dir = tempfile::tempdir().unwrap();
+    let p = preset(dir.path());
+    let out = simulate(&p, "3", dir.path());
+    assert_eq!(out.status.code(), Some(2), "{}", stderr(&out));
+    assert!(stderr(&out).contains("is a directory"), "{}", stderr(&out));
+    assert!(out.stdout.is_empty(), "the run started: {}", String::from_utf8_lossy(&out.stdout));
+}
+
+/// A symbolic link is written through: the link stays a link and its target holds the state;
+/// no temporary file is left.
+#[test]
+fn out_through_a_symbolic_link_keeps_the_link() {
+    let dir = tempfile::tempdir().unwrap();
+    let p = preset(dir.path());
+    let target = dir.path().join("target.json");
+    std::fs::write(&target, "old").unwrap();
+    let link = dir.path().join("link.json");
+    std::os::unix::fs::symlink(&target, &link).unwrap();
+    let out = simulate(&p, "3", &link);
+    assert!(out.status.success(), "{}", stderr(&out));
+    assert!(std::fs::symlink_metadata(&link).unwrap().file_type().is_symlink(), "the link was replaced");
+    assert_state(&std::fs::read(&target).unwrap());
+    assert_eq!(leftovers(dir.path()), Vec::<String>::new());
+}
+
+/// A FIFO (like /dev/null, not a regular file) is written through, never replaced by a file.
+#[test]
+fn out_to_a_fifo_writes_through() {
+    let dir = tempfile::tempdir().unwrap();
+    let p = preset(dir.path());
+    let fifo = dir.path().join("state.fifo");
+    let made = Command::new("mkfifo").arg(&fifo).status().expect("mkfifo (coreutils)");
+    assert!(made.success());
+    let reader = {
+        let fifo = fifo.clone();
+        std::thread::spawn(move || {
+            let mut text = Vec::new();
+            std::fs::File::open(&fifo).unwrap().read_to_end(&mut text).unwrap();
+            text
+        })
+    };
+    let out = simulate(&p, "3", &fifo);
+    assert!(out.status.success(), "{}", stderr(&out));
+    // Checked before joining: a replaced FIFO would leave the reader waiting for ever.
+    assert!(std::fs::metadata(&fifo).unwrap().file_type().is_fifo(), "the FIFO was replaced");
+    assert_state(&reader.join().unwrap());
+}
+
+/// Ctrl-C during the run leaves the target as it was and no temporary file.
+#[test]
+fn ctrl_c_leaves_no_partial_file() {
+    let dir = tempfile::tempdir().unwrap();
+    let p = preset(dir.path());
+    let target = dir.path().join("state.json");
+    std::fs::write(&target, "old").unwrap();
+    let mut child = binary()
+        .args(["simulate", "--preset", &p, "--frames", "1000000", "--out", target.to_str().unwrap()])
+        .stdout(Stdio::piped())
+        .stderr(Stdio::null())
+        .spawn()
+        .unwrap();
+    let mut lines = BufReader::new(child.stdout.take().unwrap()).lines();
+    while let Some(Ok(line)) = lines.next() {
+        if line.starts_with("frame") {
+            break; // the run is under way
+        }
+    }
+    let killed = Command::new("kill").args(["-INT", &child.id().to_string()]).status().unwrap();
+    assert!(killed.success());
+    child.wait().unwrap();
+    assert_eq!(std::fs::read_to_string(&target).unwrap(), "old");
+    assert_eq!(leftovers(dir.path()), Vec::<String>::new());
+}
+
+/// A reader that closes the pipe early (`| head -1`) ends neither in a panic nor a leak: the
+/// run finishes, writes its --out file and exits 0.
+#[test]
+fn a_closed_stdout_pipe_is_not_an_error() {
+    let dir = tempfile::tempdir().unwrap();
+    let p = preset(dir.path());
+    let target = dir.path().join("state.json");
+    let mut child = binary()
+        .args(["simulate", "--preset", &p, "--frames", "3", "--out", target.to_str().unwrap()])
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    let mut first = String::new();
+    BufReader::new(child.stdout.take().unwrap()).read_line(&mut first).unwrap(); // then dropped: closed
+    let out = child.wait_with_output().unwrap();
+    let err = stderr(&out);
+    assert!(first.starts_with("device:"), "{first}");
+    assert_eq!(out.status.code(), Some(0), "{err}");
+    assert!(!err.contains("internal error") && !err.contains("panicked") && !err.contains("leak"), "{err}");
+    assert_state(&std::fs::read(&target).unwrap());
+}
+
+/// A full standard output (`> /dev/full`) is an I/O failure: exit 1 with one line naming it.
+#[test]
+fn a_full_stdout_is_a_clear_failure() {
+    let full = std::fs::OpenOptions::new().write(true).open("/dev/full").expect("/dev/full");
+    let out = binary().arg("devices").stdout(full).output().unwrap();
+    let err = stderr(&out);
+    assert_eq!(out.status.code(), Some(1), "{err}");
+    assert!(err.contains("writing to standard output") && !err.contains("internal error"), "{err}");
+    assert_eq!(err.lines().count(), 1, "{err}");
+}
