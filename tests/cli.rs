@@ -113,7 +113,26 @@ fn unknown_key() {
 fn negative_mass() {
     let dir = tempfile::tempdir().unwrap();
     let p = write(dir.path(), "m.toml", &GOOD.replacen("mass = 0.01", "mass = -1.0", 1));
-    rejects(&["simulate", "--preset", &p], &["m.toml", "cloth[0].mass = -1", "must be > 0"]);
+    rejects(&["simulate", "--preset", &p], &["m.toml", "cloth[0].mass = -1", "must be between 1e-9 and 1e9"]);
+}
+
+/// Values that pass as f64 but mean nothing in the GPU's f32 (overflow, underflow to zero, or
+/// infinity) are refused before the run, naming the key and the range allowed.
+#[test]
+fn values_beyond_what_f32_can_carry_are_refused() {
+    let dir = tempfile::tempdir().unwrap();
+    let cases = [
+        ("radius = 0.2", "radius = 1e300", "sphere[0].radius = 1e300"),
+        ("mass = 0.01", "mass = 1e-50", "cloth[0].mass = 1e-50"),
+        ("mass = 0.01", "mass = inf", "cloth[0].mass = inf: must be a finite number > 0"),
+        ("structural = 100.0", "structural = 1e40", "cloth[0].stiffness.structural = 1e40"),
+        ("origin = [-0.2, 0.5, 0.0]", "origin = [-0.2, 1e30, 0.0]", "cloth[0].origin = [-0.2, 1e30, 0]"),
+        ("substeps = 4", "substeps = 4\ngravity = [0.0, -1e20, 0.0]", "sim.gravity = [0, -1e20, 0]"),
+    ];
+    for (i, (from, to, needle)) in cases.into_iter().enumerate() {
+        let p = write(dir.path(), &format!("f{i}.toml"), &GOOD.replacen(from, to, 1));
+        rejects(&["simulate", "--preset", &p], &[needle, "must be"]);
+    }
 }
 
 #[test]

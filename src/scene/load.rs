@@ -194,7 +194,10 @@ stiffness = { structural = 1.0, shear = 1.0, bending = 1.0 }
     #[test]
     fn range_errors_name_key_value_and_unit() {
         let e = with(&["cloth.b.stiffness.bending=-2"]).unwrap_err().0;
-        assert_eq!(e, "t.toml (with --set): cloth[1].stiffness.bending = -2: must be >= 0 (N/m)");
+        assert_eq!(
+            e,
+            "t.toml (with --set): cloth[1].stiffness.bending = -2: must be between 0 and 1e12 (N/m)"
+        );
         let e = with(&["cloth.a.name=\"b\""]).unwrap_err().0;
         assert!(e.contains("another object has this name"), "{e}");
         let e = with(&["cloth.a.pinned=[[3, 0]]"]).unwrap_err().0;

@@ -9,27 +9,63 @@ const MAX_PARTICLES: u64 = 1 << 28;
 
 type Check = Result<(), String>;
 
-fn finite(key: &str, v: f64) -> Check {
-    if v.is_finite() {
-        Ok(())
+/// The ranges of the quantities the GPU receives in f32 (24-bit mantissa, magnitudes up to
+/// 3.4e38 and down to 1.2e-38 before precision is lost). Each bound leaves the arithmetic of a
+/// substep (squares of lengths, k dt^2 / m, forces summed over 12 springs) well inside f32 and
+/// a value outside it meaningless for cloth and ropes: a position of 1e5 m is resolved to 8 mm.
+/// Positions and coordinates [m].
+const MAX_COORDINATE: f64 = 1e5;
+/// Lengths: sizes, radii, distances [m].
+const LENGTH: (f64, f64) = (1e-6, 1e5);
+/// Particle masses [kg].
+const MASS: (f64, f64) = (1e-9, 1e9);
+/// Spring stiffness [N/m], damping and drag [N s/m], forces [N], accelerations [m/s^2] and
+/// speeds [m/s]: at most this.
+const MAX_STIFFNESS: f64 = 1e12;
+const MAX_DAMPING: f64 = 1e9;
+const MAX_FORCE: f64 = 1e9;
+const MAX_ACCELERATION: f64 = 1e5;
+const MAX_SPEED: f64 = 1e8;
+
+/// A value as the user would write it: in exponent form when very large or small.
+fn num(v: f64) -> String {
+    if v != 0.0 && v.is_finite() && !(1e-4..1e6).contains(&v.abs()) {
+        format!("{v:e}")
     } else {
-        Err(format!("{key} = {v}: must be a finite number"))
+        format!("{v}")
     }
 }
 
-fn positive(key: &str, v: f64, unit: &str) -> Check {
-    if v.is_finite() && v > 0.0 {
-        Ok(())
+/// |v| <= max.
+fn finite(key: &str, v: f64, max: f64, unit: &str) -> Check {
+    if !v.is_finite() {
+        Err(format!("{key} = {}: must be a finite number ({unit})", num(v)))
+    } else if v.abs() > max {
+        Err(format!("{key} = {}: must be between -{max:e} and {max:e} ({unit})", num(v)))
     } else {
-        Err(format!("{key} = {v}: must be > 0 ({unit})"))
+        Ok(())
     }
 }
 
-fn non_negative(key: &str, v: f64, unit: &str) -> Check {
-    if v.is_finite() && v >= 0.0 {
-        Ok(())
+/// lo <= v <= hi, lo > 0.
+fn positive(key: &str, v: f64, (lo, hi): (f64, f64), unit: &str) -> Check {
+    if !v.is_finite() {
+        Err(format!("{key} = {}: must be a finite number > 0 ({unit})", num(v)))
+    } else if v < lo || v > hi {
+        Err(format!("{key} = {}: must be between {lo:e} and {hi:e} ({unit})", num(v)))
     } else {
-        Err(format!("{key} = {v}: must be >= 0 ({unit})"))
+        Ok(())
+    }
+}
+
+/// 0 <= v <= max.
+fn non_negative(key: &str, v: f64, max: f64, unit: &str) -> Check {
+    if !v.is_finite() {
+        Err(format!("{key} = {}: must be a finite number >= 0 ({unit})", num(v)))
+    } else if !(0.0..=max).contains(&v) {
+        Err(format!("{key} = {}: must be between 0 and {max:e} ({unit})", num(v)))
+    } else {
+        Ok(())
     }
 }
 
@@ -41,11 +77,16 @@ fn unit_interval(key: &str, v: f64) -> Check {
     }
 }
 
-fn vector(key: &str, v: [f64; 3]) -> Check {
-    if v.iter().all(|x| x.is_finite()) {
+/// Every component |x| <= max.
+fn vector(key: &str, v: [f64; 3], max: f64, unit: &str) -> Check {
+    if v.iter().all(|x| x.is_finite() && x.abs() <= max) {
         Ok(())
     } else {
-        Err(format!("{key} = {v:?}: must be finite"))
+        let shown: Vec<String> = v.iter().map(|&x| num(x)).collect();
+        Err(format!(
+            "{key} = [{}]: each component must be a finite number between -{max:e} and {max:e} ({unit})",
+            shown.join(", ")
+        ))
     }
 }
 
@@ -66,8 +107,8 @@ pub fn check(scene: &Scene) -> Check {
     if !(s.frame_dt.is_finite() && s.frame_dt > 0.0 && s.frame_dt <= 1.0) {
         return Err(format!("sim.frame_dt = {}: must be > 0 and <= 1 (s)", s.frame_dt));
     }
-    vector("sim.gravity", s.gravity)?;
-    positive("sim.max_speed", s.max_speed, "m/s")?;
+    vector("sim.gravity", s.gravity, MAX_ACCELERATION, "m/s^2")?;
+    positive("sim.max_speed", s.max_speed, (1e-6, MAX_SPEED), "m/s")?;
     if !(1..=1000).contains(&s.iterations) {
         return Err(format!("sim.iterations = {}: must be between 1 and 1000", s.iterations));
     }
@@ -76,29 +117,29 @@ pub fn check(scene: &Scene) -> Check {
     }
     if !(s.tolerance.is_finite() && s.tolerance > 0.0 && s.tolerance < 1.0) {
         return Err(format!(
-            "sim.tolerance = {}: must be between 0 and 1 (a fraction of the object's size)",
+            "sim.tolerance = {}: must be greater than 0 and less than 1 (a fraction of the object's size)",
             s.tolerance
         ));
     }
 
     let w = &scene.wind;
-    vector("wind.origin", w.origin)?;
-    vector("wind.direction", w.direction)?;
-    finite("wind.force", w.force)?;
-    non_negative("wind.full_force_radius", w.full_force_radius, "m")?;
-    non_negative("wind.attenuation_radius", w.attenuation_radius, "m")?;
-    positive("wind.reference_distance", w.reference_distance, "m")?;
+    vector("wind.origin", w.origin, MAX_COORDINATE, "m")?;
+    vector("wind.direction", w.direction, MAX_COORDINATE, "a direction")?;
+    finite("wind.force", w.force, MAX_FORCE, "N")?;
+    non_negative("wind.full_force_radius", w.full_force_radius, LENGTH.1, "m")?;
+    non_negative("wind.attenuation_radius", w.attenuation_radius, LENGTH.1, "m")?;
+    positive("wind.reference_distance", w.reference_distance, LENGTH, "m")?;
     if w.enabled && w.direction.iter().map(|x| x * x).sum::<f64>() == 0.0 {
         return Err("wind.direction = [0, 0, 0]: must not be zero".into());
     }
 
-    vector("light.position", scene.light.position)?;
+    vector("light.position", scene.light.position, MAX_COORDINATE, "m")?;
     color("light.color", scene.light.color)?;
     unit_interval("light.ambient", scene.light.ambient)?;
 
     for (i, sphere) in scene.spheres.iter().enumerate() {
-        vector(&format!("sphere[{i}].center"), sphere.center)?;
-        positive(&format!("sphere[{i}].radius"), sphere.radius, "m")?;
+        vector(&format!("sphere[{i}].center"), sphere.center, MAX_COORDINATE, "m")?;
+        positive(&format!("sphere[{i}].radius"), sphere.radius, LENGTH, "m")?;
     }
 
     let mut names = std::collections::HashSet::new();
@@ -131,33 +172,33 @@ fn check_cloth(at: &str, c: &Cloth) -> Check {
             cols as u64 * rows as u64
         ));
     }
-    positive(&format!("{at}.size[0]"), c.size[0], "m")?;
-    positive(&format!("{at}.size[1]"), c.size[1], "m")?;
-    vector(&format!("{at}.origin"), c.origin)?;
-    positive(&format!("{at}.mass"), c.mass, "kg per particle")?;
+    positive(&format!("{at}.size[0]"), c.size[0], LENGTH, "m")?;
+    positive(&format!("{at}.size[1]"), c.size[1], LENGTH, "m")?;
+    vector(&format!("{at}.origin"), c.origin, MAX_COORDINATE, "m")?;
+    positive(&format!("{at}.mass"), c.mass, MASS, "kg per particle")?;
     for (name, k) in [
         ("structural", c.stiffness.structural),
         ("shear", c.stiffness.shear),
         ("bending", c.stiffness.bending),
     ] {
-        non_negative(&format!("{at}.stiffness.{name}"), k, "N/m")?;
+        non_negative(&format!("{at}.stiffness.{name}"), k, MAX_STIFFNESS, "N/m")?;
     }
     for (name, k) in [
         ("structural", c.rest_scale.structural),
         ("shear", c.rest_scale.shear),
         ("bending", c.rest_scale.bending),
     ] {
-        positive(&format!("{at}.rest_scale.{name}"), k, "multiple of the grid distance")?;
+        positive(&format!("{at}.rest_scale.{name}"), k, (1e-3, 1e3), "multiple of the grid distance")?;
     }
-    non_negative(&format!("{at}.damping"), c.damping, "N s/m")?;
-    non_negative(&format!("{at}.drag"), c.drag, "N s/m")?;
+    non_negative(&format!("{at}.damping"), c.damping, MAX_DAMPING, "N s/m")?;
+    non_negative(&format!("{at}.drag"), c.drag, MAX_DAMPING, "N s/m")?;
     if let Some(l) = c.stretch_limit {
-        non_negative(&format!("{at}.stretch_limit"), l, "fraction of rest length")?;
+        non_negative(&format!("{at}.stretch_limit"), l, 1e3, "fraction of rest length")?;
     }
     unit_interval(&format!("{at}.friction"), c.friction)?;
-    non_negative(&format!("{at}.collision_margin"), c.collision_margin, "m")?;
+    non_negative(&format!("{at}.collision_margin"), c.collision_margin, LENGTH.1, "m")?;
     if let Some(d) = c.self_collision_distance {
-        positive(&format!("{at}.self_collision_distance"), d, "m")?;
+        positive(&format!("{at}.self_collision_distance"), d, LENGTH, "m")?;
     }
     color(&format!("{at}.color"), c.color)?;
     color(&format!("{at}.back_color"), c.back_color)?;
@@ -176,29 +217,29 @@ fn check_rope(at: &str, r: &Rope) -> Check {
     if r.nodes < 2 || r.nodes as u64 > MAX_PARTICLES / 8 {
         return Err(format!("{at}.nodes = {}: must be between 2 and {}", r.nodes, MAX_PARTICLES / 8));
     }
-    vector(&format!("{at}.start"), r.start)?;
-    vector(&format!("{at}.end"), r.end)?;
+    vector(&format!("{at}.start"), r.start, MAX_COORDINATE, "m")?;
+    vector(&format!("{at}.end"), r.end, MAX_COORDINATE, "m")?;
     if r.start == r.end {
         return Err(format!("{at}.end = {:?}: must differ from start", r.end));
     }
-    positive(&format!("{at}.mass"), r.mass, "kg per node")?;
-    non_negative(&format!("{at}.stiffness"), r.stiffness, "N/m")?;
-    non_negative(&format!("{at}.bending_stiffness"), r.bending_stiffness, "N/m")?;
-    positive(&format!("{at}.rest_scale"), r.rest_scale, "multiple of the node spacing")?;
-    non_negative(&format!("{at}.damping"), r.damping, "N s/m")?;
-    non_negative(&format!("{at}.drag"), r.drag, "N s/m")?;
+    positive(&format!("{at}.mass"), r.mass, MASS, "kg per node")?;
+    non_negative(&format!("{at}.stiffness"), r.stiffness, MAX_STIFFNESS, "N/m")?;
+    non_negative(&format!("{at}.bending_stiffness"), r.bending_stiffness, MAX_STIFFNESS, "N/m")?;
+    positive(&format!("{at}.rest_scale"), r.rest_scale, (1e-3, 1e3), "multiple of the node spacing")?;
+    non_negative(&format!("{at}.damping"), r.damping, MAX_DAMPING, "N s/m")?;
+    non_negative(&format!("{at}.drag"), r.drag, MAX_DAMPING, "N s/m")?;
     if let Some(l) = r.stretch_limit {
-        non_negative(&format!("{at}.stretch_limit"), l, "fraction of rest length")?;
+        non_negative(&format!("{at}.stretch_limit"), l, 1e3, "fraction of rest length")?;
     }
     unit_interval(&format!("{at}.friction"), r.friction)?;
-    positive(&format!("{at}.radius"), r.radius, "m")?;
+    positive(&format!("{at}.radius"), r.radius, LENGTH, "m")?;
     if let Some(w) = &r.ring_weights {
         if w.len() != 8 || w.iter().flatten().any(|x| !x.is_finite()) {
             return Err(format!("{at}.ring_weights: must be 8 finite [side, up] pairs"));
         }
     }
     if let Some(d) = r.self_collision_distance {
-        positive(&format!("{at}.self_collision_distance"), d, "m")?;
+        positive(&format!("{at}.self_collision_distance"), d, LENGTH, "m")?;
     }
     color(&format!("{at}.color"), r.color)?;
     for (k, &p) in r.pinned.iter().enumerate() {
