@@ -333,3 +333,63 @@ fn auto_integrator_picks_a_method_within_the_tolerance() {
     assert_eq!(out.status.code(), Some(2), "{stderr}");
     assert!(stderr.contains("sim.tolerance") && !stderr.contains("panicked"), "{stderr}");
 }
+
+/// Runs `args`, expecting exit code 2 from clap's own checks (its message is several lines):
+/// the argument is named and it is not taken for an unknown flag.
+fn clap_rejects(args: &[&str], needle: &str) {
+    let out = msdsim(args);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{args:?}: {stderr}");
+    assert!(stderr.contains(needle) && !stderr.contains("unexpected argument"), "{args:?}: {stderr}");
+}
+
+/// Negative and non-finite numbers are refused by the argument they were given to.
+#[test]
+fn negative_and_nan_arguments_name_their_option() {
+    clap_rejects(&["simulate", "--preset", "presets/rope.toml", "--frames", "-5"], "'--frames");
+    clap_rejects(&["stability", "--decades", "nan"], "'--decades");
+    clap_rejects(&["stability", "--max-strain", "nan"], "'--max-strain");
+}
+
+/// What would run and report success for nothing is refused: a preset without objects (an
+/// empty file, /dev/null), a file that is not a preset (/dev/urandom: capped, not read for
+/// ever), a benchmark filter that matches no case, a chart against a reference that diverged.
+#[test]
+fn runs_that_would_mean_nothing_are_refused() {
+    let dir = tempfile::tempdir().unwrap();
+    let empty = write(dir.path(), "empty.toml", "[sim]\nsubsteps = 4\n");
+    rejects(&["simulate", "--preset", &empty], &["empty.toml", "no cloth or rope"]);
+    rejects(&["simulate", "--preset", "/dev/null"], &["/dev/null", "no cloth or rope"]);
+    rejects(&["chart", "--preset", "/dev/null"], &["no cloth or rope"]);
+    rejects(&["stability", "--preset", "/dev/null"], &["no cloth or rope"]);
+    rejects(&["simulate", "--preset", "/dev/urandom"], &["/dev/urandom", "not a preset"]);
+    let out = dir.path().join("bench");
+    let out_arg = out.to_str().unwrap();
+    let bench = msdsim(&["bench", "--filter", "no such case", "--out", out_arg]);
+    assert_eq!(bench.status.code(), Some(2), "{}", String::from_utf8_lossy(&bench.stderr));
+    assert!(String::from_utf8_lossy(&bench.stderr).contains("matches no case"));
+    assert!(!out.join("bench.md").exists(), "an empty report was written");
+    let chart_out = dir.path().join("chart");
+    let chart_args =
+        ["chart", "--scenes", "rope", "--methods", "verlet", "--substeps", "2", "--reference-substeps", "2"];
+    let chart = msdsim(&[&chart_args[..], &["--out", chart_out.to_str().unwrap()]].concat());
+    assert_eq!(chart.status.code(), Some(2), "{}", String::from_utf8_lossy(&chart.stderr));
+    assert!(String::from_utf8_lossy(&chart.stderr).contains("is not converged"));
+}
+
+/// Springs so stiff that no substep count within the limit of 4096 keeps symplectic Euler
+/// stable: the prediction says so and names the integrators that are stable (instead of
+/// asking for 4294967295 substeps), and the guard's advice too (exit 3).
+#[test]
+fn advice_past_the_largest_substep_count_names_the_stable_integrators() {
+    let dir = tempfile::tempdir().unwrap();
+    let p = write(dir.path(), "stiff.toml", &GOOD.replacen("structural = 100.0", "structural = 1e9", 1));
+    let out = msdsim(&["simulate", "--preset", &p, "--frames", "30"]);
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(3), "{stdout}\n{stderr}");
+    for text in [&stdout, &stderr] {
+        assert!(text.contains("no substep count up to 4096"), "{text}");
+        assert!(text.contains("\"vbd\"") && !text.contains("4294967295"), "{text}");
+    }
+}

@@ -9,6 +9,7 @@ use clap::Args;
 use std::path::PathBuf;
 
 #[derive(Debug, Args)]
+#[command(allow_negative_numbers = true)]
 pub struct BenchArgs {
     /// Frames measured per case (after the warm-up); at least 100.
     #[arg(long, default_value_t = 100, value_parser = clap::value_parser!(u64).range(100..=100_000))]
@@ -71,6 +72,13 @@ pub fn run(args: &BenchArgs, options: &ContextOptions) -> Result<()> {
             c
         })
         .collect();
+    if cases.is_empty() {
+        let filter = args.filter.as_deref().unwrap_or_default();
+        return Err(crate::error::UserError(format!(
+            "--filter {filter:?} matches no case (names look like \"cloth 50x50, springs only\", \"rope 256, + wind\")"
+        ))
+        .into());
+    }
     let bar = indicatif::ProgressBar::new(cases.len() as u64 + 1);
     bar.set_style(
         indicatif::ProgressStyle::with_template("{elapsed_precise} [{bar:30}] {pos}/{len} {msg}")

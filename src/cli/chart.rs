@@ -11,6 +11,7 @@ use clap::Args;
 use std::path::PathBuf;
 
 #[derive(Debug, Args)]
+#[command(allow_negative_numbers = true)]
 pub struct ChartArgs {
     /// Scene to chart (default: two built-in smooth scenes, a 16 x 16 curtain hanging from two
     /// corners in a wind cone and a 32-node rope pinned at both ends, sagging and swinging under
@@ -100,7 +101,7 @@ pub fn run(args: &ChartArgs, options: &ContextOptions) -> Result<()> {
         Some(p) => {
             let name =
                 p.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_else(|| "scene".into());
-            vec![(name, scene::load(p, &args.overrides)?)]
+            vec![(name, scene::load_runnable(p, &args.overrides)?)]
         }
         None => builtin(&args.scenes, &args.overrides)?,
     };

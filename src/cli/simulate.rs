@@ -12,6 +12,7 @@ use clap::Args;
 use std::path::PathBuf;
 
 #[derive(Debug, Args)]
+#[command(allow_negative_numbers = true)]
 pub struct SimulateArgs {
     /// Scene preset (TOML), e.g. presets/curtain.toml.
     #[arg(long, value_name = "FILE")]
@@ -56,7 +57,7 @@ struct ObjectOut<'a> {
 }
 
 pub fn run(args: &SimulateArgs, options: &ContextOptions) -> Result<()> {
-    let scene = scene::load(&args.preset, &args.overrides)?;
+    let scene = scene::load_runnable(&args.preset, &args.overrides)?;
     // Claim the output file before simulating, so a bad path fails before any work is done.
     let out_file = args.out.as_deref().map(OutFile::claim).transpose()?;
     let mut out = Stdout::default();
@@ -88,7 +89,7 @@ pub fn run(args: &SimulateArgs, options: &ContextOptions) -> Result<()> {
         let verdict = if dt <= p.dt_max {
             "within it".to_string()
         } else {
-            format!("PAST IT: expect a blow-up; use at least {} substeps", p.min_substeps(model.frame_dt))
+            format!("PAST IT: expect a blow-up; {}", p.substep_advice(model.frame_dt))
         };
         say!(
             out,

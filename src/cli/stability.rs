@@ -10,6 +10,7 @@ use clap::Args;
 use std::path::PathBuf;
 
 #[derive(Debug, Args)]
+#[command(allow_negative_numbers = true)]
 pub struct StabilityArgs {
     /// Scene to sweep (default: the curtain preset at 24 x 24 without self-collision).
     #[arg(long, value_name = "FILE")]
@@ -24,17 +25,27 @@ pub struct StabilityArgs {
     #[arg(long, default_value_t = 9, value_parser = clap::value_parser!(u64).range(2..=64))]
     pub points: u64,
     /// Decades of stiffness swept, centred on the scene's own.
-    #[arg(long, default_value_t = 4.0)]
+    #[arg(long, default_value_t = 4.0, value_parser = positive_at_most::<12>)]
     pub decades: f64,
     /// Frames simulated per cell.
     #[arg(long, default_value_t = 120, value_parser = clap::value_parser!(u64).range(1..=100_000))]
     pub frames: u64,
     /// Largest structural strain (|length / rest - 1|) at the end still counted as stable.
-    #[arg(long, default_value_t = 1.0)]
+    #[arg(long, default_value_t = 1.0, value_parser = positive_at_most::<1000>)]
     pub max_strain: f64,
     /// Folder for stability.csv and stability-METHOD.svg.
     #[arg(long, default_value = "stability-results")]
     pub out: PathBuf,
+}
+
+/// A finite number > 0 and <= MAX (clap's value parser: the message names the argument).
+fn positive_at_most<const MAX: u32>(text: &str) -> Result<f64, String> {
+    let v: f64 = text.trim().parse().map_err(|_| format!("{text:?} is not a number"))?;
+    if v.is_finite() && v > 0.0 && v <= MAX as f64 {
+        Ok(v)
+    } else {
+        Err(format!("must be a number greater than 0 and at most {MAX}"))
+    }
 }
 
 const DEFAULT_SCENE: &str = include_str!("../../presets/curtain.toml");
@@ -42,7 +53,7 @@ const DEFAULT_SCENE: &str = include_str!("../../presets/curtain.toml");
 pub fn run(args: &StabilityArgs, options: &ContextOptions) -> Result<()> {
     let mut out = Stdout::default();
     let base = match &args.preset {
-        Some(p) => scene::load(p, &args.overrides)?,
+        Some(p) => scene::load_runnable(p, &args.overrides)?,
         None => {
             let mut overrides =
                 vec!["cloth.0.resolution=[24, 24]".to_string(), "cloth.0.self_collision=false".to_string()];

@@ -5,11 +5,37 @@ use super::{validate, Scene};
 use crate::error::UserError;
 use std::path::Path;
 
+/// The largest preset file read [bytes]: a preset is a page of text; anything larger (a
+/// device such as /dev/urandom, a wrong file) is refused instead of read without end.
+const MAX_PRESET_BYTES: u64 = 16 << 20;
+
 /// Loads a preset file and applies `KEY=VALUE` overrides.
 pub fn load(path: &Path, overrides: &[String]) -> Result<Scene, UserError> {
-    let text = std::fs::read_to_string(path)
-        .map_err(|e| UserError(format!("{}: cannot read the preset: {e}", path.display())))?;
+    use std::io::Read as _;
+    let refuse = |why: String| UserError(format!("{}: {why}", path.display()));
+    let mut bytes = Vec::new();
+    std::fs::File::open(path)
+        .and_then(|f| f.take(MAX_PRESET_BYTES + 1).read_to_end(&mut bytes))
+        .map_err(|e| refuse(format!("cannot read the preset: {e}")))?;
+    if bytes.len() as u64 > MAX_PRESET_BYTES {
+        return Err(refuse(format!("larger than {} MiB: not a preset", MAX_PRESET_BYTES >> 20)));
+    }
+    let text =
+        String::from_utf8(bytes).map_err(|_| refuse("not a text file (UTF-8): not a preset".into()))?;
     parse(&text, &path.display().to_string(), overrides)
+}
+
+/// `load` for the headless commands: a scene without a cloth or a rope is refused, since a run
+/// of it would report success for nothing.
+pub fn load_runnable(path: &Path, overrides: &[String]) -> Result<Scene, UserError> {
+    let scene = load(path, overrides)?;
+    if scene.cloths.is_empty() && scene.ropes.is_empty() {
+        return Err(UserError(format!(
+            "{}: the scene has no cloth or rope: nothing to simulate",
+            path.display()
+        )));
+    }
+    Ok(scene)
 }
 
 /// Writes a scene as a preset (atomically: a temporary file, then a rename). What it writes

@@ -8,7 +8,7 @@ mod load;
 mod validate;
 
 pub use build::{shapes, to_model};
-pub use load::{apply_override, load, parse, save};
+pub use load::{apply_override, load, load_runnable, parse, save};
 pub use validate::check as validate;
 
 use serde::{Deserialize, Serialize};

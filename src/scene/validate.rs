@@ -101,8 +101,9 @@ fn color(key: &str, c: [f64; 3]) -> Check {
 /// Checks every range of a scene; the error names the first key out of range.
 pub fn check(scene: &Scene) -> Check {
     let s = &scene.sim;
-    if !(1..=4096).contains(&s.substeps) {
-        return Err(format!("sim.substeps = {}: must be between 1 and 4096", s.substeps));
+    use crate::sim::stability::MAX_SUBSTEPS;
+    if !(1..=MAX_SUBSTEPS).contains(&s.substeps) {
+        return Err(format!("sim.substeps = {}: must be between 1 and {MAX_SUBSTEPS}", s.substeps));
     }
     if !(s.frame_dt.is_finite() && s.frame_dt > 0.0 && s.frame_dt <= 1.0) {
         return Err(format!("sim.frame_dt = {}: must be > 0 and <= 1 (s)", s.frame_dt));

@@ -5,7 +5,7 @@
 //! particles of 2 * sum of the stiffnesses of its springs, so w_max <= sqrt(2 sum k / m); for a
 //! chain this is the exact highest mode (sqrt(4k/m)). Drag and damping are left out.
 
-use super::model::{ObjectKind, ObjectModel, SimModel};
+use super::model::{Integrator, ObjectKind, ObjectModel, SimModel};
 
 /// The predicted explicit limit of one object.
 #[derive(Debug, Clone, PartialEq)]
@@ -19,9 +19,38 @@ pub struct Prediction {
 }
 
 impl Prediction {
-    /// Fewest substeps per frame that keep `frame_dt / substeps` within the limit.
+    /// Fewest substeps per frame that keep `frame_dt / substeps` within the limit (may exceed
+    /// `MAX_SUBSTEPS`; it saturates at u32::MAX).
     pub fn min_substeps(&self, frame_dt: f64) -> u32 {
         (frame_dt / self.dt_max).ceil().max(1.0) as u32
+    }
+
+    /// What to set for an explicit method to be within the limit: the substep count, or, past
+    /// `MAX_SUBSTEPS`, that none will do and which integrators are stable at any stiffness.
+    pub fn substep_advice(&self, frame_dt: f64) -> String {
+        let n = self.min_substeps(frame_dt);
+        if n <= MAX_SUBSTEPS {
+            format!("use at least {n} substeps per frame")
+        } else {
+            format!(
+                "no substep count up to {MAX_SUBSTEPS} is within it (it needs {:.1e}): use sim.integrator = {}",
+                frame_dt / self.dt_max,
+                stable_integrators()
+            )
+        }
+    }
+}
+
+/// The most substeps per frame a scene may ask for (`sim.substeps`).
+pub const MAX_SUBSTEPS: u32 = 4096;
+
+/// The integrators stable at any stiffness, for advice: `"xpbd", "implicit" or "vbd"`.
+pub fn stable_integrators() -> String {
+    let names: Vec<String> =
+        Integrator::ALL.iter().filter(|m| m.iterative()).map(|m| format!("\"{}\"", m.label())).collect();
+    match names.split_last() {
+        Some((last, rest)) if !rest.is_empty() => format!("{} or {last}", rest.join(", ")),
+        _ => names.concat(),
     }
 }
 
@@ -142,13 +171,13 @@ impl GuardTrip {
         } else if dt > p.dt_max {
             format!(
                 "The substep ({:.3} ms) is past the explicit stability limit predicted for it ({:.3} ms, w_max = {:.0} rad/s): \
-                 use at least {} substeps per frame (sim.substeps, now {}), sim.integrator = \"vbd\", \"implicit\" or \"xpbd\" \
-                 (stable at any stiffness), or softer springs or heavier particles.",
+                 {} (sim.substeps, now {}), or sim.integrator = {} (stable at any stiffness), or softer springs or heavier particles.",
                 dt * 1e3,
                 p.dt_max * 1e3,
                 p.omega_max,
-                p.min_substeps(model.frame_dt),
-                model.substeps
+                p.substep_advice(model.frame_dt),
+                model.substeps,
+                stable_integrators()
             )
         } else {
             format!(

@@ -178,6 +178,10 @@ fn warm_up(ctx: &GpuContext, model: &SimModel) -> Result<()> {
 
 /// Runs the sweep on one scene: the reference first, then every setting; `progress` is called
 /// after each.
+/// The largest difference between the reference and itself at half its substeps (a fraction
+/// of the object's size) that still charts errors down to about 1e-3.
+const REFERENCE_MAX_CHECK: f64 = 1e-3;
+
 pub fn run(
     ctx: &GpuContext,
     scene: &str,
@@ -186,6 +190,18 @@ pub fn run(
     mut progress: impl FnMut(&Point),
 ) -> Result<(Reference, Vec<Point>)> {
     let reference = accuracy::reference(model, &TIMES, sweep.reference_substeps);
+    // The reference at N and N/2 substeps must agree to a small fraction of the object's size,
+    // or every error charted against it is meaningless (a scene that blows up or is chaotic).
+    if reference.check.is_nan() || reference.check >= REFERENCE_MAX_CHECK {
+        return Err(crate::error::UserError(format!(
+            "chart of {scene}: the reference (Verlet at {} substeps per frame on the CPU) is not converged: it differs from \
+             itself at half the substeps by {:.1e} of the object's size (at most {REFERENCE_MAX_CHECK:e} is needed); raise \
+             --reference-substeps, or chart a scene that is stable and smooth at that step",
+            sweep.reference_substeps,
+            reference.check
+        ))
+        .into());
+    }
     warm_up(ctx, model)?;
     let mut points = Vec::new();
     for setting in sweep.settings() {
