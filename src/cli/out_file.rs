@@ -35,7 +35,11 @@ impl OutFile {
                     .open(&target)
                     .map_err(|e| refuse(format!("cannot write: {e}")))?;
                 let out = Self { target, in_place: false };
-                out.probe_temporary().map_err(|e| refuse(format!("cannot write beside it: {e}")))?;
+                out.probe_temporary().map_err(|e| {
+                    refuse(format!(
+                        "cannot create the temporary file beside it through which it is replaced whole: {e}"
+                    ))
+                })?;
                 Ok(out)
             }
             Ok(m) => {
