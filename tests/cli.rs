@@ -116,6 +116,14 @@ fn negative_mass() {
     rejects(&["simulate", "--preset", &p], &["m.toml", "cloth[0].mass = -1", "must be between 1e-9 and 1e9"]);
 }
 
+/// `sim.tolerance = 0` is outside the open interval, and the message says so.
+#[test]
+fn zero_tolerance_says_greater_than_zero() {
+    let dir = tempfile::tempdir().unwrap();
+    let p = write(dir.path(), "t.toml", &GOOD.replacen("substeps = 4", "substeps = 4\ntolerance = 0.0", 1));
+    rejects(&["simulate", "--preset", &p], &["sim.tolerance = 0", "greater than 0 and less than 1"]);
+}
+
 /// Values that pass as f64 but mean nothing in the GPU's f32 (overflow, underflow to zero, or
 /// infinity) are refused before the run, naming the key and the range allowed.
 #[test]
@@ -239,6 +247,8 @@ fn stability_map_writes_csv_and_svg() {
         out_dir.to_str().unwrap(),
     ]);
     assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert!(!stdout.contains("METHOD"), "names the files it wrote: {stdout}");
     let csv = std::fs::read_to_string(out_dir.join("stability.csv")).unwrap();
     let rows: Vec<&str> = csv.lines().filter(|l| !l.starts_with('#')).skip(1).collect();
     assert_eq!(rows.len(), 18, "{csv}");
@@ -295,6 +305,11 @@ fn chart_writes_csv_and_svg() {
         }
     }
     assert!(rows.iter().any(|r| r[r.len() - 2] == "true"), "a Pareto front:\n{csv}");
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        stdout.contains("chart-rope.svg") && !stdout.contains("SCENE"),
+        "names the files it wrote: {stdout}"
+    );
     let svg = std::fs::read_to_string(out_dir.join("chart-rope.svg")).unwrap();
     for label in ["symplectic_euler", "verlet", "xpbd (3 it.)", "implicit (3 it.)", "Pareto front"] {
         assert!(svg.contains(label), "{label} in the chart");
