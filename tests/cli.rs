@@ -1,32 +1,12 @@
 //! The binary on good and bad input: bad input exits with code 2 and one line that names the
 //! problem, never a panic or a validation message. Runs with --validation.
 
+mod common;
+
 use std::path::Path;
 use std::process::{Command, Output};
 
-const GOOD: &str = r#"
-[sim]
-substeps = 4
-[[sphere]]
-center = [0.0, 0.0, 0.0]
-radius = 0.2
-[[cloth]]
-name = "c"
-resolution = [5, 4]
-size = [0.4, 0.3]
-origin = [-0.2, 0.5, 0.0]
-mass = 0.01
-stiffness = { structural = 100.0, shear = 20.0, bending = 5.0 }
-pin = "top_row"
-[[rope]]
-name = "r"
-nodes = 6
-start = [0.0, 0.6, 0.1]
-end = [0.3, 0.6, 0.1]
-mass = 0.01
-stiffness = 100.0
-radius = 0.01
-"#;
+use common::GOOD;
 
 fn msdsim(args: &[&str]) -> Output {
     Command::new(env!("CARGO_BIN_EXE_msdsim"))

@@ -2,23 +2,14 @@
 //! FIFO, a run stopped by Ctrl-C), and standard output closed early or full. Runs with
 //! --validation on the Vulkan device (lavapipe in CI).
 
+mod common;
+
 use std::io::{BufRead as _, BufReader, Read as _};
 use std::os::unix::fs::FileTypeExt as _;
 use std::path::Path;
 use std::process::{Command, Output, Stdio};
 
-const PRESET: &str = r#"
-[sim]
-substeps = 4
-[[cloth]]
-name = "c"
-resolution = [5, 4]
-size = [0.4, 0.3]
-origin = [-0.2, 0.5, 0.0]
-mass = 0.01
-stiffness = { structural = 100.0, shear = 20.0, bending = 5.0 }
-pin = "top_row"
-"#;
+use common::GOOD;
 
 fn binary() -> Command {
     let mut c = Command::new(env!("CARGO_BIN_EXE_msdsim"));
@@ -28,7 +19,7 @@ fn binary() -> Command {
 
 fn preset(dir: &Path) -> String {
     let path = dir.join("preset.toml");
-    std::fs::write(&path, PRESET).unwrap();
+    std::fs::write(&path, GOOD).unwrap();
     path.display().to_string()
 }
 

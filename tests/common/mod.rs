@@ -285,3 +285,28 @@ pub fn static_stretch_error(model: &SimModel, x: &[DVec3]) -> f64 {
         })
         .fold(0.0, f64::max)
 }
+
+/// A small valid preset for the binary's tests: a pinned 5 x 4 cloth, a 6-node rope and a sphere.
+pub const GOOD: &str = r#"
+[sim]
+substeps = 4
+[[sphere]]
+center = [0.0, 0.0, 0.0]
+radius = 0.2
+[[cloth]]
+name = "c"
+resolution = [5, 4]
+size = [0.4, 0.3]
+origin = [-0.2, 0.5, 0.0]
+mass = 0.01
+stiffness = { structural = 100.0, shear = 20.0, bending = 5.0 }
+pin = "top_row"
+[[rope]]
+name = "r"
+nodes = 6
+start = [0.0, 0.6, 0.1]
+end = [0.3, 0.6, 0.1]
+mass = 0.01
+stiffness = 100.0
+radius = 0.01
+"#;
