@@ -439,7 +439,7 @@ fn fused_iterative_methods_equal_the_per_stage_path() {
         .collect();
     let mut s = scene(shapes);
     s.gravity = DVec3::new(0.0, -9.81, 0.0);
-    // Without dashpots the prediction writes y straight to shared memory (no velocity window).
+    // Without dashpots no velocity window is staged before the prediction.
     for method in iterative() {
         s.integrator = method;
         let worst = fused_against_per_stage(&s, FusedLimits { shared_bytes: u32::MAX, slots: 1 });

@@ -159,3 +159,38 @@ fn a_full_stdout_is_a_clear_failure() {
     assert!(err.contains("writing to standard output") && !err.contains("internal error"), "{err}");
     assert_eq!(err.lines().count(), 1, "{err}");
 }
+
+/// `--out /dev/stdout` with standard output redirected to a file appends the state after the
+/// report lines instead of replacing (or emptying) that file.
+#[test]
+fn out_to_dev_stdout_appends_to_the_redirected_file() {
+    let dir = tempfile::tempdir().unwrap();
+    let p = preset(dir.path());
+    let log_path = dir.path().join("run.log");
+    let log = std::fs::File::create(&log_path).unwrap();
+    let out = binary()
+        .args(["simulate", "--preset", &p, "--frames", "3", "--quiet", "--out", "/dev/stdout"])
+        .stdout(log)
+        .output()
+        .unwrap();
+    assert!(out.status.success(), "{}", stderr(&out));
+    let text = std::fs::read_to_string(&log_path).unwrap();
+    assert!(text.starts_with("device:"), "the report lines were lost: {text}");
+    let json = &text[text.find('{').expect("the state was appended")..];
+    assert_state(json.as_bytes());
+}
+
+/// A replaced file keeps its permissions (a private 0600 state file is not made readable).
+#[test]
+fn a_replaced_file_keeps_its_permissions() {
+    use std::os::unix::fs::PermissionsExt as _;
+    let dir = tempfile::tempdir().unwrap();
+    let p = preset(dir.path());
+    let target = dir.path().join("state.json");
+    std::fs::write(&target, "old").unwrap();
+    std::fs::set_permissions(&target, std::fs::Permissions::from_mode(0o600)).unwrap();
+    let out = simulate(&p, "3", &target);
+    assert!(out.status.success(), "{}", stderr(&out));
+    assert_state(&std::fs::read(&target).unwrap());
+    assert_eq!(std::fs::metadata(&target).unwrap().permissions().mode() & 0o777, 0o600);
+}

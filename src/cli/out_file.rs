@@ -1,12 +1,18 @@
 //! `simulate --out FILE`: where the final state goes. The path is claimed before the run, so a
 //! path that cannot be written fails at once (exit 2) and no simulation is lost; the file is
 //! written at the end:
-//! - a regular file, or a new one: through a temporary file beside it, renamed over it, so a
-//!   reader never sees half a file; the temporary exists only while it is written (a run stopped
-//!   by Ctrl-C leaves nothing behind);
+//! - a regular file, or a new one: through a temporary file beside it (created new, never
+//!   through an existing name), renamed over it, so a reader never sees half a file; the
+//!   temporary exists only while it is written (a run stopped by Ctrl-C leaves nothing behind),
+//!   and takes the replaced file's permissions;
 //! - a symbolic link: the same at the file it points to; the link stays a link;
-//! - anything else (a device such as /dev/null, a FIFO, a file of /proc): written through in
-//!   place, never replaced. A FIFO is opened only at the end (opening it waits for a reader).
+//! - anything else (/dev/null, a FIFO): written through in place, never replaced; a FIFO is
+//!   opened only at the end (opening it waits for a reader);
+//! - a regular file reached through /dev or /proc (/dev/stdout redirected to a log): appended
+//!   to, as the shell's own writes to it are, never replaced or emptied;
+//! - a file of the kernel (/proc/version, /sys/...): refused.
+//!
+//! A replaced file is a new file: other hard links to the old one keep the old contents.
 
 use crate::error::UserError;
 use anyhow::{Context as _, Result};
@@ -17,24 +23,63 @@ use std::path::{Path, PathBuf};
 pub struct OutFile {
     /// The file written (a symbolic link's target).
     target: PathBuf,
-    /// Written in place (not a regular file), else replaced through a temporary file.
-    in_place: bool,
+    mode: Mode,
+}
+
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Mode {
+    /// Through a temporary file renamed over the target.
+    Replace,
+    /// Opened and written where it is (created if missing, emptied first).
+    InPlace,
+    /// A regular file reached through a descriptor (/dev/stdout): appended to, as the shell's
+    /// own writes to it are.
+    Append,
+}
+
+/// Whether `path`, or a symbolic link on the way from it to its file, is under /dev or /proc:
+/// a stand-in for a file descriptor or a device, to be written in place.
+fn through_devices(path: &Path) -> bool {
+    let mut p = path.to_path_buf();
+    for _ in 0..40 {
+        if p.starts_with("/dev") || p.starts_with("/proc") {
+            return true;
+        }
+        match std::fs::read_link(&p) {
+            Ok(next) => p = p.parent().map(|d| d.join(&next)).unwrap_or(next),
+            Err(_) => return false,
+        }
+    }
+    false
 }
 
 impl OutFile {
     /// Checks that `path` can be written and how, without writing it.
     pub fn claim(path: &Path) -> Result<Self> {
         let refuse = |why: String| UserError(format!("--out {}: {why}", path.display()));
+        let writable = |p: &Path| {
+            std::fs::OpenOptions::new()
+                .write(true)
+                .open(p)
+                .map(drop)
+                .map_err(|e| refuse(format!("cannot write: {e}")))
+        };
         match std::fs::metadata(path) {
             Ok(m) if m.is_dir() => Err(refuse("is a directory; name a file".into()).into()),
             Ok(m) if m.is_file() => {
                 let target =
                     std::fs::canonicalize(path).map_err(|e| refuse(format!("cannot resolve: {e}")))?;
-                std::fs::OpenOptions::new()
-                    .write(true)
-                    .open(&target)
-                    .map_err(|e| refuse(format!("cannot write: {e}")))?;
-                let out = Self { target, in_place: false };
+                if target.starts_with("/proc") || target.starts_with("/sys") {
+                    return Err(refuse(
+                        "is a file of the kernel (/proc, /sys), not a place for the state".into(),
+                    )
+                    .into());
+                }
+                writable(&target)?;
+                if through_devices(path) {
+                    return Ok(Self { target: path.to_path_buf(), mode: Mode::Append });
+                }
+                let out = Self { target, mode: Mode::Replace };
                 out.probe_temporary().map_err(|e| {
                     refuse(format!(
                         "cannot create the temporary file beside it through which it is replaced whole: {e}"
@@ -44,19 +89,27 @@ impl OutFile {
             }
             Ok(m) => {
                 if !m.file_type().is_fifo() {
-                    std::fs::OpenOptions::new()
-                        .write(true)
-                        .open(path)
-                        .map_err(|e| refuse(format!("cannot write: {e}")))?;
+                    writable(path)?;
                 }
-                Ok(Self { target: path.to_path_buf(), in_place: true })
+                Ok(Self { target: path.to_path_buf(), mode: Mode::InPlace })
             }
             Err(e) if e.kind() == std::io::ErrorKind::NotFound => {
                 if std::fs::symlink_metadata(path).is_ok() {
-                    // A link to a file not there yet: create it through the link.
-                    return Ok(Self { target: path.to_path_buf(), in_place: true });
+                    // A link to a file not there yet: created through the link, in a folder
+                    // that must exist.
+                    let link =
+                        std::fs::read_link(path).map_err(|e| refuse(format!("cannot resolve: {e}")))?;
+                    let target = path.parent().map(|d| d.join(&link)).unwrap_or(link);
+                    if !target.parent().is_some_and(|d| d.as_os_str().is_empty() || d.is_dir()) {
+                        return Err(refuse(format!(
+                            "links to {}, in a folder that does not exist",
+                            target.display()
+                        ))
+                        .into());
+                    }
+                    return Ok(Self { target: path.to_path_buf(), mode: Mode::InPlace });
                 }
-                let out = Self { target: path.to_path_buf(), in_place: false };
+                let out = Self { target: path.to_path_buf(), mode: Mode::Replace };
                 out.probe_temporary().map_err(|e| refuse(format!("cannot write: {e}")))?;
                 Ok(out)
             }
@@ -64,16 +117,24 @@ impl OutFile {
         }
     }
 
-    /// The temporary file beside the target.
-    fn temporary(&self) -> PathBuf {
+    /// Creates a new temporary file beside the target (a name not taken yet).
+    fn create_temporary(&self) -> std::io::Result<(PathBuf, std::fs::File)> {
         let name = self.target.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_default();
-        self.target.with_file_name(format!(".{name}.{}.partial", std::process::id()))
+        let mut last = None;
+        for attempt in 0..100 {
+            let tmp = self.target.with_file_name(format!(".{name}.{}-{attempt}.partial", std::process::id()));
+            match std::fs::OpenOptions::new().write(true).create_new(true).open(&tmp) {
+                Ok(file) => return Ok((tmp, file)),
+                Err(e) if e.kind() == std::io::ErrorKind::AlreadyExists => last = Some(e),
+                Err(e) => return Err(e),
+            }
+        }
+        Err(last.unwrap_or_else(|| std::io::Error::other("no free temporary name")))
     }
 
-    /// Creates and removes the temporary file: the folder takes it.
+    /// Creates and removes a temporary file: the folder takes it.
     fn probe_temporary(&self) -> std::io::Result<()> {
-        let tmp = self.temporary();
-        std::fs::File::create(&tmp)?;
+        let (tmp, _) = self.create_temporary()?;
         std::fs::remove_file(&tmp)
     }
 
@@ -84,15 +145,21 @@ impl OutFile {
     }
 
     fn write(&self, bytes: &[u8]) -> std::io::Result<()> {
-        if self.in_place {
-            let mut file =
-                std::fs::OpenOptions::new().write(true).create(true).truncate(true).open(&self.target)?;
+        if self.mode != Mode::Replace {
+            let mut options = std::fs::OpenOptions::new();
+            match self.mode {
+                Mode::Append => options.append(true),
+                _ => options.write(true).create(true).truncate(true),
+            };
+            let mut file = options.open(&self.target)?;
             return file.write_all(bytes).and_then(|_| file.flush());
         }
-        let tmp = self.temporary();
+        let (tmp, mut file) = self.create_temporary()?;
         let written = (|| {
-            let mut file = std::fs::File::create(&tmp)?;
             file.write_all(bytes)?;
+            if let Ok(old) = std::fs::metadata(&self.target) {
+                file.set_permissions(old.permissions())?;
+            }
             file.sync_all()?;
             std::fs::rename(&tmp, &self.target)
         })();

@@ -26,16 +26,19 @@ impl Prediction {
     }
 
     /// What to set for an explicit method to be within the limit: the substep count, or, past
-    /// `MAX_SUBSTEPS`, that none will do and which integrators are stable at any stiffness.
+    /// `MAX_SUBSTEPS`, that none will do; then which integrators are stable at any stiffness.
     pub fn substep_advice(&self, frame_dt: f64) -> String {
         let n = self.min_substeps(frame_dt);
+        let stable = stable_integrators();
         if n <= MAX_SUBSTEPS {
-            format!("use at least {n} substeps per frame")
+            format!(
+                "use at least {n} substeps per frame, or sim.integrator = {stable} (stable at any stiffness)"
+            )
         } else {
             format!(
-                "no substep count up to {MAX_SUBSTEPS} is within it (it needs {:.1e}): use sim.integrator = {}",
-                frame_dt / self.dt_max,
-                stable_integrators()
+                "no substep count up to {MAX_SUBSTEPS} is within it (it needs {:.1e}): use sim.integrator = {stable} \
+                 (stable at any stiffness)",
+                frame_dt / self.dt_max
             )
         }
     }
@@ -170,14 +173,13 @@ impl GuardTrip {
             )
         } else if dt > p.dt_max {
             format!(
-                "The substep ({:.3} ms) is past the explicit stability limit predicted for it ({:.3} ms, w_max = {:.0} rad/s): \
-                 {} (sim.substeps, now {}), or sim.integrator = {} (stable at any stiffness), or softer springs or heavier particles.",
+                "The substep ({:.3} ms, sim.substeps = {}) is past the explicit stability limit predicted for it \
+                 ({:.3} ms, w_max = {:.0} rad/s): {}, or softer springs or heavier particles.",
                 dt * 1e3,
+                model.substeps,
                 p.dt_max * 1e3,
                 p.omega_max,
-                p.substep_advice(model.frame_dt),
-                model.substeps,
-                stable_integrators()
+                p.substep_advice(model.frame_dt)
             )
         } else {
             format!(

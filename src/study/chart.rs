@@ -176,12 +176,12 @@ fn warm_up(ctx: &GpuContext, model: &SimModel) -> Result<()> {
     }
 }
 
-/// Runs the sweep on one scene: the reference first, then every setting; `progress` is called
-/// after each.
 /// The largest difference between the reference and itself at half its substeps (a fraction
 /// of the object's size) that still charts errors down to about 1e-3.
 const REFERENCE_MAX_CHECK: f64 = 1e-3;
 
+/// Runs the sweep on one scene: the reference first, then every setting; `progress` is called
+/// after each.
 pub fn run(
     ctx: &GpuContext,
     scene: &str,

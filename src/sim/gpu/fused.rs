@@ -93,14 +93,15 @@ impl ObjectPlan {
     }
 }
 
-/// The specialization of `fused.comp` for one object (ids 0 and 4..=8; 2 and 3, the integrator
-/// and the features, come from the stage).
+/// The specialization of `fused.comp` for one object (`specialization`: ids 0, 4..=8 from the
+/// layout; 2, 3 and 9 from the integrator and the features).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub struct FusedShape {
     /// Workgroup size: a multiple of 32, at most 1024.
     pub threads: u32,
     pub particles: u32,
-    /// Words of scratch: the largest of the velocity window and the hash.
+    /// Words of scratch: the largest of the velocity window, the hash and an iterative method's
+    /// displacements (3 per particle).
     pub scratch: u32,
     /// Shared hash buckets (a power of two; 1 without the hash).
     pub buckets: u32,
