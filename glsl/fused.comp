@@ -100,9 +100,8 @@ void visit_bucket(uint h, uvec2 cell, vec3 x, float reach, inout vec3 correction
     }
 }
 
-// Particles of vertex colour c (sim::integrator::vertex_colours: C colours, (x + 2 y) mod C)
-// in row y of a grid of `cols` columns: x runs from the row's first of that colour in steps of C.
-uint colour_first(uint c, uint y, uint C) { return (c + C - (2u * y) % C) % C; }
+// Particles of vertex colour c (springs.glsl: C colours) in row y of a grid of `cols` columns:
+// x runs from the row's first of that colour in steps of C.
 uint colour_row_count(uint c, uint y, uint cols, uint C) {
     uint first = colour_first(c, y, C);
     return first < cols ? (cols - 1u - first) / C + 1u : 0u;
@@ -122,7 +121,7 @@ uint particle_of_rank(uint r) {
     if (!COLOURED || r >= CAP) return r;
     uint cols = obj.dims.x;
     uint rows = obj.dims.y;
-    uint C = rows == 1u ? 3u : 5u;
+    uint C = vertex_colours(obj.dims);
     uint c = 0u;
     for (; c + 1u < C; ++c) {
         uint total = colour_before_row(c, rows, cols, C);
@@ -151,7 +150,7 @@ void main() {
     // The physics (or the prediction) reads the neighbours' velocities: the dashpots, unless
     // the method treats them implicitly in its solve.
     bool stage_velocities = has(F_DAMPING) && (!ITERATIVE || SOLVER == METHOD_IMPLICIT);
-    uint colours = obj.dims.y == 1u ? 3u : 5u;  // sim::integrator::vertex_colours
+    uint colours = vertex_colours(obj.dims);
 
     vec3 x[MAX_SLOTS];
     vec3 v[MAX_SLOTS];
@@ -170,7 +169,7 @@ void main() {
         pinned[s] = true;
         dy[s] = vec3(0.0);
         dx[s] = vec3(0.0);
-        colour[s] = (k % cols + 2u * (k / cols)) % colours;
+        colour[s] = vertex_colour(uvec2(k % cols, k / cols), colours);
         if (s < SLOTS && k < n) {
             Particle p = p_in[k];
             pinned[s] = p.pos.w > 0.5;

@@ -13,13 +13,12 @@ layout(push_constant) uniform Iteration { uint k; uint colour; } it;
 
 bool last_iteration() { return it.k + 1u == g.iterations; }
 
-// The grid cell of invocation `id` in a pass over vertex colour it.colour: particle (c, r) has
-// colour (c + 2 r) mod C, C = 5 (3 for one row), as sim::integrator::vertex_colours; the pass
-// dispatches ceil(columns / C) x rows invocations and id.x counts the row's cells of that colour.
+// The grid cell of invocation `id` in a pass over vertex colour it.colour (springs.glsl): the
+// pass dispatches ceil(columns / C) x rows invocations and id.x counts the row's cells of that
+// colour.
 uvec2 coloured_cell(uvec2 id) {
-    uint colours = obj.dims.y == 1u ? 3u : 5u;
-    uint first = (it.colour + colours - (2u * id.y) % colours) % colours;
-    return uvec2(first + colours * id.x, id.y);
+    uint colours = vertex_colours(obj.dims);
+    return uvec2(colour_first(it.colour, id.y, colours) + colours * id.x, id.y);
 }
 
 void finish_particle(uint i, vec3 dx, bool pinned) {

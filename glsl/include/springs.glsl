@@ -27,4 +27,12 @@ float rest_length(ivec3 spring, vec2 spacing, vec4 rest_scale) {
     return rest_scale[spring.z] * length(vec2(spring.xy) * spacing);
 }
 
+// The vertex colouring the Gauss-Seidel integrators sweep (sim::integrator::vertex_colours and
+// vertex_colour): particle (x, y) has colour (x + 2 y) mod C, C = 5 colours, 3 for one row; no
+// spring joins two particles of one colour.
+uint vertex_colours(uvec2 dims) { return dims.y == 1u ? 3u : 5u; }
+uint vertex_colour(uvec2 cell, uint colours) { return (cell.x + 2u * cell.y) % colours; }
+// The first column of row y with colour c; the others follow every C columns.
+uint colour_first(uint c, uint y, uint colours) { return (c + colours - (2u * y) % colours) % colours; }
+
 #endif

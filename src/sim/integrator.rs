@@ -196,7 +196,7 @@ impl Integrator {
 /// (c + 2 r) mod `vertex_colours`. No spring joins two particles of one colour: the offsets of
 /// the 12 springs, (+-1, 0), (0, +-1), (+-1, +-1), (+-1, -+1), (+-2, 0), (0, +-2), give
 /// c + 2 r = +-1, +-2, +-3, -+1, +-2, +-4, none a multiple of 5; a rope (one row) has only
-/// the offsets +-1 and +-2, none a multiple of 3. (`coloured_cell` in glsl/include/solver_end.glsl
+/// the offsets +-1 and +-2, none a multiple of 3. (`vertex_colours` in glsl/include/springs.glsl
 /// is the same rule.)
 pub fn vertex_colours(dims: [u32; 2]) -> u32 {
     if dims[1] == 1 {
