@@ -415,3 +415,23 @@ fn auto_picks_a_method_on_every_shipped_preset() {
         assert!(stdout.contains("integrator = \"auto\" picked"), "{}: {stdout}", p.display());
     }
 }
+
+/// `bench --end-to-end` runs a case as the app does (simulation and drawing offscreen, frames
+/// in flight) and writes its report with the wall clock next to the GPU-only figure; a bad
+/// --resolution is refused before any work.
+#[test]
+fn bench_end_to_end_writes_its_report() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("e2e");
+    let out_arg = out.to_str().unwrap();
+    let args = ["bench", "--end-to-end", "--filter", "rope 256, all features + 10", "--resolution", "64x48"];
+    let run = msdsim(&[&args[..], &["--frames", "100", "--warmup", "2", "--out", out_arg]].concat());
+    assert!(run.status.success(), "{}", String::from_utf8_lossy(&run.stderr));
+    let md = std::fs::read_to_string(out.join("end-to-end.md")).unwrap();
+    assert!(md.contains("64 x 48") && md.contains("| rope 256, all features + 10 spheres | 256 |"), "{md}");
+    let csv = std::fs::read_to_string(out.join("end-to-end.csv")).unwrap();
+    assert_eq!(csv.lines().filter(|l| !l.starts_with('#')).count(), 2, "{csv}");
+    clap_rejects(&["bench", "--end-to-end", "--resolution", "8x8"], "'--resolution");
+    clap_rejects(&["bench", "--end-to-end", "--resolution", "1920"], "'--resolution");
+    clap_rejects(&["bench", "--resolution", "640x480"], "--end-to-end");
+}

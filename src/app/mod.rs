@@ -3,6 +3,7 @@
 //! mouse and keyboard.
 
 mod input;
+pub mod offscreen;
 mod sim_host;
 mod viewer;
 

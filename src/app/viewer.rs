@@ -12,11 +12,12 @@ use super::input::{pick, Grab, Input, KeyAction};
 use super::sim_host::{Applied, SimHost};
 use super::AppArgs;
 use crate::render::camera::OrbitCamera;
+use crate::render::view::{self, SKY};
 use crate::render::{DrawItem, SceneRenderer, Shape};
 use crate::scene::{self, Scene};
 use crate::shaders::ShaderSet;
 use crate::sim::gpu::FRAME_SLOTS;
-use crate::sim::gpu_types::{Camera, Particle};
+use crate::sim::gpu_types::Particle;
 use crate::ui::{self, Action, EditorState, Stats};
 use crate::vk::{
     Access, Acquired, Buffer, BufferBarrier, BufferUsage, CommandSlot, ContextOptions, Format, GpuContext,
@@ -32,8 +33,6 @@ use std::time::Instant;
 use winit::dpi::PhysicalSize;
 use winit::event::WindowEvent;
 use winit::window::Window;
-
-const SKY: [f32; 4] = [0.09, 0.10, 0.12, 1.0];
 
 struct FrameSlot {
     cmd: CommandSlot,
@@ -200,21 +199,8 @@ impl Viewer {
     }
 
     fn fit_camera(&mut self) {
-        let Some(host) = &self.host else { return };
-        let mut min = Vec3::splat(f32::MAX);
-        let mut max = Vec3::splat(f32::MIN);
-        for o in &host.model().objects {
-            for p in &o.positions {
-                min = min.min(p.as_vec3());
-                max = max.max(p.as_vec3());
-            }
-        }
-        for s in &host.model().spheres {
-            min = min.min((s.center - s.radius).as_vec3());
-            max = max.max((s.center + s.radius).as_vec3());
-        }
-        if min.x <= max.x {
-            self.camera.fit(min, max);
+        if let Some(host) = &self.host {
+            view::fit_camera(&mut self.camera, host.model());
         }
     }
 
@@ -369,47 +355,9 @@ impl Viewer {
     }
 
     fn draw_items(&self) -> Vec<DrawItem> {
-        let scene = self.host().scene();
-        let f = |c: [f64; 3]| c.map(|x| x as f32);
-        let v = |c: [f64; 3]| Vec3::from_array(f(c));
-        let placed = |scale: Vec3, rotation: Quat, at: Vec3| {
-            Mat4::from_scale_rotation_translation(scale, rotation, at)
-        };
-        let mut items = Vec::new();
-        for (i, c) in scene.cloths.iter().enumerate() {
-            items.push(DrawItem {
-                shape: Shape::Surface(i),
-                model: Mat4::IDENTITY,
-                front: f(c.color),
-                back: f(c.back_color),
-                lit: true,
-            });
-        }
-        for (j, r) in scene.ropes.iter().enumerate() {
-            items.push(DrawItem::solid(
-                Shape::Surface(scene.cloths.len() + j),
-                Mat4::IDENTITY,
-                f(r.color),
-                true,
-            ));
-        }
-        for s in &scene.spheres {
-            let model = placed(Vec3::splat(s.radius as f32), Quat::IDENTITY, v(s.center));
-            items.push(DrawItem::solid(Shape::Sphere, model, [0.45, 0.5, 0.58], true));
-        }
-        let light = placed(Vec3::splat(0.06), Quat::IDENTITY, v(scene.light.position));
-        items.push(DrawItem::solid(Shape::Sphere, light, [1.0, 0.9, 0.5], false));
-        if scene.wind.enabled {
-            let dir = v(scene.wind.direction).normalize_or(Vec3::Z);
-            let model = placed(
-                Vec3::new(0.12, 0.12, 0.35),
-                Quat::from_rotation_arc(Vec3::Z, dir),
-                v(scene.wind.origin),
-            );
-            items.push(DrawItem::solid(Shape::Cone, model, [0.25, 0.45, 0.95], true));
-        }
+        let mut items = view::scene_items(self.host().scene());
         if let Some(g) = self.input.grab {
-            let model = placed(Vec3::splat(0.015), Quat::IDENTITY, g.target);
+            let model = Mat4::from_scale_rotation_translation(Vec3::splat(0.015), Quat::IDENTITY, g.target);
             items.push(DrawItem::solid(Shape::Cube, model, [1.0, 0.85, 0.1], false));
         }
         items
@@ -555,23 +503,7 @@ impl Viewer {
 
         let run_sim = !self.editor.paused || std::mem::take(&mut self.step_once);
         let extent = self.swapchain.as_ref().expect("created above").extent();
-        let scene = self.host().scene();
-        let camera = Camera {
-            view_proj: self.camera.view_proj(extent[0] as f32 / extent[1].max(1) as f32).to_cols_array_2d(),
-            eye: self.camera.eye().extend(1.0).to_array(),
-            light_pos: [
-                scene.light.position[0] as f32,
-                scene.light.position[1] as f32,
-                scene.light.position[2] as f32,
-                1.0,
-            ],
-            light_color: [
-                scene.light.color[0] as f32,
-                scene.light.color[1] as f32,
-                scene.light.color[2] as f32,
-                scene.light.ambient as f32,
-            ],
-        };
+        let camera = view::camera_uniform(&self.camera, extent, self.host().scene());
         let items = self.draw_items();
         self.renderer.as_mut().expect("renderer").set_camera(slot, &camera)?;
         let capture = self.screenshot_due();

@@ -43,6 +43,35 @@ pub struct Measurement {
     pub surface: Spread,
 }
 
+/// What an end-to-end run measured. Wall-clock figures cover the measured frames from the
+/// first submission to the last fence; GPU figures are per-frame timestamps.
+#[derive(Debug, Clone, Default)]
+pub struct EndToEnd {
+    pub case: String,
+    pub particles: u64,
+    pub frames: usize,
+    /// Wall-clock time per frame: the run's elapsed time over its frames [ms].
+    pub wall_ms: f64,
+    /// Spread of the wall-clock intervals between consecutive submissions [ms].
+    pub interval: Spread,
+    /// The host's time to record and submit a frame [ms].
+    pub record: Spread,
+    /// GPU time of the simulation part of a frame [ms] (`None`: no timestamps).
+    pub sim_gpu: Option<Spread>,
+    /// GPU time of the drawing [ms].
+    pub render_gpu: Option<Spread>,
+    /// "fused" when every object ran fused, else "per stage".
+    pub path: &'static str,
+    /// The last frame, RGBA8, when asked for.
+    pub pixels: Option<Vec<u8>>,
+}
+
+impl EndToEnd {
+    pub fn frames_per_second(&self) -> f64 {
+        1e3 / self.wall_ms.max(1e-9)
+    }
+}
+
 /// Runs `case` for `warmup` frames, then measures `frames` frames twice: with only a start and
 /// an end timestamp per frame (the totals), then with timestamps between the stages (the
 /// per-stage times; those timestamps cost a little themselves, so totals come from the first).

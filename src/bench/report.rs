@@ -8,7 +8,7 @@
 //! scatter: read 8 + 4, write 4; the query reads its bucket range, about 16 more); the surface
 //! stage reads each particle and writes each surface vertex (32 bytes).
 
-use super::Measurement;
+use super::{EndToEnd, Measurement, Spread};
 use std::fmt::Write as _;
 
 pub struct Header {
@@ -105,6 +105,76 @@ pub fn csv(header: &Header, rows: &[(Measurement, bool)]) -> String {
             s(&m.physics),
             s(&m.constraints),
             s(&m.surface)
+        );
+    }
+    out
+}
+
+/// The end-to-end table: each case as the app runs it (simulation and drawing into an offscreen
+/// target, frames in flight) by the wall clock, next to its GPU time, and the GPU-only figure
+/// of the same case from `measure` (a frame at a time, timestamps only).
+pub fn end_to_end_markdown(header: &Header, extent: [u32; 2], rows: &[(EndToEnd, Measurement)]) -> String {
+    let mut out = String::new();
+    let _ = writeln!(out, "Device: {} ({}); {}", header.device, header.driver, header.date);
+    let _ = writeln!(out, "Command: `{}`", header.command);
+    let _ = writeln!(out, "Offscreen target: {} x {} RGBA8 + D32", extent[0], extent[1]);
+    let _ = writeln!(out);
+    let _ = writeln!(
+        out,
+        "| case | particles | path | end to end frames/s | wall ms/frame | interval p10 - p90 | GPU sim ms | GPU render ms | host record ms | GPU-only ms/frame (frames/s) |"
+    );
+    let _ = writeln!(out, "|---|---:|---|---:|---:|---:|---:|---:|---:|---:|");
+    let ms = |s: Option<Spread>| s.map(|s| format!("{:.3}", s.median)).unwrap_or_else(|| "-".into());
+    for (e, m) in rows {
+        let _ = writeln!(
+            out,
+            "| {} | {} | {} | {:.0} | {:.3} | {:.3} - {:.3} | {} | {} | {:.3} | {:.3} ({:.0}) |",
+            e.case,
+            e.particles,
+            e.path,
+            e.frames_per_second(),
+            e.wall_ms,
+            e.interval.p10,
+            e.interval.p90,
+            ms(e.sim_gpu),
+            ms(e.render_gpu),
+            e.record.median,
+            m.total.median,
+            1e3 / m.total.median.max(1e-9),
+        );
+    }
+    out
+}
+
+pub fn end_to_end_csv(header: &Header, extent: [u32; 2], rows: &[(EndToEnd, Measurement)]) -> String {
+    let mut out = String::new();
+    let _ = writeln!(out, "# device: {}", header.device);
+    let _ = writeln!(out, "# driver: {}", header.driver);
+    let _ = writeln!(out, "# date: {}", header.date);
+    let _ = writeln!(out, "# command: {}", header.command);
+    let _ = writeln!(out, "# target: {}x{}", extent[0], extent[1]);
+    let _ = writeln!(
+        out,
+        "case,particles,path,frames,end_to_end_fps,wall_ms,interval_median_ms,interval_p10_ms,interval_p90_ms,sim_gpu_median_ms,render_gpu_median_ms,record_median_ms,gpu_only_median_ms"
+    );
+    let ms = |s: Option<Spread>| s.map(|s| format!("{:.4}", s.median)).unwrap_or_default();
+    for (e, m) in rows {
+        let _ = writeln!(
+            out,
+            "\"{}\",{},{},{},{:.1},{:.4},{:.4},{:.4},{:.4},{},{},{:.4},{:.4}",
+            e.case,
+            e.particles,
+            e.path,
+            e.frames,
+            e.frames_per_second(),
+            e.wall_ms,
+            e.interval.median,
+            e.interval.p10,
+            e.interval.p90,
+            ms(e.sim_gpu),
+            ms(e.render_gpu),
+            e.record.median,
+            m.total.median,
         );
     }
     out

@@ -1,6 +1,7 @@
 //! `msdsim bench`: times the benchmark matrix and writes the reports.
 
 use super::stdout::{say, Stdout};
+use crate::app::offscreen;
 use crate::bench::{self, cases, report};
 use crate::sim::model::Integrator;
 use crate::vk::{ContextOptions, GpuContext};
@@ -43,6 +44,14 @@ pub struct BenchArgs {
     /// Solver iterations per substep (the iterative integrators).
     #[arg(long, default_value_t = 4, value_parser = clap::value_parser!(u32).range(1..=1000))]
     pub iterations: u32,
+    /// Run each case as the app does instead (simulation and drawing into an offscreen target,
+    /// two frames in flight), timed by the wall clock next to its GPU time and its GPU-only
+    /// figure: the paper's cases unless --filter picks others. Writes end-to-end.md and .csv.
+    #[arg(long)]
+    pub end_to_end: bool,
+    /// The offscreen target of --end-to-end, WIDTHxHEIGHT pixels.
+    #[arg(long, default_value = "1920x1080", value_parser = parse_extent, requires = "end_to_end")]
+    pub resolution: [u32; 2],
     /// Folder for bench.md and bench.csv.
     #[arg(long, default_value = "bench-results")]
     pub out: PathBuf,
@@ -65,7 +74,10 @@ pub fn run(args: &BenchArgs, options: &ContextOptions) -> Result<()> {
     };
     let cases: Vec<_> = cases::matrix(&cloth, &rope)
         .into_iter()
-        .filter(|c| args.filter.as_ref().is_none_or(|f| c.name.contains(f.as_str())))
+        .filter(|c| match &args.filter {
+            Some(f) => c.name.contains(f.as_str()),
+            None => !args.end_to_end || c.group == "paper",
+        })
         .map(|mut c| {
             c.scene.sim.integrator = crate::scene::IntegratorChoice::Method(args.integrator);
             c.scene.sim.iterations = args.iterations;
@@ -79,11 +91,11 @@ pub fn run(args: &BenchArgs, options: &ContextOptions) -> Result<()> {
         ))
         .into());
     }
-    let bar = indicatif::ProgressBar::new(cases.len() as u64 + 1);
-    bar.set_style(
-        indicatif::ProgressStyle::with_template("{elapsed_precise} [{bar:30}] {pos}/{len} {msg}")
-            .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar()),
-    );
+    let fused_slots = if args.per_stage { Some(0) } else { args.fused_slots };
+    let bar = progress(cases.len() as u64 + 1);
+    if args.end_to_end {
+        return end_to_end(args, &ctx, &cases, fused_slots, &bar, &mut out);
+    }
     bar.set_message("copy bandwidth");
     let bandwidth = bench::bandwidth::measure(&ctx, 512 << 20, 21).context("measuring the copy bandwidth")?;
     if bar.is_hidden() {
@@ -93,13 +105,7 @@ pub fn run(args: &BenchArgs, options: &ContextOptions) -> Result<()> {
     let mut rows = Vec::new();
     for case in &cases {
         bar.set_message(case.name.clone());
-        let m = bench::measure(
-            &ctx,
-            case,
-            args.warmup as usize,
-            args.frames as usize,
-            if args.per_stage { Some(0) } else { args.fused_slots },
-        )?;
+        let m = bench::measure(&ctx, case, args.warmup as usize, args.frames as usize, fused_slots)?;
         if bar.is_hidden() {
             // Not a terminal (a log): a line per case instead of the bar.
             eprintln!("[{}/{}] {}: {:.3} ms/frame", rows.len() + 1, cases.len(), case.name, m.total.median);
@@ -110,19 +116,95 @@ pub fn run(args: &BenchArgs, options: &ContextOptions) -> Result<()> {
         bar.inc(1);
     }
     bar.finish_and_clear();
-    let header = report::Header {
-        device: info.name.clone(),
-        driver: format!("{}, Vulkan {}", info.driver, info.api_version),
-        command: std::env::args().collect::<Vec<_>>().join(" "),
-        date: date(),
-        bandwidth: Some(bandwidth),
-    };
+    let header = header(&ctx, Some(bandwidth));
     let md = report::markdown(&header, &rows);
     std::fs::write(args.out.join("bench.md"), &md).context("writing bench.md")?;
     std::fs::write(args.out.join("bench.csv"), report::csv(&header, &rows)).context("writing bench.csv")?;
     say!(out, "{md}")?;
     eprintln!("wrote {0}/bench.md and {0}/bench.csv", args.out.display());
     crate::cli::check_validation(&ctx)
+}
+
+/// `bench --end-to-end`: each case by the wall clock as the app runs it, and GPU-only.
+fn end_to_end(
+    args: &BenchArgs,
+    ctx: &GpuContext,
+    cases: &[cases::Case],
+    fused_slots: Option<u32>,
+    bar: &indicatif::ProgressBar,
+    out: &mut Stdout,
+) -> Result<()> {
+    bar.set_length(cases.len() as u64);
+    let options = offscreen::Options {
+        extent: args.resolution,
+        warmup: args.warmup as usize,
+        frames: args.frames as usize,
+        fused_slots,
+        capture: false,
+    };
+    let mut rows = Vec::new();
+    for case in cases {
+        bar.set_message(case.name.clone());
+        let gpu_only = bench::measure(ctx, case, options.warmup, options.frames, fused_slots)?;
+        let mut e = offscreen::measure(ctx, &case.scene, options)
+            .with_context(|| format!("{} end to end", case.name))?;
+        e.case = case.name.clone();
+        if bar.is_hidden() {
+            eprintln!(
+                "[{}/{}] {}: {:.0} frames/s end to end, GPU-only {:.3} ms/frame",
+                rows.len() + 1,
+                cases.len(),
+                case.name,
+                e.frames_per_second(),
+                gpu_only.total.median
+            );
+        }
+        rows.push((e, gpu_only));
+        bar.inc(1);
+    }
+    bar.finish_and_clear();
+    let header = header(ctx, None);
+    let md = report::end_to_end_markdown(&header, args.resolution, &rows);
+    std::fs::write(args.out.join("end-to-end.md"), &md).context("writing end-to-end.md")?;
+    std::fs::write(args.out.join("end-to-end.csv"), report::end_to_end_csv(&header, args.resolution, &rows))
+        .context("writing end-to-end.csv")?;
+    say!(out, "{md}")?;
+    eprintln!("wrote {0}/end-to-end.md and {0}/end-to-end.csv", args.out.display());
+    crate::cli::check_validation(ctx)
+}
+
+fn progress(len: u64) -> indicatif::ProgressBar {
+    let bar = indicatif::ProgressBar::new(len);
+    bar.set_style(
+        indicatif::ProgressStyle::with_template("{elapsed_precise} [{bar:30}] {pos}/{len} {msg}")
+            .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar()),
+    );
+    bar
+}
+
+fn header(ctx: &GpuContext, bandwidth: Option<(f64, u64)>) -> report::Header {
+    let info = ctx.info();
+    report::Header {
+        device: info.name.clone(),
+        driver: format!("{}, Vulkan {}", info.driver, info.api_version),
+        command: std::env::args().collect::<Vec<_>>().join(" "),
+        date: date(),
+        bandwidth,
+    }
+}
+
+/// `WIDTHxHEIGHT`, each 16 to 8192 pixels.
+fn parse_extent(s: &str) -> Result<[u32; 2], String> {
+    let (w, h) = s.split_once(['x', 'X']).ok_or_else(|| format!("{s:?} is not WIDTHxHEIGHT"))?;
+    let side = |v: &str| -> Result<u32, String> {
+        let n: u32 = v.trim().parse().map_err(|_| format!("{v:?} is not a whole number of pixels"))?;
+        if (16..=8192).contains(&n) {
+            Ok(n)
+        } else {
+            Err(format!("{n} pixels is outside 16..=8192"))
+        }
+    };
+    Ok([side(w)?, side(h)?])
 }
 
 /// UTC date and time of the run, from the system clock.

@@ -5,5 +5,6 @@
 pub mod camera;
 pub mod mesh;
 mod scene_renderer;
+pub mod view;
 
 pub use scene_renderer::{DrawItem, SceneRenderer, Shape};

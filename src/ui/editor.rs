@@ -372,15 +372,21 @@ fn stats_window(ui: &Ui, stats: &Stats, state: &EditorState) {
         .build(|| {
             ui.text(&stats.device);
             ui.text(format!(
-                "frame {:.2} ms ({:.0} fps), t = {:.2} s, {} particles",
+                "frame {:.2} ms ({:.0} fps, wall clock), t = {:.2} s, {} particles",
                 stats.cpu_frame_ms,
                 1e3 / stats.cpu_frame_ms.max(1e-6),
                 stats.simulated_time,
                 stats.particles
             ));
+            let ms = |v: Option<f64>| v.map(|v| format!("{v:.3} ms")).unwrap_or_else(|| "-".into());
+            // The same two figures as `bench --end-to-end`: the wall clock above, the GPU's
+            // own time here (simulation + scene + UI).
+            let gpu = stats.sim.map(|s| s.total_ms).unwrap_or(0.0)
+                + stats.render_ms.unwrap_or(0.0)
+                + stats.ui_ms.unwrap_or(0.0);
+            ui.text(format!("GPU {} per frame ({:.0} fps GPU-only)", ms(Some(gpu)), 1e3 / gpu.max(1e-6)));
             ui.separator();
             ui.text("GPU time per frame (timestamps):");
-            let ms = |v: Option<f64>| v.map(|v| format!("{v:.3} ms")).unwrap_or_else(|| "-".into());
             ui.text(format!("  physics      {}", ms(stats.sim.map(|s| s.physics_ms))));
             ui.text(format!("  constraints  {}", ms(stats.sim.map(|s| s.constraints_ms))));
             ui.text(format!("  rope verts / normals {}", ms(stats.sim.map(|s| s.surface_ms))));

@@ -1,5 +1,5 @@
-//! Images: the depth buffer (owned, with a named allocation) and plain references to images
-//! owned elsewhere (swapchain images).
+//! Images: attachments (depth buffers, offscreen colour targets; owned, with a named allocation)
+//! and plain references to images owned elsewhere (swapchain images).
 
 use super::context::GpuContext;
 use super::error::{Check, VkError};
@@ -37,6 +37,18 @@ impl Format {
         }
     }
 
+    pub fn is_depth(self) -> bool {
+        self == Format::Depth32
+    }
+
+    pub(crate) fn aspect(self) -> vk::ImageAspectFlags {
+        if self.is_depth() {
+            vk::ImageAspectFlags::DEPTH
+        } else {
+            vk::ImageAspectFlags::COLOR
+        }
+    }
+
     pub(crate) fn from_vk(f: vk::Format) -> Option<Self> {
         match f {
             vk::Format::D32_SFLOAT => Some(Format::Depth32),
@@ -58,7 +70,20 @@ pub struct Image {
 impl Image {
     /// A depth attachment of `extent` pixels.
     pub fn depth(ctx: &GpuContext, name: &str, extent: [u32; 2]) -> Result<Self, VkError> {
-        let format = Format::Depth32;
+        Self::attachment(ctx, name, extent, Format::Depth32)
+    }
+
+    /// A colour attachment of `extent` pixels that copies can read (an offscreen target).
+    pub fn color(ctx: &GpuContext, name: &str, extent: [u32; 2], format: Format) -> Result<Self, VkError> {
+        Self::attachment(ctx, name, extent, format)
+    }
+
+    fn attachment(ctx: &GpuContext, name: &str, extent: [u32; 2], format: Format) -> Result<Self, VkError> {
+        let usage = if format.is_depth() {
+            vk::ImageUsageFlags::DEPTH_STENCIL_ATTACHMENT
+        } else {
+            vk::ImageUsageFlags::COLOR_ATTACHMENT | vk::ImageUsageFlags::TRANSFER_SRC
+        };
         let info = vk::ImageCreateInfo::default()
             .image_type(vk::ImageType::TYPE_2D)
             .format(format.to_vk())
@@ -67,7 +92,7 @@ impl Image {
             .array_layers(1)
             .samples(vk::SampleCountFlags::TYPE_1)
             .tiling(vk::ImageTiling::OPTIMAL)
-            .usage(vk::ImageUsageFlags::DEPTH_STENCIL_ATTACHMENT)
+            .usage(usage)
             .initial_layout(vk::ImageLayout::UNDEFINED);
         // SAFETY: valid device and create info; destroyed in `destroy`.
         let raw = unsafe { ctx.device.create_image(&info, None) }.check("vkCreateImage")?;
@@ -92,7 +117,7 @@ impl Image {
             // SAFETY: the allocation satisfies the image's requirements.
             unsafe { ctx.device.bind_image_memory(raw, allocation.memory(), allocation.offset()) }
                 .check("vkBindImageMemory")?;
-            create_view(ctx, raw, format.to_vk(), vk::ImageAspectFlags::DEPTH)
+            create_view(ctx, raw, format.to_vk(), format.aspect())
         })();
         match view {
             Ok(view) => {
@@ -109,7 +134,7 @@ impl Image {
     }
 
     pub fn image(&self) -> ImageRef {
-        ImageRef { raw: self.raw, aspect: vk::ImageAspectFlags::DEPTH }
+        ImageRef { raw: self.raw, aspect: self.format.aspect() }
     }
 
     pub fn view(&self) -> ViewRef {

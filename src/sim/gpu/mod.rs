@@ -22,26 +22,27 @@
 //! written and the write-after-read on the buffer just read. Uploads and readbacks end with a
 //! barrier back to compute, so frames recorded after them need no barrier of their own.
 
+mod frames;
 mod fused;
 mod hash;
 mod object;
 mod pipelines;
 mod step;
+mod transfer;
 
 use fused::ObjectPlan;
 pub use fused::{FusedLimits, FusedShape, FUSED_DEFAULT_SLOTS, FUSED_SLOTS};
 pub use object::{check_fits, particles};
 
-use super::gpu_types::{Globals, Particle, SurfaceVertex, GUARD_NON_FINITE};
+use super::gpu_types::{Globals, Particle, SurfaceVertex};
 use super::model::{ObjectModel, SimModel};
-use super::stability::GuardTrip;
 use crate::shaders::ShaderSet;
 use crate::vk::{
     Access, BindingSetLayout, Buffer, BufferBarrier, BufferUsage, CommandSlot, DescriptorArena, GpuContext,
-    MemoryKind, Recorder, Retired, TimestampPool, VkError,
+    MemoryKind, Recorder, Retired, TimestampPool,
 };
 use anyhow::{Context as _, Result};
-use object::{globals, object_params, sphere_data, GpuObject, GUARD_CLEAR};
+use object::{globals, object_params, sphere_data, GpuObject};
 use pipelines::{Pipelines, Stage};
 
 /// Workgroup shape of the cloth stages (the paper's 16 x 16) and of the rope stages (1-D).
@@ -87,7 +88,10 @@ pub struct GpuSim {
     globals: Buffer,
     spheres: Buffer,
     objects: Vec<GpuObject>,
-    slot: CommandSlot,
+    /// Command buffers of the headless frames (`frames.rs`), one per frame in flight, and
+    /// whether each holds a submitted frame whose timing and guard are not read yet.
+    slots: Vec<CommandSlot>,
+    unread: Vec<bool>,
     /// One pool per frame slot (empty when the device has no timestamps).
     timestamps: Vec<TimestampPool>,
     stage_timing: bool,
@@ -115,7 +119,7 @@ struct Parts {
     arena: Option<DescriptorArena>,
     globals: Option<Buffer>,
     spheres: Option<Buffer>,
-    slot: Option<CommandSlot>,
+    slots: Vec<CommandSlot>,
     timestamps: Vec<TimestampPool>,
 }
 
@@ -136,7 +140,9 @@ impl Parts {
         let spheres_size = 16 * model.spheres.len().max(1) as u64;
         self.spheres =
             Some(Buffer::new(ctx, "spheres", spheres_size, BufferUsage::STORAGE, MemoryKind::Upload)?);
-        self.slot = Some(CommandSlot::new(ctx, "frame")?);
+        for slot in 0..FRAME_SLOTS {
+            self.slots.push(CommandSlot::new(ctx, &format!("frame[{slot}]"))?);
+        }
         for _ in 0..FRAME_SLOTS {
             match TimestampPool::new(ctx, 2 * model.substeps + 2)? {
                 Some(pool) => self.timestamps.push(pool),
@@ -150,7 +156,7 @@ impl Parts {
         for t in self.timestamps {
             t.destroy(ctx);
         }
-        if let Some(s) = self.slot {
+        for s in self.slots {
             s.destroy(ctx);
         }
         if let Some(b) = self.spheres {
@@ -210,7 +216,7 @@ impl GpuSim {
             arena: Some(arena),
             globals: Some(globals),
             spheres: Some(spheres),
-            slot: Some(slot),
+            slots,
             timestamps,
         } = parts
         else {
@@ -223,7 +229,8 @@ impl GpuSim {
             globals,
             spheres,
             objects: Vec::new(),
-            slot,
+            unread: vec![false; slots.len()],
+            slots,
             timestamps,
             stage_timing: true,
             fused: true,
@@ -255,58 +262,6 @@ impl GpuSim {
         }
         let initial: Vec<Vec<Particle>> = model.objects.iter().map(particles).collect();
         self.upload_states(ctx, &initial)
-    }
-
-    /// Replaces every object's state (positions, velocities, pins) with `states[i]`.
-    pub fn upload_states(&mut self, ctx: &GpuContext, states: &[Vec<Particle>]) -> Result<()> {
-        anyhow::ensure!(states.len() == self.objects.len(), "one state per object");
-        for (s, o) in states.iter().zip(&self.objects) {
-            anyhow::ensure!(s.len() == o.particles as usize, "state size does not match the object");
-        }
-        let bytes: u64 = states.iter().map(|s| std::mem::size_of_val(s.as_slice()) as u64).sum();
-        let mut staging =
-            Buffer::new(ctx, "upload staging", bytes, BufferUsage::TRANSFER_SRC, MemoryKind::Upload)?;
-        self.slot.wait(ctx)?;
-        let result = (|| -> Result<(), VkError> {
-            let mut offset = 0;
-            for s in states {
-                staging.write(offset, s)?;
-                offset += std::mem::size_of_val(s.as_slice()) as u64;
-            }
-            ctx.one_shot("upload", |rec| {
-                let mut offset = 0;
-                for (s, o) in states.iter().zip(&self.objects) {
-                    let size = std::mem::size_of_val(s.as_slice()) as u64;
-                    rec.copy_buffer_region(&staging, offset, &o.state[0], 0, size);
-                    offset += size;
-                }
-                // The spatial hash counts start at zero (the scan re-zeroes them every substep).
-                let hashed = self.hashed();
-                rec.barrier(
-                    &hashed
-                        .iter()
-                        .map(|(_, h)| {
-                            BufferBarrier::new(&h.counts, Access::ComputeReadWrite, Access::TransferWrite)
-                        })
-                        .collect::<Vec<_>>(),
-                );
-                for (_, h) in &hashed {
-                    rec.fill_buffer(&h.counts, 0);
-                }
-                let to_compute: Vec<_> = self
-                    .objects
-                    .iter()
-                    .map(|o| BufferBarrier::new(&o.state[0], Access::TransferWrite, Access::ComputeReadWrite))
-                    .chain(hashed.iter().map(|(_, h)| {
-                        BufferBarrier::new(&h.counts, Access::TransferWrite, Access::ComputeReadWrite)
-                    }))
-                    .collect();
-                rec.barrier(&to_compute);
-                Ok(())
-            })
-        })();
-        staging.destroy(ctx);
-        result.context("uploading the simulation state")
     }
 
     /// Records one frame (all substeps and the surface stage) into `rec`. `surface_consumer` is
@@ -531,118 +486,6 @@ impl GpuSim {
             .collect()
     }
 
-    /// Simulates one frame headless and waits for it; returns its GPU timing when available.
-    pub fn step_frame(&mut self, ctx: &GpuContext) -> Result<Option<FrameTiming>> {
-        self.slot.wait(ctx)?;
-        let mut rec = self.slot.begin(ctx)?;
-        self.record_frame(&mut rec, Access::ComputeReadWrite, 0);
-        self.slot.submit(ctx, rec)?;
-        self.slot.wait(ctx)?;
-        if let Some(trip) = self.check_guard()? {
-            return Err(trip.into());
-        }
-        self.read_timing(ctx, 0)
-    }
-
-    /// Reads the runtime guard of every object (after the fence of the last recorded frame):
-    /// the first object whose state went non-finite or ran away, as a report with advice. The
-    /// guard is cleared, so a resumed simulation reports again only if it trips again.
-    pub fn check_guard(&mut self) -> Result<Option<GuardTrip>> {
-        for (i, o) in self.objects.iter_mut().enumerate() {
-            let [flags, first] = o.guard.read::<u32>(2)?[..] else { unreachable!("two words read") };
-            if flags != 0 {
-                o.guard.write(0, &GUARD_CLEAR)?;
-                let time = self.frames as f64 * self.model.frame_dt;
-                return Ok(Some(GuardTrip::new(&self.model, i, first, flags & GUARD_NON_FINITE != 0, time)));
-            }
-        }
-        Ok(None)
-    }
-
-    /// Per-stage GPU time of the last frame recorded with timestamp `slot`, after its fence.
-    pub fn read_timing(&self, ctx: &GpuContext, slot: usize) -> Result<Option<FrameTiming>> {
-        let Some(pool) = self.timestamps.get(slot) else { return Ok(None) };
-        let ms = |a: f64, b: f64| (b - a).max(0.0) * 1e-6;
-        let last = 1 + 2 * self.model.substeps;
-        let mut timing = FrameTiming::default();
-        if self.stage_timing {
-            let t = pool.read_ns(ctx, last + 1)?;
-            for s in 0..self.model.substeps as usize {
-                timing.physics_ms += ms(t[2 * s], t[2 * s + 1]);
-                timing.constraints_ms += ms(t[2 * s + 1], t[2 * s + 2]);
-            }
-            timing.surface_ms = ms(t[last as usize - 1], t[last as usize]);
-            timing.total_ms = ms(t[0], t[last as usize]);
-        } else {
-            // Only the first and the last timestamps were written.
-            let start = pool.read_range_ns(ctx, 0, 1)?;
-            let end = pool.read_range_ns(ctx, last, 1)?;
-            timing.total_ms = ms(start[0], end[0]);
-        }
-        Ok(Some(timing))
-    }
-
-    /// Copies every object's state and surface back to the host.
-    pub fn read_states(&mut self, ctx: &GpuContext) -> Result<Vec<ObjectState>> {
-        self.slot.wait(ctx)?;
-        let p = std::mem::size_of::<Particle>() as u64;
-        let s = std::mem::size_of::<SurfaceVertex>() as u64;
-        let bytes: u64 = self.objects.iter().map(|o| o.particles as u64 * p + o.surface_len as u64 * s).sum();
-        let readback = Buffer::new(ctx, "readback", bytes, BufferUsage::TRANSFER_DST, MemoryKind::Readback)?;
-        let result = (|| -> Result<Vec<ObjectState>> {
-            ctx.one_shot("readback", |rec| {
-                let to_copy: Vec<_> = self
-                    .objects
-                    .iter()
-                    .flat_map(|o| {
-                        [
-                            BufferBarrier::new(&o.state[0], Access::ComputeWrite, Access::TransferRead),
-                            BufferBarrier::new(&o.surface, Access::ComputeWrite, Access::TransferRead),
-                        ]
-                    })
-                    .collect();
-                rec.barrier(&to_copy);
-                let mut offset = 0;
-                for o in &self.objects {
-                    rec.copy_buffer_region(&o.state[0], 0, &readback, offset, o.particles as u64 * p);
-                    offset += o.particles as u64 * p;
-                    rec.copy_buffer_region(&o.surface, 0, &readback, offset, o.surface_len as u64 * s);
-                    offset += o.surface_len as u64 * s;
-                }
-                let back: Vec<_> = self
-                    .objects
-                    .iter()
-                    .flat_map(|o| {
-                        [
-                            BufferBarrier::new(&o.state[0], Access::TransferRead, Access::ComputeReadWrite),
-                            BufferBarrier::new(&o.surface, Access::TransferRead, Access::ComputeWrite),
-                        ]
-                    })
-                    .chain([BufferBarrier::new(&readback, Access::TransferWrite, Access::HostRead)])
-                    .collect();
-                rec.barrier(&back);
-                Ok(())
-            })?;
-            let words: Vec<u8> = readback.read::<u8>(bytes as usize)?;
-            let mut at = 0usize;
-            let mut take = |len: usize| {
-                let slice = &words[at..at + len];
-                at += len;
-                slice
-            };
-            Ok(self
-                .objects
-                .iter()
-                .map(|o| ObjectState {
-                    particles: bytemuck::pod_collect_to_vec(take(o.particles as usize * p as usize)),
-                    surface: bytemuck::pod_collect_to_vec(take(o.surface_len as usize * s as usize)),
-                })
-                .collect())
-        })();
-        readback.destroy(ctx);
-        result.context("reading the simulation state back")
-    }
-
     /// Simulated time so far [s].
     pub fn time(&self) -> f64 {
         self.frames as f64 * self.model.frame_dt
@@ -658,7 +501,7 @@ impl GpuSim {
 
     /// Frees everything after waiting for the last frame.
     pub fn destroy(mut self, ctx: &GpuContext) {
-        if self.slot.wait(ctx).is_err() {
+        if self.wait_all(ctx).is_err() {
             let _ = ctx.wait_idle();
         }
         for o in self.objects {
@@ -670,7 +513,7 @@ impl GpuSim {
             arena: Some(self.arena),
             globals: Some(self.globals),
             spheres: Some(self.spheres),
-            slot: Some(self.slot),
+            slots: self.slots,
             timestamps: self.timestamps,
         }
         .destroy(ctx);

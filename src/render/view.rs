@@ -1,0 +1,82 @@
+//! What the app draws of a scene, shared by the window and the offscreen end-to-end benchmark:
+//! the draw list (surfaces, colliders, light, wind), the camera uniform and the bounds the
+//! camera is fitted to.
+
+use super::camera::OrbitCamera;
+use super::{DrawItem, Shape};
+use crate::scene::Scene;
+use crate::sim::gpu_types::Camera;
+use crate::sim::model::SimModel;
+use glam::{Mat4, Quat, Vec3};
+
+/// The background colour.
+pub const SKY: [f32; 4] = [0.09, 0.10, 0.12, 1.0];
+
+/// The scene's draws: every object's surface, the spheres, the light and the wind cone.
+pub fn scene_items(scene: &Scene) -> Vec<DrawItem> {
+    let f = |c: [f64; 3]| c.map(|x| x as f32);
+    let v = |c: [f64; 3]| Vec3::from_array(f(c));
+    let placed =
+        |scale: Vec3, rotation: Quat, at: Vec3| Mat4::from_scale_rotation_translation(scale, rotation, at);
+    let mut items = Vec::new();
+    for (i, c) in scene.cloths.iter().enumerate() {
+        items.push(DrawItem {
+            shape: Shape::Surface(i),
+            model: Mat4::IDENTITY,
+            front: f(c.color),
+            back: f(c.back_color),
+            lit: true,
+        });
+    }
+    for (j, r) in scene.ropes.iter().enumerate() {
+        items.push(DrawItem::solid(Shape::Surface(scene.cloths.len() + j), Mat4::IDENTITY, f(r.color), true));
+    }
+    for s in &scene.spheres {
+        let model = placed(Vec3::splat(s.radius as f32), Quat::IDENTITY, v(s.center));
+        items.push(DrawItem::solid(Shape::Sphere, model, [0.45, 0.5, 0.58], true));
+    }
+    let light = placed(Vec3::splat(0.06), Quat::IDENTITY, v(scene.light.position));
+    items.push(DrawItem::solid(Shape::Sphere, light, [1.0, 0.9, 0.5], false));
+    if scene.wind.enabled {
+        let dir = v(scene.wind.direction).normalize_or(Vec3::Z);
+        let model =
+            placed(Vec3::new(0.12, 0.12, 0.35), Quat::from_rotation_arc(Vec3::Z, dir), v(scene.wind.origin));
+        items.push(DrawItem::solid(Shape::Cone, model, [0.25, 0.45, 0.95], true));
+    }
+    items
+}
+
+/// The camera uniform for a view of `extent` pixels, lit by the scene's light.
+pub fn camera_uniform(camera: &OrbitCamera, extent: [u32; 2], scene: &Scene) -> Camera {
+    let light = &scene.light;
+    Camera {
+        view_proj: camera.view_proj(extent[0] as f32 / extent[1].max(1) as f32).to_cols_array_2d(),
+        eye: camera.eye().extend(1.0).to_array(),
+        light_pos: [light.position[0] as f32, light.position[1] as f32, light.position[2] as f32, 1.0],
+        light_color: [
+            light.color[0] as f32,
+            light.color[1] as f32,
+            light.color[2] as f32,
+            light.ambient as f32,
+        ],
+    }
+}
+
+/// Fits `camera` to the model's particles and spheres (unchanged for an empty model).
+pub fn fit_camera(camera: &mut OrbitCamera, model: &SimModel) {
+    let mut min = Vec3::splat(f32::MAX);
+    let mut max = Vec3::splat(f32::MIN);
+    for o in &model.objects {
+        for p in &o.positions {
+            min = min.min(p.as_vec3());
+            max = max.max(p.as_vec3());
+        }
+    }
+    for s in &model.spheres {
+        min = min.min((s.center - s.radius).as_vec3());
+        max = max.max((s.center + s.radius).as_vec3());
+    }
+    if min.x <= max.x {
+        camera.fit(min, max);
+    }
+}

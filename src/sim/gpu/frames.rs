@@ -1,0 +1,98 @@
+//! Driving the simulation headless: frames submitted with up to `FRAME_SLOTS` in flight (as
+//! the app runs them, so the GPU is not left idle while the host records the next one), or one
+//! at a time; each finished frame's timestamps and runtime guard are read after its fence.
+
+use super::object::GUARD_CLEAR;
+use super::{FrameTiming, GpuSim, FRAME_SLOTS};
+use crate::sim::gpu_types::GUARD_NON_FINITE;
+use crate::sim::stability::GuardTrip;
+use crate::vk::{Access, GpuContext};
+use anyhow::Result;
+
+impl GpuSim {
+    /// Records and submits the next frame without waiting for it. First waits for the frame
+    /// that last used its slot (`FRAME_SLOTS` frames back) and returns that frame's GPU timing
+    /// (when the device has timestamps), or the runtime guard's report as an error.
+    pub fn submit_frame(&mut self, ctx: &GpuContext) -> Result<Option<FrameTiming>> {
+        let slot = (self.frames % FRAME_SLOTS as u64) as usize;
+        let finished = self.complete(ctx, slot)?;
+        let mut rec = self.slots[slot].begin(ctx)?;
+        self.record_frame(&mut rec, Access::ComputeReadWrite, slot);
+        self.slots[slot].submit(ctx, rec)?;
+        self.unread[slot] = true;
+        Ok(finished)
+    }
+
+    /// Waits for every frame in flight; returns their timings, oldest first.
+    pub fn finish_frames(&mut self, ctx: &GpuContext) -> Result<Vec<FrameTiming>> {
+        let mut timings = Vec::new();
+        for i in 0..FRAME_SLOTS as u64 {
+            let slot = ((self.frames + i) % FRAME_SLOTS as u64) as usize;
+            timings.extend(self.complete(ctx, slot)?);
+        }
+        Ok(timings)
+    }
+
+    /// Simulates one frame and waits for it; returns its GPU timing when available.
+    pub fn step_frame(&mut self, ctx: &GpuContext) -> Result<Option<FrameTiming>> {
+        self.finish_frames(ctx)?;
+        self.submit_frame(ctx)?;
+        Ok(self.finish_frames(ctx)?.pop())
+    }
+
+    /// Waits for the frame in `slot`, then (once per frame) checks the guard and reads its
+    /// timing.
+    fn complete(&mut self, ctx: &GpuContext, slot: usize) -> Result<Option<FrameTiming>> {
+        self.slots[slot].wait(ctx)?;
+        if !std::mem::take(&mut self.unread[slot]) {
+            return Ok(None);
+        }
+        if let Some(trip) = self.check_guard()? {
+            return Err(trip.into());
+        }
+        self.read_timing(ctx, slot)
+    }
+
+    /// Waits for every frame in flight (their timings stay readable).
+    pub(super) fn wait_all(&mut self, ctx: &GpuContext) -> Result<(), crate::vk::VkError> {
+        self.slots.iter_mut().try_for_each(|s| s.wait(ctx))
+    }
+
+    /// Reads the runtime guard of every object (after the fence of the last recorded frame):
+    /// the first object whose state went non-finite or ran away, as a report with advice. The
+    /// guard is cleared, so a resumed simulation reports again only if it trips again.
+    pub fn check_guard(&mut self) -> Result<Option<GuardTrip>> {
+        for (i, o) in self.objects.iter_mut().enumerate() {
+            let [flags, first] = o.guard.read::<u32>(2)?[..] else { unreachable!("two words read") };
+            if flags != 0 {
+                o.guard.write(0, &GUARD_CLEAR)?;
+                let time = self.frames as f64 * self.model.frame_dt;
+                return Ok(Some(GuardTrip::new(&self.model, i, first, flags & GUARD_NON_FINITE != 0, time)));
+            }
+        }
+        Ok(None)
+    }
+
+    /// Per-stage GPU time of the last frame recorded with timestamp `slot`, after its fence.
+    pub fn read_timing(&self, ctx: &GpuContext, slot: usize) -> Result<Option<FrameTiming>> {
+        let Some(pool) = self.timestamps.get(slot) else { return Ok(None) };
+        let ms = |a: f64, b: f64| (b - a).max(0.0) * 1e-6;
+        let last = 1 + 2 * self.model.substeps;
+        let mut timing = FrameTiming::default();
+        if self.stage_timing {
+            let t = pool.read_ns(ctx, last + 1)?;
+            for s in 0..self.model.substeps as usize {
+                timing.physics_ms += ms(t[2 * s], t[2 * s + 1]);
+                timing.constraints_ms += ms(t[2 * s + 1], t[2 * s + 2]);
+            }
+            timing.surface_ms = ms(t[last as usize - 1], t[last as usize]);
+            timing.total_ms = ms(t[0], t[last as usize]);
+        } else {
+            // Only the first and the last timestamps were written.
+            let start = pool.read_range_ns(ctx, 0, 1)?;
+            let end = pool.read_range_ns(ctx, last, 1)?;
+            timing.total_ms = ms(start[0], end[0]);
+        }
+        Ok(Some(timing))
+    }
+}
