@@ -8,6 +8,9 @@
 #include "springs.glsl"
 
 layout(local_size_x_id = 0, local_size_y_id = 1, local_size_z = 1) in;
+layout(push_constant) uniform Push {
+    uint substep;  // of the frame, 0-based
+} pc;
 
 #define IN(i) p_in[i]
 #define OUT(i) p_out[i]
@@ -16,5 +19,5 @@ layout(local_size_x_id = 0, local_size_y_id = 1, local_size_z = 1) in;
 void main() {
     uvec2 cell = gl_GlobalInvocationID.xy;
     if (cell.x >= obj.dims.x || cell.y >= obj.dims.y) return;
-    constraints_particle(cell);
+    constraints_particle(cell, pc.substep);
 }

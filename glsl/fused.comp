@@ -319,7 +319,7 @@ void main() {
                 xs += correction;
                 vs += correction / g.dt;  // velocity follows the position correction
             }
-            collide_spheres(xs, vs);
+            collide(xs, vs, float(sub + 1u) * g.dt);
             x[s] = xs;
             v[s] = vs;
         }

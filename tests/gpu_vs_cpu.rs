@@ -200,10 +200,110 @@ fn spheres_with_friction() {
     c.margin = 0.01;
     let mut s = scene(vec![c]);
     s.gravity = DVec3::new(0.0, -9.81, 0.0);
-    s.spheres = vec![sphere([-0.1, 0.2, 0.0], 0.25), sphere([0.25, 0.25, 0.1], 0.1)];
-    assert_matters("spheres", &s, |m| m.spheres.clear());
+    s.colliders = vec![sphere([-0.1, 0.2, 0.0], 0.25), sphere([0.25, 0.25, 0.1], 0.1)];
+    assert_matters("colliders", &s, |m| m.colliders.clear());
     assert_matters("friction", &s, |m| m.objects[0].friction = 0.0);
     check("spheres", &s);
+}
+
+/// The ground, a tilted box and a capsule, one at a time: the same falling cloth as for the
+/// spheres lands on each (the collider must change the result, and so must friction).
+#[test]
+fn ground_box_and_capsule() {
+    use msdsim::sim::collider::{ColliderModel, Motion, Shape};
+    let colliders = [
+        (
+            "ground",
+            ColliderModel {
+                shape: Shape::Ground { height: 0.4 },
+                friction: Some(0.6),
+                motion: Motion::Fixed,
+            },
+        ),
+        (
+            "box",
+            ColliderModel {
+                shape: Shape::Box {
+                    center: DVec3::new(0.0, 0.2, 0.0),
+                    half_extents: DVec3::new(0.15, 0.1, 0.12),
+                    rotation: glam::DQuat::from_euler(glam::EulerRot::XYZ, 0.2, 0.5, 0.1),
+                },
+                friction: None,
+                motion: Motion::Fixed,
+            },
+        ),
+        (
+            "capsule",
+            ColliderModel {
+                shape: Shape::Capsule {
+                    a: DVec3::new(-0.2, 0.25, -0.1),
+                    b: DVec3::new(0.2, 0.3, 0.1),
+                    radius: 0.07,
+                },
+                friction: None,
+                motion: Motion::Fixed,
+            },
+        ),
+    ];
+    for (name, collider) in colliders {
+        let mut c = jittered_cloth();
+        c.stiffness = [60.0, 20.0, 5.0];
+        for (i, p) in c.positions.iter_mut().enumerate() {
+            let (col, row) = ((i % 13) as f64, (i / 13) as f64);
+            *p = DVec3::new(col * 0.05 - 0.3, 0.5, row * 0.05 - 0.2);
+        }
+        jitter(&mut c.positions, 0.005, 11);
+        c.velocities.fill(DVec3::new(0.8, -0.5, 0.0)); // sliding, so that friction acts
+        c.friction = 0.4;
+        c.margin = 0.01;
+        let mut s = scene(vec![c]);
+        s.gravity = DVec3::new(0.0, -9.81, 0.0);
+        s.colliders = vec![collider];
+        assert_matters(name, &s, |m| m.colliders.clear());
+        assert_matters(&format!("{name} friction"), &s, |m| {
+            m.colliders[0].friction = Some(0.0);
+            m.objects[0].friction = 0.0;
+        });
+        check(name, &s);
+    }
+}
+
+/// Colliders that move: a sphere at a constant velocity sweeping up through the falling cloth
+/// and a capsule on keyframes whose times fall inside frames (so a frame's chord velocity is
+/// not a keyframe segment's). Both must change the result compared with standing still.
+#[test]
+fn moving_colliders() {
+    use msdsim::sim::collider::{ColliderModel, Motion, Shape};
+    let mut c = jittered_cloth();
+    c.stiffness = [60.0, 20.0, 5.0];
+    for (i, p) in c.positions.iter_mut().enumerate() {
+        let (col, row) = ((i % 13) as f64, (i / 13) as f64);
+        *p = DVec3::new(col * 0.05 - 0.3, 0.5, row * 0.05 - 0.2);
+    }
+    jitter(&mut c.positions, 0.005, 12);
+    c.friction = 0.5;
+    c.margin = 0.01;
+    let mut s = scene(vec![c]);
+    s.gravity = DVec3::new(0.0, -9.81, 0.0);
+    let keys =
+        vec![(0.03, DVec3::ZERO), (0.11, DVec3::new(0.1, 0.15, 0.0)), (0.2, DVec3::new(0.3, 0.1, 0.05))];
+    s.colliders = vec![
+        ColliderModel {
+            motion: Motion::Velocity(DVec3::new(0.2, 1.5, 0.0)),
+            ..sphere([-0.1, 0.2, 0.0], 0.12)
+        },
+        ColliderModel {
+            shape: Shape::Capsule {
+                a: DVec3::new(0.0, 0.25, -0.2),
+                b: DVec3::new(0.1, 0.25, 0.2),
+                radius: 0.05,
+            },
+            friction: Some(0.8),
+            motion: Motion::Keyframes(keys),
+        },
+    ];
+    assert_matters("motion", &s, |m| m.colliders.iter_mut().for_each(|c| c.motion = Motion::Fixed));
+    check("moving colliders", &s);
 }
 
 #[test]
@@ -250,7 +350,7 @@ fn rope_on_sphere_with_friction() {
     }
     let mut s = scene(vec![r]);
     s.gravity = DVec3::new(0.0, -9.81, 0.0);
-    s.spheres = vec![sphere([0.0, 0.0, 0.0], 0.3)];
+    s.colliders = vec![sphere([0.0, 0.0, 0.0], 0.3)];
     assert_matters("rope friction", &s, |m| m.objects[0].friction = 0.0);
     check("rope on sphere", &s);
 }
@@ -314,7 +414,7 @@ fn everything_together() {
     let mut s = scene(vec![c, r]);
     s.gravity = DVec3::new(0.0, -9.81, 0.0);
     s.wind = Some(wind([0.3, 0.8, 1.0], [0.0, 0.0, -1.0], 0.01, 0.3, 0.6));
-    s.spheres =
+    s.colliders =
         (0..16).map(|k| sphere([k as f64 * 0.09 - 0.35, 0.35, 0.05 + 0.01 * (k % 3) as f64], 0.04)).collect();
     check_mode("everything", &s, Mode::Resync);
 }
@@ -400,7 +500,7 @@ fn fused_substeps_equal_the_per_stage_path() {
     let mut s = scene(vec![c, r]);
     s.gravity = DVec3::new(0.0, -9.81, 0.0);
     s.wind = Some(wind([0.3, 0.8, 1.0], [0.0, 0.0, -1.0], 0.01, 0.3, 0.6));
-    s.spheres = vec![sphere([0.3, 0.5, 0.1], 0.15)];
+    s.colliders = vec![sphere([0.3, 0.5, 0.1], 0.15)];
     let worst = fused_against_per_stage(&s, FusedLimits { shared_bytes: u32::MAX, slots: 1 });
     println!("fused vs per stage: {worst:e} m");
     assert!(worst <= 1e-6, "the fused path differs from the per-stage path by {worst} m");
@@ -571,7 +671,7 @@ fn everything_with_the_iterative_integrators() {
             o.self_distance = Some(0.02);
             o.friction = 0.5;
         }
-        s.spheres = vec![sphere([0.3, 0.6, 0.05], 0.1)];
+        s.colliders = vec![sphere([0.3, 0.6, 0.05], 0.1)];
         both_methods(&format!("{method:?} everything"), &s);
     }
 }

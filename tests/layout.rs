@@ -34,8 +34,9 @@ fn a_shifted_member_is_refused() {
     assert!(err.contains("ObjectParams"), "{err}");
 }
 
-/// The `#define`d constants of the headers (flag bits, feature bits, the rope ring) equal the
-/// host's mirrors in `sim::gpu_types`.
+/// The `#define`d constants of the headers (flag bits, feature bits, the rope ring, the
+/// integrator and collider type ids) equal the host's mirrors in `sim::gpu_types`,
+/// `sim::integrator` and `sim::collider`.
 #[test]
 fn header_constants_match_the_host() {
     let method_define = |m: msdsim::sim::model::Integrator| -> &'static str {
@@ -44,7 +45,7 @@ fn header_constants_match_the_host() {
     use msdsim::sim::gpu_types as t;
     let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("glsl/include");
     let mut defines = std::collections::HashMap::new();
-    for file in ["layout.glsl", "features.glsl"] {
+    for file in ["layout.glsl", "features.glsl", "colliders.glsl"] {
         for line in std::fs::read_to_string(dir.join(file)).unwrap().lines() {
             let mut words = line.split_whitespace();
             if let (Some("#define"), Some(name), Some(value)) = (words.next(), words.next(), words.next()) {
@@ -69,9 +70,24 @@ fn header_constants_match_the_host() {
         ("F_SPHERES", t::FEATURE_SPHERES),
         ("F_STRETCH", t::FEATURE_STRETCH),
         ("F_SELF", t::FEATURE_SELF),
+        ("F_GROUND", t::FEATURE_GROUND),
+        ("F_BOX", t::FEATURE_BOX),
+        ("F_CAPSULE", t::FEATURE_CAPSULE),
     ]
     .into_iter()
-    .chain(msdsim::sim::model::Integrator::ALL.map(|m| (method_define(m), m as u32)));
+    .chain(msdsim::sim::model::Integrator::ALL.map(|m| (method_define(m), m as u32)))
+    .chain(msdsim::sim::collider::KINDS.iter().map(|k| {
+        let name: &'static str = Box::leak(format!("COLLIDER_{}", k.label.to_uppercase()).into_boxed_str());
+        (name, k.glsl_id)
+    }))
+    // Each collider type's feature bit is the one its row names.
+    .chain(msdsim::sim::collider::KINDS.iter().map(|k| {
+        let name: &'static str = Box::leak(
+            format!("F_{}", if k.label == "sphere" { "SPHERES".into() } else { k.label.to_uppercase() })
+                .into_boxed_str(),
+        );
+        (name, k.feature)
+    }));
     for (name, value) in host {
         assert_eq!(defines.get(name), Some(&value), "{name}: header and host disagree");
     }

@@ -38,7 +38,14 @@ fn an_edited_scene_survives_save_and_load() {
     extra.color = [0.1, 0.2, 0.3];
     s.cloths.push(extra);
     s.ropes[0].ring_weights = Some(vec![[0.5, 0.25]; 8]);
-    s.spheres.push(scene::Sphere { center: [0.1, -0.2, 1.0 / 3.0], radius: 0.1 });
+    s.spheres.push(scene::Sphere {
+        center: [0.1, -0.2, 1.0 / 3.0],
+        radius: 0.1,
+        motion: Some(scene::Motion {
+            velocity: None,
+            keyframes: vec![[0.0, 0.1, -0.2, 0.3], [1.5, 0.4, 0.0, 0.3]],
+        }),
+    });
     s.light.ambient = 0.3;
     s.wind.enabled = false;
     s.sim.frame_dt = 1.0 / 120.0;

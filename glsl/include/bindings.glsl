@@ -17,7 +17,7 @@ layout(std430, set = 0, binding = 3) buffer StateOut { Particle p_out[]; };
 layout(std430, set = 0, binding = 2) readonly buffer StateIn { Particle p_in[]; };
 layout(std430, set = 0, binding = 3) writeonly buffer StateOut { Particle p_out[]; };
 #endif
-layout(std430, set = 0, binding = 4) restrict readonly buffer SphereBuf { vec4 spheres[]; }; // xyz centre, w radius
+layout(std430, set = 0, binding = 4) restrict readonly buffer ColliderBuf { Collider colliders[]; };
 layout(std430, set = 0, binding = 5) writeonly buffer SurfaceBuf { SurfaceVertex surface[]; };
 // Spatial hash of the self-collision (objects without it bind a placeholder).
 layout(std430, set = 0, binding = 6) buffer HashCellRank { uvec2 cell_rank[]; }; // per particle: bucket, rank in it

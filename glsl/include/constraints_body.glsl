@@ -1,9 +1,9 @@
 // The constraint stage for one particle, Jacobi: every correction is computed from the physics
 // output: the stretch limit on structural and shear springs, self-collision (spatial hash or
-// brute force), then sphere colliders with friction, and the velocity update. The corrections
+// brute force), then the colliders with friction, and the velocity update. The corrections
 // of all active constraints of a particle are averaged (Jacobi averaging): summing them, as
 // sequential Gauss-Seidel would, overshoots when several act at once and diverges.
-// `constraint_correction` and `collide_spheres` are shared by constraints.comp (through
+// `constraint_correction` and `collide` (colliders.glsl) are shared by constraints.comp (through
 // `constraints_particle`, which reads IN(i) and writes OUT(i)) and fused.comp. Other
 // particles are read through CPOS(j) (position) and CPINNED(j); by default from IN(j). The
 // spatial hash's buckets are visited by `visit_bucket`: here the global hash (starts[],
@@ -13,6 +13,7 @@
 #ifndef MSD_CONSTRAINTS_BODY_GLSL
 #define MSD_CONSTRAINTS_BODY_GLSL
 #include "features.glsl"
+#include "colliders.glsl"
 
 #ifndef CPOS
 #define CPOS(j) IN(j).pos.xyz
@@ -87,25 +88,6 @@ vec3 constraint_correction(uvec2 cell, vec3 x) {
     return correction;
 }
 
-// Sphere colliders: project out to radius + margin, remove the approaching normal velocity,
-// scale the tangential velocity by (1 - friction).
-void collide_spheres(inout vec3 x, inout vec3 v) {
-    if (!has(F_SPHERES)) return;
-    for (uint s = 0u; s < g.sphere_count; ++s) {
-        vec3 c = spheres[s].xyz;
-        float reach = spheres[s].w + obj.margin;
-        vec3 from_c = x - c;
-        float d = length(from_c);
-        if (d < reach) {
-            vec3 n = d > 0.0 ? from_c / d : vec3(0.0, 1.0, 0.0);
-            x = c + n * reach;
-            float vn = dot(v, n);
-            vec3 vt = v - vn * n;
-            v = vt * (1.0 - obj.friction) + max(vn, 0.0) * n;
-        }
-    }
-}
-
 #ifndef FUSED_SHARED
 // The global spatial hash: candidates are stored contiguously by bucket with their positions,
 // so most are rejected without reading their particle.
@@ -119,7 +101,8 @@ void visit_bucket(uint h, uvec2 cell, vec3 x, float reach, inout vec3 correction
 #endif
 
 #ifdef OUT
-void constraints_particle(uvec2 cell) {
+// `substep`: which of the frame's substeps this is (the colliders move within the frame).
+void constraints_particle(uvec2 cell, uint substep) {
     uint i = cell.x + cell.y * obj.dims.x;
     Particle p = IN(i);
     if (p.pos.w > 0.5) {
@@ -131,7 +114,7 @@ void constraints_particle(uvec2 cell) {
     vec3 correction = constraint_correction(cell, x);
     x += correction;
     v += correction / g.dt;  // velocity follows the position correction
-    collide_spheres(x, v);
+    collide(x, v, float(substep + 1u) * g.dt);
     OUT(i) = Particle(vec4(x, 0.0), vec4(v, 0.0));
 }
 #endif

@@ -1,7 +1,7 @@
 // What a scene uses, compiled in or out: a specialization constant (id 3) that the host sets
 // per object from its model (src/sim/gpu/pipelines.rs, `features`). A feature the scene does
 // not use is removed from the pipeline, not skipped at run time. The runtime flags (wind on,
-// sphere count, ObjectParams.flags) still apply inside a compiled-in feature. Shaders created
+// collider count, ObjectParams.flags) still apply inside a compiled-in feature. Shaders created
 // without the constant (default: everything) behave as before.
 // The bits are mirrored in src/sim/gpu_types.rs (FEATURE_*).
 #ifndef MSD_FEATURES_GLSL
@@ -15,8 +15,12 @@
 #define F_SPHERES    32u  // sphere colliders
 #define F_STRETCH    64u  // the stretch limit
 #define F_SELF       128u // self-collision (ObjectParams.flags: through the hash or every pair)
+#define F_GROUND     256u // the ground plane
+#define F_BOX        512u // box colliders
+#define F_CAPSULE    1024u // capsule colliders
+#define F_COLLIDERS  (F_SPHERES | F_GROUND | F_BOX | F_CAPSULE)
 
-layout(constant_id = 3) const uint FEATURES = 0xFFu;
+layout(constant_id = 3) const uint FEATURES = 0x7FFu;
 
 bool has(uint feature) { return (FEATURES & feature) != 0u; }
 

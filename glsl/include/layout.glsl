@@ -31,13 +31,24 @@ struct SurfaceVertex {
     vec4 normal;  // xyz unit normal; w = 0
 };
 
+// A collider (sim::collider::ColliderModel::gpu): a.xyz centre or point a, a.w the type id
+// (COLLIDER_*, as uint bits); b.xyz half extents or point b, b.w radius; rotation a unit
+// quaternion (xyzw); extra.x the friction, negative for the object's; extra.yzw its
+// velocity over the frame (positions are the frame's start).
+struct Collider {
+    vec4 a;
+    vec4 b;
+    vec4 rotation;
+    vec4 extra;
+};
+
 struct Globals {
     vec3 gravity;        float dt;             // [m/s^2], substep length [s]
     vec3 wind_origin;    float wind_force;     // cone apex [m], force at full strength [N per particle]
     vec3 wind_dir;       float wind_cos_full;  // unit axis; cos of the full-force half-angle
     float wind_cos_att;                        // cos of the half-angle where the force reaches 0
     uint wind_enabled;                         // 0 or 1
-    uint sphere_count;                         // spheres[] entries in use
+    uint collider_count;                       // colliders[] entries in use
     uint substeps;                             // per frame (the fused shader loops over them)
     float guard_speed;                         // a particle faster than this [m/s] has run away
     uint iterations;                           // solver iterations per substep (iterative methods)
@@ -57,8 +68,8 @@ struct ObjectParams {
     float mass;            // per particle [kg]
     float drag;            // Stokes coefficient c, drag force -c v [N s/m]
     float stretch_limit;   // maximum elongation as a fraction of rest length
-    float friction;        // 0..1: fraction of tangential velocity removed on sphere contact
-    float margin;          // distance kept from sphere surfaces [m]
+    float friction;        // 0..1: fraction of tangential velocity removed on collider contact
+    float margin;          // distance kept from collider surfaces [m]
     float self_distance;   // particles closer than this push apart [m]
     float rope_radius;     // rope tube radius [m]
     uint flags;            // OBJ_* bits

@@ -1,6 +1,6 @@
 //! The app's frame without a window, for `bench --end-to-end`: each frame records the
 //! simulation (all substeps and the surface stage), then the app's scene renderer draws the
-//! scene, the ground grid included, into an offscreen colour + depth target (1920 x 1080 by
+//! scene (the ground grid where it has a ground) into an offscreen colour + depth target (1920 x 1080 by
 //! default), with `FRAME_SLOTS` frames in flight as in the window. What it leaves out of the
 //! app's frame is the swapchain (acquire and present) and ImGui.
 //!
@@ -148,7 +148,6 @@ fn run(
     let mut camera = OrbitCamera::default();
     view::fit_camera(&mut camera, model);
     let uniform = view::camera_uniform(&camera, extent, scene);
-    let items = view::scene_items(scene);
     let path = if (0..model.objects.len()).all(|i| sim.runs_fused(i)) { "fused" } else { "per stage" };
     let total = options.warmup + options.frames;
     let mut sim_ms = Vec::with_capacity(options.frames);
@@ -199,7 +198,8 @@ fn run(
             ImageBarrier::discarding(target.depth.image(), Access::DepthAttachment, Access::DepthAttachment),
         ]);
         rec.begin_rendering(target.color.view(), target.depth.view(), extent, SKY);
-        renderer.record(&mut rec, slot, sim, &items, true);
+        let items = view::scene_items(scene, sim.time());
+        renderer.record(&mut rec, slot, sim, &items, view::grid_height(scene));
         rec.end_rendering();
         if let Some(pool) = pool {
             rec.timestamp_after_drawing(pool, 1);

@@ -2,7 +2,7 @@
 //! Edits are applied by kind: parameter changes rewrite the GPU parameters in place (the state
 //! is kept); a new substep count, integrator or self-collision method rebuilds the simulation
 //! and carries the state over; anything
-//! that changes the particles' layout (sizes, positions, pins, objects, sphere count) rebuilds
+//! that changes the particles' layout (sizes, positions, pins, objects, the colliders' number, types and motions) rebuilds
 //! and starts from the new initial state.
 
 use crate::render::SceneRenderer;
@@ -58,7 +58,9 @@ fn layout_key(s: &Scene) -> String {
         .iter()
         .map(|r| format!("{}{:?}{:?}{:?}{:?}", r.nodes, r.start, r.end, r.pin, r.pinned))
         .collect();
-    format!("{cloths:?}{ropes:?}{}", s.spheres.len())
+    // A collider's motion is a function of the time since the start: changing it restarts.
+    let kinds: Vec<_> = crate::scene::colliders(s).into_iter().map(|c| (c.shape.kind(), c.motion)).collect();
+    format!("{cloths:?}{ropes:?}{kinds:?}")
 }
 
 impl SimHost {

@@ -355,7 +355,8 @@ impl Viewer {
     }
 
     fn draw_items(&self) -> Vec<DrawItem> {
-        let mut items = view::scene_items(self.host().scene());
+        let host = self.host();
+        let mut items = view::scene_items(host.scene(), host.sim().time());
         if let Some(g) = self.input.grab {
             let model = Mat4::from_scale_rotation_translation(Vec3::splat(0.015), Quat::IDENTITY, g.target);
             items.push(DrawItem::solid(Shape::Cube, model, [1.0, 0.85, 0.1], false));
@@ -415,7 +416,7 @@ impl Viewer {
                 self.pending_scene = Some(scene);
             }
             9 => {
-                scene.spheres.push(scene::Sphere { center: [0.0, 0.2, 0.4], radius: 0.1 });
+                scene.spheres.push(scene::Sphere { center: [0.0, 0.2, 0.4], radius: 0.1, motion: None });
                 self.pending_scene = Some(scene);
             }
             12 => self.pending_actions.push(Action::Reset),
@@ -551,7 +552,8 @@ impl Viewer {
             ),
         ]);
         rec.begin_rendering(swapchain.view(image), swapchain.depth().view(), extent, SKY);
-        self.renderer.as_ref().expect("renderer").record(&mut rec, slot, host.sim(), &items, true);
+        let grid = view::grid_height(host.scene());
+        self.renderer.as_ref().expect("renderer").record(&mut rec, slot, host.sim(), &items, grid);
         if let Some(pool) = &frame.timestamps {
             rec.timestamp_after_drawing(pool, 1);
         }

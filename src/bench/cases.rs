@@ -4,7 +4,10 @@
 //! 10 g, springs of 400/100/40 N/m, 2 cm spacing), so it is stable at 16 substeps per 1/60 s
 //! whatever its size: larger scenes are larger cloths, not finer ones.
 
-use crate::scene::{self, Cloth, ClothPins, Orientation, PerSpring, Rope, RopePins, Scene, Sphere, Wind};
+use crate::scene::{
+    self, BoxCollider, Capsule, Cloth, ClothPins, Ground, Orientation, PerSpring, Rope, RopePins, Scene,
+    Sphere, Wind,
+};
 
 /// One benchmark scene.
 #[derive(Debug, Clone)]
@@ -20,15 +23,20 @@ const SPACING: f64 = 0.02;
 struct Features {
     wind: bool,
     spheres: usize,
+    /// A ground, a box and a capsule (the other collider types, against the 10 spheres).
+    shapes: bool,
     self_collision: bool,
 }
 
-const VARIANTS: [(&str, Features); 5] = [
-    ("springs only", Features { wind: false, spheres: 0, self_collision: false }),
-    ("+ wind", Features { wind: true, spheres: 0, self_collision: false }),
-    ("+ 10 spheres", Features { wind: false, spheres: 10, self_collision: false }),
-    ("+ self-collision", Features { wind: false, spheres: 0, self_collision: true }),
-    ("all features", Features { wind: true, spheres: 10, self_collision: true }),
+const NONE: Features = Features { wind: false, spheres: 0, shapes: false, self_collision: false };
+
+const VARIANTS: [(&str, Features); 6] = [
+    ("springs only", NONE),
+    ("+ wind", Features { wind: true, ..NONE }),
+    ("+ 10 spheres", Features { spheres: 10, ..NONE }),
+    ("+ ground, box, capsule", Features { shapes: true, ..NONE }),
+    ("+ self-collision", Features { self_collision: true, ..NONE }),
+    ("all features", Features { wind: true, spheres: 10, shapes: false, self_collision: true }),
 ];
 
 fn base_scene() -> Scene {
@@ -91,8 +99,24 @@ fn spheres(span: f64, y: f64) -> Vec<Sphere> {
         .map(|k| Sphere {
             center: [(k as f64 / 9.0 - 0.5) * span * 0.8, y, 0.12 * span.min(4.0)],
             radius: 0.1 * span.min(4.0),
+            motion: None,
         })
         .collect()
+}
+
+/// A ground below an object of `span` metres centred at height `y`, and a box and a capsule in
+/// front of it where `spheres` puts its spheres.
+fn shapes(span: f64, y: f64) -> (Ground, BoxCollider, Capsule) {
+    let (z, r) = (0.12 * span.min(4.0), 0.1 * span.min(4.0));
+    let ground = Ground { height: (y - span / 2.0 - 0.2).min(0.0), friction: None };
+    let block = BoxCollider {
+        center: [-0.2 * span, y, z],
+        half_extents: [0.15 * span, r, r],
+        rotation: [0.0, 0.0, 20.0],
+        motion: None,
+    };
+    let capsule = Capsule { start: [0.1 * span, y, z], end: [0.4 * span, y - r, z], radius: r, motion: None };
+    (ground, block, capsule)
 }
 
 /// A wind cone aimed at the centre of an object of `span` metres at height `y`.
@@ -113,6 +137,12 @@ fn with_features(mut scene: Scene, f: Features, span: f64, y: f64) -> Scene {
         scene.wind = wind(span, y);
     }
     scene.spheres = spheres(span, y).into_iter().take(f.spheres).collect();
+    if f.shapes {
+        let (ground, block, capsule) = shapes(span, y);
+        scene.ground = Some(ground);
+        scene.boxes = vec![block];
+        scene.capsules = vec![capsule];
+    }
     scene.cloths.iter_mut().for_each(|c| c.self_collision = f.self_collision);
     scene.ropes.iter_mut().for_each(|r| r.self_collision = f.self_collision);
     scene
@@ -124,7 +154,7 @@ fn paper_cases() -> Vec<Case> {
     let curtain = || {
         let mut s = scene::parse(include_str!("../../presets/curtain.toml"), "presets/curtain.toml", &[])
             .expect("the curtain preset is valid");
-        s.spheres.clear();
+        s.clear_colliders(); // the paper's curtain has no floor
         s.wind = wind(2.0, 1.0);
         s
     };
@@ -134,12 +164,16 @@ fn paper_cases() -> Vec<Case> {
     one.spheres = spheres(2.0, 1.0).into_iter().take(1).collect();
     let mut ten = curtain();
     ten.spheres = spheres(2.0, 1.0);
+    let mut shaped = curtain();
+    let (ground, block, capsule) = shapes(2.0, 1.0);
+    (shaped.ground, shaped.boxes, shaped.capsules) = (Some(ground), vec![block], vec![capsule]);
     let mut no_self = curtain();
     no_self.cloths[0].self_collision = false;
     for (name, scene) in [
         ("curtain 50x50, all features", all),
         ("curtain 50x50, all features + 1 sphere", one),
         ("curtain 50x50, all features + 10 spheres", ten),
+        ("curtain 50x50, all features + ground, box, capsule", shaped),
         ("curtain 50x50, without self-collision", no_self),
     ] {
         cases.push(Case { group: "paper", name: name.into(), scene });
@@ -149,7 +183,12 @@ fn paper_cases() -> Vec<Case> {
         let mut r = rope(256);
         r.self_collision = true;
         s.ropes.push(r);
-        with_features(s, Features { wind: true, spheres: spheres_n, self_collision: true }, 5.1, 1.0)
+        with_features(
+            s,
+            Features { wind: true, spheres: spheres_n, shapes: false, self_collision: true },
+            5.1,
+            1.0,
+        )
     };
     cases.push(Case { group: "paper", name: "rope 256, all features".into(), scene: rope_scene(0) });
     cases.push(Case {

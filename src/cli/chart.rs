@@ -51,7 +51,7 @@ const ROPE: &str = include_str!("../../presets/rope.toml");
 /// had the same error, 3e-3; pinned at both ends it sags and sways smoothly.)
 fn builtin(names: &[String], overrides: &[String]) -> Result<Vec<(String, Scene)>> {
     let mut cloth = scene::parse(CURTAIN, "presets/curtain.toml", &[])?;
-    cloth.spheres.clear();
+    cloth.clear_colliders();
     for c in &mut cloth.cloths {
         c.resolution = [16, 16];
         c.size = [0.75, 0.75];
@@ -71,7 +71,7 @@ fn builtin(names: &[String], overrides: &[String]) -> Result<Vec<(String, Scene)
         reference_distance: 1.0,
     };
     let mut rope = scene::parse(ROPE, "presets/rope.toml", &[])?;
-    rope.spheres.clear();
+    rope.clear_colliders();
     for r in &mut rope.ropes {
         r.nodes = 32;
         r.start = [-0.8, 1.1, 0.0];

@@ -71,10 +71,10 @@ pub fn run(args: &SimulateArgs, options: &ContextOptions) -> Result<()> {
     }
     say!(
         out,
-        "preset: {} ({} objects, {} spheres, {} with {} substeps of {:.3} ms per frame{})",
+        "preset: {} ({} objects, {} colliders, {} with {} substeps of {:.3} ms per frame{})",
         args.preset.display(),
         model.objects.len(),
-        model.spheres.len(),
+        model.colliders.len(),
         model.integrator.label(),
         model.substeps,
         model.dt() * 1e3,

@@ -1,4 +1,4 @@
-//! Meshes generated in code: unit sphere, cone and cube for colliders and gizmos, the ground
+//! Meshes generated in code: unit sphere, cone, cube and tube for colliders and gizmos, the ground
 //! grid, and the index buffers that turn cloth grids and rope rings into triangles.
 
 use crate::sim::gpu_types::{SurfaceVertex, ROPE_RING};
@@ -60,6 +60,22 @@ pub fn cone(slices: u32) -> MeshData {
     }
     for j in 0..slices {
         m.indices.extend_from_slice(&[centre, centre + 1 + j, centre + 2 + j]);
+    }
+    m
+}
+
+/// An open tube of radius 1 around the z axis from z = -1 to 1 (a capsule's side).
+pub fn tube(slices: u32) -> MeshData {
+    let mut m = MeshData::default();
+    for j in 0..=slices {
+        let phi = TAU * j as f32 / slices as f32;
+        let n = Vec3::new(phi.cos(), phi.sin(), 0.0);
+        m.vertices.push(vertex(n - Vec3::Z, n));
+        m.vertices.push(vertex(n + Vec3::Z, n));
+    }
+    for j in 0..slices {
+        let a = 2 * j;
+        m.indices.extend_from_slice(&[a, a + 2, a + 1, a + 1, a + 2, a + 3]);
     }
     m
 }

@@ -23,6 +23,8 @@ pub enum Shape {
     Sphere,
     Cone,
     Cube,
+    /// An open tube of radius 1 around z from -1 to 1.
+    Tube,
     /// The surface of simulation object `i` (cloth mesh or rope tube).
     Surface(usize),
 }
@@ -100,6 +102,7 @@ pub struct SceneRenderer {
     sphere: GpuMesh,
     cone: GpuMesh,
     cube: GpuMesh,
+    tube: GpuMesh,
     grid: GpuMesh,
     /// Index buffers of the simulation objects' surfaces, with their index counts.
     surfaces: Vec<(Buffer, u32)>,
@@ -131,6 +134,7 @@ impl SceneRenderer {
             sphere: GpuMesh::new(ctx, "sphere", &mesh::sphere(24, 32))?,
             cone: GpuMesh::new(ctx, "cone", &mesh::cone(32))?,
             cube: GpuMesh::new(ctx, "cube", &mesh::cube())?,
+            tube: GpuMesh::new(ctx, "tube", &mesh::tube(32))?,
             grid: GpuMesh::new(ctx, "grid", &mesh::grid_lines(5.0, 0.25))?,
             triangles,
             lines,
@@ -228,8 +232,16 @@ impl SceneRenderer {
         Ok(self.cameras[slot].write(0, std::slice::from_ref(camera))?)
     }
 
-    /// Records the grid and `items` into the current rendering.
-    pub fn record(&self, rec: &mut Recorder<'_>, slot: usize, sim: &GpuSim, items: &[DrawItem], grid: bool) {
+    /// Records `items` and, at `grid`'s height (where the scene has a ground), the ground grid
+    /// into the current rendering.
+    pub fn record(
+        &self,
+        rec: &mut Recorder<'_>,
+        slot: usize,
+        sim: &GpuSim,
+        items: &[DrawItem],
+        grid: Option<f32>,
+    ) {
         let push = |rec: &mut Recorder<'_>, pipeline: &GraphicsPipeline, item: &DrawItem| {
             let draw = Draw {
                 model: item.model.to_cols_array_2d(),
@@ -239,11 +251,11 @@ impl SceneRenderer {
             };
             rec.push_constants(pipeline, bytemuck::bytes_of(&draw));
         };
-        if grid {
+        if let Some(height) = grid {
             rec.bind_graphics(&self.lines, self.sets[slot]);
             let item = DrawItem {
                 shape: Shape::Cube,
-                model: Mat4::IDENTITY,
+                model: Mat4::from_translation(glam::Vec3::Y * height),
                 front: [0.42; 3],
                 back: [0.42; 3],
                 lit: false,
@@ -260,6 +272,7 @@ impl SceneRenderer {
                 }
                 Shape::Cone => rec.draw_indexed(&self.cone.vertices, &self.cone.indices, self.cone.count, 1),
                 Shape::Cube => rec.draw_indexed(&self.cube.vertices, &self.cube.indices, self.cube.count, 1),
+                Shape::Tube => rec.draw_indexed(&self.tube.vertices, &self.tube.indices, self.tube.count, 1),
                 Shape::Surface(i) => {
                     if let Some((indices, count)) = self.surfaces.get(i) {
                         if i < sim.object_count() {
@@ -276,7 +289,7 @@ impl SceneRenderer {
         for (b, _) in self.surfaces {
             b.destroy(ctx);
         }
-        for m in [self.sphere, self.cone, self.cube, self.grid] {
+        for m in [self.sphere, self.cone, self.cube, self.tube, self.grid] {
             m.destroy(ctx);
         }
         for c in self.cameras {

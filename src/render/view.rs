@@ -4,7 +4,8 @@
 
 use super::camera::OrbitCamera;
 use super::{DrawItem, Shape};
-use crate::scene::Scene;
+use crate::scene::{self, Scene};
+use crate::sim::collider;
 use crate::sim::gpu_types::Camera;
 use crate::sim::model::SimModel;
 use glam::{Mat4, Quat, Vec3};
@@ -12,8 +13,9 @@ use glam::{Mat4, Quat, Vec3};
 /// The background colour.
 pub const SKY: [f32; 4] = [0.09, 0.10, 0.12, 1.0];
 
-/// The scene's draws: every object's surface, the spheres, the light and the wind cone.
-pub fn scene_items(scene: &Scene) -> Vec<DrawItem> {
+/// The scene's draws at simulated time `time`: every object's surface, the colliders (where
+/// they have moved to), the light and the wind cone.
+pub fn scene_items(scene: &Scene, time: f64) -> Vec<DrawItem> {
     let f = |c: [f64; 3]| c.map(|x| x as f32);
     let v = |c: [f64; 3]| Vec3::from_array(f(c));
     let placed =
@@ -31,9 +33,8 @@ pub fn scene_items(scene: &Scene) -> Vec<DrawItem> {
     for (j, r) in scene.ropes.iter().enumerate() {
         items.push(DrawItem::solid(Shape::Surface(scene.cloths.len() + j), Mat4::IDENTITY, f(r.color), true));
     }
-    for s in &scene.spheres {
-        let model = placed(Vec3::splat(s.radius as f32), Quat::IDENTITY, v(s.center));
-        items.push(DrawItem::solid(Shape::Sphere, model, [0.45, 0.5, 0.58], true));
+    for c in scene::colliders(scene) {
+        items.extend(collider_items(&c.shape.translated(c.motion.offset(time))));
     }
     let light = placed(Vec3::splat(0.06), Quat::IDENTITY, v(scene.light.position));
     items.push(DrawItem::solid(Shape::Sphere, light, [1.0, 0.9, 0.5], false));
@@ -44,6 +45,45 @@ pub fn scene_items(scene: &Scene) -> Vec<DrawItem> {
         items.push(DrawItem::solid(Shape::Cone, model, [0.25, 0.45, 0.95], true));
     }
     items
+}
+
+/// The colour colliders are drawn in.
+const COLLIDER_COLOR: [f32; 3] = [0.45, 0.5, 0.58];
+
+/// The draws of one collider (the ground is drawn as the grid, by `grid_height`).
+fn collider_items(shape: &collider::Shape) -> Vec<DrawItem> {
+    let v = |p: glam::DVec3| p.as_vec3();
+    let solid = |shape, model| DrawItem::solid(shape, model, COLLIDER_COLOR, true);
+    match *shape {
+        collider::Shape::Sphere { center, radius } => {
+            vec![solid(
+                Shape::Sphere,
+                Mat4::from_scale_rotation_translation(Vec3::splat(radius as f32), Quat::IDENTITY, v(center)),
+            )]
+        }
+        collider::Shape::Ground { .. } => Vec::new(),
+        collider::Shape::Box { center, half_extents, rotation } => vec![solid(
+            Shape::Cube,
+            Mat4::from_scale_rotation_translation(v(half_extents), rotation.as_quat(), v(center)),
+        )],
+        collider::Shape::Capsule { a, b, radius } => {
+            let r = radius as f32;
+            let axis = v(b - a);
+            let turn = Quat::from_rotation_arc(Vec3::Z, axis.normalize_or(Vec3::Z));
+            let side = Mat4::from_scale_rotation_translation(
+                Vec3::new(r, r, axis.length() / 2.0),
+                turn,
+                v(a + b) / 2.0,
+            );
+            let cap = |p| Mat4::from_scale_rotation_translation(Vec3::splat(r), Quat::IDENTITY, v(p));
+            vec![solid(Shape::Tube, side), solid(Shape::Sphere, cap(a)), solid(Shape::Sphere, cap(b))]
+        }
+    }
+}
+
+/// The height of the ground grid: where the scene has a ground, nowhere otherwise.
+pub fn grid_height(scene: &Scene) -> Option<f32> {
+    scene.ground.as_ref().map(|g| g.height as f32)
 }
 
 /// The camera uniform for a view of `extent` pixels, lit by the scene's light.
@@ -72,9 +112,9 @@ pub fn fit_camera(camera: &mut OrbitCamera, model: &SimModel) {
             max = max.max(p.as_vec3());
         }
     }
-    for s in &model.spheres {
-        min = min.min((s.center - s.radius).as_vec3());
-        max = max.max((s.center + s.radius).as_vec3());
+    for (lo, hi) in model.colliders.iter().filter_map(|c| c.shape.bounds()) {
+        min = min.min(lo.as_vec3());
+        max = max.max(hi.as_vec3());
     }
     if min.x <= max.x {
         camera.fit(min, max);

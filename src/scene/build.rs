@@ -1,10 +1,9 @@
 //! Scene preset -> simulation model: initial positions, pins, derived wind cone.
 
 use super::{Cloth, ClothPins, Orientation, Rope, RopePins, Scene};
-use crate::sim::model::{
-    default_ring_weights, ObjectKind, ObjectModel, ObjectShape, SimModel, SphereModel, WindModel,
-};
-use glam::DVec3;
+use crate::sim::collider::{ColliderModel, Motion, Shape};
+use crate::sim::model::{default_ring_weights, ObjectKind, ObjectModel, ObjectShape, SimModel, WindModel};
+use glam::{DQuat, DVec3, EulerRot};
 
 /// The size of every object of a validated scene, cloths first, without building particles.
 pub fn shapes(scene: &Scene) -> Vec<ObjectShape> {
@@ -39,11 +38,7 @@ pub fn to_model(scene: &Scene) -> SimModel {
         frame_dt: scene.sim.frame_dt,
         substeps: scene.sim.substeps,
         wind,
-        spheres: scene
-            .spheres
-            .iter()
-            .map(|s| SphereModel { center: DVec3::from_array(s.center), radius: s.radius })
-            .collect(),
+        colliders: colliders(scene),
         objects: scene.cloths.iter().map(cloth).chain(scene.ropes.iter().map(rope)).collect(),
         self_collision: scene.sim.self_collision,
         max_speed: scene.sim.max_speed,
@@ -52,6 +47,48 @@ pub fn to_model(scene: &Scene) -> SimModel {
         iterations: scene.sim.iterations,
         relaxation: scene.sim.relaxation,
     }
+}
+
+/// The scene's colliders in the model: the ground, then spheres, boxes and capsules.
+pub fn colliders(scene: &Scene) -> Vec<ColliderModel> {
+    let v = DVec3::from_array;
+    let moving = |shape: Shape, m: &Option<super::Motion>| ColliderModel {
+        shape,
+        friction: None,
+        motion: motion(&shape, m),
+    };
+    let ground = scene.ground.iter().map(|g| ColliderModel {
+        shape: Shape::Ground { height: g.height },
+        friction: g.friction,
+        motion: Motion::Fixed,
+    });
+    let spheres = scene
+        .spheres
+        .iter()
+        .map(|s| moving(Shape::Sphere { center: v(s.center), radius: s.radius }, &s.motion));
+    let boxes = scene.boxes.iter().map(|b| {
+        let [x, y, z] = b.rotation.map(f64::to_radians);
+        let rotation = DQuat::from_euler(EulerRot::XYZ, x, y, z);
+        moving(Shape::Box { center: v(b.center), half_extents: v(b.half_extents), rotation }, &b.motion)
+    });
+    let capsules = scene
+        .capsules
+        .iter()
+        .map(|c| moving(Shape::Capsule { a: v(c.start), b: v(c.end), radius: c.radius }, &c.motion));
+    ground.chain(spheres).chain(boxes).chain(capsules).collect()
+}
+
+/// A validated preset motion in the model: keyframes become offsets from the shape's placement.
+fn motion(shape: &Shape, m: &Option<super::Motion>) -> Motion {
+    let Some(m) = m else { return Motion::Fixed };
+    if let Some(v) = m.velocity {
+        return Motion::Velocity(DVec3::from_array(v));
+    }
+    if m.keyframes.is_empty() {
+        return Motion::Fixed;
+    }
+    let at = shape.reference_point();
+    Motion::Keyframes(m.keyframes.iter().map(|k| (k[0], DVec3::new(k[1], k[2], k[3]) - at)).collect())
 }
 
 fn cloth(c: &Cloth) -> ObjectModel {

@@ -7,13 +7,13 @@ mod build;
 mod load;
 mod validate;
 
-pub use build::{shapes, to_model};
+pub use build::{colliders, shapes, to_model};
 pub use load::{apply_override, load, load_runnable, parse, save};
 pub use validate::check as validate;
 
 use serde::{Deserialize, Serialize};
 
-/// A whole scene: settings, wind, sphere colliders, cloths and ropes.
+/// A whole scene: settings, wind, colliders (ground, spheres, boxes, capsules), cloths and ropes.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, Default)]
 #[serde(deny_unknown_fields)]
 pub struct Scene {
@@ -23,8 +23,14 @@ pub struct Scene {
     pub wind: Wind,
     #[serde(default)]
     pub light: Light,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub ground: Option<Ground>,
     #[serde(default, rename = "sphere", skip_serializing_if = "Vec::is_empty")]
     pub spheres: Vec<Sphere>,
+    #[serde(default, rename = "box", skip_serializing_if = "Vec::is_empty")]
+    pub boxes: Vec<BoxCollider>,
+    #[serde(default, rename = "capsule", skip_serializing_if = "Vec::is_empty")]
+    pub capsules: Vec<Capsule>,
     #[serde(default, rename = "cloth", skip_serializing_if = "Vec::is_empty")]
     pub cloths: Vec<Cloth>,
     #[serde(default, rename = "rope", skip_serializing_if = "Vec::is_empty")]
@@ -209,6 +215,80 @@ pub struct Sphere {
     pub center: [f64; 3],
     /// [m]
     pub radius: f64,
+    /// How it moves (absent: it stays put).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub motion: Option<Motion>,
+}
+
+/// How a collider moves: a kinematic body, whose velocity its contacts' friction follows.
+/// Exactly one of the two.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, Default)]
+#[serde(deny_unknown_fields)]
+pub struct Motion {
+    /// A constant velocity [m/s].
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub velocity: Option<[f64; 3]>,
+    /// Where its centre (a capsule's midpoint) is over time: rows of [t (s), x, y, z (m)], t
+    /// increasing; linear in between, held before the first and after the last.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub keyframes: Vec<[f64; 4]>,
+}
+
+/// The ground: everything below y = height is solid.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, Default)]
+#[serde(deny_unknown_fields)]
+pub struct Ground {
+    /// [m]
+    #[serde(default)]
+    pub height: f64,
+    /// 0..1, fraction of tangential velocity removed on contact (default: each object's).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub friction: Option<f64>,
+}
+
+/// An oriented box collider.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct BoxCollider {
+    /// [m]
+    pub center: [f64; 3],
+    /// Half the box's size along its own axes [m].
+    pub half_extents: [f64; 3],
+    /// Rotation about x, then y, then z [degrees].
+    #[serde(default, skip_serializing_if = "is_zero3")]
+    pub rotation: [f64; 3],
+    /// How it moves (absent: it stays put).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub motion: Option<Motion>,
+}
+
+/// A capsule collider: the points within `radius` of the segment from `start` to `end`.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Capsule {
+    /// [m]
+    pub start: [f64; 3],
+    /// [m]
+    pub end: [f64; 3],
+    /// [m]
+    pub radius: f64,
+    /// How it moves (absent: it stays put).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub motion: Option<Motion>,
+}
+
+fn is_zero3(v: &[f64; 3]) -> bool {
+    *v == [0.0; 3]
+}
+
+impl Scene {
+    /// Removes every collider: the ground, spheres, boxes and capsules.
+    pub fn clear_colliders(&mut self) {
+        self.ground = None;
+        self.spheres.clear();
+        self.boxes.clear();
+        self.capsules.clear();
+    }
 }
 
 /// One value per spring type.

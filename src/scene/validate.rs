@@ -141,6 +141,27 @@ pub fn check(scene: &Scene) -> Check {
     for (i, sphere) in scene.spheres.iter().enumerate() {
         vector(&format!("sphere[{i}].center"), sphere.center, MAX_COORDINATE, "m")?;
         positive(&format!("sphere[{i}].radius"), sphere.radius, LENGTH, "m")?;
+        check_motion(&format!("sphere[{i}].motion"), &sphere.motion)?;
+    }
+    if let Some(g) = &scene.ground {
+        finite("ground.height", g.height, MAX_COORDINATE, "m")?;
+        if let Some(f) = g.friction {
+            unit_interval("ground.friction", f)?;
+        }
+    }
+    for (i, b) in scene.boxes.iter().enumerate() {
+        vector(&format!("box[{i}].center"), b.center, MAX_COORDINATE, "m")?;
+        for (axis, h) in ["x", "y", "z"].iter().zip(b.half_extents) {
+            positive(&format!("box[{i}].half_extents.{axis}"), h, LENGTH, "m")?;
+        }
+        vector(&format!("box[{i}].rotation"), b.rotation, 360.0, "degrees")?;
+        check_motion(&format!("box[{i}].motion"), &b.motion)?;
+    }
+    for (i, c) in scene.capsules.iter().enumerate() {
+        vector(&format!("capsule[{i}].start"), c.start, MAX_COORDINATE, "m")?;
+        vector(&format!("capsule[{i}].end"), c.end, MAX_COORDINATE, "m")?;
+        positive(&format!("capsule[{i}].radius"), c.radius, LENGTH, "m")?;
+        check_motion(&format!("capsule[{i}].motion"), &c.motion)?;
     }
 
     let mut names = std::collections::HashSet::new();
@@ -154,6 +175,38 @@ pub fn check(scene: &Scene) -> Check {
         check_rope(&format!("rope[{i}]"), r)?;
         if !names.insert(r.name.as_str()) {
             return Err(format!("rope[{i}].name = \"{}\": another object has this name", r.name));
+        }
+    }
+    Ok(())
+}
+
+/// A collider's motion: a velocity or keyframes (not both, not neither), keyframe times
+/// finite, at least 0 and increasing.
+fn check_motion(at: &str, m: &Option<super::Motion>) -> Check {
+    let Some(m) = m else { return Ok(()) };
+    match (m.velocity, m.keyframes.is_empty()) {
+        (Some(_), false) => return Err(format!("{at}: give a velocity or keyframes, not both")),
+        (None, true) => return Err(format!("{at}: give a velocity or keyframes")),
+        (Some(v), true) => vector(&format!("{at}.velocity"), v, MAX_SPEED, "m/s")?,
+        (None, false) => {
+            let mut last = -1.0;
+            for (k, key) in m.keyframes.iter().enumerate() {
+                let t = key[0];
+                non_negative(&format!("{at}.keyframes[{k}] time"), t, 1e9, "s")?;
+                if t <= last {
+                    return Err(format!(
+                        "{at}.keyframes[{k}]: time {} s is not after the one before ({last} s)",
+                        num(t)
+                    ));
+                }
+                last = t;
+                vector(
+                    &format!("{at}.keyframes[{k}] position"),
+                    [key[1], key[2], key[3]],
+                    MAX_COORDINATE,
+                    "m",
+                )?;
+            }
         }
     }
     Ok(())

@@ -42,6 +42,9 @@ pub const FEATURE_WIND: u32 = 16;
 pub const FEATURE_SPHERES: u32 = 32;
 pub const FEATURE_STRETCH: u32 = 64;
 pub const FEATURE_SELF: u32 = 128;
+pub const FEATURE_GROUND: u32 = 256;
+pub const FEATURE_BOX: u32 = 512;
+pub const FEATURE_CAPSULE: u32 = 1024;
 
 gpu_struct!(
     /// One simulated particle (cloth particle or rope node).
@@ -70,7 +73,7 @@ gpu_struct!(
     wind_cos_full: f32,
     wind_cos_att: f32,
     wind_enabled: u32,
-    sphere_count: u32,
+    collider_count: u32,
     substeps: u32,
     guard_speed: f32,
     iterations: u32,

@@ -1,6 +1,7 @@
 //! The simulation: the model (`model`), the integrators (`integrator`), the GPU struct mirrors (`gpu_types`), the Vulkan compute
 //! simulation (`gpu`) and the f64 CPU reference (`cpu`).
 
+pub mod collider;
 pub mod cpu;
 pub mod gpu;
 pub mod gpu_types;

@@ -108,12 +108,6 @@ pub struct WindModel {
     pub cos_att: f64,
 }
 
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct SphereModel {
-    pub center: DVec3,
-    pub radius: f64,
-}
-
 /// How self-collision finds its candidate pairs.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize, serde::Deserialize)]
 #[serde(rename_all = "snake_case")]
@@ -132,7 +126,8 @@ pub struct SimModel {
     pub frame_dt: f64,
     pub substeps: u32,
     pub wind: Option<WindModel>,
-    pub spheres: Vec<SphereModel>,
+    /// Spheres, the ground, boxes, capsules (`sim::collider`).
+    pub colliders: Vec<crate::sim::collider::ColliderModel>,
     pub objects: Vec<ObjectModel>,
     pub self_collision: SelfCollisionMethod,
     /// The runtime guard stops a simulation whose particles move faster than this [m/s].
@@ -178,7 +173,7 @@ impl SimModel {
                     pinned: Vec::new(),
                 })
                 .collect(),
-            spheres: self.spheres.clone(),
+            colliders: self.colliders.clone(),
             ..*self
         }
     }

@@ -1,8 +1,9 @@
 //! The editor panels: simulation controls, wind, light, the object list with add and remove,
 //! a panel per selected object with every parameter, preset load/save, and stats.
 
+use super::colliders;
 use super::widgets::{choice, color, drag, drag3, int, optional};
-use crate::scene::{Cloth, ClothPins, Orientation, PerSpring, Rope, RopePins, Scene, Sphere};
+use crate::scene::{Cloth, ClothPins, Orientation, PerSpring, Rope, RopePins, Scene};
 use crate::sim::gpu::FrameTiming;
 use imgui::{Condition, TreeNodeFlags, Ui};
 use std::path::PathBuf;
@@ -26,7 +27,10 @@ pub enum Selection {
     None,
     Cloth(usize),
     Rope(usize),
+    Ground,
     Sphere(usize),
+    Box(usize),
+    Capsule(usize),
 }
 
 /// Editor state that is not part of the scene.
@@ -181,8 +185,8 @@ fn object_list(ui: &Ui, state: &mut EditorState, scene: &mut Scene) {
     for (i, r) in scene.ropes.iter().enumerate() {
         pick(format!("rope   {}##r{i}", r.name), Selection::Rope(i));
     }
-    for (i, s) in scene.spheres.iter().enumerate() {
-        pick(format!("sphere {i} (r {:.2} m)##s{i}", s.radius), Selection::Sphere(i));
+    for (label, sel) in colliders::entries(scene) {
+        pick(label, sel);
     }
     if ui.button("+ cloth") {
         scene.cloths.push(new_cloth(unique_name(scene, "cloth")));
@@ -194,19 +198,16 @@ fn object_list(ui: &Ui, state: &mut EditorState, scene: &mut Scene) {
         state.selected = Selection::Rope(scene.ropes.len() - 1);
     }
     ui.same_line();
-    if ui.button("+ sphere") {
-        scene.spheres.push(Sphere { center: [0.0, 0.5, 0.0], radius: 0.25 });
-        state.selected = Selection::Sphere(scene.spheres.len() - 1);
-    }
-    ui.same_line();
     if ui.button("remove") {
         match state.selected {
             Selection::Cloth(i) if i < scene.cloths.len() => drop(scene.cloths.remove(i)),
             Selection::Rope(i) if i < scene.ropes.len() => drop(scene.ropes.remove(i)),
-            Selection::Sphere(i) if i < scene.spheres.len() => drop(scene.spheres.remove(i)),
-            _ => {}
+            other => drop(colliders::remove(scene, other)),
         }
         state.selected = Selection::None;
+    }
+    if let Some(added) = colliders::add_buttons(ui, scene) {
+        state.selected = added;
     }
 }
 
@@ -220,12 +221,11 @@ fn selected_panel(ui: &Ui, state: &EditorState, scene: &mut Scene) {
     match state.selected {
         Selection::Cloth(i) if i < scene.cloths.len() => cloth_panel(ui, &mut scene.cloths[i]),
         Selection::Rope(i) if i < scene.ropes.len() => rope_panel(ui, &mut scene.ropes[i]),
-        Selection::Sphere(i) if i < scene.spheres.len() => {
-            let s = &mut scene.spheres[i];
-            drag3(ui, "centre [m]", &mut s.center, 0.01);
-            drag(ui, "radius [m]", &mut s.radius, 0.005, 0.001, 100.0);
+        other => {
+            if !colliders::panel(ui, scene, other) {
+                ui.text_disabled("select an object to edit it");
+            }
         }
-        _ => ui.text_disabled("select an object to edit it"),
     }
 }
 

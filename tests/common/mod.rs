@@ -3,9 +3,10 @@
 #![allow(dead_code)] // each test binary uses a different subset
 
 use glam::DVec3;
+use msdsim::sim::collider::ColliderModel;
 use msdsim::sim::cpu::{CpuObject, CpuSim};
 use msdsim::sim::gpu::{GpuSim, ObjectState};
-use msdsim::sim::model::{default_ring_weights, ObjectKind, ObjectModel, SimModel, SphereModel, WindModel};
+use msdsim::sim::model::{default_ring_weights, ObjectKind, ObjectModel, SimModel, WindModel};
 use msdsim::vk::{ContextOptions, GpuContext};
 
 /// A context with validation and synchronization validation. Panics (never skips) when no
@@ -93,7 +94,7 @@ pub fn scene(objects: Vec<ObjectModel>) -> SimModel {
         frame_dt: 1.0 / 60.0,
         substeps: 16,
         wind: None,
-        spheres: Vec::new(),
+        colliders: Vec::new(),
         objects,
         self_collision: Default::default(),
         max_speed: 100.0,
@@ -103,8 +104,8 @@ pub fn scene(objects: Vec<ObjectModel>) -> SimModel {
     }
 }
 
-pub fn sphere(center: [f64; 3], radius: f64) -> SphereModel {
-    SphereModel { center: DVec3::from_array(center), radius }
+pub fn sphere(center: [f64; 3], radius: f64) -> ColliderModel {
+    ColliderModel::sphere(DVec3::from_array(center), radius)
 }
 
 /// A wind cone from `origin` along `direction` with the given full-force and attenuation

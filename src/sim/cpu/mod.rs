@@ -11,9 +11,9 @@
 //!    it when the neighbour is pinned), and (b) for every particle nearer than the self-collision
 //!    distance s (except pairs nearer than s at rest), half the overlap away from it (all of it when
 //!    that one is pinned). The correction is the mean of these (Jacobi averaging);
-//!    x += correction, v += correction / dt. Then, sphere by sphere: a
-//!    particle within radius + margin is moved onto that distance along the centre->particle line,
-//!    its approaching normal velocity is removed and its tangential velocity scaled by (1 - friction).
+//!    x += correction, v += correction / dt. Then, collider by collider (`sim::collider`): a
+//!    particle nearer than its margin to the surface is moved out along the surface normal to the
+//!    margin, its approaching normal velocity is removed and its tangential velocity scaled by (1 - friction).
 //!
 //! After the frame's last substep, cloth normals (angle-weighted over the four structural edges)
 //! and rope tube vertices are computed from the final positions.
@@ -26,7 +26,7 @@ pub(crate) mod integrators;
 pub use integrators::{energy, max_strain};
 
 use super::gpu_types::ROPE_RING;
-use super::model::{ObjectKind, ObjectModel, SimModel, SphereModel, WindModel};
+use super::model::{ObjectKind, ObjectModel, SimModel, WindModel};
 use glam::DVec3;
 
 /// State of one object in the reference.
@@ -43,6 +43,8 @@ pub struct CpuSim {
     model: SimModel,
     dt: f64,
     objects: Vec<CpuObject>,
+    /// Substeps run so far (where moving colliders are).
+    substeps_done: u64,
 }
 
 fn r32(x: f64) -> f64 {
@@ -64,8 +66,7 @@ fn rounded(model: &SimModel) -> SimModel {
         cos_full: r32(w.cos_full),
         cos_att: r32(w.cos_att),
     });
-    m.spheres =
-        m.spheres.iter().map(|s| SphereModel { center: r32v(s.center), radius: r32(s.radius) }).collect();
+    m.colliders = m.colliders.iter().map(|c| c.rounded_to_f32()).collect();
     for o in &mut m.objects {
         o.spacing = o.spacing.map(r32);
         o.stiffness = o.stiffness.map(r32);
@@ -167,7 +168,7 @@ impl CpuSim {
                 surface: vec![(DVec3::ZERO, DVec3::ZERO); o.surface_count()],
             })
             .collect();
-        Self { model, dt, objects }
+        Self { model, dt, objects, substeps_done: 0 }
     }
 
     pub fn objects(&self) -> &[CpuObject] {
@@ -197,16 +198,38 @@ impl CpuSim {
 
     pub fn substep(&mut self) {
         let m = &self.model;
+        // Where each collider is at the end of this substep and how fast it moves: as the GPU
+        // has it (sim::collider::ColliderModel::frame_motion).
+        let substeps = m.substeps as u64;
+        let frame_start = (self.substeps_done / substeps) as f64 * m.frame_dt;
+        let since = ((self.substeps_done % substeps) + 1) as f64 * self.dt;
+        let motions: Vec<(DVec3, DVec3)> = m
+            .colliders
+            .iter()
+            .map(|c| {
+                let (start, velocity) = c.frame_motion(frame_start, m.frame_dt);
+                (start + velocity * since, velocity)
+            })
+            .collect();
+        self.substeps_done += 1;
         for (o, state) in m.objects.iter().zip(&mut self.objects) {
             let (px, pv) = integrators::advance(m, o, self.dt, &state.x, &state.v);
-            let (cx, cv) = constraints(m, o, self.dt, &px, &pv);
+            let (cx, cv) = constraints(m, o, self.dt, &motions, &px, &pv);
             state.x = cx;
             state.v = cv;
         }
     }
 }
 
-fn constraints(m: &SimModel, o: &ObjectModel, dt: f64, x: &[DVec3], v: &[DVec3]) -> (Vec<DVec3>, Vec<DVec3>) {
+/// The constraint stage of object `o`; `motions` holds each collider's offset and velocity.
+fn constraints(
+    m: &SimModel,
+    o: &ObjectModel,
+    dt: f64,
+    motions: &[(DVec3, DVec3)],
+    x: &[DVec3],
+    v: &[DVec3],
+) -> (Vec<DVec3>, Vec<DVec3>) {
     let cols = o.dims[0] as usize;
     let mut nx = x.to_vec();
     let mut nv = vec![DVec3::ZERO; x.len()];
@@ -252,17 +275,8 @@ fn constraints(m: &SimModel, o: &ObjectModel, dt: f64, x: &[DVec3], v: &[DVec3])
         }
         let mut p = x[i] + correction;
         let mut vel = v[i] + correction / dt;
-        for sphere in &m.spheres {
-            let reach = sphere.radius + o.margin;
-            let from_c = p - sphere.center;
-            let d = from_c.length();
-            if d < reach {
-                let n = if d > 0.0 { from_c / d } else { DVec3::Y };
-                p = sphere.center + n * reach;
-                let vn = vel.dot(n);
-                let tangential = vel - n * vn;
-                vel = tangential * (1.0 - o.friction) + n * vn.max(0.0);
-            }
+        for (c, &motion) in m.colliders.iter().zip(motions) {
+            c.respond(o.margin, o.friction, motion, &mut p, &mut vel);
         }
         nx[i] = p;
         nv[i] = vel;

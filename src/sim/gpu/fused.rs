@@ -11,8 +11,8 @@
 //! scratch area, 12 bytes a particle, between the physics and the constraints).
 
 use crate::sim::gpu_types::{
-    FEATURE_BENDING, FEATURE_DAMPING, FEATURE_SELF, FEATURE_SHEAR, FEATURE_SPHERES, FEATURE_STRETCH,
-    FEATURE_STRUCTURAL, FEATURE_WIND,
+    FEATURE_BENDING, FEATURE_DAMPING, FEATURE_SELF, FEATURE_SHEAR, FEATURE_STRETCH, FEATURE_STRUCTURAL,
+    FEATURE_WIND,
 };
 use crate::sim::integrator::Scheme;
 use crate::sim::model::{Integrator, ObjectModel, SelfCollisionMethod, SimModel};
@@ -58,7 +58,7 @@ const SHARED_MARGIN: u32 = 256;
 const MIN_BUCKETS: u32 = 32;
 
 /// The features object `o` uses in `model` (the `FEATURES` specialization constant): spring
-/// types with stiffness or dashpots, dashpots, wind, spheres, the stretch limit, self-collision.
+/// types with stiffness or dashpots, dashpots, wind, the stretch limit, self-collision, each collider type.
 pub fn features(o: &ObjectModel, model: &SimModel) -> u32 {
     let mut f = 0;
     for (bit, k) in [FEATURE_STRUCTURAL, FEATURE_SHEAR, FEATURE_BENDING].into_iter().zip(o.stiffness) {
@@ -69,11 +69,11 @@ pub fn features(o: &ObjectModel, model: &SimModel) -> u32 {
     let uses = [
         (FEATURE_DAMPING, o.damping != 0.0),
         (FEATURE_WIND, model.wind.is_some()),
-        (FEATURE_SPHERES, !model.spheres.is_empty()),
         (FEATURE_STRETCH, o.stretch_limit.is_some()),
         (FEATURE_SELF, o.self_distance.is_some()),
     ];
-    uses.into_iter().filter(|(_, on)| *on).fold(f, |f, (bit, _)| f | bit)
+    let f = uses.into_iter().filter(|(_, on)| *on).fold(f, |f, (bit, _)| f | bit);
+    f | crate::sim::collider::features(&model.colliders)
 }
 
 /// How one object's steps are compiled: the features it uses and its fused layout. Computed
@@ -243,8 +243,11 @@ mod tests {
         let mut m = curtain();
         let all = features(&m.objects[0], &m);
         assert_eq!(all & FEATURE_WIND, 0, "the preset has no wind");
-        assert_ne!(all & (FEATURE_SPHERES | FEATURE_SELF | FEATURE_DAMPING | FEATURE_STRETCH), 0);
-        m.spheres.clear();
+        assert_ne!(
+            all & (crate::sim::gpu_types::FEATURE_SPHERES | FEATURE_SELF | FEATURE_DAMPING | FEATURE_STRETCH),
+            0
+        );
+        m.colliders.clear();
         let o = &mut m.objects[0];
         o.damping = 0.0;
         o.stiffness[2] = 0.0;

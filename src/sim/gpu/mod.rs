@@ -2,7 +2,7 @@
 //!
 //! Buffers per object (`object.rs`): `state[0]` (A, the state between substeps and frames),
 //! `state[1]` (B, the physics output), `surface` (what the renderer draws), `params`, and where
-//! used the spatial hash and the iterative integrators' iterates. Shared: `globals`, `spheres`.
+//! used the spatial hash and the iterative integrators' iterates. Shared: `globals`, `colliders`.
 //!
 //! One frame is one command buffer:
 //! ```text
@@ -42,7 +42,7 @@ use crate::vk::{
     MemoryKind, Recorder, Retired, TimestampPool,
 };
 use anyhow::{Context as _, Result};
-use object::{globals, object_params, sphere_data, GpuObject};
+use object::{collider_data, globals, object_params, GpuObject};
 use pipelines::{Pipelines, Stage};
 
 /// Workgroup shape of the cloth stages (the paper's 16 x 16) and of the rope stages (1-D).
@@ -50,6 +50,10 @@ const CLOTH_GROUP: [u32; 2] = [16, 16];
 const ROPE_GROUP: u32 = 64;
 /// Bindings per set, in the order of `glsl/include/bindings.glsl`.
 const BINDINGS: u32 = 14;
+/// Bytes of one collider record (`Collider` in layout.glsl).
+const COLLIDER_BYTES: u64 = 64;
+/// Collider records per `vkCmdUpdateBuffer` (it takes at most 65,536 bytes).
+const UPDATE_RECORDS: usize = 1024;
 /// Frames that may be in flight at once (each has its own timestamps).
 pub const FRAME_SLOTS: usize = 2;
 
@@ -86,7 +90,7 @@ pub struct GpuSim {
     layout: BindingSetLayout,
     arena: DescriptorArena,
     globals: Buffer,
-    spheres: Buffer,
+    colliders: Buffer,
     objects: Vec<GpuObject>,
     /// Command buffers of the headless frames (`frames.rs`), one per frame in flight, and
     /// whether each holds a submitted frame whose timing and guard are not read yet.
@@ -118,7 +122,7 @@ struct Parts {
     pipelines: Option<Pipelines>,
     arena: Option<DescriptorArena>,
     globals: Option<Buffer>,
-    spheres: Option<Buffer>,
+    colliders: Option<Buffer>,
     slots: Vec<CommandSlot>,
     timestamps: Vec<TimestampPool>,
 }
@@ -137,9 +141,14 @@ impl Parts {
         let globals_size = std::mem::size_of::<Globals>() as u64;
         self.globals =
             Some(Buffer::new(ctx, "globals", globals_size, BufferUsage::STORAGE, MemoryKind::Upload)?);
-        let spheres_size = 16 * model.spheres.len().max(1) as u64;
-        self.spheres =
-            Some(Buffer::new(ctx, "spheres", spheres_size, BufferUsage::STORAGE, MemoryKind::Upload)?);
+        let colliders_size = COLLIDER_BYTES * model.colliders.len().max(1) as u64;
+        self.colliders = Some(Buffer::new(
+            ctx,
+            "colliders",
+            colliders_size,
+            BufferUsage::STORAGE | BufferUsage::TRANSFER_DST,
+            MemoryKind::Upload,
+        )?);
         for slot in 0..FRAME_SLOTS {
             self.slots.push(CommandSlot::new(ctx, &format!("frame[{slot}]"))?);
         }
@@ -159,7 +168,7 @@ impl Parts {
         for s in self.slots {
             s.destroy(ctx);
         }
-        if let Some(b) = self.spheres {
+        if let Some(b) = self.colliders {
             b.destroy(ctx);
         }
         if let Some(b) = self.globals {
@@ -215,7 +224,7 @@ impl GpuSim {
             pipelines: Some(pipelines),
             arena: Some(arena),
             globals: Some(globals),
-            spheres: Some(spheres),
+            colliders: Some(colliders),
             slots,
             timestamps,
         } = parts
@@ -227,7 +236,7 @@ impl GpuSim {
             layout,
             arena,
             globals,
-            spheres,
+            colliders,
             objects: Vec::new(),
             unread: vec![false; slots.len()],
             slots,
@@ -253,9 +262,9 @@ impl GpuSim {
 
     fn populate(&mut self, ctx: &GpuContext, model: &SimModel, plans: &[ObjectPlan]) -> Result<()> {
         self.globals.write(0, &[globals(model)])?;
-        self.spheres.write(0, &sphere_data(model))?;
+        self.colliders.write(0, &collider_data(model, 0.0))?;
         for (o, &plan) in model.objects.iter().zip(plans) {
-            let shared = [&self.globals, &self.spheres];
+            let shared = [&self.globals, &self.colliders];
             let obj = GpuObject::new(ctx, &self.layout, &mut self.arena, shared, o, model, plan)
                 .with_context(|| format!("allocating {} '{}'", o.kind.label(), o.name))?;
             self.objects.push(obj);
@@ -292,6 +301,7 @@ impl GpuSim {
             }
             rec.barrier(&around(Access::TransferWrite, Access::ComputeReadWrite));
         }
+        self.record_collider_motion(rec);
         let stages = self.stage_timing;
         // Small objects: every substep in one dispatch each. The state ends in A, as on the
         // per-stage path; the barrier orders it (and B) for the surface stage and next frame.
@@ -329,10 +339,11 @@ impl GpuSim {
             rec.barrier(&after_physics);
             self.record_hash_build(rec);
             for o in self.objects.iter().filter(|o| !self.is_fused(o)) {
-                rec.dispatch(
+                rec.dispatch_with(
                     self.pipelines.get(Stage::Constraints(o.kind, o.plan.features)),
                     o.sets[1],
                     o.step_groups,
+                    &[s],
                 );
             }
             if let Some(pool) = ts.filter(|_| stages) {
@@ -369,6 +380,22 @@ impl GpuSim {
         );
         rec.barrier(&end);
         self.frames += 1;
+    }
+
+    /// Moving colliders: this frame's records (where each is at the frame's start, its velocity
+    /// over the frame), written in the command stream so frames in flight keep their own.
+    /// Scenes whose colliders all stay put record nothing.
+    fn record_collider_motion(&self, rec: &mut Recorder<'_>) {
+        if !self.model.colliders.iter().any(|c| c.motion.is_moving()) {
+            return;
+        }
+        let data = collider_data(&self.model, self.time());
+        rec.barrier(&[BufferBarrier::new(&self.colliders, Access::ComputeRead, Access::TransferWrite)]);
+        for (i, chunk) in data.chunks(UPDATE_RECORDS).enumerate() {
+            let offset = (i * UPDATE_RECORDS) as u64 * COLLIDER_BYTES;
+            rec.update_buffer(&self.colliders, offset, bytemuck::cast_slice(chunk));
+        }
+        rec.barrier(&[BufferBarrier::new(&self.colliders, Access::TransferWrite, Access::ComputeRead)]);
     }
 
     /// Rebuilds the pipelines of the `changed` shaders (names like "physics.comp") from
@@ -421,11 +448,11 @@ impl GpuSim {
     }
 
     /// Whether `model` differs from the running one only in what `update_params` rewrites: the
-    /// same objects, sphere capacity, substep count, integrator and self-collision method, and
+    /// same objects, collider capacity, substep count, integrator and self-collision method, and
     /// the same compiled-in features and fused layouts. Otherwise rebuild the simulation.
     pub fn takes_params(&self, model: &SimModel) -> bool {
         model.objects.len() == self.objects.len()
-            && model.spheres.len() <= self.sphere_capacity()
+            && model.colliders.len() <= self.collider_capacity()
             && model.substeps == self.model.substeps
             && model.integrator == self.model.integrator
             && model.self_collision == self.model.self_collision
@@ -435,16 +462,16 @@ impl GpuSim {
             })
     }
 
-    /// Rewrites the parameters (gravity, dt, wind, spheres, per-object parameters) of a model
+    /// Rewrites the parameters (gravity, dt, wind, colliders, per-object parameters) of a model
     /// that `takes_params`. The caller makes sure no frame in flight reads them (wait idle
     /// first).
     pub fn update_params(&mut self, model: &SimModel) -> Result<()> {
         anyhow::ensure!(
             self.takes_params(model),
-            "the objects, spheres, substeps, integrator, self-collision method or the features in use changed: rebuild the simulation instead"
+            "the objects, colliders, substeps, integrator, self-collision method or the features in use changed: rebuild the simulation instead"
         );
         self.globals.write(0, &[globals(model)])?;
-        self.spheres.write(0, &sphere_data(model))?;
+        self.colliders.write(0, &collider_data(model, self.time()))?;
         for (gpu, o) in self.objects.iter_mut().zip(&model.objects) {
             gpu.params.write(0, &[object_params(o, model)])?;
         }
@@ -452,8 +479,8 @@ impl GpuSim {
         Ok(())
     }
 
-    fn sphere_capacity(&self) -> usize {
-        (self.spheres.size() / 16) as usize
+    fn collider_capacity(&self) -> usize {
+        (self.colliders.size() / COLLIDER_BYTES) as usize
     }
 
     /// The surface buffer of object `i` (vertex buffer of `SurfaceVertex`) and its vertex count.
@@ -512,7 +539,7 @@ impl GpuSim {
             pipelines: Some(self.pipelines),
             arena: Some(self.arena),
             globals: Some(self.globals),
-            spheres: Some(self.spheres),
+            colliders: Some(self.colliders),
             slots: self.slots,
             timestamps: self.timestamps,
         }

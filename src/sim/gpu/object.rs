@@ -151,7 +151,7 @@ impl GpuObject {
         model: &SimModel,
         plan: ObjectPlan,
     ) -> Result<Self, VkError> {
-        let [globals, spheres] = shared;
+        let [globals, colliders] = shared;
         let n = o.particle_count() as u64;
         let state_bytes = n * std::mem::size_of::<Particle>() as u64;
         let state_usage = BufferUsage::STORAGE | BufferUsage::TRANSFER_SRC | BufferUsage::TRANSFER_DST;
@@ -198,8 +198,8 @@ impl GpuObject {
             };
             let set = |arena: &mut DescriptorArena, from: &Buffer, to: &Buffer| {
                 let bindings = [
-                    globals, &params, from, to, spheres, &surface, cell_rank, counts, starts, sorted, blocks,
-                    &guard, iter, aux,
+                    globals, &params, from, to, colliders, &surface, cell_rank, counts, starts, sorted,
+                    blocks, &guard, iter, aux,
                 ];
                 debug_assert_eq!(bindings.len() as u32, BINDINGS);
                 arena.allocate(ctx, layout, &bindings)
@@ -355,7 +355,7 @@ pub(super) fn globals(model: &SimModel) -> Globals {
         wind_cos_full: wind.map(|w| w.cos_full as f32).unwrap_or(1.0),
         wind_cos_att: wind.map(|w| w.cos_att as f32).unwrap_or(1.0),
         wind_enabled: wind.is_some() as u32,
-        sphere_count: model.spheres.len() as u32,
+        collider_count: model.colliders.len() as u32,
         substeps: model.substeps,
         guard_speed: model.max_speed as f32,
         iterations: model.iterations,
@@ -398,12 +398,14 @@ pub(super) fn object_params(o: &ObjectModel, model: &SimModel) -> ObjectParams {
     }
 }
 
-pub(super) fn sphere_data(model: &SimModel) -> Vec<[f32; 4]> {
-    model
-        .spheres
-        .iter()
-        .map(|s| [s.center.x as f32, s.center.y as f32, s.center.z as f32, s.radius as f32])
-        .collect()
+/// The colliders' GPU records for the frame that starts at `t0` (at least one, so the buffer
+/// is never empty).
+pub(super) fn collider_data(model: &SimModel, t0: f64) -> Vec<[[f32; 4]; 4]> {
+    let mut data: Vec<_> = model.colliders.iter().map(|c| c.gpu(t0, model.frame_dt)).collect();
+    if data.is_empty() {
+        data.push([[0.0; 4]; 4]);
+    }
+    data
 }
 
 /// The initial particles of an object (positions, velocities, pinned flags).

@@ -1,0 +1,93 @@
+// The collider types (sim::collider: one row of KINDS and one Shape variant each, whose
+// `distance` is the CPU twin of collider_distance here) and the contact response they share.
+// A type the scene does not use is compiled out by its feature bit (features.glsl).
+// Include after bindings.glsl.
+#ifndef MSD_COLLIDERS_GLSL
+#define MSD_COLLIDERS_GLSL
+#include "features.glsl"
+
+// Type ids (ColliderKind's glsl_id; checked by tests/layout.rs).
+#define COLLIDER_SPHERE 0u
+#define COLLIDER_GROUND 1u
+#define COLLIDER_BOX 2u
+#define COLLIDER_CAPSULE 3u
+
+// Rotates v by the unit quaternion q (xyz vector part, w scalar).
+vec3 rotate(vec4 q, vec3 v) {
+    vec3 t = 2.0 * cross(q.xyz, v);
+    return v + q.w * t + cross(q.xyz, t);
+}
+
+float sign_of(float x) { return x >= 0.0 ? 1.0 : -1.0; }
+
+// Signed distance from x to collider c's surface (negative inside) and the outward normal.
+float collider_distance(Collider c, vec3 x, out vec3 n) {
+    uint kind = floatBitsToUint(c.a.w);
+    n = vec3(0.0, 1.0, 0.0);
+    if (has(F_SPHERES) && kind == COLLIDER_SPHERE) {
+        vec3 from_c = x - c.a.xyz;
+        float d = length(from_c);
+        if (d > 0.0) n = from_c / d;
+        return d - c.b.w;
+    }
+    if (has(F_GROUND) && kind == COLLIDER_GROUND) {
+        return x.y - c.a.y;
+    }
+    if (has(F_BOX) && kind == COLLIDER_BOX) {
+        vec4 inv = vec4(-c.rotation.xyz, c.rotation.w);
+        vec3 local = rotate(inv, x - c.a.xyz);
+        vec3 q = abs(local) - c.b.xyz;
+        vec3 outside = max(q, vec3(0.0));
+        vec3 s = vec3(sign_of(local.x), sign_of(local.y), sign_of(local.z));
+        float out_d = length(outside);
+        if (out_d > 0.0) {
+            n = rotate(c.rotation, s * outside / out_d);
+            return out_d;
+        }
+        // Inside: out through the nearest face.
+        vec3 axis = q.x >= q.y && q.x >= q.z ? vec3(1.0, 0.0, 0.0) : (q.y >= q.z ? vec3(0.0, 1.0, 0.0) : vec3(0.0, 0.0, 1.0));
+        n = rotate(c.rotation, axis * s);
+        return dot(q, axis);
+    }
+    if (has(F_CAPSULE) && kind == COLLIDER_CAPSULE) {
+        vec3 ab = c.b.xyz - c.a.xyz;
+        float len2 = dot(ab, ab);
+        float t = len2 > 0.0 ? clamp(dot(x - c.a.xyz, ab) / len2, 0.0, 1.0) : 0.0;
+        vec3 from_p = x - (c.a.xyz + ab * t);
+        float d = length(from_p);
+        if (d > 0.0) {
+            n = from_p / d;
+        } else {
+            // On the axis: any direction across it.
+            vec3 other = abs(ab.x) < 0.9 * sqrt(len2) ? vec3(1.0, 0.0, 0.0) : vec3(0.0, 1.0, 0.0);
+            n = normalize(cross(ab, other));
+        }
+        return d - c.b.w;
+    }
+    return 1e30;  // a type compiled out
+}
+
+// Colliders: project out to the object's margin from each surface, remove the approaching
+// normal velocity and scale the tangential velocity by (1 - friction) (the collider's own,
+// else the object's), both relative to the collider's velocity. A record holds where the
+// collider is at the frame's start and its velocity over the frame (extra.yzw): `since` is
+// the time from the frame's start to the end of this substep, so the collider is `since`
+// times its velocity further on (the particle is tested `since` times it back).
+void collide(inout vec3 x, inout vec3 v, float since) {
+    if (!has(F_COLLIDERS)) return;
+    for (uint k = 0u; k < g.collider_count; ++k) {
+        Collider c = colliders[k];
+        vec3 velocity = c.extra.yzw;
+        vec3 n;
+        float d = collider_distance(c, x - velocity * since, n);
+        if (d < obj.margin) {
+            x += n * (obj.margin - d);
+            float friction = c.extra.x >= 0.0 ? c.extra.x : obj.friction;
+            vec3 relative = v - velocity;
+            float vn = dot(relative, n);
+            v = velocity + (relative - vn * n) * (1.0 - friction) + max(vn, 0.0) * n;
+        }
+    }
+}
+
+#endif

@@ -1,0 +1,395 @@
+//! The collider types, declared once: each is a row of `KINDS` (its name, the feature bit that
+//! compiles it in, its id in `glsl/include/colliders.glsl`), a variant of `Shape` with its
+//! signed distance (the CPU twin of the GLSL `collider_distance`), and its GPU record. The
+//! contact response is shared by every type: a particle closer than its object's margin to a
+//! collider's surface is moved out along the surface normal to the margin, its approaching
+//! normal velocity is removed and its tangential velocity scaled by (1 - friction).
+
+use super::gpu_types::{FEATURE_BOX, FEATURE_CAPSULE, FEATURE_GROUND, FEATURE_SPHERES};
+use glam::{DQuat, DVec3};
+
+/// A collider type.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum ColliderKind {
+    Sphere,
+    Ground,
+    Box,
+    Capsule,
+}
+
+/// What the rest of the code looks up about a collider type.
+pub struct KindRow {
+    pub kind: ColliderKind,
+    /// The preset's table name (`[[sphere]]`, `[ground]`, ...).
+    pub label: &'static str,
+    /// The `FEATURES` specialization bit that compiles its test in (`F_*` in features.glsl).
+    pub feature: u32,
+    /// `COLLIDER_*` in colliders.glsl (checked by tests/layout.rs).
+    pub glsl_id: u32,
+}
+
+pub const KINDS: [KindRow; 4] = [
+    KindRow { kind: ColliderKind::Sphere, label: "sphere", feature: FEATURE_SPHERES, glsl_id: 0 },
+    KindRow { kind: ColliderKind::Ground, label: "ground", feature: FEATURE_GROUND, glsl_id: 1 },
+    KindRow { kind: ColliderKind::Box, label: "box", feature: FEATURE_BOX, glsl_id: 2 },
+    KindRow { kind: ColliderKind::Capsule, label: "capsule", feature: FEATURE_CAPSULE, glsl_id: 3 },
+];
+
+impl ColliderKind {
+    pub fn row(self) -> &'static KindRow {
+        KINDS.iter().find(|r| r.kind == self).expect("every kind has a row")
+    }
+
+    pub fn label(self) -> &'static str {
+        self.row().label
+    }
+}
+
+/// A collider's shape in world space.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Shape {
+    Sphere {
+        center: DVec3,
+        radius: f64,
+    },
+    /// The half-space below y = height.
+    Ground {
+        height: f64,
+    },
+    /// An oriented box: `rotation` turns its local axes into the world's.
+    Box {
+        center: DVec3,
+        half_extents: DVec3,
+        rotation: DQuat,
+    },
+    /// The points within `radius` of the segment from `a` to `b`.
+    Capsule {
+        a: DVec3,
+        b: DVec3,
+        radius: f64,
+    },
+}
+
+/// A collider of the model: its shape (where it is at t = 0), where it has its own its
+/// friction (else each object's applies), and how it moves.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ColliderModel {
+    pub shape: Shape,
+    pub friction: Option<f64>,
+    pub motion: Motion,
+}
+
+/// How a collider moves: a kinematic body, positioned by time; contacts use its velocity.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub enum Motion {
+    #[default]
+    Fixed,
+    /// A constant velocity [m/s].
+    Velocity(DVec3),
+    /// Offsets from the shape's placement at times t (increasing): linear in between, held
+    /// before the first and after the last.
+    Keyframes(Vec<(f64, DVec3)>),
+}
+
+impl Motion {
+    /// The displacement from the shape's placement at time `t`.
+    pub fn offset(&self, t: f64) -> DVec3 {
+        match self {
+            Motion::Fixed => DVec3::ZERO,
+            Motion::Velocity(v) => *v * t,
+            Motion::Keyframes(keys) => {
+                let Some(&(t0, first)) = keys.first() else { return DVec3::ZERO };
+                if t <= t0 {
+                    return first;
+                }
+                for w in keys.windows(2) {
+                    let ((ta, a), (tb, b)) = (w[0], w[1]);
+                    if t <= tb {
+                        return a.lerp(b, (t - ta) / (tb - ta));
+                    }
+                }
+                keys.last().map(|k| k.1).unwrap_or_default()
+            }
+        }
+    }
+
+    pub fn is_moving(&self) -> bool {
+        *self != Motion::Fixed
+    }
+}
+
+impl ColliderModel {
+    pub fn sphere(center: DVec3, radius: f64) -> Self {
+        Self { shape: Shape::Sphere { center, radius }, friction: None, motion: Motion::Fixed }
+    }
+
+    /// How the collider moves during the frame that starts at `t0` and lasts `frame_dt`: its
+    /// offset at the start and its (chord) velocity over the frame. Within the frame it moves
+    /// at that velocity: at the end of substep s (0-based) it is offset by
+    /// start + velocity (s + 1) dt. The GPU records and the CPU reference both use this.
+    pub fn frame_motion(&self, t0: f64, frame_dt: f64) -> (DVec3, DVec3) {
+        let start = self.motion.offset(t0);
+        (start, (self.motion.offset(t0 + frame_dt) - start) / frame_dt)
+    }
+
+    /// The GPU record (`Collider` in colliders.glsl) for the frame that starts at `t0`: `a`
+    /// xyz centre, point a or unused, w the type id; `b` xyz half extents or point b, w radius;
+    /// `rotation` a unit quaternion (xyzw); `extra` x the friction (negative: the object's),
+    /// yzw the velocity over the frame. Positions are where the collider is at the frame's
+    /// start.
+    pub fn gpu(&self, t0: f64, frame_dt: f64) -> [[f32; 4]; 4] {
+        let (start, velocity) = self.frame_motion(t0, frame_dt);
+        let v = |p: DVec3, w: f32| [p.x as f32, p.y as f32, p.z as f32, w];
+        let id = f32::from_bits(self.shape.kind().row().glsl_id);
+        let friction = self.friction.map(|f| f as f32).unwrap_or(-1.0);
+        let (a, b, q) = match self.shape.translated(start) {
+            Shape::Sphere { center, radius } => {
+                (v(center, id), v(DVec3::ZERO, radius as f32), DQuat::IDENTITY)
+            }
+            Shape::Ground { height } => (v(DVec3::new(0.0, height, 0.0), id), [0.0; 4], DQuat::IDENTITY),
+            Shape::Box { center, half_extents, rotation } => (v(center, id), v(half_extents, 0.0), rotation),
+            Shape::Capsule { a, b, radius } => (v(a, id), v(b, radius as f32), DQuat::IDENTITY),
+        };
+        let w = velocity.as_vec3();
+        [a, b, [q.x as f32, q.y as f32, q.z as f32, q.w as f32], [friction, w.x, w.y, w.z]]
+    }
+
+    /// Moves a particle at `x` with velocity `v` out of the collider, offset by `shift` from
+    /// its placement and moving at `velocity`, to `margin` from its surface; the particle's
+    /// velocity relative to the collider loses its approaching normal part and (1 - friction)
+    /// of its tangential part (the CPU twin of `collide` in colliders.glsl).
+    pub fn respond(
+        &self,
+        margin: f64,
+        object_friction: f64,
+        (shift, velocity): (DVec3, DVec3),
+        x: &mut DVec3,
+        v: &mut DVec3,
+    ) {
+        let (d, n) = self.shape.distance(*x - shift);
+        if d < margin {
+            *x += n * (margin - d);
+            let friction = self.friction.unwrap_or(object_friction);
+            let relative = *v - velocity;
+            let vn = relative.dot(n);
+            *v = velocity + (relative - n * vn) * (1.0 - friction) + n * vn.max(0.0);
+        }
+    }
+}
+
+impl ColliderModel {
+    /// The collider as the GPU receives it: every number rounded to f32.
+    pub fn rounded_to_f32(&self) -> Self {
+        let r = |x: f64| x as f32 as f64;
+        let rv = |v: DVec3| v.as_vec3().as_dvec3();
+        let shape = match self.shape {
+            Shape::Sphere { center, radius } => Shape::Sphere { center: rv(center), radius: r(radius) },
+            Shape::Ground { height } => Shape::Ground { height: r(height) },
+            Shape::Box { center, half_extents, rotation } => Shape::Box {
+                center: rv(center),
+                half_extents: rv(half_extents),
+                rotation: DQuat::from_xyzw(r(rotation.x), r(rotation.y), r(rotation.z), r(rotation.w)),
+            },
+            Shape::Capsule { a, b, radius } => Shape::Capsule { a: rv(a), b: rv(b), radius: r(radius) },
+        };
+        let motion = match &self.motion {
+            Motion::Fixed => Motion::Fixed,
+            Motion::Velocity(v) => Motion::Velocity(rv(*v)),
+            Motion::Keyframes(k) => Motion::Keyframes(k.iter().map(|&(t, p)| (t, rv(p))).collect()),
+        };
+        Self { shape, friction: self.friction.map(r), motion }
+    }
+}
+
+impl Shape {
+    pub fn kind(&self) -> ColliderKind {
+        match self {
+            Shape::Sphere { .. } => ColliderKind::Sphere,
+            Shape::Ground { .. } => ColliderKind::Ground,
+            Shape::Box { .. } => ColliderKind::Box,
+            Shape::Capsule { .. } => ColliderKind::Capsule,
+        }
+    }
+
+    /// Signed distance from `p` to the surface (negative inside) and the outward unit normal
+    /// of the nearest surface point.
+    pub fn distance(&self, p: DVec3) -> (f64, DVec3) {
+        match *self {
+            Shape::Sphere { center, radius } => {
+                let from = p - center;
+                let d = from.length();
+                (d - radius, if d > 0.0 { from / d } else { DVec3::Y })
+            }
+            Shape::Ground { height } => (p.y - height, DVec3::Y),
+            Shape::Box { center, half_extents, rotation } => {
+                let local = rotation.inverse() * (p - center);
+                let q = local.abs() - half_extents;
+                let outside = q.max(DVec3::ZERO);
+                let sign = DVec3::new(sign(local.x), sign(local.y), sign(local.z));
+                if outside.length() > 0.0 {
+                    (outside.length(), rotation * (sign * outside / outside.length()))
+                } else {
+                    // Inside: out through the nearest face.
+                    let axis = if q.x >= q.y && q.x >= q.z {
+                        0
+                    } else if q.y >= q.z {
+                        1
+                    } else {
+                        2
+                    };
+                    let mut n = DVec3::ZERO;
+                    n[axis] = sign[axis];
+                    (q[axis], rotation * n)
+                }
+            }
+            Shape::Capsule { a, b, radius } => {
+                let ab = b - a;
+                let len2 = ab.length_squared();
+                let t = if len2 > 0.0 { ((p - a).dot(ab) / len2).clamp(0.0, 1.0) } else { 0.0 };
+                let from = p - (a + ab * t);
+                let d = from.length();
+                let n = if d > 0.0 { from / d } else { ab.any_orthonormal_vector() };
+                (d - radius, n)
+            }
+        }
+    }
+
+    /// The point keyframes place: a sphere's or box's centre, a capsule's midpoint, the
+    /// ground's point above the origin.
+    pub fn reference_point(&self) -> DVec3 {
+        match *self {
+            Shape::Sphere { center, .. } | Shape::Box { center, .. } => center,
+            Shape::Ground { height } => DVec3::new(0.0, height, 0.0),
+            Shape::Capsule { a, b, .. } => (a + b) / 2.0,
+        }
+    }
+
+    /// The shape moved by `d`.
+    pub fn translated(&self, d: DVec3) -> Shape {
+        match *self {
+            Shape::Sphere { center, radius } => Shape::Sphere { center: center + d, radius },
+            Shape::Ground { height } => Shape::Ground { height: height + d.y },
+            Shape::Box { center, half_extents, rotation } => {
+                Shape::Box { center: center + d, half_extents, rotation }
+            }
+            Shape::Capsule { a, b, radius } => Shape::Capsule { a: a + d, b: b + d, radius },
+        }
+    }
+
+    /// The corners of a box around the shape (`None` for the unbounded ground).
+    pub fn bounds(&self) -> Option<(DVec3, DVec3)> {
+        match *self {
+            Shape::Sphere { center, radius } => Some((center - radius, center + radius)),
+            Shape::Ground { .. } => None,
+            Shape::Box { center, half_extents, rotation } => {
+                let m = glam::DMat3::from_quat(rotation);
+                let reach = DVec3::from_array(std::array::from_fn(|i| {
+                    (0..3).map(|k| (m.col(k)[i] * half_extents[k]).abs()).sum::<f64>()
+                }));
+                Some((center - reach, center + reach))
+            }
+            Shape::Capsule { a, b, radius } => Some((a.min(b) - radius, a.max(b) + radius)),
+        }
+    }
+}
+
+/// +1 or -1 (+1 at zero, as GLSL's `p >= 0.0 ? 1.0 : -1.0` in colliders.glsl).
+fn sign(x: f64) -> f64 {
+    if x >= 0.0 {
+        1.0
+    } else {
+        -1.0
+    }
+}
+
+/// The feature bits of the collider types `colliders` use.
+pub fn features(colliders: &[ColliderModel]) -> u32 {
+    colliders.iter().fold(0, |f, c| f | c.shape.kind().row().feature)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Each shape's distance against points whose distance is known by construction, and its
+    /// normal against a finite-difference gradient.
+    #[test]
+    fn signed_distances_and_normals() {
+        let turn = DQuat::from_rotation_y(0.5);
+        let shapes = [
+            Shape::Sphere { center: DVec3::new(0.1, 0.2, 0.3), radius: 0.4 },
+            Shape::Ground { height: -0.2 },
+            Shape::Box {
+                center: DVec3::new(0.0, 0.5, 0.0),
+                half_extents: DVec3::new(0.3, 0.1, 0.2),
+                rotation: turn,
+            },
+            Shape::Capsule { a: DVec3::new(-0.5, 0.0, 0.0), b: DVec3::new(0.5, 0.2, 0.0), radius: 0.1 },
+        ];
+        // Known values.
+        assert!((shapes[0].distance(DVec3::new(0.1, 0.2, 1.0)).0 - 0.3).abs() < 1e-12);
+        assert!((shapes[1].distance(DVec3::new(5.0, 0.3, -2.0)).0 - 0.5).abs() < 1e-12);
+        let above_box = DVec3::new(0.0, 0.9, 0.0);
+        assert!((shapes[2].distance(above_box).0 - 0.3).abs() < 1e-12);
+        let corner = turn * DVec3::new(0.3, 0.1, 0.2) + DVec3::new(0.0, 0.5, 0.0);
+        let beyond = corner + turn * DVec3::new(0.03, 0.04, 0.0);
+        assert!((shapes[2].distance(beyond).0 - 0.05).abs() < 1e-12);
+        assert!((shapes[3].distance(DVec3::new(-0.8, 0.0, 0.0)).0 - 0.2).abs() < 1e-12);
+        // Normals are the gradient of the distance, inside and outside.
+        for (s, shape) in shapes.iter().enumerate() {
+            for k in 0..200 {
+                let t = k as f64 * 0.7;
+                let p = DVec3::new(t.sin() * 0.6, 0.4 + (1.3 * t).cos() * 0.5, (0.9 * t).sin() * 0.4);
+                let (d, n) = shape.distance(p);
+                let h = 1e-6;
+                let grad = DVec3::new(
+                    shape.distance(p + DVec3::X * h).0 - shape.distance(p - DVec3::X * h).0,
+                    shape.distance(p + DVec3::Y * h).0 - shape.distance(p - DVec3::Y * h).0,
+                    shape.distance(p + DVec3::Z * h).0 - shape.distance(p - DVec3::Z * h).0,
+                ) / (2.0 * h);
+                assert!((n.length() - 1.0).abs() < 1e-9, "shape {s}: normal not unit at {p}");
+                // Away from the medial ridges (where the gradient jumps) the two agree.
+                if (grad.length() - 1.0).abs() < 1e-3 {
+                    assert!(
+                        (grad - n).length() < 1e-4,
+                        "shape {s} at {p} (d {d}): normal {n} vs gradient {grad}"
+                    );
+                }
+            }
+        }
+    }
+
+    /// The response leaves the particle exactly at the margin with no approaching velocity.
+    #[test]
+    fn response_projects_to_the_margin() {
+        let c = ColliderModel {
+            shape: Shape::Capsule { a: DVec3::ZERO, b: DVec3::X, radius: 0.2 },
+            friction: Some(0.25),
+            motion: Motion::Fixed,
+        };
+        let mut x = DVec3::new(0.5, 0.1, 0.0);
+        let mut v = DVec3::new(1.0, -2.0, 0.0);
+        c.respond(0.01, 0.9, (DVec3::ZERO, DVec3::ZERO), &mut x, &mut v);
+        assert!((c.shape.distance(x).0 - 0.01).abs() < 1e-12);
+        assert!(v.y.abs() < 1e-12 && (v.x - 0.75).abs() < 1e-12, "{v}");
+        // A collider moving up at 2 m/s: the particle leaves with at least its normal velocity,
+        // and friction pulls its tangential velocity towards the collider's (here 0.5 m/s in x).
+        let mut x = DVec3::new(0.5, 0.1, 0.0);
+        let mut v = DVec3::new(1.0, -2.0, 0.0);
+        let moving = (DVec3::ZERO, DVec3::new(0.5, 2.0, 0.0));
+        c.respond(0.01, 0.9, moving, &mut x, &mut v);
+        assert!((v.y - 2.0).abs() < 1e-12 && (v.x - (0.5 + 0.5 * 0.75)).abs() < 1e-12, "{v}");
+    }
+
+    /// Keyframes interpolate linearly and hold at the ends; a frame's motion is its chord.
+    #[test]
+    fn keyframed_motion() {
+        let m = Motion::Keyframes(vec![(0.5, DVec3::ZERO), (1.5, DVec3::new(1.0, 0.0, 0.0))]);
+        assert_eq!(m.offset(0.0), DVec3::ZERO);
+        assert!((m.offset(1.0).x - 0.5).abs() < 1e-12);
+        assert_eq!(m.offset(9.0), DVec3::X);
+        let c = ColliderModel { motion: m, ..ColliderModel::sphere(DVec3::ZERO, 0.1) };
+        let (start, v) = c.frame_motion(1.0, 0.25);
+        assert!((start.x - 0.5).abs() < 1e-12 && (v.x - 1.0).abs() < 1e-12);
+    }
+}

@@ -1,0 +1,128 @@
+//! The editor's colliders: the ground switch, a list entry and an add button per collider type,
+//! and the panel of the selected one. A new collider type adds its entry, button and panel
+//! here (its simulation side is one row of `sim::collider`).
+
+use super::editor::Selection;
+use super::widgets::{drag, drag3, optional};
+use crate::scene::{BoxCollider, Capsule, Ground, Motion, Scene, Sphere};
+use imgui::Ui;
+
+/// The list entries of the scene's colliders, with what selecting each selects.
+pub fn entries(scene: &Scene) -> Vec<(String, Selection)> {
+    let mut out = Vec::new();
+    if let Some(g) = &scene.ground {
+        out.push((format!("ground (y {:.2} m)##g", g.height), Selection::Ground));
+    }
+    for (i, s) in scene.spheres.iter().enumerate() {
+        out.push((format!("sphere {i} (r {:.2} m)##s{i}", s.radius), Selection::Sphere(i)));
+    }
+    for (i, b) in scene.boxes.iter().enumerate() {
+        let [x, y, z] = b.half_extents.map(|h| 2.0 * h);
+        out.push((format!("box {i} ({x:.2} x {y:.2} x {z:.2} m)##b{i}"), Selection::Box(i)));
+    }
+    for (i, c) in scene.capsules.iter().enumerate() {
+        out.push((format!("capsule {i} (r {:.2} m)##k{i}", c.radius), Selection::Capsule(i)));
+    }
+    out
+}
+
+/// The add buttons (on the current line); returns what was added.
+pub fn add_buttons(ui: &Ui, scene: &mut Scene) -> Option<Selection> {
+    let mut added = None;
+    if ui.button("+ sphere") {
+        scene.spheres.push(Sphere { center: [0.0, 0.5, 0.0], radius: 0.25, motion: None });
+        added = Some(Selection::Sphere(scene.spheres.len() - 1));
+    }
+    ui.same_line();
+    if ui.button("+ box") {
+        scene.boxes.push(BoxCollider {
+            center: [0.0, 0.25, 0.0],
+            half_extents: [0.3, 0.25, 0.3],
+            rotation: [0.0; 3],
+            motion: None,
+        });
+        added = Some(Selection::Box(scene.boxes.len() - 1));
+    }
+    ui.same_line();
+    if ui.button("+ capsule") {
+        scene.capsules.push(Capsule {
+            start: [-0.4, 0.3, 0.0],
+            end: [0.4, 0.3, 0.0],
+            radius: 0.1,
+            motion: None,
+        });
+        added = Some(Selection::Capsule(scene.capsules.len() - 1));
+    }
+    ui.same_line();
+    if scene.ground.is_none() && ui.button("+ ground") {
+        scene.ground = Some(Ground::default());
+        added = Some(Selection::Ground);
+    }
+    added
+}
+
+/// Removes the selected collider; false when the selection is not a collider.
+pub fn remove(scene: &mut Scene, selected: Selection) -> bool {
+    match selected {
+        Selection::Ground => scene.ground = None,
+        Selection::Sphere(i) if i < scene.spheres.len() => drop(scene.spheres.remove(i)),
+        Selection::Box(i) if i < scene.boxes.len() => drop(scene.boxes.remove(i)),
+        Selection::Capsule(i) if i < scene.capsules.len() => drop(scene.capsules.remove(i)),
+        _ => return false,
+    }
+    true
+}
+
+/// The panel of the selected collider; false when the selection is not a collider.
+pub fn panel(ui: &Ui, scene: &mut Scene, selected: Selection) -> bool {
+    match selected {
+        Selection::Ground => match &mut scene.ground {
+            Some(g) => {
+                drag(ui, "height [m]", &mut g.height, 0.01, -1e3, 1e3);
+                // Unticked: each object's own friction applies.
+                optional(ui, "friction (own)", &mut g.friction, 0.5, 0.01, 1.0);
+            }
+            None => return false,
+        },
+        Selection::Sphere(i) if i < scene.spheres.len() => {
+            let s = &mut scene.spheres[i];
+            drag3(ui, "centre [m]", &mut s.center, 0.01);
+            drag(ui, "radius [m]", &mut s.radius, 0.005, 0.001, 100.0);
+            motion(ui, &mut s.motion);
+        }
+        Selection::Box(i) if i < scene.boxes.len() => {
+            let b = &mut scene.boxes[i];
+            drag3(ui, "centre [m]", &mut b.center, 0.01);
+            drag3(ui, "half extents [m]", &mut b.half_extents, 0.005);
+            b.half_extents = b.half_extents.map(|h| h.clamp(0.001, 100.0));
+            drag3(ui, "rotation x, y, z [deg]", &mut b.rotation, 0.5);
+            b.rotation = b.rotation.map(|a| a.clamp(-360.0, 360.0));
+            motion(ui, &mut b.motion);
+        }
+        Selection::Capsule(i) if i < scene.capsules.len() => {
+            let c = &mut scene.capsules[i];
+            drag3(ui, "start [m]", &mut c.start, 0.01);
+            drag3(ui, "end [m]", &mut c.end, 0.01);
+            drag(ui, "radius [m]", &mut c.radius, 0.005, 0.001, 100.0);
+            motion(ui, &mut c.motion);
+        }
+        _ => return false,
+    }
+    true
+}
+
+/// A collider's motion: a constant velocity behind a checkbox; keyframes are shown, and edited
+/// in the preset.
+fn motion(ui: &Ui, m: &mut Option<Motion>) {
+    if let Some(Motion { keyframes, .. }) = m.as_ref().filter(|m| !m.keyframes.is_empty()) {
+        ui.text_disabled(format!("moves along {} keyframes (edit them in the preset)", keyframes.len()));
+        return;
+    }
+    let mut moving = m.is_some();
+    if ui.checkbox("moves", &mut moving) {
+        *m = moving.then(|| Motion { velocity: Some([0.2, 0.0, 0.0]), keyframes: Vec::new() });
+    }
+    if let Some(Motion { velocity: Some(v), .. }) = m {
+        drag3(ui, "velocity [m/s]", v, 0.01);
+    }
+}
