@@ -26,27 +26,7 @@ fn centre(states: &[msdsim::sim::gpu::ObjectState]) -> DVec3 {
 fn a_moving_sphere_drags_a_cloth_lying_on_the_ground() {
     let ctx = gpu();
     let run = |velocity: DVec3, fused: bool| -> DVec3 {
-        let n = 12;
-        let mut c = cloth(n, n, 0.04);
-        for (i, p) in c.positions.iter_mut().enumerate() {
-            *p = DVec3::new((i as u32 % n) as f64 * 0.04 - 0.22, 0.01, (i as u32 / n) as f64 * 0.04 - 0.22);
-        }
-        c.stiffness = [200.0, 50.0, 5.0];
-        c.damping = 0.02;
-        c.margin = 0.01;
-        c.friction = 0.9;
-        let mut s = scene(vec![c]);
-        s.gravity = DVec3::new(0.0, -9.81, 0.0);
-        s.substeps = 16;
-        let motion = if velocity == DVec3::ZERO { Motion::Fixed } else { Motion::Velocity(velocity) };
-        s.colliders = vec![
-            ColliderModel {
-                shape: Shape::Ground { height: 0.0 },
-                friction: Some(0.05),
-                motion: Motion::Fixed,
-            },
-            ColliderModel { motion, ..ColliderModel::sphere(DVec3::new(0.0, 0.165, 0.0), 0.15) },
-        ];
+        let s = cloth_on_ground(velocity);
         let mut gpu = GpuSim::new(&ctx, &s).unwrap();
         gpu.set_fused(fused);
         let start = centre(&gpu.read_states(&ctx).unwrap());
@@ -66,6 +46,108 @@ fn a_moving_sphere_drags_a_cloth_lying_on_the_ground() {
             still.x.abs() < 0.01 && still.z.abs() < 0.01,
             "fused {fused}: with a still sphere it moved {still}"
         );
+    }
+    assert_clean(&ctx);
+}
+
+/// The test scene of the drag tests: a 12 x 12 cloth lying on a slippery ground, a sphere on
+/// its middle moving at `velocity`.
+fn cloth_on_ground(velocity: DVec3) -> msdsim::sim::model::SimModel {
+    let n = 12;
+    let mut c = cloth(n, n, 0.04);
+    for (i, p) in c.positions.iter_mut().enumerate() {
+        *p = DVec3::new((i as u32 % n) as f64 * 0.04 - 0.22, 0.01, (i as u32 / n) as f64 * 0.04 - 0.22);
+    }
+    c.stiffness = [200.0, 50.0, 5.0];
+    c.damping = 0.02;
+    c.margin = 0.01;
+    c.friction = 0.9;
+    let mut s = scene(vec![c]);
+    s.gravity = DVec3::new(0.0, -9.81, 0.0);
+    s.substeps = 16;
+    let motion = if velocity == DVec3::ZERO { Motion::Fixed } else { Motion::Velocity(velocity) };
+    s.colliders = vec![
+        ColliderModel { shape: Shape::Ground { height: 0.0 }, friction: Some(0.05), motion: Motion::Fixed },
+        ColliderModel { motion, ..ColliderModel::sphere(DVec3::new(0.0, 0.165, 0.0), 0.15) },
+    ];
+    s
+}
+
+/// Dragging a collider in the app: each frame the editor moves the sphere 0.5/60 m in x and
+/// the simulation takes the new parameters in place (`update_params`, as the app does). The
+/// sphere then moves during the frame rather than jumping, so the cloth under it is dragged as
+/// by the sphere moving at 0.5 m/s: by more than 5 cm in 1 s. (Jumping, friction would see a
+/// still sphere.)
+#[test]
+fn dragging_a_collider_drags_what_it_touches() {
+    let ctx = gpu();
+    let mut s = cloth_on_ground(DVec3::ZERO);
+    let mut gpu = GpuSim::new(&ctx, &s).unwrap();
+    let start = centre(&gpu.read_states(&ctx).unwrap());
+    for _ in 0..60 {
+        if let Shape::Sphere { center, .. } = &mut s.colliders[1].shape {
+            center.x += 0.5 / 60.0;
+        }
+        gpu.update_params(&s).unwrap();
+        gpu.step_frame(&ctx).unwrap();
+    }
+    let moved = centre(&gpu.read_states(&ctx).unwrap()) - start;
+    gpu.destroy(&ctx);
+    eprintln!("dragged sphere: the cloth moved {moved}");
+    assert!(moved.x > 0.05 && moved.z.abs() < 0.02, "the cloth moved {moved}");
+    assert_clean(&ctx);
+}
+
+/// Discrete contact's speed limit (`sim::collider::contact_speed`), on both sides: two free
+/// nodes shot at a capsule (radius 2 cm, margin 1 cm; the limit is (0.02 + 0.01) / dt = 28.8
+/// m/s at 16 substeps of 1/60 s). At half the limit they stop on the near side; at three
+/// times it they cross a capsule's width in one substep and come out on the far side, and
+/// the simulation says so (the guard's contact-speed warning), which it does not at half.
+#[test]
+fn contact_speed_limit_holds_on_both_sides() {
+    let ctx = gpu();
+    for fused in [true, false] {
+        for factor in [0.5, 3.0] {
+            let mut r = rope(2, 0.1);
+            r.positions = vec![DVec3::new(-0.5, 0.0, -0.05), DVec3::new(-0.5, 0.0, 0.05)];
+            r.margin = 0.01;
+            let mut s = scene(vec![r]);
+            s.colliders = vec![ColliderModel {
+                shape: Shape::Capsule {
+                    a: DVec3::new(0.0, 0.0, -0.5),
+                    b: DVec3::new(0.0, 0.0, 0.5),
+                    radius: 0.02,
+                },
+                friction: None,
+                motion: Motion::Fixed,
+            }];
+            let limit = msdsim::sim::collider::contact_speed(&s).expect("a capsule sets a limit");
+            assert!((limit.speed - 0.03 / s.dt()).abs() < 1e-9, "{limit}");
+            let speed = factor * limit.speed;
+            s.objects[0].velocities.fill(DVec3::new(speed, 0.0, 0.0));
+            let mut gpu = GpuSim::new(&ctx, &s).unwrap();
+            gpu.set_fused(fused);
+            for _ in 0..5 {
+                gpu.step_frame(&ctx).unwrap();
+            }
+            let x = gpu.read_states(&ctx).unwrap()[0].positions();
+            let warned = gpu.take_warning();
+            gpu.destroy(&ctx);
+            if factor < 1.0 {
+                assert!(
+                    x.iter().all(|p| p.x < -0.029),
+                    "fused {fused}: at {speed:.1} m/s a node got through: {x:?}"
+                );
+                assert!(warned.is_none(), "fused {fused}: warned at {speed:.1} m/s: {warned:?}");
+            } else {
+                assert!(
+                    x.iter().all(|p| p.x > 0.03),
+                    "fused {fused}: at {speed:.1} m/s it did not tunnel: {x:?}"
+                );
+                let warned = warned.expect("a warning past the limit");
+                assert!(warned.contains("faster than contacts are exact"), "{warned}");
+            }
+        }
     }
     assert_clean(&ctx);
 }

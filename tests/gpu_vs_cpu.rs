@@ -306,6 +306,43 @@ fn moving_colliders() {
     check("moving colliders", &s);
 }
 
+/// Inter-object contact: a rope falling across a cloth held at its corners, and a second
+/// cloth falling onto the first, each pair kept the sum of the two contact radii apart (rope
+/// radius 2 cm + cloth margin 1 cm; two cloth margins). Contacts are chaotic, so the frames
+/// are compared from the GPU's state (`Mode::Resync`). The objects run per stage (the fused
+/// path is not taken with inter-object contact).
+#[test]
+fn inter_object_contact() {
+    let mut base = cloth(13, 9, 0.03);
+    for (i, p) in base.positions.iter_mut().enumerate() {
+        *p = DVec3::new((i % 13) as f64 * 0.03 - 0.18, 0.5, (i / 13) as f64 * 0.03 - 0.12);
+    }
+    for corner in [0, 12, 13 * 8, 13 * 9 - 1] {
+        base.pinned[corner] = true;
+    }
+    base.stiffness = [100.0, 30.0, 3.0];
+    base.damping = 0.01;
+    base.margin = 0.01;
+    let mut top = cloth(7, 7, 0.03);
+    for (i, p) in top.positions.iter_mut().enumerate() {
+        *p = DVec3::new((i % 7) as f64 * 0.03 - 0.1, 0.56, (i / 7) as f64 * 0.03 - 0.08);
+    }
+    top.stiffness = [100.0, 30.0, 3.0];
+    top.margin = 0.01;
+    let mut r = rope(12, 0.025);
+    for (i, p) in r.positions.iter_mut().enumerate() {
+        *p = DVec3::new(i as f64 * 0.025 - 0.14, 0.54, 0.05);
+    }
+    r.stiffness = [300.0, 0.0, 2.0];
+    r.rope_radius = 0.02;
+    r.mass = 0.02;
+    let mut s = scene(vec![base, top, r]);
+    s.gravity = DVec3::new(0.0, -9.81, 0.0);
+    s.inter_object = true;
+    assert_matters("inter-object contact", &s, |m| m.inter_object = false);
+    check_mode("inter-object contact", &s, Mode::Resync);
+}
+
 #[test]
 fn cloth_self_collision() {
     // A cloth folded over itself: rows 0..4 go down, rows 5..8 come back up 1.5 cm in front,

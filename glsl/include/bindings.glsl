@@ -30,11 +30,16 @@ layout(std430, set = 0, binding = 11) buffer GuardBuf { uint guard_flags; uint g
 // Iterates of the iterative integrators (objects of the explicit ones bind a placeholder).
 layout(std430, set = 0, binding = 12) buffer SolverIter { vec4 iter[]; }; // slices of N positions; w = 1 pinned
 layout(std430, set = 0, binding = 13) buffer SolverAux { vec4 aux[]; };   // xpbd: 12 multipliers per particle; implicit: y
+// Inter-object contact: per particle, the summed corrections from other objects (xyz) and
+// their count (w), written by contact.comp, read and cleared by the constraint stage.
+layout(std430, set = 0, binding = 14) buffer ContactBuf { vec4 contact[]; };
 
 // Flags particle i when its state is non-finite or runs away (called once per frame).
 void guard_check(uint i, Particle p) {
     bool bad = any(isnan(p.pos.xyz)) || any(isinf(p.pos.xyz)) || any(isnan(p.vel.xyz)) || any(isinf(p.vel.xyz));
-    uint flag = bad ? GUARD_NON_FINITE : (dot(p.vel.xyz, p.vel.xyz) > g.guard_speed * g.guard_speed ? GUARD_RUNAWAY : 0u);
+    float speed2 = dot(p.vel.xyz, p.vel.xyz);
+    uint flag = bad ? GUARD_NON_FINITE : (speed2 > g.guard_speed * g.guard_speed ? GUARD_RUNAWAY : 0u);
+    if (flag == 0u && g.contact_speed > 0.0 && speed2 > g.contact_speed * g.contact_speed) flag = GUARD_FAST;
     if (flag != 0u) {
         atomicOr(guard_flags, flag);
         atomicMin(guard_first, i);

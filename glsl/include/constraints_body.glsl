@@ -84,6 +84,13 @@ vec3 constraint_correction(uvec2 cell, vec3 x) {
         }
     }
 
+    // Inter-object contact: what contact.comp summed from the other objects' particles.
+    if (has(F_CONTACT)) {
+        vec4 c = contact[cell.x + cell.y * obj.dims.x];
+        correction += c.xyz;
+        n_active += uint(c.w);
+    }
+
     if (n_active > 1u) correction /= float(n_active);
     return correction;
 }
@@ -112,6 +119,7 @@ void constraints_particle(uvec2 cell, uint substep) {
     vec3 x = p.pos.xyz;
     vec3 v = p.vel.xyz;
     vec3 correction = constraint_correction(cell, x);
+    if (has(F_CONTACT)) contact[i] = vec4(0.0);  // empty for the next substep's contacts
     x += correction;
     v += correction / g.dt;  // velocity follows the position correction
     collide(x, v, float(substep + 1u) * g.dt);

@@ -19,8 +19,9 @@
 #define F_BOX        512u // box colliders
 #define F_CAPSULE    1024u // capsule colliders
 #define F_COLLIDERS  (F_SPHERES | F_GROUND | F_BOX | F_CAPSULE)
+#define F_CONTACT    2048u // inter-object contact (the contact buffer, filled by contact.comp)
 
-layout(constant_id = 3) const uint FEATURES = 0x7FFu;
+layout(constant_id = 3) const uint FEATURES = 0xFFFu;
 
 bool has(uint feature) { return (FEATURES & feature) != 0u; }
 

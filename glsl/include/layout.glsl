@@ -12,6 +12,7 @@
 #define OBJ_STRETCH_LIMIT  1u   // enforce the maximum spring elongation
 #define OBJ_SELF_COLLISION 2u   // particle-particle self-collision
 #define OBJ_SELF_HASH      4u   // ... found through the spatial hash (else brute force)
+#define OBJ_HASHED         8u   // the spatial hash is built (self-collision or inter-object contact)
 
 // Integrators, as sim::integrator::Integrator's discriminants (the fused kernel's SOLVER).
 #define METHOD_SYMPLECTIC_EULER 0u
@@ -53,12 +54,13 @@ struct Globals {
     float guard_speed;                         // a particle faster than this [m/s] has run away
     uint iterations;                           // solver iterations per substep (iterative methods)
     float relaxation;                          // XPBD over-relaxation of each Gauss-Seidel correction
-    uint pad0;
+    float contact_speed;                       // faster than this [m/s], contacts can tunnel (0: no limit)
 };
 
 // Bits of the runtime guard (GuardBuf.flags).
 #define GUARD_NON_FINITE 1u   // a position or velocity is NaN or infinite
 #define GUARD_RUNAWAY    2u   // a speed above Globals.guard_speed
+#define GUARD_FAST       4u   // a speed above Globals.contact_speed (a warning, not a stop)
 
 struct ObjectParams {
     uvec2 dims;            // grid columns, rows (a rope is nodes x 1)
@@ -78,6 +80,10 @@ struct ObjectParams {
     float cell_inv;        // 1 / hash cell edge [1/m]; the edge is twice self_distance
     float cheb_rho;        // implicit integrator: Chebyshev radius (sim::stability::chebyshev_rho)
     float jacobi_damping;  // implicit integrator: Jacobi sweep damping (sim::stability::jacobi_damping)
+    float contact_radius;  // inter-object contact: half the distance kept from other objects [m]
+    float pad0;
+    float pad1;
+    float pad2;
 };
 
 // The spatial hash of a grid cell (Teschner et al. 2003).

@@ -636,6 +636,9 @@ impl Viewer {
                 self.editor.paused = true;
                 self.message(trip.to_string(), true);
             }
+            if let Some(warning) = self.host.as_mut().expect("host").sim_mut().take_warning() {
+                self.message(warning, true);
+            }
         }
         Ok(())
     }

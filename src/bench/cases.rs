@@ -199,6 +199,31 @@ fn paper_cases() -> Vec<Case> {
     cases
 }
 
+/// Eight 32 x 32 cloths lying flat 3 cm apart over a ground, falling onto it and onto each
+/// other: with inter-object contact (every object per stage) and without (each fused).
+fn stacked_cases() -> Vec<Case> {
+    let stack = |contact: bool| {
+        let mut s = base_scene();
+        s.sim.inter_object = contact;
+        s.ground = Some(Ground { height: 0.0, friction: None });
+        for k in 0..8 {
+            let mut c = cloth(32);
+            c.name = format!("cloth{k}");
+            c.orientation = Orientation::Horizontal;
+            let size = c.size[0];
+            c.origin = [-size / 2.0 + 0.01 * k as f64, 0.1 + 0.03 * k as f64, -size / 2.0];
+            c.pin = ClothPins::None;
+            c.stretch_limit = None;
+            s.cloths.push(c);
+        }
+        s
+    };
+    vec![
+        Case { group: "contact", name: "8 cloths 32x32, inter-object contact".into(), scene: stack(true) },
+        Case { group: "contact", name: "8 cloths 32x32, no contact".into(), scene: stack(false) },
+    ]
+}
+
 /// Cloth resolutions (particles per side) and rope lengths (nodes) of the full matrix.
 pub const CLOTH_SIZES: [u32; 5] = [50, 128, 256, 512, 1024];
 pub const ROPE_SIZES: [u32; 5] = [256, 1024, 4096, 16384, 65536];
@@ -207,6 +232,7 @@ pub const ROPE_SIZES: [u32; 5] = [256, 1024, 4096, 16384, 65536];
 /// ropes of `rope_sizes` nodes.
 pub fn matrix(cloth_sizes: &[u32], rope_sizes: &[u32]) -> Vec<Case> {
     let mut cases = paper_cases();
+    cases.extend(stacked_cases());
     for &res in cloth_sizes {
         let span = SPACING * (res - 1) as f64;
         for (variant, f) in VARIANTS {

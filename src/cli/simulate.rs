@@ -101,6 +101,9 @@ pub fn run(args: &SimulateArgs, options: &ContextOptions) -> Result<()> {
             dt * 1e3
         )?;
     }
+    if let Some(limit) = crate::sim::collider::contact_speed(&model) {
+        say!(out, "contact: {limit}")?;
+    }
     let mut sim = GpuSim::new(&ctx, &model)?;
     let result = simulate(&ctx, &mut sim, args, &model, &mut out, out_file);
     sim.destroy(&ctx);
@@ -143,6 +146,9 @@ fn simulate(
         report(out, t)?;
     }
     print_summary(out, sim, &timings)?;
+    if let Some(warning) = sim.take_warning() {
+        say!(out, "warning: {warning}")?;
+    }
 
     if let Some(out_file) = out_file {
         let states = sim.read_states(ctx)?;

@@ -46,6 +46,7 @@ pub fn to_model(scene: &Scene) -> SimModel {
         integrator: scene.sim.integrator.method().unwrap_or_default(),
         iterations: scene.sim.iterations,
         relaxation: scene.sim.relaxation,
+        inter_object: scene.sim.inter_object,
     }
 }
 

@@ -70,6 +70,11 @@ pub struct SimSettings {
     /// object's size (RMS over particles, after the calibration time).
     #[serde(default = "defaults::tolerance")]
     pub tolerance: f64,
+    /// Whether objects touch each other (cloth-cloth, cloth-rope, rope-rope), each pair kept
+    /// the sum of their contact radii apart (a cloth's collision_margin, a rope's radius). Only
+    /// scenes with more than one object pay for it.
+    #[serde(default = "defaults::yes")]
+    pub inter_object: bool,
 }
 
 /// `sim.integrator`: a method (by its label in `sim::integrator`'s table), or "auto".
@@ -141,6 +146,7 @@ impl Default for SimSettings {
             iterations: defaults::iterations(),
             relaxation: 1.0,
             tolerance: defaults::tolerance(),
+            inter_object: true,
         }
     }
 }
@@ -470,6 +476,10 @@ mod defaults {
     pub fn iterations() -> u32 {
         10
     }
+    pub fn yes() -> bool {
+        true
+    }
+
     pub fn tolerance() -> f64 {
         0.01
     }

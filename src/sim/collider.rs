@@ -138,7 +138,15 @@ impl ColliderModel {
     /// yzw the velocity over the frame. Positions are where the collider is at the frame's
     /// start.
     pub fn gpu(&self, t0: f64, frame_dt: f64) -> [[f32; 4]; 4] {
+        self.gpu_dragged(t0, frame_dt, DVec3::ZERO)
+    }
+
+    /// `gpu` for a collider the user moved by `drag` since the last frame (the app's editor):
+    /// it starts the frame where it was and covers the distance during the frame, so what it
+    /// touches is pushed and dragged (by friction) as by a moving collider.
+    pub fn gpu_dragged(&self, t0: f64, frame_dt: f64, drag: DVec3) -> [[f32; 4]; 4] {
         let (start, velocity) = self.frame_motion(t0, frame_dt);
+        let (start, velocity) = (start - drag, velocity + drag / frame_dt);
         let v = |p: DVec3, w: f32| [p.x as f32, p.y as f32, p.z as f32, w];
         let id = f32::from_bits(self.shape.kind().row().glsl_id);
         let friction = self.friction.map(|f| f as f32).unwrap_or(-1.0);
@@ -300,6 +308,57 @@ fn sign(x: f64) -> f64 {
     } else {
         -1.0
     }
+}
+
+/// The speed up to which discrete contact cannot be missed, and what sets it. A contact is
+/// tested once per substep, at the substep's end, and resolved by projecting out to the
+/// nearer side: a particle that crosses more than a collider's half-thickness plus its margin
+/// in one substep (a sphere's or capsule's radius, a box's smallest half extent; the ground
+/// has no far side) lands past the middle and is pushed out of the far side. Likewise between
+/// particles: more than the contact distance (self-collision distance, or the two objects'
+/// contact radii) per substep, relative. Past this speed contacts can tunnel.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ContactSpeed {
+    /// [m/s]
+    pub speed: f64,
+    /// What sets it, e.g. "capsule 0 against cloth 'towel'".
+    pub what: String,
+}
+
+impl std::fmt::Display for ContactSpeed {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "contacts are exact up to {:.2} m/s per particle (set by {})", self.speed, self.what)
+    }
+}
+
+/// The lowest contact speed of a model (`None` without contacts that can tunnel).
+pub fn contact_speed(model: &super::model::SimModel) -> Option<ContactSpeed> {
+    let dt = model.dt();
+    let mut limits: Vec<(f64, String)> = Vec::new();
+    for (k, o) in model.objects.iter().enumerate() {
+        let name = format!("{} '{}'", o.kind.label(), o.name);
+        for (i, c) in model.colliders.iter().enumerate() {
+            let half = match c.shape {
+                Shape::Sphere { radius, .. } | Shape::Capsule { radius, .. } => radius,
+                Shape::Box { half_extents, .. } => half_extents.min_element(),
+                Shape::Ground { .. } => continue,
+            };
+            limits.push(((half + o.margin) / dt, format!("{} {i} against {name}", c.shape.kind().label())));
+        }
+        if let Some(s) = o.self_distance {
+            limits.push((s / dt, format!("the self-collision distance of {name}")));
+        }
+        if model.inter_object_contact() {
+            for other in &model.objects[k + 1..] {
+                let reach = o.contact_radius() + other.contact_radius();
+                limits.push((
+                    reach / dt,
+                    format!("the contact of {name} with {} '{}'", other.kind.label(), other.name),
+                ));
+            }
+        }
+    }
+    limits.into_iter().min_by(|a, b| a.0.total_cmp(&b.0)).map(|(speed, what)| ContactSpeed { speed, what })
 }
 
 /// The feature bits of the collider types `colliders` use.

@@ -33,6 +33,7 @@ pub const ROPE_RING: usize = 8;
 pub const OBJ_STRETCH_LIMIT: u32 = 1;
 pub const OBJ_SELF_COLLISION: u32 = 2;
 pub const OBJ_SELF_HASH: u32 = 4;
+pub const OBJ_HASHED: u32 = 8;
 /// Bits of the `FEATURES` specialization constant (`F_*` in `glsl/include/features.glsl`).
 pub const FEATURE_STRUCTURAL: u32 = 1;
 pub const FEATURE_SHEAR: u32 = 2;
@@ -45,6 +46,7 @@ pub const FEATURE_SELF: u32 = 128;
 pub const FEATURE_GROUND: u32 = 256;
 pub const FEATURE_BOX: u32 = 512;
 pub const FEATURE_CAPSULE: u32 = 1024;
+pub const FEATURE_CONTACT: u32 = 2048;
 
 gpu_struct!(
     /// One simulated particle (cloth particle or rope node).
@@ -78,16 +80,17 @@ gpu_struct!(
     guard_speed: f32,
     iterations: u32,
     relaxation: f32,
-    pad0: u32,
+    contact_speed: f32,
 });
 
 /// Runtime guard bits (`GUARD_*` in the header).
 pub const GUARD_NON_FINITE: u32 = 1;
 pub const GUARD_RUNAWAY: u32 = 2;
+pub const GUARD_FAST: u32 = 4;
 
 gpu_struct!(
     /// Per-object parameters.
-    ObjectParams, size 160, {
+    ObjectParams, size 176, {
     dims: [u32; 2],
     spacing: [f32; 2],
     stiffness: [f32; 4],
@@ -105,6 +108,10 @@ gpu_struct!(
     cell_inv: f32,
     cheb_rho: f32,
     jacobi_damping: f32,
+    contact_radius: f32,
+    pad0: f32,
+    pad1: f32,
+    pad2: f32,
 });
 
 gpu_struct!(

@@ -92,6 +92,15 @@ impl ObjectModel {
     pub fn surface_count(&self) -> usize {
         self.shape().surface_count() as usize
     }
+
+    /// Half the distance kept from another object's particles (inter-object contact): a
+    /// rope's tube radius, a cloth's collision margin.
+    pub fn contact_radius(&self) -> f64 {
+        match self.kind {
+            ObjectKind::Cloth => self.margin,
+            ObjectKind::Rope => self.rope_radius,
+        }
+    }
 }
 
 /// The paper's wind cone, resolved to cosines of its two half-angles.
@@ -137,9 +146,16 @@ pub struct SimModel {
     pub iterations: u32,
     /// XPBD: the over-relaxation factor (0..2) of each Gauss-Seidel correction.
     pub relaxation: f64,
+    /// Objects touch each other (`inter_object_contact` says whether a scene uses it).
+    pub inter_object: bool,
 }
 
 impl SimModel {
+    /// Whether the objects touch each other: asked for, and more than one object.
+    pub fn inter_object_contact(&self) -> bool {
+        self.inter_object && self.objects.len() > 1
+    }
+
     /// Length of one substep [s].
     pub fn dt(&self) -> f64 {
         self.frame_dt / self.substeps as f64

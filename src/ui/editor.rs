@@ -157,6 +157,9 @@ fn simulation_panel(ui: &Ui, state: &EditorState, scene: &mut Scene, actions: &m
     }
     ui.text(format!("substep dt: {:.4} ms", scene.sim.frame_dt * 1e3 / scene.sim.substeps as f64));
     drag3(ui, "gravity [m/s^2]", &mut scene.sim.gravity, 0.05);
+    if scene.cloths.len() + scene.ropes.len() > 1 {
+        ui.checkbox("objects touch each other", &mut scene.sim.inter_object);
+    }
     use crate::scene::IntegratorChoice as I;
     choice(ui, "integrator", &mut scene.sim.integrator, &I::all());
     match scene.sim.integrator {

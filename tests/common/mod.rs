@@ -101,6 +101,9 @@ pub fn scene(objects: Vec<ObjectModel>) -> SimModel {
         integrator: Default::default(),
         iterations: 10,
         relaxation: 1.0,
+        // Off unless a test turns it on: the multi-object scenes here test other things, on
+        // both GPU paths (inter-object contact runs per stage).
+        inter_object: false,
     }
 }
 

@@ -212,21 +212,63 @@ impl CpuSim {
             })
             .collect();
         self.substeps_done += 1;
-        for (o, state) in m.objects.iter().zip(&mut self.objects) {
-            let (px, pv) = integrators::advance(m, o, self.dt, &state.x, &state.v);
-            let (cx, cv) = constraints(m, o, self.dt, &motions, &px, &pv);
+        // Every object's physics first: the constraints of one read the others' new positions
+        // (inter-object contact), as the GPU's constraint stage follows all physics.
+        let advanced: Vec<(Vec<DVec3>, Vec<DVec3>)> = m
+            .objects
+            .iter()
+            .zip(&self.objects)
+            .map(|(o, state)| integrators::advance(m, o, self.dt, &state.x, &state.v))
+            .collect();
+        for (a, (o, state)) in m.objects.iter().zip(&mut self.objects).enumerate() {
+            let (px, pv) = &advanced[a];
+            let mut contact = vec![(DVec3::ZERO, 0u32); px.len()];
+            if m.inter_object_contact() {
+                for (b, other) in m.objects.iter().enumerate().filter(|&(b, _)| b != a) {
+                    inter_object(o, px, other, &advanced[b].0, &mut contact);
+                }
+            }
+            let (cx, cv) = constraints(m, o, self.dt, &motions, &contact, px, pv);
             state.x = cx;
             state.v = cv;
         }
     }
 }
 
-/// The constraint stage of object `o`; `motions` holds each collider's offset and velocity.
+/// Contacts of object `o` (positions `x`) with object `other` (positions `y`): for every pair
+/// nearer than the sum of their contact radii, the particle of `o` is moved away by its share
+/// of the overlap (the other's mass over both, all of it when the other is pinned), summed into
+/// `contact` with the count of pairs (they join the constraint stage's Jacobi mean).
+fn inter_object(
+    o: &ObjectModel,
+    x: &[DVec3],
+    other: &ObjectModel,
+    y: &[DVec3],
+    contact: &mut [(DVec3, u32)],
+) {
+    let reach = o.contact_radius() + other.contact_radius();
+    let share = other.mass / (o.mass + other.mass);
+    for (i, xi) in x.iter().enumerate() {
+        for (j, yj) in y.iter().enumerate() {
+            let delta = *yj - *xi;
+            let d = delta.length();
+            if d > 0.0 && d < reach {
+                let w = if other.pinned[j] { 1.0 } else { share };
+                contact[i].0 += delta / d * (d - reach) * w;
+                contact[i].1 += 1;
+            }
+        }
+    }
+}
+
+/// The constraint stage of object `o`; `motions` holds each collider's offset and velocity,
+/// `contact` each particle's summed inter-object corrections and their count.
 fn constraints(
     m: &SimModel,
     o: &ObjectModel,
     dt: f64,
     motions: &[(DVec3, DVec3)],
+    contact: &[(DVec3, u32)],
     x: &[DVec3],
     v: &[DVec3],
 ) -> (Vec<DVec3>, Vec<DVec3>) {
@@ -270,6 +312,8 @@ fn constraints(
                 }
             }
         }
+        correction += contact[i].0;
+        active += contact[i].1;
         if active > 1 {
             correction /= active as f64;
         }

@@ -4,7 +4,7 @@
 
 use super::object::GUARD_CLEAR;
 use super::{FrameTiming, GpuSim, FRAME_SLOTS};
-use crate::sim::gpu_types::GUARD_NON_FINITE;
+use crate::sim::gpu_types::{GUARD_FAST, GUARD_NON_FINITE, GUARD_RUNAWAY};
 use crate::sim::stability::GuardTrip;
 use crate::vk::{Access, GpuContext};
 use anyhow::Result;
@@ -66,11 +66,34 @@ impl GpuSim {
             let [flags, first] = o.guard.read::<u32>(2)?[..] else { unreachable!("two words read") };
             if flags != 0 {
                 o.guard.write(0, &GUARD_CLEAR)?;
-                let time = self.frames as f64 * self.model.frame_dt;
+            }
+            let time = self.frames as f64 * self.model.frame_dt;
+            if flags & (GUARD_NON_FINITE | GUARD_RUNAWAY) != 0 {
                 return Ok(Some(GuardTrip::new(&self.model, i, first, flags & GUARD_NON_FINITE != 0, time)));
+            }
+            if flags & GUARD_FAST != 0 && !self.warned {
+                // Said once per simulation: in the log now, to the app by `take_warning`.
+                self.warned = true;
+                let o = &self.model.objects[i];
+                let limit = crate::sim::collider::contact_speed(&self.model);
+                let text = format!(
+                    "{} '{}' moved faster than contacts are exact for at t = {time:.3} s (particle {first}): {}; \
+                     past it a particle can pass through a collider or another object. More substeps raise the limit.",
+                    o.kind.label(),
+                    o.name,
+                    limit.map(|l| l.to_string()).unwrap_or_default()
+                );
+                log::warn!("{text}");
+                self.warning = Some(text);
             }
         }
         Ok(None)
+    }
+
+    /// The warning that a particle outran the contact speed (`sim::collider::contact_speed`),
+    /// once per simulation, the first time it is asked for after it happened.
+    pub fn take_warning(&mut self) -> Option<String> {
+        self.warning.take()
     }
 
     /// Per-stage GPU time of the last frame recorded with timestamp `slot`, after its fence.

@@ -73,6 +73,7 @@ pub fn features(o: &ObjectModel, model: &SimModel) -> u32 {
         (FEATURE_SELF, o.self_distance.is_some()),
     ];
     let f = uses.into_iter().filter(|(_, on)| *on).fold(f, |f, (bit, _)| f | bit);
+    let f = if model.inter_object_contact() { f | crate::sim::gpu_types::FEATURE_CONTACT } else { f };
     f | crate::sim::collider::features(&model.colliders)
 }
 
@@ -117,7 +118,8 @@ impl FusedShape {
     pub fn plan(o: &ObjectModel, model: &SimModel, limits: FusedLimits) -> Option<Self> {
         let solver = model.integrator.solver();
         let n = o.particle_count() as u32;
-        if n == 0 || n > limits.slots.min(FUSED_SLOTS) * MAX_THREADS {
+        // Objects that touch each other meet every substep: they run per stage.
+        if n == 0 || n > limits.slots.min(FUSED_SLOTS) * MAX_THREADS || model.inter_object_contact() {
             return None;
         }
         let slots = n.div_ceil(MAX_THREADS);

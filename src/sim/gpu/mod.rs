@@ -38,8 +38,8 @@ use super::gpu_types::{Globals, Particle, SurfaceVertex};
 use super::model::{ObjectModel, SimModel};
 use crate::shaders::ShaderSet;
 use crate::vk::{
-    Access, BindingSetLayout, Buffer, BufferBarrier, BufferUsage, CommandSlot, DescriptorArena, GpuContext,
-    MemoryKind, Recorder, Retired, TimestampPool,
+    Access, BindingSet, BindingSetLayout, Buffer, BufferBarrier, BufferUsage, CommandSlot, DescriptorArena,
+    GpuContext, MemoryKind, Recorder, Retired, TimestampPool,
 };
 use anyhow::{Context as _, Result};
 use object::{collider_data, globals, object_params, GpuObject};
@@ -49,7 +49,7 @@ use pipelines::{Pipelines, Stage};
 const CLOTH_GROUP: [u32; 2] = [16, 16];
 const ROPE_GROUP: u32 = 64;
 /// Bindings per set, in the order of `glsl/include/bindings.glsl`.
-const BINDINGS: u32 = 14;
+const BINDINGS: u32 = 15;
 /// Bytes of one collider record (`Collider` in layout.glsl).
 const COLLIDER_BYTES: u64 = 64;
 /// Collider records per `vkCmdUpdateBuffer` (it takes at most 65,536 bytes).
@@ -92,6 +92,9 @@ pub struct GpuSim {
     globals: Buffer,
     colliders: Buffer,
     objects: Vec<GpuObject>,
+    /// Inter-object contact: the binding set of each ordered pair (a, b), in rounds r = 1..N
+    /// (b = (a + r) mod N), so that one round writes each object's contact buffer once.
+    contact_sets: Vec<Vec<(usize, BindingSet)>>,
     /// Command buffers of the headless frames (`frames.rs`), one per frame in flight, and
     /// whether each holds a submitted frame whose timing and guard are not read yet.
     slots: Vec<CommandSlot>,
@@ -107,6 +110,12 @@ pub struct GpuSim {
     /// Whether the surface stage writes the surface buffers (else it only runs the guard).
     drawn: bool,
     frames: u64,
+    /// How far each collider was moved by `update_params` since the last frame (the app's
+    /// editor dragging it): the next frame moves it there during the frame.
+    dragged: Vec<glam::DVec3>,
+    /// Whether the contact-speed warning was given, and the warning not yet taken.
+    warned: bool,
+    warning: Option<String>,
     /// Particle writes (object, index, value) applied at the start of the next recorded frame.
     pending_writes: Vec<(usize, u32, Particle)>,
     /// The model the simulation runs, without particles (substeps, integrator, the guard's
@@ -137,7 +146,9 @@ impl Parts {
     ) -> Result<()> {
         let layout = self.layout.insert(BindingSetLayout::storage_buffers(ctx, BINDINGS)?);
         self.pipelines = Some(Pipelines::new(ctx, layout, shaders, &Stage::needed(model, plans))?);
-        self.arena = Some(DescriptorArena::new(ctx, 2 * model.objects.len() as u32, BINDINGS)?);
+        let n = model.objects.len() as u32;
+        let pair_sets = if model.inter_object_contact() { n * (n - 1) } else { 0 };
+        self.arena = Some(DescriptorArena::new(ctx, 2 * n + pair_sets, BINDINGS)?);
         let globals_size = std::mem::size_of::<Globals>() as u64;
         self.globals =
             Some(Buffer::new(ctx, "globals", globals_size, BufferUsage::STORAGE, MemoryKind::Upload)?);
@@ -238,6 +249,7 @@ impl GpuSim {
             globals,
             colliders,
             objects: Vec::new(),
+            contact_sets: Vec::new(),
             unread: vec![false; slots.len()],
             slots,
             timestamps,
@@ -247,6 +259,9 @@ impl GpuSim {
             drawn: true,
             frames: 0,
             pending_writes: Vec::new(),
+            warned: false,
+            warning: None,
+            dragged: Vec::new(),
             model: model.without_particles(),
         };
         // From here `sim` owns everything created; on error it is destroyed whole.
@@ -269,6 +284,21 @@ impl GpuSim {
                 .with_context(|| format!("allocating {} '{}'", o.kind.label(), o.name))?;
             self.objects.push(obj);
         }
+        if model.inter_object_contact() {
+            let n = self.objects.len();
+            for round in 1..n {
+                let mut sets = Vec::new();
+                for a in 0..n {
+                    let b = (a + round) % n;
+                    let shared = [&self.globals, &self.colliders];
+                    let (oa, ob) = (&self.objects[a], &self.objects[b]);
+                    if let Some(set) = oa.contact_set(ctx, &self.layout, &mut self.arena, shared, ob)? {
+                        sets.push((a, set));
+                    }
+                }
+                self.contact_sets.push(sets);
+            }
+        }
         let initial: Vec<Vec<Particle>> = model.objects.iter().map(particles).collect();
         self.upload_states(ctx, &initial)
     }
@@ -278,6 +308,7 @@ impl GpuSim {
     /// `slot` (below `FRAME_SLOTS`) picks the timestamp pool, read back with `read_timing`
     /// after this submission's fence. Pending particle writes are applied first.
     pub fn record_frame(&mut self, rec: &mut Recorder<'_>, surface_consumer: Access, slot: usize) {
+        let dragged = std::mem::take(&mut self.dragged);
         let ts = self.timestamps.get(slot);
         if let Some(pool) = ts {
             rec.reset_timestamps(pool);
@@ -301,7 +332,7 @@ impl GpuSim {
             }
             rec.barrier(&around(Access::TransferWrite, Access::ComputeReadWrite));
         }
-        self.record_collider_motion(rec);
+        self.record_collider_motion(rec, &dragged);
         let stages = self.stage_timing;
         // Small objects: every substep in one dispatch each. The state ends in A, as on the
         // per-stage path; the barrier orders it (and B) for the surface stage and next frame.
@@ -338,6 +369,7 @@ impl GpuSim {
             after_physics.extend(self.hash_barriers_at_physics(false));
             rec.barrier(&after_physics);
             self.record_hash_build(rec);
+            self.record_contacts(rec);
             for o in self.objects.iter().filter(|o| !self.is_fused(o)) {
                 rec.dispatch_with(
                     self.pipelines.get(Stage::Constraints(o.kind, o.plan.features)),
@@ -382,14 +414,40 @@ impl GpuSim {
         self.frames += 1;
     }
 
+    /// Inter-object contact after every object's physics and hash: a round of dispatches per
+    /// other object (each writes each object's contact buffer once), each round ordered after
+    /// the one before, and the constraint stage after the last, by barriers on the contact
+    /// buffers.
+    fn record_contacts(&self, rec: &mut Recorder<'_>) {
+        let contacts: Vec<BufferBarrier<'_>> = self
+            .objects
+            .iter()
+            .filter_map(|o| o.contact.as_ref())
+            .map(|c| BufferBarrier::new(c, Access::ComputeReadWrite, Access::ComputeReadWrite))
+            .collect();
+        for round in &self.contact_sets {
+            for &(a, set) in round {
+                let groups = [self.objects[a].particles.div_ceil(256), 1, 1];
+                rec.dispatch(self.pipelines.get(Stage::Contact), set, groups);
+            }
+            rec.barrier(&contacts);
+        }
+    }
+
     /// Moving colliders: this frame's records (where each is at the frame's start, its velocity
     /// over the frame), written in the command stream so frames in flight keep their own.
     /// Scenes whose colliders all stay put record nothing.
-    fn record_collider_motion(&self, rec: &mut Recorder<'_>) {
-        if !self.model.colliders.iter().any(|c| c.motion.is_moving()) {
+    fn record_collider_motion(&self, rec: &mut Recorder<'_>, dragged: &[glam::DVec3]) {
+        if !self.model.colliders.iter().any(|c| c.motion.is_moving())
+            && dragged.iter().all(|d| *d == glam::DVec3::ZERO)
+        {
             return;
         }
-        let data = collider_data(&self.model, self.time());
+        let t0 = self.time();
+        let mut data = collider_data(&self.model, t0);
+        for ((record, c), drag) in data.iter_mut().zip(&self.model.colliders).zip(dragged) {
+            *record = c.gpu_dragged(t0, self.model.frame_dt, *drag);
+        }
         rec.barrier(&[BufferBarrier::new(&self.colliders, Access::ComputeRead, Access::TransferWrite)]);
         for (i, chunk) in data.chunks(UPDATE_RECORDS).enumerate() {
             let offset = (i * UPDATE_RECORDS) as u64 * COLLIDER_BYTES;
@@ -472,6 +530,25 @@ impl GpuSim {
         );
         self.globals.write(0, &[globals(model)])?;
         self.colliders.write(0, &collider_data(model, self.time()))?;
+        // Colliders the edit moved (the same ones, in the same order): moved during the next
+        // frame rather than jumping (see `record_collider_motion`).
+        self.dragged = if model.colliders.len() == self.model.colliders.len() {
+            model
+                .colliders
+                .iter()
+                .zip(&self.model.colliders)
+                .map(|(new, old)| {
+                    let same = new.shape.kind() == old.shape.kind();
+                    if same {
+                        new.shape.reference_point() - old.shape.reference_point()
+                    } else {
+                        glam::DVec3::ZERO
+                    }
+                })
+                .collect()
+        } else {
+            Vec::new()
+        };
         for (gpu, o) in self.objects.iter_mut().zip(&model.objects) {
             gpu.params.write(0, &[object_params(o, model)])?;
         }

@@ -5,7 +5,8 @@ use super::fused::ObjectPlan;
 use super::{BINDINGS, CLOTH_GROUP, ROPE_GROUP};
 use crate::error::UserError;
 use crate::sim::gpu_types::{
-    Globals, ObjectParams, Particle, SurfaceVertex, OBJ_SELF_COLLISION, OBJ_SELF_HASH, OBJ_STRETCH_LIMIT,
+    Globals, ObjectParams, Particle, SurfaceVertex, OBJ_HASHED, OBJ_SELF_COLLISION, OBJ_SELF_HASH,
+    OBJ_STRETCH_LIMIT,
 };
 use crate::sim::integrator::vertex_colours;
 use crate::sim::model::{Integrator, ObjectKind, ObjectModel, ObjectShape, SelfCollisionMethod, SimModel};
@@ -134,6 +135,8 @@ pub(super) struct GpuObject {
     pub placeholder: Buffer,
     /// The runtime guard (flags, first flagged particle), host-visible, read after each frame.
     pub guard: Buffer,
+    /// Inter-object contact: per particle the corrections from other objects (binding 14).
+    pub contact: Option<Buffer>,
     /// [A -> B (physics), B -> A (constraints, hash passes); surface uses set 0 (reads A)].
     pub sets: [BindingSet; 2],
     /// The features its step pipelines compile in and its fused layout.
@@ -180,11 +183,22 @@ impl GpuObject {
         )?;
         let mut hash = None;
         let mut solver = None;
+        let mut contact = None;
         let sets = (|| -> Result<[BindingSet; 2], VkError> {
             guard.write(0, &GUARD_CLEAR)?;
             params.write(0, &[object_params(o, model)])?;
-            if o.self_distance.is_some() && model.self_collision == SelfCollisionMethod::Hash {
+            if builds_hash(o, model) {
                 hash = Some(Box::new(HashBuffers::new(ctx, &o.name, n)?));
+            }
+            if model.inter_object_contact() {
+                let usage = BufferUsage::STORAGE | BufferUsage::TRANSFER_DST;
+                contact = Some(Buffer::new(
+                    ctx,
+                    &format!("{}.contact", o.name),
+                    16 * n,
+                    usage,
+                    MemoryKind::GpuOnly,
+                )?);
             }
             solver = SolverBuffers::new(ctx, &o.name, n, model.integrator)?;
             let p = &placeholder;
@@ -196,10 +210,11 @@ impl GpuObject {
                 Some(s) => [&s.iter, &s.aux],
                 None => [p; 2],
             };
+            let touch = contact.as_ref().unwrap_or(p);
             let set = |arena: &mut DescriptorArena, from: &Buffer, to: &Buffer| {
                 let bindings = [
                     globals, &params, from, to, colliders, &surface, cell_rank, counts, starts, sorted,
-                    blocks, &guard, iter, aux,
+                    blocks, &guard, iter, aux, touch,
                 ];
                 debug_assert_eq!(bindings.len() as u32, BINDINGS);
                 arena.allocate(ctx, layout, &bindings)
@@ -221,6 +236,7 @@ impl GpuObject {
             solver,
             placeholder,
             guard,
+            contact,
             sets,
             plan,
         };
@@ -241,6 +257,7 @@ impl GpuObject {
         if let Some(s) = &self.solver {
             out.extend([&s.iter, &s.aux]);
         }
+        out.extend(&self.contact);
         out
     }
 
@@ -256,6 +273,44 @@ impl GpuObject {
             s.iter.destroy(ctx);
             s.aux.destroy(ctx);
         }
+        if let Some(c) = self.contact {
+            c.destroy(ctx);
+        }
+    }
+
+    /// The binding set of contact.comp for this object (A) against `other` (B): A's set of
+    /// the constraint direction with B's physics output (3), hash (8, 9) and parameters (12),
+    /// and A's contact buffer (14). `None` unless both take part in inter-object contact.
+    pub fn contact_set(
+        &self,
+        ctx: &GpuContext,
+        layout: &BindingSetLayout,
+        arena: &mut DescriptorArena,
+        shared: [&Buffer; 2],
+        other: &GpuObject,
+    ) -> Result<Option<BindingSet>, VkError> {
+        let (Some(contact), Some(hash)) = (&self.contact, &other.hash) else { return Ok(None) };
+        let p = &self.placeholder;
+        let [globals, colliders] = shared;
+        let bindings = [
+            globals,
+            &self.params,
+            &self.state[1],
+            &other.state[1],
+            colliders,
+            p,
+            p,
+            p,
+            &hash.starts,
+            &hash.sorted,
+            p,
+            p,
+            &other.params,
+            p,
+            contact,
+        ];
+        debug_assert_eq!(bindings.len() as u32, BINDINGS);
+        arena.allocate(ctx, layout, &bindings).map(Some)
     }
 }
 
@@ -360,12 +415,22 @@ pub(super) fn globals(model: &SimModel) -> Globals {
         guard_speed: model.max_speed as f32,
         iterations: model.iterations,
         relaxation: model.relaxation as f32,
-        pad0: 0,
+        contact_speed: crate::sim::collider::contact_speed(model).map(|c| c.speed as f32).unwrap_or(0.0),
     }
+}
+
+/// Whether object `o` builds a spatial hash: for its self-collision (the hash method) or for
+/// the other objects' contacts with it.
+pub(super) fn builds_hash(o: &ObjectModel, model: &SimModel) -> bool {
+    (o.self_distance.is_some() && model.self_collision == SelfCollisionMethod::Hash)
+        || model.inter_object_contact()
 }
 
 pub(super) fn object_params(o: &ObjectModel, model: &SimModel) -> ObjectParams {
     let mut flags = 0;
+    if builds_hash(o, model) {
+        flags |= OBJ_HASHED;
+    }
     if o.stretch_limit.is_some() {
         flags |= OBJ_STRETCH_LIMIT;
     }
@@ -376,7 +441,18 @@ pub(super) fn object_params(o: &ObjectModel, model: &SimModel) -> ObjectParams {
         }
     }
     let buckets = hash_table_size(o.particle_count() as u64) as u32;
-    let cell = 2.0 * o.self_distance.unwrap_or(1.0).max(1e-6);
+    // Cells twice the largest distance a query looks for: the self-collision distance, and
+    // with inter-object contact the reach of any other object to this one.
+    let reach_in = if model.inter_object_contact() {
+        let widest = model.objects.iter().map(ObjectModel::contact_radius).fold(0.0, f64::max);
+        o.contact_radius() + widest
+    } else {
+        0.0
+    };
+    let self_reach =
+        o.self_distance.filter(|_| model.self_collision == SelfCollisionMethod::Hash).unwrap_or(0.0);
+    let reach = self_reach.max(reach_in);
+    let cell = 2.0 * if reach > 0.0 { reach } else { o.self_distance.unwrap_or(1.0) }.max(1e-6);
     ObjectParams {
         dims: o.dims,
         spacing: o.spacing.map(|s| s as f32),
@@ -395,6 +471,10 @@ pub(super) fn object_params(o: &ObjectModel, model: &SimModel) -> ObjectParams {
         cell_inv: (1.0 / cell) as f32,
         cheb_rho: chebyshev_rho(o, model.dt()) as f32,
         jacobi_damping: jacobi_damping(o, model.dt()) as f32,
+        contact_radius: o.contact_radius() as f32,
+        pad0: 0.0,
+        pad1: 0.0,
+        pad2: 0.0,
     }
 }
 

@@ -7,7 +7,7 @@ use super::fused::{FusedShape, ObjectPlan};
 use super::{CLOTH_GROUP, ROPE_GROUP};
 use crate::shaders::ShaderSet;
 use crate::sim::integrator::{Scheme, Solver};
-use crate::sim::model::{Integrator, ObjectKind, SelfCollisionMethod, SimModel};
+use crate::sim::model::{Integrator, ObjectKind, SimModel};
 use crate::vk::{BindingSetLayout, ComputePipeline, GpuContext, Retired};
 use anyhow::{Context as _, Result};
 use std::collections::HashMap;
@@ -27,6 +27,8 @@ pub(super) enum Stage {
     Surface(ObjectKind, bool),
     HashScan(u32),
     HashScatter,
+    /// Inter-object contact of one ordered pair of objects.
+    Contact,
     /// Every substep of an object in one workgroup, with the model's integrator.
     Fused(Integrator, u32, FusedShape),
 }
@@ -57,6 +59,7 @@ impl Stage {
             Stage::Surface(ObjectKind::Rope, _) => "rope_vertices.comp",
             Stage::HashScan(_) => "hash_scan.comp",
             Stage::HashScatter => "hash_scatter.comp",
+            Stage::Contact => "contact.comp",
             Stage::Fused(..) => "fused.comp",
         }
     }
@@ -74,7 +77,7 @@ impl Stage {
             Stage::Constraints(kind, f) => [group(kind), vec![0, f]].concat(),
             Stage::Iterate(kind, _) => group(kind),
             Stage::Surface(_, drawn) => vec![drawn as u32],
-            Stage::HashScatter => Vec::new(),
+            Stage::HashScatter | Stage::Contact => Vec::new(),
             Stage::HashScan(phase) => vec![phase],
             Stage::Fused(method, f, shape) => shape.specialization(method, f),
         }
@@ -103,10 +106,11 @@ impl Stage {
             .zip(plans)
             .flat_map(|(o, &plan)| Stage::of_object(o.kind, model, plan))
             .collect();
-        if model.self_collision == SelfCollisionMethod::Hash
-            && model.objects.iter().any(|o| o.self_distance.is_some())
-        {
+        if model.objects.iter().any(|o| super::object::builds_hash(o, model)) {
             stages.extend([Stage::HashScan(0), Stage::HashScan(1), Stage::HashScan(2), Stage::HashScatter]);
+        }
+        if model.inter_object_contact() {
+            stages.push(Stage::Contact);
         }
         let mut seen = std::collections::HashSet::new();
         stages.retain(|s| seen.insert(*s));

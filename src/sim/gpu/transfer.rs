@@ -44,10 +44,20 @@ impl GpuSim {
                 for (_, h) in &hashed {
                     rec.fill_buffer(&h.counts, 0);
                 }
+                // The inter-object contact sums start at zero (the constraint stage re-zeroes them).
+                for c in self.objects.iter().filter_map(|o| o.contact.as_ref()) {
+                    rec.fill_buffer(c, 0);
+                }
                 let to_compute: Vec<_> = self
                     .objects
                     .iter()
                     .map(|o| BufferBarrier::new(&o.state[0], Access::TransferWrite, Access::ComputeReadWrite))
+                    .chain(
+                        self.objects
+                            .iter()
+                            .filter_map(|o| o.contact.as_ref())
+                            .map(|c| BufferBarrier::new(c, Access::TransferWrite, Access::ComputeReadWrite)),
+                    )
                     .chain(hashed.iter().map(|(_, h)| {
                         BufferBarrier::new(&h.counts, Access::TransferWrite, Access::ComputeReadWrite)
                     }))
