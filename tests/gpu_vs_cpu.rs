@@ -186,20 +186,27 @@ fn stretch_limit() {
     check("stretch_limit", &s);
 }
 
-#[test]
-fn spheres_with_friction() {
-    // A horizontal cloth falls onto two spheres and slides with friction.
+/// A 13 x 9 jittered cloth lying flat at y = 0.5 (5 cm spacing) and falling, with `friction`
+/// and a 1 cm margin: the collider tests drop it onto what they test.
+fn falling_cloth(seed: u64, friction: f64) -> SimModel {
     let mut c = jittered_cloth();
     c.stiffness = [60.0, 20.0, 5.0];
     for (i, p) in c.positions.iter_mut().enumerate() {
         let (col, row) = ((i % 13) as f64, (i / 13) as f64);
-        *p = DVec3::new(col * 0.05 - 0.3, 0.5, row * 0.05 - 0.2) + *p * 0.0;
+        *p = DVec3::new(col * 0.05 - 0.3, 0.5, row * 0.05 - 0.2);
     }
-    jitter(&mut c.positions, 0.005, 11);
-    c.friction = 0.4;
+    jitter(&mut c.positions, 0.005, seed);
+    c.friction = friction;
     c.margin = 0.01;
     let mut s = scene(vec![c]);
     s.gravity = DVec3::new(0.0, -9.81, 0.0);
+    s
+}
+
+#[test]
+fn spheres_with_friction() {
+    // A horizontal cloth falls onto two spheres and slides with friction.
+    let mut s = falling_cloth(11, 0.4);
     s.colliders = vec![sphere([-0.1, 0.2, 0.0], 0.25), sphere([0.25, 0.25, 0.1], 0.1)];
     assert_matters("colliders", &s, |m| m.colliders.clear());
     assert_matters("friction", &s, |m| m.objects[0].friction = 0.0);
@@ -246,18 +253,8 @@ fn ground_box_and_capsule() {
         ),
     ];
     for (name, collider) in colliders {
-        let mut c = jittered_cloth();
-        c.stiffness = [60.0, 20.0, 5.0];
-        for (i, p) in c.positions.iter_mut().enumerate() {
-            let (col, row) = ((i % 13) as f64, (i / 13) as f64);
-            *p = DVec3::new(col * 0.05 - 0.3, 0.5, row * 0.05 - 0.2);
-        }
-        jitter(&mut c.positions, 0.005, 11);
-        c.velocities.fill(DVec3::new(0.8, -0.5, 0.0)); // sliding, so that friction acts
-        c.friction = 0.4;
-        c.margin = 0.01;
-        let mut s = scene(vec![c]);
-        s.gravity = DVec3::new(0.0, -9.81, 0.0);
+        let mut s = falling_cloth(11, 0.4);
+        s.objects[0].velocities.fill(DVec3::new(0.8, -0.5, 0.0)); // sliding, so that friction acts
         s.colliders = vec![collider];
         assert_matters(name, &s, |m| m.colliders.clear());
         assert_matters(&format!("{name} friction"), &s, |m| {
@@ -274,17 +271,7 @@ fn ground_box_and_capsule() {
 #[test]
 fn moving_colliders() {
     use msdsim::sim::collider::{ColliderModel, Motion, Shape};
-    let mut c = jittered_cloth();
-    c.stiffness = [60.0, 20.0, 5.0];
-    for (i, p) in c.positions.iter_mut().enumerate() {
-        let (col, row) = ((i % 13) as f64, (i / 13) as f64);
-        *p = DVec3::new(col * 0.05 - 0.3, 0.5, row * 0.05 - 0.2);
-    }
-    jitter(&mut c.positions, 0.005, 12);
-    c.friction = 0.5;
-    c.margin = 0.01;
-    let mut s = scene(vec![c]);
-    s.gravity = DVec3::new(0.0, -9.81, 0.0);
+    let mut s = falling_cloth(12, 0.5);
     let keys =
         vec![(0.03, DVec3::ZERO), (0.11, DVec3::new(0.1, 0.15, 0.0)), (0.2, DVec3::new(0.3, 0.1, 0.05))];
     s.colliders = vec![

@@ -60,7 +60,6 @@ fn header_constants_match_the_host() {
         ("OBJ_STRETCH_LIMIT", t::OBJ_STRETCH_LIMIT),
         ("OBJ_SELF_COLLISION", t::OBJ_SELF_COLLISION),
         ("OBJ_SELF_HASH", t::OBJ_SELF_HASH),
-        ("OBJ_HASHED", t::OBJ_HASHED),
         ("F_CONTACT", t::FEATURE_CONTACT),
         ("GUARD_NON_FINITE", t::GUARD_NON_FINITE),
         ("GUARD_RUNAWAY", t::GUARD_RUNAWAY),

@@ -194,3 +194,54 @@ fn a_replaced_file_keeps_its_permissions() {
     assert_state(&std::fs::read(&target).unwrap());
     assert_eq!(std::fs::metadata(&target).unwrap().permissions().mode() & 0o777, 0o600);
 }
+
+/// `simulate --record FILE.usda`: the recording has a time sample per frame for every
+/// object, and its last frame's cloth points are the simulated positions (`--out` of the same
+/// run) exactly (both print f32 in their shortest exact form). Another extension is refused
+/// before the run.
+#[test]
+fn a_recording_reads_back_as_the_simulation() {
+    let dir = tempfile::tempdir().unwrap();
+    let preset = preset(dir.path());
+    let usda = dir.path().join("run.usda");
+    let json = dir.path().join("state.json");
+    let out = binary()
+        .args(["simulate", "--preset", &preset, "--frames", "7", "--quiet"])
+        .args(["--record", usda.to_str().unwrap(), "--out", json.to_str().unwrap()])
+        .output()
+        .unwrap();
+    assert!(out.status.success(), "{}", stderr(&out));
+    let text = std::fs::read_to_string(&usda).unwrap();
+    assert!(text.starts_with("#usda 1.0") && text.contains("endTimeCode = 7"), "{}", &text[..200]);
+    // Two meshes (the cloth "c" and the rope "r"), each with 7 point and 7 normal samples.
+    assert!(text.contains("def Mesh \"c\"") && text.contains("def Mesh \"r\""));
+    let sample_lines =
+        text.lines().filter(|l| l.trim_start().starts_with(|c: char| c.is_ascii_digit())).count();
+    assert_eq!(sample_lines, 2 * 2 * 7, "time samples");
+    // The cloth's last points sample against the final state.
+    let cloth = &text[text.find("def Mesh \"c\"").unwrap()..];
+    let points = &cloth[cloth.find("points.timeSamples").unwrap()..];
+    let last = points.lines().find(|l| l.trim_start().starts_with("7:")).unwrap();
+    let numbers: Vec<f32> = last
+        .split(|c: char| !(c.is_ascii_digit() || c == '.' || c == '-' || c == 'e'))
+        .filter(|s| !s.is_empty())
+        .skip(1) // the time code
+        .map(|s| s.parse().unwrap())
+        .collect();
+    let state: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
+    let expected: Vec<f32> = state["objects"][0]["positions"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .flat_map(|p| p.as_array().unwrap().iter().map(|x| x.as_f64().unwrap() as f32).collect::<Vec<_>>())
+        .collect();
+    assert_eq!(numbers.len(), expected.len(), "5 x 4 cloth points");
+    assert_eq!(numbers, expected, "the recorded points are the simulated positions");
+    let bad = binary()
+        .args(["simulate", "--preset", &preset, "--frames", "2", "--record"])
+        .arg(dir.path().join("run.abc"))
+        .output()
+        .unwrap();
+    assert_eq!(bad.status.code(), Some(2), "{}", stderr(&bad));
+    assert!(stderr(&bad).contains(".usda"), "{}", stderr(&bad));
+}

@@ -31,7 +31,7 @@ layout(std430, set = 0, binding = 11) buffer GuardBuf { uint guard_flags; uint g
 layout(std430, set = 0, binding = 12) buffer SolverIter { vec4 iter[]; }; // slices of N positions; w = 1 pinned
 layout(std430, set = 0, binding = 13) buffer SolverAux { vec4 aux[]; };   // xpbd: 12 multipliers per particle; implicit: y
 // Inter-object contact: per particle, the summed corrections from other objects (xyz) and
-// their count (w), written by contact.comp, read and cleared by the constraint stage.
+// their count (w), written by contact.comp each substep, read by the constraint stage.
 layout(std430, set = 0, binding = 14) buffer ContactBuf { vec4 contact[]; };
 
 // Flags particle i when its state is non-finite or runs away (called once per frame).

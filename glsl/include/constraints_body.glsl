@@ -119,7 +119,6 @@ void constraints_particle(uvec2 cell, uint substep) {
     vec3 x = p.pos.xyz;
     vec3 v = p.vel.xyz;
     vec3 correction = constraint_correction(cell, x);
-    if (has(F_CONTACT)) contact[i] = vec4(0.0);  // empty for the next substep's contacts
     x += correction;
     v += correction / g.dt;  // velocity follows the position correction
     collide(x, v, float(substep + 1u) * g.dt);

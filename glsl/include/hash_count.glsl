@@ -5,7 +5,7 @@
 
 // Takes a rank in the bucket of the new position x_new of particle i.
 void count_into_bucket(uint i, vec3 x_new) {
-    if ((obj.flags & OBJ_HASHED) == 0u) return;
+    if ((obj.flags & OBJ_SELF_HASH) == 0u) return;
     uint h = cell_hash(ivec3(floor(x_new * obj.cell_inv)), obj.hash_mask);
     cell_rank[i] = uvec2(h, atomicAdd(counts[h], 1u));
 }

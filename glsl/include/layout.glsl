@@ -12,7 +12,6 @@
 #define OBJ_STRETCH_LIMIT  1u   // enforce the maximum spring elongation
 #define OBJ_SELF_COLLISION 2u   // particle-particle self-collision
 #define OBJ_SELF_HASH      4u   // ... found through the spatial hash (else brute force)
-#define OBJ_HASHED         8u   // the spatial hash is built (self-collision or inter-object contact)
 
 // Integrators, as sim::integrator::Integrator's discriminants (the fused kernel's SOLVER).
 #define METHOD_SYMPLECTIC_EULER 0u
@@ -80,10 +79,6 @@ struct ObjectParams {
     float cell_inv;        // 1 / hash cell edge [1/m]; the edge is twice self_distance
     float cheb_rho;        // implicit integrator: Chebyshev radius (sim::stability::chebyshev_rho)
     float jacobi_damping;  // implicit integrator: Jacobi sweep damping (sim::stability::jacobi_damping)
-    float contact_radius;  // inter-object contact: half the distance kept from other objects [m]
-    float pad0;
-    float pad1;
-    float pad2;
 };
 
 // The spatial hash of a grid cell (Teschner et al. 2003).

@@ -3,6 +3,7 @@
 mod bench;
 mod chart;
 mod out_file;
+mod record;
 mod simulate;
 mod stability;
 mod stdout;

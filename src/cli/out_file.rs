@@ -138,6 +138,11 @@ impl OutFile {
         std::fs::remove_file(&tmp)
     }
 
+    /// Writes `bytes` (a whole file).
+    pub fn write_bytes(self, bytes: &[u8]) -> Result<()> {
+        self.write(bytes).with_context(|| format!("writing {}", self.target.display()))
+    }
+
     /// Writes `value` as JSON.
     pub fn write_json(self, value: &impl serde::Serialize) -> Result<()> {
         let json = serde_json::to_vec(value).context("serialising the state")?;

@@ -29,6 +29,10 @@ pub struct SimulateArgs {
     /// Print only the summary, not a line per frame.
     #[arg(long)]
     pub quiet: bool,
+    /// Record the animated surfaces as USD (FILE.usda): a mesh per object, its points and
+    /// normals time-sampled every frame (opens in Blender, Houdini, usdview, Omniverse).
+    #[arg(long, value_name = "FILE.usda")]
+    pub record: Option<PathBuf>,
 }
 
 #[derive(serde::Serialize)]
@@ -60,6 +64,17 @@ pub fn run(args: &SimulateArgs, options: &ContextOptions) -> Result<()> {
     let scene = scene::load_runnable(&args.preset, &args.overrides)?;
     // Claim the output file before simulating, so a bad path fails before any work is done.
     let out_file = args.out.as_deref().map(OutFile::claim).transpose()?;
+    let record_file = match &args.record {
+        Some(path) if path.extension().is_some_and(|e| e == "usda") => Some(OutFile::claim(path)?),
+        Some(path) => {
+            return Err(crate::error::UserError(format!(
+                "--record {}: the recording format follows the extension, and the one supported is .usda (USD ASCII)",
+                path.display()
+            ))
+            .into())
+        }
+        None => None,
+    };
     let mut out = Stdout::default();
 
     let ctx = GpuContext::new(options)?;
@@ -104,8 +119,19 @@ pub fn run(args: &SimulateArgs, options: &ContextOptions) -> Result<()> {
     if let Some(limit) = crate::sim::collider::contact_speed(&model) {
         say!(out, "contact: {limit}")?;
     }
+    let colors: Vec<[f32; 3]> = scene
+        .cloths
+        .iter()
+        .map(|c| c.color)
+        .chain(scene.ropes.iter().map(|r| r.color))
+        .map(|c| c.map(|x| x as f32))
+        .collect();
+    let recording = match record_file {
+        Some(file) => Some((super::record::Recording::new(&model, &colors, args.frames)?, file)),
+        None => None,
+    };
     let mut sim = GpuSim::new(&ctx, &model)?;
-    let result = simulate(&ctx, &mut sim, args, &model, &mut out, out_file);
+    let result = simulate(&ctx, &mut sim, args, &model, &mut out, out_file, recording);
     sim.destroy(&ctx);
     result?;
     crate::cli::check_validation(&ctx)
@@ -118,6 +144,7 @@ fn simulate(
     model: &crate::sim::model::SimModel,
     out: &mut Stdout,
     out_file: Option<OutFile>,
+    mut recording: Option<(super::record::Recording, OutFile)>,
 ) -> Result<()> {
     let mut timings: Vec<FrameTiming> = Vec::with_capacity(args.frames.min(100_000) as usize);
     let mut report = |out: &mut Stdout, t: FrameTiming| -> Result<()> {
@@ -141,11 +168,21 @@ fn simulate(
         if let Some(t) = sim.submit_frame(ctx).with_context(|| format!("frame {frame}"))? {
             report(out, t)?;
         }
+        if let Some((r, _)) = &mut recording {
+            // Recording reads every frame back (it waits for the frames in flight).
+            r.add(&sim.read_states(ctx)?);
+        }
     }
     for t in sim.finish_frames(ctx).context("the last frames")? {
         report(out, t)?;
     }
     print_summary(out, sim, &timings)?;
+    if let Some((r, file)) = recording {
+        file.write_bytes(r.usda().as_bytes())?;
+        if let Some(path) = &args.record {
+            say!(out, "recorded {} frames to {}", args.frames, path.display())?;
+        }
+    }
     if let Some(warning) = sim.take_warning() {
         say!(out, "warning: {warning}")?;
     }

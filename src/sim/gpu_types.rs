@@ -33,7 +33,6 @@ pub const ROPE_RING: usize = 8;
 pub const OBJ_STRETCH_LIMIT: u32 = 1;
 pub const OBJ_SELF_COLLISION: u32 = 2;
 pub const OBJ_SELF_HASH: u32 = 4;
-pub const OBJ_HASHED: u32 = 8;
 /// Bits of the `FEATURES` specialization constant (`F_*` in `glsl/include/features.glsl`).
 pub const FEATURE_STRUCTURAL: u32 = 1;
 pub const FEATURE_SHEAR: u32 = 2;
@@ -90,7 +89,7 @@ pub const GUARD_FAST: u32 = 4;
 
 gpu_struct!(
     /// Per-object parameters.
-    ObjectParams, size 176, {
+    ObjectParams, size 160, {
     dims: [u32; 2],
     spacing: [f32; 2],
     stiffness: [f32; 4],
@@ -108,10 +107,6 @@ gpu_struct!(
     cell_inv: f32,
     cheb_rho: f32,
     jacobi_damping: f32,
-    contact_radius: f32,
-    pad0: f32,
-    pad1: f32,
-    pad2: f32,
 });
 
 gpu_struct!(

@@ -22,6 +22,7 @@
 //! written and the write-after-read on the buffer just read. Uploads and readbacks end with a
 //! barrier back to compute, so frames recorded after them need no barrier of their own.
 
+mod contact;
 mod frames;
 mod fused;
 mod hash;
@@ -30,6 +31,7 @@ mod pipelines;
 mod step;
 mod transfer;
 
+use contact::SceneContact;
 use fused::ObjectPlan;
 pub use fused::{FusedLimits, FusedShape, FUSED_DEFAULT_SLOTS, FUSED_SLOTS};
 pub use object::{check_fits, particles};
@@ -38,8 +40,8 @@ use super::gpu_types::{Globals, Particle, SurfaceVertex};
 use super::model::{ObjectModel, SimModel};
 use crate::shaders::ShaderSet;
 use crate::vk::{
-    Access, BindingSet, BindingSetLayout, Buffer, BufferBarrier, BufferUsage, CommandSlot, DescriptorArena,
-    GpuContext, MemoryKind, Recorder, Retired, TimestampPool,
+    Access, BindingSetLayout, Buffer, BufferBarrier, BufferUsage, CommandSlot, DescriptorArena, GpuContext,
+    MemoryKind, Recorder, Retired, TimestampPool,
 };
 use anyhow::{Context as _, Result};
 use object::{collider_data, globals, object_params, GpuObject};
@@ -92,9 +94,8 @@ pub struct GpuSim {
     globals: Buffer,
     colliders: Buffer,
     objects: Vec<GpuObject>,
-    /// Inter-object contact: the binding set of each ordered pair (a, b), in rounds r = 1..N
-    /// (b = (a + r) mod N), so that one round writes each object's contact buffer once.
-    contact_sets: Vec<Vec<(usize, BindingSet)>>,
+    /// Contact between objects: the scene's hash over every object's particles (`contact.rs`).
+    contact: Option<SceneContact>,
     /// Command buffers of the headless frames (`frames.rs`), one per frame in flight, and
     /// whether each holds a submitted frame whose timing and guard are not read yet.
     slots: Vec<CommandSlot>,
@@ -147,8 +148,7 @@ impl Parts {
         let layout = self.layout.insert(BindingSetLayout::storage_buffers(ctx, BINDINGS)?);
         self.pipelines = Some(Pipelines::new(ctx, layout, shaders, &Stage::needed(model, plans))?);
         let n = model.objects.len() as u32;
-        let pair_sets = if model.inter_object_contact() { n * (n - 1) } else { 0 };
-        self.arena = Some(DescriptorArena::new(ctx, 2 * n + pair_sets, BINDINGS)?);
+        self.arena = Some(DescriptorArena::new(ctx, 2 * n + contact::sets_needed(model), BINDINGS)?);
         let globals_size = std::mem::size_of::<Globals>() as u64;
         self.globals =
             Some(Buffer::new(ctx, "globals", globals_size, BufferUsage::STORAGE, MemoryKind::Upload)?);
@@ -249,7 +249,7 @@ impl GpuSim {
             globals,
             colliders,
             objects: Vec::new(),
-            contact_sets: Vec::new(),
+            contact: None,
             unread: vec![false; slots.len()],
             slots,
             timestamps,
@@ -284,21 +284,8 @@ impl GpuSim {
                 .with_context(|| format!("allocating {} '{}'", o.kind.label(), o.name))?;
             self.objects.push(obj);
         }
-        if model.inter_object_contact() {
-            let n = self.objects.len();
-            for round in 1..n {
-                let mut sets = Vec::new();
-                for a in 0..n {
-                    let b = (a + round) % n;
-                    let shared = [&self.globals, &self.colliders];
-                    let (oa, ob) = (&self.objects[a], &self.objects[b]);
-                    if let Some(set) = oa.contact_set(ctx, &self.layout, &mut self.arena, shared, ob)? {
-                        sets.push((a, set));
-                    }
-                }
-                self.contact_sets.push(sets);
-            }
-        }
+        let shared = [&self.globals, &self.colliders];
+        self.contact = SceneContact::new(ctx, &self.layout, &mut self.arena, shared, model, &self.objects)?;
         let initial: Vec<Vec<Particle>> = model.objects.iter().map(particles).collect();
         self.upload_states(ctx, &initial)
     }
@@ -369,7 +356,9 @@ impl GpuSim {
             after_physics.extend(self.hash_barriers_at_physics(false));
             rec.barrier(&after_physics);
             self.record_hash_build(rec);
-            self.record_contacts(rec);
+            if let Some(c) = &self.contact {
+                c.record(rec, &self.pipelines, &self.objects);
+            }
             for o in self.objects.iter().filter(|o| !self.is_fused(o)) {
                 rec.dispatch_with(
                     self.pipelines.get(Stage::Constraints(o.kind, o.plan.features)),
@@ -412,26 +401,6 @@ impl GpuSim {
         );
         rec.barrier(&end);
         self.frames += 1;
-    }
-
-    /// Inter-object contact after every object's physics and hash: a round of dispatches per
-    /// other object (each writes each object's contact buffer once), each round ordered after
-    /// the one before, and the constraint stage after the last, by barriers on the contact
-    /// buffers.
-    fn record_contacts(&self, rec: &mut Recorder<'_>) {
-        let contacts: Vec<BufferBarrier<'_>> = self
-            .objects
-            .iter()
-            .filter_map(|o| o.contact.as_ref())
-            .map(|c| BufferBarrier::new(c, Access::ComputeReadWrite, Access::ComputeReadWrite))
-            .collect();
-        for round in &self.contact_sets {
-            for &(a, set) in round {
-                let groups = [self.objects[a].particles.div_ceil(256), 1, 1];
-                rec.dispatch(self.pipelines.get(Stage::Contact), set, groups);
-            }
-            rec.barrier(&contacts);
-        }
     }
 
     /// Moving colliders: this frame's records (where each is at the frame's start, its velocity
@@ -607,6 +576,9 @@ impl GpuSim {
     pub fn destroy(mut self, ctx: &GpuContext) {
         if self.wait_all(ctx).is_err() {
             let _ = ctx.wait_idle();
+        }
+        if let Some(c) = self.contact {
+            c.destroy(ctx);
         }
         for o in self.objects {
             o.destroy(ctx);

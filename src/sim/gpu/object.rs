@@ -5,8 +5,7 @@ use super::fused::ObjectPlan;
 use super::{BINDINGS, CLOTH_GROUP, ROPE_GROUP};
 use crate::error::UserError;
 use crate::sim::gpu_types::{
-    Globals, ObjectParams, Particle, SurfaceVertex, OBJ_HASHED, OBJ_SELF_COLLISION, OBJ_SELF_HASH,
-    OBJ_STRETCH_LIMIT,
+    Globals, ObjectParams, Particle, SurfaceVertex, OBJ_SELF_COLLISION, OBJ_SELF_HASH, OBJ_STRETCH_LIMIT,
 };
 use crate::sim::integrator::vertex_colours;
 use crate::sim::model::{Integrator, ObjectKind, ObjectModel, ObjectShape, SelfCollisionMethod, SimModel};
@@ -25,12 +24,12 @@ const MAX_TABLE: u64 = SCAN_BLOCK * SCAN_BLOCK;
 
 /// Buckets of the spatial hash of an object of `particles` particles: a power of two, at
 /// least twice the particle count (load factor <= 1/2), within the scan's capacity.
-fn hash_table_size(particles: u64) -> u64 {
+pub(super) fn hash_table_size(particles: u64) -> u64 {
     (2 * particles).next_power_of_two().clamp(1024, MAX_TABLE)
 }
 
 /// Creates buffers `(suffix, size, usage)` named `{name}.{suffix}`, all or none.
-fn buffers<const N: usize>(
+pub(super) fn buffers<const N: usize>(
     ctx: &GpuContext,
     name: &str,
     specs: [(&str, u64, BufferUsage, MemoryKind); N],
@@ -277,41 +276,6 @@ impl GpuObject {
             c.destroy(ctx);
         }
     }
-
-    /// The binding set of contact.comp for this object (A) against `other` (B): A's set of
-    /// the constraint direction with B's physics output (3), hash (8, 9) and parameters (12),
-    /// and A's contact buffer (14). `None` unless both take part in inter-object contact.
-    pub fn contact_set(
-        &self,
-        ctx: &GpuContext,
-        layout: &BindingSetLayout,
-        arena: &mut DescriptorArena,
-        shared: [&Buffer; 2],
-        other: &GpuObject,
-    ) -> Result<Option<BindingSet>, VkError> {
-        let (Some(contact), Some(hash)) = (&self.contact, &other.hash) else { return Ok(None) };
-        let p = &self.placeholder;
-        let [globals, colliders] = shared;
-        let bindings = [
-            globals,
-            &self.params,
-            &self.state[1],
-            &other.state[1],
-            colliders,
-            p,
-            p,
-            p,
-            &hash.starts,
-            &hash.sorted,
-            p,
-            p,
-            &other.params,
-            p,
-            contact,
-        ];
-        debug_assert_eq!(bindings.len() as u32, BINDINGS);
-        arena.allocate(ctx, layout, &bindings).map(Some)
-    }
 }
 
 /// Bytes of GPU memory an object needs: two state buffers, the surface, the parameters (and
@@ -419,18 +383,13 @@ pub(super) fn globals(model: &SimModel) -> Globals {
     }
 }
 
-/// Whether object `o` builds a spatial hash: for its self-collision (the hash method) or for
-/// the other objects' contacts with it.
+/// Whether object `o` builds a spatial hash of its own (its self-collision, the hash method).
 pub(super) fn builds_hash(o: &ObjectModel, model: &SimModel) -> bool {
-    (o.self_distance.is_some() && model.self_collision == SelfCollisionMethod::Hash)
-        || model.inter_object_contact()
+    o.self_distance.is_some() && model.self_collision == SelfCollisionMethod::Hash
 }
 
 pub(super) fn object_params(o: &ObjectModel, model: &SimModel) -> ObjectParams {
     let mut flags = 0;
-    if builds_hash(o, model) {
-        flags |= OBJ_HASHED;
-    }
     if o.stretch_limit.is_some() {
         flags |= OBJ_STRETCH_LIMIT;
     }
@@ -441,18 +400,7 @@ pub(super) fn object_params(o: &ObjectModel, model: &SimModel) -> ObjectParams {
         }
     }
     let buckets = hash_table_size(o.particle_count() as u64) as u32;
-    // Cells twice the largest distance a query looks for: the self-collision distance, and
-    // with inter-object contact the reach of any other object to this one.
-    let reach_in = if model.inter_object_contact() {
-        let widest = model.objects.iter().map(ObjectModel::contact_radius).fold(0.0, f64::max);
-        o.contact_radius() + widest
-    } else {
-        0.0
-    };
-    let self_reach =
-        o.self_distance.filter(|_| model.self_collision == SelfCollisionMethod::Hash).unwrap_or(0.0);
-    let reach = self_reach.max(reach_in);
-    let cell = 2.0 * if reach > 0.0 { reach } else { o.self_distance.unwrap_or(1.0) }.max(1e-6);
+    let cell = 2.0 * o.self_distance.unwrap_or(1.0).max(1e-6);
     ObjectParams {
         dims: o.dims,
         spacing: o.spacing.map(|s| s as f32),
@@ -471,10 +419,6 @@ pub(super) fn object_params(o: &ObjectModel, model: &SimModel) -> ObjectParams {
         cell_inv: (1.0 / cell) as f32,
         cheb_rho: chebyshev_rho(o, model.dt()) as f32,
         jacobi_damping: jacobi_damping(o, model.dt()) as f32,
-        contact_radius: o.contact_radius() as f32,
-        pad0: 0.0,
-        pad1: 0.0,
-        pad2: 0.0,
     }
 }
 

@@ -27,7 +27,10 @@ pub(super) enum Stage {
     Surface(ObjectKind, bool),
     HashScan(u32),
     HashScatter,
-    /// Inter-object contact of one ordered pair of objects.
+    /// Contact between objects (`contact.rs`): the scene hash's count and scatter of one
+    /// object, and its query.
+    ContactCount,
+    ContactScatter,
     Contact,
     /// Every substep of an object in one workgroup, with the model's integrator.
     Fused(Integrator, u32, FusedShape),
@@ -59,6 +62,8 @@ impl Stage {
             Stage::Surface(ObjectKind::Rope, _) => "rope_vertices.comp",
             Stage::HashScan(_) => "hash_scan.comp",
             Stage::HashScatter => "hash_scatter.comp",
+            Stage::ContactCount => "contact_count.comp",
+            Stage::ContactScatter => "contact_scatter.comp",
             Stage::Contact => "contact.comp",
             Stage::Fused(..) => "fused.comp",
         }
@@ -77,7 +82,7 @@ impl Stage {
             Stage::Constraints(kind, f) => [group(kind), vec![0, f]].concat(),
             Stage::Iterate(kind, _) => group(kind),
             Stage::Surface(_, drawn) => vec![drawn as u32],
-            Stage::HashScatter | Stage::Contact => Vec::new(),
+            Stage::HashScatter | Stage::ContactCount | Stage::ContactScatter | Stage::Contact => Vec::new(),
             Stage::HashScan(phase) => vec![phase],
             Stage::Fused(method, f, shape) => shape.specialization(method, f),
         }
@@ -110,7 +115,8 @@ impl Stage {
             stages.extend([Stage::HashScan(0), Stage::HashScan(1), Stage::HashScan(2), Stage::HashScatter]);
         }
         if model.inter_object_contact() {
-            stages.push(Stage::Contact);
+            stages.extend([Stage::HashScan(0), Stage::HashScan(1), Stage::HashScan(2)]);
+            stages.extend([Stage::ContactCount, Stage::ContactScatter, Stage::Contact]);
         }
         let mut seen = std::collections::HashSet::new();
         stages.retain(|s| seen.insert(*s));

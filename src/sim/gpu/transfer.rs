@@ -44,8 +44,17 @@ impl GpuSim {
                 for (_, h) in &hashed {
                     rec.fill_buffer(&h.counts, 0);
                 }
-                // The inter-object contact sums start at zero (the constraint stage re-zeroes them).
-                for c in self.objects.iter().filter_map(|o| o.contact.as_ref()) {
+                // The inter-object contact sums and the scene hash's counts start at zero (the
+                // contact pass rewrites the sums and the scan re-zeroes the counts every substep).
+                let scene_counts = self.contact.as_ref().map(|c| &c.counts);
+                if let Some(counts) = scene_counts {
+                    rec.barrier(&[BufferBarrier::new(
+                        counts,
+                        Access::ComputeReadWrite,
+                        Access::TransferWrite,
+                    )]);
+                }
+                for c in self.objects.iter().filter_map(|o| o.contact.as_ref()).chain(scene_counts) {
                     rec.fill_buffer(c, 0);
                 }
                 let to_compute: Vec<_> = self
@@ -56,6 +65,7 @@ impl GpuSim {
                         self.objects
                             .iter()
                             .filter_map(|o| o.contact.as_ref())
+                            .chain(scene_counts)
                             .map(|c| BufferBarrier::new(c, Access::TransferWrite, Access::ComputeReadWrite)),
                     )
                     .chain(hashed.iter().map(|(_, h)| {

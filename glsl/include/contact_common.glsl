@@ -1,0 +1,33 @@
+// Inter-object contact through one spatial hash over every object's particles, built each
+// substep after every object's physics: contact_count.comp counts each object's particles into
+// it, the hash scan (hash_scan.comp, over the scene's table) turns counts into starts,
+// contact_scatter.comp writes positions by bucket, and contact.comp queries it for each
+// object. Their binding set is each object's own (binding 1: its parameters, 2: its physics
+// output, 14: its contact sums) with the scene's hash in place of the object's (6..10), the
+// hash's own parameters (12: hash_mask, cell_inv of the scene's table) and the object table
+// (13). The CPU twin is sim::cpu::inter_object.
+// Include after layout.glsl.
+#ifndef MSD_CONTACT_COMMON_GLSL
+#define MSD_CONTACT_COMMON_GLSL
+
+layout(std430, set = 0, binding = 1) restrict readonly buffer ObjectBuf { ObjectParams obj; };
+layout(std430, set = 0, binding = 2) readonly buffer StateIn { Particle p_in[]; };
+layout(std430, set = 0, binding = 6) buffer SceneCellRank { uvec2 cell_rank[]; };  // per scene particle
+layout(std430, set = 0, binding = 7) buffer SceneCounts { uint counts[]; };
+layout(std430, set = 0, binding = 8) buffer SceneStarts { uint starts[]; };
+layout(std430, set = 0, binding = 9) buffer SceneSorted { vec4 sorted[]; };         // xyz, w: scene index | pinned << 31
+layout(std430, set = 0, binding = 12) restrict readonly buffer SceneHash { ObjectParams table; };  // hash_mask, cell_inv
+// Per object: x first scene index, y particle count (as float bits), z contact radius, w mass.
+layout(std430, set = 0, binding = 13) restrict readonly buffer Objects { vec4 objects[]; };
+layout(std430, set = 0, binding = 14) buffer ContactBuf { vec4 contact[]; };
+
+layout(push_constant) uniform Which {
+    uint object;  // this object's index in `objects`
+} which;
+
+const uint PINNED_BIT = 0x80000000u;
+
+uint first_index() { return floatBitsToUint(objects[which.object].x); }
+uint particle_count() { return obj.dims.x * obj.dims.y; }
+
+#endif

@@ -1,0 +1,230 @@
+//! Contact between objects on the GPU: one spatial hash over every object's particles, built
+//! each substep after all physics (`contact_count.comp` per object, the shared hash scan over
+//! the scene's table, `contact_scatter.comp` per object) and queried per object
+//! (`contact.comp`) into the object's contact sums, which its constraint stage reads.
+//! `glsl/include/contact_common.glsl` has the bindings; the CPU twin is
+//! `sim::cpu::inter_object`.
+
+use super::object::{GpuObject, SCAN_BLOCK};
+use super::pipelines::{Pipelines, Stage};
+use super::BINDINGS;
+use crate::sim::gpu_types::ObjectParams;
+use crate::sim::model::{ObjectModel, SimModel};
+use crate::vk::{
+    Access, BindingSet, BindingSetLayout, Buffer, BufferBarrier, BufferUsage, DescriptorArena, GpuContext,
+    MemoryKind, Recorder, VkError,
+};
+
+/// The scene's contact hash: its buffers and the binding sets of its passes.
+pub(super) struct SceneContact {
+    /// `ObjectParams` with the table's `hash_mask` and `cell_inv` (binding 12; binding 1 of
+    /// the scan's set).
+    table: Buffer,
+    /// Per object: first scene index (bits), particle count (bits), contact radius, mass.
+    objects: Buffer,
+    cell_rank: Buffer,
+    pub counts: Buffer,
+    starts: Buffer,
+    sorted: Buffer,
+    block_sums: Buffer,
+    buckets: u32,
+    /// The scan's set, and each object's set (the object's own buffers at 1, 2 and 14).
+    scan_set: BindingSet,
+    sets: Vec<BindingSet>,
+}
+
+/// Binding sets `SceneContact::new` allocates for `objects` objects (one each and the scan's).
+pub(super) fn sets_needed(model: &SimModel) -> u32 {
+    if model.inter_object_contact() {
+        model.objects.len() as u32 + 1
+    } else {
+        0
+    }
+}
+
+impl SceneContact {
+    /// The scene's hash for `model`'s objects (`gpu`, in order), or `None` when the objects do
+    /// not touch each other. Cells are twice the largest reach of any pair, so a query finds
+    /// every particle within reach in the 2 x 2 x 2 block of cells nearest to it.
+    pub fn new(
+        ctx: &GpuContext,
+        layout: &BindingSetLayout,
+        arena: &mut DescriptorArena,
+        shared: [&Buffer; 2],
+        model: &SimModel,
+        gpu: &[GpuObject],
+    ) -> Result<Option<Self>, VkError> {
+        if !model.inter_object_contact() {
+            return Ok(None);
+        }
+        let total: u64 = gpu.iter().map(|o| o.particles as u64).sum();
+        let buckets = super::object::hash_table_size(total);
+        let widest = model.objects.iter().map(ObjectModel::contact_radius).fold(0.0, f64::max);
+        let cell = (4.0 * widest).max(1e-6);
+        let mut table_params: ObjectParams = bytemuck::Zeroable::zeroed();
+        table_params.hash_mask = buckets as u32 - 1;
+        table_params.cell_inv = (1.0 / cell) as f32;
+        let mut first = 0u32;
+        let rows: Vec<[f32; 4]> = model
+            .objects
+            .iter()
+            .zip(gpu)
+            .map(|(o, g)| {
+                let row = [
+                    f32::from_bits(first),
+                    f32::from_bits(g.particles),
+                    o.contact_radius() as f32,
+                    o.mass as f32,
+                ];
+                first += g.particles;
+                row
+            })
+            .collect();
+        let (storage, gpu_only) = (BufferUsage::STORAGE, MemoryKind::GpuOnly);
+        let specs = [
+            ("table", std::mem::size_of::<ObjectParams>() as u64, storage, MemoryKind::Upload),
+            ("objects", 16 * rows.len() as u64, storage, MemoryKind::Upload),
+            ("cell_rank", 8 * total, storage, gpu_only),
+            ("counts", 4 * buckets, storage | BufferUsage::TRANSFER_DST, gpu_only),
+            ("starts", 4 * (buckets + 1), storage, gpu_only),
+            ("sorted", 16 * total, storage, gpu_only),
+            ("block_sums", 4 * buckets.div_ceil(SCAN_BLOCK), storage, gpu_only),
+        ];
+        let [table, objects, cell_rank, counts, starts, sorted, block_sums] =
+            super::object::buffers(ctx, "contact", specs)?;
+        let mut contact = Self {
+            table,
+            objects,
+            cell_rank,
+            counts,
+            starts,
+            sorted,
+            block_sums,
+            buckets: buckets as u32,
+            scan_set: BindingSet::default(),
+            sets: Vec::new(),
+        };
+        let result = (|| -> Result<(), VkError> {
+            contact.table.write(0, &[table_params])?;
+            contact.objects.write(0, &rows)?;
+            let [globals, colliders] = shared;
+            let c = &contact;
+            let mut sets = Vec::new();
+            for o in gpu {
+                let p = &o.placeholder;
+                let touch = o.contact.as_ref().unwrap_or(p);
+                let bindings = [
+                    globals,
+                    &o.params,
+                    &o.state[1],
+                    p,
+                    colliders,
+                    p,
+                    &c.cell_rank,
+                    &c.counts,
+                    &c.starts,
+                    &c.sorted,
+                    &c.block_sums,
+                    p,
+                    &c.table,
+                    &c.objects,
+                    touch,
+                ];
+                debug_assert_eq!(bindings.len() as u32, BINDINGS);
+                sets.push(arena.allocate(ctx, layout, &bindings)?);
+            }
+            let p = &gpu[0].placeholder;
+            let bindings = [
+                globals,
+                &c.table,
+                p,
+                p,
+                colliders,
+                p,
+                p,
+                &c.counts,
+                &c.starts,
+                p,
+                &c.block_sums,
+                p,
+                p,
+                p,
+                p,
+            ];
+            let scan_set = arena.allocate(ctx, layout, &bindings)?;
+            contact.sets = sets;
+            contact.scan_set = scan_set;
+            Ok(())
+        })();
+        match result {
+            Ok(()) => Ok(Some(contact)),
+            Err(e) => {
+                contact.destroy(ctx);
+                Err(e)
+            }
+        }
+    }
+
+    /// Records the substep's contacts after every object's physics (its output ordered for
+    /// reading) and before the constraints: count, scan, scatter, query, each ordered after
+    /// the one before by barriers on exactly the buffers it reads; the contact sums are
+    /// ordered for the constraint stage at the end.
+    pub fn record(&self, rec: &mut Recorder<'_>, pipelines: &Pipelines, objects: &[GpuObject]) {
+        let b = BufferBarrier::new;
+        let each_object = |rec: &mut Recorder<'_>, stage: Stage| {
+            for (k, (o, &set)) in objects.iter().zip(&self.sets).enumerate() {
+                rec.dispatch_with(pipelines.get(stage), set, [o.particles.div_ceil(256), 1, 1], &[k as u32]);
+            }
+        };
+        // The last scan zeroed the counts; the last scatter read the ranks.
+        rec.barrier(&[
+            b(&self.counts, Access::ComputeWrite, Access::ComputeReadWrite),
+            b(&self.cell_rank, Access::ComputeRead, Access::ComputeWrite),
+        ]);
+        each_object(rec, Stage::ContactCount);
+        // The scan reads the counts and rewrites the starts the last query read.
+        rec.barrier(&[
+            b(&self.counts, Access::ComputeWrite, Access::ComputeReadWrite),
+            b(&self.cell_rank, Access::ComputeWrite, Access::ComputeRead),
+            b(&self.starts, Access::ComputeRead, Access::ComputeWrite),
+            b(&self.block_sums, Access::ComputeRead, Access::ComputeWrite),
+        ]);
+        let blocks = self.buckets.div_ceil(SCAN_BLOCK as u32);
+        rec.dispatch(pipelines.get(Stage::HashScan(0)), self.scan_set, [blocks, 1, 1]);
+        if self.buckets as u64 > SCAN_BLOCK {
+            rec.barrier(&[
+                b(&self.starts, Access::ComputeWrite, Access::ComputeReadWrite),
+                b(&self.block_sums, Access::ComputeWrite, Access::ComputeReadWrite),
+            ]);
+            rec.dispatch(pipelines.get(Stage::HashScan(1)), self.scan_set, [1, 1, 1]);
+            rec.barrier(&[b(&self.block_sums, Access::ComputeWrite, Access::ComputeRead)]);
+            rec.dispatch(
+                pipelines.get(Stage::HashScan(2)),
+                self.scan_set,
+                [(self.buckets + 1).div_ceil(512), 1, 1],
+            );
+        }
+        rec.barrier(&[
+            b(&self.starts, Access::ComputeWrite, Access::ComputeRead),
+            b(&self.sorted, Access::ComputeRead, Access::ComputeWrite),
+        ]);
+        each_object(rec, Stage::ContactScatter);
+        let sums: Vec<_> = objects.iter().filter_map(|o| o.contact.as_ref()).collect();
+        let mut before: Vec<_> =
+            sums.iter().map(|c| b(c, Access::ComputeRead, Access::ComputeWrite)).collect();
+        before.push(b(&self.sorted, Access::ComputeWrite, Access::ComputeRead));
+        rec.barrier(&before);
+        each_object(rec, Stage::Contact);
+        rec.barrier(
+            &sums.iter().map(|c| b(c, Access::ComputeWrite, Access::ComputeRead)).collect::<Vec<_>>(),
+        );
+    }
+
+    pub fn destroy(self, ctx: &GpuContext) {
+        for buffer in
+            [self.table, self.objects, self.cell_rank, self.counts, self.starts, self.sorted, self.block_sums]
+        {
+            buffer.destroy(ctx);
+        }
+    }
+}
