@@ -79,3 +79,41 @@ fn the_end_to_end_frame_draws_the_scene_offscreen() {
     }
     assert_clean(&ctx);
 }
+
+/// A reset while paused (the app's Ctrl+R): the initial state is uploaded, the time starts
+/// again from zero, and the surface stage alone (no simulation) makes the surface show the
+/// initial state at once: exactly what a new simulation shows before its first step.
+#[test]
+fn a_reset_surface_shows_the_initial_state_without_simulating() {
+    use msdsim::vk::Access;
+    let ctx = gpu();
+    let model = scene::to_model(&busy_scene());
+    let surface_now = |sim: &mut GpuSim| {
+        assert!(sim.take_surface_stale(), "the upload left the surface stale");
+        ctx.one_shot("surface", |rec| {
+            sim.record_surface(rec, Access::ComputeReadWrite);
+            Ok(())
+        })
+        .unwrap();
+        sim.read_states(&ctx).unwrap()
+    };
+    let mut fresh = GpuSim::new(&ctx, &model).unwrap();
+    let initial = surface_now(&mut fresh);
+    let mut sim = GpuSim::new(&ctx, &model).unwrap();
+    for _ in 0..10 {
+        sim.step_frame(&ctx).unwrap();
+    }
+    assert!(!sim.take_surface_stale());
+    let particles: Vec<_> = model.objects.iter().map(msdsim::sim::gpu::particles).collect();
+    sim.upload_states(&ctx, &particles).unwrap();
+    sim.reset_time();
+    assert_eq!(sim.time(), 0.0);
+    let reset = surface_now(&mut sim);
+    for (a, b) in initial.iter().zip(&reset) {
+        assert_eq!(a.particles, b.particles);
+        assert_eq!(a.surface, b.surface, "the surface after a reset is the initial one");
+    }
+    fresh.destroy(&ctx);
+    sim.destroy(&ctx);
+    assert_clean(&ctx);
+}

@@ -33,6 +33,7 @@ pub enum KeyAction {
     Reset,
     Fit,
     ResetCamera,
+    Screenshot,
     Quit,
 }
 
@@ -118,6 +119,7 @@ impl Input {
                     KeyCode::KeyR if self.modifiers.control_key() => Some(KeyAction::Reset),
                     KeyCode::KeyF => Some(KeyAction::Fit),
                     KeyCode::Home => Some(KeyAction::ResetCamera),
+                    KeyCode::F12 => Some(KeyAction::Screenshot),
                     KeyCode::Escape => Some(KeyAction::Quit),
                     _ => None,
                 };

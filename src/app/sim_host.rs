@@ -151,7 +151,9 @@ impl SimHost {
     pub fn reset(&mut self, ctx: &GpuContext) -> Result<()> {
         ctx.wait_idle()?;
         let initial: Vec<_> = self.model.objects.iter().map(gpu::particles).collect();
-        self.sim.upload_states(ctx, &initial)
+        self.sim.upload_states(ctx, &initial)?;
+        self.sim.reset_time();
+        Ok(())
     }
 
     pub fn destroy(self, ctx: &GpuContext) {

@@ -82,6 +82,8 @@ pub struct Viewer {
     last: Instant,
     step_once: bool,
     screenshot: Option<Buffer>,
+    /// Where the F12 screenshot of the next frame goes.
+    shot: Option<PathBuf>,
     /// The UI's edited scene and actions, applied at the start of the next frame.
     pending_scene: Option<Scene>,
     pending_actions: Vec<Action>,
@@ -139,6 +141,7 @@ impl Viewer {
             last: Instant::now(),
             step_once: false,
             screenshot: None,
+            shot: None,
             pending_scene: None,
             pending_actions: Vec::new(),
         };
@@ -309,6 +312,7 @@ impl Viewer {
                 KeyAction::Reset => self.run_action(Action::Reset),
                 KeyAction::Fit => self.fit_camera(),
                 KeyAction::ResetCamera => self.camera = OrbitCamera::default(),
+                KeyAction::Screenshot => self.shot = Some(screenshot_name()),
                 KeyAction::Quit => quit = true,
             }
         }
@@ -419,6 +423,7 @@ impl Viewer {
                 scene.spheres.push(scene::Sphere { center: [0.0, 0.2, 0.4], radius: 0.1, motion: None });
                 self.pending_scene = Some(scene);
             }
+            10 => self.shot = Some(saved.with_extension("png")),
             12 => self.pending_actions.push(Action::Reset),
             14 => self.pending_actions.push(Action::Save(saved.clone())),
             16 => {
@@ -428,7 +433,11 @@ impl Viewer {
                 let host = self.host();
                 expect(host, "the stiffness edit", host.scene().sim.gravity[0] == 1.0)?;
                 expect(host, "the new sphere", host.scene().spheres.iter().any(|s| s.radius == 0.1))?;
+                let shot = saved.with_extension("png");
+                let written = std::fs::metadata(&shot).map(|m| m.len()).unwrap_or(0);
+                expect(host, "the F12 screenshot", written > 1000)?;
                 let _ = std::fs::remove_file(&saved);
+                let _ = std::fs::remove_file(&shot);
                 if let Some((text, true)) = &self.editor.message {
                     anyhow::bail!("exercise: the editor reported an error: {text}");
                 }
@@ -507,7 +516,7 @@ impl Viewer {
         let camera = view::camera_uniform(&self.camera, extent, self.host().scene());
         let items = self.draw_items();
         self.renderer.as_mut().expect("renderer").set_camera(slot, &camera)?;
-        let capture = self.screenshot_due();
+        let capture = self.screenshot_due() || self.shot.is_some();
         if capture && self.screenshot.is_none() {
             let bytes = extent[0] as u64 * extent[1] as u64 * 4;
             self.screenshot = Some(Buffer::new(
@@ -537,6 +546,9 @@ impl Viewer {
         let host = self.host.as_mut().expect("host");
         if run_sim {
             host.sim_mut().record_frame(&mut rec, Access::VertexInput, slot);
+        } else if host.sim_mut().take_surface_stale() {
+            // Paused after a reset (or a rebuild): show the new state at once.
+            host.sim().record_surface(&mut rec, Access::VertexInput);
         }
         let swapchain = self.swapchain.as_ref().expect("created above");
         if let Some(pool) = &frame.timestamps {
@@ -599,12 +611,30 @@ impl Viewer {
         self.frame += 1;
         let host = self.host.as_ref().expect("host");
         self.stats.simulated_time = host.sim().time();
+        // Each drawn frame advances one frame_dt: against the wall clock, that is the speed.
+        self.stats.speed = run_sim.then(|| host.model().frame_dt * 1e3 / self.stats.cpu_frame_ms.max(1e-6));
         self.stats.particles = host.model().objects.iter().map(|o| o.particle_count() as u64).sum();
 
         if capture {
             self.frames[slot].cmd.wait(&self.ctx)?;
-            self.write_screenshot(extent, swapchain_is_bgra(self.swapchain.as_ref()))?;
-            return Ok(Outcome::Exit);
+            let bgra = swapchain_is_bgra(self.swapchain.as_ref());
+            if self.screenshot_due() {
+                if let Some(path) = self.args.screenshot.clone() {
+                    self.write_screenshot(&path, extent, bgra)?;
+                }
+                return Ok(Outcome::Exit);
+            }
+            if let Some(path) = self.shot.take() {
+                // F12: a failed write is reported, not fatal.
+                match self.write_screenshot(&path, extent, bgra) {
+                    Ok(()) => self.message(format!("screenshot saved to {}", path.display()), false),
+                    Err(e) => self.message(format!("screenshot {}: {e:#}", path.display()), true),
+                }
+                // Its frame has completed; the next one is sized for the window then.
+                if let Some(buffer) = self.screenshot.take() {
+                    buffer.destroy(&self.ctx);
+                }
+            }
         }
         if self.args.frames.is_some_and(|n| self.frame >= n) && self.args.screenshot.is_none() {
             return Ok(Outcome::Exit);
@@ -643,8 +673,8 @@ impl Viewer {
         Ok(())
     }
 
-    fn write_screenshot(&self, extent: [u32; 2], bgra: bool) -> Result<()> {
-        let (Some(path), Some(buffer)) = (&self.args.screenshot, &self.screenshot) else { return Ok(()) };
+    fn write_screenshot(&self, path: &std::path::Path, extent: [u32; 2], bgra: bool) -> Result<()> {
+        let Some(buffer) = &self.screenshot else { return Ok(()) };
         let mut pixels: Vec<u8> = buffer.read::<u8>((extent[0] * extent[1] * 4) as usize)?;
         for px in pixels.chunks_exact_mut(4) {
             if bgra {
@@ -695,6 +725,13 @@ impl Drop for Viewer {
     fn drop(&mut self) {
         self.teardown();
     }
+}
+
+/// The F12 screenshot's file: `msdsim-<seconds since 1970>-<milliseconds>.png` in the current
+/// folder.
+fn screenshot_name() -> PathBuf {
+    let now = std::time::SystemTime::now().duration_since(std::time::UNIX_EPOCH).unwrap_or_default();
+    PathBuf::from(format!("msdsim-{}-{:03}.png", now.as_secs(), now.subsec_millis()))
 }
 
 fn swapchain_is_bgra(s: Option<&Swapchain>) -> bool {

@@ -59,6 +59,8 @@ pub struct Stats {
     pub ui_ms: Option<f64>,
     pub particles: u64,
     pub simulated_time: f64,
+    /// Simulated time per wall-clock time while running (1: real time), `None` when paused.
+    pub speed: Option<f64>,
 }
 
 /// Builds the editor windows over `scene` (edited in place) and returns the actions.
@@ -381,6 +383,14 @@ fn stats_window(ui: &Ui, stats: &Stats, state: &EditorState) {
                 stats.simulated_time,
                 stats.particles
             ));
+            match stats.speed {
+                Some(s) if s < 0.95 => ui.text_colored(
+                    [1.0, 0.75, 0.3, 1.0],
+                    format!("running at {s:.2}x real time (one frame's dt per drawn frame)"),
+                ),
+                Some(s) => ui.text(format!("running at {s:.2}x real time")),
+                None => ui.text("paused"),
+            }
             let ms = |v: Option<f64>| v.map(|v| format!("{v:.3} ms")).unwrap_or_else(|| "-".into());
             // The same two figures as `bench --end-to-end`: the wall clock above, the GPU's
             // own time here (simulation + scene + UI).

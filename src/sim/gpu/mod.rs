@@ -114,6 +114,8 @@ pub struct GpuSim {
     /// How far each collider was moved by `update_params` since the last frame (the app's
     /// editor dragging it): the next frame moves it there during the frame.
     dragged: Vec<glam::DVec3>,
+    /// The state was uploaded after the last recorded frame (`take_surface_stale`).
+    surface_stale: bool,
     /// Whether the contact-speed warning was given, and the warning not yet taken.
     warned: bool,
     warning: Option<String>,
@@ -261,6 +263,7 @@ impl GpuSim {
             pending_writes: Vec::new(),
             warned: false,
             warning: None,
+            surface_stale: false,
             dragged: Vec::new(),
             model: model.without_particles(),
         };
@@ -379,6 +382,19 @@ impl GpuSim {
                 rec.timestamp(pool, 2 + 2 * s);
             }
         }
+        self.record_surface(rec, surface_consumer);
+        if let Some(pool) = ts {
+            rec.timestamp(pool, 1 + 2 * self.model.substeps);
+        }
+        self.frames += 1;
+        self.surface_stale = false;
+    }
+
+    /// The surface stage alone: cloth normals and rope tube vertices from the current state
+    /// (and the guard), ordered after `surface_consumer`'s last reads and before its next.
+    /// `record_frame` ends with it; on its own it shows a state uploaded while the simulation
+    /// is paused (a reset), without simulating.
+    pub fn record_surface(&self, rec: &mut Recorder<'_>, surface_consumer: Access) {
         // The previous frame's consumer may still read the surface: order it before the rewrite.
         let surfaces = |src, dst| -> Vec<_> {
             self.objects.iter().map(|o| BufferBarrier::new(&o.surface, src, dst)).collect()
@@ -392,15 +408,22 @@ impl GpuSim {
             };
             rec.dispatch(self.pipelines.get(stage), o.sets[0], groups);
         }
-        if let Some(pool) = ts {
-            rec.timestamp(pool, 1 + 2 * self.model.substeps);
-        }
         let mut end = surfaces(Access::ComputeWrite, surface_consumer);
         end.extend(
             self.objects.iter().map(|o| BufferBarrier::new(&o.guard, Access::ComputeWrite, Access::HostRead)),
         );
         rec.barrier(&end);
-        self.frames += 1;
+    }
+
+    /// Whether the state was replaced since the last recorded frame (`upload_states`), so the
+    /// surface buffers show an older one: a paused app records `record_surface` once.
+    pub fn take_surface_stale(&mut self) -> bool {
+        std::mem::take(&mut self.surface_stale)
+    }
+
+    /// Starts the simulated time again from zero (a reset to the initial state).
+    pub fn reset_time(&mut self) {
+        self.frames = 0;
     }
 
     /// Moving colliders: this frame's records (where each is at the frame's start, its velocity

@@ -77,6 +77,7 @@ impl GpuSim {
             })
         })();
         staging.destroy(ctx);
+        self.surface_stale = true;
         result.context("uploading the simulation state")
     }
 
