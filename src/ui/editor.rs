@@ -371,9 +371,10 @@ fn shader_errors(ui: &Ui, errors: &[String]) {
 }
 
 fn stats_window(ui: &Ui, stats: &Stats, state: &EditorState) {
+    // Sized to its content, so no line is cut off.
     ui.window("Stats")
         .position([380.0, 10.0], Condition::FirstUseEver)
-        .size([300.0, 200.0], Condition::FirstUseEver)
+        .always_auto_resize(true)
         .build(|| {
             ui.text(&stats.device);
             ui.text(format!(
