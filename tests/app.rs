@@ -182,3 +182,27 @@ fn the_app_reloads_an_edited_shader_and_survives_a_broken_one() {
     assert!(status.success(), "the app failed ({status}):\n{log}");
     assert!(!log.contains("vulkan validation"), "validation messages:\n{log}");
 }
+
+/// `--record-frames DIR` writes every drawn frame as a numbered PNG of the window's size.
+#[test]
+fn record_frames_writes_a_png_per_frame() {
+    let dir = tempfile::tempdir().unwrap();
+    let frames = dir.path().join("frames");
+    app(&[
+        "--preset",
+        "presets/rope.toml",
+        "--size",
+        "320x240",
+        "--frames",
+        "4",
+        "--no-stats",
+        "--record-frames",
+        frames.to_str().unwrap(),
+    ]);
+    let mut names: Vec<_> =
+        std::fs::read_dir(&frames).unwrap().map(|e| e.unwrap().file_name().into_string().unwrap()).collect();
+    names.sort();
+    assert_eq!(names, ["frame_00000.png", "frame_00001.png", "frame_00002.png", "frame_00003.png"]);
+    let (w, h, _) = read_png(&frames.join("frame_00003.png"));
+    assert_eq!((w, h), (320, 240));
+}

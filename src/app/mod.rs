@@ -44,6 +44,8 @@ pub struct AppArgs {
     pub exercise_editor: bool,
     /// Shader folder to compile and watch (`None`: the source tree's glsl/ when present).
     pub shaders: Option<PathBuf>,
+    /// Write every drawn frame as a PNG into this folder (it exists).
+    pub record_frames: Option<PathBuf>,
 }
 
 /// Loads the preset (or the built-in default scene) with overrides.

@@ -82,8 +82,8 @@ pub struct Viewer {
     last: Instant,
     step_once: bool,
     screenshot: Option<Buffer>,
-    /// Where the F12 screenshot of the next frame goes.
-    shot: Option<PathBuf>,
+    /// Where the screenshot of this frame goes (F12, or `--record-frames`), and whether to say so.
+    shot: Option<(PathBuf, bool)>,
     /// The UI's edited scene and actions, applied at the start of the next frame.
     pending_scene: Option<Scene>,
     pending_actions: Vec<Action>,
@@ -312,7 +312,7 @@ impl Viewer {
                 KeyAction::Reset => self.run_action(Action::Reset),
                 KeyAction::Fit => self.fit_camera(),
                 KeyAction::ResetCamera => self.camera = OrbitCamera::default(),
-                KeyAction::Screenshot => self.shot = Some(screenshot_name()),
+                KeyAction::Screenshot => self.shot = Some((screenshot_name(), true)),
                 KeyAction::Quit => quit = true,
             }
         }
@@ -423,7 +423,7 @@ impl Viewer {
                 scene.spheres.push(scene::Sphere { center: [0.0, 0.2, 0.4], radius: 0.1, motion: None });
                 self.pending_scene = Some(scene);
             }
-            10 => self.shot = Some(saved.with_extension("png")),
+            10 => self.shot = Some((saved.with_extension("png"), true)),
             12 => self.pending_actions.push(Action::Reset),
             14 => self.pending_actions.push(Action::Save(saved.clone())),
             16 => {
@@ -516,6 +516,9 @@ impl Viewer {
         let camera = view::camera_uniform(&self.camera, extent, self.host().scene());
         let items = self.draw_items();
         self.renderer.as_mut().expect("renderer").set_camera(slot, &camera)?;
+        if let Some(dir) = &self.args.record_frames {
+            self.shot = Some((dir.join(format!("frame_{:05}.png", self.frame)), false));
+        }
         let capture = self.screenshot_due() || self.shot.is_some();
         if capture && self.screenshot.is_none() {
             let bytes = extent[0] as u64 * extent[1] as u64 * 4;
@@ -624,10 +627,13 @@ impl Viewer {
                 }
                 return Ok(Outcome::Exit);
             }
-            if let Some(path) = self.shot.take() {
-                // F12: a failed write is reported, not fatal.
+            if let Some((path, announce)) = self.shot.take() {
+                // A failed write is reported, not fatal.
                 match self.write_screenshot(&path, extent, bgra) {
-                    Ok(()) => self.message(format!("screenshot saved to {}", path.display()), false),
+                    Ok(()) if announce => {
+                        self.message(format!("screenshot saved to {}", path.display()), false)
+                    }
+                    Ok(()) => {}
                     Err(e) => self.message(format!("screenshot {}: {e:#}", path.display()), true),
                 }
                 // Its frame has completed; the next one is sized for the window then.

@@ -109,6 +109,10 @@ pub struct AppCommand {
     /// Write the last frame (after --frames N, default 1) as a PNG, then exit.
     #[arg(long, value_name = "FILE.png")]
     pub screenshot: Option<std::path::PathBuf>,
+    /// Write every drawn frame as DIR/frame_00000.png, DIR/frame_00001.png, ... (the folder is
+    /// created; README: turning them into a video).
+    #[arg(long, value_name = "DIR")]
+    pub record_frames: Option<std::path::PathBuf>,
     /// Shader folder to compile and watch for hot reload (default: the source tree's glsl/
     /// when it exists, else the shaders built into the binary with reload off).
     #[arg(long, value_name = "DIR")]
@@ -136,6 +140,10 @@ fn parse_size(s: &str) -> Result<[u32; 2], String> {
 impl AppCommand {
     fn run(self, options: &ContextOptions) -> Result<()> {
         let scene = crate::app::load_scene(self.preset.as_ref(), &self.overrides)?;
+        if let Some(dir) = &self.record_frames {
+            std::fs::create_dir_all(dir)
+                .map_err(|e| crate::error::UserError(format!("--record-frames {}: {e}", dir.display())))?;
+        }
         let args = crate::app::AppArgs {
             preset_label: crate::app::preset_label(self.preset.as_ref()),
             size: self.size.unwrap_or([1280, 800]),
@@ -147,6 +155,7 @@ impl AppCommand {
             hide_stats: self.no_stats,
             exercise_editor: self.exercise_editor,
             shaders: self.shaders,
+            record_frames: self.record_frames,
         };
         crate::app::run(options, args, scene)
     }

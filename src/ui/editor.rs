@@ -372,10 +372,8 @@ fn shader_errors(ui: &Ui, errors: &[String]) {
 
 fn stats_window(ui: &Ui, stats: &Stats, state: &EditorState) {
     // Sized to its content, so no line is cut off.
-    ui.window("Stats")
-        .position([380.0, 10.0], Condition::FirstUseEver)
-        .always_auto_resize(true)
-        .build(|| {
+    ui.window("Stats").position([380.0, 10.0], Condition::FirstUseEver).always_auto_resize(true).build(
+        || {
             ui.text(&stats.device);
             ui.text(format!(
                 "frame {:.2} ms ({:.0} fps, wall clock), t = {:.2} s, {} particles",
@@ -410,5 +408,6 @@ fn stats_window(ui: &Ui, stats: &Stats, state: &EditorState) {
                 ui.separator();
                 ui.text_wrapped(&state.shaders_note);
             }
-        });
+        },
+    );
 }
