@@ -27,7 +27,7 @@ pub use integrators::{energy, max_strain};
 
 use super::gpu_types::ROPE_RING;
 use super::model::{ObjectKind, ObjectModel, SimModel, WindModel};
-use glam::DVec3;
+use glam::{DQuat, DVec3};
 
 /// State of one object in the reference.
 #[derive(Debug, Clone)]
@@ -361,25 +361,50 @@ fn cloth_surface(o: &ObjectModel, x: &[DVec3]) -> Vec<(DVec3, DVec3)> {
         .collect()
 }
 
-/// ROPE_RING vertices around each node on the (forward, side, up) frame of the paper.
+/// Rope tube vertices on a rotation-minimising frame (parallel transport), as
+/// `glsl/rope_vertices.comp`: node 0's frame is the paper's (side = forward x world up, up =
+/// forward x side), each next node's is the one before turned by the smallest rotation taking
+/// the previous forward to its own, so the tube neither pinches nor twists where the rope
+/// turns vertical.
 fn rope_surface(o: &ObjectModel, x: &[DVec3]) -> Vec<(DVec3, DVec3)> {
     let n = x.len();
     let unit_or = |v: DVec3, fallback: DVec3| if v.length() > 1e-12 { v.normalize() } else { fallback };
-    let mut out = Vec::with_capacity(n * ROPE_RING);
-    for i in 0..n {
+    let forward_at = |i: usize| {
         let to_next = if i + 1 < n { unit_or(x[i + 1] - x[i], DVec3::ZERO) } else { DVec3::ZERO };
         let from_prev = if i > 0 { unit_or(x[i] - x[i - 1], DVec3::ZERO) } else { DVec3::ZERO };
-        let forward = unit_or(to_next + from_prev, unit_or(to_next, DVec3::X));
-        let side = forward.cross(DVec3::Y);
-        let side = if side.length() > 1e-6 {
-            side.normalize()
+        unit_or(to_next + from_prev, unit_or(to_next, DVec3::X))
+    };
+    // The smallest rotation taking unit a to unit b (a half-turn when they are opposite).
+    let turn = |a: DVec3, b: DVec3| {
+        let c = a.dot(b);
+        if c < -0.99999 {
+            let axis = if a.x.abs() < 0.9 { DVec3::X } else { DVec3::Y };
+            DQuat::from_vec4(a.cross(axis).normalize().extend(0.0))
         } else {
-            DVec3::new(forward.y, -forward.x, 0.0).normalize()
-        };
+            let v = a.cross(b);
+            DQuat::from_xyzw(v.x, v.y, v.z, 1.0 + c).normalize()
+        }
+    };
+    let forward0 = forward_at(0);
+    let side0 = forward0.cross(DVec3::Y);
+    let side0 = if side0.length() > 1e-6 {
+        side0.normalize()
+    } else {
+        DVec3::new(forward0.y, -forward0.x, 0.0).normalize()
+    };
+    let mut frame = DQuat::IDENTITY;
+    let mut out = Vec::with_capacity(n * ROPE_RING);
+    for (i, &at) in x.iter().enumerate() {
+        let forward = forward_at(i);
+        if i > 0 {
+            frame = (turn(forward_at(i - 1), forward) * frame).normalize();
+        }
+        let side = frame * side0;
+        let side = unit_or(side - forward * side.dot(forward), side0);
         let up = forward.cross(side).normalize();
         for w in &o.ring_weights {
             let offset = side * w[0] + up * w[1];
-            out.push((x[i] + offset * o.rope_radius, unit_or(offset, up)));
+            out.push((at + offset * o.rope_radius, unit_or(offset, up)));
         }
     }
     out

@@ -355,7 +355,8 @@ fn colour_groups(o: &ObjectShape) -> [u32; 3] {
 fn surface_groups(o: &ObjectShape) -> [u32; 3] {
     match o.kind {
         ObjectKind::Cloth => step_groups(o),
-        ObjectKind::Rope => [o.surface_count().div_ceil(ROPE_GROUP as u64) as u32, 1, 1],
+        // One workgroup walks the rope (the frames are a running product, rope_vertices.comp).
+        ObjectKind::Rope => [1, 1, 1],
     }
 }
 
