@@ -46,6 +46,8 @@ pub struct Input {
     modifiers: ModifiersState,
     /// The left button went down this frame outside the UI: the app tries a pick.
     pub pick_requested: bool,
+    /// Ctrl + left click: pin or unpin the particle under the cursor.
+    pub pin_requested: bool,
     pub grab: Option<Grab>,
     /// The grab ended this frame: the app releases the particle.
     pub released: Option<Grab>,
@@ -78,7 +80,9 @@ impl Input {
             WindowEvent::MouseInput { state, button, .. } => match state {
                 ElementState::Pressed if !ui_mouse => {
                     self.buttons.insert(*button);
-                    if *button == MouseButton::Left && !self.modifiers.shift_key() {
+                    if *button == MouseButton::Left && self.modifiers.control_key() {
+                        self.pin_requested = true;
+                    } else if *button == MouseButton::Left && !self.modifiers.shift_key() {
                         self.pick_requested = true;
                         self.left_orbits = false;
                     }

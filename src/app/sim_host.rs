@@ -9,6 +9,7 @@ use crate::render::SceneRenderer;
 use crate::scene::{self, Scene};
 use crate::shaders::ShaderSet;
 use crate::sim::gpu::{self, GpuSim};
+use crate::sim::gpu_types::Particle;
 use crate::sim::model::SimModel;
 use crate::vk::GpuContext;
 use anyhow::Result;
@@ -145,6 +146,54 @@ impl SimHost {
         self.model = model;
         self.scene = edited;
         Ok(if carried.is_some() { Applied::RebuiltKeepingState } else { Applied::Rebuilt })
+    }
+
+    /// Pins or unpins particle `index` of object `object` at `at` (where it is: Ctrl + click): in the
+    /// running simulation at the next frame, in the model (a reset keeps it) and in the scene's
+    /// `pinned` list (saving keeps it). A particle pinned by the object's `pin` rule cannot be
+    /// unpinned this way: the error says which rule to change.
+    pub fn set_pinned(&mut self, object: usize, index: u32, pin: bool, at: [f32; 3]) -> Result<(), String> {
+        let n_cloths = self.scene.cloths.len();
+        let o = self.model.objects.get_mut(object).ok_or("no such object")?;
+        let i = index as usize;
+        if i >= o.pinned.len() {
+            return Err("no such particle".into());
+        }
+        let cols = o.dims[0];
+        let (col, row) = (index % cols, index / cols);
+        if object < n_cloths {
+            let cloth = &mut self.scene.cloths[object];
+            let listed = cloth.pinned.iter().position(|p| *p == [col, row]);
+            match (pin, listed) {
+                (true, None) => cloth.pinned.push([col, row]),
+                (false, Some(k)) => drop(cloth.pinned.remove(k)),
+                (false, None) => {
+                    return Err(format!(
+                        "cloth '{}' particle [{col}, {row}] is pinned by pin = {:?}: change the cloth's pin to free it",
+                        cloth.name, cloth.pin
+                    ))
+                }
+                (true, Some(_)) => {}
+            }
+        } else {
+            let rope = &mut self.scene.ropes[object - n_cloths];
+            let listed = rope.pinned.iter().position(|p| *p == index);
+            match (pin, listed) {
+                (true, None) => rope.pinned.push(index),
+                (false, Some(k)) => drop(rope.pinned.remove(k)),
+                (false, None) => {
+                    return Err(format!(
+                        "rope '{}' node {index} is pinned by pin = {:?}: change the rope's pin to free it",
+                        rope.name, rope.pin
+                    ))
+                }
+                (true, Some(_)) => {}
+            }
+        }
+        o.pinned[i] = pin;
+        let particle = Particle { pos: [at[0], at[1], at[2], pin as u32 as f32], vel: [0.0; 4] };
+        self.sim.set_particle(object, index, particle);
+        Ok(())
     }
 
     /// Puts every object back to the scene's initial state.

@@ -323,6 +323,24 @@ impl Viewer {
     fn update_grab(&mut self) {
         let size = self.window.inner_size();
         let (origin, dir) = self.camera.ray(self.input.cursor, [size.width as f32, size.height as f32]);
+        if std::mem::take(&mut self.input.pin_requested) {
+            let Some(host) = self.host.as_mut() else { return };
+            let picked = host.sim_mut().read_states(&self.ctx).map(|states| {
+                pick(&states, origin, dir).map(|hit| (hit, states[hit.0].particles[hit.1 as usize].pos))
+            });
+            match picked {
+                Ok(Some(((object, index, _, was_pinned), p))) => {
+                    let at = [p[0], p[1], p[2]];
+                    if let Err(e) =
+                        self.host.as_mut().expect("host").set_pinned(object, index, !was_pinned, at)
+                    {
+                        self.message(e, true);
+                    }
+                }
+                Ok(None) => {}
+                Err(e) => self.message(format!("picking failed: {e:#}"), true),
+            }
+        }
         if std::mem::take(&mut self.input.pick_requested) {
             let Some(host) = self.host.as_mut() else { return };
             match host.sim_mut().read_states(&self.ctx) {
@@ -425,6 +443,13 @@ impl Viewer {
             }
             10 => self.shot = Some((saved.with_extension("png"), true)),
             12 => self.pending_actions.push(Action::Reset),
+            13 => {
+                // Ctrl + click's path: pin rope node 5 (saved with the preset at 14).
+                let host = self.host.as_mut().expect("host");
+                let p = host.sim_mut().read_states(&self.ctx)?[0].particles[5].pos;
+                host.set_pinned(0, 5, true, [p[0], p[1], p[2]])
+                    .map_err(|e| anyhow::anyhow!("exercise: pinning failed: {e}"))?;
+            }
             14 => self.pending_actions.push(Action::Save(saved.clone())),
             16 => {
                 self.pending_actions.push(Action::Load(saved.clone()));
@@ -433,6 +458,8 @@ impl Viewer {
                 let host = self.host();
                 expect(host, "the stiffness edit", host.scene().sim.gravity[0] == 1.0)?;
                 expect(host, "the new sphere", host.scene().spheres.iter().any(|s| s.radius == 0.1))?;
+                let pinned = host.scene().ropes.first().is_some_and(|r| r.pinned.contains(&5));
+                expect(host, "the pin saved with the preset and loaded back", pinned)?;
                 let shot = saved.with_extension("png");
                 let written = std::fs::metadata(&shot).map(|m| m.len()).unwrap_or(0);
                 expect(host, "the F12 screenshot", written > 1000)?;
