@@ -34,6 +34,7 @@ pub enum KeyAction {
     Fit,
     ResetCamera,
     Screenshot,
+    Help,
     Quit,
 }
 
@@ -124,6 +125,7 @@ impl Input {
                     KeyCode::KeyF => Some(KeyAction::Fit),
                     KeyCode::Home => Some(KeyAction::ResetCamera),
                     KeyCode::F12 => Some(KeyAction::Screenshot),
+                    KeyCode::F1 => Some(KeyAction::Help),
                     KeyCode::Escape => Some(KeyAction::Quit),
                     _ => None,
                 };

@@ -313,6 +313,7 @@ impl Viewer {
                 KeyAction::Fit => self.fit_camera(),
                 KeyAction::ResetCamera => self.camera = OrbitCamera::default(),
                 KeyAction::Screenshot => self.shot = Some((screenshot_name(), true)),
+                KeyAction::Help => self.editor.show_help = !self.editor.show_help,
                 KeyAction::Quit => quit = true,
             }
         }
@@ -443,6 +444,7 @@ impl Viewer {
             }
             10 => self.shot = Some((saved.with_extension("png"), true)),
             12 => self.pending_actions.push(Action::Reset),
+            11 => self.editor.show_help = true, // the controls window draws clean too
             13 => {
                 // Ctrl + click's path: pin rope node 5 (saved with the preset at 14).
                 let host = self.host.as_mut().expect("host");

@@ -47,6 +47,8 @@ pub struct EditorState {
     pub hide_stats: bool,
     /// Shader compile errors (the running pipelines are the last good ones).
     pub shader_errors: Vec<String>,
+    /// The controls window (F1).
+    pub show_help: bool,
 }
 
 /// Timings shown in the stats panel.
@@ -116,7 +118,38 @@ pub fn build(ui: &Ui, state: &mut EditorState, scene: &mut Scene, stats: &Stats)
     if !state.shader_errors.is_empty() {
         shader_errors(ui, &state.shader_errors);
     }
+    if state.show_help {
+        help_window(ui, &mut state.show_help);
+    }
     actions
+}
+
+/// The app's controls (the README's table), shown with F1.
+const CONTROLS: [(&str, &str); 14] = [
+    ("left-drag on cloth or rope", "grab the particle and drag it"),
+    ("Ctrl + left click", "pin the particle where it is, or free it"),
+    ("left-drag on empty space, right-drag", "orbit"),
+    ("middle-drag, Shift + drag", "pan"),
+    ("wheel", "zoom"),
+    ("W A S D, Q E", "fly forward/left/back/right, down/up"),
+    ("F", "fit the scene in view"),
+    ("Home", "reset the camera"),
+    ("Space", "pause or resume"),
+    ("N", "step one frame"),
+    ("Ctrl + R", "reset the simulation"),
+    ("F12", "save a screenshot (msdsim-<time>.png)"),
+    ("F1", "show or hide these controls"),
+    ("Esc", "quit"),
+];
+
+fn help_window(ui: &Ui, open: &mut bool) {
+    ui.window("Controls (F1)").opened(open).always_auto_resize(true).build(|| {
+        for (key, what) in CONTROLS {
+            ui.text(key);
+            ui.same_line_with_pos(260.0);
+            ui.text_disabled(what);
+        }
+    });
 }
 
 trait TextWrappedColored {
@@ -374,6 +407,7 @@ fn stats_window(ui: &Ui, stats: &Stats, state: &EditorState) {
     // Sized to its content, so no line is cut off.
     ui.window("Stats").position([380.0, 10.0], Condition::FirstUseEver).always_auto_resize(true).build(
         || {
+            ui.text_disabled("F1: the controls");
             ui.text(&stats.device);
             ui.text(format!(
                 "frame {:.2} ms ({:.0} fps, wall clock), t = {:.2} s, {} particles",
