@@ -163,31 +163,19 @@ impl SimHost {
         let (col, row) = (index % cols, index / cols);
         if object < n_cloths {
             let cloth = &mut self.scene.cloths[object];
-            let listed = cloth.pinned.iter().position(|p| *p == [col, row]);
-            match (pin, listed) {
-                (true, None) => cloth.pinned.push([col, row]),
-                (false, Some(k)) => drop(cloth.pinned.remove(k)),
-                (false, None) => {
-                    return Err(format!(
-                        "cloth '{}' particle [{col}, {row}] is pinned by pin = {:?}: change the cloth's pin to free it",
-                        cloth.name, cloth.pin
-                    ))
-                }
-                (true, Some(_)) => {}
+            if !set_listed(&mut cloth.pinned, [col, row], pin) {
+                return Err(format!(
+                    "cloth '{}' particle [{col}, {row}] is pinned by pin = {:?}: change the cloth's pin to free it",
+                    cloth.name, cloth.pin
+                ));
             }
         } else {
             let rope = &mut self.scene.ropes[object - n_cloths];
-            let listed = rope.pinned.iter().position(|p| *p == index);
-            match (pin, listed) {
-                (true, None) => rope.pinned.push(index),
-                (false, Some(k)) => drop(rope.pinned.remove(k)),
-                (false, None) => {
-                    return Err(format!(
-                        "rope '{}' node {index} is pinned by pin = {:?}: change the rope's pin to free it",
-                        rope.name, rope.pin
-                    ))
-                }
-                (true, Some(_)) => {}
+            if !set_listed(&mut rope.pinned, index, pin) {
+                return Err(format!(
+                    "rope '{}' node {index} is pinned by pin = {:?}: change the rope's pin to free it",
+                    rope.name, rope.pin
+                ));
             }
         }
         o.pinned[i] = pin;
@@ -208,4 +196,16 @@ impl SimHost {
     pub fn destroy(self, ctx: &GpuContext) {
         self.sim.destroy(ctx);
     }
+}
+
+/// Adds `item` to `list` (`pin`) or removes it; false when asked to remove an item the list
+/// does not hold (a particle pinned by a rule, not by the list).
+fn set_listed<T: PartialEq>(list: &mut Vec<T>, item: T, pin: bool) -> bool {
+    match (pin, list.iter().position(|p| *p == item)) {
+        (true, None) => list.push(item),
+        (false, Some(k)) => drop(list.remove(k)),
+        (false, None) => return false,
+        (true, Some(_)) => {}
+    }
+    true
 }

@@ -436,10 +436,9 @@ impl GpuSim {
             return;
         }
         let t0 = self.time();
-        let mut data = collider_data(&self.model, t0);
-        for ((record, c), drag) in data.iter_mut().zip(&self.model.colliders).zip(dragged) {
-            *record = c.gpu_dragged(t0, self.model.frame_dt, *drag);
-        }
+        let data: Vec<_> = (self.model.colliders.iter().enumerate())
+            .map(|(i, c)| c.gpu_dragged(t0, self.model.frame_dt, dragged.get(i).copied().unwrap_or_default()))
+            .collect();
         rec.barrier(&[BufferBarrier::new(&self.colliders, Access::ComputeRead, Access::TransferWrite)]);
         for (i, chunk) in data.chunks(UPDATE_RECORDS).enumerate() {
             let offset = (i * UPDATE_RECORDS) as u64 * COLLIDER_BYTES;
