@@ -435,3 +435,59 @@ fn bench_end_to_end_writes_its_report() {
     clap_rejects(&["bench", "--end-to-end", "--resolution", "1920"], "'--resolution");
     clap_rejects(&["bench", "--resolution", "640x480"], "--end-to-end");
 }
+
+/// `simulate --shaders DIR` runs the GLSL of DIR: an unchanged copy of glsl/ gives the built-in
+/// shaders' result bit for bit; a copy with a syntax error in a header stops the run with exit
+/// code 2 and the compiler's file and line (it must not quietly run the built-in shaders); a
+/// missing folder is named.
+#[test]
+fn simulate_runs_the_shaders_of_a_folder() {
+    let dir = tempfile::tempdir().unwrap();
+    let preset = write(dir.path(), "good.toml", GOOD);
+    let copy = dir.path().join("glsl");
+    std::fs::create_dir_all(copy.join("include")).unwrap();
+    let source = Path::new(env!("CARGO_MANIFEST_DIR")).join("glsl");
+    for sub in ["", "include"] {
+        for entry in std::fs::read_dir(source.join(sub)).unwrap() {
+            let path = entry.unwrap().path();
+            if path.is_file() {
+                std::fs::copy(&path, copy.join(sub).join(path.file_name().unwrap())).unwrap();
+            }
+        }
+    }
+    let run = |shaders: Option<&Path>, out: &str| {
+        let out = dir.path().join(out);
+        let mut args = vec!["simulate", "--preset", &preset, "--frames", "3", "--quiet"];
+        let out_arg = out.display().to_string();
+        args.extend(["--out", &out_arg]);
+        let shaders_arg = shaders.map(|p| p.display().to_string());
+        if let Some(s) = &shaders_arg {
+            args.extend(["--shaders", s]);
+        }
+        (msdsim(&args), out)
+    };
+    let (built_in, built_in_out) = run(None, "built_in.json");
+    assert!(built_in.status.success(), "{}", String::from_utf8_lossy(&built_in.stderr));
+    let (copied, copied_out) = run(Some(&copy), "copied.json");
+    assert!(copied.status.success(), "{}", String::from_utf8_lossy(&copied.stderr));
+    let state = |p: &Path| {
+        let v: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(p).unwrap()).unwrap();
+        v["objects"].clone()
+    };
+    assert_eq!(state(&built_in_out), state(&copied_out), "the copied shaders must compute the same");
+
+    let header = copy.join("include").join("springs.glsl");
+    let text = std::fs::read_to_string(&header).unwrap();
+    std::fs::write(&header, format!("{text}\nnot glsl at all\n")).unwrap();
+    let (broken, broken_out) = run(Some(&copy), "broken.json");
+    let stderr = String::from_utf8_lossy(&broken.stderr);
+    assert_eq!(broken.status.code(), Some(2), "{stderr}");
+    assert!(stderr.contains("springs.glsl:") && stderr.contains("error"), "{stderr}");
+    assert!(!stderr.contains("panicked"), "{stderr}");
+    assert_eq!(stderr.matches("syntax error").count(), 1, "said once: {stderr}");
+    assert!(!broken_out.exists(), "no state written from a run that did not happen");
+    rejects(
+        &["simulate", "--preset", &preset, "--shaders", "/nonexistent/glsl"],
+        &["--shaders /nonexistent/glsl"],
+    );
+}

@@ -63,7 +63,8 @@ fn the_end_to_end_frame_draws_the_scene_offscreen() {
     let ctx = gpu();
     let extent = [96, 64];
     let options = offscreen::Options { extent, warmup: 3, frames: 9, fused_slots: None, capture: true };
-    let run = offscreen::measure(&ctx, &busy_scene(), options).unwrap();
+    let run = offscreen::measure(&ctx, &busy_scene(), options, &mut msdsim::shaders::ShaderSet::embedded())
+        .unwrap();
     assert_eq!(run.frames, 9);
     assert!(run.wall_ms > 0.0 && run.frames_per_second().is_finite());
     let pixels = run.pixels.expect("captured");

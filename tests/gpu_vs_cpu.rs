@@ -476,7 +476,8 @@ fn spatial_hash_finds_every_contact_in_a_crowd() {
 /// object took the fused path.
 fn fused_against_per_stage(model: &SimModel, limits: FusedLimits) -> f64 {
     let ctx = gpu();
-    let mut fused = GpuSim::with_fused_limits(&ctx, model, limits).unwrap();
+    let mut fused =
+        GpuSim::with_fused_limits(&ctx, model, limits, &mut msdsim::shaders::ShaderSet::embedded()).unwrap();
     let mut staged = GpuSim::new(&ctx, model).unwrap();
     staged.set_fused(false);
     for i in 0..model.objects.len() {

@@ -100,24 +100,27 @@ impl Target {
 }
 
 /// Runs `scene` as the app does, drawing offscreen, for `options.warmup` frames, then measures
-/// `options.frames` frames by the wall clock and by timestamps.
-pub fn measure(ctx: &GpuContext, scene: &Scene, options: Options) -> Result<EndToEnd> {
+/// `options.frames` frames by the wall clock and by timestamps, with shaders from `shaders`.
+pub fn measure(
+    ctx: &GpuContext,
+    scene: &Scene,
+    options: Options,
+    shaders: &mut ShaderSet,
+) -> Result<EndToEnd> {
     let model = scene::to_model(scene);
     let mut limits = FusedLimits::for_device(ctx.info());
     limits.slots = options.fused_slots.unwrap_or(limits.slots);
-    let mut shaders = ShaderSet::embedded();
-    let mut sim = GpuSim::with_fused_limits(ctx, &model, limits)?;
+    let mut sim = GpuSim::with_fused_limits(ctx, &model, limits, shaders)?;
     sim.set_stage_timing(false);
-    let renderer =
-        SceneRenderer::new(ctx, Format::Rgba8Unorm, Format::Depth32, &mut shaders).and_then(|mut r| match r
-            .set_objects(ctx, &scene::shapes(scene))
-        {
+    let renderer = SceneRenderer::new(ctx, Format::Rgba8Unorm, Format::Depth32, shaders).and_then(|mut r| {
+        match r.set_objects(ctx, &scene::shapes(scene)) {
             Ok(()) => Ok(r),
             Err(e) => {
                 r.destroy(ctx);
                 Err(e)
             }
-        });
+        }
+    });
     let mut renderer = match renderer {
         Ok(r) => r,
         Err(e) => {

@@ -6,6 +6,7 @@ pub mod cases;
 pub mod report;
 
 use crate::scene;
+use crate::shaders::ShaderSet;
 use crate::sim::gpu::{FrameTiming, FusedLimits, GpuSim};
 use crate::vk::GpuContext;
 use anyhow::{Context as _, Result};
@@ -83,11 +84,12 @@ pub fn measure(
     warmup: usize,
     frames: usize,
     fused_slots: Option<u32>,
+    shaders: &mut ShaderSet,
 ) -> Result<Measurement> {
     let model = scene::to_model(&case.scene);
     let mut limits = FusedLimits::for_device(ctx.info());
     limits.slots = fused_slots.unwrap_or(limits.slots);
-    let mut sim = GpuSim::with_fused_limits(ctx, &model, limits)
+    let mut sim = GpuSim::with_fused_limits(ctx, &model, limits, shaders)
         .with_context(|| format!("setting up {}", case.name))?;
     sim.set_drawn(false); // headless: the surface stage runs the guard only
     let path = if (0..model.objects.len()).all(|i| sim.runs_fused(i)) { "fused" } else { "per stage" };

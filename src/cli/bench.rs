@@ -3,6 +3,7 @@
 use super::stdout::{say, Stdout};
 use crate::app::offscreen;
 use crate::bench::{self, cases, report};
+use crate::shaders::ShaderSet;
 use crate::sim::model::Integrator;
 use crate::vk::{ContextOptions, GpuContext};
 use anyhow::{Context as _, Result};
@@ -52,6 +53,10 @@ pub struct BenchArgs {
     /// The offscreen target of --end-to-end, WIDTHxHEIGHT pixels.
     #[arg(long, default_value = "1920x1080", value_parser = parse_extent, requires = "end_to_end")]
     pub resolution: [u32; 2],
+    /// Compile the shaders from this GLSL folder (with DIR/include for headers) instead of
+    /// using the ones built into the binary: to measure an edited shader without rebuilding.
+    #[arg(long, value_name = "DIR")]
+    pub shaders: Option<PathBuf>,
     /// Folder for bench.md and bench.csv.
     #[arg(long, default_value = "bench-results")]
     pub out: PathBuf,
@@ -92,9 +97,13 @@ pub fn run(args: &BenchArgs, options: &ContextOptions) -> Result<()> {
         .into());
     }
     let fused_slots = if args.per_stage { Some(0) } else { args.fused_slots };
+    let mut shaders = match &args.shaders {
+        Some(dir) => ShaderSet::directory(dir)?.without_fallback(),
+        None => ShaderSet::embedded(),
+    };
     let bar = progress(cases.len() as u64 + 1);
     if args.end_to_end {
-        return end_to_end(args, &ctx, &cases, fused_slots, &bar, &mut out);
+        return end_to_end(args, &ctx, &cases, fused_slots, &mut shaders, &bar, &mut out);
     }
     bar.set_message("copy bandwidth");
     let bandwidth = bench::bandwidth::measure(&ctx, 512 << 20, 21).context("measuring the copy bandwidth")?;
@@ -105,7 +114,14 @@ pub fn run(args: &BenchArgs, options: &ContextOptions) -> Result<()> {
     let mut rows = Vec::new();
     for case in &cases {
         bar.set_message(case.name.clone());
-        let m = bench::measure(&ctx, case, args.warmup as usize, args.frames as usize, fused_slots)?;
+        let m = bench::measure(
+            &ctx,
+            case,
+            args.warmup as usize,
+            args.frames as usize,
+            fused_slots,
+            &mut shaders,
+        )?;
         if bar.is_hidden() {
             // Not a terminal (a log): a line per case instead of the bar.
             eprintln!("[{}/{}] {}: {:.3} ms/frame", rows.len() + 1, cases.len(), case.name, m.total.median);
@@ -131,6 +147,7 @@ fn end_to_end(
     ctx: &GpuContext,
     cases: &[cases::Case],
     fused_slots: Option<u32>,
+    shaders: &mut ShaderSet,
     bar: &indicatif::ProgressBar,
     out: &mut Stdout,
 ) -> Result<()> {
@@ -145,8 +162,8 @@ fn end_to_end(
     let mut rows = Vec::new();
     for case in cases {
         bar.set_message(case.name.clone());
-        let gpu_only = bench::measure(ctx, case, options.warmup, options.frames, fused_slots)?;
-        let mut e = offscreen::measure(ctx, &case.scene, options)
+        let gpu_only = bench::measure(ctx, case, options.warmup, options.frames, fused_slots, shaders)?;
+        let mut e = offscreen::measure(ctx, &case.scene, options, shaders)
             .with_context(|| format!("{} end to end", case.name))?;
         e.case = case.name.clone();
         if bar.is_hidden() {

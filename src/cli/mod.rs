@@ -72,9 +72,11 @@ pub fn run(cli: Cli) -> Result<()> {
                 say!(out, "{mark} [{i}] {d}")?;
                 say!(
                     out,
-                    "      {:.1} GiB device-local, {} bytes of shared memory per workgroup",
+                    "      {:.1} GiB device-local, {} bytes of shared memory per workgroup, subgroups of {}{}",
                     d.device_local_bytes as f64 / (1u64 << 30) as f64,
-                    d.max_shared_memory
+                    d.max_shared_memory,
+                    d.subgroup_size,
+                    if d.subgroup_clustered { " (clustered reductions)" } else { "" }
                 )?;
             }
             for s in skipped {

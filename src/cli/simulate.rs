@@ -3,6 +3,7 @@
 use super::out_file::OutFile;
 use super::stdout::{say, Stdout};
 use crate::scene;
+use crate::shaders::ShaderSet;
 use crate::sim::gpu::{self, FrameTiming, GpuSim};
 use crate::sim::model::ObjectKind;
 use crate::sim::stability;
@@ -33,6 +34,10 @@ pub struct SimulateArgs {
     /// normals time-sampled every frame (opens in Blender, Houdini, usdview, Omniverse).
     #[arg(long, value_name = "FILE.usda")]
     pub record: Option<PathBuf>,
+    /// Compile the shaders from this GLSL folder (with DIR/include for headers) instead of
+    /// using the ones built into the binary: to run an edited shader without rebuilding.
+    #[arg(long, value_name = "DIR")]
+    pub shaders: Option<PathBuf>,
 }
 
 #[derive(serde::Serialize)]
@@ -73,6 +78,11 @@ pub fn run(args: &SimulateArgs, options: &ContextOptions) -> Result<()> {
             ))
             .into())
         }
+        None => None,
+    };
+    // A folder of shaders (an edited copy of glsl/) is checked before any work, compiled later.
+    let mut shaders = match &args.shaders {
+        Some(dir) => Some(ShaderSet::directory(dir)?.without_fallback()),
         None => None,
     };
     let mut out = Stdout::default();
@@ -130,7 +140,10 @@ pub fn run(args: &SimulateArgs, options: &ContextOptions) -> Result<()> {
         Some(file) => Some((super::record::Recording::new(&model, &colors, args.frames)?, file)),
         None => None,
     };
-    let mut sim = GpuSim::new(&ctx, &model)?;
+    let mut sim = match &mut shaders {
+        Some(set) => GpuSim::with_shaders(&ctx, &model, set)?,
+        None => GpuSim::new(&ctx, &model)?,
+    };
     let result = simulate(&ctx, &mut sim, args, &model, &mut out, out_file, recording);
     sim.destroy(&ctx);
     result?;

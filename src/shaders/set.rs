@@ -39,12 +39,15 @@ pub struct ShaderSet {
     dependencies: HashMap<String, Vec<PathBuf>>,
     /// The current error of each shader whose last compile failed.
     errors: BTreeMap<String, String>,
+    /// A shader of the directory that does not compile is replaced by the embedded one (the
+    /// app starts and shows the error) instead of failing.
+    fallback: bool,
 }
 
 impl ShaderSet {
     /// The embedded SPIR-V only; reload is off.
     pub fn embedded() -> Self {
-        Self { watch: None, dependencies: HashMap::new(), errors: BTreeMap::new() }
+        Self { watch: None, dependencies: HashMap::new(), errors: BTreeMap::new(), fallback: false }
     }
 
     /// GLSL from `dir` (with `dir/include` for headers), watched for changes.
@@ -68,7 +71,15 @@ impl ShaderSet {
             }),
             dependencies: HashMap::new(),
             errors: BTreeMap::new(),
+            fallback: true,
         })
+    }
+
+    /// A shader of the directory that does not compile fails `load_or_embedded` (a measurement
+    /// of edited shaders must not measure the embedded ones instead).
+    pub fn without_fallback(mut self) -> Self {
+        self.fallback = false;
+        self
     }
 
     /// The source tree's `glsl/` when it exists (a build from a checkout), else embedded.
@@ -125,7 +136,9 @@ impl ShaderSet {
                 self.errors.remove(name);
             }
             Err(e) => {
-                log::error!("shader {e}");
+                if self.fallback {
+                    log::error!("shader {e}"); // else the caller fails with it
+                }
                 self.errors.insert(name.to_string(), e.clone());
             }
         }
@@ -137,7 +150,8 @@ impl ShaderSet {
     pub fn load_or_embedded(&mut self, name: &str) -> anyhow::Result<Vec<u32>> {
         match self.load(name) {
             Ok(words) => Ok(words),
-            Err(_) if self.watch.is_some() => super::embedded(name),
+            Err(_) if self.fallback => super::embedded(name),
+            Err(e) if self.watch.is_some() => Err(crate::error::UserError(e).into()),
             Err(e) => Err(anyhow::anyhow!(e)),
         }
     }

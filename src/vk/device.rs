@@ -43,6 +43,10 @@ pub struct DeviceInfo {
     pub device_local_bytes: u64,
     /// Shared memory a compute workgroup may use, in bytes.
     pub max_shared_memory: u32,
+    /// Invocations per subgroup (a warp: 32 on NVIDIA; lavapipe: its SIMD width).
+    pub subgroup_size: u32,
+    /// Compute shaders may use the clustered subgroup reductions (`subgroupClusteredAdd`).
+    pub subgroup_clustered: bool,
 }
 
 impl std::fmt::Display for DeviceInfo {
@@ -69,8 +73,9 @@ pub(crate) fn candidates(
     let mut found = Vec::new();
     let mut skipped = Vec::new();
     for physical in physicals {
+        let mut v11 = vk::PhysicalDeviceVulkan11Properties::default();
         let mut v12 = vk::PhysicalDeviceVulkan12Properties::default();
-        let mut props2 = vk::PhysicalDeviceProperties2::default().push_next(&mut v12);
+        let mut props2 = vk::PhysicalDeviceProperties2::default().push_next(&mut v12).push_next(&mut v11);
         let mut f13 = vk::PhysicalDeviceVulkan13Features::default();
         let mut features2 = vk::PhysicalDeviceFeatures2::default().push_next(&mut f13);
         // SAFETY: valid physical device from this instance; the chained structs outlive the calls.
@@ -140,6 +145,9 @@ pub(crate) fn candidates(
                 max_workgroup_count: props.limits.max_compute_work_group_count,
                 device_local_bytes,
                 max_shared_memory: props.limits.max_compute_shared_memory_size,
+                subgroup_size: v11.subgroup_size,
+                subgroup_clustered: v11.subgroup_supported_stages.contains(vk::ShaderStageFlags::COMPUTE)
+                    && v11.subgroup_supported_operations.contains(vk::SubgroupFeatureFlags::CLUSTERED),
             },
         });
     }

@@ -213,10 +213,16 @@ impl GpuSim {
 
     /// Like `new`, with the fused layouts planned within `limits` (themselves within the
     /// device's shared memory and `FUSED_SLOTS`): more particles per thread than the default,
-    /// or less shared memory (the velocity window in passes), for tests and measurements.
-    pub fn with_fused_limits(ctx: &GpuContext, model: &SimModel, limits: FusedLimits) -> Result<Self> {
+    /// or less shared memory (the velocity window in passes), for tests and measurements; with
+    /// shaders from `shaders`.
+    pub fn with_fused_limits(
+        ctx: &GpuContext,
+        model: &SimModel,
+        limits: FusedLimits,
+        shaders: &mut ShaderSet,
+    ) -> Result<Self> {
         let limits = limits.within(ctx.info());
-        Self::build(ctx, model, &mut ShaderSet::embedded(), limits)
+        Self::build(ctx, model, shaders, limits)
     }
 
     fn build(
