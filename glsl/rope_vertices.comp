@@ -95,7 +95,8 @@ void main() {
         vec3 up = normalize(cross(forward, side));
         vec3 x = p_in[i].pos.xyz;
         for (uint k = 0u; k < ROPE_RING; ++k) {
-            vec2 w = obj.ring_weights[k];
+            vec4 pair = obj.ring_weights[k / 2u];
+            vec2 w = (k & 1u) != 0u ? pair.zw : pair.xy;
             vec3 offset = side * w.x + up * w.y;
             surface[i * ROPE_RING + k] =
                 SurfaceVertex(vec4(x + offset * obj.rope_radius, 1.0), vec4(safe_normalize(offset, up), 0.0));

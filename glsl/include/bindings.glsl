@@ -6,7 +6,7 @@
 
 // Parameters are never written while a frame runs (restrict: the compiler may keep them in
 // registers across the shaders' stores and barriers).
-layout(std430, set = 0, binding = 0) restrict readonly buffer GlobalsBuf { Globals g; };
+layout(std140, set = 0, binding = 0) uniform GlobalsBuf { Globals g; };
 layout(std430, set = 0, binding = 1) restrict readonly buffer ObjectBuf { ObjectParams obj; };
 // The fused shader loads its state from p_in and stores it back there (each thread its own
 // particles); the per-stage shaders read one buffer and write the other.

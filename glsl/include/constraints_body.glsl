@@ -53,7 +53,7 @@ vec3 constraint_correction(uvec2 cell, vec3 x) {
             if (j < 0 || obj.stiffness[spring.z] == 0.0) continue;
             vec3 to_j = CPOS(j) - x;
             float d = length(to_j);
-            float excess = d - rest_length(spring, obj.spacing, obj.rest_scale) * (1.0 + obj.stretch_limit);
+            float excess = d - rest_length(s) * (1.0 + obj.stretch_limit);
             if (excess > 0.0) {
                 correction += (to_j / d) * (excess * (CPINNED(j) ? 1.0 : 0.5));
                 n_active += 1u;

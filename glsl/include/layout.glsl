@@ -74,11 +74,16 @@ struct ObjectParams {
     float self_distance;   // particles closer than this push apart [m]
     float rope_radius;     // rope tube radius [m]
     uint flags;            // OBJ_* bits
-    vec2 ring_weights[ROPE_RING]; // rope tube vertex offsets in (side, up) units of rope_radius
+    vec4 ring_weights[ROPE_RING / 2]; // rope tube vertex offsets in (side, up) units of rope_radius,
+                                      // two a vec4, so the layout is also valid std140
     uint hash_mask;        // spatial hash table size - 1 (a power of two minus one)
     float cell_inv;        // 1 / hash cell edge [1/m]; the edge is twice self_distance
     float cheb_rho;        // implicit integrator: Chebyshev radius (sim::stability::chebyshev_rho)
     float jacobi_damping;  // implicit integrator: Jacobi sweep damping (sim::stability::jacobi_damping)
+    vec4 rest[3];          // rest length of spring s (SPRINGS order) in rest[s / 4][s % 4] [m]
+    vec4 xpbd[3];          // XPBD per spring type, for the substep: alpha~ = 1 / (k dt^2),
+                           // gamma = b / (k dt), and the correction's scale relaxation / denominator
+                           // with the other end free (z) or pinned (w); zero for k = 0
 };
 
 // The spatial hash of a grid cell (Teschner et al. 2003).

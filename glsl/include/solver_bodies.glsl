@@ -12,7 +12,11 @@
 #define MSD_SOLVER_BODIES_GLSL
 
 // XPBD, one Gauss-Seidel visit: the particle's share of each of its springs' updates in turn,
-// with its own copy of the 12 multipliers (lambda[s / 4][s % 4] for spring s).
+// with its own copy of the 12 multipliers (lambda[s / 4][s % 4] for spring s):
+//   d_lambda = relaxation (-C - alpha~ lambda - gamma n.(dx_i - dx_j)) / ((1 + gamma)(w_i + w_j) + alpha~)
+// with the per-type constants and the reciprocal of the denominator from the host (obj.xpbd);
+// the spring's length by one inversesqrt (the chain of dependent operations through dx is
+// what a colour pass waits on).
 void xpbd_particle(uvec2 cell, vec3 x, inout vec3 dx, inout vec4 lambda[3]) {
     float w_i = 1.0 / obj.mass;
     [[unroll]] for (int s = 0; s < 12; ++s) {
@@ -22,17 +26,22 @@ void xpbd_particle(uvec2 cell, vec3 x, inout vec3 dx, inout vec4 lambda[3]) {
         int j = neighbour(ivec2(cell), spring.xy, obj.dims);
         if (j < 0) continue;
         vec3 dj = SD(j);
-        vec3 delta = (x - SX(j)) + (dx - dj);  // p_i - p_j
-        float d = length(delta);
-        if (d <= 0.0) continue;
-        vec3 normal = delta / d;
-        float alpha = 1.0 / (k * g.dt * g.dt);
-        float gamma = obj.stiffness.w / (k * g.dt);
-        float moved = dot(normal, dx - dj);
-        float w_j = SPIN(j) ? 0.0 : w_i;
-        float c = d - rest_length(spring, obj.spacing, obj.rest_scale);
+        vec3 base = x - SX(j);
+        vec4 c = obj.xpbd[spring.z];  // alpha~, gamma, scale (other end free, pinned)
+        float alpha = c.x;
+        float gamma = c.y;
+        float scale = SPIN(j) ? c.w : c.z;
         float lam = lambda[s / 4][s % 4];
-        float d_lambda = g.relaxation * (-c - alpha * lam - gamma * moved) / ((1.0 + gamma) * (w_i + w_j) + alpha);
+        float bias = rest_length(s) - alpha * lam;
+        vec3 rel = dx - dj;
+        vec3 delta = base + rel;  // p_i - p_j
+        float dd = dot(delta, delta);
+        if (dd <= 0.0) continue;
+        float inv = inversesqrt(dd);
+        vec3 normal = delta * inv;
+        float d = dd * inv;
+        float moved = dot(normal, rel);
+        float d_lambda = scale * (bias - d - gamma * moved);
         dx += normal * (w_i * d_lambda);
         lambda[s / 4][s % 4] = lam + d_lambda;
     }
@@ -55,12 +64,14 @@ vec3 vbd_particle(uvec2 cell, vec3 x, vec3 dx, vec3 dy) {
         if (j < 0) continue;
         vec3 dj = SD(j);
         vec3 delta = (x - SX(j)) + (dx - dj);  // p_i - p_j
-        float d = length(delta);
-        if (d <= 0.0) continue;
-        vec3 n = delta / d;
+        float dd = dot(delta, delta);
+        if (dd <= 0.0) continue;
+        float inv = inversesqrt(dd);
+        float d = dd * inv;
+        vec3 n = delta * inv;
         mat3 nn = outerProduct(n, n);
-        float rest = rest_length(spring, obj.spacing, obj.rest_scale);
-        float transverse = max(1.0 - rest / d, 0.0);  // clamped at compression: positive definite
+        float rest = rest_length(s);
+        float transverse = max(1.0 - rest * inv, 0.0);  // clamped at compression: positive definite
         force -= n * (k * (d - rest) + damp * dot(n, dx - dj));
         hessian += nn * (k + damp) + (mat3(1.0) - nn) * (k * transverse);
     }
@@ -95,8 +106,8 @@ vec3 implicit_particle(uvec2 cell, uint k, vec3 x, vec3 dx, vec3 dy, vec3 before
         if (j < 0) continue;
         vec3 pj = (SX(j) - x) + SD(j);  // p_j - x_i
         vec3 delta = dx - pj;           // p_i - p_j
-        float d = length(delta);
-        vec3 target = d > 0.0 ? delta * (rest_length(spring, obj.spacing, obj.rest_scale) / d) : vec3(0.0);
+        float dd = dot(delta, delta);
+        vec3 target = dd > 0.0 ? delta * (rest_length(s) * inversesqrt(dd)) : vec3(0.0);
         rhs += stiffness * (pj + target);
         diag += stiffness;
     }

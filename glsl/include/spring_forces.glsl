@@ -26,7 +26,7 @@ void add_spring_forces(uvec2 cell, vec3 x, vec3 v, float drift, bool elastic, in
         float d = length(to_j);
         if (d <= 0.0) continue;
         vec3 dir = to_j / d;
-        float rest = rest_length(spring, obj.spacing, obj.rest_scale);
+        float rest = rest_length(s);
         float f = k * (d - rest);  // Hooke's law
         if (has(F_DAMPING)) f += obj.stiffness.w * dot(NVEL(j) - v, dir);  // plus a dashpot along the spring
         force += f * dir;

@@ -23,9 +23,10 @@ int neighbour(ivec2 cell, ivec2 offset, uvec2 dims) {
     return o.x + o.y * int(dims.x);
 }
 
-float rest_length(ivec3 spring, vec2 spacing, vec4 rest_scale) {
-    return rest_scale[spring.z] * length(vec2(spring.xy) * spacing);
-}
+// Rest length of spring s (an index into SPRINGS; a constant in the unrolled spring loops, so
+// this is an operand from the uniform buffer, computed on the host). Include after
+// bindings.glsl.
+float rest_length(int s) { return obj.rest[s >> 2][s & 3]; }
 
 // The vertex colouring the Gauss-Seidel integrators sweep (sim::integrator::vertex_colours and
 // vertex_colour): particle (x, y) has colour (x + 2 y) mod C, C = 5 colours, 3 for one row; no

@@ -88,8 +88,9 @@ pub const GUARD_RUNAWAY: u32 = 2;
 pub const GUARD_FAST: u32 = 4;
 
 gpu_struct!(
-    /// Per-object parameters.
-    ObjectParams, size 160, {
+    /// Per-object parameters (std430; every array is of 16-byte elements, so the layout is
+    /// also valid std140, as a uniform buffer would need).
+    ObjectParams, size 256, {
     dims: [u32; 2],
     spacing: [f32; 2],
     stiffness: [f32; 4],
@@ -102,11 +103,17 @@ gpu_struct!(
     self_distance: f32,
     rope_radius: f32,
     flags: u32,
+    /// Two (side, up) pairs a vec4 in the shaders.
     ring_weights: [[f32; 2]; ROPE_RING],
     hash_mask: u32,
     cell_inv: f32,
     cheb_rho: f32,
     jacobi_damping: f32,
+    /// Rest length of each spring, in the shaders' SPRINGS order [m].
+    rest: [[f32; 4]; 3],
+    /// XPBD per spring type for the substep: alpha~, gamma, relaxation over the denominator
+    /// with the other end free, and with it pinned.
+    xpbd: [[f32; 4]; 3],
 });
 
 gpu_struct!(

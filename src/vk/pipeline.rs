@@ -1,4 +1,4 @@
-//! Compute pipelines and their binding sets (descriptor sets of storage buffers only).
+//! Compute pipelines and their binding sets (descriptor sets of buffers).
 
 use super::buffer::Buffer;
 use super::context::GpuContext;
@@ -12,19 +12,21 @@ pub enum BindingKind {
     ComputeStorage,
     /// A uniform buffer read by vertex and fragment shaders.
     GraphicsUniform,
+    /// A uniform buffer read by compute shaders.
+    ComputeUniform,
 }
 
 impl BindingKind {
     fn descriptor_type(self) -> vk::DescriptorType {
         match self {
             BindingKind::ComputeStorage => vk::DescriptorType::STORAGE_BUFFER,
-            BindingKind::GraphicsUniform => vk::DescriptorType::UNIFORM_BUFFER,
+            BindingKind::GraphicsUniform | BindingKind::ComputeUniform => vk::DescriptorType::UNIFORM_BUFFER,
         }
     }
 
     fn stages(self) -> vk::ShaderStageFlags {
         match self {
-            BindingKind::ComputeStorage => vk::ShaderStageFlags::COMPUTE,
+            BindingKind::ComputeStorage | BindingKind::ComputeUniform => vk::ShaderStageFlags::COMPUTE,
             BindingKind::GraphicsUniform => vk::ShaderStageFlags::VERTEX | vk::ShaderStageFlags::FRAGMENT,
         }
     }

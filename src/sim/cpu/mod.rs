@@ -101,17 +101,20 @@ struct Spring {
     slot: usize,
 }
 
+/// The 12 springs of a grid particle by type, as grid offsets to the other end, in slot order
+/// (slot 4 g + k; `SPRINGS` in glsl/include/springs.glsl is the same table).
+const SPRING_GROUPS: [(SpringType, [(i64, i64); 4]); 3] = [
+    (SpringType::Structural, [(1, 0), (-1, 0), (0, 1), (0, -1)]),
+    (SpringType::Shear, [(1, 1), (-1, -1), (1, -1), (-1, 1)]),
+    (SpringType::Bending, [(2, 0), (-2, 0), (0, 2), (0, -2)]),
+];
+
 /// The springs of particle (c, r): structural to the 4 direct neighbours, shear to the 4
 /// diagonal ones, bending to the 4 at distance two; only those inside the grid.
 fn springs(o: &ObjectModel, c: i64, r: i64) -> Vec<Spring> {
     let (cols, rows) = (o.dims[0] as i64, o.dims[1] as i64);
     let mut out = Vec::with_capacity(12);
-    let groups: [(SpringType, [(i64, i64); 4]); 3] = [
-        (SpringType::Structural, [(1, 0), (-1, 0), (0, 1), (0, -1)]),
-        (SpringType::Shear, [(1, 1), (-1, -1), (1, -1), (-1, 1)]),
-        (SpringType::Bending, [(2, 0), (-2, 0), (0, 2), (0, -2)]),
-    ];
-    for (g, (kind, offsets)) in groups.into_iter().enumerate() {
+    for (g, (kind, offsets)) in SPRING_GROUPS.into_iter().enumerate() {
         for (k, (dc, dr)) in offsets.into_iter().enumerate() {
             let (nc, nr) = (c + dc, r + dr);
             if nc >= 0 && nr >= 0 && nc < cols && nr < rows {
@@ -128,9 +131,18 @@ fn springs(o: &ObjectModel, c: i64, r: i64) -> Vec<Spring> {
 }
 
 fn rest_length(o: &ObjectModel, s: &Spring) -> f64 {
-    let dx = s.offset.0 as f64 * o.spacing[0];
-    let dy = s.offset.1 as f64 * o.spacing[1];
-    o.rest_scale[s.kind as usize] * (dx * dx + dy * dy).sqrt()
+    offset_rest_length(o, s.kind, s.offset)
+}
+
+fn offset_rest_length(o: &ObjectModel, kind: SpringType, (dc, dr): (i64, i64)) -> f64 {
+    let dx = dc as f64 * o.spacing[0];
+    let dy = dr as f64 * o.spacing[1];
+    o.rest_scale[kind as usize] * (dx * dx + dy * dy).sqrt()
+}
+
+/// The rest length of each of the 12 springs of a particle, by slot (`SPRING_GROUPS`) [m].
+pub fn rest_lengths(o: &ObjectModel) -> [[f64; 4]; 3] {
+    SPRING_GROUPS.map(|(kind, offsets)| offsets.map(|offset| offset_rest_length(o, kind, offset)))
 }
 
 fn wind_at(wind: &Option<WindModel>, x: DVec3) -> DVec3 {

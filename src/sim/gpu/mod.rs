@@ -40,8 +40,8 @@ use super::gpu_types::{Globals, Particle, SurfaceVertex};
 use super::model::{ObjectModel, SimModel};
 use crate::shaders::ShaderSet;
 use crate::vk::{
-    Access, BindingSetLayout, Buffer, BufferBarrier, BufferUsage, CommandSlot, DescriptorArena, GpuContext,
-    MemoryKind, Recorder, Retired, TimestampPool,
+    Access, BindingKind, BindingSetLayout, Buffer, BufferBarrier, BufferUsage, CommandSlot, DescriptorArena,
+    GpuContext, MemoryKind, Recorder, Retired, TimestampPool,
 };
 use anyhow::{Context as _, Result};
 use object::{collider_data, globals, object_params, GpuObject};
@@ -52,6 +52,17 @@ const CLOTH_GROUP: [u32; 2] = [16, 16];
 const ROPE_GROUP: u32 = 64;
 /// Bindings per set, in the order of `glsl/include/bindings.glsl`.
 const BINDINGS: u32 = 15;
+
+/// What each binding holds: the globals (0) are a uniform buffer, read by every invocation
+/// alike (the driver folds its members into the instructions), the rest storage buffers. The
+/// object's parameters (1) as a uniform buffer measured faster still on the H100 (a further
+/// 7-13% on small scenes, docs/PERFORMANCE.md) but made lavapipe's memory grow by about 100 MB
+/// a second on the playground preset (not on simpler scenes), so they stay a storage buffer.
+fn binding_kinds() -> Vec<BindingKind> {
+    (0..BINDINGS)
+        .map(|b| if b == 0 { BindingKind::ComputeUniform } else { BindingKind::ComputeStorage })
+        .collect()
+}
 /// Bytes of one collider record (`Collider` in layout.glsl).
 const COLLIDER_BYTES: u64 = 64;
 /// Collider records per `vkCmdUpdateBuffer` (it takes at most 65,536 bytes).
@@ -147,13 +158,13 @@ impl Parts {
         shaders: &mut ShaderSet,
         plans: &[ObjectPlan],
     ) -> Result<()> {
-        let layout = self.layout.insert(BindingSetLayout::storage_buffers(ctx, BINDINGS)?);
+        let layout = self.layout.insert(BindingSetLayout::new(ctx, &binding_kinds())?);
         self.pipelines = Some(Pipelines::new(ctx, layout, shaders, &Stage::needed(model, plans))?);
         let n = model.objects.len() as u32;
         self.arena = Some(DescriptorArena::new(ctx, 2 * n + contact::sets_needed(model), BINDINGS)?);
         let globals_size = std::mem::size_of::<Globals>() as u64;
         self.globals =
-            Some(Buffer::new(ctx, "globals", globals_size, BufferUsage::STORAGE, MemoryKind::Upload)?);
+            Some(Buffer::new(ctx, "globals", globals_size, BufferUsage::UNIFORM, MemoryKind::Upload)?);
         let colliders_size = COLLIDER_BYTES * model.colliders.len().max(1) as u64;
         self.colliders = Some(Buffer::new(
             ctx,

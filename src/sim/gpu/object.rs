@@ -420,7 +420,23 @@ pub(super) fn object_params(o: &ObjectModel, model: &SimModel) -> ObjectParams {
         cell_inv: (1.0 / cell) as f32,
         cheb_rho: chebyshev_rho(o, model.dt()) as f32,
         jacobi_damping: jacobi_damping(o, model.dt()) as f32,
+        rest: crate::sim::cpu::rest_lengths(o).map(|g| g.map(|l| l as f32)),
+        xpbd: std::array::from_fn(|t| xpbd_constants(o.stiffness[t], o, model).map(|c| c as f32)),
     }
+}
+
+/// XPBD's per-spring-type constants for the substep (`obj.xpbd` in the shaders): alpha~ =
+/// 1 / (k dt^2), gamma = b / (k dt), and the relaxation over the denominator
+/// (1 + gamma)(w_i + w_j) + alpha~ with the other end free (w_j = w_i) and pinned (w_j = 0).
+/// All zero for k = 0 (the shader skips those springs).
+fn xpbd_constants(k: f64, o: &ObjectModel, model: &SimModel) -> [f64; 4] {
+    if k == 0.0 {
+        return [0.0; 4];
+    }
+    let dt = model.dt();
+    let (alpha, gamma, w) = (1.0 / (k * dt * dt), o.damping / (k * dt), 1.0 / o.mass);
+    let scale = |w_sum: f64| model.relaxation / ((1.0 + gamma) * w_sum + alpha);
+    [alpha, gamma, scale(2.0 * w), scale(w)]
 }
 
 /// The colliders' GPU records for the frame that starts at `t0` (at least one, so the buffer
