@@ -195,6 +195,26 @@ fn a_replaced_file_keeps_its_permissions() {
     assert_eq!(std::fs::metadata(&target).unwrap().permissions().mode() & 0o777, 0o600);
 }
 
+/// Runs `simulate` on `preset` for `frames` frames, recording to `to` and writing the final
+/// state to `json`.
+fn record(preset: &str, frames: u32, to: &Path, json: &Path) {
+    let out = binary()
+        .args(["simulate", "--preset", preset, "--frames", &frames.to_string(), "--quiet"])
+        .args(["--record", to.to_str().unwrap(), "--out", json.to_str().unwrap()])
+        .output()
+        .unwrap();
+    assert!(out.status.success(), "{}", stderr(&out));
+}
+
+/// The first object's final positions in a state file, x y z after another.
+fn cloth_positions(json: &Path) -> Vec<f32> {
+    let state: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(json).unwrap()).unwrap();
+    let positions = state["objects"][0]["positions"].as_array().unwrap().iter();
+    positions
+        .flat_map(|p| p.as_array().unwrap().iter().map(|x| x.as_f64().unwrap() as f32).collect::<Vec<_>>())
+        .collect()
+}
+
 /// `simulate --record FILE.usda`: the recording has a time sample per frame for every
 /// object, and its last frame's cloth points are the simulated positions (`--out` of the same
 /// run) exactly (both print f32 in their shortest exact form). Another extension is refused
@@ -205,12 +225,7 @@ fn a_recording_reads_back_as_the_simulation() {
     let preset = preset(dir.path());
     let usda = dir.path().join("run.usda");
     let json = dir.path().join("state.json");
-    let out = binary()
-        .args(["simulate", "--preset", &preset, "--frames", "7", "--quiet"])
-        .args(["--record", usda.to_str().unwrap(), "--out", json.to_str().unwrap()])
-        .output()
-        .unwrap();
-    assert!(out.status.success(), "{}", stderr(&out));
+    record(&preset, 7, &usda, &json);
     let text = std::fs::read_to_string(&usda).unwrap();
     assert!(text.starts_with("#usda 1.0") && text.contains("endTimeCode = 7"), "{}", &text[..200]);
     // Two meshes (the cloth "c" and the rope "r"), each with 7 point and 7 normal samples.
@@ -228,13 +243,7 @@ fn a_recording_reads_back_as_the_simulation() {
         .skip(1) // the time code
         .map(|s| s.parse().unwrap())
         .collect();
-    let state: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
-    let expected: Vec<f32> = state["objects"][0]["positions"]
-        .as_array()
-        .unwrap()
-        .iter()
-        .flat_map(|p| p.as_array().unwrap().iter().map(|x| x.as_f64().unwrap() as f32).collect::<Vec<_>>())
-        .collect();
+    let expected = cloth_positions(&json);
     assert_eq!(numbers.len(), expected.len(), "5 x 4 cloth points");
     assert_eq!(numbers, expected, "the recorded points are the simulated positions");
     let bad = binary()
@@ -244,4 +253,51 @@ fn a_recording_reads_back_as_the_simulation() {
         .unwrap();
     assert_eq!(bad.status.code(), Some(2), "{}", stderr(&bad));
     assert!(stderr(&bad).contains(".usda"), "{}", stderr(&bad));
+}
+
+/// `simulate --record FILE.obj`: one OBJ file per frame, FILE_00001.obj ... FILE_00005.obj,
+/// each with both objects; the last frame's cloth vertices are the simulated positions
+/// exactly, and the faces index vertices that exist. A folder that does not exist is refused
+/// before the run.
+#[test]
+fn an_obj_sequence_reads_back_as_the_simulation() {
+    let dir = tempfile::tempdir().unwrap();
+    let preset = preset(dir.path());
+    let obj = dir.path().join("seq.obj");
+    let json = dir.path().join("state.json");
+    record(&preset, 5, &obj, &json);
+    for n in 1..=5 {
+        assert!(dir.path().join(format!("seq_{n:05}.obj")).is_file(), "frame {n}");
+    }
+    assert!(!dir.path().join("seq_00006.obj").exists() && !obj.exists());
+    let text = std::fs::read_to_string(dir.path().join("seq_00005.obj")).unwrap();
+    let groups: Vec<&str> = text.lines().filter(|l| l.starts_with("o ")).collect();
+    assert_eq!(groups, ["o c", "o r"], "a group per object");
+    let cloth = &text[text.find("o c").unwrap()..text.find("o r").unwrap()];
+    let points: Vec<f32> = cloth
+        .lines()
+        .filter(|l| l.starts_with("v "))
+        .flat_map(|l| {
+            l.split_whitespace().skip(1).take(3).map(|s| s.parse::<f32>().unwrap()).collect::<Vec<_>>()
+        })
+        .collect();
+    let expected = cloth_positions(&json);
+    assert_eq!(points, expected, "the recorded vertices are the simulated positions");
+    let vertices = text.lines().filter(|l| l.starts_with("v ")).count();
+    let normals = text.lines().filter(|l| l.starts_with("vn ")).count();
+    assert_eq!(vertices, normals);
+    for face in text.lines().filter(|l| l.starts_with("f ")) {
+        for corner in face.split_whitespace().skip(1) {
+            let i: usize = corner.split("//").next().unwrap().parse().unwrap();
+            assert!((1..=vertices).contains(&i), "{face}");
+        }
+    }
+    let missing = dir.path().join("no/such/folder/seq.obj");
+    let bad = binary()
+        .args(["simulate", "--preset", &preset, "--frames", "2", "--record"])
+        .arg(&missing)
+        .output()
+        .unwrap();
+    assert_eq!(bad.status.code(), Some(2), "{}", stderr(&bad));
+    assert!(stderr(&bad).contains("does not exist"), "{}", stderr(&bad));
 }

@@ -3,7 +3,6 @@
 mod bench;
 mod chart;
 mod out_file;
-mod record;
 mod simulate;
 mod stability;
 mod stdout;

@@ -2,6 +2,7 @@
 
 use super::out_file::OutFile;
 use super::stdout::{say, Stdout};
+use crate::render::record::{Format, Recording};
 use crate::scene;
 use crate::shaders::ShaderSet;
 use crate::sim::gpu::{self, FrameTiming, GpuSim};
@@ -30,9 +31,10 @@ pub struct SimulateArgs {
     /// Print only the summary, not a line per frame.
     #[arg(long)]
     pub quiet: bool,
-    /// Record the animated surfaces as USD (FILE.usda): a mesh per object, its points and
-    /// normals time-sampled every frame (opens in Blender, Houdini, usdview, Omniverse).
-    #[arg(long, value_name = "FILE.usda")]
+    /// Record the animated surfaces, a mesh per object: FILE.usda is USD with points and
+    /// normals time-sampled every frame (opens in Blender, Houdini, usdview, Omniverse);
+    /// FILE.obj is a sequence FILE_00001.obj, FILE_00002.obj, ... one OBJ file per frame.
+    #[arg(long, value_name = "FILE.usda|FILE.obj")]
     pub record: Option<PathBuf>,
     /// Compile the shaders from this GLSL folder (with DIR/include for headers) instead of
     /// using the ones built into the binary: to run an edited shader without rebuilding.
@@ -69,15 +71,13 @@ pub fn run(args: &SimulateArgs, options: &ContextOptions) -> Result<()> {
     let scene = scene::load_runnable(&args.preset, &args.overrides)?;
     // Claim the output file before simulating, so a bad path fails before any work is done.
     let out_file = args.out.as_deref().map(OutFile::claim).transpose()?;
+    // A USD recording is one file, claimed like --out; an OBJ sequence writes its frames as
+    // they come (Recording::new checks its folder).
     let record_file = match &args.record {
-        Some(path) if path.extension().is_some_and(|e| e == "usda") => Some(OutFile::claim(path)?),
-        Some(path) => {
-            return Err(crate::error::UserError(format!(
-                "--record {}: the recording format follows the extension, and the one supported is .usda (USD ASCII)",
-                path.display()
-            ))
-            .into())
-        }
+        Some(path) => match Format::of(path).map_err(|e| crate::error::UserError(format!("--record {e}")))? {
+            Format::Usd => Some(OutFile::claim(path)?),
+            Format::ObjSequence => None,
+        },
         None => None,
     };
     // A folder of shaders (an edited copy of glsl/) is checked before any work, compiled later.
@@ -129,15 +129,11 @@ pub fn run(args: &SimulateArgs, options: &ContextOptions) -> Result<()> {
     if let Some(limit) = crate::sim::collider::contact_speed(&model) {
         say!(out, "contact: {limit}")?;
     }
-    let colors: Vec<[f32; 3]> = scene
-        .cloths
-        .iter()
-        .map(|c| c.color)
-        .chain(scene.ropes.iter().map(|r| r.color))
-        .map(|c| c.map(|x| x as f32))
-        .collect();
-    let recording = match record_file {
-        Some(file) => Some((super::record::Recording::new(&model, &colors, args.frames)?, file)),
+    let recording = match &args.record {
+        Some(path) => {
+            let colors = crate::render::record::colors(&scene);
+            Some((Recording::new(&model, &colors, path, Some(args.frames))?, record_file))
+        }
         None => None,
     };
     let mut sim = match &mut shaders {
@@ -157,7 +153,7 @@ fn simulate(
     model: &crate::sim::model::SimModel,
     out: &mut Stdout,
     out_file: Option<OutFile>,
-    mut recording: Option<(super::record::Recording, OutFile)>,
+    mut recording: Option<(Recording, Option<OutFile>)>,
 ) -> Result<()> {
     let mut timings: Vec<FrameTiming> = Vec::with_capacity(args.frames.min(100_000) as usize);
     let mut report = |out: &mut Stdout, t: FrameTiming| -> Result<()> {
@@ -183,7 +179,7 @@ fn simulate(
         }
         if let Some((r, _)) = &mut recording {
             // Recording reads every frame back (it waits for the frames in flight).
-            r.add(&sim.read_states(ctx)?);
+            r.add(&sim.read_states(ctx)?)?;
         }
     }
     for t in sim.finish_frames(ctx).context("the last frames")? {
@@ -191,9 +187,20 @@ fn simulate(
     }
     print_summary(out, sim, &timings)?;
     if let Some((r, file)) = recording {
-        file.write_bytes(r.usda().as_bytes())?;
+        if let Some(file) = file {
+            file.write_bytes(r.usda().as_bytes())?;
+        }
         if let Some(path) = &args.record {
-            say!(out, "recorded {} frames to {}", args.frames, path.display())?;
+            match r.format() {
+                Format::Usd => say!(out, "recorded {} frames to {}", r.frames(), path.display())?,
+                Format::ObjSequence => say!(
+                    out,
+                    "recorded {} frames to {} ... {}",
+                    r.frames(),
+                    r.obj_path(1).display(),
+                    r.obj_path(r.frames()).display()
+                )?,
+            }
         }
     }
     if let Some(warning) = sim.take_warning() {

@@ -4,6 +4,7 @@
 
 pub mod camera;
 pub mod mesh;
+pub mod record;
 mod scene_renderer;
 pub mod view;
 
