@@ -17,7 +17,7 @@ layout(push_constant) uniform Draw {
     mat4 model;   // object -> world
     vec4 front;   // rgb colour of the side the normal points to
     vec4 back;    // rgb colour of the other side
-    vec4 params;  // x: 1 lit (Blinn-Phong), 0 flat colour
+    vec4 params;  // x: 1 lit (Blinn-Phong), 0 flat colour; y: 1 a ground shadow at height z
 } draw;
 
 #endif

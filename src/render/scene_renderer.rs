@@ -1,6 +1,9 @@
 //! Records the scene draws into a dynamic rendering: simulation surfaces (straight from their
 //! compute buffers, after the simulation's compute -> vertex-input barrier), primitive meshes
-//! for colliders and gizmos, and the ground grid.
+//! for colliders and gizmos, the ground grid and, on the ground, the shadows the light casts of
+//! the surfaces and colliders (planar projection from the point light, so contact with the
+//! ground reads at a glance: `mesh.vert` flattens each shadow caster onto the ground plane, a
+//! translucent overlay darkens each covered pixel once).
 //!
 //! Per frame slot it owns a camera uniform buffer, written by the host only after that slot's
 //! fence, so no frame in flight reads a buffer being written.
@@ -36,6 +39,15 @@ pub struct DrawItem {
     pub front: [f32; 3],
     pub back: [f32; 3],
     pub lit: bool,
+}
+
+/// The floor's colour under the ground grid (the sky is darker, the grid lighter).
+const FLOOR: [f32; 3] = [0.2, 0.21, 0.23];
+
+/// Whether `item` casts a shadow on the ground: the simulated surfaces and the colliders (lit
+/// solids), not the flat gizmos (wind cone, grab marker).
+fn item_casts_shadow(item: &DrawItem) -> bool {
+    item.lit && item.shape != Shape::Cone
 }
 
 impl DrawItem {
@@ -93,6 +105,7 @@ impl GpuMesh {
 pub struct SceneRenderer {
     triangles: GraphicsPipeline,
     lines: GraphicsPipeline,
+    shadows: GraphicsPipeline,
     color: Format,
     depth: Format,
     layout: BindingSetLayout,
@@ -113,7 +126,7 @@ impl SceneRenderer {
         let layout = BindingSetLayout::new(ctx, &[BindingKind::GraphicsUniform])?;
         let vertex = shaders.load_or_embedded("mesh.vert")?;
         let fragment = shaders.load_or_embedded("mesh.frag")?;
-        let (triangles, lines) = Self::pipelines(ctx, &layout, color, depth, &vertex, &fragment)?;
+        let [triangles, lines, shadows] = Self::pipelines(ctx, &layout, color, depth, &vertex, &fragment)?;
         let mut arena = DescriptorArena::new(ctx, FRAME_SLOTS as u32, 1)?;
         let mut cameras = Vec::new();
         let mut sets = Vec::new();
@@ -138,6 +151,7 @@ impl SceneRenderer {
             grid: GpuMesh::new(ctx, "grid", &mesh::grid_lines(5.0, 0.25))?,
             triangles,
             lines,
+            shadows,
             layout,
             arena,
             cameras,
@@ -153,10 +167,10 @@ impl SceneRenderer {
         depth: Format,
         vertex: &[u32],
         fragment: &[u32],
-    ) -> Result<(GraphicsPipeline, GraphicsPipeline)> {
+    ) -> Result<[GraphicsPipeline; 3]> {
         let stride = std::mem::size_of::<SurfaceVertex>() as u32;
         let attributes = [(0, VertexFormat::Float32x4, 0), (1, VertexFormat::Float32x4, 16)];
-        let desc = |name, topology| GraphicsDesc {
+        let desc = |name, topology, overlay| GraphicsDesc {
             name,
             vertex,
             fragment,
@@ -165,17 +179,26 @@ impl SceneRenderer {
             color,
             depth,
             depth_write: true,
+            overlay,
             set_layout: layout,
             push_constant_bytes: std::mem::size_of::<Draw>() as u32,
         };
-        let triangles = GraphicsPipeline::new(ctx, &desc("scene triangles", Topology::Triangles))?;
-        match GraphicsPipeline::new(ctx, &desc("scene lines", Topology::Lines)) {
-            Ok(lines) => Ok((triangles, lines)),
-            Err(e) => {
-                triangles.destroy(ctx);
-                Err(e.into())
+        let descs = [
+            desc("scene triangles", Topology::Triangles, false),
+            desc("scene lines", Topology::Lines, false),
+            desc("scene shadows", Topology::Triangles, true),
+        ];
+        let mut made = Vec::new();
+        for d in &descs {
+            match GraphicsPipeline::new(ctx, d) {
+                Ok(p) => made.push(p),
+                Err(e) => {
+                    made.into_iter().for_each(|p| p.destroy(ctx));
+                    return Err(e.into());
+                }
             }
         }
+        Ok(made.try_into().unwrap_or_else(|_| unreachable!("three pipelines made")))
     }
 
     /// Rebuilds the scene pipelines when `changed` names one of their shaders and both
@@ -194,10 +217,11 @@ impl SceneRenderer {
             return (false, Vec::new());
         };
         match Self::pipelines(ctx, &self.layout, self.color, self.depth, &vertex, &fragment) {
-            Ok((triangles, lines)) => {
+            Ok([triangles, lines, shadows]) => {
                 let old = [
                     std::mem::replace(&mut self.triangles, triangles),
                     std::mem::replace(&mut self.lines, lines),
+                    std::mem::replace(&mut self.shadows, shadows),
                 ];
                 (true, old.into_iter().map(Retired::Graphics).collect())
             }
@@ -242,16 +266,49 @@ impl SceneRenderer {
         items: &[DrawItem],
         grid: Option<f32>,
     ) {
-        let push = |rec: &mut Recorder<'_>, pipeline: &GraphicsPipeline, item: &DrawItem| {
+        // params: x lit, y 1 for a shadow flattened onto the ground at height z.
+        let push = |rec: &mut Recorder<'_>,
+                    pipeline: &GraphicsPipeline,
+                    item: &DrawItem,
+                    shadow: Option<f32>| {
             let draw = Draw {
                 model: item.model.to_cols_array_2d(),
                 front: [item.front[0], item.front[1], item.front[2], 1.0],
                 back: [item.back[0], item.back[1], item.back[2], 1.0],
-                params: [item.lit as u32 as f32, 0.0, 0.0, 0.0],
+                params: [item.lit as u32 as f32, shadow.is_some() as u32 as f32, shadow.unwrap_or(0.0), 0.0],
             };
             rec.push_constants(pipeline, bytemuck::bytes_of(&draw));
         };
+        let mesh = |rec: &mut Recorder<'_>, shape: Shape| match shape {
+            Shape::Sphere => {
+                rec.draw_indexed(&self.sphere.vertices, &self.sphere.indices, self.sphere.count, 1)
+            }
+            Shape::Cone => rec.draw_indexed(&self.cone.vertices, &self.cone.indices, self.cone.count, 1),
+            Shape::Cube => rec.draw_indexed(&self.cube.vertices, &self.cube.indices, self.cube.count, 1),
+            Shape::Tube => rec.draw_indexed(&self.tube.vertices, &self.tube.indices, self.tube.count, 1),
+            Shape::Surface(i) => {
+                if let Some((indices, count)) = self.surfaces.get(i) {
+                    if i < sim.object_count() {
+                        rec.draw_indexed(sim.surface(i).0, indices, *count, 1);
+                    }
+                }
+            }
+        };
         if let Some(height) = grid {
+            // The floor: a flat slab under the grid, light enough for the shadows to show.
+            rec.bind_graphics(&self.triangles, self.sets[slot]);
+            let floor = DrawItem::solid(
+                Shape::Cube,
+                Mat4::from_scale_rotation_translation(
+                    glam::Vec3::new(5.0, 0.001, 5.0),
+                    glam::Quat::IDENTITY,
+                    glam::Vec3::Y * (height - 0.004),
+                ),
+                FLOOR,
+                false,
+            );
+            push(rec, &self.triangles, &floor, None);
+            mesh(rec, Shape::Cube);
             rec.bind_graphics(&self.lines, self.sets[slot]);
             let item = DrawItem {
                 shape: Shape::Cube,
@@ -260,27 +317,19 @@ impl SceneRenderer {
                 back: [0.42; 3],
                 lit: false,
             };
-            push(rec, &self.lines, &item);
+            push(rec, &self.lines, &item, None);
             rec.draw_indexed(&self.grid.vertices, &self.grid.indices, self.grid.count, 1);
+            // The shadows of what stands on the ground: surfaces and colliders, not gizmos.
+            rec.bind_graphics(&self.shadows, self.sets[slot]);
+            for item in items.iter().filter(|i| item_casts_shadow(i)) {
+                push(rec, &self.shadows, item, Some(height));
+                mesh(rec, item.shape);
+            }
         }
         rec.bind_graphics(&self.triangles, self.sets[slot]);
         for item in items {
-            push(rec, &self.triangles, item);
-            match item.shape {
-                Shape::Sphere => {
-                    rec.draw_indexed(&self.sphere.vertices, &self.sphere.indices, self.sphere.count, 1)
-                }
-                Shape::Cone => rec.draw_indexed(&self.cone.vertices, &self.cone.indices, self.cone.count, 1),
-                Shape::Cube => rec.draw_indexed(&self.cube.vertices, &self.cube.indices, self.cube.count, 1),
-                Shape::Tube => rec.draw_indexed(&self.tube.vertices, &self.tube.indices, self.tube.count, 1),
-                Shape::Surface(i) => {
-                    if let Some((indices, count)) = self.surfaces.get(i) {
-                        if i < sim.object_count() {
-                            rec.draw_indexed(sim.surface(i).0, indices, *count, 1);
-                        }
-                    }
-                }
-            }
+            push(rec, &self.triangles, item, None);
+            mesh(rec, item.shape);
         }
     }
 
@@ -298,6 +347,7 @@ impl SceneRenderer {
         self.arena.destroy(ctx);
         self.triangles.destroy(ctx);
         self.lines.destroy(ctx);
+        self.shadows.destroy(ctx);
         self.layout.destroy(ctx);
     }
 }

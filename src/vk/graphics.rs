@@ -35,6 +35,9 @@ pub struct GraphicsDesc<'a> {
     pub depth: Format,
     /// Depth test on; writes only when `depth_write`.
     pub depth_write: bool,
+    /// A translucent overlay drawn once per pixel: alpha blending, and the depth test passes
+    /// only nearer fragments (with depth writes, a second layer at the same depth is dropped).
+    pub overlay: bool,
     pub set_layout: &'a BindingSetLayout,
     /// Bytes of push constants, visible to both stages.
     pub push_constant_bytes: u32,
@@ -125,9 +128,25 @@ impl GraphicsPipeline {
             let depth = vk::PipelineDepthStencilStateCreateInfo::default()
                 .depth_test_enable(true)
                 .depth_write_enable(desc.depth_write)
-                .depth_compare_op(vk::CompareOp::LESS_OR_EQUAL);
-            let attachments = [vk::PipelineColorBlendAttachmentState::default()
-                .color_write_mask(vk::ColorComponentFlags::RGBA)];
+                .depth_compare_op(if desc.overlay {
+                    vk::CompareOp::LESS
+                } else {
+                    vk::CompareOp::LESS_OR_EQUAL
+                });
+            let attachment = vk::PipelineColorBlendAttachmentState::default()
+                .color_write_mask(vk::ColorComponentFlags::RGBA);
+            let attachment = match desc.overlay {
+                true => attachment
+                    .blend_enable(true)
+                    .src_color_blend_factor(vk::BlendFactor::SRC_ALPHA)
+                    .dst_color_blend_factor(vk::BlendFactor::ONE_MINUS_SRC_ALPHA)
+                    .color_blend_op(vk::BlendOp::ADD)
+                    .src_alpha_blend_factor(vk::BlendFactor::ZERO)
+                    .dst_alpha_blend_factor(vk::BlendFactor::ONE)
+                    .alpha_blend_op(vk::BlendOp::ADD),
+                false => attachment,
+            };
+            let attachments = [attachment];
             let blend = vk::PipelineColorBlendStateCreateInfo::default().attachments(&attachments);
             let dynamic_states = [vk::DynamicState::VIEWPORT, vk::DynamicState::SCISSOR];
             let dynamic = vk::PipelineDynamicStateCreateInfo::default().dynamic_states(&dynamic_states);
