@@ -35,6 +35,7 @@ pub enum KeyAction {
     ResetCamera,
     Screenshot,
     Help,
+    Record,
     Quit,
 }
 
@@ -126,6 +127,7 @@ impl Input {
                     KeyCode::Home => Some(KeyAction::ResetCamera),
                     KeyCode::F12 => Some(KeyAction::Screenshot),
                     KeyCode::F1 => Some(KeyAction::Help),
+                    KeyCode::F9 => Some(KeyAction::Record),
                     KeyCode::Escape => Some(KeyAction::Quit),
                     _ => None,
                 };
@@ -137,6 +139,28 @@ impl Input {
             }
             _ => {}
         }
+    }
+
+    /// A scripted left button (the app's exercise): pressed (a pick is tried) or held at
+    /// `at`, or released.
+    pub fn script_left(&mut self, down: bool, at: [f32; 2]) {
+        self.cursor = at;
+        self.last_cursor = Some(at);
+        if down && !self.buttons.contains(&MouseButton::Left) {
+            self.pick_requested = true;
+            self.left_orbits = false;
+        }
+        if down {
+            self.buttons.insert(MouseButton::Left);
+        } else {
+            self.buttons.remove(&MouseButton::Left);
+            self.released = self.grab.take();
+        }
+    }
+
+    /// Whether the left button is held.
+    pub fn left_down(&self) -> bool {
+        self.buttons.contains(&MouseButton::Left)
     }
 
     /// The pick found nothing: the left drag orbits instead.
@@ -163,11 +187,26 @@ impl Input {
     }
 }
 
-/// The particle nearest to the ray (origin, unit direction) within a pick radius that grows
-/// with distance; (object, index, depth along the ray, pinned).
-pub fn pick(states: &[ObjectState], origin: Vec3, dir: Vec3) -> Option<(usize, u32, f32, bool)> {
+/// How far from a particle, on screen, a click still takes it [pixels].
+pub const PICK_PIXELS: f32 = 12.0;
+
+/// A pick ray: origin, unit direction, and the size of one pixel at one metre of depth [m]
+/// (`OrbitCamera::pixel_size`).
+#[derive(Debug, Clone, Copy)]
+pub struct PickRay {
+    pub origin: Vec3,
+    pub dir: Vec3,
+    pub pixel: f32,
+}
+
+/// The particle nearest to the ray within `PICK_PIXELS` on screen of it, or of its object's
+/// own radius `radii[object]` (a rope's tube) around it; (object, index, depth along the ray,
+/// pinned).
+pub fn pick(states: &[ObjectState], ray: PickRay, radii: &[f32]) -> Option<(usize, u32, f32, bool)> {
+    let PickRay { origin, dir, pixel } = ray;
     let mut best: Option<(f32, (usize, u32, f32, bool))> = None;
     for (o, state) in states.iter().enumerate() {
+        let own = radii.get(o).copied().unwrap_or(0.0);
         for (i, p) in state.particles.iter().enumerate() {
             let x = Vec3::new(p.pos[0], p.pos[1], p.pos[2]);
             let t = (x - origin).dot(dir);
@@ -175,11 +214,44 @@ pub fn pick(states: &[ObjectState], origin: Vec3, dir: Vec3) -> Option<(usize, u
                 continue;
             }
             let miss = (x - (origin + dir * t)).length();
-            let radius = 0.02 + 0.015 * t;
+            let radius = own + PICK_PIXELS * pixel * t;
             if miss < radius && best.is_none_or(|(b, _)| miss / radius < b) {
                 best = Some((miss / radius, (o, i as u32, t, p.pos[3] > 0.5)));
             }
         }
     }
     best.map(|(_, hit)| hit)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::sim::gpu_types::Particle;
+
+    fn rope(nodes: &[Vec3]) -> ObjectState {
+        ObjectState {
+            particles: nodes.iter().map(|x| Particle { pos: [x.x, x.y, x.z, 0.0], vel: [0.0; 4] }).collect(),
+            surface: Vec::new(),
+        }
+    }
+
+    /// A click lands on a rope node when it is within PICK_PIXELS on screen of the node or
+    /// within the tube's radius of it, at any distance; farther out it misses (and orbits).
+    #[test]
+    fn a_rope_is_picked_within_a_few_pixels_of_its_tube() {
+        let pixel = 2.0 * (45f32.to_radians() * 0.5).tan() / 800.0; // 45 degrees over 800 pixels
+        let states = [rope(&[Vec3::new(0.0, 0.0, -3.0), Vec3::new(0.05, 0.0, -3.0)])];
+        let radii = [0.01];
+        let at_pixels = |px: f32| {
+            let dir = Vec3::new(0.0, px * pixel, -1.0).normalize();
+            pick(&states, PickRay { origin: Vec3::ZERO, dir, pixel }, &radii)
+        };
+        let tube = 0.01 / (3.0 * pixel); // the tube's radius on screen [pixels]
+        assert!(at_pixels(0.0).is_some());
+        assert!(at_pixels(tube + PICK_PIXELS - 1.0).is_some(), "within {PICK_PIXELS} pixels of the tube");
+        assert!(at_pixels(tube + PICK_PIXELS + 2.0).is_none(), "farther out the click misses");
+        let far = [rope(&[Vec3::new(0.0, 0.0, -30.0)])];
+        let dir = Vec3::new(0.0, 8.0 * pixel, -1.0).normalize();
+        assert!(pick(&far, PickRay { origin: Vec3::ZERO, dir, pixel }, &[0.0]).is_some(), "8 pixels at 30 m");
+    }
 }

@@ -2,12 +2,14 @@
 //! GPU simulation. `viewer` holds the per-frame work, `sim_host` applies edits, `input` maps the
 //! mouse and keyboard.
 
+mod handles;
 mod input;
 pub mod offscreen;
+mod recorder;
 mod sim_host;
 mod viewer;
 
-pub use input::pick;
+pub use input::{pick, PickRay};
 pub use sim_host::{Applied, SimHost};
 pub use viewer::{preset_label, write_png};
 
@@ -40,6 +42,8 @@ pub struct AppArgs {
     pub exercise_window: bool,
     /// Hide the stats window (its timings differ run to run).
     pub hide_stats: bool,
+    /// Hide every UI window (`--no-ui`).
+    pub hide_ui: bool,
     /// Apply edits through the editor's code paths on a script, then exit (for tests).
     pub exercise_editor: bool,
     /// Shader folder to compile and watch (`None`: the source tree's glsl/ when present).

@@ -8,7 +8,9 @@
 //! the device to be idle first. Teardown (Drop) waits idle, then frees the UI renderer, scene
 //! renderer, simulation, frame slots and swapchain, before the context and last the window.
 
-use super::input::{pick, Grab, Input, KeyAction};
+use super::handles;
+use super::input::{Input, KeyAction};
+use super::recorder::AppRecorder;
 use super::sim_host::{Applied, SimHost};
 use super::AppArgs;
 use crate::render::camera::OrbitCamera;
@@ -17,7 +19,6 @@ use crate::render::{DrawItem, SceneRenderer, Shape};
 use crate::scene::{self, Scene};
 use crate::shaders::ShaderSet;
 use crate::sim::gpu::FRAME_SLOTS;
-use crate::sim::gpu_types::Particle;
 use crate::ui::{self, Action, EditorState, Stats};
 use crate::vk::{
     Access, Acquired, Buffer, BufferBarrier, BufferUsage, CommandSlot, ContextOptions, Format, GpuContext,
@@ -84,6 +85,15 @@ pub struct Viewer {
     screenshot: Option<Buffer>,
     /// Where the screenshot of this frame goes (F12, or `--record-frames`), and whether to say so.
     shot: Option<(PathBuf, bool)>,
+    /// The Record button's recording, while one runs.
+    recorder: AppRecorder,
+    /// The translate handle being dragged.
+    handle: Option<handles::Drag>,
+    /// Real-time mode: simulated time owed to the wall clock [s].
+    owed: f64,
+    /// `--exercise-editor`: where the dragged sphere started, and the rope's mean x then.
+    exercise_start: Option<Vec3>,
+    exercise_rope_x: f32,
     /// The UI's edited scene and actions, applied at the start of the next frame.
     pending_scene: Option<Scene>,
     pending_actions: Vec<Action>,
@@ -127,7 +137,9 @@ impl Viewer {
                 cloth_preset_path: "presets/towel.toml".into(),
                 paused: args.paused,
                 hide_stats: args.hide_stats,
+                hide_ui: args.hide_ui,
                 shaders_note: String::new(),
+                record_path: "recording.usda".into(),
                 ..Default::default()
             },
             args,
@@ -140,6 +152,11 @@ impl Viewer {
             tick: 0,
             last: Instant::now(),
             step_once: false,
+            recorder: AppRecorder::default(),
+            handle: None,
+            exercise_start: None,
+            exercise_rope_x: 0.0,
+            owed: 0.0,
             screenshot: None,
             shot: None,
             pending_scene: None,
@@ -201,10 +218,24 @@ impl Viewer {
         self.recreate = true;
     }
 
+    /// Fits the camera to the scene in the part of the window the Scene panel leaves free
+    /// (beside it: the wider side; the whole window when it is hidden behind nothing useful).
     fn fit_camera(&mut self) {
-        if let Some(host) = &self.host {
-            view::fit_camera(&mut self.camera, host.model());
-        }
+        let Some(host) = &self.host else { return };
+        let size = self.window.inner_size();
+        let [w, h] = [size.width as f32, size.height as f32];
+        let scale = self.imgui.io().display_framebuffer_scale[0];
+        let panel = if self.editor.hide_ui { [0.0; 4] } else { self.editor.panel.unwrap_or(ui::PANEL_START) };
+        let [px, _, pw, _] = panel.map(|v| v * scale);
+        let (left, right) = (px, w - (px + pw));
+        let free = if right >= left && right > 0.3 * w {
+            [px + pw, 0.0, w, h]
+        } else if left > 0.3 * w {
+            [0.0, 0.0, px, h]
+        } else {
+            [0.0, 0.0, w, h]
+        };
+        view::fit_camera_in(&mut self.camera, host.model(), free, [w, h]);
     }
 
     fn message(&mut self, text: impl Into<String>, error: bool) {
@@ -249,6 +280,18 @@ impl Viewer {
             }
             Action::FitCamera => self.fit_camera(),
             Action::ResetCamera => self.camera = OrbitCamera::default(),
+            Action::ToggleRecording(path) => {
+                let said = match (self.recorder.frames(), self.host.as_ref()) {
+                    (Some(_), _) => self.recorder.stop(),
+                    (None, Some(host)) => self.recorder.start(host, &path),
+                    (None, None) => Ok("nothing to record".into()),
+                };
+                match said {
+                    Ok(text) => self.message(text, false),
+                    Err(e) => self.message(format!("{e:#}"), true),
+                }
+                self.editor.recording = self.recorder.frames();
+            }
             Action::Load(path) => match scene::load(&path, &[]) {
                 Ok(loaded) => {
                     self.apply(loaded);
@@ -314,167 +357,26 @@ impl Viewer {
                 KeyAction::ResetCamera => self.camera = OrbitCamera::default(),
                 KeyAction::Screenshot => self.shot = Some((screenshot_name(), true)),
                 KeyAction::Help => self.editor.show_help = !self.editor.show_help,
+                KeyAction::Record => {
+                    self.run_action(Action::ToggleRecording(PathBuf::from(&self.editor.record_path)))
+                }
                 KeyAction::Quit => quit = true,
             }
         }
         quit
     }
 
-    /// Picks, drags and releases particles (after the UI, before recording).
-    fn update_grab(&mut self) {
-        let size = self.window.inner_size();
-        let (origin, dir) = self.camera.ray(self.input.cursor, [size.width as f32, size.height as f32]);
-        if std::mem::take(&mut self.input.pin_requested) {
-            let Some(host) = self.host.as_mut() else { return };
-            let picked = host.sim_mut().read_states(&self.ctx).map(|states| {
-                pick(&states, origin, dir).map(|hit| (hit, states[hit.0].particles[hit.1 as usize].pos))
-            });
-            match picked {
-                Ok(Some(((object, index, _, was_pinned), p))) => {
-                    let at = [p[0], p[1], p[2]];
-                    if let Err(e) =
-                        self.host.as_mut().expect("host").set_pinned(object, index, !was_pinned, at)
-                    {
-                        self.message(e, true);
-                    }
-                }
-                Ok(None) => {}
-                Err(e) => self.message(format!("picking failed: {e:#}"), true),
-            }
-        }
-        if std::mem::take(&mut self.input.pick_requested) {
-            let Some(host) = self.host.as_mut() else { return };
-            match host.sim_mut().read_states(&self.ctx) {
-                Ok(states) => match pick(&states, origin, dir) {
-                    Some((object, index, depth, was_pinned)) => {
-                        self.input.grab =
-                            Some(Grab { object, index, depth, was_pinned, target: origin + dir * depth })
-                    }
-                    None => self.input.pick_missed(),
-                },
-                Err(e) => self.message(format!("picking failed: {e:#}"), true),
-            }
-        }
-        let particle = |target: Vec3, pinned: bool| Particle {
-            pos: [target.x, target.y, target.z, pinned as u32 as f32],
-            vel: [0.0; 4],
-        };
-        if let Some(grab) = self.input.grab.as_mut() {
-            grab.target = origin + dir * grab.depth;
-            let (object, index, target) = (grab.object, grab.index, grab.target);
-            if let Some(host) = self.host.as_mut() {
-                host.sim_mut().set_particle(object, index, particle(target, true));
-            }
-        }
-        if let Some(released) = self.input.released.take() {
-            if let Some(host) = self.host.as_mut() {
-                host.sim_mut().set_particle(
-                    released.object,
-                    released.index,
-                    particle(released.target, released.was_pinned),
-                );
-            }
-        }
-    }
-
     fn draw_items(&self) -> Vec<DrawItem> {
         let host = self.host();
         let mut items = view::scene_items(host.scene(), host.sim().time());
+        if let Some(at) = handles::position(host.scene(), self.editor.selected) {
+            items.extend(handles::items(&self.camera, at, self.handle.map(|h| h.axis)));
+        }
         if let Some(g) = self.input.grab {
             let model = Mat4::from_scale_rotation_translation(Vec3::splat(0.015), Quat::IDENTITY, g.target);
             items.push(DrawItem::solid(Shape::Cube, model, [1.0, 0.85, 0.1], false));
         }
         items
-    }
-
-    /// The scripted window exercise of `--exercise-window`: resizes, a minimise and restore
-    /// cycle, then exit.
-    fn exercise(&mut self) -> Outcome {
-        let sizes = [(4, [700, 500]), (8, [420, 300]), (12, [900, 650]), (28, [640, 480])];
-        for (at, [w, h]) in sizes {
-            if self.tick == at {
-                let _ = self.window.request_inner_size(PhysicalSize::new(w, h));
-            }
-        }
-        match self.tick {
-            16 => {
-                self.window.set_minimized(true);
-                // Without a window manager the request may do nothing: report the zero size a
-                // minimised window gets, as the platform would.
-                self.resized(PhysicalSize::new(0, 0));
-            }
-            22 => {
-                self.window.set_minimized(false);
-                self.resized(self.window.inner_size());
-            }
-            40 => return Outcome::Exit,
-            _ => {}
-        }
-        Outcome::Continue
-    }
-
-    /// The scripted editor exercise of `--exercise-editor`: the editor's code paths (a parameter
-    /// edit, a substep change, a layout change, reset, save and load) with frames in flight, then
-    /// exit. Any refusal is an error.
-    fn exercise_editor(&mut self) -> Result<Outcome> {
-        let mut scene = self.host().scene().clone();
-        let saved = std::env::temp_dir().join(format!("msdsim-exercise-{}.toml", std::process::id()));
-        let expect = |host: &SimHost, what: &str, ok: bool| {
-            if ok {
-                Ok(())
-            } else {
-                Err(anyhow::anyhow!("exercise: {what} did not apply ({:?})", host.scene().sim))
-            }
-        };
-        match self.tick {
-            3 => {
-                for c in &mut scene.cloths {
-                    c.stiffness.structural *= 1.5;
-                }
-                scene.sim.gravity[0] = 1.0;
-                self.pending_scene = Some(scene);
-            }
-            6 => {
-                scene.sim.substeps += 1;
-                self.pending_scene = Some(scene);
-            }
-            9 => {
-                scene.spheres.push(scene::Sphere { center: [0.0, 0.2, 0.4], radius: 0.1, motion: None });
-                self.pending_scene = Some(scene);
-            }
-            10 => self.shot = Some((saved.with_extension("png"), true)),
-            12 => self.pending_actions.push(Action::Reset),
-            11 => self.editor.show_help = true, // the controls window draws clean too
-            13 => {
-                // Ctrl + click's path: pin rope node 5 (saved with the preset at 14).
-                let host = self.host.as_mut().expect("host");
-                let p = host.sim_mut().read_states(&self.ctx)?[0].particles[5].pos;
-                host.set_pinned(0, 5, true, [p[0], p[1], p[2]])
-                    .map_err(|e| anyhow::anyhow!("exercise: pinning failed: {e}"))?;
-            }
-            14 => self.pending_actions.push(Action::Save(saved.clone())),
-            16 => {
-                self.pending_actions.push(Action::Load(saved.clone()));
-            }
-            20 => {
-                let host = self.host();
-                expect(host, "the stiffness edit", host.scene().sim.gravity[0] == 1.0)?;
-                expect(host, "the new sphere", host.scene().spheres.iter().any(|s| s.radius == 0.1))?;
-                let pinned = host.scene().ropes.first().is_some_and(|r| r.pinned.contains(&5));
-                expect(host, "the pin saved with the preset and loaded back", pinned)?;
-                let shot = saved.with_extension("png");
-                let written = std::fs::metadata(&shot).map(|m| m.len()).unwrap_or(0);
-                expect(host, "the F12 screenshot", written > 1000)?;
-                let _ = std::fs::remove_file(&saved);
-                let _ = std::fs::remove_file(&shot);
-                if let Some((text, true)) = &self.editor.message {
-                    anyhow::bail!("exercise: the editor reported an error: {text}");
-                }
-                return Ok(Outcome::Exit);
-            }
-            _ => {}
-        }
-        Ok(Outcome::Continue)
     }
 
     /// One frame: UI, edits, simulation, drawing, presentation.
@@ -541,6 +443,21 @@ impl Viewer {
         self.update_grab();
 
         let run_sim = !self.editor.paused || std::mem::take(&mut self.step_once);
+        // Simulated frames this drawn frame: one, or in real-time mode as many frame_dt as the
+        // wall clock has run since the last (at most REAL_TIME_MOST; a device that cannot keep
+        // up falls behind, and the stats say by how much).
+        let sim_frames = match (run_sim, self.editor.real_time && !self.editor.paused) {
+            (false, _) => 0,
+            (true, false) => 1,
+            (true, true) => {
+                let frame_dt = self.host().model().frame_dt;
+                self.owed = (self.owed + dt).min(REAL_TIME_MOST as f64 * frame_dt);
+                let n = (self.owed / frame_dt).floor() as u32;
+                self.owed -= n as f64 * frame_dt;
+                n
+            }
+        };
+        let run_sim = sim_frames > 0;
         let extent = self.swapchain.as_ref().expect("created above").extent();
         let camera = view::camera_uniform(&self.camera, extent, self.host().scene());
         let items = self.draw_items();
@@ -577,7 +494,9 @@ impl Viewer {
         let mut rec = frame.cmd.begin(&self.ctx)?;
         let host = self.host.as_mut().expect("host");
         if run_sim {
-            host.sim_mut().record_frame(&mut rec, Access::VertexInput, slot);
+            for _ in 0..sim_frames {
+                host.sim_mut().record_frame(&mut rec, Access::VertexInput, slot);
+            }
         } else if host.sim_mut().take_surface_stale() {
             // Paused after a reset (or a rebuild): show the new state at once.
             host.sim().record_surface(&mut rec, Access::VertexInput);
@@ -641,10 +560,19 @@ impl Viewer {
             self.recreate = true;
         }
         self.frame += 1;
+        if run_sim && self.recorder.frames().is_some() {
+            let host = self.host.as_mut().expect("host");
+            if let Err(e) = self.recorder.capture(&self.ctx, host) {
+                self.message(e, true);
+            }
+            self.editor.recording = self.recorder.frames();
+        }
         let host = self.host.as_ref().expect("host");
         self.stats.simulated_time = host.sim().time();
         // Each drawn frame advances one frame_dt: against the wall clock, that is the speed.
-        self.stats.speed = run_sim.then(|| host.model().frame_dt * 1e3 / self.stats.cpu_frame_ms.max(1e-6));
+        let simulated = if self.editor.real_time { sim_frames.max(1) as f64 } else { 1.0 };
+        self.stats.speed = (!self.editor.paused)
+            .then(|| simulated * host.model().frame_dt * 1e3 / self.stats.cpu_frame_ms.max(1e-6));
         self.stats.particles = host.model().objects.iter().map(|o| o.particle_count() as u64).sum();
 
         if capture {
@@ -723,6 +651,13 @@ impl Viewer {
     /// Waits for the GPU and frees everything in order (also run by Drop).
     fn teardown(&mut self) {
         let _ = self.ctx.wait_idle();
+        // A recording still running is written, not lost.
+        if self.recorder.frames().is_some() {
+            match self.recorder.stop() {
+                Ok(text) => log::info!("{text}"),
+                Err(e) => log::error!("{e:#}"),
+            }
+        }
         if let Some(u) = self.ui_renderer.take() {
             u.destroy(&self.ctx);
         }
@@ -764,6 +699,12 @@ impl Drop for Viewer {
 
 /// The F12 screenshot's file: `msdsim-<seconds since 1970>-<milliseconds>.png` in the current
 /// folder.
+mod exercise;
+mod grab;
+
+/// Real-time mode simulates at most this many frames per drawn frame.
+const REAL_TIME_MOST: u32 = 4;
+
 fn screenshot_name() -> PathBuf {
     let now = std::time::SystemTime::now().duration_since(std::time::UNIX_EPOCH).unwrap_or_default();
     PathBuf::from(format!("msdsim-{}-{:03}.png", now.as_secs(), now.subsec_millis()))

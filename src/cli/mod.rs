@@ -121,6 +121,10 @@ pub struct AppCommand {
     /// Hide the stats window (for screenshots that must not change from run to run).
     #[arg(long)]
     pub no_stats: bool,
+    /// Hide every window of the UI (pictures of the scene alone; the camera fits the whole
+    /// window).
+    #[arg(long)]
+    pub no_ui: bool,
     /// Resize, minimise and restore the window on a script, then exit (a test of the swapchain).
     #[arg(long, hide = true)]
     pub exercise_window: bool,
@@ -154,6 +158,7 @@ impl AppCommand {
             screenshot: self.screenshot,
             exercise_window: self.exercise_window,
             hide_stats: self.no_stats,
+            hide_ui: self.no_ui,
             exercise_editor: self.exercise_editor,
             shaders: self.shaders,
             record_frames: self.record_frames,

@@ -1,7 +1,7 @@
 //! An orbit camera: it looks at `target` from `distance` along a direction given by yaw and
 //! pitch. Dragging orbits, shift-dragging pans, the wheel zooms, WASD/QE fly the target.
 
-use glam::{Mat4, Vec3, Vec4};
+use glam::{Mat4, Vec2, Vec3, Vec4};
 
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct OrbitCamera {
@@ -14,6 +14,10 @@ pub struct OrbitCamera {
     pub distance: f32,
     /// Vertical field of view, radians.
     pub fov: f32,
+    /// Where the target appears, in normalised device coordinates (0, 0: the middle of the
+    /// view): a lens shift, so a fit can frame the scene in the part of the window that panels
+    /// leave free and orbiting still turns about the scene.
+    pub shift: Vec2,
 }
 
 impl Default for OrbitCamera {
@@ -24,6 +28,7 @@ impl Default for OrbitCamera {
             pitch: 0.25,
             distance: 4.5,
             fov: 45f32.to_radians(),
+            shift: Vec2::ZERO,
         }
     }
 }
@@ -48,7 +53,7 @@ impl OrbitCamera {
     }
 
     pub fn view_proj(&self, aspect: f32) -> Mat4 {
-        self.projection(aspect) * self.view()
+        Mat4::from_translation(self.shift.extend(0.0)) * self.projection(aspect) * self.view()
     }
 
     /// Orbits by a drag of (dx, dy) pixels.
@@ -78,11 +83,31 @@ impl OrbitCamera {
         self.target += (ahead * forward + side * right + Vec3::Y * up) * speed * dt;
     }
 
-    /// Frames the box [min, max] from the current direction.
+    /// Frames the box [min, max] from the current direction in the whole view.
     pub fn fit(&mut self, min: Vec3, max: Vec3) {
+        self.fit_in(min, max, [0.0, 0.0, 1.0, 1.0], [1.0, 1.0]);
+    }
+
+    /// Frames the box [min, max] from the current direction within the rectangle `free`
+    /// (x0, y0, x1, y1 in pixels) of a view of `size` pixels: the box's bounding sphere fits the
+    /// rectangle's narrower angle and its centre appears at the rectangle's centre.
+    pub fn fit_in(&mut self, min: Vec3, max: Vec3, free: [f32; 4], size: [f32; 2]) {
+        let [w, h] = size.map(|s| s.max(1.0));
+        let [x0, y0, x1, y1] =
+            [free[0].clamp(0.0, w), free[1].clamp(0.0, h), free[2].clamp(0.0, w), free[3].clamp(0.0, h)];
+        let (x1, y1) = (x1.max(x0 + 1.0), y1.max(y0 + 1.0));
         self.target = (min + max) * 0.5;
+        self.shift = Vec2::new((x0 + x1) / w - 1.0, (y0 + y1) / h - 1.0);
+        let tan = (self.fov * 0.5).tan();
+        let half_angle = (tan * (y1 - y0) / h).atan().min((tan * (w / h) * (x1 - x0) / w).atan());
         let radius = ((max - min).length() * 0.5).max(0.1);
-        self.distance = radius / (self.fov * 0.5).sin() * 1.1;
+        self.distance = radius / half_angle.sin() * 1.1;
+    }
+
+    /// The size of one pixel at one metre in front of the camera, for a view `height` pixels
+    /// high [m].
+    pub fn pixel_size(&self, height: f32) -> f32 {
+        2.0 * (self.fov * 0.5).tan() / height.max(1.0)
     }
 
     /// The world-space ray through a pixel: (origin, unit direction).
@@ -107,6 +132,34 @@ mod tests {
         let to_target = cam.target - origin;
         assert!(to_target.cross(dir).length() < 1e-3 * to_target.length(), "{origin} {dir}");
         assert!(to_target.dot(dir) > 0.0);
+    }
+
+    /// Fitting into the right part of the view (a panel on the left) puts the scene's centre
+    /// in the middle of that part, keeps the whole box inside it, and picking rays agree.
+    #[test]
+    fn a_fit_beside_a_panel_frames_the_box_in_the_free_part() {
+        let mut cam = OrbitCamera::default();
+        let (min, max) = (Vec3::new(-1.0, 0.0, -0.5), Vec3::new(1.0, 2.0, 0.5));
+        let size = [1200.0, 800.0];
+        cam.fit_in(min, max, [400.0, 0.0, 1200.0, 800.0], size);
+        let project = |p: Vec3| {
+            let c = cam.view_proj(size[0] / size[1]) * p.extend(1.0);
+            [(c.x / c.w + 1.0) * 0.5 * size[0], (c.y / c.w + 1.0) * 0.5 * size[1]]
+        };
+        let centre = project((min + max) * 0.5);
+        assert!((centre[0] - 800.0).abs() < 1.0 && (centre[1] - 400.0).abs() < 1.0, "{centre:?}");
+        for i in 0..8 {
+            let corner = Vec3::new(
+                if i & 1 == 0 { min.x } else { max.x },
+                if i & 2 == 0 { min.y } else { max.y },
+                if i & 4 == 0 { min.z } else { max.z },
+            );
+            let [x, y] = project(corner);
+            assert!((400.0..=1200.0).contains(&x) && (0.0..=800.0).contains(&y), "corner {i} at {x}, {y}");
+        }
+        let (origin, dir) = cam.ray(centre, size);
+        let to_centre = (min + max) * 0.5 - origin;
+        assert!(to_centre.cross(dir).length() < 1e-3 * to_centre.length(), "the ray through the centre");
     }
 
     #[test]

@@ -102,8 +102,15 @@ pub fn camera_uniform(camera: &OrbitCamera, extent: [u32; 2], scene: &Scene) -> 
     }
 }
 
-/// Fits `camera` to the model's particles and spheres (unchanged for an empty model).
+/// Fits `camera` to the model's particles and colliders in the whole view (unchanged for an
+/// empty model).
 pub fn fit_camera(camera: &mut OrbitCamera, model: &SimModel) {
+    fit_camera_in(camera, model, [0.0, 0.0, 1.0, 1.0], [1.0, 1.0]);
+}
+
+/// Like `fit_camera`, within the rectangle `free` (x0, y0, x1, y1 pixels) of a view of `size`
+/// pixels: the part that panels leave free.
+pub fn fit_camera_in(camera: &mut OrbitCamera, model: &SimModel, free: [f32; 4], size: [f32; 2]) {
     let mut min = Vec3::splat(f32::MAX);
     let mut max = Vec3::splat(f32::MIN);
     for o in &model.objects {
@@ -117,6 +124,6 @@ pub fn fit_camera(camera: &mut OrbitCamera, model: &SimModel) {
         max = max.max(hi.as_vec3());
     }
     if min.x <= max.x {
-        camera.fit(min, max);
+        camera.fit_in(min, max, free, size);
     }
 }

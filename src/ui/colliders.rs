@@ -3,7 +3,7 @@
 //! here (its simulation side is one row of `sim::collider`).
 
 use super::editor::Selection;
-use super::widgets::{drag, drag3, optional};
+use super::widgets::{check, drag, drag3, optional};
 use crate::scene::{BoxCollider, Capsule, Ground, Motion, Scene, Sphere};
 use imgui::Ui;
 
@@ -78,16 +78,16 @@ pub fn panel(ui: &Ui, scene: &mut Scene, selected: Selection) -> bool {
     match selected {
         Selection::Ground => match &mut scene.ground {
             Some(g) => {
-                drag(ui, "height [m]", &mut g.height, 0.01, -1e3, 1e3);
+                drag(ui, "height [m]##ground", &mut g.height, 0.01, -1e3, 1e3);
                 // Unticked: each object's own friction applies.
-                optional(ui, "friction (own)", &mut g.friction, 0.5, 0.01, 1.0);
+                optional(ui, "friction (own)##ground", &mut g.friction, 0.5, 0.01, 1.0);
             }
             None => return false,
         },
         Selection::Sphere(i) if i < scene.spheres.len() => {
             let s = &mut scene.spheres[i];
             drag3(ui, "centre [m]", &mut s.center, 0.01);
-            drag(ui, "radius [m]", &mut s.radius, 0.005, 0.001, 100.0);
+            drag(ui, "radius [m]##collider", &mut s.radius, 0.005, 0.001, 100.0);
             motion(ui, &mut s.motion);
         }
         Selection::Box(i) if i < scene.boxes.len() => {
@@ -101,9 +101,9 @@ pub fn panel(ui: &Ui, scene: &mut Scene, selected: Selection) -> bool {
         }
         Selection::Capsule(i) if i < scene.capsules.len() => {
             let c = &mut scene.capsules[i];
-            drag3(ui, "start [m]", &mut c.start, 0.01);
-            drag3(ui, "end [m]", &mut c.end, 0.01);
-            drag(ui, "radius [m]", &mut c.radius, 0.005, 0.001, 100.0);
+            drag3(ui, "start [m]##capsule", &mut c.start, 0.01);
+            drag3(ui, "end [m]##capsule", &mut c.end, 0.01);
+            drag(ui, "radius [m]##collider", &mut c.radius, 0.005, 0.001, 100.0);
             motion(ui, &mut c.motion);
         }
         _ => return false,
@@ -119,7 +119,7 @@ fn motion(ui: &Ui, m: &mut Option<Motion>) {
         return;
     }
     let mut moving = m.is_some();
-    if ui.checkbox("moves", &mut moving) {
+    if check(ui, "moves", &mut moving) {
         *m = moving.then(|| Motion { velocity: Some([0.2, 0.0, 0.0]), keyframes: Vec::new() });
     }
     if let Some(Motion { velocity: Some(v), .. }) = m {

@@ -2,7 +2,7 @@
 //! a panel per selected object with every parameter, preset load/save, and stats.
 
 use super::colliders;
-use super::widgets::{choice, color, drag, drag3, int, optional};
+use super::widgets::{check, choice, color, drag, drag3, int, optional, tip};
 use crate::scene::{Cloth, ClothPins, Orientation, PerSpring, Rope, RopePins, Scene};
 use crate::sim::gpu::FrameTiming;
 use imgui::{Condition, TreeNodeFlags, Ui};
@@ -19,6 +19,8 @@ pub enum Action {
     Load(PathBuf),
     Save(PathBuf),
     AddClothFromPreset(PathBuf),
+    /// Start recording into the file (`.usda` or `.obj`), or stop and write it.
+    ToggleRecording(PathBuf),
 }
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -31,6 +33,9 @@ pub enum Selection {
     Sphere(usize),
     Box(usize),
     Capsule(usize),
+    /// The wind cone and the light: selected for their translate handles in the view.
+    Wind,
+    Light,
 }
 
 /// Editor state that is not part of the scene.
@@ -45,11 +50,24 @@ pub struct EditorState {
     pub shaders_note: String,
     /// Hide the stats window (reproducible screenshots).
     pub hide_stats: bool,
+    /// Hide every window (pictures of the scene alone).
+    pub hide_ui: bool,
     /// Shader compile errors (the running pipelines are the last good ones).
     pub shader_errors: Vec<String>,
     /// The controls window (F1).
     pub show_help: bool,
+    /// Where the Scene panel was last drawn: x, y, width, height in ImGui's (logical) pixels.
+    pub panel: Option<[f32; 4]>,
+    /// The file the Record button writes (`.usda` or `.obj`).
+    pub record_path: String,
+    /// Frames recorded so far, while recording.
+    pub recording: Option<u64>,
+    /// Simulate as many frames per drawn frame as the wall clock asks (up to 4), instead of one.
+    pub real_time: bool,
 }
+
+/// Where the Scene panel first appears (ImGui's logical pixels): x, y, width, height.
+pub const PANEL_START: [f32; 4] = [10.0, 10.0, 360.0, 620.0];
 
 /// Timings shown in the stats panel.
 #[derive(Debug, Clone, Default)]
@@ -68,14 +86,18 @@ pub struct Stats {
 /// Builds the editor windows over `scene` (edited in place) and returns the actions.
 pub fn build(ui: &Ui, state: &mut EditorState, scene: &mut Scene, stats: &Stats) -> Vec<Action> {
     let mut actions = Vec::new();
-    ui.window("Scene")
-        .position([10.0, 10.0], Condition::FirstUseEver)
-        .size([360.0, 620.0], Condition::FirstUseEver)
-        .build(|| {
+    if state.hide_ui {
+        return actions;
+    }
+    let [x, y, w, h] = PANEL_START;
+    ui.window("Scene").position([x, y], Condition::FirstUseEver).size([w, h], Condition::FirstUseEver).build(
+        || {
+            let ([x, y], [w, h]) = (ui.window_pos(), ui.window_size());
+            state.panel = Some([x, y, w, h]);
             simulation_panel(ui, state, scene, &mut actions);
             if ui.collapsing_header("Wind", TreeNodeFlags::empty()) {
                 let w = &mut scene.wind;
-                ui.checkbox("enabled##wind", &mut w.enabled);
+                check(ui, "enabled##wind", &mut w.enabled);
                 drag3(ui, "origin [m]##wind", &mut w.origin, 0.01);
                 drag3(ui, "direction##wind", &mut w.direction, 0.01);
                 drag(ui, "force [N]##wind", &mut w.force, 0.001, -10.0, 10.0);
@@ -111,7 +133,8 @@ pub fn build(ui: &Ui, state: &mut EditorState, scene: &mut Scene, stats: &Stats)
                 let colour = if *error { [1.0, 0.45, 0.4, 1.0] } else { [0.6, 0.9, 0.6, 1.0] };
                 ui.text_wrapped_colored(colour, text);
             }
-        });
+        },
+    );
     if !state.hide_stats {
         stats_window(ui, stats, state);
     }
@@ -125,8 +148,8 @@ pub fn build(ui: &Ui, state: &mut EditorState, scene: &mut Scene, stats: &Stats)
 }
 
 /// The app's controls (the README's table), shown with F1.
-const CONTROLS: [(&str, &str); 14] = [
-    ("left-drag on cloth or rope", "grab the particle and drag it"),
+const CONTROLS: [(&str, &str); 15] = [
+    ("left-drag on cloth or rope", "grab the particle (within 12 pixels) and drag it"),
     ("Ctrl + left click", "pin the particle where it is, or free it"),
     ("left-drag on empty space, right-drag", "orbit"),
     ("middle-drag, Shift + drag", "pan"),
@@ -138,6 +161,7 @@ const CONTROLS: [(&str, &str); 14] = [
     ("N", "step one frame"),
     ("Ctrl + R", "reset the simulation"),
     ("F12", "save a screenshot (msdsim-<time>.png)"),
+    ("F9", "start or stop recording (the file in the Simulation panel)"),
     ("F1", "show or hide these controls"),
     ("Esc", "quit"),
 ];
@@ -163,7 +187,7 @@ impl TextWrappedColored for Ui {
     }
 }
 
-fn simulation_panel(ui: &Ui, state: &EditorState, scene: &mut Scene, actions: &mut Vec<Action>) {
+fn simulation_panel(ui: &Ui, state: &mut EditorState, scene: &mut Scene, actions: &mut Vec<Action>) {
     if !ui.collapsing_header("Simulation", TreeNodeFlags::DEFAULT_OPEN) {
         return;
     }
@@ -185,6 +209,19 @@ fn simulation_panel(ui: &Ui, state: &EditorState, scene: &mut Scene, actions: &m
     if ui.button("Reset camera (Home)") {
         actions.push(Action::ResetCamera);
     }
+    let label = match state.recording {
+        Some(n) => format!("Stop recording (F9): {n} frames###record"),
+        None => "Record (F9)###record".to_string(),
+    };
+    if ui.button(label) {
+        actions.push(Action::ToggleRecording(PathBuf::from(&state.record_path)));
+    }
+    tip(ui, "Record the animated surfaces of every simulated frame: .usda is one USD file (Blender, Houdini, usdview, Omniverse), .obj a numbered OBJ file a frame. The app slows down while it records (each frame is read back).");
+    ui.same_line();
+    ui.set_next_item_width(-1.0);
+    ui.input_text("##record file", &mut state.record_path).build();
+    tip(ui, "the recording's file: NAME.usda, or NAME.obj for NAME_00001.obj, NAME_00002.obj, ...");
+    check(ui, "real time", &mut state.real_time);
     int(ui, "substeps", &mut scene.sim.substeps, 1, 4096);
     let mut ms = scene.sim.frame_dt * 1e3;
     if drag(ui, "frame dt [ms]", &mut ms, 0.05, 0.1, 1000.0) {
@@ -193,7 +230,7 @@ fn simulation_panel(ui: &Ui, state: &EditorState, scene: &mut Scene, actions: &m
     ui.text(format!("substep dt: {:.4} ms", scene.sim.frame_dt * 1e3 / scene.sim.substeps as f64));
     drag3(ui, "gravity [m/s^2]", &mut scene.sim.gravity, 0.05);
     if scene.cloths.len() + scene.ropes.len() > 1 {
-        ui.checkbox("objects touch each other", &mut scene.sim.inter_object);
+        check(ui, "objects touch each other", &mut scene.sim.inter_object);
     }
     use crate::scene::IntegratorChoice as I;
     choice(ui, "integrator", &mut scene.sim.integrator, &I::all());
@@ -226,6 +263,10 @@ fn object_list(ui: &Ui, state: &mut EditorState, scene: &mut Scene) {
     for (label, sel) in colliders::entries(scene) {
         pick(label, sel);
     }
+    if scene.wind.enabled {
+        pick("wind".into(), Selection::Wind);
+    }
+    pick("light".into(), Selection::Light);
     if ui.button("+ cloth") {
         scene.cloths.push(new_cloth(unique_name(scene, "cloth")));
         state.selected = Selection::Cloth(scene.cloths.len() - 1);
@@ -259,6 +300,9 @@ fn selected_panel(ui: &Ui, state: &EditorState, scene: &mut Scene) {
     match state.selected {
         Selection::Cloth(i) if i < scene.cloths.len() => cloth_panel(ui, &mut scene.cloths[i]),
         Selection::Rope(i) if i < scene.ropes.len() => rope_panel(ui, &mut scene.ropes[i]),
+        Selection::Wind | Selection::Light => ui.text_wrapped(
+            "drag the arrows in the view to move it (its other settings are under Wind and Light above)",
+        ),
         other => {
             if !colliders::panel(ui, scene, other) {
                 ui.text_disabled("select an object to edit it");
@@ -302,7 +346,7 @@ fn cloth_panel(ui: &Ui, c: &mut Cloth) {
     optional(ui, "stretch limit", &mut c.stretch_limit, 0.1, 0.005, 10.0);
     drag(ui, "friction", &mut c.friction, 0.01, 0.0, 1.0);
     drag(ui, "collision margin [m]", &mut c.collision_margin, 0.001, 0.0, 10.0);
-    ui.checkbox("self-collision", &mut c.self_collision);
+    check(ui, "self-collision", &mut c.self_collision);
     if c.self_collision {
         let default = c.default_self_collision_distance();
         optional(ui, "self-collision distance [m]", &mut c.self_collision_distance, default, 0.001, 10.0);
@@ -326,7 +370,7 @@ fn rope_panel(ui: &Ui, r: &mut Rope) {
     optional(ui, "stretch limit", &mut r.stretch_limit, 0.05, 0.005, 10.0);
     drag(ui, "friction", &mut r.friction, 0.01, 0.0, 1.0);
     drag(ui, "radius [m]", &mut r.radius, 0.001, 0.001, 10.0);
-    ui.checkbox("self-collision", &mut r.self_collision);
+    check(ui, "self-collision", &mut r.self_collision);
     if r.self_collision {
         optional(
             ui,

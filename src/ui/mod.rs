@@ -3,6 +3,7 @@
 
 mod colliders;
 mod editor;
+mod help;
 mod widgets;
 
-pub use editor::{build, unique_name, Action, EditorState, Selection, Stats};
+pub use editor::{build, unique_name, Action, EditorState, Selection, Stats, PANEL_START};

@@ -1,0 +1,187 @@
+//! Translate handles in the viewport: when a sphere, box, capsule, the wind or the light is
+//! selected in the editor, three arrows (x red, y green, z blue) stand at its position; a
+//! left-drag on an arrow moves it along that axis, live, through the same path as an edit in
+//! the Scene panel (a moving collider drags what it touches).
+
+use crate::render::camera::OrbitCamera;
+use crate::render::{DrawItem, Shape};
+use crate::scene::Scene;
+use crate::ui::Selection;
+use glam::{Mat4, Quat, Vec2, Vec3, Vec4};
+
+/// How near the cursor must come to an arrow to take it [pixels].
+pub const HANDLE_PIXELS: f32 = 10.0;
+/// An arrow's length as a fraction of the camera's distance to it (a constant size on screen).
+const LENGTH: f32 = 0.15;
+const AXES: [Vec3; 3] = [Vec3::X, Vec3::Y, Vec3::Z];
+const COLOURS: [[f32; 3]; 3] = [[0.9, 0.25, 0.2], [0.3, 0.8, 0.3], [0.25, 0.45, 0.95]];
+
+/// An arrow being dragged.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Drag {
+    pub target: Selection,
+    pub axis: usize,
+    /// The target's position when the drag began.
+    pub start: Vec3,
+    /// Where along the axis (from `start`) the cursor's ray passed then [m].
+    pub grip: f32,
+}
+
+/// The position of a selection that has handles: a sphere's or box's centre, a capsule's
+/// midpoint, the wind cone's apex, the light.
+pub fn position(scene: &Scene, target: Selection) -> Option<Vec3> {
+    let v = |p: [f64; 3]| Vec3::from_array(p.map(|x| x as f32));
+    match target {
+        Selection::Sphere(i) => scene.spheres.get(i).map(|s| v(s.center)),
+        Selection::Box(i) => scene.boxes.get(i).map(|b| v(b.center)),
+        Selection::Capsule(i) => scene.capsules.get(i).map(|c| (v(c.start) + v(c.end)) * 0.5),
+        Selection::Wind => Some(v(scene.wind.origin)),
+        Selection::Light => Some(v(scene.light.position)),
+        _ => None,
+    }
+}
+
+/// Moves `target` so that its position is `to`.
+pub fn set_position(scene: &mut Scene, target: Selection, to: Vec3) {
+    let Some(from) = position(scene, target) else { return };
+    let shift = |p: &mut [f64; 3]| {
+        let d = to - from;
+        *p = [p[0] + d.x as f64, p[1] + d.y as f64, p[2] + d.z as f64];
+    };
+    match target {
+        Selection::Sphere(i) => shift(&mut scene.spheres[i].center),
+        Selection::Box(i) => shift(&mut scene.boxes[i].center),
+        Selection::Capsule(i) => {
+            shift(&mut scene.capsules[i].start);
+            shift(&mut scene.capsules[i].end);
+        }
+        Selection::Wind => shift(&mut scene.wind.origin),
+        Selection::Light => shift(&mut scene.light.position),
+        _ => {}
+    }
+}
+
+fn length(camera: &OrbitCamera, at: Vec3) -> f32 {
+    (camera.eye() - at).length().max(0.05) * LENGTH
+}
+
+/// The arrows at `at` (`active`: the one being dragged, drawn highlighted).
+pub fn items(camera: &OrbitCamera, at: Vec3, active: Option<usize>) -> Vec<DrawItem> {
+    let l = length(camera, at);
+    let mut items = Vec::new();
+    for (k, axis) in AXES.into_iter().enumerate() {
+        let colour = if active == Some(k) { [1.0, 0.85, 0.1] } else { COLOURS[k] };
+        let turn = Quat::from_rotation_arc(Vec3::Z, axis);
+        let shaft = Mat4::from_scale_rotation_translation(
+            Vec3::new(0.012 * l, 0.012 * l, 0.4 * l),
+            turn,
+            at + axis * 0.4 * l,
+        );
+        // The cone's apex is at its origin and it opens along +z: turned to -axis at the tip.
+        let head = Mat4::from_scale_rotation_translation(
+            Vec3::new(0.06 * l, 0.06 * l, 0.2 * l),
+            Quat::from_rotation_arc(Vec3::Z, -axis),
+            at + axis * l,
+        );
+        items.push(DrawItem::solid(Shape::Tube, shaft, colour, false));
+        items.push(DrawItem::solid(Shape::Cone, head, colour, false));
+    }
+    items
+}
+
+/// Where world point `p` appears in a view of `size` pixels, or `None` behind the camera.
+fn to_screen(camera: &OrbitCamera, size: [f32; 2], p: Vec3) -> Option<Vec2> {
+    let clip = camera.view_proj(size[0] / size[1].max(1.0)) * Vec4::new(p.x, p.y, p.z, 1.0);
+    (clip.w > 1e-6)
+        .then(|| Vec2::new((clip.x / clip.w + 1.0) * 0.5 * size[0], (clip.y / clip.w + 1.0) * 0.5 * size[1]))
+}
+
+/// Where the tip of arrow `axis` of the handles at `at` appears on screen [pixels].
+pub fn screen_tip(camera: &OrbitCamera, size: [f32; 2], at: Vec3, axis: usize) -> Option<[f32; 2]> {
+    to_screen(camera, size, at + AXES[axis] * length(camera, at)).map(|p| p.to_array())
+}
+
+/// The arrow of the handles at `at` under `cursor` (within `HANDLE_PIXELS`), the nearest one.
+pub fn hit(camera: &OrbitCamera, size: [f32; 2], cursor: [f32; 2], at: Vec3) -> Option<usize> {
+    let l = length(camera, at);
+    let c = Vec2::from_array(cursor);
+    let mut best: Option<(f32, usize)> = None;
+    for (k, axis) in AXES.into_iter().enumerate() {
+        let (Some(a), Some(b)) = (to_screen(camera, size, at), to_screen(camera, size, at + axis * l)) else {
+            continue;
+        };
+        let ab = b - a;
+        let t = ((c - a).dot(ab) / ab.length_squared().max(1e-6)).clamp(0.0, 1.0);
+        let miss = (a + ab * t - c).length();
+        if miss < HANDLE_PIXELS && best.is_none_or(|(m, _)| miss < m) {
+            best = Some((miss, k));
+        }
+    }
+    best.map(|(_, k)| k)
+}
+
+/// Where along the line (`origin`, unit `axis`) the ray (`from`, unit `dir`) passes nearest,
+/// as a distance from `origin`; `None` when the ray runs along the line.
+pub fn along(origin: Vec3, axis: Vec3, from: Vec3, dir: Vec3) -> Option<f32> {
+    let w = origin - from;
+    let b = axis.dot(dir);
+    let denom = 1.0 - b * b;
+    (denom > 1e-6).then(|| (b * dir.dot(w) - axis.dot(w)) / denom)
+}
+
+impl Drag {
+    /// A drag of `axis` of the handles of `target` at `start`, taken where the cursor's ray
+    /// (`from`, `dir`) passes.
+    pub fn begin(target: Selection, axis: usize, start: Vec3, from: Vec3, dir: Vec3) -> Self {
+        let grip = along(start, AXES[axis], from, dir).unwrap_or(0.0);
+        Self { target, axis, start, grip }
+    }
+
+    /// The target's position for the cursor's ray (`from`, `dir`) now.
+    pub fn position(&self, from: Vec3, dir: Vec3) -> Vec3 {
+        let axis = AXES[self.axis];
+        match along(self.start, axis, from, dir) {
+            Some(s) => self.start + axis * (s - self.grip),
+            None => self.start,
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The arrow under the cursor is found in screen space, and dragging it 80 pixels to the
+    /// right moves a target along x only, by the distance those pixels span at its depth.
+    #[test]
+    fn dragging_the_x_arrow_moves_along_x() {
+        let camera = OrbitCamera { yaw: 0.0, pitch: 0.0, ..Default::default() };
+        let size = [800.0, 600.0];
+        let at = camera.target;
+        let tip = to_screen(&camera, size, at + Vec3::X * length(&camera, at)).unwrap();
+        let grab = [tip.x - 5.0, tip.y + 3.0];
+        assert_eq!(hit(&camera, size, grab, at), Some(0));
+        assert_eq!(hit(&camera, size, [tip.x, tip.y + 40.0], at), None, "40 pixels off misses");
+        let (from, dir) = camera.ray(grab, size);
+        let drag = Drag::begin(Selection::Light, 0, at, from, dir);
+        let (from, dir) = camera.ray([grab[0] + 80.0, grab[1]], size);
+        let moved = drag.position(from, dir) - at;
+        let expected = 80.0 * camera.pixel_size(size[1]) * camera.distance;
+        assert!((moved.x - expected).abs() < 0.02 * expected, "{moved} against {expected}");
+        assert!(moved.y.abs() < 1e-5 && moved.z.abs() < 1e-5, "{moved}");
+    }
+
+    #[test]
+    fn a_capsule_moves_whole() {
+        let mut scene = Scene::default();
+        scene.capsules.push(crate::scene::Capsule {
+            start: [0.0, 0.0, 0.0],
+            end: [1.0, 0.0, 0.0],
+            radius: 0.1,
+            motion: None,
+        });
+        set_position(&mut scene, Selection::Capsule(0), Vec3::new(0.5, 1.0, 0.0));
+        assert_eq!(scene.capsules[0].start, [0.0, 1.0, 0.0]);
+        assert_eq!(scene.capsules[0].end, [1.0, 1.0, 0.0]);
+    }
+}

@@ -1,0 +1,63 @@
+//! The app's Record button (F9): the animated surfaces of every simulated frame into the file
+//! named in the Simulation panel, USD (`.usda`, written when the recording stops) or an OBJ
+//! sequence (`.obj`, a file a frame as they come), as `simulate --record` writes them. Each
+//! recorded frame is read back from the GPU, so the app runs slower while it records.
+
+use super::sim_host::SimHost;
+use crate::render::record::{self, Format, Recording};
+use crate::vk::GpuContext;
+use anyhow::Result;
+use std::path::{Path, PathBuf};
+
+#[derive(Default)]
+pub struct AppRecorder {
+    active: Option<(Recording, PathBuf)>,
+}
+
+impl AppRecorder {
+    /// Frames recorded so far, while recording.
+    pub fn frames(&self) -> Option<u64> {
+        self.active.as_ref().map(|(r, _)| r.frames())
+    }
+
+    /// Starts recording the scene of `host` into `path`; refused for an unknown extension or a
+    /// missing folder.
+    pub fn start(&mut self, host: &SimHost, path: &Path) -> Result<String> {
+        let recording = Recording::new(host.model(), &record::colors(host.scene()), path, None)?;
+        let what = match recording.format() {
+            Format::Usd => format!("recording to {} (written when you stop)", path.display()),
+            Format::ObjSequence => format!("recording to {} ...", recording.obj_path(1).display()),
+        };
+        self.active = Some((recording, path.to_path_buf()));
+        Ok(what)
+    }
+
+    /// Adds the frame just submitted (waits for it). A failure stops the recording, keeping
+    /// what was recorded.
+    pub fn capture(&mut self, ctx: &GpuContext, host: &mut SimHost) -> Result<(), String> {
+        let Some((recording, _)) = self.active.as_mut() else { return Ok(()) };
+        let added = host.sim_mut().read_states(ctx).and_then(|states| recording.add(&states));
+        added.map_err(|e| match self.stop() {
+            Ok(saved) => format!("recording stopped: {e:#}; {saved}"),
+            Err(also) => format!("recording stopped: {e:#}; {also:#}"),
+        })
+    }
+
+    /// Stops recording and writes the USD file; says what was written.
+    pub fn stop(&mut self) -> Result<String> {
+        let Some((recording, path)) = self.active.take() else { return Ok("not recording".into()) };
+        let frames = recording.frames();
+        match recording.format() {
+            Format::Usd => {
+                std::fs::write(&path, recording.usda())
+                    .map_err(|e| anyhow::anyhow!("writing {}: {e}", path.display()))?;
+                Ok(format!("recorded {frames} frames to {}", path.display()))
+            }
+            Format::ObjSequence => Ok(format!(
+                "recorded {frames} frames to {} ... {}",
+                recording.obj_path(1).display(),
+                recording.obj_path(frames.max(1)).display()
+            )),
+        }
+    }
+}

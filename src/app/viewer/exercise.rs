@@ -1,0 +1,146 @@
+//! The app's scripted exercises for the tests (`--exercise-window`, `--exercise-editor`):
+//! they drive the window and the editor's code paths frame by frame, with frames in flight,
+//! and fail on anything refused.
+
+use super::super::handles;
+use super::{Outcome, Viewer};
+use crate::app::SimHost;
+use crate::scene;
+use crate::ui::{Action, Selection};
+use anyhow::{Context as _, Result};
+use winit::dpi::PhysicalSize;
+
+impl Viewer {
+    /// The scripted window exercise of `--exercise-window`: resizes, a minimise and restore
+    /// cycle, then exit.
+    pub(super) fn exercise(&mut self) -> Outcome {
+        let sizes = [(4, [700, 500]), (8, [420, 300]), (12, [900, 650]), (28, [640, 480])];
+        for (at, [w, h]) in sizes {
+            if self.tick == at {
+                let _ = self.window.request_inner_size(PhysicalSize::new(w, h));
+            }
+        }
+        match self.tick {
+            16 => {
+                self.window.set_minimized(true);
+                // Without a window manager the request may do nothing: report the zero size a
+                // minimised window gets, as the platform would.
+                self.resized(PhysicalSize::new(0, 0));
+            }
+            22 => {
+                self.window.set_minimized(false);
+                self.resized(self.window.inner_size());
+            }
+            40 => return Outcome::Exit,
+            _ => {}
+        }
+        Outcome::Continue
+    }
+
+    /// The scripted editor exercise of `--exercise-editor`: the editor's code paths (a parameter
+    /// edit, a substep change, a layout change, an F12 screenshot, reset, pinning by click, save
+    /// and load, the Record button, dragging a sphere by its translate handle with the rope on it)
+    /// with frames in flight, then exit. Any refusal is an error.
+    pub(super) fn exercise_editor(&mut self) -> Result<Outcome> {
+        let mut scene = self.host().scene().clone();
+        let saved = std::env::temp_dir().join(format!("msdsim-exercise-{}.toml", std::process::id()));
+        let expect = |host: &SimHost, what: &str, ok: bool| {
+            if ok {
+                Ok(())
+            } else {
+                Err(anyhow::anyhow!("exercise: {what} did not apply ({:?})", host.scene().sim))
+            }
+        };
+        match self.tick {
+            3 => {
+                for c in &mut scene.cloths {
+                    c.stiffness.structural *= 1.5;
+                }
+                scene.sim.gravity[0] = 1.0;
+                self.pending_scene = Some(scene);
+            }
+            6 => {
+                scene.sim.substeps += 1;
+                self.pending_scene = Some(scene);
+            }
+            9 => {
+                scene.spheres.push(scene::Sphere { center: [0.0, 0.2, 0.4], radius: 0.1, motion: None });
+                self.pending_scene = Some(scene);
+            }
+            10 => self.shot = Some((saved.with_extension("png"), true)),
+            12 => self.pending_actions.push(Action::Reset),
+            11 => self.editor.show_help = true, // the controls window draws clean too
+            13 => {
+                // Ctrl + click's path: pin rope node 5 (saved with the preset at 14).
+                let host = self.host.as_mut().expect("host");
+                let p = host.sim_mut().read_states(&self.ctx)?[0].particles[5].pos;
+                host.set_pinned(0, 5, true, [p[0], p[1], p[2]])
+                    .map_err(|e| anyhow::anyhow!("exercise: pinning failed: {e}"))?;
+            }
+            14 => self.pending_actions.push(Action::Save(saved.clone())),
+            16 => {
+                self.pending_actions.push(Action::Load(saved.clone()));
+            }
+            // The Record button's path: frames 17 and 18 into a USD file, written at 19.
+            17 | 19 => self.pending_actions.push(Action::ToggleRecording(saved.with_extension("usda"))),
+            20 => {
+                let host = self.host();
+                expect(host, "the stiffness edit", host.scene().sim.gravity[0] == 1.0)?;
+                expect(host, "the new sphere", host.scene().spheres.iter().any(|s| s.radius == 0.1))?;
+                let pinned = host.scene().ropes.first().is_some_and(|r| r.pinned.contains(&5));
+                expect(host, "the pin saved with the preset and loaded back", pinned)?;
+                let shot = saved.with_extension("png");
+                let written = std::fs::metadata(&shot).map(|m| m.len()).unwrap_or(0);
+                expect(host, "the F12 screenshot", written > 1000)?;
+                let usda = std::fs::read_to_string(saved.with_extension("usda")).unwrap_or_default();
+                let recorded = usda.starts_with("#usda 1.0") && usda.contains("endTimeCode = 2\n");
+                expect(host, "the recording of two frames", recorded && usda.contains("def Mesh"))?;
+                let _ = std::fs::remove_file(&saved);
+                let _ = std::fs::remove_file(&shot);
+                let _ = std::fs::remove_file(saved.with_extension("usda"));
+            }
+            // A translate handle, once the rope (reloaded at 16) lies on sphere 0: select the
+            // sphere, press on its x arrow, drag 40 pixels right over two frames and let go.
+            60 => self.editor.selected = Selection::Sphere(0),
+            61..=63 => {
+                let size = self.window.inner_size();
+                let size = [size.width as f32, size.height as f32];
+                let at =
+                    handles::position(self.host().scene(), Selection::Sphere(0)).context("no sphere 0")?;
+                let tip = handles::screen_tip(&self.camera, size, at, 0).context("sphere 0 off screen")?;
+                let cursor = [tip[0] - 4.0 + 20.0 * (self.tick - 61) as f32, tip[1]];
+                if self.tick == 61 {
+                    let host = self.host.as_mut().expect("host");
+                    let rope = host.sim_mut().read_states(&self.ctx)?[0].particles.clone();
+                    self.exercise_start = Some(at);
+                    self.exercise_rope_x = rope.iter().map(|p| p.pos[0]).sum::<f32>() / rope.len() as f32;
+                }
+                self.input.script_left(self.tick < 63, cursor);
+            }
+            // It moved along x only, and the rope lying on it came along (friction).
+            75 => {
+                let host = self.host.as_mut().expect("host");
+                let rope = host.sim_mut().read_states(&self.ctx)?[0].particles.clone();
+                let rope_x =
+                    rope.iter().map(|p| p.pos[0]).sum::<f32>() / rope.len() as f32 - self.exercise_rope_x;
+                let host = self.host();
+                let moved = handles::position(host.scene(), Selection::Sphere(0)).unwrap_or_default()
+                    - self.exercise_start.unwrap_or_default();
+                let along_x = moved.x > 0.01 && moved.y.abs() < 1e-4 && moved.z.abs() < 1e-4;
+                expect(host, &format!("the sphere dragged along x by its handle (moved {moved})"), along_x)?;
+                let dragged = rope_x > 0.002;
+                expect(
+                    host,
+                    &format!("the rope on the dragged sphere moving with it ({rope_x} m)"),
+                    dragged,
+                )?;
+                if let Some((text, true)) = &self.editor.message {
+                    anyhow::bail!("exercise: the editor reported an error: {text}");
+                }
+                return Ok(Outcome::Exit);
+            }
+            _ => {}
+        }
+        Ok(Outcome::Continue)
+    }
+}

@@ -1,0 +1,109 @@
+//! The mouse on the scene: the selection's translate handles, and grabbing, dragging and
+//! pinning particles.
+
+use super::super::handles;
+use super::super::input::{pick, Grab, PickRay};
+use super::Viewer;
+use crate::sim::gpu_types::Particle;
+use crate::sim::model::ObjectKind;
+use glam::Vec3;
+
+impl Viewer {
+    /// Takes, drags and lets go of the selection's translate handles; true while one is held
+    /// (the click then picks no particle).
+    fn update_handles(&mut self) -> bool {
+        let size = self.window.inner_size();
+        let size = [size.width as f32, size.height as f32];
+        let (from, dir) = self.camera.ray(self.input.cursor, size);
+        let target = self.editor.selected;
+        if self.input.pick_requested {
+            let at = self.host.as_ref().and_then(|h| handles::position(h.scene(), target));
+            if let Some(axis) = at.and_then(|at| handles::hit(&self.camera, size, self.input.cursor, at)) {
+                self.input.pick_requested = false;
+                self.handle = Some(handles::Drag::begin(target, axis, at.expect("hit"), from, dir));
+            }
+        }
+        let Some(drag) = self.handle else { return false };
+        if !self.input.left_down() || drag.target != target {
+            self.handle = None;
+            return false;
+        }
+        let Some(host) = self.host.as_ref() else { return false };
+        let mut edited = host.scene().clone();
+        handles::set_position(&mut edited, drag.target, drag.position(from, dir));
+        if edited != *host.scene() {
+            self.apply(edited);
+        }
+        true
+    }
+
+    /// Picks, drags and releases particles (after the UI, before recording).
+    pub(super) fn update_grab(&mut self) {
+        if self.update_handles() {
+            return;
+        }
+        let size = self.window.inner_size();
+        let (origin, dir) = self.camera.ray(self.input.cursor, [size.width as f32, size.height as f32]);
+        let ray = PickRay { origin, dir, pixel: self.camera.pixel_size(size.height as f32) };
+        let radii: Vec<f32> = match &self.host {
+            Some(host) => host
+                .model()
+                .objects
+                .iter()
+                .map(|o| if o.kind == ObjectKind::Rope { o.rope_radius as f32 } else { 0.0 })
+                .collect(),
+            None => Vec::new(),
+        };
+        if std::mem::take(&mut self.input.pin_requested) {
+            let Some(host) = self.host.as_mut() else { return };
+            let picked = host.sim_mut().read_states(&self.ctx).map(|states| {
+                pick(&states, ray, &radii).map(|hit| (hit, states[hit.0].particles[hit.1 as usize].pos))
+            });
+            match picked {
+                Ok(Some(((object, index, _, was_pinned), p))) => {
+                    let at = [p[0], p[1], p[2]];
+                    if let Err(e) =
+                        self.host.as_mut().expect("host").set_pinned(object, index, !was_pinned, at)
+                    {
+                        self.message(e, true);
+                    }
+                }
+                Ok(None) => {}
+                Err(e) => self.message(format!("picking failed: {e:#}"), true),
+            }
+        }
+        if std::mem::take(&mut self.input.pick_requested) {
+            let Some(host) = self.host.as_mut() else { return };
+            match host.sim_mut().read_states(&self.ctx) {
+                Ok(states) => match pick(&states, ray, &radii) {
+                    Some((object, index, depth, was_pinned)) => {
+                        self.input.grab =
+                            Some(Grab { object, index, depth, was_pinned, target: origin + dir * depth })
+                    }
+                    None => self.input.pick_missed(),
+                },
+                Err(e) => self.message(format!("picking failed: {e:#}"), true),
+            }
+        }
+        let particle = |target: Vec3, pinned: bool| Particle {
+            pos: [target.x, target.y, target.z, pinned as u32 as f32],
+            vel: [0.0; 4],
+        };
+        if let Some(grab) = self.input.grab.as_mut() {
+            grab.target = origin + dir * grab.depth;
+            let (object, index, target) = (grab.object, grab.index, grab.target);
+            if let Some(host) = self.host.as_mut() {
+                host.sim_mut().set_particle(object, index, particle(target, true));
+            }
+        }
+        if let Some(released) = self.input.released.take() {
+            if let Some(host) = self.host.as_mut() {
+                host.sim_mut().set_particle(
+                    released.object,
+                    released.index,
+                    particle(released.target, released.was_pinned),
+                );
+            }
+        }
+    }
+}

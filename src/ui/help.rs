@@ -1,0 +1,119 @@
+//! What each editor field means, with its units: the tooltips. Every labelled widget of the
+//! editor (`widgets`) looks its label up here, so a field is explained once; a test reads the
+//! editor's sources and checks that every label it passes has an entry.
+//!
+//! A label's entry is found by the whole label (`"radius [m]##collider"`), else by its visible
+//! part (before `##`).
+
+const HELP: &[(&str, &str)] = &[
+    // Simulation
+    ("real time", "Simulate as many frames per drawn frame as the wall clock has run (up to 4), so motion plays at its real speed where the device keeps up; off: one frame per drawn frame (slower than real time on a slow device, as the Stats say)."),
+    ("substeps", "Substeps per drawn frame: each advances frame dt / substeps. More substeps are more accurate and stable, and cost proportionally more."),
+    ("frame dt [ms]", "Simulated time per frame [ms]; 16.667 is 60 frames a second."),
+    ("gravity [m/s^2]", "Gravitational acceleration, x y z [m/s^2]; -9.81 in y is Earth's."),
+    ("objects touch each other", "Contact between objects: each pair of particles of two objects is kept the sum of their contact radii apart (a cloth's collision margin, a rope's radius). Scenes pay for it only with two or more objects."),
+    ("integrator", "How a substep advances the springs: symplectic Euler (the paper's) and Verlet are explicit (fast, limited by the stiffest spring); XPBD, implicit and VBD are stable at any stiffness and converge to implicit Euler; auto picks the cheapest method within the tolerance."),
+    ("iterations", "Solver iterations per substep of an iterative method: more converge closer to implicit Euler and cost more."),
+    ("relaxation", "XPBD over-relaxation of each Gauss-Seidel correction (1: none; below 2)."),
+    ("tolerance (of size)", "For integrator = auto: the largest position error allowed after 0.5 s, as a fraction of the scene's size."),
+    // Wind
+    ("enabled##wind", "Blow wind on every particle inside the cone."),
+    ("origin [m]##wind", "The wind cone's apex [m]."),
+    ("direction##wind", "The wind's direction (normalised)."),
+    ("force [N]##wind", "Force on each particle at full strength [N]."),
+    ("full-force radius [m]", "Radius of the cone's full-force core at the reference distance [m]."),
+    ("attenuation radius [m]", "Radius at the reference distance where the force has faded to zero [m]."),
+    ("reference distance [m]", "Distance from the apex at which the two radii are given [m]."),
+    // Light
+    ("position [m]##light", "The point light's position [m]."),
+    ("colour##light", "The light's colour (linear RGB)."),
+    ("ambient", "Light reaching every surface regardless of the lamp (0..1)."),
+    // Cloth
+    ("columns", "Particles along the cloth's width."),
+    ("rows", "Particles along the cloth's height."),
+    ("width [m]", "The cloth's width at rest [m]."),
+    ("height [m]", "The cloth's height at rest [m]."),
+    ("origin [m]", "Position of the particle at column 0, row 0 [m]."),
+    ("orientation", "Vertical: rows run down from the origin; horizontal: rows run along +z."),
+    ("pins", "Which particles are fixed in space (Ctrl + click pins or frees single particles)."),
+    ("mass [kg/particle]", "Mass of each particle [kg]."),
+    ("mass [kg/node]", "Mass of each rope node [kg]."),
+    ("stiffness [N/m]", "Spring constant of the rope's segments [N/m]."),
+    ("structural##stiffness [N/m]", "Spring constant of the springs to the 4 direct neighbours [N/m]: resists stretching."),
+    ("shear##stiffness [N/m]", "Spring constant of the diagonal springs [N/m]: resists shearing."),
+    ("bending##stiffness [N/m]", "Spring constant of the springs to the neighbours two apart [N/m]: resists bending."),
+    ("structural##rest length scale", "Rest length of the structural springs as a multiple of the grid spacing (below 1: pre-tensioned)."),
+    ("shear##rest length scale", "Rest length of the shear springs as a multiple of their grid length."),
+    ("bending##rest length scale", "Rest length of the bending springs as a multiple of their grid length."),
+    ("rest length scale", "Rest length of the rope's springs as a multiple of the node spacing."),
+    ("bending stiffness [N/m]", "Spring constant of the springs between nodes two apart [N/m]: resists bending."),
+    ("spring damping [N s/m]", "Dashpot along each spring [N s/m]: damps stretching and bending oscillations."),
+    ("drag [N s/m]", "Air drag on each particle, force = -drag x velocity [N s/m]."),
+    ("stretch limit", "Springs may not stretch more than this fraction of their rest length (ticked: enforced every substep)."),
+    ("friction", "Fraction of the sliding velocity removed on contact with a collider (0: ice, 1: sticks)."),
+    ("collision margin [m]", "Distance kept from colliders, and the cloth's contact radius against other objects [m]."),
+    ("self-collision", "Particles of this object closer than the self-collision distance push apart (grid neighbours excepted)."),
+    ("self-collision distance [m]", "Distance below which two particles of the object push apart (ticked: set here; else from the spacing or radius) [m]."),
+    ("front colour", "Colour of the cloth's front side (linear RGB)."),
+    ("back colour", "Colour of the cloth's back side (linear RGB)."),
+    // Rope
+    ("nodes", "Number of rope nodes (particles)."),
+    ("start [m]", "Position of the first node [m]."),
+    ("end [m]", "Position of the last node at rest [m]."),
+    ("radius [m]", "The rope's radius [m]: its tube, and its contact radius against colliders and other objects."),
+    ("colour", "The object's colour (linear RGB)."),
+    // Colliders
+    ("height [m]##ground", "Height of the ground plane [m]: below it is solid."),
+    ("friction (own)##ground", "Friction on the ground for every object (ticked); unticked, each object's own friction applies."),
+    ("centre [m]", "The collider's centre [m]."),
+    ("radius [m]##collider", "The collider's radius [m]."),
+    ("half extents [m]", "Half the box's size along its own x, y, z [m]."),
+    ("rotation x, y, z [deg]", "The box's rotation about x, then y, then z [degrees]."),
+    ("start [m]##capsule", "Centre of the capsule's first end cap [m]."),
+    ("end [m]##capsule", "Centre of the capsule's second end cap [m]."),
+    ("moves", "Move the collider at a constant velocity (it drags what it touches through friction)."),
+    ("velocity [m/s]", "The collider's velocity [m/s]."),
+];
+
+/// The tooltip of the widget labelled `label`.
+pub fn help(label: &str) -> Option<&'static str> {
+    let find = |key: &str| HELP.iter().find(|(k, _)| *k == key).map(|(_, t)| *t);
+    find(label).or_else(|| find(label.split("##").next().unwrap_or(label)))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::help;
+
+    /// Every label the editor's sources pass to a widget helper (`drag(ui, "...", ...)` and the
+    /// like, and the three spring types of `springs(ui, "...", ...)`) has a tooltip.
+    #[test]
+    fn every_editor_field_has_a_tooltip() {
+        let sources = [include_str!("editor.rs"), include_str!("colliders.rs")];
+        let helpers = ["drag(", "drag3(", "int(", "optional(", "choice(", "color(", "check("];
+        let mut labels = Vec::new();
+        for source in sources {
+            for (i, _) in source.match_indices("(ui,") {
+                let before = &source[..i + 1];
+                let after = source[i + 4..].trim_start();
+                let Some(rest) = after.strip_prefix('"') else { continue };
+                let label = &rest[..rest.find('"').expect("a closed string")];
+                if before.ends_with("springs(") {
+                    labels.extend(["structural", "shear", "bending"].map(|s| format!("{s}##{label}")));
+                } else if helpers.iter().any(|h| before.ends_with(h)) {
+                    labels.push(label.to_string());
+                }
+            }
+        }
+        assert!(labels.len() > 40, "found {} labels: the scan is broken", labels.len());
+        let missing: Vec<_> = labels.iter().filter(|l| help(l).is_none()).collect();
+        assert!(missing.is_empty(), "no tooltip for {missing:?} (src/ui/help.rs)");
+    }
+
+    #[test]
+    fn a_label_is_found_by_its_visible_part_when_its_context_has_no_entry() {
+        assert!(help("radius [m]##collider").unwrap().contains("collider"));
+        assert!(help("radius [m]##anything").unwrap().contains("rope"));
+        assert!(help("no such field").is_none());
+    }
+}
