@@ -9,13 +9,8 @@ layout(location = 1) in vec3 world_normal;
 layout(location = 0) out vec4 out_color;
 
 void main() {
-    if (draw.params.y > 0.5) {
-        // A ground shadow: darkens what lies below once a pixel. Every layer of shadow lies in
-        // the same plane; their depths, rounded to 2^-18, are equal, so the depth test (LESS)
-        // drops all but the first (without the rounding, interpolation noise lets some through
-        // in a speckled pattern).
-        out_color = vec4(0.0, 0.0, 0.0, 0.5);
-        gl_FragDepth = floor(gl_FragCoord.z * 262144.0) / 262144.0;
+    if (draw.params.y > 0.5) {  // a ground shadow: darkens what lies below
+        out_color = vec4(0.0, 0.0, 0.0, 0.35);
         return;
     }
     vec3 to_eye = normalize(cam.eye.xyz - world_pos);
@@ -33,5 +28,4 @@ void main() {
         c = base * (cam.light_color.w + diffuse * cam.light_color.rgb) + specular * cam.light_color.rgb;
     }
     out_color = vec4(pow(clamp(c, 0.0, 1.0), vec3(1.0 / 2.2)), 1.0);
-    gl_FragDepth = gl_FragCoord.z;  // a shader that writes the depth anywhere must everywhere
 }

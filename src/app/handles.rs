@@ -25,6 +25,8 @@ pub struct Drag {
     pub start: Vec3,
     /// Where along the axis (from `start`) the cursor's ray passed then [m].
     pub grip: f32,
+    /// The farthest one drag moves the target: 4 times its distance from the eye then [m].
+    pub reach: f32,
 }
 
 /// The position of a selection that has handles: a sphere's or box's centre, a capsule's
@@ -121,12 +123,18 @@ pub fn hit(camera: &OrbitCamera, size: [f32; 2], cursor: [f32; 2], at: Vec3) -> 
 }
 
 /// Where along the line (`origin`, unit `axis`) the ray (`from`, unit `dir`) passes nearest,
-/// as a distance from `origin`; `None` when the ray runs along the line.
+/// as a distance from `origin`; `None` when the ray runs within about 2.5 degrees of the line
+/// (the point would jump by metres for a pixel) or the nearest point is behind the eye.
 pub fn along(origin: Vec3, axis: Vec3, from: Vec3, dir: Vec3) -> Option<f32> {
     let w = origin - from;
     let b = axis.dot(dir);
     let denom = 1.0 - b * b;
-    (denom > 1e-6).then(|| (b * dir.dot(w) - axis.dot(w)) / denom)
+    if denom < 2e-3 {
+        return None;
+    }
+    let s = (b * dir.dot(w) - axis.dot(w)) / denom;
+    let ray = (dir.dot(w) - b * axis.dot(w)) / denom; // the ray's own parameter there
+    (ray > 0.0).then_some(s)
 }
 
 impl Drag {
@@ -134,16 +142,15 @@ impl Drag {
     /// (`from`, `dir`) passes.
     pub fn begin(target: Selection, axis: usize, start: Vec3, from: Vec3, dir: Vec3) -> Self {
         let grip = along(start, AXES[axis], from, dir).unwrap_or(0.0);
-        Self { target, axis, start, grip }
+        Self { target, axis, start, grip, reach: 4.0 * (start - from).length() }
     }
 
-    /// The target's position for the cursor's ray (`from`, `dir`) now.
-    pub fn position(&self, from: Vec3, dir: Vec3) -> Vec3 {
+    /// The target's position for the cursor's ray (`from`, `dir`) now; `None` (stay where it
+    /// is) while the ray runs along the axis or points away from it.
+    pub fn position(&self, from: Vec3, dir: Vec3) -> Option<Vec3> {
         let axis = AXES[self.axis];
-        match along(self.start, axis, from, dir) {
-            Some(s) => self.start + axis * (s - self.grip),
-            None => self.start,
-        }
+        along(self.start, axis, from, dir)
+            .map(|s| self.start + axis * (s - self.grip).clamp(-self.reach, self.reach))
     }
 }
 
@@ -165,10 +172,24 @@ mod tests {
         let (from, dir) = camera.ray(grab, size);
         let drag = Drag::begin(Selection::Light, 0, at, from, dir);
         let (from, dir) = camera.ray([grab[0] + 80.0, grab[1]], size);
-        let moved = drag.position(from, dir) - at;
+        let moved = drag.position(from, dir).expect("across the axis") - at;
         let expected = 80.0 * camera.pixel_size(size[1]) * camera.distance;
         assert!((moved.x - expected).abs() < 0.02 * expected, "{moved} against {expected}");
         assert!(moved.y.abs() < 1e-5 && moved.z.abs() < 1e-5, "{moved}");
+    }
+
+    /// Looking along an axis, its arrow does not move the target (it would jump by metres a
+    /// pixel), and a drag never carries it past 4 times its distance from the eye.
+    #[test]
+    fn a_drag_along_the_view_or_too_far_is_refused_or_bounded() {
+        let start = Vec3::ZERO;
+        let eye = Vec3::new(0.0, 0.0, 5.0);
+        let drag = Drag::begin(Selection::Light, 2, start, eye, Vec3::new(0.0, 0.3, -1.0).normalize());
+        assert!(drag.position(eye, Vec3::NEG_Z).is_none(), "looking down the z axis");
+        let x = Drag::begin(Selection::Light, 0, start, eye, Vec3::NEG_Z);
+        let nearly_parallel = Vec3::new(1.0, 0.0, -0.06).normalize();
+        let p = x.position(eye, nearly_parallel).expect("3.4 degrees off the axis");
+        assert!(p.x <= x.reach + 1e-4 && x.reach <= 20.0 + 1e-4, "{p} beyond the reach {}", x.reach);
     }
 
     #[test]

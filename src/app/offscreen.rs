@@ -202,7 +202,7 @@ fn run(
         ]);
         rec.begin_rendering(target.color.view(), target.depth.view(), extent, SKY);
         let items = view::scene_items(scene, sim.time());
-        renderer.record(&mut rec, slot, sim, &items, view::grid_height(scene));
+        renderer.record(&mut rec, slot, sim, &items, view::ground(scene));
         rec.end_rendering();
         if let Some(pool) = pool {
             rec.timestamp_after_drawing(pool, 1);

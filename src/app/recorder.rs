@@ -36,7 +36,13 @@ impl AppRecorder {
     /// what was recorded.
     pub fn capture(&mut self, ctx: &GpuContext, host: &mut SimHost) -> Result<(), String> {
         let Some((recording, _)) = self.active.as_mut() else { return Ok(()) };
-        let added = host.sim_mut().read_states(ctx).and_then(|states| recording.add(&states));
+        let added = if recording.matches(host.model()) {
+            host.sim_mut().read_states(ctx).and_then(|states| recording.add(&states))
+        } else {
+            Err(anyhow::anyhow!(
+                "the scene's objects or frame rate changed (a recording keeps one set of meshes)"
+            ))
+        };
         added.map_err(|e| match self.stop() {
             Ok(saved) => format!("recording stopped: {e:#}; {saved}"),
             Err(also) => format!("recording stopped: {e:#}; {also:#}"),
@@ -53,10 +59,11 @@ impl AppRecorder {
                     .map_err(|e| anyhow::anyhow!("writing {}: {e}", path.display()))?;
                 Ok(format!("recorded {frames} frames to {}", path.display()))
             }
+            Format::ObjSequence if frames == 0 => Ok("recorded no frames".into()),
             Format::ObjSequence => Ok(format!(
                 "recorded {frames} frames to {} ... {}",
                 recording.obj_path(1).display(),
-                recording.obj_path(frames.max(1)).display()
+                recording.obj_path(frames).display()
             )),
         }
     }

@@ -445,8 +445,10 @@ impl Viewer {
         let run_sim = !self.editor.paused || std::mem::take(&mut self.step_once);
         // Simulated frames this drawn frame: one, or in real-time mode as many frame_dt as the
         // wall clock has run since the last (at most REAL_TIME_MOST; a device that cannot keep
-        // up falls behind, and the stats say by how much).
-        let sim_frames = match (run_sim, self.editor.real_time && !self.editor.paused) {
+        // up falls behind, and the stats say by how much). A recording takes one a drawn frame
+        // (each recorded frame is read back after its drawn frame).
+        let real_time = self.editor.real_time && !self.editor.paused && self.recorder.frames().is_none();
+        let sim_frames = match (run_sim, real_time) {
             (false, _) => 0,
             (true, false) => 1,
             (true, true) => {
@@ -515,8 +517,8 @@ impl Viewer {
             ),
         ]);
         rec.begin_rendering(swapchain.view(image), swapchain.depth().view(), extent, SKY);
-        let grid = view::grid_height(host.scene());
-        self.renderer.as_ref().expect("renderer").record(&mut rec, slot, host.sim(), &items, grid);
+        let ground = view::ground(host.scene());
+        self.renderer.as_ref().expect("renderer").record(&mut rec, slot, host.sim(), &items, ground);
         if let Some(pool) = &frame.timestamps {
             rec.timestamp_after_drawing(pool, 1);
         }
@@ -569,10 +571,14 @@ impl Viewer {
         }
         let host = self.host.as_ref().expect("host");
         self.stats.simulated_time = host.sim().time();
-        // Each drawn frame advances one frame_dt: against the wall clock, that is the speed.
-        let simulated = if self.editor.real_time { sim_frames.max(1) as f64 } else { 1.0 };
-        self.stats.speed = (!self.editor.paused)
-            .then(|| simulated * host.model().frame_dt * 1e3 / self.stats.cpu_frame_ms.max(1e-6));
+        // Simulated time against the wall clock, averaged like the frame time (in real-time
+        // mode a drawn frame simulates 0 to REAL_TIME_MOST frames).
+        let now = sim_frames as f64 * host.model().frame_dt / dt.max(1e-6);
+        let speed = match self.stats.speed {
+            Some(before) => 0.9 * before + 0.1 * now,
+            None => now,
+        };
+        self.stats.speed = (!self.editor.paused).then_some(speed);
         self.stats.particles = host.model().objects.iter().map(|o| o.particle_count() as u64).sum();
 
         if capture {
@@ -697,14 +703,14 @@ impl Drop for Viewer {
     }
 }
 
-/// The F12 screenshot's file: `msdsim-<seconds since 1970>-<milliseconds>.png` in the current
-/// folder.
 mod exercise;
 mod grab;
 
 /// Real-time mode simulates at most this many frames per drawn frame.
 const REAL_TIME_MOST: u32 = 4;
 
+/// The F12 screenshot's file: `msdsim-<seconds since 1970>-<milliseconds>.png` in the current
+/// folder.
 fn screenshot_name() -> PathBuf {
     let now = std::time::SystemTime::now().duration_since(std::time::UNIX_EPOCH).unwrap_or_default();
     PathBuf::from(format!("msdsim-{}-{:03}.png", now.as_secs(), now.subsec_millis()))

@@ -32,7 +32,7 @@ impl Format {
     /// The format of `path`, from its extension (`usda` or `obj`), or a message naming the
     /// supported ones.
     pub fn of(path: &Path) -> Result<Self, String> {
-        match path.extension().and_then(|e| e.to_str()) {
+        match path.extension().and_then(|e| e.to_str()).map(str::to_ascii_lowercase).as_deref() {
             Some("usda") => Ok(Format::Usd),
             Some("obj") => Ok(Format::ObjSequence),
             _ => Err(format!(
@@ -49,6 +49,8 @@ const MAX_BYTES: u64 = 2 << 30;
 /// One object's mesh and its frames.
 struct Track {
     name: String,
+    /// The object's kind and grid: a recording keeps one set of meshes.
+    shape: (ObjectKind, [u32; 2]),
     counts: usize,
     /// Surface vertices a frame.
     vertices: usize,
@@ -83,19 +85,17 @@ impl Recording {
             ))
             .into());
         }
-        if format == Format::ObjSequence {
-            let folder = match path.parent() {
-                Some(p) if !p.as_os_str().is_empty() => p,
-                _ => Path::new("."),
-            };
-            if !folder.is_dir() {
-                return Err(crate::error::UserError(format!(
-                    "{}: the folder {} for the OBJ sequence does not exist",
-                    path.display(),
-                    folder.display()
-                ))
-                .into());
-            }
+        let folder = match path.parent() {
+            Some(p) if !p.as_os_str().is_empty() => p,
+            _ => Path::new("."),
+        };
+        if !folder.is_dir() {
+            return Err(crate::error::UserError(format!(
+                "{}: the folder {} for the recording does not exist",
+                path.display(),
+                folder.display()
+            ))
+            .into());
         }
         let tracks = model
             .objects
@@ -108,6 +108,7 @@ impl Recording {
                 };
                 Track {
                     name: usd_name(&o.name),
+                    shape: (o.kind, o.dims),
                     counts: indices.len() / 3,
                     vertices: o.surface_count(),
                     indices,
@@ -125,6 +126,14 @@ impl Recording {
             stem: path.with_extension(""),
             frames: 0,
         })
+    }
+
+    /// Whether `model` still has the objects and frame rate this recording began with (an
+    /// edit that changes them cannot go into the same meshes).
+    pub fn matches(&self, model: &SimModel) -> bool {
+        (1e3 / model.frame_dt).round() / 1e3 == self.fps
+            && model.objects.len() == self.tracks.len()
+            && self.tracks.iter().zip(&model.objects).all(|(t, o)| t.shape == (o.kind, o.dims))
     }
 
     pub fn format(&self) -> Format {

@@ -3,7 +3,8 @@
 //! for colliders and gizmos, the ground grid and, on the ground, the shadows the light casts of
 //! the surfaces and colliders (planar projection from the point light, so contact with the
 //! ground reads at a glance: `mesh.vert` flattens each shadow caster onto the ground plane, a
-//! translucent overlay darkens each covered pixel once).
+//! translucent overlay without depth writes darkens what it covers; where two layers of a
+//! caster overlap, as a closed collider's near and far sides do, they darken twice).
 //!
 //! Per frame slot it owns a camera uniform buffer, written by the host only after that slot's
 //! fence, so no frame in flight reads a buffer being written.
@@ -170,7 +171,7 @@ impl SceneRenderer {
     ) -> Result<[GraphicsPipeline; 3]> {
         let stride = std::mem::size_of::<SurfaceVertex>() as u32;
         let attributes = [(0, VertexFormat::Float32x4, 0), (1, VertexFormat::Float32x4, 16)];
-        let desc = |name, topology, overlay| GraphicsDesc {
+        let desc = |name, topology, overlay: bool| GraphicsDesc {
             name,
             vertex,
             fragment,
@@ -178,7 +179,7 @@ impl SceneRenderer {
             topology,
             color,
             depth,
-            depth_write: true,
+            depth_write: !overlay,
             overlay,
             set_layout: layout,
             push_constant_bytes: std::mem::size_of::<Draw>() as u32,
@@ -256,15 +257,15 @@ impl SceneRenderer {
         Ok(self.cameras[slot].write(0, std::slice::from_ref(camera))?)
     }
 
-    /// Records `items` and, at `grid`'s height (where the scene has a ground), the ground grid
-    /// into the current rendering.
+    /// Records `items` and, where the scene has a ground, its floor, grid and shadows into the
+    /// current rendering.
     pub fn record(
         &self,
         rec: &mut Recorder<'_>,
         slot: usize,
         sim: &GpuSim,
         items: &[DrawItem],
-        grid: Option<f32>,
+        ground: Option<super::view::Ground>,
     ) {
         // params: x lit, y 1 for a shadow flattened onto the ground at height z.
         let push = |rec: &mut Recorder<'_>,
@@ -294,7 +295,7 @@ impl SceneRenderer {
                 }
             }
         };
-        if let Some(height) = grid {
+        if let Some(super::view::Ground { height, shadows }) = ground {
             // The floor: a flat slab under the grid, light enough for the shadows to show.
             rec.bind_graphics(&self.triangles, self.sets[slot]);
             let floor = DrawItem::solid(
@@ -320,10 +321,12 @@ impl SceneRenderer {
             push(rec, &self.lines, &item, None);
             rec.draw_indexed(&self.grid.vertices, &self.grid.indices, self.grid.count, 1);
             // The shadows of what stands on the ground: surfaces and colliders, not gizmos.
-            rec.bind_graphics(&self.shadows, self.sets[slot]);
-            for item in items.iter().filter(|i| item_casts_shadow(i)) {
-                push(rec, &self.shadows, item, Some(height));
-                mesh(rec, item.shape);
+            if shadows {
+                rec.bind_graphics(&self.shadows, self.sets[slot]);
+                for item in items.iter().filter(|i| item_casts_shadow(i)) {
+                    push(rec, &self.shadows, item, Some(height));
+                    mesh(rec, item.shape);
+                }
             }
         }
         rec.bind_graphics(&self.triangles, self.sets[slot]);

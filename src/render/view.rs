@@ -81,9 +81,20 @@ fn collider_items(shape: &collider::Shape) -> Vec<DrawItem> {
     }
 }
 
-/// The height of the ground grid: where the scene has a ground, nowhere otherwise.
-pub fn grid_height(scene: &Scene) -> Option<f32> {
-    scene.ground.as_ref().map(|g| g.height as f32)
+/// The ground as drawn: its floor and grid, and the shadows the light casts on it.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Ground {
+    pub height: f32,
+    /// The light is at least 5 cm above the ground (from lower, the projection degenerates).
+    pub shadows: bool,
+}
+
+/// The scene's ground as drawn, where it has one.
+pub fn ground(scene: &Scene) -> Option<Ground> {
+    scene
+        .ground
+        .as_ref()
+        .map(|g| Ground { height: g.height as f32, shadows: scene.light.position[1] > g.height + 0.05 })
 }
 
 /// The camera uniform for a view of `extent` pixels, lit by the scene's light.

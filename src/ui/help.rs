@@ -7,8 +7,8 @@
 
 const HELP: &[(&str, &str)] = &[
     // Simulation
-    ("real time", "Simulate as many frames per drawn frame as the wall clock has run (up to 4), so motion plays at its real speed where the device keeps up; off: one frame per drawn frame (slower than real time on a slow device, as the Stats say)."),
-    ("substeps", "Substeps per drawn frame: each advances frame dt / substeps. More substeps are more accurate and stable, and cost proportionally more."),
+    ("real time", "Simulate as many frames per drawn frame as the wall clock has run (up to 4), so motion plays at its real speed where the device keeps up; off, and while recording: one frame per drawn frame (slower than real time on a slow device, as the Stats say). The GPU times shown are then the last simulated frame's."),
+    ("substeps", "Substeps per simulated frame: each advances frame dt / substeps. More substeps are more accurate and stable, and cost proportionally more."),
     ("frame dt [ms]", "Simulated time per frame [ms]; 16.667 is 60 frames a second."),
     ("gravity [m/s^2]", "Gravitational acceleration, x y z [m/s^2]; -9.81 in y is Earth's."),
     ("objects touch each other", "Contact between objects: each pair of particles of two objects is kept the sum of their contact radii apart (a cloth's collision margin, a rope's radius). Scenes pay for it only with two or more objects."),

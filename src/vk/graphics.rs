@@ -35,8 +35,7 @@ pub struct GraphicsDesc<'a> {
     pub depth: Format,
     /// Depth test on; writes only when `depth_write`.
     pub depth_write: bool,
-    /// A translucent overlay drawn once per pixel: alpha blending, and the depth test passes
-    /// only nearer fragments (with depth writes, a second layer at the same depth is dropped).
+    /// A translucent overlay: alpha blending (source alpha over the target).
     pub overlay: bool,
     pub set_layout: &'a BindingSetLayout,
     /// Bytes of push constants, visible to both stages.
@@ -128,11 +127,7 @@ impl GraphicsPipeline {
             let depth = vk::PipelineDepthStencilStateCreateInfo::default()
                 .depth_test_enable(true)
                 .depth_write_enable(desc.depth_write)
-                .depth_compare_op(if desc.overlay {
-                    vk::CompareOp::LESS
-                } else {
-                    vk::CompareOp::LESS_OR_EQUAL
-                });
+                .depth_compare_op(vk::CompareOp::LESS_OR_EQUAL);
             let attachment = vk::PipelineColorBlendAttachmentState::default()
                 .color_write_mask(vk::ColorComponentFlags::RGBA);
             let attachment = match desc.overlay {

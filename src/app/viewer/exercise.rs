@@ -98,6 +98,9 @@ impl Viewer {
                 let _ = std::fs::remove_file(&saved);
                 let _ = std::fs::remove_file(&shot);
                 let _ = std::fs::remove_file(saved.with_extension("usda"));
+                if let Some((text, true)) = &self.editor.message {
+                    anyhow::bail!("exercise: the editor reported an error: {text}");
+                }
             }
             // A translate handle, once the rope (reloaded at 16) lies on sphere 0: select the
             // sphere, press on its x arrow, drag 40 pixels right over two frames and let go.

@@ -28,9 +28,9 @@ impl Viewer {
             self.handle = None;
             return false;
         }
-        let Some(host) = self.host.as_ref() else { return false };
+        let (Some(host), Some(to)) = (self.host.as_ref(), drag.position(from, dir)) else { return true };
         let mut edited = host.scene().clone();
-        handles::set_position(&mut edited, drag.target, drag.position(from, dir));
+        handles::set_position(&mut edited, drag.target, to);
         if edited != *host.scene() {
             self.apply(edited);
         }
