@@ -23,8 +23,9 @@
 // The iterative integrators (SOLVER) replace the physics step with the prediction y (read like
 // the physics: neighbours' velocities staged when the implicit method's dashpots read them),
 // then their iterations: the displacements p - x live in registers and, for the neighbours, in
-// scratch (px/py/pz keep the substep's start x); XPBD and VBD visit the vertex colours in turn,
-// a barrier() after each colour; the implicit method's Jacobi sweep computes every new
+// scratch (px/py/pz keep the substep's start x); XPBD visits the spring classes in turn (the
+// thread owning a spring's first node moves both ends), VBD the vertex colours, a barrier()
+// after each class or colour; the implicit method's Jacobi sweep computes every new
 // displacement, then a barrier(), the writes, and a barrier(). The updates themselves are
 // solver_bodies.glsl's, as in the per-stage shaders.
 #define STATE_FUSED
@@ -46,7 +47,7 @@ const uint SLOTS = (CAP + THREADS - 1u) / THREADS;
 const uint WINDOW = THREADS * PASS_SLOTS + 2u * HALO;  // velocities staged per pass
 const uint EMPTY = 0xFFFFFFFFu;
 const bool ITERATIVE = SOLVER == METHOD_XPBD || SOLVER == METHOD_IMPLICIT || SOLVER == METHOD_VBD;
-const bool COLOURED = SOLVER == METHOD_XPBD || SOLVER == METHOD_VBD;
+const bool COLOURED = SOLVER == METHOD_VBD;  // VBD sweeps vertex colours; XPBD spring classes
 
 shared float px[CAP];
 shared float py[CAP];
@@ -229,7 +230,7 @@ void main() {
 
         if (ITERATIVE) {
             // The solve, from the prediction; px/py/pz hold the start positions x.
-            vec4 lambda[MAX_SLOTS][3];  // XPBD: each particle's copy of its springs' multipliers
+            vec4 lambda[MAX_SLOTS][3];  // XPBD: the multipliers of each particle's forward springs
             vec3 before[MAX_SLOTS];     // implicit: the iterate before (Chebyshev)
             [[unroll]] for (uint s = 0u; s < MAX_SLOTS; ++s) {
                 if (s >= SLOTS) break;
@@ -241,18 +242,44 @@ void main() {
             }
             barrier();
             for (uint it = 0u; it < g.iterations; ++it) {
-                if (COLOURED) {
+                if (SOLVER == METHOD_XPBD) {
+                    // The spring classes (springs.glsl) in turn: the thread owning a spring's
+                    // first node moves both ends (no other spring of the class touches them).
+                    float w = 1.0 / obj.mass;
+                    [[unroll]] for (uint q = 0u; q < SPRING_CLASS_COUNT; ++q) {
+                        uint dir = q >> 1u;
+                        int slot = class_slot(dir);
+                        if (obj.stiffness[slot >> 2] != 0.0) {
+                            [[unroll]] for (uint s = 0u; s < MAX_SLOTS; ++s) {
+                                if (s >= SLOTS) break;
+                                uint i = own[s];
+                                if (i >= n) continue;
+                                ivec2 a = ivec2(int(i % cols), int(i / cols));
+                                if (class_parity(dir, a) != (q & 1u)) continue;
+                                int j = neighbour(a, class_offset(dir), obj.dims);
+                                if (j < 0) continue;
+                                bool pin_j = spinned(uint(j));
+                                if (pinned[s] && pin_j) continue;
+                                vec3 di = sdisp(i);
+                                vec3 dj = sdisp(uint(j));
+                                vec3 normal;
+                                float lam = lambda[s][dir / 4u][dir % 4u];
+                                float dl = xpbd_spring(dir, x[s], di, spos(uint(j)), dj, pinned[s], pin_j, lam, normal);
+                                if (!pinned[s]) set_sdisp(i, di + normal * (w * dl));
+                                if (!pin_j) set_sdisp(uint(j), dj - normal * (w * dl));
+                                lambda[s][dir / 4u][dir % 4u] = lam + dl;
+                            }
+                        }
+                        barrier();  // the next class reads this one's displacements
+                    }
+                } else if (COLOURED) {
                     for (uint c = 0u; c < colours; ++c) {
                         [[unroll]] for (uint s = 0u; s < MAX_SLOTS; ++s) {
                             if (s >= SLOTS) break;
                             uint k = own[s];
                             if (k >= n || pinned[s] || colour[s] != c) continue;
                             uvec2 cell = uvec2(k % cols, k / cols);
-                            if (SOLVER == METHOD_XPBD) {
-                                xpbd_particle(cell, x[s], dx[s], lambda[s]);
-                            } else {
-                                dx[s] = vbd_particle(cell, x[s], dx[s], dy[s]);
-                            }
+                            dx[s] = vbd_particle(cell, x[s], dx[s], dy[s]);
                             set_sdisp(k, dx[s]);
                         }
                         barrier();  // the next colour reads this one's displacements
@@ -281,9 +308,12 @@ void main() {
             [[unroll]] for (uint s = 0u; s < MAX_SLOTS; ++s) {
                 if (s >= SLOTS) break;
                 if (pinned[s]) continue;
+                if (SOLVER == METHOD_XPBD && own[s] < n) dx[s] = sdisp(own[s]);  // moved by springs
                 x[s] += dx[s];
                 v[s] = dx[s] / g.dt;
             }
+            // XPBD read its displacements back from scratch, which the constraints reuse.
+            if (SOLVER == METHOD_XPBD) barrier();
         }
 
         // Constraints on the new positions: shared for the neighbours, hashed for contacts.

@@ -1,10 +1,12 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_control_flow_attributes : require
-// One vertex colour of one XPBD Gauss-Seidel iteration (xpbd_particle in solver_bodies.glsl),
-// one invocation per particle of that colour, its neighbours (other colours) held. In place in
-// iter (one slice of displacements p - x from the substep start x in p_in, see predict.comp);
-// each particle keeps its own copy of the 12 multipliers of its springs in aux[3i .. 3i + 2].
+// One spring class of one XPBD Gauss-Seidel iteration (xpbd_spring in solver_bodies.glsl; the
+// classes in springs.glsl), one invocation per particle: the spring of the class whose first
+// node it is, if any, moves both ends (no other spring of the class touches them). In place in
+// iter (one slice of displacements p - x from the substep start x in p_in, see predict.comp;
+// w = 1 pinned); aux[3i + dir / 4][dir % 4] holds the multiplier of particle i's forward spring
+// of direction dir. Pass SPRING_CLASS_COUNT, after the last iteration, finishes every particle.
 #include "bindings.glsl"
 #include "springs.glsl"
 
@@ -17,17 +19,30 @@ layout(local_size_x_id = 0, local_size_y_id = 1, local_size_z = 1) in;
 #include "solver_end.glsl"
 
 void main() {
-    uvec2 cell = coloured_cell(gl_GlobalInvocationID.xy);
+    uvec2 cell = gl_GlobalInvocationID.xy;
     if (cell.x >= obj.dims.x || cell.y >= obj.dims.y) return;
     uint i = cell.x + cell.y * obj.dims.x;
-    vec4 di = iter[i];
-    vec3 dx = di.xyz;
-    bool pinned = di.w > 0.5;
-    if (!pinned) {
-        vec4 lambda[3] = vec4[3](aux[3u * i], aux[3u * i + 1u], aux[3u * i + 2u]);
-        xpbd_particle(cell, p_in[i].pos.xyz, dx, lambda);
-        for (uint q = 0u; q < 3u; ++q) aux[3u * i + q] = lambda[q];
-        iter[i] = vec4(dx, di.w);
+    if (it.colour == SPRING_CLASS_COUNT) {
+        vec4 di = iter[i];
+        finish_particle(i, di.xyz, di.w > 0.5);
+        return;
     }
-    if (last_iteration()) finish_particle(i, dx, pinned);
+    uint dir = it.colour >> 1u;
+    int slot = class_slot(dir);
+    if (class_parity(dir, ivec2(cell)) != (it.colour & 1u) || obj.stiffness[slot >> 2] == 0.0) return;
+    int j = neighbour(ivec2(cell), class_offset(dir), obj.dims);
+    if (j < 0) return;
+    vec4 di = iter[i];
+    vec4 dj = iter[j];
+    bool pin_i = di.w > 0.5;
+    bool pin_j = dj.w > 0.5;
+    if (pin_i && pin_j) return;
+    uint at = 3u * i + dir / 4u;
+    float lam = aux[at][dir % 4u];
+    vec3 normal;
+    float dl = xpbd_spring(dir, p_in[i].pos.xyz, di.xyz, p_in[j].pos.xyz, dj.xyz, pin_i, pin_j, lam, normal);
+    float w = 1.0 / obj.mass;
+    if (!pin_i) iter[i] = vec4(di.xyz + normal * (w * dl), di.w);
+    if (!pin_j) iter[j] = vec4(dj.xyz - normal * (w * dl), dj.w);
+    aux[at][dir % 4u] = lam + dl;
 }

@@ -11,40 +11,24 @@
 #ifndef MSD_SOLVER_BODIES_GLSL
 #define MSD_SOLVER_BODIES_GLSL
 
-// XPBD, one Gauss-Seidel visit: the particle's share of each of its springs' updates in turn,
-// with its own copy of the 12 multipliers (lambda[s / 4][s % 4] for spring s):
-//   d_lambda = relaxation (-C - alpha~ lambda - gamma n.(dx_i - dx_j)) / ((1 + gamma)(w_i + w_j) + alpha~)
-// with the per-type constants and the reciprocal of the denominator from the host (obj.xpbd);
-// the spring's length by one inversesqrt (the chain of dependent operations through dx is
-// what a colour pass waits on).
-void xpbd_particle(uvec2 cell, vec3 x, inout vec3 dx, inout vec4 lambda[3]) {
-    float w_i = 1.0 / obj.mass;
-    [[unroll]] for (int s = 0; s < 12; ++s) {
-        ivec3 spring = SPRINGS[s];
-        float k = obj.stiffness[spring.z];
-        if (k == 0.0) continue;
-        int j = neighbour(ivec2(cell), spring.xy, obj.dims);
-        if (j < 0) continue;
-        vec3 dj = SD(j);
-        vec3 base = x - SX(j);
-        vec4 c = obj.xpbd[spring.z];  // alpha~, gamma, scale (other end free, pinned)
-        float alpha = c.x;
-        float gamma = c.y;
-        float scale = SPIN(j) ? c.w : c.z;
-        float lam = lambda[s / 4][s % 4];
-        float bias = rest_length(s) - alpha * lam;
-        vec3 rel = dx - dj;
-        vec3 delta = base + rel;  // p_i - p_j
-        float dd = dot(delta, delta);
-        if (dd <= 0.0) continue;
-        float inv = inversesqrt(dd);
-        vec3 normal = delta * inv;
-        float d = dd * inv;
-        float moved = dot(normal, rel);
-        float d_lambda = scale * (bias - d - gamma * moved);
-        dx += normal * (w_i * d_lambda);
-        lambda[s / 4][s % 4] = lam + d_lambda;
-    }
+// XPBD, one spring of direction `dir` (a spring class, springs.glsl) from particle i (start
+// position xi, displacement di, pinned pin_i) to particle j, with multiplier lam: returns
+// dlambda = relaxation (-C - alpha~ lambda - gamma n.(dx_i - dx_j)) / ((1 + gamma)(w_i + w_j) + alpha~)
+// (the per-type constants and the reciprocal of the denominator from the host, obj.xpbd) and the
+// spring's direction n through `normal` (zero for coincident ends: no update). The caller moves
+// i by w_i n dlambda and j by -w_j n dlambda (sim::cpu::integrators::xpbd).
+float xpbd_spring(uint dir, vec3 xi, vec3 di, vec3 xj, vec3 dj, bool pin_i, bool pin_j, float lam, out vec3 normal) {
+    int slot = class_slot(dir);
+    vec4 c = obj.xpbd[slot >> 2];  // alpha~, gamma, scale (both ends free, one pinned)
+    vec3 rel = di - dj;
+    vec3 delta = (xi - xj) + rel;  // p_i - p_j
+    float dd = dot(delta, delta);
+    normal = vec3(0.0);
+    if (dd <= 0.0) return 0.0;
+    float inv = inversesqrt(dd);
+    normal = delta * inv;
+    float scale = (pin_i || pin_j) ? c.w : c.z;
+    return scale * (rest_length(slot) - c.x * lam - dd * inv - c.y * dot(normal, rel));
 }
 
 // VBD, one Gauss-Seidel visit: one Newton step on implicit Euler's incremental potential as a

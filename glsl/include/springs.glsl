@@ -28,6 +28,23 @@ int neighbour(ivec2 cell, ivec2 offset, uvec2 dims) {
 // bindings.glsl.
 float rest_length(int s) { return obj.rest[s >> 2][s & 3]; }
 
+// The spring classes XPBD sweeps (sim::integrator::SPRING_CLASSES and spring_class_parity):
+// class q = 2 dir + parity; direction dir is the offset from a spring's first node to its
+// second, its springs split by the parity of the first node's coordinate along the line (halved
+// for bending). No two springs of a class share a particle. A pass per class, then a pass
+// (q = SPRING_CLASS_COUNT) that finishes every particle.
+const uint SPRING_CLASS_COUNT = 12u;
+ivec2 class_offset(uint dir) {
+    return dir == 0u ? ivec2(1, 0) : dir == 1u ? ivec2(0, 1) : dir == 2u ? ivec2(1, 1)
+         : dir == 3u ? ivec2(-1, 1) : dir == 4u ? ivec2(2, 0) : ivec2(0, 2);
+}
+// The direction's slot in SPRINGS (its type is slot / 4).
+int class_slot(uint dir) { return dir == 0u ? 0 : dir == 1u ? 2 : dir == 2u ? 4 : dir == 3u ? 7 : dir == 4u ? 8 : 10; }
+uint class_parity(uint dir, ivec2 cell) {
+    int u = (dir == 0u || dir == 2u || dir == 4u) ? cell.x : cell.y;
+    return uint(dir >= 4u ? u >> 1 : u) & 1u;
+}
+
 // The vertex colouring the Gauss-Seidel integrators sweep (sim::integrator::vertex_colours and
 // vertex_colour): particle (x, y) has colour (x + 2 y) mod C, C = 5 colours, 3 for one row; no
 // spring joins two particles of one colour.

@@ -25,7 +25,7 @@ pub enum Integrator {
     /// other half. Second order for conservative forces, explicit, one force pass per substep.
     Verlet,
     /// Extended position-based dynamics (Macklin et al. 2016, 2019): one distance constraint per
-    /// spring with compliance 1/k and the spring's damping, vertex-coloured Gauss-Seidel.
+    /// spring with compliance 1/k and the spring's damping, Gauss-Seidel over spring classes.
     /// One iteration with small substeps is a consistent first-order method; many iterations
     /// converge to implicit Euler. Stable at any stiffness.
     Xpbd,
@@ -60,9 +60,22 @@ pub struct Solver {
     /// Vec4s per particle of iterate slices and of auxiliary data.
     pub slices: u64,
     pub aux: u64,
+    /// How a solver iteration sweeps the object.
+    pub sweep: Sweep,
+}
+
+/// The passes of one iteration of an iterative method.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Sweep {
+    /// One pass over every particle.
+    Jacobi,
     /// Gauss-Seidel over the vertex colours (`vertex_colours`): one pass per colour, each
-    /// seeing the colours before it; else Jacobi, one pass over every particle.
-    pub coloured: bool,
+    /// seeing the colours before it.
+    VertexColours,
+    /// Gauss-Seidel over the spring classes (`SPRING_CLASSES`): one pass per class, a spring's
+    /// update moving both its ends; then, after the last iteration, a pass that finishes every
+    /// particle.
+    SpringClasses,
 }
 
 /// One substep of an object from (x, v) on the CPU reference: the new positions and velocities.
@@ -89,7 +102,7 @@ const fn solver(
     keeps_y: bool,
     slices: u64,
     aux: u64,
-    coloured: bool,
+    sweep: Sweep,
 ) -> Scheme {
     Scheme::Iterative(Solver {
         shader,
@@ -97,7 +110,7 @@ const fn solver(
         keeps_prediction: keeps_y,
         slices,
         aux,
-        coloured,
+        sweep,
     })
 }
 
@@ -123,8 +136,8 @@ const METHODS: [Method; 5] = [
         integrator: Integrator::Xpbd,
         label: "xpbd",
         order: 1.0,
-        // In place (one slice); aux: a copy of the multipliers of the 12 springs per particle.
-        scheme: solver("xpbd_iterate.comp", false, false, 1, 3, true),
+        // In place (one slice); aux: the multipliers of the particle's 6 forward springs.
+        scheme: solver("xpbd_iterate.comp", false, false, 1, 3, Sweep::SpringClasses),
         cpu: cpu::xpbd,
         colour: (255, 127, 14),
     },
@@ -133,7 +146,7 @@ const METHODS: [Method; 5] = [
         label: "implicit",
         order: 1.0,
         // Three rotating slices (Chebyshev reads the one before); aux: the prediction.
-        scheme: solver("implicit_iterate.comp", true, true, 3, 1, false),
+        scheme: solver("implicit_iterate.comp", true, true, 3, 1, Sweep::Jacobi),
         cpu: cpu::implicit,
         colour: (214, 39, 40),
     },
@@ -142,7 +155,7 @@ const METHODS: [Method; 5] = [
         label: "vbd",
         order: 1.0,
         // In place (one slice); aux: the prediction.
-        scheme: solver("vbd_iterate.comp", false, true, 1, 1, true),
+        scheme: solver("vbd_iterate.comp", false, true, 1, 1, Sweep::VertexColours),
         cpu: cpu::vbd,
         colour: (148, 103, 189),
     },
@@ -192,7 +205,7 @@ impl Integrator {
     }
 }
 
-/// Colours of the vertex colouring the Gauss-Seidel methods sweep: particle (c, r) has colour
+/// Colours of the vertex colouring VBD sweeps: particle (c, r) has colour
 /// (c + 2 r) mod `vertex_colours`. No spring joins two particles of one colour: the offsets of
 /// the 12 springs, (+-1, 0), (0, +-1), (+-1, +-1), (+-1, -+1), (+-2, 0), (0, +-2), give
 /// c + 2 r = +-1, +-2, +-3, -+1, +-2, +-4, none a multiple of 5; a rope (one row) has only
@@ -211,6 +224,22 @@ pub fn vertex_colour(c: u32, r: u32, colours: u32) -> u32 {
     (c + 2 * r) % colours
 }
 
+/// The spring classes XPBD sweeps, in order: the six forward directions of the stencil (grid
+/// offset from a spring's first node to its second, and the spring's slot in the shaders'
+/// SPRINGS), each split in two by `spring_class_parity`; no two springs of a class share a
+/// particle. (`class_*` in glsl/include/springs.glsl is the same rule.)
+pub const SPRING_CLASSES: [((i64, i64), usize); 6] =
+    [((1, 0), 0), ((0, 1), 2), ((1, 1), 4), ((-1, 1), 7), ((2, 0), 8), ((0, 2), 10)];
+
+/// The parity (0 or 1) of the spring of direction `dir` whose first node is (c, r): its
+/// coordinate along the direction's line (the column for (1, 0), (1, 1), (2, 0); the row
+/// otherwise), halved for the bending directions, modulo 2. Two springs of one direction that
+/// share a node are one step apart along the line, so they differ in parity.
+pub fn spring_class_parity(dir: usize, c: i64, r: i64) -> u32 {
+    let u = if matches!(dir, 0 | 2 | 4) { c } else { r };
+    (if dir >= 4 { u >> 1 } else { u } & 1) as u32
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -222,6 +251,44 @@ mod tests {
             assert_eq!(Integrator::from_label(m.label()), Some(m));
             let serde_name = toml::Value::try_from(m).unwrap();
             assert_eq!(serde_name.as_str(), Some(m.label()));
+        }
+    }
+
+    /// Every spring of a grid is in exactly one class, and no two springs of a class share a
+    /// particle.
+    #[test]
+    fn the_spring_classes_partition_the_springs_without_sharing_a_particle() {
+        for dims in [[9i64, 7i64], [12, 1], [2, 2]] {
+            let mut seen = std::collections::HashMap::new();
+            for (dir, ((dc, dr), _)) in SPRING_CLASSES.into_iter().enumerate() {
+                for r in 0..dims[1] {
+                    for c in 0..dims[0] {
+                        let (nc, nr) = (c + dc, r + dr);
+                        if nc < 0 || nr < 0 || nc >= dims[0] || nr >= dims[1] {
+                            continue;
+                        }
+                        let class = (dir, spring_class_parity(dir, c, r));
+                        for node in [(c, r), (nc, nr)] {
+                            assert!(
+                                seen.insert((class, node), ()).is_none(),
+                                "{dims:?}: class {class:?} meets {node:?} twice"
+                            );
+                        }
+                    }
+                }
+            }
+            // Each unordered neighbour pair of the 12-spring stencil once.
+            let springs: usize = seen.len() / 2;
+            let mut expected = 0;
+            for r in 0..dims[1] {
+                for c in 0..dims[0] {
+                    for (dc, dr) in [(1, 0), (0, 1), (1, 1), (-1, 1), (2, 0), (0, 2)] {
+                        let (nc, nr) = (c + dc, r + dr);
+                        expected += (nc >= 0 && nr >= 0 && nc < dims[0] && nr < dims[1]) as usize;
+                    }
+                }
+            }
+            assert_eq!(springs, expected, "{dims:?}");
         }
     }
 

@@ -10,7 +10,7 @@
 use super::object::GpuObject;
 use super::pipelines::Stage;
 use super::GpuSim;
-use crate::sim::integrator::Scheme;
+use crate::sim::integrator::{Scheme, Sweep, SPRING_CLASSES};
 use crate::vk::{Access, BufferBarrier, Recorder};
 
 impl GpuSim {
@@ -42,16 +42,33 @@ impl GpuSim {
             })
             .map(|b| BufferBarrier::new(b, Access::ComputeReadWrite, Access::ComputeReadWrite))
             .collect();
-        let passes = if solver.coloured { stepped.iter().map(|o| o.colours).max().unwrap_or(1) } else { 1 };
-        for k in 0..self.model.iterations {
-            for colour in 0..passes {
-                rec.barrier(&between_passes);
-                for o in stepped.iter().filter(|o| colour < o.colours) {
-                    let groups = if solver.coloured { o.colour_groups } else { o.step_groups };
-                    let pipeline = self.pipelines.get(Stage::Iterate(o.kind, method));
-                    rec.dispatch_with(pipeline, o.sets[0], groups, &[k, colour]);
-                }
+        // Passes of an iteration: (pass, whether the object takes part, its workgroups).
+        let classes = 2 * SPRING_CLASSES.len() as u32;
+        let passes = match solver.sweep {
+            Sweep::Jacobi => 1,
+            Sweep::VertexColours => stepped.iter().map(|o| o.colours).max().unwrap_or(1),
+            Sweep::SpringClasses => classes,
+        };
+        let iterate = |rec: &mut Recorder<'_>, k: u32, pass: u32| {
+            rec.barrier(&between_passes);
+            for o in &stepped {
+                let groups = match solver.sweep {
+                    Sweep::VertexColours if pass >= o.colours => continue,
+                    Sweep::VertexColours => o.colour_groups,
+                    Sweep::Jacobi | Sweep::SpringClasses => o.step_groups,
+                };
+                let pipeline = self.pipelines.get(Stage::Iterate(o.kind, method));
+                rec.dispatch_with(pipeline, o.sets[0], groups, &[k, pass]);
             }
+        };
+        for k in 0..self.model.iterations {
+            for pass in 0..passes {
+                iterate(rec, k, pass);
+            }
+        }
+        if solver.sweep == Sweep::SpringClasses {
+            // Every particle finished once all classes of the last iteration are done.
+            iterate(rec, self.model.iterations - 1, classes);
         }
     }
 }
