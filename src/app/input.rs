@@ -7,6 +7,7 @@
 
 use crate::render::camera::OrbitCamera;
 use crate::sim::gpu::ObjectState;
+use crate::sim::model::{ObjectKind, ObjectModel, SimModel};
 use glam::Vec3;
 use std::collections::HashSet;
 use winit::event::{ElementState, MouseButton, MouseScrollDelta, WindowEvent};
@@ -185,6 +186,12 @@ impl Input {
             camera.fly(f, r, u, dt);
         }
     }
+}
+
+/// Each object's own pick radius for `pick`: a rope's tube radius, 0 for a cloth [m].
+pub fn pick_radii(model: &SimModel) -> Vec<f32> {
+    let radius = |o: &ObjectModel| if o.kind == ObjectKind::Rope { o.rope_radius as f32 } else { 0.0 };
+    model.objects.iter().map(radius).collect()
 }
 
 /// How far from a particle, on screen, a click still takes it [pixels].

@@ -113,19 +113,14 @@ impl Viewer {
                 let tip = handles::screen_tip(&self.camera, size, at, 0).context("sphere 0 off screen")?;
                 let cursor = [tip[0] - 4.0 + 20.0 * (self.tick - 61) as f32, tip[1]];
                 if self.tick == 61 {
-                    let host = self.host.as_mut().expect("host");
-                    let rope = host.sim_mut().read_states(&self.ctx)?[0].particles.clone();
                     self.exercise_start = Some(at);
-                    self.exercise_rope_x = rope.iter().map(|p| p.pos[0]).sum::<f32>() / rope.len() as f32;
+                    self.exercise_rope_x = self.rope_mean_x()?;
                 }
                 self.input.script_left(self.tick < 63, cursor);
             }
             // It moved along x only, and the rope lying on it came along (friction).
             75 => {
-                let host = self.host.as_mut().expect("host");
-                let rope = host.sim_mut().read_states(&self.ctx)?[0].particles.clone();
-                let rope_x =
-                    rope.iter().map(|p| p.pos[0]).sum::<f32>() / rope.len() as f32 - self.exercise_rope_x;
+                let rope_x = self.rope_mean_x()? - self.exercise_rope_x;
                 let host = self.host();
                 let moved = handles::position(host.scene(), Selection::Sphere(0)).unwrap_or_default()
                     - self.exercise_start.unwrap_or_default();
@@ -145,5 +140,13 @@ impl Viewer {
             _ => {}
         }
         Ok(Outcome::Continue)
+    }
+
+    /// The mean x of object 0's particles now (the rope of the exercise's preset) [m].
+    fn rope_mean_x(&mut self) -> Result<f32> {
+        let host = self.host.as_mut().expect("host");
+        let states = host.sim_mut().read_states(&self.ctx)?;
+        let rope = &states[0].particles;
+        Ok(rope.iter().map(|p| p.pos[0]).sum::<f32>() / rope.len() as f32)
     }
 }

@@ -2,10 +2,9 @@
 //! pinning particles.
 
 use super::super::handles;
-use super::super::input::{pick, Grab, PickRay};
+use super::super::input::{pick, pick_radii, Grab, PickRay};
 use super::Viewer;
 use crate::sim::gpu_types::Particle;
-use crate::sim::model::ObjectKind;
 use glam::Vec3;
 
 impl Viewer {
@@ -45,17 +44,9 @@ impl Viewer {
         let size = self.window.inner_size();
         let (origin, dir) = self.camera.ray(self.input.cursor, [size.width as f32, size.height as f32]);
         let ray = PickRay { origin, dir, pixel: self.camera.pixel_size(size.height as f32) };
-        let radii: Vec<f32> = match &self.host {
-            Some(host) => host
-                .model()
-                .objects
-                .iter()
-                .map(|o| if o.kind == ObjectKind::Rope { o.rope_radius as f32 } else { 0.0 })
-                .collect(),
-            None => Vec::new(),
-        };
         if std::mem::take(&mut self.input.pin_requested) {
             let Some(host) = self.host.as_mut() else { return };
+            let radii = pick_radii(host.model());
             let picked = host.sim_mut().read_states(&self.ctx).map(|states| {
                 pick(&states, ray, &radii).map(|hit| (hit, states[hit.0].particles[hit.1 as usize].pos))
             });
@@ -74,6 +65,7 @@ impl Viewer {
         }
         if std::mem::take(&mut self.input.pick_requested) {
             let Some(host) = self.host.as_mut() else { return };
+            let radii = pick_radii(host.model());
             match host.sim_mut().read_states(&self.ctx) {
                 Ok(states) => match pick(&states, ray, &radii) {
                     Some((object, index, depth, was_pinned)) => {
