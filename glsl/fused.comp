@@ -15,25 +15,34 @@
 //   scratch    during physics: the velocities (for the spring dashpots) of the particles one
 //              pass computes plus HALO on each side, in passes of PASS_SLOTS slots when not all
 //              fit; during the constraints: the spatial hash, bucket heads and a linked list.
+// Registers also hold a copy of the object's parameters (`obj`, taken from the buffer at the
+// start: reading them from the storage buffer in every spring loop cost 15 to 25%), each owned
+// particle's grid cell and the mask of its springs that have another end (SPRING_NEIGHBOUR).
 // The host (src/sim/gpu/fused.rs) sizes all of it from the object and the device's shared
-// memory and specializes one pipeline per object shape; the step code is physics_body.glsl and
+// memory and specializes one pipeline per object shape (and one for a single iteration); the step code is physics_body.glsl and
 // constraints_body.glsl, as for the per-stage path, with neighbours read from shared memory.
 // Phases are separated by barrier(); those a scene does not need are left out.
 //
 // The iterative integrators (SOLVER) replace the physics step with the prediction y (read like
 // the physics: neighbours' velocities staged when the implicit method's dashpots read them),
 // then their iterations: the displacements p - x live in registers and, for the neighbours, in
-// scratch (px/py/pz keep the substep's start x); XPBD visits the spring classes in turn (the
+// scratch (px/py/pz keep the substep's start x; the implicit method, which needs no x of a
+// neighbour, keeps its iterate p itself there instead); XPBD visits the spring classes in turn (the
 // thread owning a spring's first node moves both ends), VBD the vertex colours, a barrier()
 // after each class or colour; the implicit method's Jacobi sweep computes every new
 // displacement, then a barrier(), the writes, and a barrier(). The updates themselves are
 // solver_bodies.glsl's, as in the per-stage shaders.
 #define STATE_FUSED
 #define FUSED_SHARED
+#define OBJ_COPY
+#define XPBD_OBJ obj_buffer
 #include "bindings.glsl"
+#define SPRING_NEIGHBOUR(cell, s) (!SPRING_MASKS ? neighbour(ivec2(cell), SPRINGS[s].xy, obj.dims) : \
+    ((spring_mask >> uint(s)) & 1u) != 0u ? int((cell).x + (cell).y * obj.dims.x) + SPRINGS[s].x + SPRINGS[s].y * int(obj.dims.x) : -1)
 #include "springs.glsl"
 
 layout(local_size_x_id = 0) in;
+layout(constant_id = 1) const bool ONE_ITERATION = false;  // an iterative method runs 1 iteration
 layout(constant_id = 4) const uint CAP = 1u;         // particles of the object
 layout(constant_id = 5) const uint SCRATCH = 1u;     // words of scratch
 layout(constant_id = 6) const uint BUCKETS = 1u;     // hash buckets (a power of two)
@@ -48,6 +57,11 @@ const uint WINDOW = THREADS * PASS_SLOTS + 2u * HALO;  // velocities staged per 
 const uint EMPTY = 0xFFFFFFFFu;
 const bool ITERATIVE = SOLVER == METHOD_XPBD || SOLVER == METHOD_IMPLICIT || SOLVER == METHOD_VBD;
 const bool COLOURED = SOLVER == METHOD_VBD;  // VBD sweeps vertex colours; XPBD spring classes
+// The springs of the particle being visited that have another end (bit s of SPRINGS), set
+// before each body call. XPBD does without (measured: its class passes ran 20% slower with the
+// masks' registers) and reads its spring constants from the buffer (4% faster than from the copy).
+uint spring_mask;
+const bool SPRING_MASKS = SOLVER != METHOD_XPBD;
 
 shared float px[CAP];
 shared float py[CAP];
@@ -89,7 +103,8 @@ void set_sdisp(uint j, vec3 d) {
 #include "constraints_body.glsl"
 #include "predict_body.glsl"
 #define SX(j) spos(uint(j))
-#define SD(j) sdisp(uint(j))
+// The implicit method keeps its iterate p itself in px/py/pz (one read a neighbour, not two).
+#define SD(j) (SOLVER == METHOD_IMPLICIT ? vec3(0.0) : sdisp(uint(j)))
 #define SPIN(j) spinned(uint(j))
 #include "solver_bodies.glsl"
 
@@ -139,6 +154,7 @@ uint particle_of_rank(uint r) {
 }
 
 void main() {
+    obj = obj_buffer;
     uint t = gl_LocalInvocationID.x;
     uint n = particle_count();  // == CAP
     uint cols = obj.dims.x;
@@ -161,16 +177,23 @@ void main() {
     vec3 dx[MAX_SLOTS];  // ... the iterate p - x
     uint colour[MAX_SLOTS];
     uint own[MAX_SLOTS];  // the particle of each slot
+    uvec2 cells[MAX_SLOTS];  // ... and its grid cell
+    uint masks[MAX_SLOTS];   // ... and its springs (spring_mask)
     [[unroll]] for (uint s = 0u; s < MAX_SLOTS; ++s) {
         uint k = particle_of_rank(t + s * THREADS);
         own[s] = k;
+        cells[s] = uvec2(k % cols, k / cols);
+        masks[s] = 0u;
+        if (SPRING_MASKS) [[unroll]] for (int q = 0; q < 12; ++q) {
+            if (neighbour(ivec2(cells[s]), SPRINGS[q].xy, obj.dims) >= 0) masks[s] |= 1u << uint(q);
+        }
         x[s] = vec3(0.0);
         v[s] = vec3(0.0);
         v_new[s] = vec3(0.0);
         pinned[s] = true;
         dy[s] = vec3(0.0);
         dx[s] = vec3(0.0);
-        colour[s] = vertex_colour(uvec2(k % cols, k / cols), colours);
+        colour[s] = vertex_colour(cells[s], colours);
         if (s < SLOTS && k < n) {
             Particle p = p_in[k];
             pinned[s] = p.pos.w > 0.5;
@@ -213,12 +236,14 @@ void main() {
                 uint k = own[s];
                 if (s / PASS_SLOTS != chunk || k >= n || pinned[s]) continue;
                 if (ITERATIVE) {
-                    dy[s] = predicted_displacement(uvec2(k % cols, k / cols), x[s], v[s], SOLVER == METHOD_IMPLICIT);
+                    spring_mask = masks[s];
+                    dy[s] = predicted_displacement(cells[s], x[s], v[s], SOLVER == METHOD_IMPLICIT);
                     continue;
                 }
                 vec3 xs = x[s] + drift * v[s];
                 vec3 vs = v[s];
-                physics_step(uvec2(k % cols, k / cols), xs, vs);
+                spring_mask = masks[s];
+                physics_step(cells[s], xs, vs);
                 x[s] = xs;
                 v_new[s] = vs;
             }
@@ -238,23 +263,26 @@ void main() {
                 dx[s] = dy[s];
                 before[s] = dy[s];
                 lambda[s] = vec4[3](vec4(0.0), vec4(0.0), vec4(0.0));
-                if (k < n) set_sdisp(k, dy[s]);
+                if (k < n && SOLVER == METHOD_IMPLICIT) set_spos(k, x[s] + dy[s]);
+                else if (k < n) set_sdisp(k, dy[s]);
             }
             barrier();
-            for (uint it = 0u; it < g.iterations; ++it) {
+            // One iteration (a pipeline of its own): XPBD's multipliers start and stay at zero.
+            uint iterations = ONE_ITERATION ? 1u : g.iterations;
+            for (uint it = 0u; it < iterations; ++it) {
                 if (SOLVER == METHOD_XPBD) {
                     // The spring classes (springs.glsl) in turn: the thread owning a spring's
                     // first node moves both ends (no other spring of the class touches them).
-                    float w = 1.0 / obj.mass;
+                    float w = 1.0 / obj_buffer.mass;
                     [[unroll]] for (uint q = 0u; q < SPRING_CLASS_COUNT; ++q) {
                         uint dir = q >> 1u;
                         int slot = class_slot(dir);
-                        if (obj.stiffness[slot >> 2] != 0.0) {
+                        if (obj_buffer.stiffness[slot >> 2] != 0.0) {
                             [[unroll]] for (uint s = 0u; s < MAX_SLOTS; ++s) {
                                 if (s >= SLOTS) break;
                                 uint i = own[s];
                                 if (i >= n) continue;
-                                ivec2 a = ivec2(int(i % cols), int(i / cols));
+                                ivec2 a = ivec2(cells[s]);
                                 if (class_parity(dir, a) != (q & 1u)) continue;
                                 int j = neighbour(a, class_offset(dir), obj.dims);
                                 if (j < 0) continue;
@@ -263,11 +291,11 @@ void main() {
                                 vec3 di = sdisp(i);
                                 vec3 dj = sdisp(uint(j));
                                 vec3 normal;
-                                float lam = lambda[s][dir / 4u][dir % 4u];
+                                float lam = ONE_ITERATION ? 0.0 : lambda[s][dir / 4u][dir % 4u];
                                 float dl = xpbd_spring(dir, x[s], di, spos(uint(j)), dj, pinned[s], pin_j, lam, normal);
                                 if (!pinned[s]) set_sdisp(i, di + normal * (w * dl));
                                 if (!pin_j) set_sdisp(uint(j), dj - normal * (w * dl));
-                                lambda[s][dir / 4u][dir % 4u] = lam + dl;
+                                if (!ONE_ITERATION) lambda[s][dir / 4u][dir % 4u] = lam + dl;
                             }
                         }
                         barrier();  // the next class reads this one's displacements
@@ -278,7 +306,8 @@ void main() {
                             if (s >= SLOTS) break;
                             uint k = own[s];
                             if (k >= n || pinned[s] || colour[s] != c) continue;
-                            uvec2 cell = uvec2(k % cols, k / cols);
+                            uvec2 cell = cells[s];
+                            spring_mask = masks[s];
                             dx[s] = vbd_particle(cell, x[s], dx[s], dy[s]);
                             set_sdisp(k, dx[s]);
                         }
@@ -291,7 +320,8 @@ void main() {
                         uint k = own[s];
                         next[s] = dx[s];
                         if (k < n && !pinned[s]) {
-                            next[s] = implicit_particle(uvec2(k % cols, k / cols), it, x[s], dx[s], dy[s], before[s]);
+                            spring_mask = masks[s];
+                            next[s] = implicit_particle(cells[s], it, x[s], dx[s], dy[s], before[s]);
                         }
                     }
                     barrier();  // every read of this iteration's displacements is done
@@ -300,7 +330,7 @@ void main() {
                         uint k = own[s];
                         before[s] = dx[s];
                         dx[s] = next[s];
-                        if (k < n) set_sdisp(k, dx[s]);
+                        if (k < n) set_spos(k, x[s] + dx[s]);
                     }
                     barrier();
                 }
@@ -312,8 +342,8 @@ void main() {
                 x[s] += dx[s];
                 v[s] = dx[s] / g.dt;
             }
-            // XPBD read its displacements back from scratch, which the constraints reuse.
-            if (SOLVER == METHOD_XPBD) barrier();
+            // XPBD read its displacements back from scratch, which the self-collision hash reuses.
+            if (SOLVER == METHOD_XPBD && hashed) barrier();
         }
 
         // Constraints on the new positions: shared for the neighbours, hashed for contacts.
@@ -345,7 +375,8 @@ void main() {
             vec3 xs = x[s];
             vec3 vs = v[s];
             if (neighbours) {
-                vec3 correction = constraint_correction(uvec2(k % cols, k / cols), xs);
+                spring_mask = masks[s];
+                vec3 correction = constraint_correction(cells[s], xs);
                 xs += correction;
                 vs += correction / g.dt;  // velocity follows the position correction
             }

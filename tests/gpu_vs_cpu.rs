@@ -651,6 +651,18 @@ fn iterative() -> impl Iterator<Item = Integrator> {
     Integrator::ALL.into_iter().filter(|m| m.iterative())
 }
 
+/// At one iteration, what users run for XPBD, the fused kernel is a pipeline of its own
+/// (`ONE_ITERATION`: the iteration loop and XPBD's multipliers compiled out); fused and per
+/// stage against the reference, for every iterative method.
+#[test]
+fn iterative_methods_at_one_iteration() {
+    for method in iterative() {
+        let mut s = integrator_scene(method);
+        s.iterations = 1;
+        check(&format!("{method:?} one iteration"), &s);
+    }
+}
+
 /// Stiff springs at one substep per frame, far past the explicit limit: every iterative method
 /// stays finite and agrees with the reference. Here the iteration count, XPBD's relaxation and
 /// the damping each matter (at 16 substeps of soft springs the solvers converge within two

@@ -7,7 +7,13 @@
 // Parameters are never written while a frame runs (restrict: the compiler may keep them in
 // registers across the shaders' stores and barriers).
 layout(std140, set = 0, binding = 0) uniform GlobalsBuf { Globals g; };
+#ifdef OBJ_COPY
+// The fused kernel reads a copy of the parameters (registers), taken at its start.
+layout(std430, set = 0, binding = 1) restrict readonly buffer ObjectBuf { ObjectParams obj_buffer; };
+ObjectParams obj;
+#else
 layout(std430, set = 0, binding = 1) restrict readonly buffer ObjectBuf { ObjectParams obj; };
+#endif
 // The fused shader loads its state from p_in and stores it back there (each thread its own
 // particles); the per-stage shaders read one buffer and write the other.
 #ifdef STATE_FUSED

@@ -49,7 +49,7 @@ vec3 constraint_correction(uvec2 cell, vec3 x) {
     if (has(F_STRETCH) && (obj.flags & OBJ_STRETCH_LIMIT) != 0u) {
         [[unroll]] for (int s = 0; s < 8; ++s) {
             ivec3 spring = SPRINGS[s];
-            int j = neighbour(ivec2(cell), spring.xy, obj.dims);
+            int j = SPRING_NEIGHBOUR(cell, s);
             if (j < 0 || obj.stiffness[spring.z] == 0.0) continue;
             vec3 to_j = CPOS(j) - x;
             float d = length(to_j);

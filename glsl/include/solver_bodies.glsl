@@ -17,9 +17,12 @@
 // (the per-type constants and the reciprocal of the denominator from the host, obj.xpbd) and the
 // spring's direction n through `normal` (zero for coincident ends: no update). The caller moves
 // i by w_i n dlambda and j by -w_j n dlambda (sim::cpu::integrators::xpbd).
+#ifndef XPBD_OBJ
+#define XPBD_OBJ obj
+#endif
 float xpbd_spring(uint dir, vec3 xi, vec3 di, vec3 xj, vec3 dj, bool pin_i, bool pin_j, float lam, out vec3 normal) {
     int slot = class_slot(dir);
-    vec4 c = obj.xpbd[slot >> 2];  // alpha~, gamma, scale (both ends free, one pinned)
+    vec4 c = XPBD_OBJ.xpbd[slot >> 2];  // alpha~, gamma, scale (both ends free, one pinned)
     vec3 rel = di - dj;
     vec3 delta = (xi - xj) + rel;  // p_i - p_j
     float dd = dot(delta, delta);
@@ -28,7 +31,7 @@ float xpbd_spring(uint dir, vec3 xi, vec3 di, vec3 xj, vec3 dj, bool pin_i, bool
     float inv = inversesqrt(dd);
     normal = delta * inv;
     float scale = (pin_i || pin_j) ? c.w : c.z;
-    return scale * (rest_length(slot) - c.x * lam - dd * inv - c.y * dot(normal, rel));
+    return scale * (XPBD_OBJ.rest[slot >> 2][slot & 3] - c.x * lam - dd * inv - c.y * dot(normal, rel));
 }
 
 // VBD, one Gauss-Seidel visit: one Newton step on implicit Euler's incremental potential as a
@@ -44,7 +47,7 @@ vec3 vbd_particle(uvec2 cell, vec3 x, vec3 dx, vec3 dy) {
         ivec3 spring = SPRINGS[s];
         float k = obj.stiffness[spring.z];
         if (k == 0.0 && b == 0.0) continue;
-        int j = neighbour(ivec2(cell), spring.xy, obj.dims);
+        int j = SPRING_NEIGHBOUR(cell, s);
         if (j < 0) continue;
         vec3 dj = SD(j);
         vec3 delta = (x - SX(j)) + (dx - dj);  // p_i - p_j
@@ -86,7 +89,7 @@ vec3 implicit_particle(uvec2 cell, uint k, vec3 x, vec3 dx, vec3 dy, vec3 before
         ivec3 spring = SPRINGS[s];
         float stiffness = obj.stiffness[spring.z];
         if (stiffness == 0.0) continue;
-        int j = neighbour(ivec2(cell), spring.xy, obj.dims);
+        int j = SPRING_NEIGHBOUR(cell, s);
         if (j < 0) continue;
         vec3 pj = (SX(j) - x) + SD(j);  // p_j - x_i
         vec3 delta = dx - pj;           // p_i - p_j

@@ -20,7 +20,7 @@ void add_spring_forces(uvec2 cell, vec3 x, vec3 v, float drift, bool elastic, in
         if (!has(1u << spring.z)) continue;  // F_STRUCTURAL, F_SHEAR, F_BENDING
         float k = elastic ? obj.stiffness[spring.z] : 0.0;
         if (k == 0.0 && !(has(F_DAMPING) && obj.stiffness.w != 0.0)) continue;
-        int j = neighbour(ivec2(cell), spring.xy, obj.dims);
+        int j = SPRING_NEIGHBOUR(cell, s);
         if (j < 0) continue;
         vec3 to_j = NPOS(j) - x;
         float d = length(to_j);

@@ -23,9 +23,14 @@ int neighbour(ivec2 cell, ivec2 offset, uvec2 dims) {
     return o.x + o.y * int(dims.x);
 }
 
-// Rest length of spring s (an index into SPRINGS; a constant in the unrolled spring loops, so
-// this is an operand from the uniform buffer, computed on the host). Include after
-// bindings.glsl.
+// The particle at the other end of spring s (an index into SPRINGS) of `cell`, or -1. The
+// fused kernel replaces it with a lookup of the particle's valid springs.
+#ifndef SPRING_NEIGHBOUR
+#define SPRING_NEIGHBOUR(cell, s) neighbour(ivec2(cell), SPRINGS[s].xy, obj.dims)
+#endif
+
+// Rest length of spring s (an index into SPRINGS; a constant in the unrolled spring loops),
+// computed on the host. Include after bindings.glsl.
 float rest_length(int s) { return obj.rest[s >> 2][s & 3]; }
 
 // The spring classes XPBD sweeps (sim::integrator::SPRING_CLASSES and spring_class_parity):

@@ -95,7 +95,7 @@ impl ObjectPlan {
 }
 
 /// The specialization of `fused.comp` for one object (`specialization`: ids 0, 4..=8 from the
-/// layout; 2, 3 and 9 from the integrator and the features).
+/// layout; 1, 2, 3 and 9 from the integrator, its iterations and the features).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub struct FusedShape {
     /// Workgroup size: a multiple of 32, at most 1024.
@@ -110,6 +110,9 @@ pub struct FusedShape {
     pub pass_slots: u32,
     /// Largest index distance from a particle to a spring neighbour.
     pub halo: u32,
+    /// An iterative method at one iteration: the loop and XPBD's multipliers compiled out
+    /// (`ONE_ITERATION`; another iteration count is another pipeline).
+    pub one_iteration: bool,
 }
 
 impl FusedShape {
@@ -154,7 +157,8 @@ impl FusedShape {
         .into_iter()
         .max()
         .unwrap_or(1);
-        Some(Self { threads, particles: n, scratch, buckets, pass_slots, halo })
+        let one_iteration = solver.is_some() && model.iterations == 1;
+        Some(Self { threads, particles: n, scratch, buckets, pass_slots, halo, one_iteration })
     }
 
     /// Shared memory the kernel declares [bytes].
@@ -167,7 +171,7 @@ impl FusedShape {
         let verlet = method.method().scheme == Scheme::Explicit { verlet: true };
         vec![
             self.threads,
-            0,
+            self.one_iteration as u32,
             verlet as u32,
             features,
             self.particles,
@@ -236,6 +240,21 @@ mod tests {
             FusedShape::plan(&m.objects[0], &m, FusedLimits { shared_bytes: u32::MAX, slots: FUSED_SLOTS }),
             None
         );
+    }
+
+    /// One iteration of an iterative method is a layout of its own (another pipeline; the
+    /// simulation rebuilds when the count crosses it), explicit methods have none.
+    #[test]
+    fn one_iteration_is_its_own_layout() {
+        let mut m = curtain();
+        m.objects[0].dims = [16, 16];
+        let plan = |m: &SimModel| FusedShape::plan(&m.objects[0], m, kib(48)).expect("fits").one_iteration;
+        m.iterations = 1;
+        assert!(!plan(&m), "symplectic Euler has no iterations");
+        m.integrator = Integrator::Xpbd;
+        assert!(plan(&m));
+        m.iterations = 2;
+        assert!(!plan(&m));
     }
 
     /// Features follow the model: a scene without wind, spheres, dashpots or self-collision
