@@ -49,6 +49,7 @@ layout(constant_id = 6) const uint BUCKETS = 1u;     // hash buckets (a power of
 layout(constant_id = 7) const uint PASS_SLOTS = 1u;  // slots whose physics one pass computes
 layout(constant_id = 8) const uint HALO = 2u;        // largest index distance to a spring neighbour
 layout(constant_id = 9) const uint SOLVER = 0u;      // the integrator (METHOD_*, layout.glsl)
+layout(constant_id = 10) const uint LIST_MAX = 0u;   // contact list entries a particle (0: none)
 
 const uint THREADS = gl_WorkGroupSize.x;
 const uint MAX_SLOTS = 4u;  // particles per thread at most (FUSED_SLOTS on the host)
@@ -68,6 +69,25 @@ shared float py[CAP];
 shared float pz[CAP];
 shared uint pin_bits[(CAP + 31u) / 32u];
 shared uint scratch[SCRATCH];
+shared uint list_flag[2];  // substep parity: some particle moved too far from its list's build
+
+// The self-collision contact list (LIST_MAX > 0, with the hash): when the hash is built, each
+// particle also records the others within (1 + LIST_SKIN) reach (rest-state neighbours left
+// out) in self_list; the substeps after read those instead of the hash, until some particle
+// has moved more than half the skin, LIST_SKIN reach / 2, from where the list was built (then
+// no pair missing from a list can have come within reach: neither end moved the skin's half)
+// or a list overflowed. Until lists are built in a dispatch, every substep builds (lists of an
+// earlier dispatch are never read: the app may have moved pinned particles or changed the
+// contact distance since).
+const bool LISTED = LIST_MAX > 0u;
+const float LIST_SKIN = 1.0;
+bool list_rebuild;   // this substep builds the hash (and searches it)
+bool list_build;     // ... and the lists
+bool lists_built = false;  // in this dispatch
+const uint LIST_MOVED = 1u;  // list_flag bits: build this substep
+const uint LIST_FAST = 2u;   // ... but not lists (they would not last)
+uint list_particle;  // the particle being visited
+uint list_len;       // its list's length (while building: the candidates found so far)
 
 int window_start;  // the particle at scratch[0] in the current physics pass
 
@@ -94,6 +114,9 @@ void set_sdisp(uint j, vec3 d) {
     scratch[2u * CAP + j] = floatBitsToUint(d.z);
 }
 
+// Self-contact candidates: the hash or the particle's list.
+void listed_candidates(uvec2 cell, vec3 x, float reach, inout vec3 correction, inout uint n_active);
+#define SELF_CANDIDATES listed_candidates
 #define NPOS(j) spos(uint(j))
 #define NVEL(j) wvel(uint(j))
 #define CPOS(j) spos(uint(j))
@@ -112,7 +135,25 @@ void set_sdisp(uint j, vec3 d) {
 // the one after particle j (EMPTY ends a list).
 void visit_bucket(uint h, uvec2 cell, vec3 x, float reach, inout vec3 correction, inout uint n_active) {
     for (uint j = scratch[h]; j != EMPTY; j = scratch[BUCKETS + j]) {
-        if (distance(spos(j), x) < reach) self_contact(cell, x, j, reach, correction, n_active);
+        float d = distance(spos(j), x);
+        if (d < reach) self_contact(cell, x, j, reach, correction, n_active);
+        if (LISTED && list_build && d < reach * (1.0 + LIST_SKIN)) {
+            ivec2 other = ivec2(int(j % obj.dims.x), int(j / obj.dims.x));
+            vec2 rest = vec2(other - ivec2(cell)) * obj.spacing;
+            if (dot(rest, rest) < reach * reach) continue;  // as self_contact: never in contact
+            if (list_len < LIST_MAX) self_list[4u * CAP + list_len * CAP + list_particle] = j;
+            list_len += 1u;  // past LIST_MAX the list is full: it is rebuilt the next substep
+        }
+    }
+}
+
+void listed_candidates(uvec2 cell, vec3 x, float reach, inout vec3 correction, inout uint n_active) {
+    if (!LISTED || list_rebuild) {
+        visit_cells(cell, x, reach, correction, n_active);
+        return;
+    }
+    for (uint e = 0u; e < list_len; ++e) {
+        self_contact(cell, x, self_list[4u * CAP + e * CAP + list_particle], reach, correction, n_active);
     }
 }
 
@@ -155,6 +196,7 @@ uint particle_of_rank(uint r) {
 
 void main() {
     obj = obj_buffer;
+    float cell_inv = obj.cell_inv;  // the lists' builds widen the hash's cells to their reach
     uint t = gl_LocalInvocationID.x;
     uint n = particle_count();  // == CAP
     uint cols = obj.dims.x;
@@ -202,6 +244,7 @@ void main() {
         }
     }
     for (uint w = t; w < (CAP + 31u) / 32u; w += THREADS) pin_bits[w] = 0u;
+    if (t < 2u) list_flag[t] = 0u;
     barrier();
     [[unroll]] for (uint s = 0u; s < MAX_SLOTS; ++s) {
         if (s >= SLOTS) break;
@@ -353,11 +396,48 @@ void main() {
                 uint k = own[s];
                 if (k < n) set_spos(k, x[s]);
             }
-            if (hashed) {
+            if (hashed && LISTED) {
+                // Has a particle moved half the skin since its list was built (or did its
+                // list overflow: built at infinity)? Is one so fast that a list built now
+                // would not outlast the next substep?
+                float half_skin = 0.49 * LIST_SKIN * obj.self_distance;  // 2% for rounding
+                bool moved = false;
+                bool fast = false;
+                [[unroll]] for (uint s = 0u; s < MAX_SLOTS; ++s) {
+                    if (s >= SLOTS) break;
+                    uint k = own[s];
+                    if (k >= n || pinned[s]) continue;
+                    vec3 built = vec3(uintBitsToFloat(self_list[4u * k]), uintBitsToFloat(self_list[4u * k + 1u]),
+                                      uintBitsToFloat(self_list[4u * k + 2u]));
+                    moved = moved || !(distance(x[s], built) <= half_skin);
+                    fast = fast || length(v[s]) * g.dt > half_skin;
+                }
+                uint flags = (moved && sub > 0u ? LIST_MOVED : 0u) | (fast ? LIST_FAST : 0u);
+                if (flags != 0u) atomicOr(list_flag[sub & 1u], flags);
+            } else if (hashed) {
                 for (uint b = t; b < BUCKETS; b += THREADS) scratch[b] = EMPTY;
             }
             barrier();
-            if (hashed) {
+            bool rebuild = hashed;
+            list_build = false;
+            if (hashed && LISTED) {
+                // The same for every thread. A substep whose lists would not outlast it
+                // searches the hash alone, with cells of the contact distance, and builds no
+                // lists (those of an earlier build stay exact while nothing has moved half
+                // the skin from it).
+                uint flags = list_flag[sub & 1u];
+                rebuild = !lists_built || (flags & LIST_MOVED) != 0u;
+                list_build = rebuild && (flags & LIST_FAST) == 0u;
+                lists_built = lists_built || list_build;
+                if (t == 0u) list_flag[(sub + 1u) & 1u] = 0u;  // read again after two barriers
+                if (rebuild) {
+                    obj.cell_inv = list_build ? cell_inv / (1.0 + LIST_SKIN) : cell_inv;
+                    for (uint b = t; b < BUCKETS; b += THREADS) scratch[b] = EMPTY;
+                    barrier();
+                }
+            }
+            list_rebuild = rebuild;
+            if (rebuild) {
                 [[unroll]] for (uint s = 0u; s < MAX_SLOTS; ++s) {
                     if (s >= SLOTS) break;
                     uint k = own[s];
@@ -376,7 +456,18 @@ void main() {
             vec3 vs = v[s];
             if (neighbours) {
                 spring_mask = masks[s];
+                list_particle = k;
+                list_len = LISTED && hashed && !list_rebuild ? self_list[4u * k + 3u] : 0u;
                 vec3 correction = constraint_correction(cells[s], xs);
+                if (LISTED && hashed && list_build) {
+                    // Where it was built; a full list is built again the next substep.
+                    bool full = list_len > LIST_MAX;
+                    vec3 built = full ? vec3(uintBitsToFloat(0x7F800000u)) : xs;
+                    self_list[4u * k] = floatBitsToUint(built.x);
+                    self_list[4u * k + 1u] = floatBitsToUint(built.y);
+                    self_list[4u * k + 2u] = floatBitsToUint(built.z);
+                    self_list[4u * k + 3u] = full ? 0u : list_len;
+                }
                 xs += correction;
                 vs += correction / g.dt;  // velocity follows the position correction
             }

@@ -330,23 +330,74 @@ fn inter_object_contact() {
     check_mode("inter-object contact", &s, Mode::Resync);
 }
 
-#[test]
-fn cloth_self_collision() {
-    // A cloth folded over itself: rows 0..4 go down, rows 5..8 come back up 1.5 cm in front,
-    // inside the 3 cm self-collision distance, so the layers push apart.
-    let mut c = cloth(13, 9, 0.05);
+/// A 13 x 9 cloth folded over itself: rows 0..4 go down, rows 5..8 come back up `gap` in front
+/// (along +z), `spacing` apart within each layer.
+fn folded_cloth(spacing: f64, gap: f64) -> msdsim::sim::model::ObjectModel {
+    let mut c = cloth(13, 9, spacing);
     for (i, p) in c.positions.iter_mut().enumerate() {
         let (col, row) = ((i % 13) as f64, (i / 13) as i64);
-        let (y, z) =
-            if row <= 4 { (1.0 - row as f64 * 0.05, 0.0) } else { (1.0 - (9 - row) as f64 * 0.05, 0.015) };
-        *p = DVec3::new(col * 0.05, y, z);
+        let (rows_down, z) = if row <= 4 { (row, 0.0) } else { (9 - row, gap) };
+        *p = DVec3::new(col * spacing, 1.0 - rows_down as f64 * spacing, z);
     }
+    c
+}
+
+#[test]
+fn cloth_self_collision() {
+    // Its layers 1.5 cm apart, inside the 3 cm self-collision distance, so they push apart.
+    let mut c = folded_cloth(0.05, 0.015);
     jitter(&mut c.positions, 0.002, 3);
     c.stiffness = [60.0, 20.0, 0.0];
     c.self_distance = Some(0.03);
     let s = scene(vec![c]);
     assert_matters("cloth self-collision", &s, |m| m.objects[0].self_distance = None);
     both_methods("cloth self-collision", &s);
+}
+
+/// The fused kernel's self-collision contact lists are built when a frame starts and again
+/// once some particle has moved half the skin (the skin is the contact distance) from where
+/// its list was built: then no pair can come within the contact distance without being listed.
+/// A folded cloth whose front layer starts 7 cm in front of the back one, beyond the lists'
+/// reach (2 x 3 cm), and is thrown at it at 4 m/s (4 mm a substep: lists rebuilt every few
+/// substeps) and 16 m/s (17 mm a substep: the substeps search the hash alone): the pairs that
+/// close in during a frame are in no list built at its start. Against the reference's
+/// every-pair search, fused and per stage. (With lists built only when a frame starts, this
+/// fails: the layers pass through each other.)
+#[test]
+fn contact_lists_catch_pairs_that_close_in_within_a_frame() {
+    for speed in [4.0, 16.0] {
+        let mut c = folded_cloth(0.05, 0.07);
+        for v in &mut c.velocities[5 * 13..] {
+            *v = DVec3::new(0.0, 0.0, -speed);
+        }
+        jitter(&mut c.positions, 0.002, 5);
+        c.stiffness = [60.0, 20.0, 0.0];
+        c.self_distance = Some(0.03);
+        let mut s = scene(vec![c]);
+        s.self_collision = SelfCollisionMethod::Hash;
+        let lavapipe = FusedLimits::new(32 * 1024, 1);
+        let shape = FusedShape::plan(&s.objects[0], &s, lavapipe).expect("fuses");
+        assert!(shape.list > 0, "{shape:?}");
+        let name = format!("thrown at {speed} m/s");
+        assert_matters(&name, &s, |m| m.objects[0].self_distance = None);
+        check_mode(&name, &s, Mode::Resync);
+    }
+}
+
+/// Contact lists that overflow: a cloth folded with its layers 1.5 cm apart, 1 cm between
+/// particles and a 3 cm contact distance, so each particle has some 100 others within the
+/// lists' reach (more than the 16 entries): a full list is built again every substep, from the hash,
+/// as without lists. Against the reference, fused and per stage.
+#[test]
+fn full_contact_lists_fall_back_to_the_hash() {
+    let mut c = folded_cloth(0.01, 0.015);
+    jitter(&mut c.positions, 0.0005, 9);
+    c.stiffness = [20.0, 5.0, 0.0];
+    c.self_distance = Some(0.03);
+    let mut s = scene(vec![c]);
+    s.self_collision = SelfCollisionMethod::Hash;
+    assert_matters("dense fold", &s, |m| m.objects[0].self_distance = None);
+    check_mode("dense fold", &s, Mode::Resync);
 }
 
 #[test]
@@ -526,7 +577,7 @@ fn fused_substeps_equal_the_per_stage_path() {
     s.gravity = DVec3::new(0.0, -9.81, 0.0);
     s.wind = Some(wind([0.3, 0.8, 1.0], [0.0, 0.0, -1.0], 0.01, 0.3, 0.6));
     s.colliders = vec![sphere([0.3, 0.5, 0.1], 0.15)];
-    let worst = fused_against_per_stage(&s, FusedLimits { shared_bytes: u32::MAX, slots: 1 });
+    let worst = fused_against_per_stage(&s, FusedLimits::new(u32::MAX, 1));
     println!("fused vs per stage: {worst:e} m");
     assert!(worst <= 1e-6, "the fused path differs from the per-stage path by {worst} m");
 }
@@ -541,7 +592,7 @@ fn fused_iterative_methods_equal_the_per_stage_path() {
     for method in iterative() {
         let s = integrator_scene(method);
         for slots in [1, 2] {
-            let worst = fused_against_per_stage(&s, FusedLimits { shared_bytes: u32::MAX, slots });
+            let worst = fused_against_per_stage(&s, FusedLimits::new(u32::MAX, slots));
             println!("{method:?}, {slots} slots: fused vs per stage {worst:e} m");
             assert!(worst <= 1e-6, "{method:?}, {slots} slots: the fused path differs by {worst} m");
         }
@@ -567,7 +618,7 @@ fn fused_iterative_methods_equal_the_per_stage_path() {
     // Without dashpots no velocity window is staged before the prediction.
     for method in iterative() {
         s.integrator = method;
-        let worst = fused_against_per_stage(&s, FusedLimits { shared_bytes: u32::MAX, slots: 1 });
+        let worst = fused_against_per_stage(&s, FusedLimits::new(u32::MAX, 1));
         assert!(worst <= 1e-6, "{method:?} on uneven grids: the fused path differs by {worst} m");
     }
 }
@@ -591,7 +642,7 @@ fn fused_layouts_in_passes_equal_the_per_stage_path() {
     r.pinned[0] = true;
     let mut s = scene(vec![c, r]);
     s.gravity = DVec3::new(0.0, -9.81, 0.0);
-    let limit = FusedLimits { shared_bytes: 24 * 1024, slots: FUSED_SLOTS };
+    let limit = FusedLimits::new(24 * 1024, FUSED_SLOTS);
     let cloth_shape = FusedShape::plan(&s.objects[0], &s, limit).unwrap();
     assert!(cloth_shape.pass_slots < cloth_shape.particles.div_ceil(cloth_shape.threads), "{cloth_shape:?}");
     let worst = fused_against_per_stage(&s, limit);

@@ -40,6 +40,11 @@ layout(std430, set = 0, binding = 13) buffer SolverAux { vec4 aux[]; };   // xpb
 // their count (w), written by contact.comp each substep, read by the constraint stage.
 layout(std430, set = 0, binding = 14) buffer ContactBuf { vec4 contact[]; };
 
+// The fused kernel's self-collision contact list (fused.comp): per particle a header (the
+// position the list was built at, xyz, and its length, w as bits) in words [4 i, 4 i + 4),
+// then entry e of particle i at 4 n + e n + i.
+layout(std430, set = 0, binding = 15) buffer SelfListBuf { uint self_list[]; };
+
 // Flags particle i when its state is non-finite or runs away (called once per frame).
 void guard_check(uint i, Particle p) {
     bool bad = any(isnan(p.pos.xyz)) || any(isinf(p.pos.xyz)) || any(isnan(p.vel.xyz)) || any(isinf(p.vel.xyz));

@@ -39,6 +39,26 @@ void self_contact(uvec2 cell, vec3 x, uint j, float reach, inout vec3 correction
 // Calls self_contact for the particles in hash bucket h.
 void visit_bucket(uint h, uvec2 cell, vec3 x, float reach, inout vec3 correction, inout uint n_active);
 
+// Visits the hash buckets that can hold particles within reach of x: cells are at least
+// 2 * reach wide (1 / obj.cell_inv), so every such particle lies in the 2 x 2 x 2 block of
+// cells nearest to x. Buckets two cells share are visited once.
+void visit_cells(uvec2 cell, vec3 x, float reach, inout vec3 correction, inout uint n_active) {
+    ivec3 base = ivec3(floor(x * obj.cell_inv - 0.5));
+    uint seen[8];
+    [[unroll]] for (int c = 0; c < 8; ++c) {
+        uint h = cell_hash(base + ivec3(c & 1, (c >> 1) & 1, c >> 2), HASH_MASK);
+        seen[c] = h;
+        bool again = false;
+        for (int k = 0; k < c; ++k) again = again || seen[k] == h;
+        if (!again) visit_bucket(h, cell, x, reach, correction, n_active);
+    }
+}
+
+// The candidates for self-contact: the hash's buckets (fused.comp may read a contact list).
+#ifndef SELF_CANDIDATES
+#define SELF_CANDIDATES visit_cells
+#endif
+
 // The position correction of the free particle at grid `cell`, at x after physics.
 vec3 constraint_correction(uvec2 cell, vec3 x) {
     vec3 correction = vec3(0.0);
@@ -67,17 +87,7 @@ vec3 constraint_correction(uvec2 cell, vec3 x) {
     if (has(F_SELF) && (obj.flags & OBJ_SELF_COLLISION) != 0u) {
         float reach = obj.self_distance;
         if ((obj.flags & OBJ_SELF_HASH) != 0u) {
-            // Cells are 2 * reach wide, so every particle within reach lies in the 2 x 2 x 2
-            // block of cells nearest to x. Buckets two cells share are visited once.
-            ivec3 base = ivec3(floor(x * obj.cell_inv - 0.5));
-            uint seen[8];
-            [[unroll]] for (int c = 0; c < 8; ++c) {
-                uint h = cell_hash(base + ivec3(c & 1, (c >> 1) & 1, c >> 2), HASH_MASK);
-                seen[c] = h;
-                bool again = false;
-                for (int k = 0; k < c; ++k) again = again || seen[k] == h;
-                if (!again) visit_bucket(h, cell, x, reach, correction, n_active);
-            }
+            SELF_CANDIDATES(cell, x, reach, correction, n_active);
         } else {
             uint n = particle_count();
             for (uint j = 0u; j < n; ++j) self_contact(cell, x, j, reach, correction, n_active);

@@ -108,8 +108,7 @@ pub fn measure(
     shaders: &mut ShaderSet,
 ) -> Result<EndToEnd> {
     let model = scene::to_model(scene);
-    let mut limits = FusedLimits::for_device(ctx.info());
-    limits.slots = options.fused_slots.unwrap_or(limits.slots);
+    let limits = FusedLimits::for_device(ctx.info()).with_slots(options.fused_slots);
     let mut sim = GpuSim::with_fused_limits(ctx, &model, limits, shaders)?;
     sim.set_stage_timing(false);
     let renderer = SceneRenderer::new(ctx, Format::Rgba8Unorm, Format::Depth32, shaders).and_then(|mut r| {

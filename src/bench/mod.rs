@@ -87,8 +87,7 @@ pub fn measure(
     shaders: &mut ShaderSet,
 ) -> Result<Measurement> {
     let model = scene::to_model(&case.scene);
-    let mut limits = FusedLimits::for_device(ctx.info());
-    limits.slots = fused_slots.unwrap_or(limits.slots);
+    let limits = FusedLimits::for_device(ctx.info()).with_slots(fused_slots);
     let mut sim = GpuSim::with_fused_limits(ctx, &model, limits, shaders)
         .with_context(|| format!("setting up {}", case.name))?;
     sim.set_drawn(false); // headless: the surface stage runs the guard only

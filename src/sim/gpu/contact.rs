@@ -28,7 +28,8 @@ pub(super) struct SceneContact {
     sorted: Buffer,
     block_sums: Buffer,
     buckets: u32,
-    /// The scan's set, and each object's set (the object's own buffers at 1, 2 and 14).
+    /// The scan's set, and each object's set (the object's own buffers at 1, 2 and 14; contact
+    /// runs per stage, so no contact list at 15).
     scan_set: BindingSet,
     sets: Vec<BindingSet>,
 }
@@ -129,6 +130,7 @@ impl SceneContact {
                     &c.table,
                     &c.objects,
                     touch,
+                    p,
                 ];
                 debug_assert_eq!(bindings.len() as u32, BINDINGS);
                 sets.push(arena.allocate(ctx, layout, &bindings)?);
@@ -150,7 +152,9 @@ impl SceneContact {
                 p,
                 p,
                 p,
+                p,
             ];
+            debug_assert_eq!(bindings.len() as u32, BINDINGS);
             let scan_set = arena.allocate(ctx, layout, &bindings)?;
             contact.sets = sets;
             contact.scan_set = scan_set;

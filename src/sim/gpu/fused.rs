@@ -23,21 +23,41 @@ pub const FUSED_SLOTS: u32 = 4;
 /// (docs/PERFORMANCE.md, "Fused substeps"): with one particle per thread ropes of 256 to
 /// 1,024 nodes run 2 to 3 times faster fused than per stage and cloths of 256 to 1,024
 /// particles within -10% to +15%; with two or three per thread one workgroup's latency chain
-/// is longer than the per-stage dispatches (a 50 x 50 cloth: 0.31 vs 0.18 ms per frame).
+/// is longer than the per-stage dispatches (a 50 x 50 cloth: 0.236 vs 0.176 ms per frame).
 pub const FUSED_DEFAULT_SLOTS: u32 = 1;
+/// ... and for an object that self-collides through the hash: there the shared hash and the
+/// contact lists beat the per-stage hash at every size that fits (the curtain: 0.410 against
+/// 0.670 ms per frame; a 45 x 45 cloth with self-collision 0.276 against 0.506).
+pub const FUSED_HASHED_SLOTS: u32 = FUSED_SLOTS;
 
 /// What the fused layouts are planned for: shared memory per workgroup [bytes] and particles
-/// per thread at most.
+/// per thread at most (for objects that self-collide through the hash: `hashed_slots`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct FusedLimits {
     pub shared_bytes: u32,
     pub slots: u32,
+    pub hashed_slots: u32,
 }
 
 impl FusedLimits {
-    /// The device's shared memory and `FUSED_DEFAULT_SLOTS`.
+    /// `slots` particles per thread at most for every object.
+    pub fn new(shared_bytes: u32, slots: u32) -> Self {
+        Self { shared_bytes, slots, hashed_slots: slots }
+    }
+
+    /// The device's shared memory, `FUSED_DEFAULT_SLOTS` and `FUSED_HASHED_SLOTS`.
     pub fn for_device(info: &crate::vk::DeviceInfo) -> Self {
-        Self { shared_bytes: info.max_shared_memory, slots: FUSED_DEFAULT_SLOTS }
+        Self {
+            shared_bytes: info.max_shared_memory,
+            slots: FUSED_DEFAULT_SLOTS,
+            hashed_slots: FUSED_HASHED_SLOTS,
+        }
+    }
+
+    /// These limits with `slots` particles per thread at most for every object (`None`: as
+    /// they are).
+    pub fn with_slots(self, slots: Option<u32>) -> Self {
+        slots.map_or(self, |s| Self::new(self.shared_bytes, s))
     }
 
     /// These limits within the device's shared memory and the kernel's `FUSED_SLOTS`.
@@ -45,6 +65,7 @@ impl FusedLimits {
         Self {
             shared_bytes: self.shared_bytes.min(info.max_shared_memory),
             slots: self.slots.min(FUSED_SLOTS),
+            hashed_slots: self.hashed_slots.min(FUSED_SLOTS),
         }
     }
 }
@@ -56,6 +77,10 @@ const MAX_THREADS: u32 = 1024;
 const SHARED_MARGIN: u32 = 256;
 /// Fewest hash buckets worth a shared hash.
 const MIN_BUCKETS: u32 = 32;
+/// Entries of a particle's self-collision contact list (`LIST_MAX` in the shader): others within
+/// twice the self-collision distance (`LIST_SKIN`) that are not rest-state neighbours. A fuller
+/// list is built again the next substep (as without lists).
+pub const SELF_LIST_ENTRIES: u32 = 16;
 
 /// The features object `o` uses in `model` (the `FEATURES` specialization constant): spring
 /// types with stiffness or dashpots, dashpots, wind, the stretch limit, self-collision, each collider type.
@@ -94,8 +119,8 @@ impl ObjectPlan {
     }
 }
 
-/// The specialization of `fused.comp` for one object (`specialization`: ids 0, 4..=8 from the
-/// layout; 1, 2, 3 and 9 from the integrator, its iterations and the features).
+/// The specialization of `fused.comp` for one object (`specialization`: ids 0, 4..=8 and 10 from
+/// the layout; 1, 2, 3 and 9 from the integrator, its iterations and the features).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub struct FusedShape {
     /// Workgroup size: a multiple of 32, at most 1024.
@@ -113,6 +138,8 @@ pub struct FusedShape {
     /// An iterative method at one iteration: the loop and XPBD's multipliers compiled out
     /// (`ONE_ITERATION`; another iteration count is another pipeline).
     pub one_iteration: bool,
+    /// Entries of each particle's self-collision contact list (with the shared hash; else 0).
+    pub list: u32,
 }
 
 impl FusedShape {
@@ -121,8 +148,10 @@ impl FusedShape {
     pub fn plan(o: &ObjectModel, model: &SimModel, limits: FusedLimits) -> Option<Self> {
         let solver = model.integrator.solver();
         let n = o.particle_count() as u32;
+        let hashed = o.self_distance.is_some() && model.self_collision == SelfCollisionMethod::Hash;
+        let most = if hashed { limits.hashed_slots } else { limits.slots };
         // Objects that touch each other meet every substep: they run per stage.
-        if n == 0 || n > limits.slots.min(FUSED_SLOTS) * MAX_THREADS || model.inter_object_contact() {
+        if n == 0 || n > most.min(FUSED_SLOTS) * MAX_THREADS || model.inter_object_contact() {
             return None;
         }
         let slots = n.div_ceil(MAX_THREADS);
@@ -140,7 +169,6 @@ impl FusedShape {
         }
         let window = |q: u32| 3 * (threads * q + 2 * halo);
         let pass_slots = if damped { (1..=slots).rev().find(|&q| window(q) <= words)? } else { slots };
-        let hashed = o.self_distance.is_some() && model.self_collision == SelfCollisionMethod::Hash;
         let buckets = if hashed {
             let most = words.checked_sub(n)?;
             let b = (2 * n).next_power_of_two().min(1 << most.max(1).ilog2());
@@ -158,7 +186,8 @@ impl FusedShape {
         .max()
         .unwrap_or(1);
         let one_iteration = solver.is_some() && model.iterations == 1;
-        Some(Self { threads, particles: n, scratch, buckets, pass_slots, halo, one_iteration })
+        let list = if hashed { SELF_LIST_ENTRIES } else { 0 };
+        Some(Self { threads, particles: n, scratch, buckets, pass_slots, halo, one_iteration, list })
     }
 
     /// Shared memory the kernel declares [bytes].
@@ -166,7 +195,16 @@ impl FusedShape {
         12 * self.particles + 4 * self.particles.div_ceil(32) + 4 * self.scratch
     }
 
-    /// Specialization constants 0..=9 (index = id) for the integrator and the features.
+    /// Words of the contact list buffer (binding 15): a header and `list` entries a particle.
+    pub fn list_words(&self) -> u64 {
+        if self.list == 0 {
+            0
+        } else {
+            (4 + self.list as u64) * self.particles as u64
+        }
+    }
+
+    /// Specialization constants 0..=10 (index = id) for the integrator and the features.
     pub fn specialization(&self, method: Integrator, features: u32) -> Vec<u32> {
         let verlet = method.method().scheme == Scheme::Explicit { verlet: true };
         vec![
@@ -180,6 +218,7 @@ impl FusedShape {
             self.pass_slots,
             self.halo,
             method as u32,
+            self.list,
         ]
     }
 }
@@ -189,7 +228,7 @@ mod tests {
     use super::*;
 
     fn kib(k: u32) -> FusedLimits {
-        FusedLimits { shared_bytes: k * 1024, slots: FUSED_SLOTS }
+        FusedLimits::new(k * 1024, FUSED_SLOTS)
     }
 
     fn curtain() -> SimModel {
@@ -210,11 +249,17 @@ mod tests {
         assert_eq!(shape.pass_slots, 1, "{shape:?}");
         assert!(shape.shared_bytes() <= 48 * 1024 - SHARED_MARGIN, "{shape:?}");
         assert_eq!(FusedShape::plan(o, &m, kib(32)), None);
-        let one_slot = FusedLimits { shared_bytes: 48 * 1024, slots: FUSED_DEFAULT_SLOTS };
+        let one_slot = FusedLimits::new(48 * 1024, FUSED_DEFAULT_SLOTS);
         assert_eq!(FusedShape::plan(o, &m, one_slot), None, "2,500 particles need three slots");
+        // The default limits fuse it (it self-collides through the hash), not the same cloth
+        // without self-collision.
+        let default = FusedLimits { hashed_slots: FUSED_HASHED_SLOTS, ..one_slot };
+        assert!(FusedShape::plan(o, &m, default).is_some_and(|s| s.list > 0));
+        let mut plain = m.clone();
+        plain.objects[0].self_distance = None;
+        assert_eq!(FusedShape::plan(&plain.objects[0], &plain, default), None);
         for limit in (16..=64).map(|k| k * 1024) {
-            if let Some(s) = FusedShape::plan(o, &m, FusedLimits { shared_bytes: limit, slots: FUSED_SLOTS })
-            {
+            if let Some(s) = FusedShape::plan(o, &m, FusedLimits::new(limit, FUSED_SLOTS)) {
                 assert!(s.shared_bytes() <= limit - SHARED_MARGIN, "{limit}: {s:?}");
                 assert!(s.threads % 32 == 0 && s.threads * FUSED_SLOTS >= s.particles, "{s:?}");
             }
@@ -236,10 +281,7 @@ mod tests {
         let mut m = curtain();
         let o = &mut m.objects[0];
         o.dims = [65, 64];
-        assert_eq!(
-            FusedShape::plan(&m.objects[0], &m, FusedLimits { shared_bytes: u32::MAX, slots: FUSED_SLOTS }),
-            None
-        );
+        assert_eq!(FusedShape::plan(&m.objects[0], &m, FusedLimits::new(u32::MAX, FUSED_SLOTS)), None);
     }
 
     /// One iteration of an iterative method is a layout of its own (another pipeline; the

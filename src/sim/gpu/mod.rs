@@ -51,7 +51,7 @@ use pipelines::{Pipelines, Stage};
 const CLOTH_GROUP: [u32; 2] = [16, 16];
 const ROPE_GROUP: u32 = 64;
 /// Bindings per set, in the order of `glsl/include/bindings.glsl`.
-const BINDINGS: u32 = 15;
+const BINDINGS: u32 = 16;
 
 /// What each binding holds: the globals (0) are a uniform buffer, read by every invocation
 /// alike (the driver folds its members into the instructions), the rest storage buffers. The

@@ -136,6 +136,8 @@ pub(super) struct GpuObject {
     pub guard: Buffer,
     /// Inter-object contact: per particle the corrections from other objects (binding 14).
     pub contact: Option<Buffer>,
+    /// The fused kernel's self-collision contact lists (binding 15; `FusedShape::list`).
+    pub self_list: Option<Buffer>,
     /// [A -> B (physics), B -> A (constraints, hash passes); surface uses set 0 (reads A)].
     pub sets: [BindingSet; 2],
     /// The features its step pipelines compile in and its fused layout.
@@ -183,6 +185,7 @@ impl GpuObject {
         let mut hash = None;
         let mut solver = None;
         let mut contact = None;
+        let mut self_list = None;
         let sets = (|| -> Result<[BindingSet; 2], VkError> {
             guard.write(0, &GUARD_CLEAR)?;
             params.write(0, &[object_params(o, model)])?;
@@ -200,6 +203,11 @@ impl GpuObject {
                 )?);
             }
             solver = SolverBuffers::new(ctx, &o.name, n, model.integrator)?;
+            if let Some(words) = plan.fused.map(|f| f.list_words()).filter(|&w| w > 0) {
+                let name = format!("{}.self_list", o.name);
+                self_list =
+                    Some(Buffer::new(ctx, &name, 4 * words, BufferUsage::STORAGE, MemoryKind::GpuOnly)?);
+            }
             let p = &placeholder;
             let [cell_rank, counts, starts, sorted, blocks] = match &hash {
                 Some(h) => h.buffers(),
@@ -210,10 +218,11 @@ impl GpuObject {
                 None => [p; 2],
             };
             let touch = contact.as_ref().unwrap_or(p);
+            let lists = self_list.as_ref().unwrap_or(p);
             let set = |arena: &mut DescriptorArena, from: &Buffer, to: &Buffer| {
                 let bindings = [
                     globals, &params, from, to, colliders, &surface, cell_rank, counts, starts, sorted,
-                    blocks, &guard, iter, aux, touch,
+                    blocks, &guard, iter, aux, touch, lists,
                 ];
                 debug_assert_eq!(bindings.len() as u32, BINDINGS);
                 arena.allocate(ctx, layout, &bindings)
@@ -236,6 +245,7 @@ impl GpuObject {
             placeholder,
             guard,
             contact,
+            self_list,
             sets,
             plan,
         };
@@ -257,6 +267,7 @@ impl GpuObject {
             out.extend([&s.iter, &s.aux]);
         }
         out.extend(&self.contact);
+        out.extend(&self.self_list);
         out
     }
 
@@ -275,11 +286,15 @@ impl GpuObject {
         if let Some(c) = self.contact {
             c.destroy(ctx);
         }
+        if let Some(l) = self.self_list {
+            l.destroy(ctx);
+        }
     }
 }
 
 /// Bytes of GPU memory an object needs: two state buffers, the surface, the parameters (and
-/// the spatial hash and the largest solver, counted for every object: an upper bound).
+/// the spatial hash, the largest solver and the contact lists, counted for every object: an
+/// upper bound).
 fn object_bytes(o: &ObjectShape) -> u64 {
     let n = o.particle_count();
     2 * n * std::mem::size_of::<Particle>() as u64
@@ -289,6 +304,7 @@ fn object_bytes(o: &ObjectShape) -> u64 {
         + 8 * hash_table_size(n)
         + 4
         + 5 * 16 * n
+        + 4 * (4 + super::fused::SELF_LIST_ENTRIES as u64) * n
 }
 
 fn gib(bytes: u64) -> String {
