@@ -62,6 +62,8 @@ const bool COLOURED = SOLVER == METHOD_VBD;  // VBD sweeps vertex colours; XPBD 
 // before each body call. XPBD does without (measured: its class passes ran 20% slower with the
 // masks' registers) and reads its spring constants from the buffer (4% faster than from the copy).
 uint spring_mask;
+float inv_diag;  // the implicit method: 1 / (m / dt^2 + the stiffness of the particle's springs)
+#define IMPLICIT_INV_DIAG inv_diag
 const bool SPRING_MASKS = SOLVER != METHOD_XPBD;
 
 shared float px[CAP];
@@ -221,14 +223,20 @@ void main() {
     uint own[MAX_SLOTS];  // the particle of each slot
     uvec2 cells[MAX_SLOTS];  // ... and its grid cell
     uint masks[MAX_SLOTS];   // ... and its springs (spring_mask)
+    float inv_diags[MAX_SLOTS];
     [[unroll]] for (uint s = 0u; s < MAX_SLOTS; ++s) {
         uint k = particle_of_rank(t + s * THREADS);
         own[s] = k;
         cells[s] = uvec2(k % cols, k / cols);
         masks[s] = 0u;
+        float diag = obj.mass / (g.dt * g.dt);
         if (SPRING_MASKS) [[unroll]] for (int q = 0; q < 12; ++q) {
-            if (neighbour(ivec2(cells[s]), SPRINGS[q].xy, obj.dims) >= 0) masks[s] |= 1u << uint(q);
+            if (neighbour(ivec2(cells[s]), SPRINGS[q].xy, obj.dims) >= 0) {
+                masks[s] |= 1u << uint(q);
+                diag += obj.stiffness[SPRINGS[q].z];
+            }
         }
+        inv_diags[s] = 1.0 / diag;
         x[s] = vec3(0.0);
         v[s] = vec3(0.0);
         v_new[s] = vec3(0.0);
@@ -364,6 +372,7 @@ void main() {
                         next[s] = dx[s];
                         if (k < n && !pinned[s]) {
                             spring_mask = masks[s];
+                            inv_diag = inv_diags[s];
                             next[s] = implicit_particle(cells[s], it, x[s], dx[s], dy[s], before[s]);
                         }
                     }

@@ -98,7 +98,11 @@ vec3 implicit_particle(uvec2 cell, uint k, vec3 x, vec3 dx, vec3 dy, vec3 before
         rhs += stiffness * (pj + target);
         diag += stiffness;
     }
+#ifdef IMPLICIT_INV_DIAG
+    vec3 damped = dx + (rhs * IMPLICIT_INV_DIAG - dx) * obj.jacobi_damping;  // (the caller's 1 / diag)
+#else
     vec3 damped = dx + (rhs / diag - dx) * obj.jacobi_damping;
+#endif
     float omega = k < CHEBYSHEV_START ? 1.0 : chebyshev_omega(k - CHEBYSHEV_START, obj.cheb_rho);
     return before + omega * (damped - before);
 }
