@@ -139,10 +139,7 @@ void visit_bucket(uint h, uvec2 cell, vec3 x, float reach, inout vec3 correction
     for (uint j = scratch[h]; j != EMPTY; j = scratch[BUCKETS + j]) {
         float d = distance(spos(j), x);
         if (d < reach) self_contact(cell, x, j, reach, correction, n_active);
-        if (LISTED && list_build && d < reach * (1.0 + LIST_SKIN)) {
-            ivec2 other = ivec2(int(j % obj.dims.x), int(j / obj.dims.x));
-            vec2 rest = vec2(other - ivec2(cell)) * obj.spacing;
-            if (dot(rest, rest) < reach * reach) continue;  // as self_contact: never in contact
+        if (LISTED && list_build && d < reach * (1.0 + LIST_SKIN) && !rest_neighbour(cell, j, reach)) {
             if (list_len < LIST_MAX) self_list[4u * CAP + list_len * CAP + list_particle] = j;
             list_len += 1u;  // past LIST_MAX the list is full: it is rebuilt the next substep
         }
@@ -155,7 +152,8 @@ void listed_candidates(uvec2 cell, vec3 x, float reach, inout vec3 correction, i
         return;
     }
     for (uint e = 0u; e < list_len; ++e) {
-        self_contact(cell, x, self_list[4u * CAP + e * CAP + list_particle], reach, correction, n_active);
+        // (rest-state neighbours were left out when the list was built)
+        self_push(x, self_list[4u * CAP + e * CAP + list_particle], reach, correction, n_active);
     }
 }
 

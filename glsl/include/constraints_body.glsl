@@ -23,17 +23,27 @@
 #define HASH_MASK obj.hash_mask
 #endif
 
-// Adds the push from particle j when it is within `reach` of x (and not a rest-state neighbour).
-void self_contact(uvec2 cell, vec3 x, uint j, float reach, inout vec3 correction, inout uint n_active) {
+// Whether particle j is nearer than `reach` to `cell` in the rest state (or is that particle):
+// such pairs never push, the springs keep them apart.
+bool rest_neighbour(uvec2 cell, uint j, float reach) {
     ivec2 other = ivec2(int(j % obj.dims.x), int(j / obj.dims.x));
     vec2 rest = vec2(other - ivec2(cell)) * obj.spacing;
-    if (dot(rest, rest) < reach * reach) return;  // includes j == this particle
+    return dot(rest, rest) < reach * reach;
+}
+
+// Adds the push from particle j when it is within `reach` of x.
+void self_push(vec3 x, uint j, float reach, inout vec3 correction, inout uint n_active) {
     vec3 to_j = CPOS(j) - x;
     float d = length(to_j);
     if (d < reach && d > 0.0) {
         correction += (to_j / d) * ((d - reach) * (CPINNED(j) ? 1.0 : 0.5));
         n_active += 1u;
     }
+}
+
+// Adds the push from particle j when it is within `reach` of x (and not a rest-state neighbour).
+void self_contact(uvec2 cell, vec3 x, uint j, float reach, inout vec3 correction, inout uint n_active) {
+    if (!rest_neighbour(cell, j, reach)) self_push(x, j, reach, correction, n_active);
 }
 
 // Calls self_contact for the particles in hash bucket h.
