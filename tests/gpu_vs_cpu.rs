@@ -385,9 +385,9 @@ fn contact_lists_catch_pairs_that_close_in_within_a_frame() {
 }
 
 /// Contact lists that overflow: a cloth folded with its layers 1.5 cm apart, 1 cm between
-/// particles and a 3 cm contact distance, so each particle has some 100 others within the
-/// lists' reach (more than the 16 entries): a full list is built again every substep, from the hash,
-/// as without lists. Against the reference, fused and per stage.
+/// particles and a 3 cm contact distance, so each particle has far more than 16 others within
+/// the lists' reach (6 cm): a full list is built again every substep, from the hash, as without
+/// lists. Against the reference, fused and per stage.
 #[test]
 fn full_contact_lists_fall_back_to_the_hash() {
     let mut c = folded_cloth(0.01, 0.015);
