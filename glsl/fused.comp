@@ -78,14 +78,16 @@ shared uint list_flag[2];  // substep parity: some particle moved too far from i
 // out) in self_list; the substeps after read those instead of the hash, until some particle
 // has moved more than half the skin, LIST_SKIN reach / 2, from where the list was built (then
 // no pair missing from a list can have come within reach: neither end moved the skin's half)
-// or a list overflowed. Until lists are built in a dispatch, every substep builds (lists of an
-// earlier dispatch are never read: the app may have moved pinned particles or changed the
-// contact distance since).
+// or a list overflowed. The lists and where they were built stay in self_list from one dispatch
+// to the next, marked valid by the word after them (LIST_VALID); the host clears it whenever
+// something outside the kernel changes the state or the parameters (a reset, a dragged or
+// pinned particle, an edit, a reloaded shader), and until they are valid every substep builds.
 const bool LISTED = LIST_MAX > 0u;
 const float LIST_SKIN = 1.0;
 bool list_rebuild;   // this substep builds the hash (and searches it)
 bool list_build;     // ... and the lists
-bool lists_built = false;  // in this dispatch
+bool lists_built;    // valid lists exist (from this dispatch or an earlier one)
+const uint LIST_VALID = (4u + LIST_MAX) * CAP;  // the word of self_list that says so (1)
 const uint LIST_MOVED = 1u;  // list_flag bits: build this substep
 const uint LIST_FAST = 2u;   // ... but not lists (they would not last)
 uint list_particle;  // the particle being visited
@@ -202,6 +204,7 @@ void main() {
     uint cols = obj.dims.x;
     const uint self_bits = OBJ_SELF_COLLISION | OBJ_SELF_HASH;
     bool hashed = has(F_SELF) && (obj.flags & self_bits) == self_bits;
+    lists_built = LISTED && hashed && self_list[LIST_VALID] == 1u;
     bool stretch = has(F_STRETCH) && (obj.flags & OBJ_STRETCH_LIMIT) != 0u;
     bool self_any = has(F_SELF) && (obj.flags & OBJ_SELF_COLLISION) != 0u;
     bool neighbours = stretch || self_any;  // the constraints read other particles
@@ -419,7 +422,7 @@ void main() {
                     moved = moved || !(distance(x[s], built) <= half_skin);
                     fast = fast || length(v[s]) * g.dt > half_skin;
                 }
-                uint flags = (moved && sub > 0u ? LIST_MOVED : 0u) | (fast ? LIST_FAST : 0u);
+                uint flags = (moved ? LIST_MOVED : 0u) | (fast ? LIST_FAST : 0u);
                 if (flags != 0u) atomicOr(list_flag[sub & 1u], flags);
             } else if (hashed) {
                 for (uint b = t; b < BUCKETS; b += THREADS) scratch[b] = EMPTY;
@@ -436,6 +439,7 @@ void main() {
                 rebuild = !lists_built || (flags & LIST_MOVED) != 0u;
                 list_build = rebuild && (flags & LIST_FAST) == 0u;
                 lists_built = lists_built || list_build;
+                if (list_build && t == 0u) self_list[LIST_VALID] = 1u;  // read by the next dispatch
                 if (t == 0u) list_flag[(sub + 1u) & 1u] = 0u;  // read again after two barriers
                 if (rebuild) {
                     obj.cell_inv = list_build ? cell_inv / (1.0 + LIST_SKIN) : cell_inv;

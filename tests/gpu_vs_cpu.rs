@@ -384,6 +384,48 @@ fn contact_lists_catch_pairs_that_close_in_within_a_frame() {
     }
 }
 
+/// The contact lists are kept from one frame to the next, so whatever changes the state from
+/// outside the kernel must invalidate them. A flat 13 x 9 cloth without springs (5 cm apart, a
+/// 3 cm contact distance) lies still, its corner pinned; after two frames (lists built and
+/// kept), `set_particle` moves the pinned corner to 1 cm in front of a particle in the middle:
+/// no list holds that pair, and nothing moves to make the kernel rebuild them. The next frame
+/// must push the middle particle away as the reference does. (Without the invalidation the
+/// corner sits in the cloth and nothing happens: 2 cm off.)
+#[test]
+fn contact_lists_are_rebuilt_after_a_particle_is_set() {
+    let mut c = cloth(13, 9, 0.05);
+    c.self_distance = Some(0.03);
+    c.pinned[0] = true;
+    let mut s = scene(vec![c]);
+    s.self_collision = SelfCollisionMethod::Hash;
+    let ctx = gpu();
+    let mut sim = GpuSim::new(&ctx, &s).expect("creating the GPU simulation");
+    assert!(sim.runs_fused(0));
+    for _ in 0..2 {
+        sim.step_frame(&ctx).expect("GPU frame");
+    }
+    let before = sim.read_states(&ctx).expect("readback");
+    let middle = 4 * 13 + 6;
+    let mut x = before[0].positions();
+    x[0] = x[middle] + DVec3::new(0.0, 0.0, 0.01);
+    let moved = msdsim::sim::gpu_types::Particle {
+        pos: [x[0].x as f32, x[0].y as f32, x[0].z as f32, 1.0],
+        vel: [0.0; 4],
+    };
+    sim.set_particle(0, 0, moved);
+    let mut cpu = CpuSim::new(&s);
+    cpu.set_state(0, x, before[0].velocities());
+    sim.step_frame(&ctx).expect("GPU frame");
+    cpu.step_frame();
+    let after = sim.read_states(&ctx).expect("readback");
+    let pushed = after[0].positions()[middle].distance(before[0].positions()[middle]);
+    assert!(pushed > 0.01, "the middle particle moved only {pushed} m");
+    let d = deviation(&after, cpu.objects());
+    assert!(d.position <= POSITION, "position deviation {} m > {POSITION}", d.position);
+    sim.destroy(&ctx);
+    assert_clean(&ctx);
+}
+
 /// Contact lists that overflow: a cloth folded with its layers 1.5 cm apart, 1 cm between
 /// particles and a 3 cm contact distance, so each particle has far more than 16 others within
 /// the lists' reach (6 cm): a full list is built again every substep, from the hash, as without

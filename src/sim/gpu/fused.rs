@@ -195,12 +195,13 @@ impl FusedShape {
         12 * self.particles + 4 * self.particles.div_ceil(32) + 4 * self.scratch
     }
 
-    /// Words of the contact list buffer (binding 15): a header and `list` entries a particle.
+    /// Words of the contact list buffer (binding 15): a header and `list` entries a particle,
+    /// and one that says whether they are valid (`LIST_VALID`: the host clears it).
     pub fn list_words(&self) -> u64 {
         if self.list == 0 {
             0
         } else {
-            (4 + self.list as u64) * self.particles as u64
+            (4 + self.list as u64) * self.particles as u64 + 1
         }
     }
 

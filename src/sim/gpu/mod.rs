@@ -132,6 +132,9 @@ pub struct GpuSim {
     warning: Option<String>,
     /// Particle writes (object, index, value) applied at the start of the next recorded frame.
     pending_writes: Vec<(usize, u32, Particle)>,
+    /// The fused kernel's self-collision contact lists may not match the state or parameters
+    /// any more: the next frame marks them invalid first (`record_lists_invalid`).
+    lists_stale: bool,
     /// The model the simulation runs, without particles (substeps, integrator, the guard's
     /// reports).
     model: SimModel,
@@ -278,6 +281,7 @@ impl GpuSim {
             drawn: true,
             frames: 0,
             pending_writes: Vec::new(),
+            lists_stale: true,
             warned: false,
             warning: None,
             surface_stale: false,
@@ -316,6 +320,7 @@ impl GpuSim {
     /// after this submission's fence. Pending particle writes are applied first.
     pub fn record_frame(&mut self, rec: &mut Recorder<'_>, surface_consumer: Access, slot: usize) {
         let dragged = std::mem::take(&mut self.dragged);
+        let lists_stale = std::mem::take(&mut self.lists_stale) || !self.pending_writes.is_empty();
         let ts = self.timestamps.get(slot);
         if let Some(pool) = ts {
             rec.reset_timestamps(pool);
@@ -338,6 +343,9 @@ impl GpuSim {
                 rec.update_buffer(&objects[o].state[0], index as u64 * size, bytemuck::bytes_of(&p));
             }
             rec.barrier(&around(Access::TransferWrite, Access::ComputeReadWrite));
+        }
+        if lists_stale {
+            self.record_lists_invalid(rec);
         }
         self.record_collider_motion(rec, &dragged);
         let stages = self.stage_timing;
@@ -474,6 +482,7 @@ impl GpuSim {
         shaders: &mut ShaderSet,
         changed: &[String],
     ) -> (Vec<String>, Vec<Retired>) {
+        self.lists_stale = true; // a changed fused.comp may build other lists
         self.pipelines.reload(ctx, &self.layout, shaders, changed)
     }
 
@@ -561,6 +570,7 @@ impl GpuSim {
             gpu.params.write(0, &[object_params(o, model)])?;
         }
         self.model = model.without_particles();
+        self.lists_stale = true;
         Ok(())
     }
 

@@ -205,8 +205,8 @@ impl GpuObject {
             solver = SolverBuffers::new(ctx, &o.name, n, model.integrator)?;
             if let Some(words) = plan.fused.map(|f| f.list_words()).filter(|&w| w > 0) {
                 let name = format!("{}.self_list", o.name);
-                self_list =
-                    Some(Buffer::new(ctx, &name, 4 * words, BufferUsage::STORAGE, MemoryKind::GpuOnly)?);
+                let usage = BufferUsage::STORAGE | BufferUsage::TRANSFER_DST;
+                self_list = Some(Buffer::new(ctx, &name, 4 * words, usage, MemoryKind::GpuOnly)?);
             }
             let p = &placeholder;
             let [cell_rank, counts, starts, sorted, blocks] = match &hash {
@@ -304,7 +304,7 @@ fn object_bytes(o: &ObjectShape) -> u64 {
         + 8 * hash_table_size(n)
         + 4
         + 5 * 16 * n
-        + 4 * (4 + super::fused::SELF_LIST_ENTRIES as u64) * n
+        + 4 * ((4 + super::fused::SELF_LIST_ENTRIES as u64) * n + 1)
 }
 
 fn gib(bytes: u64) -> String {
