@@ -19,16 +19,17 @@
 // start: reading them from the storage buffer in every spring loop cost 15 to 25%), each owned
 // particle's grid cell and the mask of its springs that have another end (SPRING_NEIGHBOUR).
 // The host (src/sim/gpu/fused.rs) sizes all of it from the object and the device's shared
-// memory and specializes one pipeline per object shape (and one for a single iteration); the step code is physics_body.glsl and
-// constraints_body.glsl, as for the per-stage path, with neighbours read from shared memory.
+// memory and specializes one pipeline per object shape (and one for a single iteration); the
+// step code is physics_body.glsl and constraints_body.glsl, as for the per-stage path, with
+// neighbours read from shared memory.
 // Phases are separated by barrier(); those a scene does not need are left out.
 //
 // The iterative integrators (SOLVER) replace the physics step with the prediction y (read like
 // the physics: neighbours' velocities staged when the implicit method's dashpots read them),
 // then their iterations: the displacements p - x live in registers and, for the neighbours, in
 // scratch (px/py/pz keep the substep's start x; the implicit method, which needs no x of a
-// neighbour, keeps its iterate p itself there instead); XPBD visits the spring classes in turn (the
-// thread owning a spring's first node moves both ends), VBD the vertex colours, a barrier()
+// neighbour, keeps its iterate p itself there instead); XPBD visits the spring classes in turn
+// (the thread owning a spring's first node moves both ends), VBD the vertex colours, a barrier()
 // after each class or colour; the implicit method's Jacobi sweep computes every new
 // displacement, then a barrier(), the writes, and a barrier(). The updates themselves are
 // solver_bodies.glsl's, as in the per-stage shaders.
