@@ -24,11 +24,12 @@
 // neighbours read from shared memory.
 // Phases are separated by barrier(); those a scene does not need are left out.
 //
-// The iterative integrators (SOLVER) replace the physics step with the prediction y (read like
-// the physics: neighbours' velocities staged when the implicit method's dashpots read them),
-// then their iterations: the displacements p - x live in registers and, for the neighbours, in
-// scratch (px/py/pz keep the substep's start x; the implicit method, which needs no x of a
-// neighbour, keeps its iterate p itself there instead); XPBD visits the spring classes in turn
+// The iterative integrators (SOLVER) replace the physics step with the BDF2 start (read like
+// the physics: neighbours' velocities staged when the implicit method's dashpots read them;
+// each particle's history in registers, from and back to `history`), then their iterations:
+// the displacements p - x~ from the base x~ live in registers and, for the neighbours, in
+// scratch (px/py/pz keep the base; the implicit method, which needs no base of a neighbour,
+// keeps its iterate p itself there instead); XPBD visits the spring classes in turn
 // (the thread owning a spring's first node moves both ends), VBD the vertex colours, a barrier()
 // after each class or colour; the implicit method's Jacobi sweep computes every new
 // displacement, then a barrier(), the writes, and a barrier(). The updates themselves are
@@ -219,8 +220,10 @@ void main() {
     vec3 v[MAX_SLOTS];
     vec3 v_new[MAX_SLOTS];
     bool pinned[MAX_SLOTS];
-    vec3 dy[MAX_SLOTS];  // iterative methods: the prediction y - x
-    vec3 dx[MAX_SLOTS];  // ... the iterate p - x
+    vec3 dy[MAX_SLOTS];  // iterative methods: the prediction y - x~
+    vec3 dx[MAX_SLOTS];  // ... the iterate p - x~
+    vec4 hx[MAX_SLOTS];  // ... the history x_n - x_{n-1} (w valid); during a solve, x~ - x_n
+    vec3 hv[MAX_SLOTS];  // ... v_n - v_{n-1}; during a solve, v_n
     uint colour[MAX_SLOTS];
     uint own[MAX_SLOTS];  // the particle of each slot
     uvec2 cells[MAX_SLOTS];  // ... and its grid cell
@@ -231,7 +234,8 @@ void main() {
         own[s] = k;
         cells[s] = uvec2(k % cols, k / cols);
         masks[s] = 0u;
-        float diag = obj.mass / (g.dt * g.dt);
+        float h = solve_dt();
+        float diag = obj.mass / (h * h);
         if (SPRING_MASKS) [[unroll]] for (int q = 0; q < 12; ++q) {
             if (neighbour(ivec2(cells[s]), SPRINGS[q].xy, obj.dims) >= 0) {
                 masks[s] |= 1u << uint(q);
@@ -245,12 +249,18 @@ void main() {
         pinned[s] = true;
         dy[s] = vec3(0.0);
         dx[s] = vec3(0.0);
+        hx[s] = vec4(0.0);
+        hv[s] = vec3(0.0);
         colour[s] = vertex_colour(cells[s], colours);
         if (s < SLOTS && k < n) {
             Particle p = p_in[k];
             pinned[s] = p.pos.w > 0.5;
             x[s] = p.pos.xyz;
             v[s] = pinned[s] ? vec3(0.0) : p.vel.xyz;
+            if (ITERATIVE) {
+                hx[s] = history[3u * k];
+                hv[s] = history[3u * k + 1u].xyz;
+            }
         }
     }
     for (uint w = t; w < (CAP + 31u) / 32u; w += THREADS) pin_bits[w] = 0u;
@@ -290,7 +300,15 @@ void main() {
                 if (s / PASS_SLOTS != chunk || k >= n || pinned[s]) continue;
                 if (ITERATIVE) {
                     spring_mask = masks[s];
-                    dy[s] = predicted_displacement(cells[s], x[s], v[s], SOLVER == METHOD_IMPLICIT);
+                    vec3 base;
+                    dy[s] = predicted_displacement(cells[s], x[s], v[s], SOLVER == METHOD_IMPLICIT, hx[s], hv[s], base);
+                    // The solve's start (shared after the barrier below) and x~ - x_n as the
+                    // per-stage path has them (precise: not simplified to `base`).
+                    precise vec3 start = x[s] + base;
+                    precise vec3 moved = start - x[s];
+                    hx[s].xyz = moved;
+                    x[s] = start;
+                    hv[s] = v[s];
                     continue;
                 }
                 vec3 xs = x[s] + drift * v[s];
@@ -307,7 +325,7 @@ void main() {
         barrier();  // every read of this substep's positions and velocities is done
 
         if (ITERATIVE) {
-            // The solve, from the prediction; px/py/pz hold the start positions x.
+            // The solve, from the prediction; px/py/pz hold the bases x~.
             vec4 lambda[MAX_SLOTS][3];  // XPBD: the multipliers of each particle's forward springs
             vec3 before[MAX_SLOTS];     // implicit: the iterate before (Chebyshev)
             [[unroll]] for (uint s = 0u; s < MAX_SLOTS; ++s) {
@@ -316,8 +334,12 @@ void main() {
                 dx[s] = dy[s];
                 before[s] = dy[s];
                 lambda[s] = vec4[3](vec4(0.0), vec4(0.0), vec4(0.0));
-                if (k < n && SOLVER == METHOD_IMPLICIT) set_spos(k, x[s] + dy[s]);
-                else if (k < n) set_sdisp(k, dy[s]);
+                if (k < n && SOLVER == METHOD_IMPLICIT) {
+                    set_spos(k, x[s] + dy[s]);
+                } else if (k < n) {
+                    set_spos(k, x[s]);
+                    set_sdisp(k, dy[s]);
+                }
             }
             barrier();
             // One iteration (a pipeline of its own): XPBD's multipliers start and stay at zero.
@@ -394,7 +416,9 @@ void main() {
                 if (pinned[s]) continue;
                 if (SOLVER == METHOD_XPBD && own[s] < n) dx[s] = sdisp(own[s]);  // moved by springs
                 x[s] += dx[s];
-                v[s] = dx[s] / g.dt;
+                v[s] = dx[s] * (1.0 / solve_dt());
+                hx[s] = vec4(hx[s].xyz + dx[s], 1.0);  // x_{n+1} - x_n
+                hv[s] = v[s] - hv[s];                  // v_{n+1} - v_n
             }
             // XPBD read its displacements back from scratch, which the self-collision hash reuses.
             if (SOLVER == METHOD_XPBD && hashed) barrier();
@@ -499,5 +523,9 @@ void main() {
         if (s >= SLOTS) break;
         uint k = own[s];
         if (k < n) p_in[k] = Particle(vec4(x[s], pinned[s] ? 1.0 : 0.0), vec4(v[s], 0.0));
+        if (ITERATIVE && k < n) {
+            history[3u * k] = pinned[s] ? vec4(0.0) : hx[s];
+            history[3u * k + 1u] = pinned[s] ? vec4(0.0) : vec4(hv[s], 0.0);
+        }
     }
 }

@@ -1,18 +1,18 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_control_flow_attributes : require
-// One iteration of implicit Euler by projective dynamics (implicit_particle in
+// One iteration of BDF2 by projective dynamics (implicit_particle in
 // solver_bodies.glsl), one thread per particle: the local step and one damped,
 // Chebyshev-accelerated Jacobi sweep. Iterate slices rotate: iteration k reads slice k % 3 (and
-// the one before, (k + 2) % 3), writes (k + 1) % 3. p_in holds the substep's start x; the
-// iterates and aux[i] (the prediction y) are displacements from it (see predict.comp).
+// the one before, (k + 2) % 3), writes (k + 1) % 3. The iterates and aux[i] (the prediction y)
+// are displacements from the BDF2 base x~ (history[3 i + 2], see predict.comp).
 #include "bindings.glsl"
 #include "springs.glsl"
 
 layout(local_size_x_id = 0, local_size_y_id = 1, local_size_z = 1) in;
 
 #include "solver_end.glsl"
-#define SX(j) p_in[j].pos.xyz
+#define SX(j) history[3u * uint(j) + 2u].xyz
 #define SD(j) iter[(it.k % 3u) * particle_count() + uint(j)].xyz
 #define SPIN(j) false
 #include "solver_bodies.glsl"
@@ -28,7 +28,7 @@ void main() {
     vec4 di = iter[cur + i];
     vec3 dx = di.xyz;
     bool pinned = di.w > 0.5;
-    if (!pinned) dx = implicit_particle(cell, it.k, p_in[i].pos.xyz, dx, aux[i].xyz, iter[prev + i].xyz);
+    if (!pinned) dx = implicit_particle(cell, it.k, SX(i), dx, aux[i].xyz, iter[prev + i].xyz);
     iter[next + i] = vec4(dx, di.w);
     if (last_iteration()) finish_particle(i, dx, pinned);
 }

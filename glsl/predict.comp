@@ -1,16 +1,17 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_control_flow_attributes : require
-// First pass of a substep of the iterative integrators, one thread per particle: the inertial
-// prediction y = x + dt (v + dt F / m) from p_in (the state x at the start of the substep), with
-// F the external forces (and, for a method that treats damping explicitly, the springs'
-// dashpots). Resets the solver's auxiliary data: a copy of y (KEEP_PREDICTION), else the 12
-// multipliers of XPBD to zero. The constants are the method's row in sim::integrator.
+// First pass of a substep of the iterative integrators, one thread per particle: the BDF2
+// start (predict_body.glsl) from p_in (the state x at the start of the substep) and the
+// particle's history: the base x~ into history[3 i + 2], where the iteration shaders read it
+// as the start position, and the prediction y into the iterates. Resets the solver's auxiliary
+// data: a copy of y (KEEP_PREDICTION), else the 12 multipliers of XPBD to zero. The constants
+// are the method's row in sim::integrator.
 //
-// The iterates are displacements from the start, p - x, not positions: the velocity p - x over
-// dt then carries no rounding of the absolute position. With positions in f32 (x ~ 1 m, steps
-// ~ 1 mm) each substep's rounding of x entered the velocity and accumulated: measured 7e-4 m
-// against the f64 reference after 240 substeps of a falling cloth, versus 1e-6 m here.
+// The iterates are displacements from the base, p - x~, not positions: the velocity p - x~
+// over h then carries no rounding of the absolute position. With positions in f32 (x ~ 1 m,
+// steps ~ 1 mm) each substep's rounding of x entered the velocity and accumulated: measured
+// 7e-4 m against the f64 reference after 240 substeps of a falling cloth, versus 1e-6 m here.
 #include "bindings.glsl"
 #include "springs.glsl"
 #define IN(i) p_in[i]
@@ -27,8 +28,12 @@ void main() {
     Particle p = p_in[i];
     vec3 x = p.pos.xyz;
     vec3 v = p.vel.xyz;
-    vec3 dy = vec3(0.0);  // y - x
-    if (p.pos.w <= 0.5) dy = predicted_displacement(cell, x, v, EXPLICIT_DASHPOTS);
+    vec3 dy = vec3(0.0);  // y - x~
+    vec3 base = vec3(0.0);  // x~ - x
+    if (p.pos.w <= 0.5) {
+        dy = predicted_displacement(cell, x, v, EXPLICIT_DASHPOTS, history[3u * i], history[3u * i + 1u].xyz, base);
+    }
+    history[3u * i + 2u] = vec4(x + base, 0.0);
     iter[i] = vec4(dy, p.pos.w);
     if (KEEP_PREDICTION) {
         aux[i] = vec4(dy, 0.0);

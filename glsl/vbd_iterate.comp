@@ -3,14 +3,14 @@
 #extension GL_EXT_control_flow_attributes : require
 // One vertex colour of one Vertex Block Descent iteration (Chen et al. 2024; vbd_particle in
 // solver_bodies.glsl), one invocation per particle of that colour, its neighbours (other
-// colours) held. In place in iter (one slice of displacements p - x from the substep start x
-// in p_in); aux[i] holds the prediction y - x (predict.comp).
+// colours) held. In place in iter (one slice of displacements p - x~ from the BDF2 base x~,
+// see predict.comp); aux[i] holds the prediction y - x~.
 #include "bindings.glsl"
 #include "springs.glsl"
 
 layout(local_size_x_id = 0, local_size_y_id = 1, local_size_z = 1) in;
 
-#define SX(j) p_in[j].pos.xyz
+#define SX(j) history[3u * uint(j) + 2u].xyz
 #define SD(j) iter[j].xyz
 #define SPIN(j) (iter[j].w > 0.5)
 #include "solver_bodies.glsl"
@@ -24,7 +24,7 @@ void main() {
     vec3 dx = di.xyz;
     bool pinned = di.w > 0.5;
     if (!pinned) {
-        dx = vbd_particle(cell, p_in[i].pos.xyz, dx, aux[i].xyz);
+        dx = vbd_particle(cell, SX(i), dx, aux[i].xyz);
         iter[i] = vec4(dx, di.w);
     }
     if (last_iteration()) finish_particle(i, dx, pinned);

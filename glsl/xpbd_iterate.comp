@@ -4,7 +4,7 @@
 // One spring class of one XPBD Gauss-Seidel iteration (xpbd_spring in solver_bodies.glsl; the
 // classes in springs.glsl), one invocation per particle: the spring of the class whose first
 // node it is, if any, moves both ends (no other spring of the class touches them). In place in
-// iter (one slice of displacements p - x from the substep start x in p_in, see predict.comp;
+// iter (one slice of displacements p - x~ from the BDF2 base x~, see predict.comp;
 // w = 1 pinned); aux[3i + dir / 4][dir % 4] holds the multiplier of particle i's forward spring
 // of direction dir. Pass SPRING_CLASS_COUNT, after the last iteration, finishes every particle.
 #include "bindings.glsl"
@@ -12,7 +12,7 @@
 
 layout(local_size_x_id = 0, local_size_y_id = 1, local_size_z = 1) in;
 
-#define SX(j) p_in[j].pos.xyz
+#define SX(j) history[3u * uint(j) + 2u].xyz
 #define SD(j) iter[j].xyz
 #define SPIN(j) (iter[j].w > 0.5)
 #include "solver_bodies.glsl"
@@ -40,7 +40,7 @@ void main() {
     uint at = 3u * i + dir / 4u;
     float lam = aux[at][dir % 4u];
     vec3 normal;
-    float dl = xpbd_spring(dir, p_in[i].pos.xyz, di.xyz, p_in[j].pos.xyz, dj.xyz, pin_i, pin_j, lam, normal);
+    float dl = xpbd_spring(dir, SX(i), di.xyz, SX(j), dj.xyz, pin_i, pin_j, lam, normal);
     float w = 1.0 / obj.mass;
     if (!pin_i) iter[i] = vec4(di.xyz + normal * (w * dl), di.w);
     if (!pin_j) iter[j] = vec4(dj.xyz - normal * (w * dl), dj.w);

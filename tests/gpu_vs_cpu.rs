@@ -25,6 +25,7 @@ use common::*;
 use glam::DVec3;
 use msdsim::sim::cpu::CpuSim;
 use msdsim::sim::gpu::{FusedLimits, FusedShape, GpuSim, FUSED_SLOTS};
+use msdsim::sim::gpu_types::Particle;
 use msdsim::sim::model::{Integrator, SelfCollisionMethod, SimModel};
 
 const FRAMES: usize = 15;
@@ -627,16 +628,23 @@ fn fused_substeps_equal_the_per_stage_path() {
 /// The iterative methods fused (prediction, colour or Jacobi passes separated by barrier(),
 /// constraints, in one workgroup) equal their per-stage path to f32 rounding, with one and two
 /// particles per thread (the 13 x 9 cloth's 117 particles on 64 threads): 1e-6 m allowed over
-/// 240 substeps, as above (measured: 0 m). Without the barrier between two colours a particle
-/// reads a neighbour's half-updated displacement: XPBD's paths then part by 0.25 m.
+/// 240 substeps, as above (measured: 0 m for XPBD and VBD). The fused implicit method keeps
+/// its iterates as positions where the per-stage one keeps displacements from the BDF2 base,
+/// so they round differently: 3e-6 m allowed for it (measured 1.3e-6 m). Without the barrier
+/// between two colours a particle reads a neighbour's half-updated displacement: XPBD's paths
+/// then part by 0.25 m.
 #[test]
 fn fused_iterative_methods_equal_the_per_stage_path() {
+    let allowed = |method| if method == Integrator::Implicit { 3e-6 } else { 1e-6 };
     for method in iterative() {
         let s = integrator_scene(method);
         for slots in [1, 2] {
             let worst = fused_against_per_stage(&s, FusedLimits::new(u32::MAX, slots));
             println!("{method:?}, {slots} slots: fused vs per stage {worst:e} m");
-            assert!(worst <= 1e-6, "{method:?}, {slots} slots: the fused path differs by {worst} m");
+            assert!(
+                worst <= allowed(method),
+                "{method:?}, {slots} slots: the fused path differs by {worst} m"
+            );
         }
     }
     // Grids whose colour classes have uneven rows: fewer rows or columns than colours, a
@@ -661,7 +669,8 @@ fn fused_iterative_methods_equal_the_per_stage_path() {
     for method in iterative() {
         s.integrator = method;
         let worst = fused_against_per_stage(&s, FusedLimits::new(u32::MAX, 1));
-        assert!(worst <= 1e-6, "{method:?} on uneven grids: the fused path differs by {worst} m");
+        println!("{method:?} on uneven grids: fused vs per stage {worst:e} m");
+        assert!(worst <= allowed(method), "{method:?} on uneven grids: the fused path differs by {worst} m");
     }
 }
 
@@ -779,6 +788,50 @@ fn iterative_methods_on_stiff_springs_at_one_substep() {
         assert_matters_over(&format!("{name} damping"), &s, undamped, min);
         if method == Integrator::Xpbd {
             assert_matters_over(&format!("{name} relaxation"), &s, |m| m.relaxation = 0.8, min);
+        }
+    }
+}
+
+/// A particle written between frames (as a drag does) loses its BDF2 history: its next substep
+/// starts afresh, on the GPU (fused and per stage) as on the reference. After 10 frames of the
+/// swinging scene a moving particle of the cloth is stopped and lifted by 1 cm; 5 frames later
+/// both must still agree (measured: 2.4e-6 m at most). Kept, the stale history moves it on by a
+/// third of its last step, and the paths part by 2.1e-4 m (XPBD), twice the tolerance.
+#[test]
+fn a_particle_set_between_frames_loses_its_history() {
+    for method in iterative() {
+        let s = integrator_scene(method);
+        for fused in [true, false] {
+            let ctx = gpu();
+            let mut sim = GpuSim::new(&ctx, &s).expect("creating the GPU simulation");
+            sim.set_fused(fused);
+            let mut cpu = CpuSim::new(&s);
+            for _ in 0..10 {
+                sim.step_frame(&ctx).expect("GPU frame");
+                cpu.step_frame();
+            }
+            let index = 4 * 13 + 8;
+            let before = sim.read_states(&ctx).expect("readback");
+            let speed = before[0].velocities()[index].length();
+            assert!(speed > 0.3, "{method:?}: the particle moves at only {speed} m/s");
+            let x = before[0].positions()[index] + DVec3::new(0.0, 0.01, 0.0);
+            let p = x.as_vec3();
+            sim.set_particle(0, index as u32, Particle { pos: [p.x, p.y, p.z, 0.0], vel: [0.0; 4] });
+            cpu.set_particle(0, index, p.as_dvec3(), DVec3::ZERO);
+            let mut worst = Deviation::default();
+            for _ in 0..5 {
+                sim.step_frame(&ctx).expect("GPU frame");
+                cpu.step_frame();
+                worst = worst.max(deviation(&sim.read_states(&ctx).expect("readback"), cpu.objects()));
+            }
+            println!("{method:?} (fused: {fused}): {worst:?}");
+            assert!(
+                worst.position <= POSITION,
+                "{method:?} (fused: {fused}): position deviation {} m",
+                worst.position
+            );
+            sim.destroy(&ctx);
+            assert_clean(&ctx);
         }
     }
 }

@@ -45,6 +45,16 @@ layout(std430, set = 0, binding = 14) buffer ContactBuf { vec4 contact[]; };
 // then entry e of particle i at 4 n + e n + i.
 layout(std430, set = 0, binding = 15) buffer SelfListBuf { uint self_list[]; };
 
+// The iterative integrators' BDF2 history (sim::integrator::BDF2_STEP), three vec4 a particle:
+// history[3 i] its last substep's x_n - x_{n-1} as the solve made it (w: 1 valid, 0 none: a
+// first substep, or a state written by the host), history[3 i + 1] v_n - v_{n-1}; the per-stage
+// shaders keep the solve's base x~ in history[3 i + 2] during a substep (predict_body.glsl).
+layout(std430, set = 0, binding = 16) buffer SolverHistory { vec4 history[]; };
+// Must equal sim::integrator::BDF2_STEP.
+const float BDF2_STEP = 2.0 / 3.0;
+// The step of the iterative integrators' solve, h = 2 dt / 3.
+float solve_dt() { return BDF2_STEP * g.dt; }
+
 // Flags particle i when its state is non-finite or runs away (called once per frame).
 void guard_check(uint i, Particle p) {
     bool bad = any(isnan(p.pos.xyz)) || any(isinf(p.pos.xyz)) || any(isnan(p.vel.xyz)) || any(isinf(p.vel.xyz));

@@ -1,17 +1,27 @@
-// The inertial prediction of the iterative integrators for a free particle at grid `cell`, at
-// x with velocity v: y - x = dt (v + dt F / m), F the external forces and, with `dashpots`
-// (a method that treats damping explicitly), the springs' dashpots. Shared by predict.comp and
-// the fused kernel. Include after bindings.glsl and springs.glsl, with IN (or NPOS and NVEL)
+// The inertial prediction of the iterative integrators, shared by predict.comp and the fused
+// kernel. Include after bindings.glsl and springs.glsl, with IN (or NPOS and NVEL)
 // defined.
 #ifndef MSD_PREDICT_BODY_GLSL
 #define MSD_PREDICT_BODY_GLSL
 #include "forces.glsl"
 #include "spring_forces.glsl"
 
-vec3 predicted_displacement(uvec2 cell, vec3 x, vec3 v, bool dashpots) {
+// The BDF2 start of a substep (sim::cpu::integrators::inertial has the formulas) of a free
+// particle at grid `cell`, at x with velocity v and history `hx` (x_n - x_{n-1}, w valid) and
+// `hv` (v_n - v_{n-1}): returns the prediction y - x~ and sets `base` to x~ - x, where x~ =
+// x + (x_n - x_{n-1}) / 3 is what the solve's displacements are measured from. F is the
+// external force and, with `dashpots` (a method that treats damping explicitly), the springs'
+// dashpots. Without history the particle starts as implicit Euler would.
+vec3 predicted_displacement(uvec2 cell, vec3 x, vec3 v, bool dashpots, vec4 hx, vec3 hv, out vec3 base) {
     vec3 force = external_force(x, v);
     if (dashpots) add_spring_forces(cell, x, v, 0.0, false, force);
-    return (v + force * (g.dt / obj.mass)) * g.dt;
+    vec3 a = force / obj.mass;
+    bool known = hx.w > 0.5;
+    vec3 dx = known ? hx.xyz : (v + a * g.dt) * g.dt;
+    vec3 dv = known ? hv : a * g.dt;
+    float h = solve_dt();
+    base = dx * (1.0 / 3.0);
+    return v * (BDF2_STEP * g.dt) + dv * ((2.0 / 9.0) * g.dt) + a * (h * h);
 }
 
 #endif

@@ -2,7 +2,8 @@
 // derivations), shared by their per-stage shaders (xpbd_iterate.comp, implicit_iterate.comp,
 // vbd_iterate.comp) and the fused kernel. A particle at grid `cell` with start position x and
 // displacement dx (p - x) reads its neighbour j through SX(j) (j's start position), SD(j) (its
-// displacement) and SPIN(j) (pinned), which each includer defines.
+// displacement) and SPIN(j) (pinned), which each includer defines. The start is the BDF2 base
+// x~ (predict_body.glsl) and the step solve_dt() (bindings.glsl).
 // Include after bindings.glsl and springs.glsl.
 // Each body repeats the neighbour lookup at the top of its spring loop on purpose: a shared
 // helper (returning j, its displacement and p_i - p_j through out parameters) made the fused
@@ -34,13 +35,14 @@ float xpbd_spring(uint dir, vec3 xi, vec3 di, vec3 xj, vec3 dj, bool pin_i, bool
     return scale * (XPBD_OBJ.rest[slot >> 2][slot & 3] - c.x * lam - dd * inv - c.y * dot(normal, rel));
 }
 
-// VBD, one Gauss-Seidel visit: one Newton step on implicit Euler's incremental potential as a
-// function of the particle's position (inertia towards the prediction dy, springs, dashpots),
+// VBD, one Gauss-Seidel visit: one Newton step on BDF2's incremental potential (step h =
+// solve_dt()) as a function of the particle's position (inertia towards the prediction dy, springs, dashpots),
 // with its 3x3 Hessian. Returns the new displacement.
 vec3 vbd_particle(uvec2 cell, vec3 x, vec3 dx, vec3 dy) {
-    float inertia = obj.mass / (g.dt * g.dt);
+    float h = solve_dt();
+    float inertia = obj.mass / (h * h);
     float b = obj.stiffness.w;
-    float damp = b / g.dt;  // a dashpot's stiffness on the displacement
+    float damp = b / h;  // a dashpot's stiffness on the displacement
     vec3 force = (dy - dx) * inertia;
     mat3 hessian = mat3(inertia);
     [[unroll]] for (int s = 0; s < 12; ++s) {
@@ -82,7 +84,8 @@ float chebyshev_omega(uint k, float rho) {
 // Chebyshev-accelerated against its displacement `before` of the previous iteration. Returns
 // the new displacement.
 vec3 implicit_particle(uvec2 cell, uint k, vec3 x, vec3 dx, vec3 dy, vec3 before) {
-    float inertia = obj.mass / (g.dt * g.dt);
+    float h = solve_dt();
+    float inertia = obj.mass / (h * h);
     vec3 rhs = dy * inertia;
     float diag = inertia;
     [[unroll]] for (int s = 0; s < 12; ++s) {

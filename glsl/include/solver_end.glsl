@@ -22,9 +22,13 @@ uvec2 coloured_cell(uvec2 id) {
 }
 
 void finish_particle(uint i, vec3 dx, bool pinned) {
-    vec3 x = p_in[i].pos.xyz + dx;
-    vec3 v = pinned ? vec3(0.0) : dx / g.dt;
+    Particle start = p_in[i];
+    vec3 base = history[3u * i + 2u].xyz;
+    vec3 x = base + dx;
+    vec3 v = pinned ? vec3(0.0) : dx * (1.0 / solve_dt());
     p_out[i] = Particle(vec4(x, pinned ? 1.0 : 0.0), vec4(v, 0.0));
+    history[3u * i] = pinned ? vec4(0.0) : vec4((base - start.pos.xyz) + dx, 1.0);
+    history[3u * i + 1u] = pinned ? vec4(0.0) : vec4(v - start.vel.xyz, 0.0);
     count_into_bucket(i, x);
 }
 

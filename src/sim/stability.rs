@@ -94,7 +94,7 @@ pub fn jacobi_rho(o: &ObjectModel, dt: f64) -> f64 {
 /// (tests/integrators.rs, `implicit_with_few_iterations_does_not_blow_up`). There the damping
 /// is 1/2, as it was everywhere before; as the substep shrinks rho falls to 0 and the sweeps
 /// approach plain Jacobi, so a fixed iteration count solves ever more of each substep's
-/// correction and the method converges to implicit Euler (a fixed 1/2 left a fixed fraction
+/// correction and the method converges to its implicit solve (a fixed 1/2 left a fixed fraction
 /// unsolved at every substep: the motion of a softer cloth, whatever the substep).
 pub fn jacobi_damping(o: &ObjectModel, dt: f64) -> f64 {
     1.0 / (1.0 + jacobi_rho(o, dt))

@@ -12,8 +12,8 @@ const HELP: &[(&str, &str)] = &[
     ("frame dt [ms]", "Simulated time per frame [ms]; 16.667 is 60 frames a second."),
     ("gravity [m/s^2]", "Gravitational acceleration, x y z [m/s^2]; -9.81 in y is Earth's."),
     ("objects touch each other", "Contact between objects: each pair of particles of two objects is kept the sum of their contact radii apart (a cloth's collision margin, a rope's radius). Scenes pay for it only with two or more objects."),
-    ("integrator", "How a substep advances the springs: symplectic Euler (the paper's) and Verlet are explicit (fast, limited by the stiffest spring); XPBD, implicit and VBD are stable at any stiffness and converge to implicit Euler; auto picks the cheapest method within the tolerance."),
-    ("iterations", "Solver iterations per substep of an iterative method: more converge closer to implicit Euler and cost more."),
+    ("integrator", "How a substep advances the springs: symplectic Euler (the paper's) and Verlet are explicit (fast, limited by the stiffest spring); XPBD, implicit and VBD are stable at any stiffness and converge to BDF2, a second-order implicit method; auto picks the cheapest method within the tolerance."),
+    ("iterations", "Solver iterations per substep of an iterative method: more converge closer to the method's implicit (BDF2) solve and cost more."),
     ("relaxation", "XPBD over-relaxation of each Gauss-Seidel correction (1: none; below 2)."),
     ("tolerance (of size)", "For integrator = auto: the largest position error allowed after 0.5 s, as a fraction of the scene's size."),
     // Wind

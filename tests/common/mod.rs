@@ -134,7 +134,7 @@ pub struct Deviation {
 }
 
 impl Deviation {
-    fn max(self, o: Deviation) -> Deviation {
+    pub fn max(self, o: Deviation) -> Deviation {
         Deviation {
             position: self.position.max(o.position),
             velocity: self.velocity.max(o.velocity),

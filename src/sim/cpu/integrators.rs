@@ -4,23 +4,53 @@
 //! rounding.
 
 use super::{rest_length, springs, wind_at, Spring};
-use crate::sim::integrator::{spring_class_parity, vertex_colour, vertex_colours, SPRING_CLASSES};
+use crate::sim::integrator::{spring_class_parity, vertex_colour, vertex_colours, BDF2_STEP, SPRING_CLASSES};
 use crate::sim::model::{ObjectModel, SimModel};
 use crate::sim::stability::{chebyshev_rho, jacobi_damping, CHEBYSHEV_START};
 use glam::{DMat3, DVec3};
 
 type State = (Vec<DVec3>, Vec<DVec3>);
 
-/// One substep of `o` from (x, v) with the model's integrator.
-pub(super) fn advance(m: &SimModel, o: &ObjectModel, dt: f64, x: &[DVec3], v: &[DVec3]) -> State {
-    (m.integrator.method().cpu)(m, o, dt, x, v)
+/// A particle's BDF2 history for the position-based methods (`sim::integrator::BDF2_STEP`):
+/// its last substep's increments (x_n - x_{n-1}, v_n - v_{n-1}) as the solve made them (the
+/// constraint stage's corrections after the solve are not in them, so a contact shifts the
+/// remembered motion with the particle instead of kicking it back), or `None` where there is
+/// none: the first substep, or a state written from outside. The GPU keeps the same per
+/// particle (`history` in glsl/include/bindings.glsl).
+pub type History = Option<(DVec3, DVec3)>;
+
+/// One substep of `o` from (x, v) with the model's integrator; the position-based methods read
+/// and update each particle's history.
+pub(super) fn advance(
+    m: &SimModel,
+    o: &ObjectModel,
+    dt: f64,
+    x: &[DVec3],
+    v: &[DVec3],
+    history: &mut [History],
+) -> State {
+    (m.integrator.method().cpu)(m, o, dt, x, v, history)
 }
 
-pub(crate) fn symplectic_euler(m: &SimModel, o: &ObjectModel, dt: f64, x: &[DVec3], v: &[DVec3]) -> State {
+pub(crate) fn symplectic_euler(
+    m: &SimModel,
+    o: &ObjectModel,
+    dt: f64,
+    x: &[DVec3],
+    v: &[DVec3],
+    _: &mut [History],
+) -> State {
     explicit(m, o, dt, x, v, false)
 }
 
-pub(crate) fn verlet(m: &SimModel, o: &ObjectModel, dt: f64, x: &[DVec3], v: &[DVec3]) -> State {
+pub(crate) fn verlet(
+    m: &SimModel,
+    o: &ObjectModel,
+    dt: f64,
+    x: &[DVec3],
+    v: &[DVec3],
+    _: &mut [History],
+) -> State {
     explicit(m, o, dt, x, v, true)
 }
 
@@ -81,28 +111,73 @@ fn explicit(m: &SimModel, o: &ObjectModel, dt: f64, x: &[DVec3], v: &[DVec3], ve
     (nx, nv)
 }
 
-/// The inertial prediction y = x + dt v + dt^2 F / m of the position-based methods, with F the
-/// external forces (and the springs' dashpots for the implicit method, which treats damping
-/// explicitly; XPBD handles it in its constraints).
-fn predict(m: &SimModel, o: &ObjectModel, dt: f64, x: &[DVec3], v: &[DVec3], dashpots: bool) -> Vec<DVec3> {
-    (0..x.len())
+/// Where a position-based substep starts (BDF2, `sim::integrator::BDF2_STEP`): the solve
+/// minimises |p - y|^2_M / (2 h^2) + E(p) with h = 2 dt / 3 from the base x~ = x_n + (x_n -
+/// x_{n-1}) / 3, towards the prediction y = x~ + 2/3 dt v_n + 2/9 dt (v_n - v_{n-1}) + h^2 F / m,
+/// and the velocity that reaches p is (p - x~) / h. F: the external forces (and the springs'
+/// dashpots for the implicit method, which treats damping explicitly; the others handle it in
+/// their solve). A particle without history takes x_n - x_{n-1} = dt (v_n + dt F / m) and
+/// v_n - v_{n-1} = dt F / m, which makes its free motion implicit Euler's step
+/// (y = x_n + dt v_n + dt^2 F / m, v = v_n + dt F / m).
+struct Inertial {
+    /// The solve's step h.
+    h: f64,
+    /// x~ (x for a pinned particle).
+    base: Vec<DVec3>,
+    /// y (x for a pinned particle).
+    y: Vec<DVec3>,
+}
+
+fn inertial(
+    m: &SimModel,
+    o: &ObjectModel,
+    dt: f64,
+    x: &[DVec3],
+    v: &[DVec3],
+    history: &[History],
+    dashpots: bool,
+) -> Inertial {
+    let h = BDF2_STEP * dt;
+    let (base, y) = (0..x.len())
         .map(|i| {
             if o.pinned[i] {
-                return x[i];
+                return (x[i], x[i]);
             }
             let mut force = external(m, o, x[i], v[i]);
             if dashpots && o.damping != 0.0 {
                 force += spring_force(o, i, x, v, false);
             }
-            x[i] + (v[i] + force / o.mass * dt) * dt
+            let a = force / o.mass;
+            let (dx, dv) = history[i].unwrap_or(((v[i] + a * dt) * dt, a * dt));
+            let base = x[i] + dx / 3.0;
+            (base, base + v[i] * (2.0 / 3.0 * dt) + dv * (2.0 / 9.0 * dt) + a * (h * h))
         })
-        .collect()
+        .unzip();
+    Inertial { h, base, y }
 }
 
-/// Positions after the solve, with the velocity that reaches them: v = (p - x) / dt.
-fn finish(o: &ObjectModel, dt: f64, x: &[DVec3], p: Vec<DVec3>) -> State {
-    let v = (0..x.len()).map(|i| if o.pinned[i] { DVec3::ZERO } else { (p[i] - x[i]) / dt }).collect();
-    (p, v)
+/// Positions after the solve, with the velocity that reaches them, v = (p - x~) / h, and each
+/// particle's new history.
+fn finish(
+    o: &ObjectModel,
+    start: &Inertial,
+    x: &[DVec3],
+    v: &[DVec3],
+    p: Vec<DVec3>,
+    history: &mut [History],
+) -> State {
+    let nv = (0..x.len())
+        .map(|i| {
+            if o.pinned[i] {
+                history[i] = None;
+                return DVec3::ZERO;
+            }
+            let nv = (p[i] - start.base[i]) / start.h;
+            history[i] = Some((p[i] - x[i], nv - v[i]));
+            nv
+        })
+        .collect();
+    (p, nv)
 }
 
 /// The particles of each vertex colour (`sim::integrator::vertex_colours`), colour by colour:
@@ -116,23 +191,36 @@ fn colour_order(o: &ObjectModel) -> Vec<usize> {
     order
 }
 
-/// XPBD with Gauss-Seidel over spring classes. Each spring of stiffness k > 0 is a distance
-/// constraint C = |p_i - p_j| - L with compliance 1/k (alpha~ = 1 / (k dt^2)), damping gamma =
-/// b / (k dt) and one multiplier lambda. An iteration visits the classes in turn
+/// XPBD with Gauss-Seidel over spring classes, from the BDF2 start (`inertial`: dt below is
+/// its step h = 2 dt / 3 and dp the displacement from its base x~). Each spring of stiffness
+/// k > 0 is a distance constraint C = |p_i - p_j| - L with compliance 1/k (alpha~ = 1 / (k
+/// dt^2)), damping gamma = b / (k dt) and one multiplier lambda. An iteration visits the classes in turn
 /// (`sim::integrator::SPRING_CLASSES`: within a class no two springs share a particle, so the
 /// order inside it does not matter); each spring takes the XPBD update
 /// dlambda = relaxation (-C - alpha~ lambda - gamma n.(dp_i - dp_j)) / ((1 + gamma)(w_i + w_j) + alpha~),
 /// p_i += w_i n dlambda, p_j -= w_j n dlambda, lambda += dlambda (w = 0 for a pinned end). At
-/// convergence the result is implicit Euler; with one iteration and a small substep (alpha~ >> w)
-/// a correction is the spring's impulse dt^2 F / m, a consistent first-order step.
+/// convergence the result is BDF2; with one iteration and a small substep (alpha~ >> w) a
+/// correction is the spring's impulse h^2 F / m at the positions the classes before left, a
+/// consistent step whose error falls with the substep's square (measured in ACCURACY.md; on
+/// implicit Euler's start it was first order and damped: 41 times symplectic Euler's error at
+/// 256 substeps).
 /// (Two earlier versions: a Jacobi sweep that divided each particle's summed corrections by its
 /// spring count made a cloth up to 12 times too soft whatever the substep; vertex-coloured
 /// Gauss-Seidel, where a particle applies its own share of each spring while its neighbours are
 /// held, was right but converged slowly: after 1 s of a 24 x 24 cloth at 16 substeps and one
 /// iteration it stood 106 mm from the converged solve, against 4.6 mm for the spring classes.)
-pub(crate) fn xpbd(m: &SimModel, o: &ObjectModel, dt: f64, x: &[DVec3], v: &[DVec3]) -> State {
-    let n = x.len();
-    let mut p = predict(m, o, dt, x, v, false);
+pub(crate) fn xpbd(
+    m: &SimModel,
+    o: &ObjectModel,
+    dt: f64,
+    x0: &[DVec3],
+    v: &[DVec3],
+    history: &mut [History],
+) -> State {
+    let n = x0.len();
+    let start = inertial(m, o, dt, x0, v, history, false);
+    let (dt, x) = (start.h, &start.base[..]);
+    let mut p = start.y.clone();
     let mut lambda = vec![[0.0f64; 6]; n];
     let w = 1.0 / o.mass;
     let rest = super::rest_lengths(o);
@@ -177,20 +265,28 @@ pub(crate) fn xpbd(m: &SimModel, o: &ObjectModel, dt: f64, x: &[DVec3], v: &[DVe
             }
         }
     }
-    finish(o, dt, x, p)
+    finish(o, &start, x0, v, p, history)
 }
 
-/// Vertex Block Descent (Chen et al. 2024): implicit Euler's incremental potential
-/// G(p) = |p - y|^2_M / (2 dt^2) + sum k/2 (|p_i - p_j| - L)^2, plus the dashpots as a
+/// Vertex Block Descent (Chen et al. 2024): from the BDF2 start (`inertial`: dt below is its
+/// step h, x its base x~), the incremental potential G(p) = |p - y|^2_M / (2 dt^2) + sum k/2 (|p_i - p_j| - L)^2, plus the dashpots as a
 /// quadratic damping potential (b / (2 dt)) (n.(dp_i - dp_j))^2, minimised by vertex-coloured
 /// Gauss-Seidel: a particle of the current colour, its neighbours held, takes one Newton step
 /// on G as a function of its own position, with the 3x3 Hessian
 /// m / dt^2 I + sum k (n n^T + max(0, 1 - L / d) (I - n n^T)) + (b / dt) n n^T
 /// (the spring's transverse term clamped at compression keeps it positive definite).
-/// Stable at any stiffness; at convergence implicit Euler with implicit dashpots.
-pub(crate) fn vbd(m: &SimModel, o: &ObjectModel, dt: f64, x: &[DVec3], v: &[DVec3]) -> State {
-    let y = predict(m, o, dt, x, v, false);
-    let mut p = y.clone();
+/// Stable at any stiffness; at convergence BDF2 with implicit dashpots.
+pub(crate) fn vbd(
+    m: &SimModel,
+    o: &ObjectModel,
+    dt: f64,
+    x0: &[DVec3],
+    v: &[DVec3],
+    history: &mut [History],
+) -> State {
+    let start = inertial(m, o, dt, x0, v, history, false);
+    let (dt, x, y) = (start.h, &start.base[..], &start.y[..]);
+    let mut p = start.y.clone();
     let inertia = o.mass / (dt * dt);
     let order = colour_order(o);
     for _ in 0..m.iterations {
@@ -225,7 +321,7 @@ pub(crate) fn vbd(m: &SimModel, o: &ObjectModel, dt: f64, x: &[DVec3], v: &[DVec
             p[i] += hessian.inverse() * force;
         }
     }
-    finish(o, dt, x, p)
+    finish(o, &start, x0, v, p, history)
 }
 
 /// Chebyshev weight of iteration `k` (0-based) for a Jacobi radius `rho` (Wang 2015).
@@ -237,14 +333,22 @@ pub fn chebyshev_omega(k: u32, rho: f64) -> f64 {
     omega
 }
 
-/// Implicit Euler by projective dynamics: minimise |p - y|^2_M / (2 dt^2) + sum k/2 |p_i - p_j -
-/// d_s|^2 over p, with d_s the spring's rest-length projection of the current p_i - p_j (local
+/// Projective dynamics from the BDF2 start (`inertial`, with the dashpots in the prediction; dt
+/// below is its step h): minimise |p - y|^2_M / (2 dt^2) + sum k/2 |p_i - p_j - d_s|^2 over p, with d_s the spring's rest-length projection of the current p_i - p_j (local
 /// step). One damped Jacobi sweep of the global system per iteration (diagonal m / dt^2 + sum k,
 /// moving `jacobi_damping` of the way: 1 / (1 + rho), which tends to 1 as the substep shrinks),
 /// accelerated by Chebyshev with the radius `chebyshev_rho` from iteration `CHEBYSHEV_START` on.
-pub(crate) fn implicit(m: &SimModel, o: &ObjectModel, dt: f64, x: &[DVec3], v: &[DVec3]) -> State {
+pub(crate) fn implicit(
+    m: &SimModel,
+    o: &ObjectModel,
+    dt: f64,
+    x: &[DVec3],
+    v: &[DVec3],
+    history: &mut [History],
+) -> State {
     let n = x.len();
-    let y = predict(m, o, dt, x, v, true);
+    let start = inertial(m, o, dt, x, v, history, true);
+    let (dt, y) = (start.h, &start.y);
     let inertia = o.mass / (dt * dt);
     let rho = chebyshev_rho(o, dt);
     let damping = jacobi_damping(o, dt);
@@ -271,7 +375,7 @@ pub(crate) fn implicit(m: &SimModel, o: &ObjectModel, dt: f64, x: &[DVec3], v: &
         }
         prev = std::mem::replace(&mut p, next);
     }
-    finish(o, dt, x, p)
+    finish(o, &start, x, v, p, history)
 }
 
 /// Total energy of an object [J]: kinetic, elastic (each spring once) and gravitational

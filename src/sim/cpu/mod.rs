@@ -23,7 +23,7 @@
 
 pub(crate) mod integrators;
 
-pub use integrators::{energy, max_strain};
+pub use integrators::{energy, max_strain, History};
 
 use super::gpu_types::ROPE_RING;
 use super::model::{ObjectKind, ObjectModel, SimModel, WindModel};
@@ -37,6 +37,8 @@ pub struct CpuObject {
     /// Surface vertex positions and normals (cloth: per particle; rope: ROPE_RING per node),
     /// valid after `step_frame`.
     pub surface: Vec<(DVec3, DVec3)>,
+    /// Each particle's BDF2 history (the position-based methods).
+    pub history: Vec<History>,
 }
 
 pub struct CpuSim {
@@ -178,6 +180,7 @@ impl CpuSim {
                     .map(|(v, &p)| if p { DVec3::ZERO } else { *v })
                     .collect(),
                 surface: vec![(DVec3::ZERO, DVec3::ZERO); o.surface_count()],
+                history: vec![None; o.particle_count()],
             })
             .collect();
         Self { model, dt, objects, substeps_done: 0 }
@@ -187,12 +190,22 @@ impl CpuSim {
         &self.objects
     }
 
-    /// Replaces the state of object `index` (positions and velocities, one per particle).
+    /// Replaces the state of object `index` (positions and velocities, one per particle) with
+    /// the same motion as computed elsewhere (the GPU's, read back): the BDF2 histories stay.
     pub fn set_state(&mut self, index: usize, x: Vec<DVec3>, v: Vec<DVec3>) {
         let o = &mut self.objects[index];
         assert!(x.len() == o.x.len() && v.len() == o.v.len(), "state size must match the object");
         o.x = x;
         o.v = v;
+    }
+
+    /// Writes one particle from outside the simulation (as `GpuSim::set_particle` does: a drag,
+    /// an edit): it loses its BDF2 history.
+    pub fn set_particle(&mut self, object: usize, index: usize, x: DVec3, v: DVec3) {
+        let o = &mut self.objects[object];
+        o.x[index] = x;
+        o.v[index] = v;
+        o.history[index] = None;
     }
 
     /// One frame: `substeps` substeps, then the surface (normals, rope vertices).
@@ -229,8 +242,8 @@ impl CpuSim {
         let advanced: Vec<(Vec<DVec3>, Vec<DVec3>)> = m
             .objects
             .iter()
-            .zip(&self.objects)
-            .map(|(o, state)| integrators::advance(m, o, self.dt, &state.x, &state.v))
+            .zip(&mut self.objects)
+            .map(|(o, state)| integrators::advance(m, o, self.dt, &state.x, &state.v, &mut state.history))
             .collect();
         for (a, (o, state)) in m.objects.iter().zip(&mut self.objects).enumerate() {
             let (px, pv) = &advanced[a];

@@ -131,6 +131,7 @@ impl SceneContact {
                     &c.objects,
                     touch,
                     p,
+                    p,
                 ];
                 debug_assert_eq!(bindings.len() as u32, BINDINGS);
                 sets.push(arena.allocate(ctx, layout, &bindings)?);
@@ -148,6 +149,7 @@ impl SceneContact {
                 &c.starts,
                 p,
                 &c.block_sums,
+                p,
                 p,
                 p,
                 p,

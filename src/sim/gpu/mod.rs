@@ -51,7 +51,7 @@ use pipelines::{Pipelines, Stage};
 const CLOTH_GROUP: [u32; 2] = [16, 16];
 const ROPE_GROUP: u32 = 64;
 /// Bindings per set, in the order of `glsl/include/bindings.glsl`.
-const BINDINGS: u32 = 16;
+const BINDINGS: u32 = 17;
 
 /// What each binding holds: the globals (0) are a uniform buffer, read by every invocation
 /// alike (the driver folds its members into the instructions), the rest storage buffers. The
@@ -133,8 +133,12 @@ pub struct GpuSim {
     /// Particle writes (object, index, value) applied at the start of the next recorded frame.
     pending_writes: Vec<(usize, u32, Particle)>,
     /// The fused kernel's self-collision contact lists may not match the state or parameters
-    /// any more: the next frame marks them invalid first (`record_lists_invalid`).
+    /// any more: the next frame marks them invalid first (`record_cleared`).
     lists_stale: bool,
+    /// The iterative methods' BDF2 histories do not belong to the state or the substep any
+    /// more (a new state, another dt): the next frame clears them first, and every particle's
+    /// next substep starts as implicit Euler's (`sim::cpu::integrators::History`).
+    history_stale: bool,
     /// The model the simulation runs, without particles (substeps, integrator, the guard's
     /// reports).
     model: SimModel,
@@ -282,6 +286,7 @@ impl GpuSim {
             frames: 0,
             pending_writes: Vec::new(),
             lists_stale: true,
+            history_stale: true,
             warned: false,
             warning: None,
             surface_stale: false,
@@ -321,6 +326,7 @@ impl GpuSim {
     pub fn record_frame(&mut self, rec: &mut Recorder<'_>, surface_consumer: Access, slot: usize) {
         let dragged = std::mem::take(&mut self.dragged);
         let lists_stale = std::mem::take(&mut self.lists_stale) || !self.pending_writes.is_empty();
+        let history_stale = std::mem::take(&mut self.history_stale);
         let ts = self.timestamps.get(slot);
         if let Some(pool) = ts {
             rec.reset_timestamps(pool);
@@ -334,19 +340,31 @@ impl GpuSim {
                 t.dedup();
                 t
             };
+            // A written particle loses its BDF2 history (the state no longer follows from it).
             let around = |src, dst| -> Vec<BufferBarrier<'_>> {
-                touched.iter().map(|&o| BufferBarrier::new(&objects[o].state[0], src, dst)).collect()
+                (touched.iter().map(|&o| &objects[o]))
+                    .flat_map(|o| [Some(&o.state[0]), o.solver.as_ref().map(|s| &s.history)])
+                    .flatten()
+                    .map(|b| BufferBarrier::new(b, src, dst))
+                    .collect()
             };
             rec.barrier(&around(Access::ComputeReadWrite, Access::TransferWrite));
             for (o, index, p) in self.pending_writes.drain(..) {
                 let size = std::mem::size_of::<Particle>() as u64;
                 rec.update_buffer(&objects[o].state[0], index as u64 * size, bytemuck::bytes_of(&p));
+                if let Some(s) = &objects[o].solver {
+                    let none = [0u8; object::HISTORY_BYTES as usize];
+                    rec.update_buffer(&s.history, index as u64 * object::HISTORY_BYTES, &none);
+                }
             }
             rec.barrier(&around(Access::TransferWrite, Access::ComputeReadWrite));
         }
-        if lists_stale {
-            self.record_lists_invalid(rec);
-        }
+        let lists = self.objects.iter().filter_map(|o| o.self_list.as_ref().filter(|_| lists_stale));
+        let histories = self
+            .objects
+            .iter()
+            .filter_map(|o| o.solver.as_ref().map(|s| &s.history).filter(|_| history_stale));
+        transfer::record_cleared(rec, &lists.chain(histories).collect::<Vec<_>>());
         self.record_collider_motion(rec, &dragged);
         let stages = self.stage_timing;
         // Small objects: every substep in one dispatch each. The state ends in A, as on the
@@ -569,6 +587,7 @@ impl GpuSim {
         for (gpu, o) in self.objects.iter_mut().zip(&model.objects) {
             gpu.params.write(0, &[object_params(o, model)])?;
         }
+        self.history_stale |= model.dt() != self.model.dt();
         self.model = model.without_particles();
         self.lists_stale = true;
         Ok(())

@@ -7,7 +7,7 @@ use crate::error::UserError;
 use crate::sim::gpu_types::{
     Globals, ObjectParams, Particle, SurfaceVertex, OBJ_SELF_COLLISION, OBJ_SELF_HASH, OBJ_STRETCH_LIMIT,
 };
-use crate::sim::integrator::vertex_colours;
+use crate::sim::integrator::{vertex_colours, BDF2_STEP};
 use crate::sim::model::{Integrator, ObjectKind, ObjectModel, ObjectShape, SelfCollisionMethod, SimModel};
 use crate::sim::stability::{chebyshev_rho, jacobi_damping};
 use crate::vk::{
@@ -89,10 +89,17 @@ impl HashBuffers {
     }
 }
 
-/// The iterates and auxiliary data of an iterative integrator (bindings 12, 13).
+/// Vec4s of BDF2 history a particle of an iterative method keeps (binding 16), and their bytes.
+const HISTORY_VEC4S: u64 = 3;
+pub(super) const HISTORY_BYTES: u64 = 16 * HISTORY_VEC4S;
+
+/// The iterates, auxiliary data and BDF2 history of an iterative integrator (bindings 12, 13,
+/// 16).
 pub(super) struct SolverBuffers {
     pub iter: Buffer,
     pub aux: Buffer,
+    /// Three vec4s a particle (`history` in glsl/include/bindings.glsl); zero is "no history".
+    pub history: Buffer,
 }
 
 impl SolverBuffers {
@@ -105,12 +112,17 @@ impl SolverBuffers {
         let Some(solver) = method.solver() else { return Ok(None) };
         let (slices, aux) = (solver.slices, solver.aux);
         let (storage, gpu) = (BufferUsage::STORAGE, MemoryKind::GpuOnly);
-        let [iter, aux] = buffers(
+        let cleared = storage | BufferUsage::TRANSFER_DST;
+        let [iter, aux, history] = buffers(
             ctx,
             &format!("{name}.solver"),
-            [("iter", 16 * slices * particles, storage, gpu), ("aux", 16 * aux * particles, storage, gpu)],
+            [
+                ("iter", 16 * slices * particles, storage, gpu),
+                ("aux", 16 * aux * particles, storage, gpu),
+                ("history", 16 * HISTORY_VEC4S * particles, cleared, gpu),
+            ],
         )?;
-        Ok(Some(Self { iter, aux }))
+        Ok(Some(Self { iter, aux, history }))
     }
 }
 
@@ -213,16 +225,16 @@ impl GpuObject {
                 Some(h) => h.buffers(),
                 None => [p; 5],
             };
-            let [iter, aux] = match &solver {
-                Some(s) => [&s.iter, &s.aux],
-                None => [p; 2],
+            let [iter, aux, history] = match &solver {
+                Some(s) => [&s.iter, &s.aux, &s.history],
+                None => [p; 3],
             };
             let touch = contact.as_ref().unwrap_or(p);
             let lists = self_list.as_ref().unwrap_or(p);
             let set = |arena: &mut DescriptorArena, from: &Buffer, to: &Buffer| {
                 let bindings = [
                     globals, &params, from, to, colliders, &surface, cell_rank, counts, starts, sorted,
-                    blocks, &guard, iter, aux, touch, lists,
+                    blocks, &guard, iter, aux, touch, lists, history,
                 ];
                 debug_assert_eq!(bindings.len() as u32, BINDINGS);
                 arena.allocate(ctx, layout, &bindings)
@@ -264,7 +276,7 @@ impl GpuObject {
     pub fn scratch(&self) -> Vec<&Buffer> {
         let mut out = vec![&self.placeholder];
         if let Some(s) = &self.solver {
-            out.extend([&s.iter, &s.aux]);
+            out.extend([&s.iter, &s.aux, &s.history]);
         }
         out.extend(&self.contact);
         out.extend(&self.self_list);
@@ -282,6 +294,7 @@ impl GpuObject {
         if let Some(s) = self.solver {
             s.iter.destroy(ctx);
             s.aux.destroy(ctx);
+            s.history.destroy(ctx);
         }
         if let Some(c) = self.contact {
             c.destroy(ctx);
@@ -303,7 +316,7 @@ fn object_bytes(o: &ObjectShape) -> u64 {
         + 24 * n
         + 8 * hash_table_size(n)
         + 4
-        + 5 * 16 * n
+        + (5 + HISTORY_VEC4S) * 16 * n
         + 4 * ((4 + super::fused::SELF_LIST_ENTRIES as u64) * n + 1)
 }
 
@@ -434,22 +447,22 @@ pub(super) fn object_params(o: &ObjectModel, model: &SimModel) -> ObjectParams {
         ring_weights: o.ring_weights.map(|w| w.map(|x| x as f32)),
         hash_mask: buckets - 1,
         cell_inv: (1.0 / cell) as f32,
-        cheb_rho: chebyshev_rho(o, model.dt()) as f32,
-        jacobi_damping: jacobi_damping(o, model.dt()) as f32,
+        cheb_rho: chebyshev_rho(o, BDF2_STEP * model.dt()) as f32,
+        jacobi_damping: jacobi_damping(o, BDF2_STEP * model.dt()) as f32,
         rest: crate::sim::cpu::rest_lengths(o).map(|g| g.map(|l| l as f32)),
         xpbd: std::array::from_fn(|t| xpbd_constants(o.stiffness[t], o, model).map(|c| c as f32)),
     }
 }
 
-/// XPBD's per-spring-type constants for the substep (`obj.xpbd` in the shaders): alpha~ =
-/// 1 / (k dt^2), gamma = b / (k dt), and the relaxation over the denominator
+/// XPBD's per-spring-type constants for the substep's solve (`obj.xpbd` in the shaders), with
+/// its step dt = BDF2_STEP times the substep: alpha~ = 1 / (k dt^2), gamma = b / (k dt), and the relaxation over the denominator
 /// (1 + gamma)(w_i + w_j) + alpha~ with the other end free (w_j = w_i) and pinned (w_j = 0).
 /// All zero for k = 0 (the shader skips those springs).
 fn xpbd_constants(k: f64, o: &ObjectModel, model: &SimModel) -> [f64; 4] {
     if k == 0.0 {
         return [0.0; 4];
     }
-    let dt = model.dt();
+    let dt = BDF2_STEP * model.dt();
     let (alpha, gamma, w) = (1.0 / (k * dt * dt), o.damping / (k * dt), 1.0 / o.mass);
     let scale = |w_sum: f64| model.relaxation / ((1.0 + gamma) * w_sum + alpha);
     [alpha, gamma, scale(2.0 * w), scale(w)]

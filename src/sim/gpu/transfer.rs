@@ -7,26 +7,27 @@ use crate::sim::gpu_types::{Particle, SurfaceVertex};
 use crate::vk::{Access, Buffer, BufferBarrier, BufferUsage, GpuContext, MemoryKind, Recorder, VkError};
 use anyhow::{Context as _, Result};
 
-impl GpuSim {
-    /// Marks the fused kernel's contact lists invalid (their `LIST_VALID` word, with the rest of
-    /// the buffer, zeroed): recorded before a frame whenever something outside the kernel
-    /// changed the state or the parameters.
-    pub(super) fn record_lists_invalid(&self, rec: &mut Recorder<'_>) {
-        let lists: Vec<&Buffer> = self.objects.iter().filter_map(|o| o.self_list.as_ref()).collect();
-        if lists.is_empty() {
-            return;
-        }
-        let around = |src, dst| lists.iter().map(|b| BufferBarrier::new(b, src, dst)).collect::<Vec<_>>();
-        rec.barrier(&around(Access::ComputeReadWrite, Access::TransferWrite));
-        for b in &lists {
-            rec.fill_buffer(b, 0);
-        }
-        rec.barrier(&around(Access::TransferWrite, Access::ComputeReadWrite));
+/// Zeroes `buffers`, state the kernels carry from frame to frame, between the frames that use
+/// them: for the fused kernel's contact lists that marks them invalid (their `LIST_VALID` word),
+/// for the BDF2 histories "none". Recorded before a frame whenever something outside the
+/// kernels changed the state or the parameters.
+pub(super) fn record_cleared(rec: &mut Recorder<'_>, buffers: &[&Buffer]) {
+    if buffers.is_empty() {
+        return;
     }
+    let around = |src, dst| buffers.iter().map(|b| BufferBarrier::new(b, src, dst)).collect::<Vec<_>>();
+    rec.barrier(&around(Access::ComputeReadWrite, Access::TransferWrite));
+    for b in buffers {
+        rec.fill_buffer(b, 0);
+    }
+    rec.barrier(&around(Access::TransferWrite, Access::ComputeReadWrite));
+}
 
+impl GpuSim {
     /// Replaces every object's state (positions, velocities, pins) with `states[i]`.
     pub fn upload_states(&mut self, ctx: &GpuContext, states: &[Vec<Particle>]) -> Result<()> {
         self.lists_stale = true;
+        self.history_stale = true;
         anyhow::ensure!(states.len() == self.objects.len(), "one state per object");
         for (s, o) in states.iter().zip(&self.objects) {
             anyhow::ensure!(s.len() == o.particles as usize, "state size does not match the object");
