@@ -224,6 +224,7 @@ void main() {
     vec3 dx[MAX_SLOTS];  // ... the iterate p - x~
     vec4 hx[MAX_SLOTS];  // ... the history x_n - x_{n-1} (w valid); during a solve, x~ - x_n
     vec3 hv[MAX_SLOTS];  // ... v_n - v_{n-1}; during a solve, v_n
+    vec3 lost[MAX_SLOTS];  // ... what rounding the base left out (bdf2_start)
     uint colour[MAX_SLOTS];
     uint own[MAX_SLOTS];  // the particle of each slot
     uvec2 cells[MAX_SLOTS];  // ... and its grid cell
@@ -251,6 +252,7 @@ void main() {
         dx[s] = vec3(0.0);
         hx[s] = vec4(0.0);
         hv[s] = vec3(0.0);
+        lost[s] = vec3(0.0);
         colour[s] = vertex_colour(cells[s], colours);
         if (s < SLOTS && k < n) {
             Particle p = p_in[k];
@@ -302,13 +304,16 @@ void main() {
                     spring_mask = masks[s];
                     vec3 base;
                     dy[s] = predicted_displacement(cells[s], x[s], v[s], SOLVER == METHOD_IMPLICIT, hx[s], hv[s], base);
-                    // The solve's start (shared after the barrier below) and x~ - x_n as the
-                    // per-stage path has them (precise: not simplified to `base`).
-                    precise vec3 start = x[s] + base;
-                    precise vec3 moved = start - x[s];
+                    // The solve's start (shared after the barrier below).
+                    precise vec3 start;
+                    precise vec3 missed;
+                    bdf2_start(x[s], base, start, missed);
+                    dy[s] += missed;
+                    lost[s] = missed;
+                    precise vec3 moved = start - x[s];  // x~ - x_n, exact
                     hx[s].xyz = moved;
-                    x[s] = start;
                     hv[s] = v[s];
+                    x[s] = start;
                     continue;
                 }
                 vec3 xs = x[s] + drift * v[s];
@@ -416,7 +421,7 @@ void main() {
                 if (pinned[s]) continue;
                 if (SOLVER == METHOD_XPBD && own[s] < n) dx[s] = sdisp(own[s]);  // moved by springs
                 x[s] += dx[s];
-                v[s] = dx[s] * (1.0 / solve_dt());
+                v[s] = (dx[s] - lost[s]) * (1.0 / solve_dt());
                 hx[s] = vec4(hx[s].xyz + dx[s], 1.0);  // x_{n+1} - x_n
                 hv[s] = v[s] - hv[s];                  // v_{n+1} - v_n
             }

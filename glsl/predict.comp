@@ -29,11 +29,16 @@ void main() {
     vec3 x = p.pos.xyz;
     vec3 v = p.vel.xyz;
     vec3 dy = vec3(0.0);  // y - x~
-    vec3 base = vec3(0.0);  // x~ - x
+    precise vec3 start = x;    // x~, rounded
+    precise vec3 lost = vec3(0.0);  // what rounding x~ left out (bdf2_start)
     if (p.pos.w <= 0.5) {
+        vec3 base;
         dy = predicted_displacement(cell, x, v, EXPLICIT_DASHPOTS, history[3u * i], history[3u * i + 1u].xyz, base);
+        bdf2_start(x, base, start, lost);
+        dy += lost;
     }
-    history[3u * i + 2u] = vec4(x + base, 0.0);
+    history[3u * i + 1u] = vec4(lost, 0.0);  // (v_n - v_{n-1} is read; finish_particle rewrites it)
+    history[3u * i + 2u] = vec4(start, 0.0);
     iter[i] = vec4(dy, p.pos.w);
     if (KEEP_PREDICTION) {
         aux[i] = vec4(dy, 0.0);

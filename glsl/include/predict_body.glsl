@@ -24,4 +24,18 @@ vec3 predicted_displacement(uvec2 cell, vec3 x, vec3 v, bool dashpots, vec4 hx, 
     return v * (BDF2_STEP * g.dt) + dv * ((2.0 / 9.0) * g.dt) + a * (h * h);
 }
 
+// The solve's base x~ = x + base rounded to f32 (`start`) and what the rounding left out
+// (`lost` = x~ - start, exact): the solve measures its displacements d from `start`, with the
+// prediction moved by `lost`, and the velocity is (d - lost) / h. Dropped, the rounding of x~
+// (up to half an ulp of the position, every substep, in the same direction while the motion
+// is steady) entered the positions on top of the final position's own rounding and the
+// history carried it on: on a swinging 16 x 16 cloth at 256 substeps the GPU parted from the
+// f64 reference three times faster than symplectic Euler's. (precise: kept from being
+// simplified to exact algebra.)
+void bdf2_start(vec3 x, vec3 base, out precise vec3 start, out precise vec3 lost) {
+    start = x + base;
+    precise vec3 moved = start - x;
+    lost = base - moved;
+}
+
 #endif

@@ -24,8 +24,9 @@ uvec2 coloured_cell(uvec2 id) {
 void finish_particle(uint i, vec3 dx, bool pinned) {
     Particle start = p_in[i];
     vec3 base = history[3u * i + 2u].xyz;
+    vec3 lost = history[3u * i + 1u].xyz;  // (predict.comp)
     vec3 x = base + dx;
-    vec3 v = pinned ? vec3(0.0) : dx * (1.0 / solve_dt());
+    vec3 v = pinned ? vec3(0.0) : (dx - lost) * (1.0 / solve_dt());
     p_out[i] = Particle(vec4(x, pinned ? 1.0 : 0.0), vec4(v, 0.0));
     history[3u * i] = pinned ? vec4(0.0) : vec4((base - start.pos.xyz) + dx, 1.0);
     history[3u * i + 1u] = pinned ? vec4(0.0) : vec4(v - start.vel.xyz, 0.0);
