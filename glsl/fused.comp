@@ -260,8 +260,8 @@ void main() {
             x[s] = p.pos.xyz;
             v[s] = pinned[s] ? vec3(0.0) : p.vel.xyz;
             if (ITERATIVE) {
-                hx[s] = history[3u * k];
-                hv[s] = history[3u * k + 1u].xyz;
+                hx[s] = history[hist(k, H_DX)];
+                hv[s] = history[hist(k, H_DV)].xyz;
             }
         }
     }
@@ -529,8 +529,8 @@ void main() {
         uint k = own[s];
         if (k < n) p_in[k] = Particle(vec4(x[s], pinned[s] ? 1.0 : 0.0), vec4(v[s], 0.0));
         if (ITERATIVE && k < n) {
-            history[3u * k] = pinned[s] ? vec4(0.0) : hx[s];
-            history[3u * k + 1u] = pinned[s] ? vec4(0.0) : vec4(hv[s], 0.0);
+            history[hist(k, H_DX)] = pinned[s] ? vec4(0.0) : hx[s];
+            history[hist(k, H_DV)] = pinned[s] ? vec4(0.0) : vec4(hv[s], 0.0);
         }
     }
 }

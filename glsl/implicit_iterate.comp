@@ -5,14 +5,14 @@
 // solver_bodies.glsl), one thread per particle: the local step and one damped,
 // Chebyshev-accelerated Jacobi sweep. Iterate slices rotate: iteration k reads slice k % 3 (and
 // the one before, (k + 2) % 3), writes (k + 1) % 3. The iterates and aux[i] (the prediction y)
-// are displacements from the BDF2 base x~ (history[3 i + 2], see predict.comp).
+// are displacements from the BDF2 base x~ (history H_BASE, see predict.comp).
 #include "bindings.glsl"
 #include "springs.glsl"
 
 layout(local_size_x_id = 0, local_size_y_id = 1, local_size_z = 1) in;
 
 #include "solver_end.glsl"
-#define SX(j) history[3u * uint(j) + 2u].xyz
+#define SX(j) history[hist(uint(j), H_BASE)].xyz
 #define SD(j) iter[(it.k % 3u) * particle_count() + uint(j)].xyz
 #define SPIN(j) false
 #include "solver_bodies.glsl"

@@ -3,8 +3,9 @@
 #extension GL_EXT_control_flow_attributes : require
 // First pass of a substep of the iterative integrators, one thread per particle: the BDF2
 // start (predict_body.glsl) from p_in (the state x at the start of the substep) and the
-// particle's history: the base x~ into history[3 i + 2], where the iteration shaders read it
-// as the start position, and the prediction y into the iterates. Resets the solver's auxiliary
+// particle's history: the base x~ into history H_BASE, where the iteration shaders read it
+// as the start position, what its rounding left out into H_DV (finish_particle reads it and
+// writes the new v_n - v_{n-1} there), and the prediction y into the iterates. Resets the solver's auxiliary
 // data: a copy of y (KEEP_PREDICTION), else the 12 multipliers of XPBD to zero. The constants
 // are the method's row in sim::integrator.
 //
@@ -33,12 +34,12 @@ void main() {
     precise vec3 lost = vec3(0.0);  // what rounding x~ left out (bdf2_start)
     if (p.pos.w <= 0.5) {
         vec3 base;
-        dy = predicted_displacement(cell, x, v, EXPLICIT_DASHPOTS, history[3u * i], history[3u * i + 1u].xyz, base);
+        dy = predicted_displacement(cell, x, v, EXPLICIT_DASHPOTS, history[hist(i, H_DX)], history[hist(i, H_DV)].xyz, base);
         bdf2_start(x, base, start, lost);
         dy += lost;
     }
-    history[3u * i + 1u] = vec4(lost, 0.0);  // (v_n - v_{n-1} is read; finish_particle rewrites it)
-    history[3u * i + 2u] = vec4(start, 0.0);
+    history[hist(i, H_DV)] = vec4(lost, 0.0);  // (v_n - v_{n-1} is read; finish_particle rewrites it)
+    history[hist(i, H_BASE)] = vec4(start, 0.0);
     iter[i] = vec4(dy, p.pos.w);
     if (KEEP_PREDICTION) {
         aux[i] = vec4(dy, 0.0);

@@ -10,7 +10,7 @@
 
 layout(local_size_x_id = 0, local_size_y_id = 1, local_size_z = 1) in;
 
-#define SX(j) history[3u * uint(j) + 2u].xyz
+#define SX(j) history[hist(uint(j), H_BASE)].xyz
 #define SD(j) iter[j].xyz
 #define SPIN(j) (iter[j].w > 0.5)
 #include "solver_bodies.glsl"

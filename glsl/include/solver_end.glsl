@@ -1,8 +1,9 @@
 // What the iteration shaders of the iterative integrators share: the push constants of a pass,
 // the cell a coloured pass's invocation works on, and the end of the substep: the last
-// iteration writes the result from the final displacement dx, the position x_n + dx and the
-// velocity that reaches it, v = dx / dt, into p_out (what the constraint stage reads), and
-// counts it into the spatial hash.
+// iteration writes the result from the final displacement dx from the BDF2 base x~, the
+// position x~ + dx and the velocity that reaches it, v = (dx - lost) / h (predict_body.glsl),
+// into p_out (what the constraint stage reads) and the particle's new history, and counts it
+// into the spatial hash.
 // Include after bindings.glsl.
 #ifndef MSD_SOLVER_END_GLSL
 #define MSD_SOLVER_END_GLSL
@@ -23,13 +24,13 @@ uvec2 coloured_cell(uvec2 id) {
 
 void finish_particle(uint i, vec3 dx, bool pinned) {
     Particle start = p_in[i];
-    vec3 base = history[3u * i + 2u].xyz;
-    vec3 lost = history[3u * i + 1u].xyz;  // (predict.comp)
+    vec3 base = history[hist(i, H_BASE)].xyz;
+    vec3 lost = history[hist(i, H_DV)].xyz;  // (predict.comp)
     vec3 x = base + dx;
     vec3 v = pinned ? vec3(0.0) : (dx - lost) * (1.0 / solve_dt());
     p_out[i] = Particle(vec4(x, pinned ? 1.0 : 0.0), vec4(v, 0.0));
-    history[3u * i] = pinned ? vec4(0.0) : vec4((base - start.pos.xyz) + dx, 1.0);
-    history[3u * i + 1u] = pinned ? vec4(0.0) : vec4(v - start.vel.xyz, 0.0);
+    history[hist(i, H_DX)] = pinned ? vec4(0.0) : vec4((base - start.pos.xyz) + dx, 1.0);
+    history[hist(i, H_DV)] = pinned ? vec4(0.0) : vec4(v - start.vel.xyz, 0.0);
     count_into_bucket(i, x);
 }
 

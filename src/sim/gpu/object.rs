@@ -89,16 +89,17 @@ impl HashBuffers {
     }
 }
 
-/// Vec4s of BDF2 history a particle of an iterative method keeps (binding 16), and their bytes.
-const HISTORY_VEC4S: u64 = 3;
-pub(super) const HISTORY_BYTES: u64 = 16 * HISTORY_VEC4S;
+/// Vec4s of BDF2 history a particle of an iterative method keeps (binding 16), one in each of
+/// that many arrays of the particle count (`hist` in glsl/include/bindings.glsl).
+pub(super) const HISTORY_VEC4S: u64 = 3;
 
 /// The iterates, auxiliary data and BDF2 history of an iterative integrator (bindings 12, 13,
 /// 16).
 pub(super) struct SolverBuffers {
     pub iter: Buffer,
     pub aux: Buffer,
-    /// Three vec4s a particle (`history` in glsl/include/bindings.glsl); zero is "no history".
+    /// Three arrays of a vec4 a particle (`history` in glsl/include/bindings.glsl); zero is "no
+    /// history".
     pub history: Buffer,
 }
 
