@@ -11,7 +11,8 @@
 // `hv` (v_n - v_{n-1}): returns the prediction y - x~ and sets `base` to x~ - x, where x~ =
 // x + (x_n - x_{n-1}) / 3 is what the solve's displacements are measured from. F is the
 // external force and, with `dashpots` (a method that treats damping explicitly), the springs'
-// dashpots. Without history the particle starts as implicit Euler would.
+// dashpots. Without history the particle's free motion starts as implicit Euler's
+// (sim::cpu::integrators::inertial says what its springs get).
 vec3 predicted_displacement(uvec2 cell, vec3 x, vec3 v, bool dashpots, vec4 hx, vec3 hv, out vec3 base) {
     vec3 force = external_force(x, v);
     if (dashpots) add_spring_forces(cell, x, v, 0.0, false, force);

@@ -118,7 +118,12 @@ fn explicit(m: &SimModel, o: &ObjectModel, dt: f64, x: &[DVec3], v: &[DVec3], ve
 /// dashpots for the implicit method, which treats damping explicitly; the others handle it in
 /// their solve). A particle without history takes x_n - x_{n-1} = dt (v_n + dt F / m) and
 /// v_n - v_{n-1} = dt F / m, which makes its free motion implicit Euler's step
-/// (y = x_n + dt v_n + dt^2 F / m, v = v_n + dt F / m).
+/// (y = x_n + dt v_n + dt^2 F / m, v = v_n + dt F / m). Its springs act through the solve alone,
+/// with weight h^2 = 4/9 dt^2 where implicit Euler gives them dt^2: that substep loses a third
+/// of their impulse, so a particle hanging still starts to move at about g dt / 3 (7.9e-4 m/s
+/// at 64 substeps, measured on a chain). Tried: the springs' elastic force in that history too,
+/// scaled by 1 / (1 + dt^2 S / m) (S their stiffness sum) to stay stable at any stiffness; it
+/// left the chain at rest (6e-6 m/s) but is not in yet (docs/ACCURACY.md, known limits).
 struct Inertial {
     /// The solve's step h.
     h: f64,

@@ -137,7 +137,7 @@ pub struct GpuSim {
     lists_stale: bool,
     /// The iterative methods' BDF2 histories do not belong to the state or the substep any
     /// more (a new state, another dt): the next frame clears them first, and every particle's
-    /// next substep starts as implicit Euler's (`sim::cpu::integrators::History`).
+    /// next substep starts afresh (`sim::cpu::integrators::inertial`).
     history_stale: bool,
     /// The model the simulation runs, without particles (substeps, integrator, the guard's
     /// reports).
