@@ -339,8 +339,9 @@ pub fn chebyshev_omega(k: u32, rho: f64) -> f64 {
 }
 
 /// Projective dynamics from the BDF2 start (`inertial`, with the dashpots in the prediction; dt
-/// below is its step h): minimise |p - y|^2_M / (2 dt^2) + sum k/2 |p_i - p_j - d_s|^2 over p, with d_s the spring's rest-length projection of the current p_i - p_j (local
-/// step). One damped Jacobi sweep of the global system per iteration (diagonal m / dt^2 + sum k,
+/// below is its step h): minimise |p - y|^2_M / (2 dt^2) + sum k/2 |p_i - p_j - d_s|^2 over p,
+/// with d_s the spring's rest-length projection of the current p_i - p_j (local step). One
+/// damped Jacobi sweep of the global system per iteration (diagonal m / dt^2 + sum k,
 /// moving `jacobi_damping` of the way: 1 / (1 + rho), which tends to 1 as the substep shrinks),
 /// accelerated by Chebyshev with the radius `chebyshev_rho` from iteration `CHEBYSHEV_START` on.
 pub(crate) fn implicit(
