@@ -223,7 +223,7 @@ void main() {
     vec3 dy[MAX_SLOTS];  // iterative methods: the prediction y - x~
     vec3 dx[MAX_SLOTS];  // ... the iterate p - x~
     vec4 hx[MAX_SLOTS];  // ... the history x_n - x_{n-1} (w valid); during a solve, x~ - x_n
-    vec3 hv[MAX_SLOTS];  // ... v_n - v_{n-1}; during a solve, v_n
+    vec3 hv[MAX_SLOTS];  // ... v_n - v_{n-1}
     vec3 lost[MAX_SLOTS];  // ... what rounding the base left out (bdf2_start)
     uint colour[MAX_SLOTS];
     uint own[MAX_SLOTS];  // the particle of each slot
@@ -312,7 +312,6 @@ void main() {
                     lost[s] = missed;
                     precise vec3 moved = start - x[s];  // x~ - x_n, exact
                     hx[s].xyz = moved;
-                    hv[s] = v[s];
                     x[s] = start;
                     continue;
                 }
@@ -421,9 +420,10 @@ void main() {
                 if (pinned[s]) continue;
                 if (SOLVER == METHOD_XPBD && own[s] < n) dx[s] = sdisp(own[s]);  // moved by springs
                 x[s] += dx[s];
-                v[s] = (dx[s] - lost[s]) * (1.0 / solve_dt());
+                vec3 v_next = (dx[s] - lost[s]) * (1.0 / solve_dt());  // (v[s] is still v_n)
                 hx[s] = vec4(hx[s].xyz + dx[s], 1.0);  // x_{n+1} - x_n
-                hv[s] = v[s] - hv[s];                  // v_{n+1} - v_n
+                hv[s] = v_next - v[s];                 // v_{n+1} - v_n
+                v[s] = v_next;
             }
             // XPBD read its displacements back from scratch, which the self-collision hash reuses.
             if (SOLVER == METHOD_XPBD && hashed) barrier();

@@ -353,10 +353,8 @@ impl GpuSim {
                 let size = std::mem::size_of::<Particle>() as u64;
                 rec.update_buffer(&objects[o].state[0], index as u64 * size, bytemuck::bytes_of(&p));
                 if let Some(s) = &objects[o].solver {
-                    let particles = objects[o].particles as u64;
-                    for array in 0..object::HISTORY_VEC4S {
-                        rec.update_buffer(&s.history, 16 * (array * particles + index as u64), &[0u8; 16]);
-                    }
+                    // Its x_n - x_{n-1} zeroed, with the w that marks it valid (H_DX, first).
+                    rec.update_buffer(&s.history, 16 * index as u64, &[0u8; 16]);
                 }
             }
             rec.barrier(&around(Access::TransferWrite, Access::ComputeReadWrite));

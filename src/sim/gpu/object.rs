@@ -91,7 +91,7 @@ impl HashBuffers {
 
 /// Vec4s of BDF2 history a particle of an iterative method keeps (binding 16), one in each of
 /// that many arrays of the particle count (`hist` in glsl/include/bindings.glsl).
-pub(super) const HISTORY_VEC4S: u64 = 3;
+const HISTORY_VEC4S: u64 = 3;
 
 /// The iterates, auxiliary data and BDF2 history of an iterative integrator (bindings 12, 13,
 /// 16).
