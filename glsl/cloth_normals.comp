@@ -2,9 +2,11 @@
 #extension GL_GOOGLE_include_directive : require
 // Surface stage for cloth, once per frame after the last substep: angle-weighted smoothed
 // normals from the final positions, and the runtime guard. Reads p_in (the state buffer),
-// writes surface[] and the guard; with DRAWN off (nothing draws the cloth), only the guard.
+// writes surface[] and the guard (with the contact lists' counters, lists.glsl); with DRAWN
+// off (nothing draws the cloth), only the guard.
 #include "bindings.glsl"
 #include "springs.glsl"
+#include "lists.glsl"
 
 layout(local_size_x = 16, local_size_y = 16, local_size_z = 1) in;
 layout(constant_id = 0) const bool DRAWN = true;
@@ -14,6 +16,7 @@ void main() {
     if (cell.x >= obj.dims.x || cell.y >= obj.dims.y) return;
     uint i = cell.x + cell.y * obj.dims.x;
     guard_check(i, p_in[i]);
+    if (i == 0u) report_lists();
     if (!DRAWN) return;
     vec3 x = p_in[i].pos.xyz;
 

@@ -1,6 +1,8 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_control_flow_attributes : require
+#extension GL_KHR_shader_subgroup_basic : require
+#extension GL_KHR_shader_subgroup_vote : require
 // Every substep of a frame for one object in one workgroup, with the state in registers and
 // shared memory: physics, the self-collision hash and the constraints of all substeps run
 // without a dispatch or a pipeline barrier between them (what bounds small scenes), and
@@ -75,17 +77,15 @@ shared uint pin_bits[(CAP + 31u) / 32u];
 shared uint scratch[SCRATCH];
 shared uint list_flag[2];  // substep parity: some particle moved too far from its list's build
 
-// The self-collision contact list (LIST_MAX > 0, with the hash): when the hash is built, each
-// particle also records the others within (1 + LIST_SKIN) reach (rest-state neighbours left
-// out) in self_list; the substeps after read those instead of the hash, until some particle
-// has moved more than half the skin, LIST_SKIN reach / 2, from where the list was built (then
-// no pair missing from a list can have come within reach: neither end moved the skin's half)
-// or a list overflowed. The lists and where they were built stay in self_list from one dispatch
-// to the next, marked valid by the word after them (LIST_VALID); the host clears it whenever
-// something outside the kernel changes the state or the parameters (a reset, a dragged or
-// pinned particle, an edit, a reloaded shader), and until they are valid every substep builds.
-const bool LISTED = LIST_MAX > 0u;
-const float LIST_SKIN = 1.0;
+// The self-collision contact lists (LIST_MAX > 0, with the hash; lists.glsl): a substep builds
+// the hash when some particle has moved half the skin from where its list was built or a list
+// overflowed (list_flag), and then the lists too, unless some particle moves so fast that
+// they would not outlast the next substep. The lists and where they were built stay in
+// self_list from one dispatch to the next, marked valid by the word after them (LIST_VALID);
+// the host clears it whenever something outside the kernel changes the state or the
+// parameters (a reset, a dragged or pinned particle, an edit, a reloaded shader), and until
+// they are valid every substep builds.
+const bool LISTED = LIST_MAX > 0u;  // (LIST_MAX is LIST_ENTRIES or 0)
 bool list_rebuild;   // this substep builds the hash (and searches it)
 bool list_build;     // ... and the lists
 bool lists_built;    // valid lists exist (from this dispatch or an earlier one)
@@ -144,7 +144,7 @@ void visit_bucket(uint h, uvec2 cell, vec3 x, float reach, inout vec3 correction
         float d = distance(spos(j), x);
         if (d < reach) self_contact(cell, x, j, reach, correction, n_active);
         if (LISTED && list_build && d < reach * (1.0 + LIST_SKIN) && !rest_neighbour(cell, j, reach)) {
-            if (list_len < LIST_MAX) self_list[4u * CAP + list_len * CAP + list_particle] = j;
+            if (list_len < LIST_MAX) self_list[list_entry(list_len, list_particle, CAP)] = j;
             list_len += 1u;  // past LIST_MAX the list is full: it is rebuilt the next substep
         }
     }
@@ -157,7 +157,7 @@ void listed_candidates(uvec2 cell, vec3 x, float reach, inout vec3 correction, i
     }
     for (uint e = 0u; e < list_len; ++e) {
         // (rest-state neighbours were left out when the list was built)
-        self_push(x, self_list[4u * CAP + e * CAP + list_particle], reach, correction, n_active);
+        self_push(x, self_list[list_entry(e, list_particle, CAP)], reach, correction, n_active);
     }
 }
 
@@ -440,16 +440,14 @@ void main() {
                 // Has a particle moved half the skin since its list was built (or did its
                 // list overflow: built at infinity)? Is one so fast that a list built now
                 // would not outlast the next substep?
-                float half_skin = 0.49 * LIST_SKIN * obj.self_distance;  // 2% for rounding
+                float half_skin = list_half_skin();
                 bool moved = false;
                 bool fast = false;
                 [[unroll]] for (uint s = 0u; s < MAX_SLOTS; ++s) {
                     if (s >= SLOTS) break;
                     uint k = own[s];
                     if (k >= n || pinned[s]) continue;
-                    vec3 built = vec3(uintBitsToFloat(self_list[4u * k]), uintBitsToFloat(self_list[4u * k + 1u]),
-                                      uintBitsToFloat(self_list[4u * k + 2u]));
-                    moved = moved || !(distance(x[s], built) <= half_skin);
+                    moved = moved || !(distance(x[s], list_built(k)) <= half_skin);
                     fast = fast || length(v[s]) * g.dt > half_skin;
                 }
                 uint flags = (moved ? LIST_MOVED : 0u) | (fast ? LIST_FAST : 0u);
@@ -500,15 +498,7 @@ void main() {
                 list_particle = k;
                 list_len = LISTED && hashed && !list_rebuild ? self_list[4u * k + 3u] : 0u;
                 vec3 correction = constraint_correction(cells[s], xs);
-                if (LISTED && hashed && list_build) {
-                    // Where it was built; a full list is built again the next substep.
-                    bool full = list_len > LIST_MAX;
-                    vec3 built = full ? vec3(uintBitsToFloat(0x7F800000u)) : xs;
-                    self_list[4u * k] = floatBitsToUint(built.x);
-                    self_list[4u * k + 1u] = floatBitsToUint(built.y);
-                    self_list[4u * k + 2u] = floatBitsToUint(built.z);
-                    self_list[4u * k + 3u] = full ? 0u : list_len;
-                }
+                if (LISTED && hashed && list_build) set_list_header(k, xs, list_len);
                 xs += correction;
                 vs += correction / g.dt;  // velocity follows the position correction
             }

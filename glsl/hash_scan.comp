@@ -3,8 +3,8 @@
 // Spatial hash: exclusive prefix sum of counts[] into starts[0..=buckets] (starts[buckets] is
 // the total), in one dispatch for tables of up to one block, else three, selected by the
 // specialization constant SCAN_PHASE:
-//   0: each workgroup scans BLOCK counts into starts[] (zeroing the counts for the next
-//      substep's physics pass) and writes its total to block_sums[];
+//   0: each workgroup scans BLOCK counts into starts[] (zeroing them for the next count,
+//      hash_count.comp) and writes its total to block_sums[];
 //   1: one workgroup scans block_sums[] (at most BLOCK blocks) in place;
 //   2: every start gets the scanned total of the blocks before it.
 #include "bindings.glsl"

@@ -1,7 +1,8 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
-// Spatial hash, pass 3 of 3: each particle writes its position and index at its bucket's
-// start + its rank, so the query reads candidates contiguously. Reads p_in, cell_rank[],
+// Spatial hash, pass 3 of 3 (dispatched indirectly, as hash_count.comp): each particle writes
+// its position and index at its bucket's start + its rank, so the query reads candidates
+// contiguously. Reads p_in, cell_rank[],
 // starts[]; writes sorted[].
 #include "bindings.glsl"
 

@@ -1,6 +1,8 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_control_flow_attributes : require
+#extension GL_KHR_shader_subgroup_basic : require
+#extension GL_KHR_shader_subgroup_vote : require
 // One iteration of BDF2 by projective dynamics (implicit_particle in
 // solver_bodies.glsl), one thread per particle: the local step and one damped,
 // Chebyshev-accelerated Jacobi sweep. Iterate slices rotate: iteration k reads slice k % 3 (and

@@ -8,9 +8,11 @@
 // paper's frame flips and the tube pinches). The CPU twin is sim::cpu::rope_surface.
 // The frames are a running product of rotations along the rope: one workgroup, each thread a
 // run of nodes; the threads' products are combined by a scan in shared memory.
-// Reads p_in (the state buffer), writes surface[node * ROPE_RING + k] and the runtime guard.
+// Reads p_in (the state buffer), writes surface[node * ROPE_RING + k] and the runtime guard
+// (with the contact lists' counters, lists.glsl).
 // With DRAWN off (nothing draws the rope) only the guard, one thread per node.
 #include "bindings.glsl"
+#include "lists.glsl"
 
 layout(local_size_x = 256) in;
 layout(constant_id = 0) const bool DRAWN = true;
@@ -55,6 +57,7 @@ vec3 forward_at(uint node, uint nodes) {
 
 void main() {
     uint nodes = obj.dims.x;
+    if (gl_GlobalInvocationID.x == 0u) report_lists();
     if (!DRAWN) {
         uint node = gl_GlobalInvocationID.x;
         if (node < nodes) guard_check(node, p_in[node]);

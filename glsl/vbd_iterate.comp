@@ -1,6 +1,8 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_control_flow_attributes : require
+#extension GL_KHR_shader_subgroup_basic : require
+#extension GL_KHR_shader_subgroup_vote : require
 // One vertex colour of one Vertex Block Descent iteration (Chen et al. 2024; vbd_particle in
 // solver_bodies.glsl), one invocation per particle of that colour, its neighbours (other
 // colours) held. In place in iter (one slice of displacements p - x~ from the BDF2 base x~,

@@ -1,6 +1,8 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_control_flow_attributes : require
+#extension GL_KHR_shader_subgroup_basic : require
+#extension GL_KHR_shader_subgroup_vote : require
 // One spring class of one XPBD Gauss-Seidel iteration (xpbd_spring in solver_bodies.glsl; the
 // classes in springs.glsl), one invocation per particle: the spring of the class whose first
 // node it is, if any, moves both ends (no other spring of the class touches them). In place in

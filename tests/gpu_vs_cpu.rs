@@ -42,15 +42,47 @@ fn check(name: &str, model: &SimModel) {
 }
 
 /// Both GPU paths against the reference: small objects fused (all substeps in one dispatch)
-/// and every object per stage (a dispatch and a barrier per stage and substep).
+/// and every object per stage (a dispatch and a barrier per stage and substep), the latter
+/// also with its self-collision contact lists kept on (by default they are turned off while
+/// they do not last: in most of these scenes after the first frame).
+///
+/// In contact scenes (`Mode::Resync`) the velocity may differ by what a position deviation
+/// within POSITION implies over one substep, POSITION / dt: a pair that sits at the contact
+/// distance (where the last correction put it) is in contact on one side of the comparison
+/// and not on the other when f32 and f64 round its distance apart, and then the particle's
+/// correction is averaged over one constraint more or less, and its velocity follows the
+/// corrected position (v += correction / dt). Which pairs sit that close depends on the order
+/// the GPU sums in (measured: a 13 x 9 folded cloth, 5.9e-5 m and 0.038 m/s once the
+/// per-stage hash's cells were widened for the contact lists; 6.7e-7 m and 2.4e-4 m/s in
+/// another order). A wrong velocity of that size for a whole frame would move the particles
+/// by more than POSITION, so the positions still catch it.
 fn check_mode(name: &str, model: &SimModel, mode: Mode) {
-    for fused in [true, false] {
+    let velocity = match mode {
+        Mode::FreeRunning => VELOCITY,
+        Mode::Resync => VELOCITY.max(POSITION / model.dt()),
+    };
+    let lists = model.objects.iter().any(|o| o.self_distance.is_some())
+        && model.self_collision == SelfCollisionMethod::Hash;
+    let paths: &[(bool, Option<bool>)] = if lists {
+        &[(true, None), (false, None), (false, Some(true))]
+    } else {
+        &[(true, None), (false, None)]
+    };
+    for &(fused, forced) in paths {
         let ctx = gpu();
-        let (d, _) = compare_path(&ctx, model, FRAMES, mode, fused);
-        let name = format!("{name}{}", if fused { "" } else { " (per stage)" });
+        let (d, _) = compare_with(&ctx, model, FRAMES, mode, &|g| {
+            g.set_fused(fused);
+            g.force_contact_lists(forced);
+        });
+        let path = match (fused, forced) {
+            (true, _) => "",
+            (false, None) => " (per stage)",
+            (false, Some(_)) => " (per stage, lists on)",
+        };
+        let name = format!("{name}{path}");
         println!("{name}: {d:?}");
         assert!(d.position <= POSITION, "{name}: position deviation {} m > {POSITION}", d.position);
-        assert!(d.velocity <= VELOCITY, "{name}: velocity deviation {} m/s > {VELOCITY}", d.velocity);
+        assert!(d.velocity <= velocity, "{name}: velocity deviation {} m/s > {velocity}", d.velocity);
         assert!(d.surface <= POSITION, "{name}: surface vertex deviation {} m > {POSITION}", d.surface);
         assert!(d.normal <= NORMAL, "{name}: normal deviation {} > {NORMAL}", d.normal);
         assert_clean(&ctx);
@@ -386,12 +418,12 @@ fn contact_lists_catch_pairs_that_close_in_within_a_frame() {
 }
 
 /// The contact lists are kept from one frame to the next, so whatever changes the state from
-/// outside the kernel must invalidate them. A flat 13 x 9 cloth without springs (5 cm apart, a
-/// 3 cm contact distance) lies still, its corner pinned; after two frames (lists built and
+/// outside the kernels must invalidate them. A flat 13 x 9 cloth without springs (5 cm apart,
+/// a 3 cm contact distance) lies still, its corner pinned; after two frames (lists built and
 /// kept), `set_particle` moves the pinned corner to 1 cm in front of a particle in the middle:
-/// no list holds that pair, and nothing moves to make the kernel rebuild them. The next frame
-/// must push the middle particle away as the reference does. (Without the invalidation the
-/// corner sits in the cloth and nothing happens: 2 cm off.)
+/// no list holds that pair, and nothing moves to make the shaders rebuild them. The next frame
+/// must push the middle particle away as the reference does, fused and per stage. (Without
+/// the invalidation the corner sits in the cloth and nothing happens: 2 cm off.)
 #[test]
 fn contact_lists_are_rebuilt_after_a_particle_is_set() {
     let mut c = cloth(13, 9, 0.05);
@@ -399,32 +431,36 @@ fn contact_lists_are_rebuilt_after_a_particle_is_set() {
     c.pinned[0] = true;
     let mut s = scene(vec![c]);
     s.self_collision = SelfCollisionMethod::Hash;
-    let ctx = gpu();
-    let mut sim = GpuSim::new(&ctx, &s).expect("creating the GPU simulation");
-    assert!(sim.runs_fused(0));
-    for _ in 0..2 {
+    for fused in [true, false] {
+        let ctx = gpu();
+        let mut sim = GpuSim::new(&ctx, &s).expect("creating the GPU simulation");
+        sim.set_fused(fused);
+        sim.force_contact_lists(Some(true));
+        assert_eq!(sim.runs_fused(0), fused);
+        for _ in 0..2 {
+            sim.step_frame(&ctx).expect("GPU frame");
+        }
+        let before = sim.read_states(&ctx).expect("readback");
+        let middle = 4 * 13 + 6;
+        let mut x = before[0].positions();
+        x[0] = x[middle] + DVec3::new(0.0, 0.0, 0.01);
+        let moved = msdsim::sim::gpu_types::Particle {
+            pos: [x[0].x as f32, x[0].y as f32, x[0].z as f32, 1.0],
+            vel: [0.0; 4],
+        };
+        sim.set_particle(0, 0, moved);
+        let mut cpu = CpuSim::new(&s);
+        cpu.set_state(0, x, before[0].velocities());
         sim.step_frame(&ctx).expect("GPU frame");
+        cpu.step_frame();
+        let after = sim.read_states(&ctx).expect("readback");
+        let pushed = after[0].positions()[middle].distance(before[0].positions()[middle]);
+        assert!(pushed > 0.01, "fused {fused}: the middle particle moved only {pushed} m");
+        let d = deviation(&after, cpu.objects());
+        assert!(d.position <= POSITION, "fused {fused}: position deviation {} m > {POSITION}", d.position);
+        sim.destroy(&ctx);
+        assert_clean(&ctx);
     }
-    let before = sim.read_states(&ctx).expect("readback");
-    let middle = 4 * 13 + 6;
-    let mut x = before[0].positions();
-    x[0] = x[middle] + DVec3::new(0.0, 0.0, 0.01);
-    let moved = msdsim::sim::gpu_types::Particle {
-        pos: [x[0].x as f32, x[0].y as f32, x[0].z as f32, 1.0],
-        vel: [0.0; 4],
-    };
-    sim.set_particle(0, 0, moved);
-    let mut cpu = CpuSim::new(&s);
-    cpu.set_state(0, x, before[0].velocities());
-    sim.step_frame(&ctx).expect("GPU frame");
-    cpu.step_frame();
-    let after = sim.read_states(&ctx).expect("readback");
-    let pushed = after[0].positions()[middle].distance(before[0].positions()[middle]);
-    assert!(pushed > 0.01, "the middle particle moved only {pushed} m");
-    let d = deviation(&after, cpu.objects());
-    assert!(d.position <= POSITION, "position deviation {} m > {POSITION}", d.position);
-    sim.destroy(&ctx);
-    assert_clean(&ctx);
 }
 
 /// Contact lists that overflow: a cloth folded with its layers 1.5 cm apart, 1 cm between

@@ -32,7 +32,8 @@ layout(std430, set = 0, binding = 8) buffer HashStarts { uint starts[]; };      
 layout(std430, set = 0, binding = 9) buffer HashSorted { vec4 sorted[]; };       // by bucket: xyz position, w index bits
 layout(std430, set = 0, binding = 10) buffer HashBlocks { uint block_sums[]; };  // scan: per-block totals
 // The runtime guard of the object, read by the host after each frame.
-layout(std430, set = 0, binding = 11) buffer GuardBuf { uint guard_flags; uint guard_first; }; // GUARD_* bits, lowest bad index
+// (Then the per-stage contact lists' counters, lists.glsl.)
+layout(std430, set = 0, binding = 11) buffer GuardBuf { uint guard_flags; uint guard_first; uint guard_lists_on; uint guard_lists_rebuilt; }; // GUARD_* bits, lowest bad index
 // Iterates of the iterative integrators (objects of the explicit ones bind a placeholder).
 layout(std430, set = 0, binding = 12) buffer SolverIter { vec4 iter[]; }; // slices of N positions; w = 1 pinned
 layout(std430, set = 0, binding = 13) buffer SolverAux { vec4 aux[]; };   // xpbd: 12 multipliers per particle; implicit: y

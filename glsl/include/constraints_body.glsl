@@ -22,6 +22,9 @@
 #ifndef HASH_MASK
 #define HASH_MASK obj.hash_mask
 #endif
+#ifndef CELL_INV
+#define CELL_INV obj.cell_inv
+#endif
 
 // Whether particle j is nearer than `reach` to `cell` in the rest state (or is that particle):
 // such pairs never push, the springs keep them apart.
@@ -49,11 +52,12 @@ void self_contact(uvec2 cell, vec3 x, uint j, float reach, inout vec3 correction
 // Calls self_contact for the particles in hash bucket h.
 void visit_bucket(uint h, uvec2 cell, vec3 x, float reach, inout vec3 correction, inout uint n_active);
 
-// Visits the hash buckets that can hold particles within reach of x: cells are at least
-// 2 * reach wide (1 / obj.cell_inv), so every such particle lies in the 2 x 2 x 2 block of
-// cells nearest to x. Buckets two cells share are visited once.
+// Visits the hash buckets that can hold particles within reach of x (or of the contact lists'
+// reach while they are built): cells are at least twice that wide (1 / CELL_INV), so every
+// such particle lies in the 2 x 2 x 2 block of cells nearest to x. Buckets two cells share are
+// visited once.
 void visit_cells(uvec2 cell, vec3 x, float reach, inout vec3 correction, inout uint n_active) {
-    ivec3 base = ivec3(floor(x * obj.cell_inv - 0.5));
+    ivec3 base = ivec3(floor(x * CELL_INV - 0.5));
     uint seen[8];
     [[unroll]] for (int c = 0; c < 8; ++c) {
         uint h = cell_hash(base + ivec3(c & 1, (c >> 1) & 1, c >> 2), HASH_MASK);
@@ -116,20 +120,49 @@ vec3 constraint_correction(uvec2 cell, vec3 x) {
 }
 
 #ifndef FUSED_SHARED
-// The global spatial hash: candidates are stored contiguously by bucket with their positions,
-// so most are rejected without reading their particle.
+// The per-stage hash (hash_count.glsl): candidates are stored contiguously by bucket with
+// their positions, so most are rejected without reading their particle. In a substep that
+// rebuilds the contact lists (list_build), those within the lists' reach are recorded in the
+// list of particle `list_particle` (list_len counts them, past LIST_ENTRIES too).
+uint list_particle;
+uint list_len;
+bool list_build;
 void visit_bucket(uint h, uvec2 cell, vec3 x, float reach, inout vec3 correction, inout uint n_active) {
     uint end = starts[h + 1u];
+    float listed = list_build ? reach * (1.0 + LIST_SKIN) : reach;
     for (uint at = starts[h]; at < end; ++at) {
         vec4 e = sorted[at];
-        if (distance(e.xyz, x) < reach) self_contact(cell, x, floatBitsToUint(e.w), reach, correction, n_active);
+        float d = distance(e.xyz, x);
+        uint j = floatBitsToUint(e.w);
+        if (d < listed && !rest_neighbour(cell, j, reach)) {
+            if (d < reach) self_push(x, j, reach, correction, n_active);
+            if (list_build && list_len < LIST_ENTRIES) self_list[list_entry(list_len, list_particle, particle_count())] = j;
+            list_len += 1u;
+        }
+    }
+}
+
+// Per stage, self-contact candidates come from the particle's contact list, or from the hash
+// in a substep that searches it (with lists off, every substep; with them on, one that
+// rebuilds them).
+bool list_rebuild;
+void listed_candidates(uvec2 cell, vec3 x, float reach, inout vec3 correction, inout uint n_active) {
+    if (list_rebuild) {
+        visit_cells(cell, x, reach, correction, n_active);
+        return;
+    }
+    for (uint e = 0u; e < list_len; ++e) {
+        // (rest-state neighbours were left out when the list was built)
+        self_push(x, self_list[list_entry(e, list_particle, particle_count())], reach, correction, n_active);
     }
 }
 #endif
 
 #ifdef OUT
 // `substep`: which of the frame's substeps this is (the colliders move within the frame).
-void constraints_particle(uvec2 cell, uint substep) {
+// With self-collision through the hash and `lists` on, the contact list is walked, or in a
+// substep that rebuilds the lists (the control block's word 0, lists.glsl) built from the hash.
+void constraints_particle(uvec2 cell, uint substep, bool lists) {
     uint i = cell.x + cell.y * obj.dims.x;
     Particle p = IN(i);
     if (p.pos.w > 0.5) {
@@ -138,7 +171,13 @@ void constraints_particle(uvec2 cell, uint substep) {
     }
     vec3 x = p.pos.xyz;
     vec3 v = p.vel.xyz;
+    bool listed = has(F_SELF) && self_hashed();
+    list_particle = i;
+    list_build = listed && lists && self_list[list_control(substep)] != 0u;
+    list_rebuild = listed && (!lists || list_build);
+    list_len = listed && !list_rebuild ? self_list[4u * i + 3u] : 0u;
     vec3 correction = constraint_correction(cell, x);
+    if (list_build) set_list_header(i, x, list_len);
     x += correction;
     v += correction / g.dt;  // velocity follows the position correction
     collide(x, v, float(substep + 1u) * g.dt);

@@ -1,13 +1,55 @@
-// The first pass of the spatial hash, run by whichever pass writes a substep's new positions
-// (counts[] were zeroed by the previous substep's scan). Include after bindings.glsl.
+// The per-stage spatial hash of self-collision and its contact lists (lists.glsl). With lists
+// on, the pass that writes a substep's new positions notes whether the lists still hold
+// (note_position); when they do not, the hash is built from those positions (hash_count.comp
+// counts, the scan, hash_scatter.comp), with cells twice the lists' reach wide, and the
+// constraints search it and build the lists again. With lists off, that pass counts the
+// position into the hash (cells twice the contact distance) and every substep searches it.
+// Include after bindings.glsl.
 #ifndef MSD_HASH_COUNT_GLSL
 #define MSD_HASH_COUNT_GLSL
+#include "lists.glsl"
 
-// Takes a rank in the bucket of the new position x_new of particle i.
-void count_into_bucket(uint i, vec3 x_new) {
-    if ((obj.flags & OBJ_SELF_HASH) == 0u) return;
-    uint h = cell_hash(ivec3(floor(x_new * obj.cell_inv)), obj.hash_mask);
+// The per-stage hash's 1 / cell edge: with lists its cells are twice the lists' reach,
+// (1 + LIST_SKIN) times the contact distance, wide.
+float hash_cell_inv(bool lists) { return lists ? obj.cell_inv * (1.0 / (1.0 + LIST_SKIN)) : obj.cell_inv; }
+
+bool self_hashed() {
+    const uint bits = OBJ_SELF_COLLISION | OBJ_SELF_HASH;
+    return (obj.flags & bits) == bits;
+}
+
+// Takes a rank in the bucket of position x of particle i (counts[] were zeroed by the last
+// scan).
+void count_into_bucket(uint i, vec3 x, bool lists) {
+    uint h = cell_hash(ivec3(floor(x * hash_cell_inv(lists))), obj.hash_mask);
     cell_rank[i] = uvec2(h, atomicAdd(counts[h], 1u));
+}
+
+// Particle i of an object whose self-collision searches the hash has its new position x_new
+// in substep `substep`. With lists off it is counted into the hash. With lists on, when it has
+// moved half the skin from where its list was built (or is not pinned and has no list), the
+// substep rebuilds the hash and the lists: the first particle to find so sets the control
+// block's indirect dispatches (lists.glsl).
+void note_position(uint i, vec3 x_new, bool pinned, uint substep, bool lists) {
+    if (!self_hashed()) return;
+    if (!lists) {
+        count_into_bucket(i, x_new, false);
+        return;
+    }
+    bool moved = !pinned && !(distance(x_new, list_built(i)) <= list_half_skin());
+    if (!subgroupAny(moved)) return;
+    uint c = list_control(substep);
+    if (subgroupElect() && atomicExchange(self_list[c], 1u) == 0u) {
+        uint n = particle_count();
+        uint buckets = obj.hash_mask + 1u;
+        uvec3 groups[4] = uvec3[4](uvec3((n + 255u) / 256u, 1u, 1u),            // count, scatter
+                                   uvec3((buckets + 8191u) / 8192u, 1u, 1u),     // scan 0
+                                   uvec3(1u),                                    // scan 1
+                                   uvec3((buckets + 512u) / 512u, 1u, 1u));      // scan 2
+        [[unroll]] for (uint a = 0u; a < 4u; ++a) {
+            [[unroll]] for (uint w = 0u; w < 3u; ++w) self_list[c + LIST_COUNT_ARGS + 3u * a + w] = groups[a][w];
+        }
+    }
 }
 
 #endif

@@ -3,8 +3,8 @@
 // positions x + v dt / 2). `physics_step` is the step itself, shared by physics.comp (through
 // `physics_particle`, which reads IN(i) and writes OUT(i)) and fused.comp (which keeps the
 // state in registers and shared memory). For objects whose self-collision uses the spatial
-// hash, `physics_particle` also counts the new position into its bucket (counts[] were zeroed
-// by the previous substep's scan) and records its rank there.
+// hash, `physics_particle` also notes whether the new position leaves its contact list's
+// skin (hash_count.glsl).
 // Include after bindings.glsl and springs.glsl, with IN and OUT (or NPOS and NVEL) defined.
 #ifndef MSD_PHYSICS_BODY_GLSL
 #define MSD_PHYSICS_BODY_GLSL
@@ -29,19 +29,20 @@ void physics_step(uvec2 cell, inout vec3 x, inout vec3 v) {
 }
 
 #ifdef OUT
-void physics_particle(uvec2 cell) {
+// `substep`: which of the frame's substeps this is; `lists`: contact lists on.
+void physics_particle(uvec2 cell, uint substep, bool lists) {
     uint i = cell.x + cell.y * obj.dims.x;
     Particle p = IN(i);
     if (p.pos.w > 0.5) {  // pinned: keep the position, no velocity
         OUT(i) = Particle(p.pos, vec4(0.0));
-        count_into_bucket(i, p.pos.xyz);
+        note_position(i, p.pos.xyz, true, substep, lists);
         return;
     }
     vec3 x = p.pos.xyz + physics_drift() * p.vel.xyz;
     vec3 v = p.vel.xyz;
     physics_step(cell, x, v);
     OUT(i) = Particle(vec4(x, 0.0), vec4(v, 0.0));
-    count_into_bucket(i, x);
+    note_position(i, x, false, substep, lists);
 }
 #endif
 

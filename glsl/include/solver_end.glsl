@@ -2,15 +2,16 @@
 // the cell a coloured pass's invocation works on, and the end of the substep: the last
 // iteration writes the result from the final displacement dx from the BDF2 base x~, the
 // position x~ + dx and the velocity that reaches it, v = (dx - lost) / h (predict_body.glsl),
-// into p_out (what the constraint stage reads) and the particle's new history, and counts it
-// into the spatial hash.
+// into p_out (what the constraint stage reads) and the particle's new history, and notes
+// whether it leaves its contact list's skin (hash_count.glsl).
 // Include after bindings.glsl.
 #ifndef MSD_SOLVER_END_GLSL
 #define MSD_SOLVER_END_GLSL
 #include "hash_count.glsl"
 
-// k: 0-based iteration of this substep; colour: the vertex colour of a Gauss-Seidel pass.
-layout(push_constant) uniform Iteration { uint k; uint colour; } it;
+// k: 0-based iteration of this substep; colour: the vertex colour of a Gauss-Seidel pass;
+// substep: of the frame, 0-based; lists: 1 with self-collision contact lists on.
+layout(push_constant) uniform Iteration { uint k; uint colour; uint substep; uint lists; } it;
 
 bool last_iteration() { return it.k + 1u == g.iterations; }
 
@@ -31,7 +32,7 @@ void finish_particle(uint i, vec3 dx, bool pinned) {
     p_out[i] = Particle(vec4(x, pinned ? 1.0 : 0.0), vec4(v, 0.0));
     history[hist(i, H_DX)] = pinned ? vec4(0.0) : vec4((base - start.pos.xyz) + dx, 1.0);
     history[hist(i, H_DV)] = pinned ? vec4(0.0) : vec4(v - start.vel.xyz, 0.0);
-    count_into_bucket(i, x);
+    note_position(i, x, pinned, it.substep, it.lists != 0u);
 }
 
 #endif

@@ -14,6 +14,8 @@ pub enum Access {
     ComputeWrite,
     /// A compute shader reads or writes a storage buffer (ping-pong state between substeps).
     ComputeReadWrite,
+    /// A compute shader reads or writes a storage buffer that also holds indirect dispatches.
+    ComputeOrIndirect,
     /// A transfer reads the buffer (copy source).
     TransferRead,
     /// A transfer writes the buffer (copy destination, fill).
@@ -44,6 +46,10 @@ impl Access {
             Access::ComputeRead => (S::COMPUTE_SHADER, A::SHADER_STORAGE_READ),
             Access::ComputeWrite => (S::COMPUTE_SHADER, A::SHADER_STORAGE_WRITE),
             Access::ComputeReadWrite => (S::COMPUTE_SHADER, A::SHADER_STORAGE_READ | A::SHADER_STORAGE_WRITE),
+            Access::ComputeOrIndirect => (
+                S::COMPUTE_SHADER | S::DRAW_INDIRECT,
+                A::SHADER_STORAGE_READ | A::SHADER_STORAGE_WRITE | A::INDIRECT_COMMAND_READ,
+            ),
             Access::TransferRead => (S::COPY, A::TRANSFER_READ),
             Access::TransferWrite => (S::COPY, A::TRANSFER_WRITE),
             Access::HostRead => (S::HOST, A::HOST_READ),
@@ -71,7 +77,10 @@ impl Access {
             Access::ColorAttachment => L::COLOR_ATTACHMENT_OPTIMAL,
             Access::DepthAttachment => L::DEPTH_ATTACHMENT_OPTIMAL,
             Access::Present => L::PRESENT_SRC_KHR,
-            Access::ComputeRead | Access::ComputeWrite | Access::ComputeReadWrite => L::GENERAL,
+            Access::ComputeRead
+            | Access::ComputeWrite
+            | Access::ComputeReadWrite
+            | Access::ComputeOrIndirect => L::GENERAL,
             _ => L::UNDEFINED,
         }
     }

@@ -28,6 +28,7 @@ impl BufferUsage {
     pub const VERTEX: Self = Self(vk::BufferUsageFlags::VERTEX_BUFFER);
     pub const INDEX: Self = Self(vk::BufferUsageFlags::INDEX_BUFFER);
     pub const UNIFORM: Self = Self(vk::BufferUsageFlags::UNIFORM_BUFFER);
+    pub const INDIRECT: Self = Self(vk::BufferUsageFlags::INDIRECT_BUFFER);
 }
 
 impl std::ops::BitOr for BufferUsage {

@@ -164,6 +164,28 @@ impl Recorder<'_> {
         groups: [u32; 3],
         push: &[u32],
     ) {
+        self.bind_compute(pipeline, set, push);
+        // SAFETY: recording state; bound above.
+        unsafe { self.ctx.device.cmd_dispatch(self.cb, groups[0], groups[1], groups[2]) };
+    }
+
+    /// `dispatch_with`, its workgroup counts read when it runs from `args` at byte `offset`
+    /// (three u32s, a multiple of 4; a buffer made with `BufferUsage::INDIRECT`).
+    pub fn dispatch_indirect(
+        &mut self,
+        pipeline: &ComputePipeline,
+        set: BindingSet,
+        args: &Buffer,
+        offset: u64,
+        push: &[u32],
+    ) {
+        assert!(offset % 4 == 0 && offset + 12 <= args.size(), "indirect dispatch out of bounds");
+        self.bind_compute(pipeline, set, push);
+        // SAFETY: recording state; bound above; the range was checked.
+        unsafe { self.ctx.device.cmd_dispatch_indirect(self.cb, args.raw, offset) };
+    }
+
+    fn bind_compute(&mut self, pipeline: &ComputePipeline, set: BindingSet, push: &[u32]) {
         let push = &push[..push.len().min(super::pipeline::COMPUTE_PUSH_BYTES as usize / 4)];
         // SAFETY: recording state; pipeline, layout and set belong to this device and outlive
         // the submission (their owners destroy them only after waiting).
@@ -187,7 +209,6 @@ impl Recorder<'_> {
                     bytemuck::cast_slice(push),
                 );
             }
-            d.cmd_dispatch(self.cb, groups[0], groups[1], groups[2]);
         }
     }
 
@@ -224,6 +245,13 @@ impl Recorder<'_> {
     pub fn fill_buffer(&mut self, buffer: &Buffer, value: u32) {
         // SAFETY: recording state, outside rendering; the buffer is live.
         unsafe { self.ctx.device.cmd_fill_buffer(self.cb, buffer.raw, 0, vk::WHOLE_SIZE, value) };
+    }
+
+    /// Fills `bytes` of `buffer` from `offset` (both multiples of 4, in bounds) with `value`.
+    pub fn fill_range(&mut self, buffer: &Buffer, offset: u64, bytes: u64, value: u32) {
+        assert!(offset % 4 == 0 && bytes % 4 == 0 && offset + bytes <= buffer.size(), "fill out of bounds");
+        // SAFETY: recording state, outside rendering; the range was checked above.
+        unsafe { self.ctx.device.cmd_fill_buffer(self.cb, buffer.raw, offset, bytes, value) };
     }
 
     /// Writes `data` (at most 65536 bytes, a multiple of 4) into `buffer` at `offset`, inline in

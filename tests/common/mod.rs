@@ -192,8 +192,19 @@ pub fn compare_path(
     mode: Mode,
     fused: bool,
 ) -> (Deviation, Vec<ObjectState>) {
+    compare_with(ctx, model, frames, mode, &|gpu| gpu.set_fused(fused))
+}
+
+/// `compare_path` with the GPU simulation set up by `setup` before the first frame.
+pub fn compare_with(
+    ctx: &GpuContext,
+    model: &SimModel,
+    frames: usize,
+    mode: Mode,
+    setup: &dyn Fn(&mut GpuSim),
+) -> (Deviation, Vec<ObjectState>) {
     let mut gpu = GpuSim::new(ctx, model).expect("creating the GPU simulation");
-    gpu.set_fused(fused);
+    setup(&mut gpu);
     let mut cpu = CpuSim::new(model);
     let mut worst = Deviation::default();
     let mut last = Vec::new();

@@ -62,8 +62,14 @@ impl GpuSim {
     /// the first object whose state went non-finite or ran away, as a report with advice. The
     /// guard is cleared, so a resumed simulation reports again only if it trips again.
     pub fn check_guard(&mut self) -> Result<Option<GuardTrip>> {
+        let listed: Vec<bool> = self.objects.iter().map(|o| self.lists_on(o)).collect();
         for (i, o) in self.objects.iter_mut().enumerate() {
-            let [flags, first] = o.guard.read::<u32>(2)?[..] else { unreachable!("two words read") };
+            let [flags, first, lists_on, lists_rebuilt] = o.guard.read::<u32>(4)?[..] else {
+                unreachable!("four words read")
+            };
+            if listed[i] {
+                o.lists.observe([lists_on, lists_rebuilt], self.model.substeps);
+            }
             if flags != 0 {
                 o.guard.write(0, &GUARD_CLEAR)?;
             }

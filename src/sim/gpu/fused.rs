@@ -77,7 +77,8 @@ const MAX_THREADS: u32 = 1024;
 const SHARED_MARGIN: u32 = 256;
 /// Fewest hash buckets worth a shared hash.
 const MIN_BUCKETS: u32 = 32;
-/// Entries of a particle's self-collision contact list (`LIST_MAX` in the shader): others within
+/// Entries of a particle's self-collision contact list (`LIST_ENTRIES` in glsl/include/lists.glsl,
+/// the fused kernel's `LIST_MAX`): others within
 /// twice the self-collision distance (`LIST_SKIN`) that are not rest-state neighbours. A fuller
 /// list is built again the next substep (as without lists).
 pub const SELF_LIST_ENTRIES: u32 = 16;

@@ -359,12 +359,16 @@ impl GpuSim {
             }
             rec.barrier(&around(Access::TransferWrite, Access::ComputeReadWrite));
         }
-        let lists = self.objects.iter().filter_map(|o| o.self_list.as_ref().filter(|_| lists_stale));
-        let histories = self
-            .objects
-            .iter()
-            .filter_map(|o| o.solver.as_ref().map(|s| &s.history).filter(|_| history_stale));
+        let lists = (self.objects.iter()).filter(|_| lists_stale).filter_map(|o| {
+            let (control, blocks) = object::list_control_range(o.particles as u64);
+            let bytes = o.self_list.as_ref()?.size().min(control + blocks);
+            Some((o.self_list.as_ref()?, bytes, transfer::LISTS_INVALID))
+        });
+        let histories = (self.objects.iter())
+            .filter_map(|o| o.solver.as_ref().map(|s| &s.history).filter(|_| history_stale))
+            .map(|h| (h, h.size(), 0));
         transfer::record_cleared(rec, &lists.chain(histories).collect::<Vec<_>>());
+        self.record_list_control_cleared(rec);
         self.record_collider_motion(rec, &dragged);
         let stages = self.stage_timing;
         // Small objects: every substep in one dispatch each. The state ends in A, as on the
@@ -394,20 +398,20 @@ impl GpuSim {
                 break;
             }
             rec.barrier(&self.hash_barriers_at_physics(true));
-            self.record_physics(rec);
+            self.record_physics(rec, s);
             if let Some(pool) = ts.filter(|_| stages) {
                 rec.timestamp(pool, 1 + 2 * s);
             }
             let mut after_physics = self.ping_pong_barriers(1);
             after_physics.extend(self.hash_barriers_at_physics(false));
             rec.barrier(&after_physics);
-            self.record_hash_build(rec);
+            self.record_hash_build(rec, s);
             if let Some(c) = &self.contact {
                 c.record(rec, &self.pipelines, &self.objects);
             }
             for o in self.objects.iter().filter(|o| !self.is_fused(o)) {
                 rec.dispatch_with(
-                    self.pipelines.get(Stage::Constraints(o.kind, o.plan.features)),
+                    self.pipelines.get(Stage::Constraints(o.kind, o.plan.features, self.lists_on(o))),
                     o.sets[1],
                     o.step_groups,
                     &[s],
@@ -431,6 +435,9 @@ impl GpuSim {
         }
         self.frames += 1;
         self.surface_stale = false;
+        for o in &mut self.objects {
+            o.lists.frame();
+        }
     }
 
     /// The surface stage alone: cloth normals and rope tube vertices from the current state
@@ -618,11 +625,7 @@ impl GpuSim {
                     BufferBarrier::new(&o.state[1 - written], Access::ComputeRead, Access::ComputeWrite),
                 ]
                 .into_iter()
-                .chain(
-                    o.scratch()
-                        .into_iter()
-                        .map(|b| BufferBarrier::new(b, Access::ComputeReadWrite, Access::ComputeReadWrite)),
-                )
+                .chain(o.scratch_barriers())
             })
             .collect()
     }

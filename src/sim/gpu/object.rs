@@ -11,8 +11,8 @@ use crate::sim::integrator::{vertex_colours, BDF2_STEP};
 use crate::sim::model::{Integrator, ObjectKind, ObjectModel, ObjectShape, SelfCollisionMethod, SimModel};
 use crate::sim::stability::{chebyshev_rho, jacobi_damping};
 use crate::vk::{
-    BindingSet, BindingSetLayout, Buffer, BufferUsage, DescriptorArena, DeviceInfo, GpuContext, MemoryKind,
-    VkError,
+    Access, BindingSet, BindingSetLayout, Buffer, BufferBarrier, BufferUsage, DescriptorArena, DeviceInfo,
+    GpuContext, MemoryKind, VkError,
 };
 use anyhow::Result;
 
@@ -89,6 +89,26 @@ impl HashBuffers {
     }
 }
 
+/// Words of a control block of the per-stage contact lists, one per substep parity, after the
+/// lists (`LIST_CONTROL_WORDS` in glsl/include/lists.glsl).
+const LIST_CONTROL_WORDS: u64 = 16;
+
+/// The per-stage contact lists' control blocks in the list buffer of an object of `particles`
+/// particles (glsl/include/lists.glsl): their byte offset and size, both parities. The two
+/// counters `list_counters` follow them.
+pub(super) fn list_control_range(particles: u64) -> (u64, u64) {
+    let lists = (4 + super::fused::SELF_LIST_ENTRIES as u64) * particles;
+    (4 * lists, 4 * 2 * LIST_CONTROL_WORDS)
+}
+
+/// Byte offset in the list buffer of the indirect dispatch of a spatial hash pass in substep
+/// `substep`: `pass` 0 the count and the scatter, 1 + k the scan's phase k (`LIST_COUNT_ARGS`,
+/// `LIST_SCAN_ARGS` in glsl/include/lists.glsl).
+pub(super) fn list_dispatch_offset(particles: u32, substep: u32, pass: u64) -> u64 {
+    let (control, _) = list_control_range(particles as u64);
+    control + 4 * (LIST_CONTROL_WORDS * (substep as u64 & 1) + 1 + 3 * pass)
+}
+
 /// Vec4s of BDF2 history a particle of an iterative method keeps (binding 16), one in each of
 /// that many arrays of the particle count (`hist` in glsl/include/bindings.glsl).
 const HISTORY_VEC4S: u64 = 3;
@@ -149,10 +169,14 @@ pub(super) struct GpuObject {
     pub guard: Buffer,
     /// Inter-object contact: per particle the corrections from other objects (binding 14).
     pub contact: Option<Buffer>,
-    /// The fused kernel's self-collision contact lists (binding 15; `FusedShape::list`).
+    /// The self-collision contact lists of an object that searches the spatial hash (binding
+    /// 15; glsl/include/lists.glsl): the fused kernel's (`FusedShape::list`) or the per-stage
+    /// path's, with its control blocks and indirect dispatches.
     pub self_list: Option<Buffer>,
     /// [A -> B (physics), B -> A (constraints, hash passes); surface uses set 0 (reads A)].
     pub sets: [BindingSet; 2],
+    /// Whether its per-stage contact lists are on.
+    pub lists: super::hash::ListPolicy,
     /// The features its step pipelines compile in and its fused layout.
     pub plan: ObjectPlan,
 }
@@ -216,10 +240,13 @@ impl GpuObject {
                 )?);
             }
             solver = SolverBuffers::new(ctx, &o.name, n, model.integrator)?;
-            if let Some(words) = plan.fused.map(|f| f.list_words()).filter(|&w| w > 0) {
+            if builds_hash(o, model) {
+                let (control, size) = list_control_range(n);
+                let fused = 4 * plan.fused.map_or(0, |f| f.list_words());
                 let name = format!("{}.self_list", o.name);
-                let usage = BufferUsage::STORAGE | BufferUsage::TRANSFER_DST;
-                self_list = Some(Buffer::new(ctx, &name, 4 * words, usage, MemoryKind::GpuOnly)?);
+                let usage = BufferUsage::STORAGE | BufferUsage::TRANSFER_DST | BufferUsage::INDIRECT;
+                let bytes = fused.max(control + size + 8);
+                self_list = Some(Buffer::new(ctx, &name, bytes, usage, MemoryKind::GpuOnly)?);
             }
             let p = &placeholder;
             let [cell_rank, counts, starts, sorted, blocks] = match &hash {
@@ -260,6 +287,7 @@ impl GpuObject {
             contact,
             self_list,
             sets,
+            lists: Default::default(),
             plan,
         };
         match sets {
@@ -282,6 +310,15 @@ impl GpuObject {
         out.extend(&self.contact);
         out.extend(&self.self_list);
         out
+    }
+
+    /// Barriers on `scratch()` between two stages that may read and write it. (The contact
+    /// lists also hold the hash passes' indirect dispatches; `hash.rs` orders those reads in
+    /// the two barriers that must. The indirect stage in every barrier cost about 6 us a
+    /// substep on a 256 x 256 cloth on the H100.)
+    pub fn scratch_barriers(&self) -> Vec<BufferBarrier<'_>> {
+        let rw = Access::ComputeReadWrite;
+        self.scratch().into_iter().map(|b| BufferBarrier::new(b, rw, rw)).collect()
     }
 
     pub fn destroy(self, ctx: &GpuContext) {
@@ -318,7 +355,9 @@ fn object_bytes(o: &ObjectShape) -> u64 {
         + 8 * hash_table_size(n)
         + 4
         + (5 + HISTORY_VEC4S) * 16 * n
-        + 4 * ((4 + super::fused::SELF_LIST_ENTRIES as u64) * n + 1)
+        + list_control_range(n).0
+        + list_control_range(n).1
+        + 8
 }
 
 fn gib(bytes: u64) -> String {

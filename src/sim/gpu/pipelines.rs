@@ -22,9 +22,11 @@ pub(super) enum Stage {
     Predict(ObjectKind, Integrator, u32),
     /// One iteration (or one colour of one) of an iterative integrator's solver.
     Iterate(ObjectKind, Integrator),
-    Constraints(ObjectKind, u32),
+    /// The constraints (`lists`: with the self-collision contact lists on, `hash.rs`).
+    Constraints(ObjectKind, u32, bool),
     /// Cloth normals or rope tube vertices and the runtime guard (`drawn`), or the guard alone.
     Surface(ObjectKind, bool),
+    HashCount,
     HashScan(u32),
     HashScatter,
     /// Contact between objects (`contact.rs`): the scene hash's count and scatter of one
@@ -60,6 +62,7 @@ impl Stage {
             Stage::Constraints(..) => "constraints.comp",
             Stage::Surface(ObjectKind::Cloth, _) => "cloth_normals.comp",
             Stage::Surface(ObjectKind::Rope, _) => "rope_vertices.comp",
+            Stage::HashCount => "hash_count.comp",
             Stage::HashScan(_) => "hash_scan.comp",
             Stage::HashScatter => "hash_scatter.comp",
             Stage::ContactCount => "contact_count.comp",
@@ -79,10 +82,14 @@ impl Stage {
                 let s = solver(method);
                 [group(kind), vec![s.explicit_dashpots as u32, f, s.keeps_prediction as u32]].concat()
             }
-            Stage::Constraints(kind, f) => [group(kind), vec![0, f]].concat(),
+            Stage::Constraints(kind, f, lists) => [group(kind), vec![lists as u32, f]].concat(),
             Stage::Iterate(kind, _) => group(kind),
             Stage::Surface(_, drawn) => vec![drawn as u32],
-            Stage::HashScatter | Stage::ContactCount | Stage::ContactScatter | Stage::Contact => Vec::new(),
+            Stage::HashCount
+            | Stage::HashScatter
+            | Stage::ContactCount
+            | Stage::ContactScatter
+            | Stage::Contact => Vec::new(),
             Stage::HashScan(phase) => vec![phase],
             Stage::Fused(method, f, shape) => shape.specialization(method, f),
         }
@@ -98,7 +105,12 @@ impl Stage {
             Scheme::Explicit { verlet } => vec![Stage::Physics(kind, verlet, f)],
             Scheme::Iterative(_) => vec![Stage::Predict(kind, method, f), Stage::Iterate(kind, method)],
         };
-        stages.extend([Stage::Constraints(kind, f), Stage::Surface(kind, true), Stage::Surface(kind, false)]);
+        stages.extend([
+            Stage::Constraints(kind, f, false),
+            Stage::Surface(kind, true),
+            Stage::Surface(kind, false),
+        ]);
+
         stages.extend(plan.fused.map(|shape| Stage::Fused(method, f, shape)));
         stages
     }
@@ -111,8 +123,14 @@ impl Stage {
             .zip(plans)
             .flat_map(|(o, &plan)| Stage::of_object(o.kind, model, plan))
             .collect();
+        for (o, plan) in model.objects.iter().zip(plans) {
+            if super::object::builds_hash(o, model) {
+                stages.push(Stage::Constraints(o.kind, plan.features, true));
+            }
+        }
         if model.objects.iter().any(|o| super::object::builds_hash(o, model)) {
-            stages.extend([Stage::HashScan(0), Stage::HashScan(1), Stage::HashScan(2), Stage::HashScatter]);
+            stages.extend([Stage::HashCount, Stage::HashScan(0), Stage::HashScan(1), Stage::HashScan(2)]);
+            stages.push(Stage::HashScatter);
         }
         if model.inter_object_contact() {
             stages.extend([Stage::HashScan(0), Stage::HashScan(1), Stage::HashScan(2)]);

@@ -5,7 +5,7 @@
 //!   buffers), then `iterations` iterations of the solver, each one pass over every particle
 //!   (Jacobi) or one pass per vertex colour (Gauss-Seidel). Every pass is ordered after the one
 //!   before by a barrier on the iterates and auxiliary data, and on what the last iteration
-//!   writes: the result into B and the particles' counts into the spatial hash.
+//!   writes: the result into B and whether the contact lists hold (`hash.rs`).
 
 use super::object::GpuObject;
 use super::pipelines::Stage;
@@ -14,14 +14,17 @@ use crate::sim::integrator::{Scheme, Sweep, SPRING_CLASSES};
 use crate::vk::{Access, BufferBarrier, Recorder};
 
 impl GpuSim {
-    pub(super) fn record_physics(&self, rec: &mut Recorder<'_>) {
+    /// `substep`: which of the frame's substeps (the pass that writes the new positions notes
+    /// whether the contact lists hold for it, `hash.rs`).
+    pub(super) fn record_physics(&self, rec: &mut Recorder<'_>, substep: u32) {
         let stepped: Vec<&GpuObject> = self.objects.iter().filter(|o| !self.is_fused(o)).collect();
         let method = self.model.integrator;
         let solver = match method.method().scheme {
             Scheme::Explicit { verlet } => {
                 for o in &stepped {
                     let stage = Stage::Physics(o.kind, verlet, o.plan.features);
-                    rec.dispatch(self.pipelines.get(stage), o.sets[0], o.step_groups);
+                    let push = [substep, self.lists_on(o) as u32];
+                    rec.dispatch_with(self.pipelines.get(stage), o.sets[0], o.step_groups, &push);
                 }
                 return;
             }
@@ -37,10 +40,9 @@ impl GpuSim {
         let between_passes: Vec<BufferBarrier<'_>> = stepped
             .iter()
             .flat_map(|o| {
-                let hash = o.hash.iter().flat_map(|h| [&h.counts, &h.cell_rank]);
-                o.scratch().into_iter().chain([&o.state[1]]).chain(hash)
+                let rw = |b| BufferBarrier::new(b, Access::ComputeReadWrite, Access::ComputeReadWrite);
+                o.scratch_barriers().into_iter().chain([rw(&o.state[1])])
             })
-            .map(|b| BufferBarrier::new(b, Access::ComputeReadWrite, Access::ComputeReadWrite))
             .collect();
         // Passes of an iteration: (pass, whether the object takes part, its workgroups).
         let classes = 2 * SPRING_CLASSES.len() as u32;
@@ -58,7 +60,7 @@ impl GpuSim {
                     Sweep::Jacobi | Sweep::SpringClasses => o.step_groups,
                 };
                 let pipeline = self.pipelines.get(Stage::Iterate(o.kind, method));
-                rec.dispatch_with(pipeline, o.sets[0], groups, &[k, pass]);
+                rec.dispatch_with(pipeline, o.sets[0], groups, &[k, pass, substep, self.lists_on(o) as u32]);
             }
         };
         for k in 0..self.model.iterations {

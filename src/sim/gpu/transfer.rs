@@ -7,20 +7,24 @@ use crate::sim::gpu_types::{Particle, SurfaceVertex};
 use crate::vk::{Access, Buffer, BufferBarrier, BufferUsage, GpuContext, MemoryKind, Recorder, VkError};
 use anyhow::{Context as _, Result};
 
-/// Zeroes `buffers`, state the kernels carry from frame to frame, between the frames that use
-/// them: for the fused kernel's contact lists that marks them invalid (their `LIST_VALID` word),
-/// for the BDF2 histories "none". Recorded before a frame whenever something outside the
-/// kernels changed the state or the parameters.
-pub(super) fn record_cleared(rec: &mut Recorder<'_>, buffers: &[&Buffer]) {
+/// The word that fills a contact list buffer to make every list invalid: the fused kernel's
+/// `LIST_VALID` word is then not 1, and per stage every particle's list was built at infinity.
+pub(super) const LISTS_INVALID: u32 = 0x7F80_0000;
+
+/// Fills the first `bytes` of `buffers` (each with its word), state the kernels carry from
+/// frame to frame, between the frames that use them: the contact lists with `LISTS_INVALID`
+/// (not their counters), the BDF2 histories with zero ("none"). Recorded before a frame
+/// whenever something outside the kernels changed the state or the parameters.
+pub(super) fn record_cleared(rec: &mut Recorder<'_>, buffers: &[(&Buffer, u64, u32)]) {
     if buffers.is_empty() {
         return;
     }
-    let around = |src, dst| buffers.iter().map(|b| BufferBarrier::new(b, src, dst)).collect::<Vec<_>>();
-    rec.barrier(&around(Access::ComputeReadWrite, Access::TransferWrite));
-    for b in buffers {
-        rec.fill_buffer(b, 0);
+    let around = |src, dst| buffers.iter().map(|(b, ..)| BufferBarrier::new(b, src, dst)).collect::<Vec<_>>();
+    rec.barrier(&around(Access::ComputeOrIndirect, Access::TransferWrite));
+    for (b, bytes, word) in buffers {
+        rec.fill_range(b, 0, *bytes, *word);
     }
-    rec.barrier(&around(Access::TransferWrite, Access::ComputeReadWrite));
+    rec.barrier(&around(Access::TransferWrite, Access::ComputeOrIndirect));
 }
 
 impl GpuSim {
@@ -49,18 +53,18 @@ impl GpuSim {
                     rec.copy_buffer_region(&staging, offset, &o.state[0], 0, size);
                     offset += size;
                 }
-                // The spatial hash counts start at zero (the scan re-zeroes them every substep).
-                let hashed = self.hashed();
+                // The spatial hash counts start at zero (the scan re-zeroes them every substep),
+                // also for objects fused now, which may run per stage later.
+                let counts: Vec<_> =
+                    self.objects.iter().filter_map(|o| o.hash.as_ref().map(|h| &h.counts)).collect();
                 rec.barrier(
-                    &hashed
+                    &counts
                         .iter()
-                        .map(|(_, h)| {
-                            BufferBarrier::new(&h.counts, Access::ComputeReadWrite, Access::TransferWrite)
-                        })
+                        .map(|c| BufferBarrier::new(c, Access::ComputeReadWrite, Access::TransferWrite))
                         .collect::<Vec<_>>(),
                 );
-                for (_, h) in &hashed {
-                    rec.fill_buffer(&h.counts, 0);
+                for c in &counts {
+                    rec.fill_buffer(c, 0);
                 }
                 // The inter-object contact sums and the scene hash's counts start at zero (the
                 // contact pass rewrites the sums and the scan re-zeroes the counts every substep).
@@ -86,9 +90,11 @@ impl GpuSim {
                             .chain(scene_counts)
                             .map(|c| BufferBarrier::new(c, Access::TransferWrite, Access::ComputeReadWrite)),
                     )
-                    .chain(hashed.iter().map(|(_, h)| {
-                        BufferBarrier::new(&h.counts, Access::TransferWrite, Access::ComputeReadWrite)
-                    }))
+                    .chain(
+                        counts
+                            .iter()
+                            .map(|c| BufferBarrier::new(c, Access::TransferWrite, Access::ComputeReadWrite)),
+                    )
                     .collect();
                 rec.barrier(&to_compute);
                 Ok(())

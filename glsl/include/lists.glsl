@@ -1,0 +1,67 @@
+// The self-collision contact lists, shared by fused.comp and the per-stage shaders. When the
+// spatial hash is built, each particle records in self_list (binding 15) the others within
+// (1 + LIST_SKIN) times the contact distance, rest-state neighbours left out, and where it was
+// built. The substeps after walk their lists instead of searching the hash, until some
+// particle has moved more than half the skin from where its list was built (then no pair
+// missing from a list can have come within the contact distance: neither end moved the skin's
+// half) or a list overflowed (built at infinity: it counts as moved). Layout for n particles:
+// particle i's header (where its list was built, xyz, and its length, as bits) in words
+// [4 i, 4 i + 4), its entry e at list_entry(e, i, n). The host makes every list invalid
+// whenever something outside the shaders changes the state or the parameters.
+// Include after bindings.glsl.
+#ifndef MSD_LISTS_GLSL
+#define MSD_LISTS_GLSL
+
+const float LIST_SKIN = 1.0;
+// Entries a particle at most (sim::gpu::fused::SELF_LIST_ENTRIES).
+const uint LIST_ENTRIES = 16u;
+// How far a particle may move from where its list was built (2% less, for rounding).
+float list_half_skin() { return 0.49 * LIST_SKIN * obj.self_distance; }
+uint list_entry(uint e, uint i, uint n) { return 4u * n + e * n + i; }
+vec3 list_built(uint i) {
+    return vec3(uintBitsToFloat(self_list[4u * i]), uintBitsToFloat(self_list[4u * i + 1u]),
+                uintBitsToFloat(self_list[4u * i + 2u]));
+}
+// Records where particle i's list of `len` entries was built; a full one (len > LIST_ENTRIES)
+// is built at infinity, so it counts as moved and is built again the next substep.
+void set_list_header(uint i, vec3 x, uint len) {
+    bool full = len > LIST_ENTRIES;
+    vec3 at = full ? vec3(uintBitsToFloat(0x7F800000u)) : x;
+    self_list[4u * i] = floatBitsToUint(at.x);
+    self_list[4u * i + 1u] = floatBitsToUint(at.y);
+    self_list[4u * i + 2u] = floatBitsToUint(at.z);
+    self_list[4u * i + 3u] = full ? 0u : len;
+}
+
+// Per stage (the hash built by dispatches of their own) the lists are used while they last:
+// the host turns them off for a while (`sim::gpu::hash`'s policy) when most substeps rebuild
+// them, and then, as without lists, every substep builds the hash (cells of twice the contact
+// distance, the counts taken by the pass that writes the positions) and searches it.
+// With lists on, the words after the lists hold, for each substep parity q, a control block at
+// list_control(q): word 0 says that this substep rebuilds the hash and the lists; words 1 to 12 are the indirect dispatches of the hash's
+// passes (x, y, z workgroups: LIST_COUNT_ARGS for the count and the scatter, LIST_SCAN_ARGS
+// + 3 phase for the scan's phases), all zero when the substep rebuilds nothing. The pass that
+// writes a substep's new positions sets them (note_position, hash_count.glsl); the constraints
+// read word 0 and zero the other parity's block for the next substep; the host zeroes both
+// when a frame starts. `sim::gpu::object::list_control_range` and
+// `list_dispatch_offset` mirror this.
+const uint LIST_COUNT_ARGS = 1u;
+const uint LIST_SCAN_ARGS = 4u;
+const uint LIST_CONTROL_WORDS = 16u;
+uint list_control(uint substep) {
+    return (4u + LIST_ENTRIES) * particle_count() + LIST_CONTROL_WORDS * (substep & 1u);
+}
+// After the two blocks, two counters the constraints keep (never cleared, they wrap): substeps
+// run with lists on, and those of them that rebuilt. The surface stage copies them to the
+// guard, which the host reads after each frame.
+uint list_counters() { return (4u + LIST_ENTRIES) * particle_count() + 2u * LIST_CONTROL_WORDS; }
+
+// Called by one invocation of the surface stage.
+void report_lists() {
+    const uint bits = OBJ_SELF_COLLISION | OBJ_SELF_HASH;
+    if ((obj.flags & bits) != bits) return;
+    guard_lists_on = self_list[list_counters()];
+    guard_lists_rebuilt = self_list[list_counters() + 1u];
+}
+
+#endif
