@@ -11,15 +11,22 @@
 // `hv` (v_n - v_{n-1}): returns the prediction y - x~ and sets `base` to x~ - x, where x~ =
 // x + (x_n - x_{n-1}) / 3 is what the solve's displacements are measured from. F is the
 // external force and, with `dashpots` (a method that treats damping explicitly), the springs'
-// dashpots. Without history the particle's free motion starts as implicit Euler's
-// (sim::cpu::integrators::inertial says what its springs get).
+// dashpots. Without history the last substep is taken to have been one Jacobi step of
+// implicit Euler (sim::cpu::integrators::inertial and restart).
 vec3 predicted_displacement(uvec2 cell, vec3 x, vec3 v, bool dashpots, vec4 hx, vec3 hv, out vec3 base) {
     vec3 force = external_force(x, v);
     if (dashpots) add_spring_forces(cell, x, v, 0.0, false, force);
     vec3 a = force / obj.mass;
     bool known = hx.w > 0.5;
-    vec3 dx = known ? hx.xyz : (v + a * g.dt) * g.dt;
-    vec3 dv = known ? hv : a * g.dt;
+    vec3 dx = hx.xyz;
+    vec3 dv = hv;
+    if (!known) {
+        float stiffness;
+        vec3 elastic = elastic_spring_force(cell, x, stiffness);
+        vec3 ar = (force + elastic) / (obj.mass + g.dt * g.dt * stiffness);
+        dx = (v + ar * g.dt) * g.dt;
+        dv = ar * g.dt;
+    }
     float h = solve_dt();
     base = dx * (1.0 / 3.0);
     return v * (BDF2_STEP * g.dt) + dv * ((2.0 / 9.0) * g.dt) + a * (h * h);

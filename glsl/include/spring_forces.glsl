@@ -33,4 +33,25 @@ void add_spring_forces(uvec2 cell, vec3 x, vec3 v, float drift, bool elastic, in
     }
 }
 
+// The springs' elastic force alone on the particle at grid `cell` at x (neighbours at NPOS
+// with no drift), and the sum of their stiffnesses.
+vec3 elastic_spring_force(uvec2 cell, vec3 x, out float stiffness) {
+    const float drift = 0.0;
+    vec3 force = vec3(0.0);
+    stiffness = 0.0;
+    [[unroll]] for (int s = 0; s < 12; ++s) {
+        ivec3 spring = SPRINGS[s];
+        if (!has(1u << spring.z)) continue;
+        float k = obj.stiffness[spring.z];
+        int j = SPRING_NEIGHBOUR(cell, s);
+        if (k == 0.0 || j < 0) continue;
+        vec3 to_j = NPOS(j) - x;
+        float d = length(to_j);
+        if (d <= 0.0) continue;
+        force += to_j * (k * (d - rest_length(s)) / d);
+        stiffness += k;
+    }
+    return force;
+}
+
 #endif

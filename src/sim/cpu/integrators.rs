@@ -116,14 +116,14 @@ fn explicit(m: &SimModel, o: &ObjectModel, dt: f64, x: &[DVec3], v: &[DVec3], ve
 /// x_{n-1}) / 3, towards the prediction y = x~ + 2/3 dt v_n + 2/9 dt (v_n - v_{n-1}) + h^2 F / m,
 /// and the velocity that reaches p is (p - x~) / h. F: the external forces (and the springs'
 /// dashpots for the implicit method, which treats damping explicitly; the others handle it in
-/// their solve). A particle without history takes x_n - x_{n-1} = dt (v_n + dt F / m) and
-/// v_n - v_{n-1} = dt F / m, which makes its free motion implicit Euler's step
-/// (y = x_n + dt v_n + dt^2 F / m, v = v_n + dt F / m). Its springs act through the solve alone,
-/// with weight h^2 = 4/9 dt^2 where implicit Euler gives them dt^2: that substep loses a third
-/// of their impulse, so a particle hanging still starts to move at about g dt / 3 (7.9e-4 m/s
-/// at 64 substeps, measured on a chain). Tried: the springs' elastic force in that history too,
-/// scaled by 1 / (1 + dt^2 S / m) (S their stiffness sum) to stay stable at any stiffness; it
-/// left the chain at rest (6e-6 m/s) but is not in yet (docs/ACCURACY.md, known limits).
+/// their solve). A particle without history (`restart`) takes the last substep to have been
+/// one Jacobi step of implicit Euler: v_n - v_{n-1} = dt a and x_n - x_{n-1} = dt (v_n + dt a)
+/// with a = (F + F_s) / (m + dt^2 S), F_s its springs' elastic force and S their stiffness
+/// sum. A particle at rest in equilibrium (F + F_s = 0) stays there, and a free one (S = 0)
+/// starts as implicit Euler's step; the denominator keeps it stable at any stiffness. (With
+/// F / m alone, the springs act through the solve only, with weight h^2 = 4/9 dt^2 where
+/// implicit Euler gives them dt^2: a chain hanging still started to move at about g dt / 3,
+/// 7.9e-4 m/s at 64 substeps.)
 struct Inertial {
     /// The solve's step h.
     h: f64,
@@ -153,12 +153,31 @@ fn inertial(
                 force += spring_force(o, i, x, v, false);
             }
             let a = force / o.mass;
-            let (dx, dv) = history[i].unwrap_or(((v[i] + a * dt) * dt, a * dt));
+            let (dx, dv) = history[i].unwrap_or_else(|| restart(o, i, x, v[i], force, dt));
             let base = x[i] + dx / 3.0;
             (base, base + v[i] * (2.0 / 3.0 * dt) + dv * (2.0 / 9.0 * dt) + a * (h * h))
         })
         .unzip();
     Inertial { h, base, y }
+}
+
+/// The history of a particle without one (`inertial`): (x_n - x_{n-1}, v_n - v_{n-1}) of one
+/// Jacobi step of implicit Euler from (x, v) under `force` and the springs' elastic force.
+fn restart(o: &ObjectModel, i: usize, x: &[DVec3], v: DVec3, force: DVec3, dt: f64) -> (DVec3, DVec3) {
+    let (c, r) = grid(o, i);
+    let (mut elastic, mut stiffness) = (DVec3::ZERO, 0.0);
+    for s in springs(o, c, r) {
+        let k = o.stiffness[s.kind as usize];
+        let delta = x[s.other] - x[i];
+        let d = delta.length();
+        if k == 0.0 || d <= 0.0 {
+            continue;
+        }
+        elastic += delta / d * (k * (d - rest_length(o, &s)));
+        stiffness += k;
+    }
+    let a = (force + elastic) / (o.mass + dt * dt * stiffness);
+    ((v + a * dt) * dt, a * dt)
 }
 
 /// Positions after the solve, with the velocity that reaches them, v = (p - x~) / h, and each
