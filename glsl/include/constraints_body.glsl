@@ -55,9 +55,15 @@ void visit_bucket(uint h, uvec2 cell, vec3 x, float reach, inout vec3 correction
 // Visits the hash buckets that can hold particles within reach of x (or of the contact lists'
 // reach while they are built): cells are at least twice that wide (1 / CELL_INV), so every
 // such particle lies in the 2 x 2 x 2 block of cells nearest to x. Buckets two cells share are
-// visited once.
+// visited once. Per stage the two cells of each x pair have neighbouring buckets (cell_hash),
+// which are one run of the sorted candidates: 4 runs, not 8 buckets (measured on the H100:
+// 3.52 against 3.82 ms a frame on the 1024 x 1024 cloth with self-collision).
+#ifndef FUSED_SHARED
+void visit_range(uint from, uint to, uvec2 cell, vec3 x, float reach, inout vec3 correction, inout uint n_active);
+#endif
 void visit_cells(uvec2 cell, vec3 x, float reach, inout vec3 correction, inout uint n_active) {
     ivec3 base = ivec3(floor(x * CELL_INV - 0.5));
+#ifdef FUSED_SHARED
     uint seen[8];
     [[unroll]] for (int c = 0; c < 8; ++c) {
         uint h = cell_hash(base + ivec3(c & 1, (c >> 1) & 1, c >> 2), HASH_MASK);
@@ -66,6 +72,26 @@ void visit_cells(uvec2 cell, vec3 x, float reach, inout vec3 correction, inout u
         for (int k = 0; k < c; ++k) again = again || seen[k] == h;
         if (!again) visit_bucket(h, cell, x, reach, correction, n_active);
     }
+#else
+    uint seen[4];
+    [[unroll]] for (int c = 0; c < 4; ++c) {
+        uint h = cell_hash(base + ivec3(0, c & 1, c >> 1), HASH_MASK);
+        seen[c] = h;
+        bool a0 = false;
+        bool a1 = false;
+        for (int k = 0; k < c; ++k) {
+            uint d = (h - seen[k]) & HASH_MASK;
+            a0 = a0 || d <= 1u;
+            a1 = a1 || d == 0u || d == HASH_MASK;
+        }
+        if (!a0 && !a1 && h < HASH_MASK) {
+            visit_range(starts[h], starts[h + 2u], cell, x, reach, correction, n_active);
+        } else {
+            if (!a0) visit_bucket(h, cell, x, reach, correction, n_active);
+            if (!a1) visit_bucket((h + 1u) & HASH_MASK, cell, x, reach, correction, n_active);
+        }
+    }
+#endif
 }
 
 // The candidates for self-contact: the hash's buckets (fused.comp may read a contact list).
@@ -128,9 +154,11 @@ uint list_particle;
 uint list_len;
 bool list_build;
 void visit_bucket(uint h, uvec2 cell, vec3 x, float reach, inout vec3 correction, inout uint n_active) {
-    uint end = starts[h + 1u];
+    visit_range(starts[h], starts[h + 1u], cell, x, reach, correction, n_active);
+}
+void visit_range(uint from, uint end, uvec2 cell, vec3 x, float reach, inout vec3 correction, inout uint n_active) {
     float listed = list_build ? reach * (1.0 + LIST_SKIN) : reach;
-    for (uint at = starts[h]; at < end; ++at) {
+    for (uint at = from; at < end; ++at) {
         vec4 e = sorted[at];
         float d = distance(e.xyz, x);
         uint j = floatBitsToUint(e.w);
