@@ -109,6 +109,14 @@ pub(crate) fn candidates(
             ));
             continue;
         }
+        // The step shaders vote across a subgroup (the contact lists' rebuild flag).
+        let vote = vk::SubgroupFeatureFlags::BASIC | vk::SubgroupFeatureFlags::VOTE;
+        if !v11.subgroup_supported_stages.contains(vk::ShaderStageFlags::COMPUTE)
+            || !v11.subgroup_supported_operations.contains(vote)
+        {
+            skipped.push(format!("{name}: needs subgroup vote operations in compute shaders"));
+            continue;
+        }
         let wanted = vk::QueueFlags::GRAPHICS | vk::QueueFlags::COMPUTE;
         let Some(queue_family) = (0..families.len())
             .find(|&i| families[i].queue_flags.contains(wanted) && presents(physical, i as u32))

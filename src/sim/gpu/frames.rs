@@ -71,7 +71,8 @@ impl GpuSim {
                 o.lists.observe([lists_on, lists_rebuilt], self.model.substeps);
             }
             if flags != 0 {
-                o.guard.write(0, &GUARD_CLEAR)?;
+                // Flags and first particle only: words 2 and 3 are the contact lists' counters.
+                o.guard.write(0, &GUARD_CLEAR[..2])?;
             }
             let time = self.frames as f64 * self.model.frame_dt;
             if flags & (GUARD_NON_FINITE | GUARD_RUNAWAY) != 0 {

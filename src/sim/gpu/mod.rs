@@ -513,6 +513,9 @@ impl GpuSim {
 
     /// With `false`, every object takes the per-stage path (the reference for the fused one).
     pub fn set_fused(&mut self, on: bool) {
+        // The two paths keep their lists in the same layout, but nothing makes them one
+        // contract (the fused kernel's LIST_VALID is the per-stage path's first control word).
+        self.lists_stale |= on != self.fused;
         self.fused = on;
     }
 

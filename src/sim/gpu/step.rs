@@ -41,7 +41,9 @@ impl GpuSim {
             .iter()
             .flat_map(|o| {
                 let rw = |b| BufferBarrier::new(b, Access::ComputeReadWrite, Access::ComputeReadWrite);
-                o.scratch_barriers().into_iter().chain([rw(&o.state[1])])
+                // The last iteration's passes count into the hash (lists off), one colour each.
+                let hash = o.hash.iter().flat_map(|h| [&h.counts, &h.cell_rank]).map(rw);
+                o.scratch_barriers().into_iter().chain([rw(&o.state[1])]).chain(hash)
             })
             .collect();
         // Passes of an iteration: (pass, whether the object takes part, its workgroups).
