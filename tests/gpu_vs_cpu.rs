@@ -388,6 +388,21 @@ fn cloth_self_collision() {
     both_methods("cloth self-collision", &s);
 }
 
+/// A folded cloth (3 cm contact distance) whose front layer starts 7 cm in front of the back one
+/// and is thrown at it at `speed` m/s, self-colliding through the hash.
+fn thrown_fold(speed: f64) -> SimModel {
+    let mut c = folded_cloth(0.05, 0.07);
+    for v in &mut c.velocities[5 * 13..] {
+        *v = DVec3::new(0.0, 0.0, -speed);
+    }
+    jitter(&mut c.positions, 0.002, 5);
+    c.stiffness = [60.0, 20.0, 0.0];
+    c.self_distance = Some(0.03);
+    let mut s = scene(vec![c]);
+    s.self_collision = SelfCollisionMethod::Hash;
+    s
+}
+
 /// The fused kernel's self-collision contact lists are built when a frame starts and again
 /// once some particle has moved half the skin (the skin is the contact distance) from where
 /// its list was built: then no pair can come within the contact distance without being listed.
@@ -400,15 +415,7 @@ fn cloth_self_collision() {
 #[test]
 fn contact_lists_catch_pairs_that_close_in_within_a_frame() {
     for speed in [4.0, 16.0] {
-        let mut c = folded_cloth(0.05, 0.07);
-        for v in &mut c.velocities[5 * 13..] {
-            *v = DVec3::new(0.0, 0.0, -speed);
-        }
-        jitter(&mut c.positions, 0.002, 5);
-        c.stiffness = [60.0, 20.0, 0.0];
-        c.self_distance = Some(0.03);
-        let mut s = scene(vec![c]);
-        s.self_collision = SelfCollisionMethod::Hash;
+        let s = thrown_fold(speed);
         let lavapipe = FusedLimits::new(32 * 1024, 1);
         let shape = FusedShape::plan(&s.objects[0], &s, lavapipe).expect("fuses");
         assert!(shape.list > 0, "{shape:?}");
@@ -471,15 +478,7 @@ fn contact_lists_are_rebuilt_after_a_particle_is_set() {
 /// stale anyway.)
 #[test]
 fn contact_lists_survive_changes_of_path_between_frames() {
-    let mut c = folded_cloth(0.05, 0.07);
-    for v in &mut c.velocities[5 * 13..] {
-        *v = DVec3::new(0.0, 0.0, -4.0);
-    }
-    jitter(&mut c.positions, 0.002, 5);
-    c.stiffness = [60.0, 20.0, 0.0];
-    c.self_distance = Some(0.03);
-    let mut s = scene(vec![c]);
-    s.self_collision = SelfCollisionMethod::Hash;
+    let mut s = thrown_fold(4.0);
     s.substeps = 15; // odd: the control blocks' parity does not line up with frames
     let ctx = gpu();
     let mut sim = GpuSim::new(&ctx, &s).expect("creating the GPU simulation");
