@@ -13,11 +13,6 @@
 // (1 + LIST_SKIN) times the contact distance, wide.
 float hash_cell_inv(bool lists) { return lists ? obj.cell_inv * (1.0 / (1.0 + LIST_SKIN)) : obj.cell_inv; }
 
-bool self_hashed() {
-    const uint bits = OBJ_SELF_COLLISION | OBJ_SELF_HASH;
-    return (obj.flags & bits) == bits;
-}
-
 // Takes a rank in the bucket of position x of particle i (counts[] were zeroed by the last
 // scan).
 void count_into_bucket(uint i, vec3 x, bool lists) {
@@ -47,7 +42,7 @@ void note_position(uint i, vec3 x_new, bool pinned, uint substep, bool lists) {
                                    uvec3(1u),                                    // scan 1
                                    uvec3((buckets + 512u) / 512u, 1u, 1u));      // scan 2
         [[unroll]] for (uint a = 0u; a < 4u; ++a) {
-            [[unroll]] for (uint w = 0u; w < 3u; ++w) self_list[c + LIST_COUNT_ARGS + 3u * a + w] = groups[a][w];
+            [[unroll]] for (uint w = 0u; w < 3u; ++w) self_list[c + LIST_DISPATCHES + 3u * a + w] = groups[a][w];
         }
     }
 }

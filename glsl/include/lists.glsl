@@ -13,6 +13,13 @@
 #define MSD_LISTS_GLSL
 
 const float LIST_SKIN = 1.0;
+
+// The object's self-collision searches the spatial hash (and keeps these lists).
+bool self_hashed() {
+    const uint bits = OBJ_SELF_COLLISION | OBJ_SELF_HASH;
+    return (obj.flags & bits) == bits;
+}
+
 // Entries a particle at most (sim::gpu::fused::SELF_LIST_ENTRIES).
 const uint LIST_ENTRIES = 16u;
 // How far a particle may move from where its list was built (2% less, for rounding).
@@ -38,15 +45,15 @@ void set_list_header(uint i, vec3 x, uint len) {
 // them, and then, as without lists, every substep builds the hash (cells of twice the contact
 // distance, the counts taken by the pass that writes the positions) and searches it.
 // With lists on, the words after the lists hold, for each substep parity q, a control block at
-// list_control(q): word 0 says that this substep rebuilds the hash and the lists; words 1 to 12 are the indirect dispatches of the hash's
-// passes (x, y, z workgroups: LIST_COUNT_ARGS for the count and the scatter, LIST_SCAN_ARGS
-// + 3 phase for the scan's phases), all zero when the substep rebuilds nothing. The pass that
+// list_control(q): word 0 says that this substep rebuilds the hash and the lists; from word
+// LIST_DISPATCHES, the indirect dispatches (x, y, z workgroups) of the hash's passes, 3 words
+// each: the count and the scatter, then the scan's phases 0, 1, 2; all zero when the substep
+// rebuilds nothing. The pass that
 // writes a substep's new positions sets them (note_position, hash_count.glsl); the constraints
 // read word 0 and zero the other parity's block for the next substep; the host zeroes both
 // when a frame starts. `sim::gpu::object::list_control_range` and
 // `list_dispatch_offset` mirror this.
-const uint LIST_COUNT_ARGS = 1u;
-const uint LIST_SCAN_ARGS = 4u;
+const uint LIST_DISPATCHES = 1u;
 const uint LIST_CONTROL_WORDS = 16u;
 uint list_control(uint substep) {
     return (4u + LIST_ENTRIES) * particle_count() + LIST_CONTROL_WORDS * (substep & 1u);
@@ -58,8 +65,7 @@ uint list_counters() { return (4u + LIST_ENTRIES) * particle_count() + 2u * LIST
 
 // Called by one invocation of the surface stage.
 void report_lists() {
-    const uint bits = OBJ_SELF_COLLISION | OBJ_SELF_HASH;
-    if ((obj.flags & bits) != bits) return;
+    if (!self_hashed()) return;
     guard_lists_on = self_list[list_counters()];
     guard_lists_rebuilt = self_list[list_counters() + 1u];
 }

@@ -360,9 +360,9 @@ impl GpuSim {
             rec.barrier(&around(Access::TransferWrite, Access::ComputeReadWrite));
         }
         let lists = (self.objects.iter()).filter(|_| lists_stale).filter_map(|o| {
+            // The lists and the control blocks, not the counters after them.
             let (control, blocks) = object::list_control_range(o.particles as u64);
-            let bytes = o.self_list.as_ref()?.size().min(control + blocks);
-            Some((o.self_list.as_ref()?, bytes, transfer::LISTS_INVALID))
+            Some((o.self_list.as_ref()?, control + blocks, transfer::LISTS_INVALID))
         });
         let histories = (self.objects.iter())
             .filter_map(|o| o.solver.as_ref().map(|s| &s.history).filter(|_| history_stale))

@@ -102,8 +102,8 @@ pub(super) fn list_control_range(particles: u64) -> (u64, u64) {
 }
 
 /// Byte offset in the list buffer of the indirect dispatch of a spatial hash pass in substep
-/// `substep`: `pass` 0 the count and the scatter, 1 + k the scan's phase k (`LIST_COUNT_ARGS`,
-/// `LIST_SCAN_ARGS` in glsl/include/lists.glsl).
+/// `substep`: `pass` 0 the count and the scatter, 1 + k the scan's phase k (`LIST_DISPATCHES`
+/// in glsl/include/lists.glsl).
 pub(super) fn list_dispatch_offset(particles: u32, substep: u32, pass: u64) -> u64 {
     let (control, _) = list_control_range(particles as u64);
     control + 4 * (LIST_CONTROL_WORDS * (substep as u64 & 1) + 1 + 3 * pass)
