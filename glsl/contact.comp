@@ -38,8 +38,8 @@ void main() {
             bool again = false;
             for (int q = 0; q < c; ++q) again = again || seen[q] == h;
             if (again) continue;
-            uint end = starts[h + 1u];
-            for (uint at = starts[h]; at < end; ++at) {
+            uint end = BUCKET_START(h + 1u, table.hash_mask);
+            for (uint at = BUCKET_START(h, table.hash_mask); at < end; ++at) {
                 vec4 e = sorted[at];
                 uint bits = floatBitsToUint(e.w);
                 uint other = owner(bits & ~PINNED_BIT);

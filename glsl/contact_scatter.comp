@@ -13,5 +13,5 @@ void main() {
     uint k = first_index() + i;
     uvec2 cr = cell_rank[k];
     vec4 p = p_in[i].pos;
-    sorted[starts[cr.x] + cr.y] = vec4(p.xyz, uintBitsToFloat(k | (p.w > 0.5 ? PINNED_BIT : 0u)));
+    sorted[BUCKET_START(cr.x, table.hash_mask) + cr.y] = vec4(p.xyz, uintBitsToFloat(k | (p.w > 0.5 ? PINNED_BIT : 0u)));
 }

@@ -12,5 +12,5 @@ void main() {
     uint i = gl_GlobalInvocationID.x;
     if (i >= particle_count()) return;
     uvec2 cr = cell_rank[i];
-    sorted[starts[cr.x] + cr.y] = vec4(p_in[i].pos.xyz, uintBitsToFloat(i));
+    sorted[BUCKET_START(cr.x, obj.hash_mask) + cr.y] = vec4(p_in[i].pos.xyz, uintBitsToFloat(i));
 }

@@ -30,7 +30,10 @@ layout(std430, set = 0, binding = 6) buffer HashCellRank { uvec2 cell_rank[]; };
 layout(std430, set = 0, binding = 7) buffer HashCounts { uint counts[]; };       // per bucket: particles in it (zero between substeps)
 layout(std430, set = 0, binding = 8) buffer HashStarts { uint starts[]; };       // per bucket + 1: first slot in `sorted` (the last: the total)
 layout(std430, set = 0, binding = 9) buffer HashSorted { vec4 sorted[]; };       // by bucket: xyz position, w index bits
-layout(std430, set = 0, binding = 10) buffer HashBlocks { uint block_sums[]; };  // scan: per-block totals
+#ifndef BLOCK_SUMS_COHERENT
+#define BLOCK_SUMS_COHERENT
+#endif
+layout(std430, set = 0, binding = 10) BLOCK_SUMS_COHERENT buffer HashBlocks { uint block_sums[]; };  // scan: per-block offsets (hash_scan.comp)
 // The runtime guard of the object, read by the host after each frame.
 // (Then the per-stage contact lists' counters, lists.glsl.)
 layout(std430, set = 0, binding = 11) buffer GuardBuf { uint guard_flags; uint guard_first; uint guard_lists_on; uint guard_lists_rebuilt; }; // GUARD_* bits, lowest bad index

@@ -85,7 +85,7 @@ void visit_cells(uvec2 cell, vec3 x, float reach, inout vec3 correction, inout u
             a1 = a1 || d == 0u || d == HASH_MASK;
         }
         if (!a0 && !a1 && h < HASH_MASK) {
-            visit_range(starts[h], starts[h + 2u], cell, x, reach, correction, n_active);
+            visit_range(BUCKET_START(h, HASH_MASK), BUCKET_START(h + 2u, HASH_MASK), cell, x, reach, correction, n_active);
         } else {
             if (!a0) visit_bucket(h, cell, x, reach, correction, n_active);
             if (!a1) visit_bucket((h + 1u) & HASH_MASK, cell, x, reach, correction, n_active);
@@ -154,7 +154,7 @@ uint list_particle;
 uint list_len;
 bool list_build;
 void visit_bucket(uint h, uvec2 cell, vec3 x, float reach, inout vec3 correction, inout uint n_active) {
-    visit_range(starts[h], starts[h + 1u], cell, x, reach, correction, n_active);
+    visit_range(BUCKET_START(h, HASH_MASK), BUCKET_START(h + 1u, HASH_MASK), cell, x, reach, correction, n_active);
 }
 void visit_range(uint from, uint end, uvec2 cell, vec3 x, float reach, inout vec3 correction, inout uint n_active) {
     float listed = list_build ? reach * (1.0 + LIST_SKIN) : reach;

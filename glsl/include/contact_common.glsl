@@ -16,6 +16,7 @@ layout(std430, set = 0, binding = 6) buffer SceneCellRank { uvec2 cell_rank[]; }
 layout(std430, set = 0, binding = 7) buffer SceneCounts { uint counts[]; };
 layout(std430, set = 0, binding = 8) buffer SceneStarts { uint starts[]; };
 layout(std430, set = 0, binding = 9) buffer SceneSorted { vec4 sorted[]; };         // xyz, w: scene index | pinned << 31
+layout(std430, set = 0, binding = 10) buffer SceneBlocks { uint block_sums[]; };
 layout(std430, set = 0, binding = 12) restrict readonly buffer SceneHash { ObjectParams table; };  // hash_mask, cell_inv
 // Per object: x first scene index, y particle count (as float bits), z contact radius, w mass.
 layout(std430, set = 0, binding = 13) restrict readonly buffer Objects { vec4 objects[]; };

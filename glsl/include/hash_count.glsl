@@ -37,11 +37,9 @@ void note_position(uint i, vec3 x_new, bool pinned, uint substep, bool lists) {
     if (subgroupElect() && atomicExchange(self_list[c], 1u) == 0u) {
         uint n = particle_count();
         uint buckets = obj.hash_mask + 1u;
-        uvec3 groups[4] = uvec3[4](uvec3((n + 255u) / 256u, 1u, 1u),            // count, scatter
-                                   uvec3((buckets + 8191u) / 8192u, 1u, 1u),     // scan 0
-                                   uvec3(1u),                                    // scan 1
-                                   uvec3((buckets + 512u) / 512u, 1u, 1u));      // scan 2
-        [[unroll]] for (uint a = 0u; a < 4u; ++a) {
+        uvec3 groups[2] = uvec3[2](uvec3((n + 255u) / 256u, 1u, 1u),                      // count, scatter
+                                   uvec3((buckets + SCAN_BLOCK - 1u) / SCAN_BLOCK, 1u, 1u));  // scan
+        [[unroll]] for (uint a = 0u; a < 2u; ++a) {
             [[unroll]] for (uint w = 0u; w < 3u; ++w) self_list[c + LIST_DISPATCHES + 3u * a + w] = groups[a][w];
         }
     }

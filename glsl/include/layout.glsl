@@ -98,4 +98,10 @@ uint cell_hash(ivec3 c, uint mask) {
     return (uint(c.x) + ((uint(c.y) * 19349663u) ^ (uint(c.z) * 83492791u))) & mask;
 }
 
+// The first slot in `sorted` of bucket b (0 <= b <= mask + 1; b = mask + 1: the total) of a
+// per-stage hash of mask + 1 buckets: hash_scan.comp leaves a block-local start per bucket and
+// an offset per block of SCAN_BLOCK buckets. Needs `starts` and `block_sums` declared.
+const uint SCAN_BLOCK = 8192u;  // sim::gpu::object::SCAN_BLOCK
+#define BUCKET_START(b, mask) (starts[b] + block_sums[min(b, mask) / SCAN_BLOCK])
+
 #endif

@@ -144,7 +144,7 @@ impl Deviation {
     }
 }
 
-fn v3(a: [f32; 4]) -> DVec3 {
+pub fn v3(a: [f32; 4]) -> DVec3 {
     DVec3::new(a[0] as f64, a[1] as f64, a[2] as f64)
 }
 

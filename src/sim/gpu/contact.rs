@@ -86,7 +86,7 @@ impl SceneContact {
             ("table", std::mem::size_of::<ObjectParams>() as u64, storage, MemoryKind::Upload),
             ("objects", 16 * rows.len() as u64, storage, MemoryKind::Upload),
             ("cell_rank", 8 * total, storage, gpu_only),
-            ("counts", 4 * buckets, storage | BufferUsage::TRANSFER_DST, gpu_only),
+            ("counts", 4 * (buckets + 1), storage | BufferUsage::TRANSFER_DST, gpu_only),
             ("starts", 4 * (buckets + 1), storage, gpu_only),
             ("sorted", 16 * total, storage, gpu_only),
             ("block_sums", 4 * buckets.div_ceil(SCAN_BLOCK), storage, gpu_only),
@@ -193,25 +193,13 @@ impl SceneContact {
             b(&self.counts, Access::ComputeWrite, Access::ComputeReadWrite),
             b(&self.cell_rank, Access::ComputeWrite, Access::ComputeRead),
             b(&self.starts, Access::ComputeRead, Access::ComputeWrite),
-            b(&self.block_sums, Access::ComputeRead, Access::ComputeWrite),
+            b(&self.block_sums, Access::ComputeRead, Access::ComputeReadWrite),
         ]);
         let blocks = self.buckets.div_ceil(SCAN_BLOCK as u32);
-        rec.dispatch(pipelines.get(Stage::HashScan(0)), self.scan_set, [blocks, 1, 1]);
-        if self.buckets as u64 > SCAN_BLOCK {
-            rec.barrier(&[
-                b(&self.starts, Access::ComputeWrite, Access::ComputeReadWrite),
-                b(&self.block_sums, Access::ComputeWrite, Access::ComputeReadWrite),
-            ]);
-            rec.dispatch(pipelines.get(Stage::HashScan(1)), self.scan_set, [1, 1, 1]);
-            rec.barrier(&[b(&self.block_sums, Access::ComputeWrite, Access::ComputeRead)]);
-            rec.dispatch(
-                pipelines.get(Stage::HashScan(2)),
-                self.scan_set,
-                [(self.buckets + 1).div_ceil(512), 1, 1],
-            );
-        }
+        rec.dispatch(pipelines.get(Stage::HashScan), self.scan_set, [blocks, 1, 1]);
         rec.barrier(&[
             b(&self.starts, Access::ComputeWrite, Access::ComputeRead),
+            b(&self.block_sums, Access::ComputeWrite, Access::ComputeRead),
             b(&self.sorted, Access::ComputeRead, Access::ComputeWrite),
         ]);
         each_object(rec, Stage::ContactScatter);

@@ -100,7 +100,7 @@ impl GpuSim {
                         BufferBarrier::new(&h.counts, Access::ComputeWrite, Access::ComputeReadWrite),
                         BufferBarrier::new(&h.cell_rank, Access::ComputeWrite, Access::ComputeRead),
                         BufferBarrier::new(&h.starts, Access::ComputeRead, Access::ComputeWrite),
-                        BufferBarrier::new(&h.block_sums, Access::ComputeRead, Access::ComputeWrite),
+                        BufferBarrier::new(&h.block_sums, Access::ComputeRead, Access::ComputeReadWrite),
                     ]
                 }
             })
@@ -130,8 +130,7 @@ impl GpuSim {
     }
 
     /// The spatial hash of substep `substep` after the physics stage: with lists on, the
-    /// count, then (for all) the scan (one dispatch for tables of one block, else three) and
-    /// the scatter, each ordered after the one before by a barrier on exactly the buffers it
+    /// count, then (for all) the scan (one dispatch) and the scatter, each ordered after the one before by a barrier on exactly the buffers it
     /// reads; with lists on each is dispatched indirectly (no workgroups when the lists hold).
     pub(super) fn record_hash_build(&self, rec: &mut Recorder<'_>, substep: u32) {
         let hashed = self.hashed();
@@ -165,29 +164,12 @@ impl GpuSim {
             ]
         }));
         for (o, h) in &hashed {
-            dispatch(rec, o, Stage::HashScan(0), 1, [h.buckets.div_ceil(SCAN_BLOCK as u32), 1, 1]);
-        }
-        let multi: Vec<_> = hashed.iter().filter(|(_, h)| h.buckets as u64 > SCAN_BLOCK).collect();
-        if !multi.is_empty() {
-            rec.barrier(&each(&|h| {
-                vec![
-                    BufferBarrier::new(&h.starts, Access::ComputeWrite, Access::ComputeReadWrite),
-                    BufferBarrier::new(&h.block_sums, Access::ComputeWrite, Access::ComputeReadWrite),
-                ]
-            }));
-            for (o, _) in &multi {
-                dispatch(rec, o, Stage::HashScan(1), 2, [1, 1, 1]);
-            }
-            rec.barrier(&each(&|h| {
-                vec![BufferBarrier::new(&h.block_sums, Access::ComputeWrite, Access::ComputeRead)]
-            }));
-            for (o, h) in &multi {
-                dispatch(rec, o, Stage::HashScan(2), 3, [(h.buckets + 1).div_ceil(512), 1, 1]);
-            }
+            dispatch(rec, o, Stage::HashScan, 1, [h.buckets.div_ceil(SCAN_BLOCK as u32), 1, 1]);
         }
         rec.barrier(&each(&|h| {
             vec![
                 BufferBarrier::new(&h.starts, Access::ComputeWrite, Access::ComputeRead),
+                BufferBarrier::new(&h.block_sums, Access::ComputeWrite, Access::ComputeRead),
                 BufferBarrier::new(&h.sorted, Access::ComputeRead, Access::ComputeWrite),
             ]
         }));

@@ -18,7 +18,9 @@ use anyhow::Result;
 
 /// A cleared guard: no flags, no flagged particle.
 pub(super) const GUARD_CLEAR: [u32; 4] = [0, u32::MAX, 0, 0];
-/// Spatial hash table sizes: the scan handles 8192 buckets per block and 8192 blocks.
+/// Spatial hash table sizes: the scan handles 8192 buckets per block and 8192 blocks
+/// (`SCAN_BLOCK` in glsl/include/layout.glsl). Its counts have a word more, the scan's
+/// counter of finished blocks (glsl/hash_scan.comp).
 pub(super) const SCAN_BLOCK: u64 = 8192;
 const MAX_TABLE: u64 = SCAN_BLOCK * SCAN_BLOCK;
 
@@ -69,7 +71,7 @@ impl HashBuffers {
             &format!("{name}.hash"),
             [
                 ("cell_rank", 8 * particles, storage, gpu),
-                ("counts", 4 * buckets, storage | BufferUsage::TRANSFER_DST, gpu),
+                ("counts", 4 * (buckets + 1), storage | BufferUsage::TRANSFER_DST, gpu),
                 ("starts", 4 * (buckets + 1), storage, gpu),
                 ("sorted", 16 * particles, storage, gpu),
                 ("block_sums", 4 * buckets.div_ceil(SCAN_BLOCK), storage, gpu),
@@ -102,7 +104,7 @@ pub(super) fn list_control_range(particles: u64) -> (u64, u64) {
 }
 
 /// Byte offset in the list buffer of the indirect dispatch of a spatial hash pass in substep
-/// `substep`: `pass` 0 the count and the scatter, 1 + k the scan's phase k (`LIST_DISPATCHES`
+/// `substep`: `pass` 0 the count and the scatter, 1 the scan (`LIST_DISPATCHES`
 /// in glsl/include/lists.glsl).
 pub(super) fn list_dispatch_offset(particles: u32, substep: u32, pass: u64) -> u64 {
     let (control, _) = list_control_range(particles as u64);

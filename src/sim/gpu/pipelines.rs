@@ -27,7 +27,7 @@ pub(super) enum Stage {
     /// Cloth normals or rope tube vertices and the runtime guard (`drawn`), or the guard alone.
     Surface(ObjectKind, bool),
     HashCount,
-    HashScan(u32),
+    HashScan,
     HashScatter,
     /// Contact between objects (`contact.rs`): the scene hash's count and scatter of one
     /// object, and its query.
@@ -63,7 +63,7 @@ impl Stage {
             Stage::Surface(ObjectKind::Cloth, _) => "cloth_normals.comp",
             Stage::Surface(ObjectKind::Rope, _) => "rope_vertices.comp",
             Stage::HashCount => "hash_count.comp",
-            Stage::HashScan(_) => "hash_scan.comp",
+            Stage::HashScan => "hash_scan.comp",
             Stage::HashScatter => "hash_scatter.comp",
             Stage::ContactCount => "contact_count.comp",
             Stage::ContactScatter => "contact_scatter.comp",
@@ -73,7 +73,7 @@ impl Stage {
     }
 
     /// Constant `i` has id `i`: the step shaders take their workgroup shape (ids 0, 1), a
-    /// variant flag (id 2) and the features (id 3), the prediction also whether it keeps y (id 4); the scan takes its phase; the fused kernel
+    /// variant flag (id 2) and the features (id 3), the prediction also whether it keeps y (id 4); the fused kernel
     /// its layout (`FusedShape::specialization`).
     fn specialization(self) -> Vec<u32> {
         match self {
@@ -86,11 +86,11 @@ impl Stage {
             Stage::Iterate(kind, _) => group(kind),
             Stage::Surface(_, drawn) => vec![drawn as u32],
             Stage::HashCount
+            | Stage::HashScan
             | Stage::HashScatter
             | Stage::ContactCount
             | Stage::ContactScatter
             | Stage::Contact => Vec::new(),
-            Stage::HashScan(phase) => vec![phase],
             Stage::Fused(method, f, shape) => shape.specialization(method, f),
         }
     }
@@ -129,12 +129,10 @@ impl Stage {
             }
         }
         if model.objects.iter().any(|o| super::object::builds_hash(o, model)) {
-            stages.extend([Stage::HashCount, Stage::HashScan(0), Stage::HashScan(1), Stage::HashScan(2)]);
-            stages.push(Stage::HashScatter);
+            stages.extend([Stage::HashCount, Stage::HashScan, Stage::HashScatter]);
         }
         if model.inter_object_contact() {
-            stages.extend([Stage::HashScan(0), Stage::HashScan(1), Stage::HashScan(2)]);
-            stages.extend([Stage::ContactCount, Stage::ContactScatter, Stage::Contact]);
+            stages.extend([Stage::HashScan, Stage::ContactCount, Stage::ContactScatter, Stage::Contact]);
         }
         let mut seen = std::collections::HashSet::new();
         stages.retain(|s| seen.insert(*s));
