@@ -109,12 +109,15 @@ pub(crate) fn candidates(
             ));
             continue;
         }
-        // The step shaders vote across a subgroup (the contact lists' rebuild flag).
-        let vote = vk::SubgroupFeatureFlags::BASIC | vk::SubgroupFeatureFlags::VOTE;
+        // The step shaders vote across a subgroup (the contact lists' rebuild flag); the hash
+        // scan adds across one.
+        let vote = vk::SubgroupFeatureFlags::BASIC
+            | vk::SubgroupFeatureFlags::VOTE
+            | vk::SubgroupFeatureFlags::ARITHMETIC;
         if !v11.subgroup_supported_stages.contains(vk::ShaderStageFlags::COMPUTE)
             || !v11.subgroup_supported_operations.contains(vote)
         {
-            skipped.push(format!("{name}: needs subgroup vote operations in compute shaders"));
+            skipped.push(format!("{name}: needs subgroup vote and arithmetic operations in compute shaders"));
             continue;
         }
         let wanted = vk::QueueFlags::GRAPHICS | vk::QueueFlags::COMPUTE;
