@@ -8,7 +8,6 @@
 //! constraint stage (stretch limit, self-collision, spheres).
 
 use super::cpu::integrators as cpu;
-use super::model::{ObjectModel, SimModel};
 use glam::DVec3;
 
 /// How a substep advances the spring network (`sim.integrator`).
@@ -80,8 +79,7 @@ pub enum Sweep {
 
 /// One substep of an object from (x, v) on the CPU reference: the new positions and velocities
 /// (the position-based methods also read and update each particle's BDF2 history).
-pub type CpuStep =
-    fn(&SimModel, &ObjectModel, f64, &[DVec3], &[DVec3], &mut [cpu::History]) -> (Vec<DVec3>, Vec<DVec3>);
+pub type CpuStep = fn(&cpu::Substep<'_>, &mut [cpu::History]) -> (Vec<DVec3>, Vec<DVec3>);
 
 /// The iterative (position-based) methods integrate with BDF2, the second-order backward
 /// differentiation formula: each substep's solve is implicit over h = BDF2_STEP dt from a base

@@ -19,39 +19,29 @@ type State = (Vec<DVec3>, Vec<DVec3>);
 /// particle (`history` in glsl/include/bindings.glsl).
 pub type History = Option<(DVec3, DVec3)>;
 
-/// One substep of `o` from (x, v) with the model's integrator; the position-based methods read
-/// and update each particle's history.
-pub(super) fn advance(
-    m: &SimModel,
-    o: &ObjectModel,
-    dt: f64,
-    x: &[DVec3],
-    v: &[DVec3],
-    history: &mut [History],
-) -> State {
-    (m.integrator.method().cpu)(m, o, dt, x, v, history)
+/// What one substep of an object starts from: the model, the object, the substep's length
+/// [s] and the object's positions and velocities.
+#[derive(Clone, Copy)]
+pub struct Substep<'a> {
+    pub model: &'a SimModel,
+    pub object: &'a ObjectModel,
+    pub dt: f64,
+    pub x: &'a [DVec3],
+    pub v: &'a [DVec3],
 }
 
-pub(crate) fn symplectic_euler(
-    m: &SimModel,
-    o: &ObjectModel,
-    dt: f64,
-    x: &[DVec3],
-    v: &[DVec3],
-    _: &mut [History],
-) -> State {
-    explicit(m, o, dt, x, v, false)
+/// One substep with the model's integrator; the position-based methods read and update each
+/// particle's history.
+pub(super) fn advance(s: &Substep<'_>, history: &mut [History]) -> State {
+    (s.model.integrator.method().cpu)(s, history)
 }
 
-pub(crate) fn verlet(
-    m: &SimModel,
-    o: &ObjectModel,
-    dt: f64,
-    x: &[DVec3],
-    v: &[DVec3],
-    _: &mut [History],
-) -> State {
-    explicit(m, o, dt, x, v, true)
+pub(crate) fn symplectic_euler(s: &Substep<'_>, _: &mut [History]) -> State {
+    explicit(s, false)
+}
+
+pub(crate) fn verlet(s: &Substep<'_>, _: &mut [History]) -> State {
+    explicit(s, true)
 }
 
 fn grid(o: &ObjectModel, i: usize) -> (i64, i64) {
@@ -95,7 +85,8 @@ fn spring_force(o: &ObjectModel, i: usize, x: &[DVec3], v: &[DVec3], elastic: bo
 
 /// Symplectic Euler, or position Verlet (`verlet`): forces at the half-drifted positions
 /// x + v dt / 2, the kick, then the second half of the drift with the new velocity.
-fn explicit(m: &SimModel, o: &ObjectModel, dt: f64, x: &[DVec3], v: &[DVec3], verlet: bool) -> State {
+fn explicit(s: &Substep<'_>, verlet: bool) -> State {
+    let Substep { model: m, object: o, dt, x, v } = *s;
     let drift = if verlet { 0.5 * dt } else { 0.0 };
     let at: Vec<DVec3> = x.iter().zip(v).map(|(x, v)| *x + *v * drift).collect();
     let mut nx = x.to_vec();
@@ -233,14 +224,8 @@ fn colour_order(o: &ObjectModel) -> Vec<usize> {
 /// Gauss-Seidel, where a particle applies its own share of each spring while its neighbours are
 /// held, was right but converged slowly: after 1 s of a 24 x 24 cloth at 16 substeps and one
 /// iteration it stood 106 mm from the converged solve, against 4.6 mm for the spring classes.)
-pub(crate) fn xpbd(
-    m: &SimModel,
-    o: &ObjectModel,
-    dt: f64,
-    x0: &[DVec3],
-    v: &[DVec3],
-    history: &mut [History],
-) -> State {
+pub(crate) fn xpbd(s: &Substep<'_>, history: &mut [History]) -> State {
+    let Substep { model: m, object: o, dt, x: x0, v } = *s;
     let n = x0.len();
     let start = inertial(m, o, dt, x0, v, history, false);
     let (dt, x) = (start.h, &start.base[..]);
@@ -300,14 +285,8 @@ pub(crate) fn xpbd(
 /// m / dt^2 I + sum k (n n^T + max(0, 1 - L / d) (I - n n^T)) + (b / dt) n n^T
 /// (the spring's transverse term clamped at compression keeps it positive definite).
 /// Stable at any stiffness; at convergence BDF2 with implicit dashpots.
-pub(crate) fn vbd(
-    m: &SimModel,
-    o: &ObjectModel,
-    dt: f64,
-    x0: &[DVec3],
-    v: &[DVec3],
-    history: &mut [History],
-) -> State {
+pub(crate) fn vbd(s: &Substep<'_>, history: &mut [History]) -> State {
+    let Substep { model: m, object: o, dt, x: x0, v } = *s;
     let start = inertial(m, o, dt, x0, v, history, false);
     let (dt, x, y) = (start.h, &start.base[..], &start.y[..]);
     let mut p = start.y.clone();
@@ -363,14 +342,8 @@ pub fn chebyshev_omega(k: u32, rho: f64) -> f64 {
 /// damped Jacobi sweep of the global system per iteration (diagonal m / dt^2 + sum k,
 /// moving `jacobi_damping` of the way: 1 / (1 + rho), which tends to 1 as the substep shrinks),
 /// accelerated by Chebyshev with the radius `chebyshev_rho` from iteration `CHEBYSHEV_START` on.
-pub(crate) fn implicit(
-    m: &SimModel,
-    o: &ObjectModel,
-    dt: f64,
-    x: &[DVec3],
-    v: &[DVec3],
-    history: &mut [History],
-) -> State {
+pub(crate) fn implicit(s: &Substep<'_>, history: &mut [History]) -> State {
+    let Substep { model: m, object: o, dt, x, v } = *s;
     let n = x.len();
     let start = inertial(m, o, dt, x, v, history, true);
     let (dt, y) = (start.h, &start.y);

@@ -243,7 +243,10 @@ impl CpuSim {
             .objects
             .iter()
             .zip(&mut self.objects)
-            .map(|(o, state)| integrators::advance(m, o, self.dt, &state.x, &state.v, &mut state.history))
+            .map(|(o, state)| {
+                let s = integrators::Substep { model: m, object: o, dt: self.dt, x: &state.x, v: &state.v };
+                integrators::advance(&s, &mut state.history)
+            })
             .collect();
         for (a, (o, state)) in m.objects.iter().zip(&mut self.objects).enumerate() {
             let (px, pv) = &advanced[a];
