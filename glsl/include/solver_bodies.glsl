@@ -37,14 +37,19 @@ float xpbd_spring(uint dir, vec3 xi, vec3 di, vec3 xj, vec3 dj, bool pin_i, bool
 
 // VBD, one Gauss-Seidel visit: one Newton step on BDF2's incremental potential (step h =
 // solve_dt()) as a function of the particle's position (inertia towards the prediction dy, springs, dashpots),
-// with its 3x3 Hessian. Returns the new displacement.
+// with its 3x3 Hessian. Returns the new displacement. The Hessian is symmetric and each spring
+// adds (k + b / h) n n^T + k t (I - n n^T) = c n n^T + k t I (c = k + b / h - k t), so it is
+// kept as a multiple of the identity, a diagonal and three off-diagonal entries (6 multiply-adds
+// a spring, not 45) and solved by its adjugate.
 vec3 vbd_particle(uvec2 cell, vec3 x, vec3 dx, vec3 dy) {
     float h = solve_dt();
     float inertia = obj.mass / (h * h);
     float b = obj.stiffness.w;
     float damp = b / h;  // a dashpot's stiffness on the displacement
     vec3 force = (dy - dx) * inertia;
-    mat3 hessian = mat3(inertia);
+    float iso = inertia;    // the Hessian's multiple of the identity
+    vec3 diag = vec3(0.0);  // its other diagonal entries (xx, yy, zz)
+    vec3 off = vec3(0.0);   // its off-diagonal entries (xy, xz, yz)
     [[unroll]] for (int s = 0; s < 12; ++s) {
         ivec3 spring = SPRINGS[s];
         float k = obj.stiffness[spring.z];
@@ -58,13 +63,25 @@ vec3 vbd_particle(uvec2 cell, vec3 x, vec3 dx, vec3 dy) {
         float inv = inversesqrt(dd);
         float d = dd * inv;
         vec3 n = delta * inv;
-        mat3 nn = outerProduct(n, n);
         float rest = rest_length(s);
-        float transverse = max(1.0 - rest * inv, 0.0);  // clamped at compression: positive definite
+        float kt = k * max(1.0 - rest * inv, 0.0);  // transverse, clamped at compression: positive definite
         force -= n * (k * (d - rest) + damp * dot(n, dx - dj));
-        hessian += nn * (k + damp) + (mat3(1.0) - nn) * (k * transverse);
+        float c = k + damp - kt;
+        iso += kt;
+        diag += (c * n) * n;
+        off += (c * n.xxy) * n.yzz;
     }
-    return dx + inverse(hessian) * force;
+    // The step H^-1 force, by the adjugate of the symmetric H.
+    vec3 a = diag + iso;
+    float c00 = a.y * a.z - off.z * off.z;
+    float c01 = off.y * off.z - off.x * a.z;
+    float c02 = off.x * off.z - off.y * a.y;
+    float c11 = a.x * a.z - off.y * off.y;
+    float c12 = off.x * off.y - a.x * off.z;
+    float c22 = a.x * a.y - off.x * off.x;
+    float det = a.x * c00 + off.x * c01 + off.y * c02;
+    vec3 step = vec3(dot(vec3(c00, c01, c02), force), dot(vec3(c01, c11, c12), force), dot(vec3(c02, c12, c22), force));
+    return dx + step / det;
 }
 
 // Must equal sim::stability::CHEBYSHEV_START (the GPU-vs-CPU tests compare).
