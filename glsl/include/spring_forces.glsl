@@ -23,11 +23,9 @@ void add_spring_forces(uvec2 cell, vec3 x, vec3 v, float drift, bool elastic, in
         int j = SPRING_NEIGHBOUR(cell, s);
         if (j < 0) continue;
         vec3 to_j = NPOS(j) - x;
-        float dd = dot(to_j, to_j);
-        if (dd <= 0.0) continue;
-        float inv = inversesqrt(dd);
-        float d = dd * inv;
-        vec3 dir = to_j * inv;
+        float d = length(to_j);
+        if (d <= 0.0) continue;
+        vec3 dir = to_j / d;
         float rest = rest_length(s);
         float f = k * (d - rest);  // Hooke's law
         if (has(F_DAMPING)) f += obj.stiffness.w * dot(NVEL(j) - v, dir);  // plus a dashpot along the spring
