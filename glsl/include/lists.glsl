@@ -47,10 +47,10 @@ void set_list_header(uint i, vec3 x, uint len) {
 // With lists on, the words after the lists hold, for each substep parity q, a control block at
 // list_control(q): word 0 says that this substep rebuilds the hash and the lists; from word
 // LIST_DISPATCHES, the indirect dispatches (x, y, z workgroups) of the hash's passes, 3 words
-// each: the count and the scatter, then the scan; all zero when the substep rebuilds nothing. The pass that
-// writes a substep's new positions sets them (note_position, hash_count.glsl); the constraints
-// read word 0 and zero the other parity's block for the next substep; the host zeroes both
-// when a frame starts. `sim::gpu::object::list_control_range` and
+// each: the count and the scatter, then the scan; all zero when the substep rebuilds nothing.
+// The pass that writes a substep's new positions sets them (note_position, hash_count.glsl);
+// the constraints read word 0 and zero the other parity's block for the next substep; the host
+// zeroes both when a frame starts. `sim::gpu::object::list_control_range` and
 // `list_dispatch_offset` mirror this.
 const uint LIST_DISPATCHES = 1u;
 const uint LIST_CONTROL_WORDS = 16u;
