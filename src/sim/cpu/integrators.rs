@@ -155,13 +155,11 @@ fn inertial(
 /// The history of a particle without one (`inertial`): (x_n - x_{n-1}, v_n - v_{n-1}) of one
 /// Jacobi step of implicit Euler from (x, v) under `force` and the springs' elastic force.
 fn restart(o: &ObjectModel, i: usize, x: &[DVec3], v: DVec3, force: DVec3, dt: f64) -> (DVec3, DVec3) {
-    let (c, r) = grid(o, i);
     let (mut elastic, mut stiffness) = (DVec3::ZERO, 0.0);
-    for s in springs(o, c, r) {
-        let k = o.stiffness[s.kind as usize];
+    for (s, k) in elastic_springs(o, i) {
         let delta = x[s.other] - x[i];
         let d = delta.length();
-        if k == 0.0 || d <= 0.0 {
+        if d <= 0.0 {
             continue;
         }
         elastic += delta / d * (k * (d - rest_length(o, &s)));

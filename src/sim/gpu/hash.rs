@@ -130,8 +130,9 @@ impl GpuSim {
     }
 
     /// The spatial hash of substep `substep` after the physics stage: with lists on, the
-    /// count, then (for all) the scan (one dispatch) and the scatter, each ordered after the one before by a barrier on exactly the buffers it
-    /// reads; with lists on each is dispatched indirectly (no workgroups when the lists hold).
+    /// count, then (for all) the scan (one dispatch) and the scatter, each ordered after the
+    /// one before by a barrier on exactly the buffers it reads; with lists on each is
+    /// dispatched indirectly (no workgroups when the lists hold).
     pub(super) fn record_hash_build(&self, rec: &mut Recorder<'_>, substep: u32) {
         let hashed = self.hashed();
         if hashed.is_empty() {
