@@ -33,8 +33,9 @@
 // scratch (px/py/pz keep the base; the implicit method, which needs no base of a neighbour,
 // keeps its iterate p itself there instead); XPBD visits the spring classes in turn
 // (the thread owning a spring's first node moves both ends), VBD the vertex colours, a barrier()
-// after each class or colour; the implicit method's Jacobi sweep computes every new
-// displacement, then a barrier(), the writes, and a barrier(). The updates themselves are
+// after each class or colour; the Jacobi sweeps (the implicit method, XPBD by Jacobi) compute
+// every new displacement, then a barrier(), the writes, and a barrier() (at one iteration
+// nothing is written back). The updates themselves are
 // solver_bodies.glsl's, as in the per-stage shaders.
 #define STATE_FUSED
 #define FUSED_SHARED
@@ -60,7 +61,8 @@ const uint MAX_SLOTS = 4u;  // particles per thread at most (FUSED_SLOTS on the 
 const uint SLOTS = (CAP + THREADS - 1u) / THREADS;
 const uint WINDOW = THREADS * PASS_SLOTS + 2u * HALO;  // velocities staged per pass
 const uint EMPTY = 0xFFFFFFFFu;
-const bool ITERATIVE = SOLVER == METHOD_XPBD || SOLVER == METHOD_IMPLICIT || SOLVER == METHOD_VBD;
+const bool ITERATIVE = SOLVER == METHOD_XPBD || SOLVER == METHOD_IMPLICIT || SOLVER == METHOD_VBD
+    || SOLVER == METHOD_XPBD_JACOBI;
 const bool COLOURED = SOLVER == METHOD_VBD;  // VBD sweeps vertex colours; XPBD spring classes
 // The springs of the particle being visited that have another end (bit s of SPRINGS), set
 // before each body call. XPBD does without (measured: its class passes ran 20% slower with the
@@ -330,7 +332,8 @@ void main() {
 
         if (ITERATIVE) {
             // The solve, from the prediction; px/py/pz hold the bases x~.
-            vec4 lambda[MAX_SLOTS][3];  // XPBD: the multipliers of each particle's forward springs
+            // XPBD: the multipliers of each particle's forward springs (by Jacobi: of its 12)
+            vec4 lambda[MAX_SLOTS][3];
             vec3 before[MAX_SLOTS];     // implicit: the iterate before (Chebyshev)
             [[unroll]] for (uint s = 0u; s < MAX_SLOTS; ++s) {
                 if (s >= SLOTS) break;
@@ -371,7 +374,7 @@ void main() {
                                 vec3 dj = sdisp(uint(j));
                                 vec3 normal;
                                 float lam = ONE_ITERATION ? 0.0 : lambda[s][dir / 4u][dir % 4u];
-                                float dl = xpbd_spring(dir, x[s], di, spos(uint(j)), dj, pinned[s], pin_j, lam, normal);
+                                float dl = xpbd_spring(class_slot(dir), x[s], di, spos(uint(j)), dj, pinned[s], pin_j, lam, normal);
                                 if (!pinned[s]) set_sdisp(i, di + normal * (w * dl));
                                 if (!pin_j) set_sdisp(uint(j), dj - normal * (w * dl));
                                 if (!ONE_ITERATION) lambda[s][dir / 4u][dir % 4u] = lam + dl;
@@ -379,6 +382,23 @@ void main() {
                         }
                         barrier();  // the next class reads this one's displacements
                     }
+                } else if (SOLVER == METHOD_XPBD_JACOBI) {
+                    vec3 next[MAX_SLOTS];
+                    [[unroll]] for (uint s = 0u; s < MAX_SLOTS; ++s) {
+                        if (s >= SLOTS) break;
+                        next[s] = dx[s];
+                        if (own[s] < n && !pinned[s]) {
+                            spring_mask = masks[s];
+                            next[s] = xpbd_jacobi_particle(cells[s], x[s], dx[s], lambda[s]);
+                        }
+                    }
+                    barrier();  // every read of this iteration's displacements is done
+                    [[unroll]] for (uint s = 0u; s < MAX_SLOTS; ++s) {
+                        if (s >= SLOTS) break;
+                        dx[s] = next[s];
+                        if (!ONE_ITERATION && own[s] < n) set_sdisp(own[s], dx[s]);
+                    }
+                    if (!ONE_ITERATION) barrier();
                 } else if (COLOURED) {
                     for (uint c = 0u; c < colours; ++c) {
                         [[unroll]] for (uint s = 0u; s < MAX_SLOTS; ++s) {

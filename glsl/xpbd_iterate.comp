@@ -42,7 +42,7 @@ void main() {
     uint at = 3u * i + dir / 4u;
     float lam = aux[at][dir % 4u];
     vec3 normal;
-    float dl = xpbd_spring(dir, SX(i), di.xyz, SX(j), dj.xyz, pin_i, pin_j, lam, normal);
+    float dl = xpbd_spring(class_slot(dir), SX(i), di.xyz, SX(j), dj.xyz, pin_i, pin_j, lam, normal);
     float w = 1.0 / obj.mass;
     if (!pin_i) iter[i] = vec4(di.xyz + normal * (w * dl), di.w);
     if (!pin_j) iter[j] = vec4(dj.xyz - normal * (w * dl), dj.w);

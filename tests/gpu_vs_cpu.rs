@@ -857,6 +857,11 @@ fn xpbd() {
 }
 
 #[test]
+fn xpbd_jacobi() {
+    check("xpbd_jacobi", &integrator_scene(Integrator::XpbdJacobi));
+}
+
+#[test]
 fn implicit() {
     check("implicit", &integrator_scene(Integrator::Implicit));
 }
@@ -904,7 +909,7 @@ fn iterative_methods_on_stiff_springs_at_one_substep() {
         assert_matters_over(&format!("{name} iterations"), &s, |m| m.iterations = 2, min);
         let undamped = |m: &mut SimModel| m.objects.iter_mut().for_each(|o| o.damping = 0.0);
         assert_matters_over(&format!("{name} damping"), &s, undamped, min);
-        if method == Integrator::Xpbd {
+        if method.method().relaxed {
             assert_matters_over(&format!("{name} relaxation"), &s, |m| m.relaxation = 0.8, min);
         }
     }
@@ -976,7 +981,7 @@ fn the_bdf2_start_rounds_no_worse_than_an_explicit_step() {
     let deviation_of = |method, fused| {
         let mut m = s.clone();
         m.integrator = method;
-        m.iterations = if method == Integrator::Xpbd { 1 } else { 4 };
+        m.iterations = method.few_iterations();
         let ctx = gpu();
         let (d, _) = compare_path(&ctx, &m, 6, Mode::FreeRunning, fused);
         assert_clean(&ctx);

@@ -19,6 +19,7 @@
 #define METHOD_XPBD             2u
 #define METHOD_IMPLICIT         3u
 #define METHOD_VBD              4u
+#define METHOD_XPBD_JACOBI      5u
 
 struct Particle {
     vec4 pos;   // xyz position [m]; w = 1 pinned, 0 free

@@ -12,7 +12,7 @@
 #ifndef MSD_SOLVER_BODIES_GLSL
 #define MSD_SOLVER_BODIES_GLSL
 
-// XPBD, one spring of direction `dir` (a spring class, springs.glsl) from particle i (start
+// XPBD, one spring (slot `slot` of SPRINGS, springs.glsl) from particle i (start
 // position xi, displacement di, pinned pin_i) to particle j, with multiplier lam: returns
 // dlambda = relaxation (-C - alpha~ lambda - gamma n.(dx_i - dx_j)) / ((1 + gamma)(w_i + w_j) + alpha~)
 // (the per-type constants and the reciprocal of the denominator from the host, obj.xpbd) and the
@@ -21,8 +21,7 @@
 #ifndef XPBD_OBJ
 #define XPBD_OBJ obj
 #endif
-float xpbd_spring(uint dir, vec3 xi, vec3 di, vec3 xj, vec3 dj, bool pin_i, bool pin_j, float lam, out vec3 normal) {
-    int slot = class_slot(dir);
+float xpbd_spring(int slot, vec3 xi, vec3 di, vec3 xj, vec3 dj, bool pin_i, bool pin_j, float lam, out vec3 normal) {
     vec4 c = XPBD_OBJ.xpbd[slot >> 2];  // alpha~, gamma, scale (both ends free, one pinned)
     vec3 rel = di - dj;
     vec3 delta = (xi - xj) + rel;  // p_i - p_j
@@ -33,6 +32,35 @@ float xpbd_spring(uint dir, vec3 xi, vec3 di, vec3 xj, vec3 dj, bool pin_i, bool
     normal = delta * inv;
     float scale = (pin_i || pin_j) ? c.w : c.z;
     return scale * (XPBD_OBJ.rest[slot >> 2][slot & 3] - c.x * lam - dd * inv - c.y * dot(normal, rel));
+}
+
+// XPBD by Jacobi (sim::cpu::integrators::xpbd_jacobi has the derivation), one particle's
+// visit: each of its springs with a stiffness takes xpbd_spring's update from the iterate
+// before, and the particle moves by beta w n dlambda summed, beta = min(1, 1 / (w load)) with
+// load = sum (1 + gamma) e / D (e = 2, 1 with the other end pinned; D the denominator; the
+// host gives this method no relaxation): no sweep overshoots. lam[s / 4][s % 4], the particle's own copy of the
+// multiplier of spring s of SPRINGS, advances by beta dlambda. Returns the new displacement.
+vec3 xpbd_jacobi_particle(uvec2 cell, vec3 x, vec3 dx, inout vec4 lam[3]) {
+    float w = 1.0 / obj.mass;
+    float load = 0.0;
+    vec3 move = vec3(0.0);
+    vec4 dl[3] = vec4[3](vec4(0.0), vec4(0.0), vec4(0.0));
+    [[unroll]] for (int s = 0; s < 12; ++s) {
+        ivec3 spring = SPRINGS[s];
+        if (obj.stiffness[spring.z] == 0.0) continue;
+        int j = SPRING_NEIGHBOUR(cell, s);
+        if (j < 0) continue;
+        bool pin_j = SPIN(j);
+        vec4 c = XPBD_OBJ.xpbd[spring.z];
+        load += (1.0 + c.y) * (pin_j ? c.w : 2.0 * c.z);
+        vec3 normal;
+        float d = xpbd_spring(s, x, dx, SX(j), SD(j), false, pin_j, lam[s >> 2][s & 3], normal);
+        dl[s >> 2][s & 3] = d;
+        move += normal * d;
+    }
+    float beta = w * load > 1.0 ? 1.0 / (w * load) : 1.0;
+    [[unroll]] for (int q = 0; q < 3; ++q) lam[q] += beta * dl[q];
+    return dx + move * (beta * w);
 }
 
 // VBD, one Gauss-Seidel visit: one Newton step on BDF2's incremental potential (step h =

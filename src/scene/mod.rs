@@ -63,7 +63,8 @@ pub struct SimSettings {
     /// Solver iterations per substep (the iterative methods: xpbd, implicit, vbd).
     #[serde(default = "defaults::iterations")]
     pub iterations: u32,
-    /// XPBD over-relaxation of each Gauss-Seidel correction, between 0 and 2.
+    /// XPBD (`xpbd`, the spring classes): over-relaxation of each Gauss-Seidel correction,
+    /// between 0 and 2.
     #[serde(default = "defaults::one")]
     pub relaxation: f64,
     /// With integrator = "auto": the largest acceptable position error, as a fraction of the

@@ -34,6 +34,12 @@ pub enum Integrator {
     /// Vertex Block Descent (Chen et al. 2024): BDF2 (`BDF2_STEP`) by a 3x3 Newton step per
     /// vertex on inertia + spring energy (dashpots implicit), vertex-coloured Gauss-Seidel.
     Vbd,
+    /// XPBD's constraints by Jacobi on BDF2: every spring updated at once from the iterate
+    /// before, each particle's move bounded so that no sweep overshoots (plain Jacobi where
+    /// the springs are soft against the substep, their mean where they are stiff). One pass an
+    /// iteration (the spring classes take twelve); consistent like XPBD as the substep
+    /// shrinks, softer at few iterations and large substeps. Stable at any stiffness.
+    XpbdJacobi,
 }
 
 /// How the GPU runs a method (`sim::gpu`).
@@ -104,6 +110,12 @@ pub struct Method {
     pub cpu: CpuStep,
     /// Colour of its curves in the accuracy chart (RGB).
     pub colour: (u8, u8, u8),
+    /// The iterations a substep it is meant to run at (iterative methods; 1 for the others):
+    /// the count the tests' convergence rates, `bench`'s comparisons and the cost
+    /// targets use.
+    pub few_iterations: u32,
+    /// `sim.relaxation` applies (scales each constraint update).
+    pub relaxed: bool,
 }
 
 const fn solver(
@@ -125,7 +137,7 @@ const fn solver(
 }
 
 /// The table, in the order of `Integrator`'s variants.
-const METHODS: [Method; 5] = [
+const METHODS: [Method; 6] = [
     Method {
         integrator: Integrator::SymplecticEuler,
         label: "symplectic_euler",
@@ -133,6 +145,8 @@ const METHODS: [Method; 5] = [
         scheme: Scheme::Explicit { verlet: false },
         cpu: cpu::symplectic_euler,
         colour: (31, 119, 180),
+        few_iterations: 1,
+        relaxed: false,
     },
     Method {
         integrator: Integrator::Verlet,
@@ -141,6 +155,8 @@ const METHODS: [Method; 5] = [
         scheme: Scheme::Explicit { verlet: true },
         cpu: cpu::verlet,
         colour: (44, 160, 44),
+        few_iterations: 1,
+        relaxed: false,
     },
     Method {
         integrator: Integrator::Xpbd,
@@ -150,6 +166,8 @@ const METHODS: [Method; 5] = [
         scheme: solver("xpbd_iterate.comp", false, false, 1, 3, Sweep::SpringClasses),
         cpu: cpu::xpbd,
         colour: (255, 127, 14),
+        few_iterations: 1,
+        relaxed: true,
     },
     Method {
         integrator: Integrator::Implicit,
@@ -159,6 +177,8 @@ const METHODS: [Method; 5] = [
         scheme: solver("implicit_iterate.comp", true, true, 3, 1, Sweep::Jacobi),
         cpu: cpu::implicit,
         colour: (214, 39, 40),
+        few_iterations: 4,
+        relaxed: false,
     },
     Method {
         integrator: Integrator::Vbd,
@@ -168,17 +188,32 @@ const METHODS: [Method; 5] = [
         scheme: solver("vbd_iterate.comp", false, true, 1, 1, Sweep::VertexColours),
         cpu: cpu::vbd,
         colour: (148, 103, 189),
+        few_iterations: 4,
+        relaxed: false,
+    },
+    Method {
+        integrator: Integrator::XpbdJacobi,
+        label: "xpbd_jacobi",
+        order: 2.0,
+        // Two alternating slices; aux: the multipliers of the particle's 12 springs.
+        scheme: solver("xpbd_jacobi_iterate.comp", false, false, 2, 3, Sweep::Jacobi),
+        cpu: cpu::xpbd_jacobi,
+        colour: (140, 86, 75),
+        few_iterations: 1,
+        // Its step bound picks the step (a relaxation would cancel out where it acts).
+        relaxed: false,
     },
 ];
 
 impl Integrator {
     /// Every method, in the table's order.
-    pub const ALL: [Integrator; 5] = [
+    pub const ALL: [Integrator; 6] = [
         Integrator::SymplecticEuler,
         Integrator::Verlet,
         Integrator::Xpbd,
         Integrator::Implicit,
         Integrator::Vbd,
+        Integrator::XpbdJacobi,
     ];
 
     /// Its row of the table.
@@ -212,6 +247,11 @@ impl Integrator {
 
     pub fn order(self) -> f64 {
         self.method().order
+    }
+
+    /// The iterations a substep it is meant to run at (`Method::few_iterations`).
+    pub fn few_iterations(self) -> u32 {
+        self.method().few_iterations
     }
 }
 

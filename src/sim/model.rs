@@ -144,7 +144,8 @@ pub struct SimModel {
     pub integrator: Integrator,
     /// Solver iterations per substep (the iterative methods only).
     pub iterations: u32,
-    /// XPBD: the over-relaxation factor (0..2) of each Gauss-Seidel correction.
+    /// XPBD (`xpbd`, the spring classes): the over-relaxation factor (0..2) of each Gauss-Seidel
+    /// correction (`Method::relaxed`).
     pub relaxation: f64,
     /// Objects touch each other (`inter_object_contact` says whether a scene uses it).
     pub inter_object: bool,

@@ -237,7 +237,7 @@ fn simulation_panel(ui: &Ui, state: &mut EditorState, scene: &mut Scene, actions
     match scene.sim.integrator {
         I::Method(m) if m.iterative() => {
             int(ui, "iterations", &mut scene.sim.iterations, 1, 1000);
-            if m == crate::sim::model::Integrator::Xpbd {
+            if m.method().relaxed {
                 drag(ui, "relaxation", &mut scene.sim.relaxation, 0.01, 0.05, 1.95);
             }
         }

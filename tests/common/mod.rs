@@ -281,7 +281,7 @@ pub fn hanging_chain(method: msdsim::sim::model::Integrator) -> SimModel {
     m.gravity = DVec3::new(0.0, -9.81, 0.0);
     m.substeps = 64;
     m.integrator = method;
-    m.iterations = if method == msdsim::sim::model::Integrator::Xpbd { 1 } else { 4 };
+    m.iterations = method.few_iterations();
     m
 }
 

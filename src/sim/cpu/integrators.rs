@@ -275,6 +275,68 @@ pub(crate) fn xpbd(s: &Substep<'_>, history: &mut [History]) -> State {
     finish(o, &start, x0, v, p, history)
 }
 
+/// XPBD by Jacobi, from the BDF2 start (`inertial`; dt below is its step h, x its base x~):
+/// the constraints and update of `xpbd`, but an iteration updates every spring at once from the
+/// iterate before, and particle i moves by beta_i times the sum of its springs' moves,
+/// w_i n dlambda. Each particle keeps its own copy of its springs' multipliers, advanced by
+/// beta_i dlambda, so that its displacement stays w_i sum n lambda (the fixed point is
+/// `xpbd`'s, the converged solve).
+///
+/// beta_i bounds the step so that no sweep overshoots: linearised, a sweep multiplies the
+/// error by I - B W J^T G D^-1 J (G the springs' 1 + gamma, D their denominators
+/// (1 + gamma)(w_i + w_j) + alpha~), whose eigenvalues lie in [0, 1] when every particle's
+/// block row of the second term has norm at most one: beta_i w_i sum (1 + gamma) e / D <= 1
+/// with e = 2, or 1 when the other end is pinned. So beta_i = min(1, 1 / (w_i sum (1 + gamma)
+/// e / D)), a constant of the particle's springs and the substep. Where the springs are soft against the
+/// substep (alpha~ >> w: the sum is about 2 w h^2 sum k) beta is 1 and a sweep is plain Jacobi,
+/// whose one iteration is a consistent step like `xpbd`'s; where they are stiff beta tends to
+/// 1 / (springs), the mean of the springs' corrections, which is stable but converges slowly
+/// (the cloth is softer there than with the spring classes). An overshooting sweep (c > 1 in a
+/// mode) is what makes plain Jacobi blow up at large substeps. `sim.relaxation` does not apply:
+/// the bound sets the step (scaled by it, beta would cancel it wherever it acts).
+pub(crate) fn xpbd_jacobi(s: &Substep<'_>, history: &mut [History]) -> State {
+    let Substep { model: m, object: o, dt, x: x0, v } = *s;
+    let n = x0.len();
+    let start = inertial(m, o, dt, x0, v, history, false);
+    let (dt, x) = (start.h, &start.base[..]);
+    let mut p = start.y.clone();
+    let mut lambda = vec![[0.0f64; 12]; n];
+    let w = 1.0 / o.mass;
+    for _ in 0..m.iterations {
+        let mut next = p.clone();
+        for i in 0..n {
+            if o.pinned[i] {
+                continue;
+            }
+            let (mut load, mut moved_by, mut updates) = (0.0, DVec3::ZERO, [0.0f64; 12]);
+            for (s, k) in elastic_springs(o, i) {
+                let j = s.other;
+                let (alpha, gamma) = (1.0 / (k * dt * dt), o.damping / (k * dt));
+                let (w_j, ends) = if o.pinned[j] { (0.0, 1.0) } else { (w, 2.0) };
+                let scale = 1.0 / ((1.0 + gamma) * (w + w_j) + alpha);
+                load += (1.0 + gamma) * ends * scale;
+                let delta = p[i] - p[j];
+                let d = delta.length();
+                if d <= 0.0 {
+                    continue;
+                }
+                let normal = delta / d;
+                let moved = normal.dot((p[i] - x[i]) - (p[j] - x[j]));
+                let dl = scale * (rest_length(o, &s) - d - alpha * lambda[i][s.slot] - gamma * moved);
+                updates[s.slot] = dl;
+                moved_by += normal * (w * dl);
+            }
+            let beta = if w * load > 1.0 { 1.0 / (w * load) } else { 1.0 };
+            next[i] += moved_by * beta;
+            for (l, dl) in lambda[i].iter_mut().zip(updates) {
+                *l += beta * dl;
+            }
+        }
+        p = next;
+    }
+    finish(o, &start, x0, v, p, history)
+}
+
 /// Vertex Block Descent (Chen et al. 2024): from the BDF2 start (`inertial`: dt below is its
 /// step h, x its base x~), the incremental potential G(p) = |p - y|^2_M / (2 dt^2) + sum k/2 (|p_i - p_j| - L)^2, plus the dashpots as a
 /// quadratic damping potential (b / (2 dt)) (n.(dp_i - dp_j))^2, minimised by vertex-coloured

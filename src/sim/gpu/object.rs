@@ -497,7 +497,8 @@ pub(super) fn object_params(o: &ObjectModel, model: &SimModel) -> ObjectParams {
 }
 
 /// XPBD's per-spring-type constants for the substep's solve (`obj.xpbd` in the shaders), with
-/// its step dt = BDF2_STEP times the substep: alpha~ = 1 / (k dt^2), gamma = b / (k dt), and the relaxation over the denominator
+/// its step dt = BDF2_STEP times the substep: alpha~ = 1 / (k dt^2), gamma = b / (k dt), and
+/// the relaxation (1 for a method that takes none, `Method::relaxed`) over the denominator
 /// (1 + gamma)(w_i + w_j) + alpha~ with the other end free (w_j = w_i) and pinned (w_j = 0).
 /// All zero for k = 0 (the shader skips those springs).
 fn xpbd_constants(k: f64, o: &ObjectModel, model: &SimModel) -> [f64; 4] {
@@ -506,7 +507,8 @@ fn xpbd_constants(k: f64, o: &ObjectModel, model: &SimModel) -> [f64; 4] {
     }
     let dt = BDF2_STEP * model.dt();
     let (alpha, gamma, w) = (1.0 / (k * dt * dt), o.damping / (k * dt), 1.0 / o.mass);
-    let scale = |w_sum: f64| model.relaxation / ((1.0 + gamma) * w_sum + alpha);
+    let relaxation = if model.integrator.method().relaxed { model.relaxation } else { 1.0 };
+    let scale = |w_sum: f64| relaxation / ((1.0 + gamma) * w_sum + alpha);
     [alpha, gamma, scale(2.0 * w), scale(w)]
 }
 
