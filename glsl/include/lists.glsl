@@ -29,15 +29,22 @@ vec3 list_built(uint i) {
     return vec3(uintBitsToFloat(self_list[4u * i]), uintBitsToFloat(self_list[4u * i + 1u]),
                 uintBitsToFloat(self_list[4u * i + 2u]));
 }
-// Records where particle i's list of `len` entries was built; a full one (len > LIST_ENTRIES)
-// is built at infinity, so it counts as moved and is built again the next substep.
-void set_list_header(uint i, vec3 x, uint len) {
+// Particle i's header as a vec4: where its list was built (xyz) and its length (w, as bits).
+vec4 list_header(uint i) {
+    return vec4(list_built(i), uintBitsToFloat(self_list[4u * i + 3u]));
+}
+// Records where particle i's list of `len` entries was built and returns the header; a full
+// one (len > LIST_ENTRIES) is built at infinity, so it counts as moved and is built again the
+// next substep.
+vec4 set_list_header(uint i, vec3 x, uint len) {
     bool full = len > LIST_ENTRIES;
     vec3 at = full ? vec3(uintBitsToFloat(0x7F800000u)) : x;
+    uint kept = full ? 0u : len;
     self_list[4u * i] = floatBitsToUint(at.x);
     self_list[4u * i + 1u] = floatBitsToUint(at.y);
     self_list[4u * i + 2u] = floatBitsToUint(at.z);
-    self_list[4u * i + 3u] = full ? 0u : len;
+    self_list[4u * i + 3u] = kept;
+    return vec4(at, uintBitsToFloat(kept));
 }
 
 // Per stage (the hash built by dispatches of their own) the lists are used while they last:
