@@ -3,7 +3,7 @@
 #extension GL_EXT_control_flow_attributes : require
 #extension GL_KHR_shader_subgroup_basic : require
 #extension GL_KHR_shader_subgroup_vote : require
-// One iteration of XPBD by Jacobi with mass splitting (xpbd_jacobi_particle in
+// One iteration of XPBD by Jacobi with its step bound (xpbd_jacobi_particle in
 // solver_bodies.glsl), one thread per particle. Iterate slices alternate: iteration k reads
 // slice k % 2 (displacements p - x~ from the BDF2 base x~, see predict.comp) and writes
 // (k + 1) % 2; aux[3i .. 3i + 3) holds the multipliers of particle i's 12 springs (its own

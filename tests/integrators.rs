@@ -171,9 +171,9 @@ fn iterative_methods_converge_to_their_solve_on_a_stiff_cloth() {
 /// its 6.9e-5). XPBD by Jacobi at one iteration falls 16.1 and 5.8 times (1.6 times symplectic
 /// Euler's error at 256): each spring's dashpot sees its neighbours' prediction, not their
 /// update, a first-order term that shows once the rest is small (undamped it falls 12.0 and
-/// 17.4), so it is held to first order (4x) here. On implicit Euler, which they were built on before BDF2, (a) fell 1.2 to 2.5
-/// times and (b) was 40 times: its damping of the stretch modes, w^2 dt / 2 a second, is the
-/// error on a stiff, lightly damped cloth. The reference's own error (`check`, 1.1e-6) is
+/// 17.4), so it is held to first order (4x) here. On implicit Euler, which they were built on
+/// before BDF2, (a) fell 1.2 to 2.5 times and (b) was 40 times: its damping of the stretch
+/// modes, w^2 dt / 2 a second, is the error on a stiff, lightly damped cloth. The reference's own error (`check`, 1.1e-6) is
 /// checked to be below a tenth of the errors measured.
 #[test]
 fn iterative_methods_are_second_order_on_a_stiff_cloth() {

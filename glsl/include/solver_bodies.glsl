@@ -38,8 +38,9 @@ float xpbd_spring(int slot, vec3 xi, vec3 di, vec3 xj, vec3 dj, bool pin_i, bool
 // visit: each of its springs with a stiffness takes xpbd_spring's update from the iterate
 // before, and the particle moves by beta w n dlambda summed, beta = min(1, 1 / (w load)) with
 // load = sum (1 + gamma) e / D (e = 2, 1 with the other end pinned; D the denominator; the
-// host gives this method no relaxation): no sweep overshoots. lam[s / 4][s % 4], the particle's own copy of the
-// multiplier of spring s of SPRINGS, advances by beta dlambda. Returns the new displacement.
+// host gives this method no relaxation): no sweep overshoots. lam[s / 4][s % 4], the
+// particle's own copy of the multiplier of spring s of SPRINGS, advances by beta dlambda.
+// Returns the new displacement.
 vec3 xpbd_jacobi_particle(uvec2 cell, vec3 x, vec3 dx, inout vec4 lam[3]) {
     float w = 1.0 / obj.mass;
     float load = 0.0;

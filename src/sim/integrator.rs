@@ -111,8 +111,7 @@ pub struct Method {
     /// Colour of its curves in the accuracy chart (RGB).
     pub colour: (u8, u8, u8),
     /// The iterations a substep it is meant to run at (iterative methods; 1 for the others):
-    /// the count the tests' convergence rates, `bench`'s comparisons and the cost
-    /// targets use.
+    /// the count the tests' convergence rates and the cost targets (docs/ACCURACY.md) use.
     pub few_iterations: u32,
     /// `sim.relaxation` applies (scales each constraint update).
     pub relaxed: bool,

@@ -287,9 +287,9 @@ pub(crate) fn xpbd(s: &Substep<'_>, history: &mut [History]) -> State {
 /// (1 + gamma)(w_i + w_j) + alpha~), whose eigenvalues lie in [0, 1] when every particle's
 /// block row of the second term has norm at most one: beta_i w_i sum (1 + gamma) e / D <= 1
 /// with e = 2, or 1 when the other end is pinned. So beta_i = min(1, 1 / (w_i sum (1 + gamma)
-/// e / D)), a constant of the particle's springs and the substep. Where the springs are soft against the
-/// substep (alpha~ >> w: the sum is about 2 w h^2 sum k) beta is 1 and a sweep is plain Jacobi,
-/// whose one iteration is a consistent step like `xpbd`'s; where they are stiff beta tends to
+/// e / D)), a constant of the particle's springs and the substep. Where the springs are soft
+/// against the substep (alpha~ >> w: the sum is about 2 w h^2 sum k) beta is 1 and a sweep is
+/// plain Jacobi, whose one iteration is a consistent step like `xpbd`'s; where they are stiff beta tends to
 /// 1 / (springs), the mean of the springs' corrections, which is stable but converges slowly
 /// (the cloth is softer there than with the spring classes). An overshooting sweep (c > 1 in a
 /// mode) is what makes plain Jacobi blow up at large substeps. `sim.relaxation` does not apply:
