@@ -4,10 +4,12 @@
 #extension GL_KHR_shader_subgroup_basic : require
 #extension GL_KHR_shader_subgroup_vote : require
 // Constraint stage, one thread per particle: reads p_in (the physics output, and the contact
-// lists or the spatial hash built from it), writes p_out. The work itself is in
+// lists or the spatial hash built from it), writes p_out (which held the substep's start: its
+// own particle's is read first, for the colliders' friction). The work itself is in
 // constraints_body.glsl (shared with fused.comp). A pipeline with the self-collision contact
 // lists (LISTS) and one without, where their code is compiled out (measured: 3% of this
 // stage on a 256 x 256 cloth when it was a push constant).
+#define STATE_OUT_READ
 #include "bindings.glsl"
 #include "springs.glsl"
 
@@ -19,6 +21,7 @@ layout(push_constant) uniform Push {
 
 #define IN(i) p_in[i]
 #define OUT(i) p_out[i]
+#define START(i) p_out[i].pos.xyz
 #include "hash_count.glsl"
 #define CELL_INV hash_cell_inv(LISTS)
 void listed_candidates(uvec2 cell, vec3 x, float reach, inout vec3 correction, inout uint n_active);

@@ -235,6 +235,7 @@ void main() {
     // Each particle's contact list header (list_header), kept here from the dispatch's start
     // on (read from the buffer every substep, it cost 1.5 to 2%).
     vec4 header[MAX_SLOTS];
+    vec3 began[MAX_SLOTS];  // where each particle began the substep (the colliders' friction)
     [[unroll]] for (uint s = 0u; s < MAX_SLOTS; ++s) {
         uint k = particle_of_rank(t + s * THREADS);
         own[s] = k;
@@ -283,6 +284,7 @@ void main() {
     }
 
     for (uint sub = 0u; sub < g.substeps; ++sub) {
+        [[unroll]] for (uint s = 0u; s < MAX_SLOTS; ++s) began[s] = has(F_COLLIDERS) ? x[s] : vec3(0.0);
         // Physics: forces on the drifted positions (and, with dashpots, the neighbours'
         // velocities staged pass by pass), new state into registers.
         [[unroll]] for (uint chunk = 0u; chunk < MAX_SLOTS; ++chunk) {
@@ -526,7 +528,7 @@ void main() {
                 xs += correction;
                 vs += correction / g.dt;  // velocity follows the position correction
             }
-            collide(xs, vs, float(sub + 1u) * g.dt);
+            collide(xs, vs, began[s], float(sub + 1u) * g.dt);
             x[s] = xs;
             v[s] = vs;
         }

@@ -21,7 +21,12 @@ layout(std430, set = 0, binding = 2) buffer StateIn { Particle p_in[]; };
 layout(std430, set = 0, binding = 3) buffer StateOut { Particle p_out[]; };
 #else
 layout(std430, set = 0, binding = 2) readonly buffer StateIn { Particle p_in[]; };
+#ifdef STATE_OUT_READ
+// The constraint stage also reads where its own particle began the substep (collider friction).
+layout(std430, set = 0, binding = 3) buffer StateOut { Particle p_out[]; };
+#else
 layout(std430, set = 0, binding = 3) writeonly buffer StateOut { Particle p_out[]; };
+#endif
 #endif
 layout(std430, set = 0, binding = 4) restrict readonly buffer ColliderBuf { Collider colliders[]; };
 layout(std430, set = 0, binding = 5) writeonly buffer SurfaceBuf { SurfaceVertex surface[]; };

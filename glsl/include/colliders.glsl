@@ -67,13 +67,22 @@ float collider_distance(Collider c, vec3 x, out vec3 n) {
     return 1e30;  // a type compiled out
 }
 
-// Colliders: project out to the object's margin from each surface, remove the approaching
-// normal velocity and scale the tangential velocity by (1 - friction) (the collider's own,
-// else the object's), both relative to the collider's velocity. A record holds where the
-// collider is at the frame's start and its velocity over the frame (extra.yzw): `since` is
-// the time from the frame's start to the end of this substep, so the collider is `since`
-// times its velocity further on (the particle is tested `since` times it back).
-void collide(inout vec3 x, inout vec3 v, float since) {
+// Colliders: project out to the object's margin from each surface and remove the approaching
+// normal velocity, both relative to the collider's velocity; then Coulomb friction with the
+// collider's coefficient mu (its own, else the object's): the contact's normal impulse per unit
+// mass this substep is jn = max(approaching speed, depth / dt) (what the projection removed:
+// the speed, or for an overlap the collider made by moving, the depth over the substep), and
+// the tangential impulse is at most mu jn. Static when the particle's tangential motion
+// relative to the collider over the substep (from `start`, where it began the substep) needs
+// no more than that: the particle is put back where it began, tangentially, at the collider's
+// tangential velocity. Kinetic otherwise: its tangential speed loses mu jn and its position mu
+// jn dt. So the friction force is mu times the normal force whatever the substep, and a
+// particle on a slope sticks below the friction angle (tan a < mu).
+// A record holds where the collider is at the frame's start and its velocity over the frame
+// (extra.yzw): `since` is the time from the frame's start to the end of this substep, so the
+// collider is `since` times its velocity further on (the particle is tested `since` times it
+// back).
+void collide(inout vec3 x, inout vec3 v, vec3 start, float since) {
     if (!has(F_COLLIDERS)) return;
     for (uint k = 0u; k < g.collider_count; ++k) {
         Collider c = colliders[k];
@@ -81,11 +90,25 @@ void collide(inout vec3 x, inout vec3 v, float since) {
         vec3 n;
         float d = collider_distance(c, x - velocity * since, n);
         if (d < obj.margin) {
-            x += n * (obj.margin - d);
-            float friction = c.extra.x >= 0.0 ? c.extra.x : obj.friction;
+            float depth = obj.margin - d;
+            x += n * depth;
+            float mu = c.extra.x >= 0.0 ? c.extra.x : obj.friction;
             vec3 relative = v - velocity;
             float vn = dot(relative, n);
-            v = velocity + (relative - vn * n) * (1.0 - friction) + max(vn, 0.0) * n;
+            float jn = max(-vn, depth / g.dt);
+            vec3 vt = relative - vn * n;
+            vec3 moved = x - start - velocity * g.dt;  // over the substep, relative
+            vec3 slip = moved - dot(moved, n) * n;
+            float vt_len = length(vt);
+            if (vt_len <= mu * jn) {
+                x -= slip;
+                vt = vec3(0.0);
+            } else {
+                float slip_len = length(slip);
+                x -= slip * min(mu * jn * g.dt / max(slip_len, 1e-30), 1.0);
+                vt *= 1.0 - mu * jn / vt_len;
+            }
+            v = velocity + vt + max(vn, 0.0) * n;
         }
     }
 }

@@ -9,7 +9,8 @@
 // spatial hash's buckets are visited by `visit_bucket`: here the global hash (starts[],
 // sorted[]); fused.comp (FUSED_SHARED) defines its own over shared memory, and HASH_MASK.
 // Features the scene does not use are compiled out (features.glsl).
-// Include after bindings.glsl and springs.glsl, with IN and OUT (or CPOS and CPINNED) defined.
+// Include after bindings.glsl and springs.glsl, with IN, OUT and START (where particle i began
+// the substep) defined, or CPOS and CPINNED.
 #ifndef MSD_CONSTRAINTS_BODY_GLSL
 #define MSD_CONSTRAINTS_BODY_GLSL
 #include "features.glsl"
@@ -197,6 +198,7 @@ void constraints_particle(uvec2 cell, uint substep, bool lists) {
         OUT(i) = Particle(p.pos, vec4(0.0));
         return;
     }
+    vec3 start = has(F_COLLIDERS) ? START(i) : vec3(0.0);
     vec3 x = p.pos.xyz;
     vec3 v = p.vel.xyz;
     bool listed = has(F_SELF) && self_hashed();
@@ -208,7 +210,7 @@ void constraints_particle(uvec2 cell, uint substep, bool lists) {
     if (list_build) set_list_header(i, x, list_len);
     x += correction;
     v += correction / g.dt;  // velocity follows the position correction
-    collide(x, v, float(substep + 1u) * g.dt);
+    collide(x, v, start, float(substep + 1u) * g.dt);
     OUT(i) = Particle(vec4(x, 0.0), vec4(v, 0.0));
 }
 #endif

@@ -9,7 +9,7 @@ mod validate;
 
 pub use build::{colliders, shapes, to_model};
 pub use load::{apply_override, load, load_runnable, parse, save};
-pub use validate::check as validate;
+pub use validate::{check as validate, MAX_FRICTION};
 
 use serde::{Deserialize, Serialize};
 
@@ -248,7 +248,7 @@ pub struct Ground {
     /// [m]
     #[serde(default)]
     pub height: f64,
-    /// 0..1, fraction of tangential velocity removed on contact (default: each object's).
+    /// Coulomb friction coefficient mu on contact (default: each object's).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub friction: Option<f64>,
 }
@@ -375,7 +375,7 @@ pub struct Cloth {
     /// Maximum elongation of structural and shear springs, as a fraction of rest length.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub stretch_limit: Option<f64>,
-    /// Fraction of tangential velocity removed on sphere contact, 0..1.
+    /// Coulomb friction coefficient mu against colliders (0: ice; a cloth on wood about 0.4).
     #[serde(default)]
     pub friction: f64,
     /// Distance kept from sphere surfaces [m].
@@ -439,6 +439,7 @@ pub struct Rope {
     pub drag: f64,
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub stretch_limit: Option<f64>,
+    /// Coulomb friction coefficient mu against colliders.
     #[serde(default)]
     pub friction: f64,
     /// Tube radius [m]; also the distance kept from sphere surfaces.

@@ -69,6 +69,14 @@ fn non_negative(key: &str, v: f64, max: f64, unit: &str) -> Check {
     }
 }
 
+/// The largest friction coefficient accepted (rubber on dry concrete is about 1).
+pub const MAX_FRICTION: f64 = 10.0;
+
+/// A Coulomb friction coefficient mu, 0 <= mu <= MAX_FRICTION.
+fn friction(key: &str, v: f64) -> Check {
+    non_negative(key, v, MAX_FRICTION, "Coulomb friction coefficient mu")
+}
+
 fn unit_interval(key: &str, v: f64) -> Check {
     if (0.0..=1.0).contains(&v) {
         Ok(())
@@ -146,7 +154,7 @@ pub fn check(scene: &Scene) -> Check {
     if let Some(g) = &scene.ground {
         finite("ground.height", g.height, MAX_COORDINATE, "m")?;
         if let Some(f) = g.friction {
-            unit_interval("ground.friction", f)?;
+            friction("ground.friction", f)?;
         }
     }
     for (i, b) in scene.boxes.iter().enumerate() {
@@ -249,7 +257,7 @@ fn check_cloth(at: &str, c: &Cloth) -> Check {
     if let Some(l) = c.stretch_limit {
         non_negative(&format!("{at}.stretch_limit"), l, 1e3, "fraction of rest length")?;
     }
-    unit_interval(&format!("{at}.friction"), c.friction)?;
+    friction(&format!("{at}.friction"), c.friction)?;
     non_negative(&format!("{at}.collision_margin"), c.collision_margin, LENGTH.1, "m")?;
     if let Some(d) = c.self_collision_distance {
         positive(&format!("{at}.self_collision_distance"), d, LENGTH, "m")?;
@@ -285,7 +293,7 @@ fn check_rope(at: &str, r: &Rope) -> Check {
     if let Some(l) = r.stretch_limit {
         non_negative(&format!("{at}.stretch_limit"), l, 1e3, "fraction of rest length")?;
     }
-    unit_interval(&format!("{at}.friction"), r.friction)?;
+    friction(&format!("{at}.friction"), r.friction)?;
     positive(&format!("{at}.radius"), r.radius, LENGTH, "m")?;
     if let Some(w) = &r.ring_weights {
         if w.len() != 8 || w.iter().flatten().any(|x| !x.is_finite()) {

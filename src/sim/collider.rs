@@ -3,7 +3,8 @@
 //! signed distance (the CPU twin of the GLSL `collider_distance`), and its GPU record. The
 //! contact response is shared by every type: a particle closer than its object's margin to a
 //! collider's surface is moved out along the surface normal to the margin, its approaching
-//! normal velocity is removed and its tangential velocity scaled by (1 - friction).
+//! normal velocity is removed, and Coulomb friction (`ColliderModel::respond`) bounds its
+//! tangential impulse by mu times the normal one, sticking within the cone.
 
 use super::gpu_types::{FEATURE_BOX, FEATURE_CAPSULE, FEATURE_GROUND, FEATURE_SPHERES};
 use glam::{DQuat, DVec3};
@@ -163,24 +164,42 @@ impl ColliderModel {
     }
 
     /// Moves a particle at `x` with velocity `v` out of the collider, offset by `shift` from
-    /// its placement and moving at `velocity`, to `margin` from its surface; the particle's
-    /// velocity relative to the collider loses its approaching normal part and (1 - friction)
-    /// of its tangential part (the CPU twin of `collide` in colliders.glsl).
+    /// its placement and moving at `velocity`, to `margin` from its surface, removes its
+    /// approaching normal velocity (relative to the collider), then applies Coulomb friction
+    /// with coefficient mu (the collider's own, else `object_friction`): the normal impulse per
+    /// unit mass of the substep `dt` is jn = max(approaching speed, depth / dt), and the
+    /// tangential impulse at most mu jn. Static when the particle's tangential motion relative
+    /// to the collider since `start` (where it began the substep) is within mu jn dt: it goes
+    /// back there tangentially and moves with the collider; kinetic otherwise: its tangential
+    /// speed loses mu jn and its position mu jn dt. The CPU twin of `collide` in colliders.glsl.
     pub fn respond(
         &self,
-        margin: f64,
-        object_friction: f64,
+        (margin, object_friction): (f64, f64),
         (shift, velocity): (DVec3, DVec3),
+        (start, dt): (DVec3, f64),
         x: &mut DVec3,
         v: &mut DVec3,
     ) {
         let (d, n) = self.shape.distance(*x - shift);
         if d < margin {
-            *x += n * (margin - d);
-            let friction = self.friction.unwrap_or(object_friction);
+            let depth = margin - d;
+            *x += n * depth;
+            let mu = self.friction.unwrap_or(object_friction);
             let relative = *v - velocity;
             let vn = relative.dot(n);
-            *v = velocity + (relative - n * vn) * (1.0 - friction) + n * vn.max(0.0);
+            let jn = (-vn).max(depth / dt);
+            let mut vt = relative - n * vn;
+            let moved = *x - start - velocity * dt;
+            let slip = moved - n * moved.dot(n);
+            let vt_len = vt.length();
+            if vt_len <= mu * jn {
+                *x -= slip;
+                vt = DVec3::ZERO;
+            } else {
+                *x -= slip * (mu * jn * dt / slip.length().max(1e-30)).min(1.0);
+                vt *= 1.0 - mu * jn / vt_len;
+            }
+            *v = velocity + vt + n * vn.max(0.0);
         }
     }
 }
@@ -418,7 +437,9 @@ mod tests {
         }
     }
 
-    /// The response leaves the particle exactly at the margin with no approaching velocity.
+    /// The response leaves the particle exactly at the margin with no approaching velocity, and
+    /// its friction is Coulomb's: a tangential speed change of mu jn where it slides, none left
+    /// where the cone holds it.
     #[test]
     fn response_projects_to_the_margin() {
         let c = ColliderModel {
@@ -426,18 +447,24 @@ mod tests {
             friction: Some(0.25),
             motion: Motion::Fixed,
         };
-        let mut x = DVec3::new(0.5, 0.1, 0.0);
+        let dt = 0.01;
+        // Arriving at 2 m/s down and 1 m/s along: jn = 2 m/s, so friction takes 0.5 m/s.
+        let mut x = DVec3::new(0.5, 0.2, 0.0);
+        let start = x - DVec3::new(1.0, -2.0, 0.0) * dt;
         let mut v = DVec3::new(1.0, -2.0, 0.0);
-        c.respond(0.01, 0.9, (DVec3::ZERO, DVec3::ZERO), &mut x, &mut v);
+        c.respond((0.01, 0.9), (DVec3::ZERO, DVec3::ZERO), (start, dt), &mut x, &mut v);
         assert!((c.shape.distance(x).0 - 0.01).abs() < 1e-12);
-        assert!(v.y.abs() < 1e-12 && (v.x - 0.75).abs() < 1e-12, "{v}");
-        // A collider moving up at 2 m/s: the particle leaves with at least its normal velocity,
-        // and friction pulls its tangential velocity towards the collider's (here 0.5 m/s in x).
-        let mut x = DVec3::new(0.5, 0.1, 0.0);
+        assert!(v.y.abs() < 1e-12 && (v.x - 0.5).abs() < 1e-12, "{v}");
+        assert!((x.x - (start.x + 0.5 * dt)).abs() < 1e-12, "slid by the kinetic share: {x}");
+        // A collider moving up at 2 m/s and along at 0.5: the particle leaves with its normal
+        // velocity, and the normal impulse (4 m/s) holds it: it moves along with the collider.
+        let mut x = DVec3::new(0.5, 0.2, 0.0);
+        let start = x - DVec3::new(1.0, -2.0, 0.0) * dt;
         let mut v = DVec3::new(1.0, -2.0, 0.0);
         let moving = (DVec3::ZERO, DVec3::new(0.5, 2.0, 0.0));
-        c.respond(0.01, 0.9, moving, &mut x, &mut v);
-        assert!((v.y - 2.0).abs() < 1e-12 && (v.x - (0.5 + 0.5 * 0.75)).abs() < 1e-12, "{v}");
+        c.respond((0.01, 0.9), moving, (start, dt), &mut x, &mut v);
+        assert!((v.y - 2.0).abs() < 1e-12 && (v.x - 0.5).abs() < 1e-12, "{v}");
+        assert!((x.x - (start.x + 0.5 * dt)).abs() < 1e-12, "stuck to the collider: {x}");
     }
 
     /// Keyframes interpolate linearly and hold at the ends; a frame's motion is its chord.

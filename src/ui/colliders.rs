@@ -4,7 +4,7 @@
 
 use super::editor::Selection;
 use super::widgets::{check, drag, drag3, optional};
-use crate::scene::{BoxCollider, Capsule, Ground, Motion, Scene, Sphere};
+use crate::scene::{BoxCollider, Capsule, Ground, Motion, Scene, Sphere, MAX_FRICTION};
 use imgui::Ui;
 
 /// The list entries of the scene's colliders, with what selecting each selects.
@@ -80,7 +80,7 @@ pub fn panel(ui: &Ui, scene: &mut Scene, selected: Selection) -> bool {
             Some(g) => {
                 drag(ui, "height [m]##ground", &mut g.height, 0.01, -1e3, 1e3);
                 // Unticked: each object's own friction applies.
-                optional(ui, "friction (own)##ground", &mut g.friction, 0.5, 0.01, 1.0);
+                optional(ui, "friction (own)##ground", &mut g.friction, 0.5, 0.01, MAX_FRICTION);
             }
             None => return false,
         },

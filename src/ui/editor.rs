@@ -3,7 +3,7 @@
 
 use super::colliders;
 use super::widgets::{check, choice, color, drag, drag3, int, optional, tip};
-use crate::scene::{Cloth, ClothPins, Orientation, PerSpring, Rope, RopePins, Scene};
+use crate::scene::{Cloth, ClothPins, Orientation, PerSpring, Rope, RopePins, Scene, MAX_FRICTION};
 use crate::sim::gpu::FrameTiming;
 use imgui::{Condition, TreeNodeFlags, Ui};
 use std::path::PathBuf;
@@ -344,7 +344,7 @@ fn cloth_panel(ui: &Ui, c: &mut Cloth) {
     drag(ui, "spring damping [N s/m]", &mut c.damping, 0.0005, 0.0, 100.0);
     drag(ui, "drag [N s/m]", &mut c.drag, 0.0005, 0.0, 100.0);
     optional(ui, "stretch limit", &mut c.stretch_limit, 0.1, 0.005, 10.0);
-    drag(ui, "friction", &mut c.friction, 0.01, 0.0, 1.0);
+    drag(ui, "friction", &mut c.friction, 0.01, 0.0, MAX_FRICTION);
     drag(ui, "collision margin [m]", &mut c.collision_margin, 0.001, 0.0, 10.0);
     check(ui, "self-collision", &mut c.self_collision);
     if c.self_collision {
@@ -368,7 +368,7 @@ fn rope_panel(ui: &Ui, r: &mut Rope) {
     drag(ui, "spring damping [N s/m]", &mut r.damping, 0.0005, 0.0, 100.0);
     drag(ui, "drag [N s/m]", &mut r.drag, 0.0005, 0.0, 100.0);
     optional(ui, "stretch limit", &mut r.stretch_limit, 0.05, 0.005, 10.0);
-    drag(ui, "friction", &mut r.friction, 0.01, 0.0, 1.0);
+    drag(ui, "friction", &mut r.friction, 0.01, 0.0, MAX_FRICTION);
     drag(ui, "radius [m]", &mut r.radius, 0.001, 0.001, 10.0);
     check(ui, "self-collision", &mut r.self_collision);
     if r.self_collision {

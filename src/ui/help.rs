@@ -50,7 +50,7 @@ const HELP: &[(&str, &str)] = &[
     ("spring damping [N s/m]", "Dashpot along each spring [N s/m]: damps stretching and bending oscillations."),
     ("drag [N s/m]", "Air drag on each particle, force = -drag x velocity [N s/m]."),
     ("stretch limit", "Springs may not stretch more than this fraction of their rest length (ticked: enforced every substep)."),
-    ("friction", "Fraction of the sliding velocity removed on contact with a collider (0: ice, 1: sticks)."),
+    ("friction", "Coulomb friction coefficient mu against colliders: sticks on slopes flatter than atan(mu), slides on steeper ones (0: ice, 0.4: cloth on wood, 1: rubber)."),
     ("collision margin [m]", "Distance kept from colliders, and the cloth's contact radius against other objects [m]."),
     ("self-collision", "Particles of this object closer than the self-collision distance push apart (grid neighbours excepted)."),
     ("self-collision distance [m]", "Distance below which two particles of the object push apart (ticked: set here; else from the spacing or radius) [m]."),

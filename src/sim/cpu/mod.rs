@@ -13,7 +13,8 @@
 //!    that one is pinned). The correction is the mean of these (Jacobi averaging);
 //!    x += correction, v += correction / dt. Then, collider by collider (`sim::collider`): a
 //!    particle nearer than its margin to the surface is moved out along the surface normal to the
-//!    margin, its approaching normal velocity is removed and its tangential velocity scaled by (1 - friction).
+//!    margin, its approaching normal velocity is removed, and Coulomb friction bounds the
+//!    tangential impulse by mu times the normal one (`ColliderModel::respond`).
 //!
 //! After the frame's last substep, cloth normals (angle-weighted over the four structural edges)
 //! and rope tube vertices are computed from the final positions.
@@ -256,7 +257,7 @@ impl CpuSim {
                     inter_object(o, px, other, &advanced[b].0, &mut contact);
                 }
             }
-            let (cx, cv) = constraints(m, o, self.dt, &motions, &contact, px, pv);
+            let (cx, cv) = constraints(m, o, self.dt, &motions, &contact, &state.x, (px, pv));
             state.x = cx;
             state.v = cv;
         }
@@ -289,16 +290,17 @@ fn inter_object(
     }
 }
 
-/// The constraint stage of object `o`; `motions` holds each collider's offset and velocity,
-/// `contact` each particle's summed inter-object corrections and their count.
+/// The constraint stage of object `o` on the physics result `(x, v)`; `motions` holds each
+/// collider's offset and velocity, `contact` each particle's summed inter-object corrections and
+/// their count, `start` where each particle began the substep (the colliders' friction).
 fn constraints(
     m: &SimModel,
     o: &ObjectModel,
     dt: f64,
     motions: &[(DVec3, DVec3)],
     contact: &[(DVec3, u32)],
-    x: &[DVec3],
-    v: &[DVec3],
+    start: &[DVec3],
+    (x, v): (&[DVec3], &[DVec3]),
 ) -> (Vec<DVec3>, Vec<DVec3>) {
     let cols = o.dims[0] as usize;
     let mut nx = x.to_vec();
@@ -348,7 +350,7 @@ fn constraints(
         let mut p = x[i] + correction;
         let mut vel = v[i] + correction / dt;
         for (c, &motion) in m.colliders.iter().zip(motions) {
-            c.respond(o.margin, o.friction, motion, &mut p, &mut vel);
+            c.respond((o.margin, o.friction), motion, (start[i], dt), &mut p, &mut vel);
         }
         nx[i] = p;
         nv[i] = vel;
