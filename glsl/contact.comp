@@ -1,10 +1,16 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
-// Inter-object contact, 3 of 3: each particle of this object looks up the scene's hash for
-// particles of other objects nearer than the sum of the two objects' contact radii and sums,
-// for each, its share of the overlap away from it (the other's mass over both; all of it when
-// the other is pinned) and their count into contact[] (every particle written: the constraint
-// stage takes them into its Jacobi mean). The CPU twin is sim::cpu::inter_object.
+// Inter-object contact, 3 of 3, in two passes over this object's particles, each looking up
+// the scene's hash for particles of other objects nearer than the sum of the two objects'
+// contact radii. Pass 0 counts them (touches[], per scene particle). Pass 1 sums, for each
+// pair (i, j), the overlap C = reach - d split by inverse mass (i moves C w_i / (w_i + w_j)
+// away from j; all of C when j is pinned), scaled by 1 / max(n_i, n_j), the larger of the two
+// particles' counts: the same for both ends of a pair, so every pair's corrections are equal
+// and opposite in momentum (m_i dx_i = -m_j dx_j) and contact between objects conserves
+// linear momentum, while a particle touching n others moves at most by the largest overlap.
+// Pass 1 writes every particle's sum (xyz) and whether it touches anything (w) into
+// contact[]; the constraint stage adds it to its own correction. The CPU twin is
+// sim::cpu::inter_object.
 #include "layout.glsl"
 #include "contact_common.glsl"
 
@@ -23,10 +29,12 @@ void main() {
     uint i = gl_GlobalInvocationID.x;
     if (i >= particle_count()) return;
     vec4 self_entry = objects[which.object];
+    bool sum = which.pass == 1u;
+    uint mine = sum ? touches[first_index() + i] : 0u;
     vec3 correction = vec3(0.0);
     uint n = 0u;
     Particle p = p_in[i];
-    if (p.pos.w <= 0.5) {
+    if (p.pos.w <= 0.5 || !sum) {
         vec3 x = p.pos.xyz;
         // Cells are at least twice the largest reach (object.rs), so every particle within
         // reach lies in the 2 x 2 x 2 block of cells nearest to x. Buckets visited once.
@@ -42,19 +50,27 @@ void main() {
             for (uint at = BUCKET_START(h, table.hash_mask); at < end; ++at) {
                 vec4 e = sorted[at];
                 uint bits = floatBitsToUint(e.w);
-                uint other = owner(bits & ~PINNED_BIT);
+                uint k = bits & ~PINNED_BIT;
+                uint other = owner(k);
                 if (other == which.object) continue;
                 vec4 them = objects[other];
                 float reach = self_entry.z + them.z;
                 vec3 to_j = e.xyz - x;
                 float d = length(to_j);
                 if (d < reach && d > 0.0) {
-                    float w = (bits & PINNED_BIT) != 0u ? 1.0 : them.w / (self_entry.w + them.w);
-                    correction += (to_j / d) * ((d - reach) * w);
                     n += 1u;
+                    if (sum) {
+                        float w = (bits & PINNED_BIT) != 0u ? 1.0 : them.w / (self_entry.w + them.w);
+                        float split = 1.0 / float(max(mine, touches[k]));
+                        correction += (to_j / d) * ((d - reach) * w * split);
+                    }
                 }
             }
         }
     }
-    contact[i] = vec4(correction, float(n));
+    if (sum) {
+        contact[i] = vec4(correction, n > 0u ? 1.0 : 0.0);
+    } else {
+        touches[first_index() + i] = n;
+    }
 }

@@ -1,8 +1,9 @@
 // The constraint stage for one particle, Jacobi: every correction is computed from the physics
 // output: the stretch limit on structural and shear springs, self-collision (spatial hash or
-// brute force), then the colliders with friction, and the velocity update. The corrections
-// of all active constraints of a particle are averaged (Jacobi averaging): summing them, as
-// sequential Gauss-Seidel would, overshoots when several act at once and diverges.
+// brute force), contact with other objects, then the colliders with friction, and the
+// velocity update. The corrections of the stretch limit and self-collision are averaged
+// (Jacobi averaging): summing them, as sequential Gauss-Seidel would, overshoots when several
+// act at once and diverges. Contact between objects comes split already (contact.comp).
 // `constraint_correction` and `collide` (colliders.glsl) are shared by constraints.comp (through
 // `constraints_particle`, which reads IN(i) and writes OUT(i)) and fused.comp. Other
 // particles are read through CPOS(j) (position) and CPINNED(j); by default from IN(j). The
@@ -135,14 +136,11 @@ vec3 constraint_correction(uvec2 cell, vec3 x) {
         }
     }
 
-    // Inter-object contact: what contact.comp summed from the other objects' particles.
-    if (has(F_CONTACT)) {
-        vec4 c = contact[cell.x + cell.y * obj.dims.x];
-        correction += c.xyz;
-        n_active += uint(c.w);
-    }
-
     if (n_active > 1u) correction /= float(n_active);
+
+    // Inter-object contact: what contact.comp summed from the other objects' particles, added
+    // whole (each pair's share is already split so that the pair conserves momentum).
+    if (has(F_CONTACT)) correction += contact[cell.x + cell.y * obj.dims.x].xyz;
     return correction;
 }
 

@@ -4,8 +4,8 @@
 // contact_scatter.comp writes positions by bucket, and contact.comp queries it for each
 // object. Their binding set is each object's own (binding 1: its parameters, 2: its physics
 // output, 14: its contact sums) with the scene's hash in place of the object's (6..10), the
-// hash's own parameters (12: hash_mask, cell_inv of the scene's table) and the object table
-// (13). The CPU twin is sim::cpu::inter_object.
+// hash's own parameters (12: hash_mask, cell_inv of the scene's table), the object table (13)
+// and each scene particle's count of touches (3). The CPU twin is sim::cpu::inter_object.
 // Include after layout.glsl.
 #ifndef MSD_CONTACT_COMMON_GLSL
 #define MSD_CONTACT_COMMON_GLSL
@@ -21,9 +21,12 @@ layout(std430, set = 0, binding = 12) restrict readonly buffer SceneHash { Objec
 // Per object: x first scene index, y particle count (as float bits), z contact radius, w mass.
 layout(std430, set = 0, binding = 13) restrict readonly buffer Objects { vec4 objects[]; };
 layout(std430, set = 0, binding = 14) buffer ContactBuf { vec4 contact[]; };
+// Per scene particle: how many particles of other objects it touches (contact.comp's first pass).
+layout(std430, set = 0, binding = 3) buffer SceneTouches { uint touches[]; };
 
 layout(push_constant) uniform Which {
     uint object;  // this object's index in `objects`
+    uint pass;    // contact.comp: 0 counts each particle's touches, 1 sums the corrections
 } which;
 
 const uint PINNED_BIT = 0x80000000u;

@@ -10,8 +10,10 @@
 //!    and shear spring stretched past (1 + limit) L, half the excess towards the neighbour (all of
 //!    it when the neighbour is pinned), and (b) for every particle nearer than the self-collision
 //!    distance s (except pairs nearer than s at rest), half the overlap away from it (all of it when
-//!    that one is pinned). The correction is the mean of these (Jacobi averaging);
-//!    x += correction, v += correction / dt. Then, collider by collider (`sim::collider`): a
+//!    that one is pinned). The correction is the mean of these (Jacobi averaging), plus (c) for
+//!    every particle of another object nearer than the two contact radii, its share of the
+//!    overlap by inverse mass over the larger of the two particles' contact counts (equal and
+//!    opposite momenta for both ends); x += correction, v += correction / dt. Then, collider by collider (`sim::collider`): a
 //!    particle nearer than its margin to the surface is moved out along the surface normal to the
 //!    margin, its approaching normal velocity is removed, and Coulomb friction bounds the
 //!    tangential impulse by mu times the normal one (`ColliderModel::respond`).
@@ -249,14 +251,15 @@ impl CpuSim {
                 integrators::advance(&s, &mut state.history)
             })
             .collect();
+        let positions: Vec<&[DVec3]> = advanced.iter().map(|(x, _)| x.as_slice()).collect();
+        let touches = if m.inter_object_contact() { inter_object_touches(m, &positions) } else { Vec::new() };
         for (a, (o, state)) in m.objects.iter().zip(&mut self.objects).enumerate() {
             let (px, pv) = &advanced[a];
-            let mut contact = vec![(DVec3::ZERO, 0u32); px.len()];
-            if m.inter_object_contact() {
-                for (b, other) in m.objects.iter().enumerate().filter(|&(b, _)| b != a) {
-                    inter_object(o, px, other, &advanced[b].0, &mut contact);
-                }
-            }
+            let contact = if m.inter_object_contact() {
+                inter_object(m, a, &positions, &touches)
+            } else {
+                vec![DVec3::ZERO; px.len()]
+            };
             let (cx, cv) = constraints(m, o, self.dt, &motions, &contact, &state.x, (px, pv));
             state.x = cx;
             state.v = cv;
@@ -264,41 +267,70 @@ impl CpuSim {
     }
 }
 
-/// Contacts of object `o` (positions `x`) with object `other` (positions `y`): for every pair
-/// nearer than the sum of their contact radii, the particle of `o` is moved away by its share
-/// of the overlap (the other's mass over both, all of it when the other is pinned), summed into
-/// `contact` with the count of pairs (they join the constraint stage's Jacobi mean).
-fn inter_object(
-    o: &ObjectModel,
-    x: &[DVec3],
-    other: &ObjectModel,
-    y: &[DVec3],
-    contact: &mut [(DVec3, u32)],
+/// Calls `f(i, b, j, delta, reach)` for every pair of particle i of object `a` and particle j
+/// of another object b nearer than the sum of their contact radii (`delta` from i to j, not 0).
+fn touching_pairs(
+    m: &SimModel,
+    a: usize,
+    x: &[&[DVec3]],
+    mut f: impl FnMut(usize, usize, usize, DVec3, f64),
 ) {
-    let reach = o.contact_radius() + other.contact_radius();
-    let share = other.mass / (o.mass + other.mass);
-    for (i, xi) in x.iter().enumerate() {
-        for (j, yj) in y.iter().enumerate() {
-            let delta = *yj - *xi;
-            let d = delta.length();
-            if d > 0.0 && d < reach {
-                let w = if other.pinned[j] { 1.0 } else { share };
-                contact[i].0 += delta / d * (d - reach) * w;
-                contact[i].1 += 1;
+    let o = &m.objects[a];
+    for (b, other) in m.objects.iter().enumerate().filter(|&(b, _)| b != a) {
+        let reach = o.contact_radius() + other.contact_radius();
+        for (i, xi) in x[a].iter().enumerate() {
+            for (j, yj) in x[b].iter().enumerate() {
+                let delta = *yj - *xi;
+                let d = delta.length();
+                if d > 0.0 && d < reach {
+                    f(i, b, j, delta, reach);
+                }
             }
         }
     }
 }
 
+/// How many particles of other objects each particle of each object touches.
+fn inter_object_touches(m: &SimModel, x: &[&[DVec3]]) -> Vec<Vec<u32>> {
+    (0..m.objects.len())
+        .map(|a| {
+            let mut n = vec![0u32; x[a].len()];
+            touching_pairs(m, a, x, |i, _, _, _, _| n[i] += 1);
+            n
+        })
+        .collect()
+}
+
+/// Contacts of object `a` with the other objects (positions `x`, each particle's count of
+/// touches `touches`): for every pair (i, j) nearer than the sum of their contact radii, i is
+/// moved away by its share of the overlap (the other's mass over both, all of it when the
+/// other is pinned) over max(n_i, n_j), the larger count of the two, so that both ends of a
+/// pair move by equal and opposite momenta. Pinned particles are not moved.
+fn inter_object(m: &SimModel, a: usize, x: &[&[DVec3]], touches: &[Vec<u32>]) -> Vec<DVec3> {
+    let o = &m.objects[a];
+    let mut contact = vec![DVec3::ZERO; x[a].len()];
+    touching_pairs(m, a, x, |i, b, j, delta, reach| {
+        let other = &m.objects[b];
+        if o.pinned[i] {
+            return;
+        }
+        let d = delta.length();
+        let w = if other.pinned[j] { 1.0 } else { other.mass / (o.mass + other.mass) };
+        let split = touches[a][i].max(touches[b][j]) as f64;
+        contact[i] += delta / d * (d - reach) * w / split;
+    });
+    contact
+}
+
 /// The constraint stage of object `o` on the physics result `(x, v)`; `motions` holds each
-/// collider's offset and velocity, `contact` each particle's summed inter-object corrections and
-/// their count, `start` where each particle began the substep (the colliders' friction).
+/// collider's offset and velocity, `contact` each particle's summed inter-object corrections,
+/// `start` where each particle began the substep (the colliders' friction).
 fn constraints(
     m: &SimModel,
     o: &ObjectModel,
     dt: f64,
     motions: &[(DVec3, DVec3)],
-    contact: &[(DVec3, u32)],
+    contact: &[DVec3],
     start: &[DVec3],
     (x, v): (&[DVec3], &[DVec3]),
 ) -> (Vec<DVec3>, Vec<DVec3>) {
@@ -342,11 +374,10 @@ fn constraints(
                 }
             }
         }
-        correction += contact[i].0;
-        active += contact[i].1;
         if active > 1 {
             correction /= active as f64;
         }
+        correction += contact[i];
         let mut p = x[i] + correction;
         let mut vel = v[i] + correction / dt;
         for (c, &motion) in m.colliders.iter().zip(motions) {

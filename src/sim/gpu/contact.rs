@@ -27,6 +27,8 @@ pub(super) struct SceneContact {
     starts: Buffer,
     sorted: Buffer,
     block_sums: Buffer,
+    /// Per scene particle: how many particles of other objects it touches (binding 3).
+    touches: Buffer,
     buckets: u32,
     /// The scan's set, and each object's set (the object's own buffers at 1, 2 and 14; contact
     /// runs per stage, so no contact list at 15).
@@ -90,8 +92,9 @@ impl SceneContact {
             ("starts", 4 * (buckets + 1), storage, gpu_only),
             ("sorted", 16 * total, storage, gpu_only),
             ("block_sums", 4 * buckets.div_ceil(SCAN_BLOCK), storage, gpu_only),
+            ("touches", 4 * total, storage, gpu_only),
         ];
-        let [table, objects, cell_rank, counts, starts, sorted, block_sums] =
+        let [table, objects, cell_rank, counts, starts, sorted, block_sums, touches] =
             super::object::buffers(ctx, "contact", specs)?;
         let mut contact = Self {
             table,
@@ -101,6 +104,7 @@ impl SceneContact {
             starts,
             sorted,
             block_sums,
+            touches,
             buckets: buckets as u32,
             scan_set: BindingSet::default(),
             sets: Vec::new(),
@@ -118,7 +122,7 @@ impl SceneContact {
                     globals,
                     &o.params,
                     &o.state[1],
-                    p,
+                    &c.touches,
                     colliders,
                     p,
                     &c.cell_rank,
@@ -172,14 +176,15 @@ impl SceneContact {
     }
 
     /// Records the substep's contacts after every object's physics (its output ordered for
-    /// reading) and before the constraints: count, scan, scatter, query, each ordered after
-    /// the one before by barriers on exactly the buffers it reads; the contact sums are
-    /// ordered for the constraint stage at the end.
+    /// reading) and before the constraints: count, scan, scatter, the query's two passes
+    /// (touches, then sums), each ordered after the one before by barriers on exactly the
+    /// buffers it reads; the contact sums are ordered for the constraint stage at the end.
     pub fn record(&self, rec: &mut Recorder<'_>, pipelines: &Pipelines, objects: &[GpuObject]) {
         let b = BufferBarrier::new;
-        let each_object = |rec: &mut Recorder<'_>, stage: Stage| {
+        let each_object = |rec: &mut Recorder<'_>, stage: Stage, pass: u32| {
             for (k, (o, &set)) in objects.iter().zip(&self.sets).enumerate() {
-                rec.dispatch_with(pipelines.get(stage), set, [o.particles.div_ceil(256), 1, 1], &[k as u32]);
+                let groups = [o.particles.div_ceil(256), 1, 1];
+                rec.dispatch_with(pipelines.get(stage), set, groups, &[k as u32, pass]);
             }
         };
         // The last scan zeroed the counts; the last scatter read the ranks.
@@ -187,7 +192,7 @@ impl SceneContact {
             b(&self.counts, Access::ComputeWrite, Access::ComputeReadWrite),
             b(&self.cell_rank, Access::ComputeRead, Access::ComputeWrite),
         ]);
-        each_object(rec, Stage::ContactCount);
+        each_object(rec, Stage::ContactCount, 0);
         // The scan reads the counts and rewrites the starts the last query read.
         rec.barrier(&[
             b(&self.counts, Access::ComputeWrite, Access::ComputeReadWrite),
@@ -202,22 +207,33 @@ impl SceneContact {
             b(&self.block_sums, Access::ComputeWrite, Access::ComputeRead),
             b(&self.sorted, Access::ComputeRead, Access::ComputeWrite),
         ]);
-        each_object(rec, Stage::ContactScatter);
+        each_object(rec, Stage::ContactScatter, 0);
         let sums: Vec<_> = objects.iter().filter_map(|o| o.contact.as_ref()).collect();
         let mut before: Vec<_> =
             sums.iter().map(|c| b(c, Access::ComputeRead, Access::ComputeWrite)).collect();
         before.push(b(&self.sorted, Access::ComputeWrite, Access::ComputeRead));
+        // The last substep's sums read the touches this one's count rewrites.
+        before.push(b(&self.touches, Access::ComputeRead, Access::ComputeWrite));
         rec.barrier(&before);
-        each_object(rec, Stage::Contact);
+        each_object(rec, Stage::Contact, 0);
+        rec.barrier(&[b(&self.touches, Access::ComputeWrite, Access::ComputeRead)]);
+        each_object(rec, Stage::Contact, 1);
         rec.barrier(
             &sums.iter().map(|c| b(c, Access::ComputeWrite, Access::ComputeRead)).collect::<Vec<_>>(),
         );
     }
 
     pub fn destroy(self, ctx: &GpuContext) {
-        for buffer in
-            [self.table, self.objects, self.cell_rank, self.counts, self.starts, self.sorted, self.block_sums]
-        {
+        for buffer in [
+            self.table,
+            self.objects,
+            self.cell_rank,
+            self.counts,
+            self.starts,
+            self.sorted,
+            self.block_sums,
+            self.touches,
+        ] {
             buffer.destroy(ctx);
         }
     }
