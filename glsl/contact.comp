@@ -1,16 +1,16 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
-// Inter-object contact, 3 of 3, in two passes over this object's particles, each looking up
-// the scene's hash for particles of other objects nearer than the sum of the two objects'
-// contact radii. Pass 0 counts them (touches[], per scene particle). Pass 1 sums, for each
-// pair (i, j), the overlap C = reach - d split by inverse mass (i moves C w_i / (w_i + w_j)
-// away from j; all of C when j is pinned), scaled by 1 / max(n_i, n_j), the larger of the two
-// particles' counts: the same for both ends of a pair, so every pair's corrections are equal
-// and opposite in momentum (m_i dx_i = -m_j dx_j) and contact between objects conserves
-// linear momentum, while a particle touching n others moves at most by the largest overlap.
-// Pass 1 writes every particle's sum (xyz) and whether it touches anything (w) into
-// contact[]; the constraint stage adds it to its own correction. The CPU twin is
-// sim::cpu::inter_object.
+// Inter-object contact, 3 of 3, in two passes, each looking up the scene's hash for particles
+// of other objects nearer than the sum of the two objects' contact radii. Pass 0, one dispatch
+// over every particle of the scene (read from the hash's sorted copy through cell_rank),
+// counts them (touches[], per scene particle). Pass 1, per object, sums for each pair (i, j)
+// the overlap C = reach - d split by inverse mass (i moves C w_i / (w_i + w_j) away from j;
+// all of C when j is pinned), scaled by 1 / max(n_i, n_j), the larger of the two particles'
+// counts: the same for both ends of a pair, so every pair's corrections are equal and opposite
+// in momentum (m_i dx_i = -m_j dx_j) and contact between objects conserves linear momentum,
+// while a particle touching n others moves at most by the largest overlap. Pass 1 writes every
+// particle's sum (xyz) and whether it touches anything (w) into contact[]; the constraint
+// stage adds it to its own correction. The CPU twin is sim::cpu::inter_object.
 #include "layout.glsl"
 #include "contact_common.glsl"
 
@@ -25,17 +25,31 @@ uint owner(uint k) {
     return o;
 }
 
+// Particles in the scene (the last object's first index and count).
+uint scene_count() {
+    vec4 last = objects[objects.length() - 1];
+    return floatBitsToUint(last.x) + floatBitsToUint(last.y);
+}
+
 void main() {
     uint i = gl_GlobalInvocationID.x;
-    if (i >= particle_count()) return;
-    vec4 self_entry = objects[which.object];
     bool sum = which.pass == 1u;
+    // Pass 1: particle i of this object; pass 0: particle i of the scene.
+    if (i >= (sum ? particle_count() : scene_count())) return;
+    uint me = sum ? which.object : owner(i);
+    vec4 self_entry = objects[me];
     uint mine = sum ? touches[first_index() + i] : 0u;
     vec3 correction = vec3(0.0);
     uint n = 0u;
-    Particle p = p_in[i];
-    if (p.pos.w <= 0.5 || !sum) {
-        vec3 x = p.pos.xyz;
+    vec4 p;
+    if (sum) {
+        p = p_in[i].pos;
+    } else {
+        uvec2 cr = cell_rank[i];
+        p = sorted[BUCKET_START(cr.x, table.hash_mask) + cr.y];
+    }
+    if (!sum || p.w <= 0.5) {
+        vec3 x = p.xyz;
         // Cells are at least twice the largest reach (object.rs), so every particle within
         // reach lies in the 2 x 2 x 2 block of cells nearest to x. Buckets visited once.
         ivec3 base = ivec3(floor(x * table.cell_inv - 0.5));
@@ -52,7 +66,7 @@ void main() {
                 uint bits = floatBitsToUint(e.w);
                 uint k = bits & ~PINNED_BIT;
                 uint other = owner(k);
-                if (other == which.object) continue;
+                if (other == me) continue;
                 vec4 them = objects[other];
                 float reach = self_entry.z + them.z;
                 vec3 to_j = e.xyz - x;
@@ -71,6 +85,6 @@ void main() {
     if (sum) {
         contact[i] = vec4(correction, n > 0u ? 1.0 : 0.0);
     } else {
-        touches[first_index() + i] = n;
+        touches[i] = n;
     }
 }

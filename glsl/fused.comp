@@ -122,6 +122,10 @@ void set_sdisp(uint j, vec3 d) {
     scratch[2u * CAP + j] = floatBitsToUint(d.z);
 }
 
+// Where the particle whose constraints run began the substep (the colliders' friction).
+vec3 visiting_start;
+vec3 substep_start() { return visiting_start; }
+
 // Self-contact candidates: the hash or the particle's list.
 void listed_candidates(uvec2 cell, vec3 x, float reach, inout vec3 correction, inout uint n_active);
 #define SELF_CANDIDATES listed_candidates
@@ -211,7 +215,7 @@ void main() {
     lists_built = LISTED && hashed && self_list[LIST_VALID] == 1u;
     bool stretch = has(F_STRETCH) && (obj.flags & OBJ_STRETCH_LIMIT) != 0u;
     bool self_any = has(F_SELF) && (obj.flags & OBJ_SELF_COLLISION) != 0u;
-    bool neighbours = stretch || self_any;  // the constraints read other particles
+    bool neighbours = stretch || self_any || has(F_EDGES);  // the constraints read other particles
     float drift = physics_drift();
     // The physics (or the prediction) reads the neighbours' velocities: the dashpots, unless
     // the method treats them implicitly in its solve.
@@ -528,7 +532,8 @@ void main() {
                 xs += correction;
                 vs += correction / g.dt;  // velocity follows the position correction
             }
-            collide(xs, vs, began[s], float(sub + 1u) * g.dt);
+            visiting_start = began[s];
+            collide_all(cells[s], xs, vs, float(sub + 1u) * g.dt);
             x[s] = xs;
             v[s] = vs;
         }

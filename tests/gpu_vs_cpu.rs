@@ -295,7 +295,11 @@ fn ground_box_and_capsule() {
             m.colliders[0].friction = Some(0.0);
             m.objects[0].friction = 0.0;
         });
-        check(name, &s);
+        // The box's edges and corners meet the cloth's edges (colliders against edges): which
+        // face is nearest flips with rounding there, so f32 and f64 part chaotically (1.2e-3
+        // m free-running, 4.5e-7 a frame): compared frame by frame from the GPU's state.
+        let mode = if name == "box" { Mode::Resync } else { Mode::FreeRunning };
+        check_mode(name, &s, mode);
     }
 }
 
@@ -309,8 +313,13 @@ fn moving_colliders() {
     let keys =
         vec![(0.03, DVec3::ZERO), (0.11, DVec3::new(0.1, 0.15, 0.0)), (0.2, DVec3::new(0.3, 0.1, 0.05))];
     s.colliders = vec![
+        // Frictionless: with friction, one particle whose edge grazes the sphere sweeping up
+        // at 1.5 m/s falls on the sticking side in f32 and the sliding side in f64 (Coulomb's
+        // cone is a threshold), parting the twins by 1.7e-4 m in one frame; the capsule's
+        // friction is tested here.
         ColliderModel {
             motion: Motion::Velocity(DVec3::new(0.2, 1.5, 0.0)),
+            friction: Some(0.0),
             ..sphere([-0.1, 0.2, 0.0], 0.12)
         },
         ColliderModel {

@@ -61,6 +61,7 @@ fn header_constants_match_the_host() {
         ("OBJ_SELF_COLLISION", t::OBJ_SELF_COLLISION),
         ("OBJ_SELF_HASH", t::OBJ_SELF_HASH),
         ("F_CONTACT", t::FEATURE_CONTACT),
+        ("F_EDGES", t::FEATURE_EDGES),
         ("GUARD_NON_FINITE", t::GUARD_NON_FINITE),
         ("GUARD_RUNAWAY", t::GUARD_RUNAWAY),
         ("GUARD_FAST", t::GUARD_FAST),

@@ -67,49 +67,56 @@ float collider_distance(Collider c, vec3 x, out vec3 n) {
     return 1e30;  // a type compiled out
 }
 
-// Colliders: project out to the object's margin from each surface and remove the approaching
-// normal velocity, both relative to the collider's velocity; then Coulomb friction with the
-// collider's coefficient mu (its own, else the object's): the contact's normal impulse per unit
-// mass this substep is jn = max(approaching speed, depth / dt) (what the projection removed:
-// the speed, or for an overlap the collider made by moving, the depth over the substep), and
-// the tangential impulse is at most mu jn. Static when the particle's tangential motion
-// relative to the collider over the substep (from `start`, where it began the substep) needs
-// no more than that: the particle is put back where it began, tangentially, at the collider's
-// tangential velocity. Kinetic otherwise: its tangential speed loses mu jn and its position mu
-// jn dt. So the friction force is mu times the normal force whatever the substep, and a
-// particle on a slope sticks below the friction angle (tan a < mu).
-// A record holds where the collider is at the frame's start and its velocity over the frame
-// (extra.yzw): `since` is the time from the frame's start to the end of this substep, so the
-// collider is `since` times its velocity further on (the particle is tested `since` times it
-// back).
-void collide(inout vec3 x, inout vec3 v, vec3 start, float since) {
+// The response to a collider moving at `velocity` that a particle at x is `depth` inside of
+// the object's margin along the surface normal n: projected out to the margin and its
+// approaching normal velocity removed, both relative to the collider; then Coulomb friction
+// with coefficient mu: the contact's normal impulse per unit mass this substep is jn =
+// max(approaching speed, depth / dt) (what the projection removed: the speed, or for an
+// overlap the collider made by moving, the depth over the substep), and the tangential impulse
+// is at most mu jn. Static when the particle's tangential speed relative to the collider is
+// within mu jn: it is put back, tangentially, where it began the substep and moves
+// with the collider. Kinetic otherwise: its tangential speed loses mu jn and its slip over the
+// substep mu jn dt. So the friction force is mu times the normal force whatever the substep,
+// and a particle on a slope sticks below the friction angle (tan a < mu).
+// `substep_start()` (defined by the includer) is where the particle began the substep; it is
+// asked for only in a contact (per stage it is a read of the state buffer the stage writes).
+vec3 substep_start();
+void contact_response(inout vec3 x, inout vec3 v, vec3 n, float depth, float mu, vec3 velocity) {
+    x += n * depth;
+    vec3 relative = v - velocity;
+    float vn = dot(relative, n);
+    float jn = max(-vn, depth / g.dt);
+    vec3 vt = relative - vn * n;
+    vec3 moved = x - substep_start() - velocity * g.dt;  // over the substep, relative
+    vec3 slip = moved - dot(moved, n) * n;
+    float vt_len = length(vt);
+    if (vt_len <= mu * jn) {
+        x -= slip;
+        vt = vec3(0.0);
+    } else {
+        float slip_len = length(slip);
+        x -= slip * min(mu * jn * g.dt / max(slip_len, 1e-30), 1.0);
+        vt *= 1.0 - mu * jn / vt_len;
+    }
+    v = velocity + vt + max(vn, 0.0) * n;
+}
+
+// Collider k's friction coefficient: its own, else the object's.
+float collider_friction(Collider c) { return c.extra.x >= 0.0 ? c.extra.x : obj.friction; }
+
+// Colliders against the particle: each moves it out to the object's margin from its surface
+// (contact_response). A record holds where the collider is at the frame's start and its
+// velocity over the frame (extra.yzw): `since` is the time from the frame's start to the end
+// of this substep, so the collider is `since` times its velocity further on (the particle is
+// tested `since` times it back).
+void collide(inout vec3 x, inout vec3 v, float since) {
     if (!has(F_COLLIDERS)) return;
     for (uint k = 0u; k < g.collider_count; ++k) {
         Collider c = colliders[k];
         vec3 velocity = c.extra.yzw;
         vec3 n;
         float d = collider_distance(c, x - velocity * since, n);
-        if (d < obj.margin) {
-            float depth = obj.margin - d;
-            x += n * depth;
-            float mu = c.extra.x >= 0.0 ? c.extra.x : obj.friction;
-            vec3 relative = v - velocity;
-            float vn = dot(relative, n);
-            float jn = max(-vn, depth / g.dt);
-            vec3 vt = relative - vn * n;
-            vec3 moved = x - start - velocity * g.dt;  // over the substep, relative
-            vec3 slip = moved - dot(moved, n) * n;
-            float vt_len = length(vt);
-            if (vt_len <= mu * jn) {
-                x -= slip;
-                vt = vec3(0.0);
-            } else {
-                float slip_len = length(slip);
-                x -= slip * min(mu * jn * g.dt / max(slip_len, 1e-30), 1.0);
-                vt *= 1.0 - mu * jn / vt_len;
-            }
-            v = velocity + vt + max(vn, 0.0) * n;
-        }
+        if (d < obj.margin) contact_response(x, v, n, obj.margin - d, collider_friction(c), velocity);
     }
 }
 

@@ -144,6 +144,48 @@ vec3 constraint_correction(uvec2 cell, vec3 x) {
     return correction;
 }
 
+// Colliders against the object's edges as well as its particles (F_EDGES: a collider thinner
+// than a couple of grid spacings, or a box's edges and corners, could otherwise pass between
+// the particles or poke through a face). The midpoints of the particle's structural edges and
+// of its shear diagonals (the centres of its quads) are tested against each collider but the
+// ground (a plane cannot reach between particles); an edge whose midpoint is within the margin
+// moves both its ends out along the normal there by the depth (so its midpoint reaches the
+// margin; by twice the depth when the other end is pinned), the particle taking the mean of
+// its edges' moves against that collider through the same response as a particle
+// (contact_response: no approach, Coulomb friction). Read from the physics output, like the
+// constraints, so each end of an edge computes the same move. The CPU twin is
+// sim::cpu::collide_edges.
+void collide_edges(uvec2 cell, inout vec3 x, inout vec3 v, float since) {
+    if (!has(F_EDGES)) return;
+    for (uint k = 0u; k < g.collider_count; ++k) {
+        Collider c = colliders[k];
+        if (floatBitsToUint(c.a.w) == COLLIDER_GROUND) continue;
+        vec3 velocity = c.extra.yzw;
+        vec3 push = vec3(0.0);
+        uint edges = 0u;
+        vec3 here = CPOS(cell.x + cell.y * obj.dims.x);
+        [[unroll]] for (int s = 0; s < 8; ++s) {
+            int j = SPRING_NEIGHBOUR(cell, s);
+            if (j < 0) continue;
+            vec3 n;
+            vec3 mid = 0.5 * (here + CPOS(j));
+            float d = collider_distance(c, mid - velocity * since, n);
+            if (d < obj.margin) {
+                push += n * ((obj.margin - d) * (CPINNED(j) ? 2.0 : 1.0));
+                edges += 1u;
+            }
+        }
+        float depth = length(push);  // the mean move is push / edges
+        if (depth > 0.0) contact_response(x, v, push / depth, depth / float(edges), collider_friction(c), velocity);
+    }
+}
+
+// Every collider response of a particle: its edges (where compiled in), then itself.
+void collide_all(uvec2 cell, inout vec3 x, inout vec3 v, float since) {
+    collide_edges(cell, x, v, since);
+    collide(x, v, since);
+}
+
 #ifndef FUSED_SHARED
 // The per-stage hash (hash_count.glsl): candidates are stored contiguously by bucket with
 // their positions, so most are rejected without reading their particle. In a substep that
@@ -186,6 +228,9 @@ void listed_candidates(uvec2 cell, vec3 x, float reach, inout vec3 correction, i
 #endif
 
 #ifdef OUT
+uint visiting;  // the particle whose constraints run
+vec3 substep_start() { return START(visiting); }
+
 // `substep`: which of the frame's substeps this is (the colliders move within the frame).
 // With self-collision through the hash and `lists` on, the contact list is walked, or in a
 // substep that rebuilds the lists (the control block's word 0, lists.glsl) built from the hash.
@@ -196,7 +241,6 @@ void constraints_particle(uvec2 cell, uint substep, bool lists) {
         OUT(i) = Particle(p.pos, vec4(0.0));
         return;
     }
-    vec3 start = has(F_COLLIDERS) ? START(i) : vec3(0.0);
     vec3 x = p.pos.xyz;
     vec3 v = p.vel.xyz;
     bool listed = has(F_SELF) && self_hashed();
@@ -208,7 +252,8 @@ void constraints_particle(uvec2 cell, uint substep, bool lists) {
     if (list_build) set_list_header(i, x, list_len);
     x += correction;
     v += correction / g.dt;  // velocity follows the position correction
-    collide(x, v, start, float(substep + 1u) * g.dt);
+    visiting = i;
+    collide_all(cell, x, v, float(substep + 1u) * g.dt);
     OUT(i) = Particle(vec4(x, 0.0), vec4(v, 0.0));
 }
 #endif

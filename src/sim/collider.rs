@@ -7,6 +7,7 @@
 //! tangential impulse by mu times the normal one, sticking within the cone.
 
 use super::gpu_types::{FEATURE_BOX, FEATURE_CAPSULE, FEATURE_GROUND, FEATURE_SPHERES};
+use super::model::ObjectModel;
 use glam::{DQuat, DVec3};
 
 /// A collider type.
@@ -164,14 +165,9 @@ impl ColliderModel {
     }
 
     /// Moves a particle at `x` with velocity `v` out of the collider, offset by `shift` from
-    /// its placement and moving at `velocity`, to `margin` from its surface, removes its
-    /// approaching normal velocity (relative to the collider), then applies Coulomb friction
-    /// with coefficient mu (the collider's own, else `object_friction`): the normal impulse per
-    /// unit mass of the substep `dt` is jn = max(approaching speed, depth / dt), and the
-    /// tangential impulse at most mu jn. Static when the particle's tangential motion relative
-    /// to the collider since `start` (where it began the substep) is within mu jn dt: it goes
-    /// back there tangentially and moves with the collider; kinetic otherwise: its tangential
-    /// speed loses mu jn and its position mu jn dt. The CPU twin of `collide` in colliders.glsl.
+    /// its placement and moving at `velocity`, to `margin` from its surface (`respond_along`
+    /// with the collider's friction, its own else `object_friction`). The CPU twin of
+    /// `collide` in colliders.glsl.
     pub fn respond(
         &self,
         (margin, object_friction): (f64, f64),
@@ -182,26 +178,43 @@ impl ColliderModel {
     ) {
         let (d, n) = self.shape.distance(*x - shift);
         if d < margin {
-            let depth = margin - d;
-            *x += n * depth;
             let mu = self.friction.unwrap_or(object_friction);
-            let relative = *v - velocity;
-            let vn = relative.dot(n);
-            let jn = (-vn).max(depth / dt);
-            let mut vt = relative - n * vn;
-            let moved = *x - start - velocity * dt;
-            let slip = moved - n * moved.dot(n);
-            let vt_len = vt.length();
-            if vt_len <= mu * jn {
-                *x -= slip;
-                vt = DVec3::ZERO;
-            } else {
-                *x -= slip * (mu * jn * dt / slip.length().max(1e-30)).min(1.0);
-                vt *= 1.0 - mu * jn / vt_len;
-            }
-            *v = velocity + vt + n * vn.max(0.0);
+            respond_along((n, margin - d), (mu, velocity), (start, dt), x, v);
         }
     }
+}
+
+/// The response to a collider moving at `velocity` that a particle is `depth` inside of its
+/// margin along the normal `n`: moved out along n by the depth, its approaching normal velocity
+/// (relative to the collider) removed, then Coulomb friction with coefficient mu: the normal
+/// impulse per unit mass of the substep `dt` is jn = max(approaching speed, depth / dt), and
+/// the tangential impulse at most mu jn. Static when the particle's tangential speed relative
+/// to the collider is within mu jn: it goes back tangentially to where it began the substep
+/// (`start`) and moves with the collider; kinetic otherwise: its tangential speed loses mu jn
+/// and its slip mu jn dt. The CPU twin of `contact_response` in colliders.glsl.
+pub fn respond_along(
+    (n, depth): (DVec3, f64),
+    (mu, velocity): (f64, DVec3),
+    (start, dt): (DVec3, f64),
+    x: &mut DVec3,
+    v: &mut DVec3,
+) {
+    *x += n * depth;
+    let relative = *v - velocity;
+    let vn = relative.dot(n);
+    let jn = (-vn).max(depth / dt);
+    let mut vt = relative - n * vn;
+    let moved = *x - start - velocity * dt;
+    let slip = moved - n * moved.dot(n);
+    let vt_len = vt.length();
+    if vt_len <= mu * jn {
+        *x -= slip;
+        vt = DVec3::ZERO;
+    } else {
+        *x -= slip * (mu * jn * dt / slip.length().max(1e-30)).min(1.0);
+        vt *= 1.0 - mu * jn / vt_len;
+    }
+    *v = velocity + vt + n * vn.max(0.0);
 }
 
 impl ColliderModel {
@@ -383,6 +396,21 @@ pub fn contact_speed(model: &super::model::SimModel) -> Option<ContactSpeed> {
 /// The feature bits of the collider types `colliders` use.
 pub fn features(colliders: &[ColliderModel]) -> u32 {
     colliders.iter().fold(0, |f, c| f | c.shape.kind().row().feature)
+}
+
+/// Whether object `o` needs its edges tested against `colliders` as well as its particles
+/// (`collide_edges` in glsl/include/constraints_body.glsl): when a collider could pass between
+/// its particles or poke through a face: a box (its edges and corners are sharp) or a sphere
+/// or capsule of radius under two grid spacings. A ground never does, nor larger round shapes
+/// (a face between particles 2.5 spacings apart sags into a sphere of radius 2 spacings by an
+/// eighth of a spacing).
+pub fn edges_needed(o: &ObjectModel, colliders: &[ColliderModel]) -> bool {
+    let spacing = o.spacing[0].max(o.spacing[1]);
+    colliders.iter().any(|c| match c.shape {
+        Shape::Box { .. } => true,
+        Shape::Sphere { radius, .. } | Shape::Capsule { radius, .. } => radius < 2.0 * spacing,
+        Shape::Ground { .. } => false,
+    })
 }
 
 #[cfg(test)]

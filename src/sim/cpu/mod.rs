@@ -338,6 +338,7 @@ fn constraints(
     let mut nx = x.to_vec();
     let mut nv = vec![DVec3::ZERO; x.len()];
     let share = |j: usize| if o.pinned[j] { 1.0 } else { 0.5 };
+    let edges = crate::sim::collider::edges_needed(o, &m.colliders);
     for i in 0..x.len() {
         if o.pinned[i] {
             continue;
@@ -380,6 +381,9 @@ fn constraints(
         correction += contact[i];
         let mut p = x[i] + correction;
         let mut vel = v[i] + correction / dt;
+        if edges {
+            collide_edges(m, o, (i, x), motions, (start[i], dt), (&mut p, &mut vel));
+        }
         for (c, &motion) in m.colliders.iter().zip(motions) {
             c.respond((o.margin, o.friction), motion, (start[i], dt), &mut p, &mut vel);
         }
@@ -387,6 +391,44 @@ fn constraints(
         nv[i] = vel;
     }
     (nx, nv)
+}
+
+/// Colliders (but the ground) against the edges of particle `i` of `o` (positions `x`, the
+/// physics output): each structural edge's and shear diagonal's midpoint within the margin of a
+/// collider moves the edge's ends out along the normal there by its depth (twice that when the
+/// other end is pinned); the particle, at `p` with velocity `vel`, takes the mean of its edges'
+/// moves against each collider through the particle response (`respond_along`). The CPU twin
+/// of `collide_edges` in glsl/include/constraints_body.glsl.
+fn collide_edges(
+    m: &SimModel,
+    o: &ObjectModel,
+    (i, x): (usize, &[DVec3]),
+    motions: &[(DVec3, DVec3)],
+    (start, dt): (DVec3, f64),
+    (p, vel): (&mut DVec3, &mut DVec3),
+) {
+    let cols = o.dims[0] as usize;
+    let (c, r) = ((i % cols) as i64, (i / cols) as i64);
+    for (collider, &(shift, velocity)) in m.colliders.iter().zip(motions) {
+        if matches!(collider.shape, crate::sim::collider::Shape::Ground { .. }) {
+            continue;
+        }
+        let (mut push, mut count) = (DVec3::ZERO, 0u32);
+        for s in springs(o, c, r).iter().filter(|s| s.kind != SpringType::Bending) {
+            let mid = (x[i] + x[s.other]) * 0.5;
+            let (d, n) = collider.shape.distance(mid - shift);
+            if d < o.margin {
+                push += n * (o.margin - d) * if o.pinned[s.other] { 2.0 } else { 1.0 };
+                count += 1;
+            }
+        }
+        let depth = push.length();
+        if depth > 0.0 {
+            let mu = collider.friction.unwrap_or(o.friction);
+            let along = (push / depth, depth / count as f64);
+            crate::sim::collider::respond_along(along, (mu, velocity), (start, dt), p, vel);
+        }
+    }
 }
 
 /// Angle-weighted normals from the (up to) four structural edges around each particle.

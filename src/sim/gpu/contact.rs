@@ -29,6 +29,8 @@ pub(super) struct SceneContact {
     block_sums: Buffer,
     /// Per scene particle: how many particles of other objects it touches (binding 3).
     touches: Buffer,
+    /// Particles in the scene.
+    total: u32,
     buckets: u32,
     /// The scan's set, and each object's set (the object's own buffers at 1, 2 and 14; contact
     /// runs per stage, so no contact list at 15).
@@ -105,6 +107,7 @@ impl SceneContact {
             sorted,
             block_sums,
             touches,
+            total: total as u32,
             buckets: buckets as u32,
             scan_set: BindingSet::default(),
             sets: Vec::new(),
@@ -177,7 +180,7 @@ impl SceneContact {
 
     /// Records the substep's contacts after every object's physics (its output ordered for
     /// reading) and before the constraints: count, scan, scatter, the query's two passes
-    /// (touches, then sums), each ordered after the one before by barriers on exactly the
+    /// (the touches over the scene's particles, then each object's sums), each ordered after the one before by barriers on exactly the
     /// buffers it reads; the contact sums are ordered for the constraint stage at the end.
     pub fn record(&self, rec: &mut Recorder<'_>, pipelines: &Pipelines, objects: &[GpuObject]) {
         let b = BufferBarrier::new;
@@ -215,7 +218,13 @@ impl SceneContact {
         // The last substep's sums read the touches this one's count rewrites.
         before.push(b(&self.touches, Access::ComputeRead, Access::ComputeWrite));
         rec.barrier(&before);
-        each_object(rec, Stage::Contact, 0);
+        // The touches: one dispatch over the scene's particles (any object's set holds the hash).
+        rec.dispatch_with(
+            pipelines.get(Stage::Contact),
+            self.sets[0],
+            [self.total.div_ceil(256), 1, 1],
+            &[0, 0],
+        );
         rec.barrier(&[b(&self.touches, Access::ComputeWrite, Access::ComputeRead)]);
         each_object(rec, Stage::Contact, 1);
         rec.barrier(
