@@ -153,21 +153,26 @@ vec3 constraint_correction(uvec2 cell, vec3 x) {
 // margin; by twice the depth when the other end is pinned), the particle taking the mean of
 // its edges' moves against that collider through the same response as a particle
 // (contact_response: no approach, Coulomb friction). Read from the physics output, like the
-// constraints, so each end of an edge computes the same move. The CPU twin is
-// sim::cpu::collide_edges.
+// constraints, so each end of an edge computes the same move. A collider farther from the
+// particle than the margin plus half a shear diagonal stretched to twice its rest length is
+// skipped without reading the neighbours: a signed distance changes no faster than the
+// distance along it, so no midpoint of an edge up to twice its rest length is within the
+// margin. The CPU twin is sim::cpu::collide_edges.
 void collide_edges(uvec2 cell, inout vec3 x, inout vec3 v, float since) {
     if (!has(F_EDGES)) return;
+    vec3 here = CPOS(cell.x + cell.y * obj.dims.x);
+    float reach = obj.margin + sqrt(2.0) * max(obj.spacing.x, obj.spacing.y);
     for (uint k = 0u; k < g.collider_count; ++k) {
         Collider c = colliders[k];
         if (floatBitsToUint(c.a.w) == COLLIDER_GROUND) continue;
         vec3 velocity = c.extra.yzw;
+        vec3 n;
+        if (collider_distance(c, here - velocity * since, n) >= reach) continue;
         vec3 push = vec3(0.0);
         uint edges = 0u;
-        vec3 here = CPOS(cell.x + cell.y * obj.dims.x);
         [[unroll]] for (int s = 0; s < 8; ++s) {
             int j = SPRING_NEIGHBOUR(cell, s);
             if (j < 0) continue;
-            vec3 n;
             vec3 mid = 0.5 * (here + CPOS(j));
             float d = collider_distance(c, mid - velocity * since, n);
             if (d < obj.margin) {

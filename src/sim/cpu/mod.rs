@@ -393,8 +393,9 @@ fn constraints(
     (nx, nv)
 }
 
-/// Colliders (but the ground) against the edges of particle `i` of `o` (positions `x`, the
-/// physics output): each structural edge's and shear diagonal's midpoint within the margin of a
+/// Colliders (but the ground, and those farther from the particle than the margin and half a
+/// shear diagonal at twice its rest length) against the edges of particle `i` of `o` (positions
+/// `x`, the physics output): each structural edge's and shear diagonal's midpoint within the margin of a
 /// collider moves the edge's ends out along the normal there by its depth (twice that when the
 /// other end is pinned); the particle, at `p` with velocity `vel`, takes the mean of its edges'
 /// moves against each collider through the particle response (`respond_along`). The CPU twin
@@ -409,8 +410,12 @@ fn collide_edges(
 ) {
     let cols = o.dims[0] as usize;
     let (c, r) = ((i % cols) as i64, (i / cols) as i64);
+    // Farther than this, no midpoint of an edge up to twice its rest length is within the margin.
+    let reach = o.margin + 2f64.sqrt() * o.spacing[0].max(o.spacing[1]);
     for (collider, &(shift, velocity)) in m.colliders.iter().zip(motions) {
-        if matches!(collider.shape, crate::sim::collider::Shape::Ground { .. }) {
+        if matches!(collider.shape, crate::sim::collider::Shape::Ground { .. })
+            || collider.shape.distance(x[i] - shift).0 >= reach
+        {
             continue;
         }
         let (mut push, mut count) = (DVec3::ZERO, 0u32);
