@@ -202,7 +202,9 @@ pub fn respond_along(
     *x += n * depth;
     let relative = *v - velocity;
     let vn = relative.dot(n);
-    let jn = (-vn).max(depth / dt);
+    // The depth past a few f32 steps of the position only, as the GPU (position_slack).
+    let slack = 5e-7 * (1.0 + x.abs().max_element());
+    let jn = (-vn).max((depth - slack) / dt);
     let mut vt = relative - n * vn;
     let moved = *x - start - velocity * dt;
     let slip = moved - n * moved.dot(n);
