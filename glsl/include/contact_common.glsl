@@ -5,7 +5,7 @@
 // object. Their binding set is each object's own (binding 1: its parameters, 2: its physics
 // output, 14: its contact sums) with the scene's hash in place of the object's (6..10), the
 // hash's own parameters (12: hash_mask, cell_inv of the scene's table), the object table (13)
-// and each scene particle's count of touches (3). The CPU twin is sim::cpu::inter_object.
+// and each scene particle's count of touches (3) and the slots of its partners (5). The CPU twin is sim::cpu::inter_object.
 // Include after layout.glsl.
 #ifndef MSD_CONTACT_COMMON_GLSL
 #define MSD_CONTACT_COMMON_GLSL
@@ -21,8 +21,10 @@ layout(std430, set = 0, binding = 12) restrict readonly buffer SceneHash { Objec
 // Per object: x first scene index, y particle count (as float bits), z contact radius, w mass.
 layout(std430, set = 0, binding = 13) restrict readonly buffer Objects { vec4 objects[]; };
 layout(std430, set = 0, binding = 14) buffer ContactBuf { vec4 contact[]; };
-// Per scene particle: how many particles of other objects it touches (contact.comp's first pass).
+// Per scene particle: how many particles of other objects it touches (contact.comp's first pass),
+// and the hash slots of the first of them (PAIR_MAX a particle).
 layout(std430, set = 0, binding = 3) buffer SceneTouches { uint touches[]; };
+layout(std430, set = 0, binding = 5) buffer ScenePairs { uint pairs[]; };
 
 layout(push_constant) uniform Which {
     uint object;  // this object's index in `objects`

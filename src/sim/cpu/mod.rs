@@ -252,15 +252,14 @@ impl CpuSim {
             })
             .collect();
         let positions: Vec<&[DVec3]> = advanced.iter().map(|(x, _)| x.as_slice()).collect();
-        let touches = if m.inter_object_contact() { inter_object_touches(m, &positions) } else { Vec::new() };
+        let contact = if m.inter_object_contact() {
+            inter_object(m, &positions)
+        } else {
+            positions.iter().map(|x| vec![DVec3::ZERO; x.len()]).collect()
+        };
         for (a, (o, state)) in m.objects.iter().zip(&mut self.objects).enumerate() {
             let (px, pv) = &advanced[a];
-            let contact = if m.inter_object_contact() {
-                inter_object(m, a, &positions, &touches)
-            } else {
-                vec![DVec3::ZERO; px.len()]
-            };
-            let (cx, cv) = constraints(m, o, self.dt, &motions, &contact, &state.x, (px, pv));
+            let (cx, cv) = constraints(m, o, self.dt, &motions, &contact[a], &state.x, (px, pv));
             state.x = cx;
             state.v = cv;
         }
@@ -290,35 +289,32 @@ fn touching_pairs(
     }
 }
 
-/// How many particles of other objects each particle of each object touches.
-fn inter_object_touches(m: &SimModel, x: &[&[DVec3]]) -> Vec<Vec<u32>> {
-    (0..m.objects.len())
-        .map(|a| {
-            let mut n = vec![0u32; x[a].len()];
-            touching_pairs(m, a, x, |i, _, _, _, _| n[i] += 1);
-            n
-        })
-        .collect()
-}
-
-/// Contacts of object `a` with the other objects (positions `x`, each particle's count of
-/// touches `touches`): for every pair (i, j) nearer than the sum of their contact radii, i is
-/// moved away by its share of the overlap (the other's mass over both, all of it when the
-/// other is pinned) over max(n_i, n_j), the larger count of the two, so that both ends of a
-/// pair move by equal and opposite momenta. Pinned particles are not moved.
-fn inter_object(m: &SimModel, a: usize, x: &[&[DVec3]], touches: &[Vec<u32>]) -> Vec<DVec3> {
-    let o = &m.objects[a];
-    let mut contact = vec![DVec3::ZERO; x[a].len()];
-    touching_pairs(m, a, x, |i, b, j, delta, reach| {
-        let other = &m.objects[b];
+/// Contacts between the objects (positions `x`): for every pair (i, j) of particles of two
+/// objects nearer than the sum of their contact radii, each particle not pinned is moved away
+/// by its share of the overlap (the other's mass over both, all of it when the other is
+/// pinned) over max(n_i, n_j), the larger of the two particles' counts of touches, so that
+/// both ends of a pair move by equal and opposite momenta. Returns each object's corrections.
+fn inter_object(m: &SimModel, x: &[&[DVec3]]) -> Vec<Vec<DVec3>> {
+    // Every touching pair from each side, (a, i, b, j, delta from i to j, reach), found once.
+    let mut pairs = Vec::new();
+    for a in 0..m.objects.len() {
+        touching_pairs(m, a, x, |i, b, j, delta, reach| pairs.push((a, i, b, j, delta, reach)));
+    }
+    let mut touches: Vec<Vec<u32>> = x.iter().map(|x| vec![0; x.len()]).collect();
+    for &(a, i, ..) in &pairs {
+        touches[a][i] += 1;
+    }
+    let mut contact: Vec<Vec<DVec3>> = x.iter().map(|x| vec![DVec3::ZERO; x.len()]).collect();
+    for (a, i, b, j, delta, reach) in pairs {
+        let (o, other) = (&m.objects[a], &m.objects[b]);
         if o.pinned[i] {
-            return;
+            continue;
         }
         let d = delta.length();
         let w = if other.pinned[j] { 1.0 } else { other.mass / (o.mass + other.mass) };
         let split = touches[a][i].max(touches[b][j]) as f64;
-        contact[i] += delta / d * (d - reach) * w / split;
-    });
+        contact[a][i] += delta / d * (d - reach) * w / split;
+    }
     contact
 }
 

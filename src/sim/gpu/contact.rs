@@ -27,8 +27,10 @@ pub(super) struct SceneContact {
     starts: Buffer,
     sorted: Buffer,
     block_sums: Buffer,
-    /// Per scene particle: how many particles of other objects it touches (binding 3).
+    /// Per scene particle: how many particles of other objects it touches (binding 3), and
+    /// the hash slots of the first `PAIR_MAX` of them (binding 5).
     touches: Buffer,
+    pairs: Buffer,
     /// Particles in the scene.
     total: u32,
     buckets: u32,
@@ -37,6 +39,9 @@ pub(super) struct SceneContact {
     scan_set: BindingSet,
     sets: Vec<BindingSet>,
 }
+
+/// Partners a particle keeps from the count pass (`PAIR_MAX` in contact.comp).
+const PAIR_MAX: u64 = 8;
 
 /// Binding sets `SceneContact::new` allocates for `objects` objects (one each and the scan's).
 pub(super) fn sets_needed(model: &SimModel) -> u32 {
@@ -95,8 +100,9 @@ impl SceneContact {
             ("sorted", 16 * total, storage, gpu_only),
             ("block_sums", 4 * buckets.div_ceil(SCAN_BLOCK), storage, gpu_only),
             ("touches", 4 * total, storage, gpu_only),
+            ("pairs", 4 * PAIR_MAX * total, storage, gpu_only),
         ];
-        let [table, objects, cell_rank, counts, starts, sorted, block_sums, touches] =
+        let [table, objects, cell_rank, counts, starts, sorted, block_sums, touches, pairs] =
             super::object::buffers(ctx, "contact", specs)?;
         let mut contact = Self {
             table,
@@ -107,6 +113,7 @@ impl SceneContact {
             sorted,
             block_sums,
             touches,
+            pairs,
             total: total as u32,
             buckets: buckets as u32,
             scan_set: BindingSet::default(),
@@ -127,7 +134,7 @@ impl SceneContact {
                     &o.state[1],
                     &c.touches,
                     colliders,
-                    p,
+                    &c.pairs,
                     &c.cell_rank,
                     &c.counts,
                     &c.starts,
@@ -215,8 +222,9 @@ impl SceneContact {
         let mut before: Vec<_> =
             sums.iter().map(|c| b(c, Access::ComputeRead, Access::ComputeWrite)).collect();
         before.push(b(&self.sorted, Access::ComputeWrite, Access::ComputeRead));
-        // The last substep's sums read the touches this one's count rewrites.
+        // The last substep's sums read the touches and pairs this one's count rewrites.
         before.push(b(&self.touches, Access::ComputeRead, Access::ComputeWrite));
+        before.push(b(&self.pairs, Access::ComputeRead, Access::ComputeWrite));
         rec.barrier(&before);
         // The touches: one dispatch over the scene's particles (any object's set holds the hash).
         rec.dispatch_with(
@@ -225,7 +233,10 @@ impl SceneContact {
             [self.total.div_ceil(256), 1, 1],
             &[0, 0],
         );
-        rec.barrier(&[b(&self.touches, Access::ComputeWrite, Access::ComputeRead)]);
+        rec.barrier(&[
+            b(&self.touches, Access::ComputeWrite, Access::ComputeRead),
+            b(&self.pairs, Access::ComputeWrite, Access::ComputeRead),
+        ]);
         each_object(rec, Stage::Contact, 1);
         rec.barrier(
             &sums.iter().map(|c| b(c, Access::ComputeWrite, Access::ComputeRead)).collect::<Vec<_>>(),
@@ -242,6 +253,7 @@ impl SceneContact {
             self.sorted,
             self.block_sums,
             self.touches,
+            self.pairs,
         ] {
             buffer.destroy(ctx);
         }
