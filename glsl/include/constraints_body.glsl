@@ -4,8 +4,9 @@
 // velocity update. The corrections of the stretch limit and self-collision are averaged
 // (Jacobi averaging): summing them, as sequential Gauss-Seidel would, overshoots when several
 // act at once and diverges. Contact between objects comes split already (contact.comp).
-// `constraint_correction` and `collide` (colliders.glsl) are shared by constraints.comp (through
-// `constraints_particle`, which reads IN(i) and writes OUT(i)) and fused.comp. Other
+// `constraint_correction` and `collide_all` (its edges here, the particle in colliders.glsl)
+// are shared by constraints.comp (through `constraints_particle`, which reads IN(i) and writes
+// OUT(i)) and fused.comp. Other
 // particles are read through CPOS(j) (position) and CPINNED(j); by default from IN(j). The
 // spatial hash's buckets are visited by `visit_bucket`: here the global hash (starts[],
 // sorted[]); fused.comp (FUSED_SHARED) defines its own over shared memory, and HASH_MASK.
