@@ -5,7 +5,8 @@
 // object. Their binding set is each object's own (binding 1: its parameters, 2: its physics
 // output, 14: its contact sums) with the scene's hash in place of the object's (6..10), the
 // hash's own parameters (12: hash_mask, cell_inv of the scene's table), the object table (13)
-// and each scene particle's count of touches (3) and the slots of its partners (5). The CPU twin is sim::cpu::inter_object.
+// and each scene particle's count of touches (3) and the slots of its partners (5). The CPU
+// twin is sim::cpu::inter_object.
 // Include after layout.glsl.
 #ifndef MSD_CONTACT_COMMON_GLSL
 #define MSD_CONTACT_COMMON_GLSL

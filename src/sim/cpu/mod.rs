@@ -13,10 +13,12 @@
 //!    that one is pinned). The correction is the mean of these (Jacobi averaging), plus (c) for
 //!    every particle of another object nearer than the two contact radii, its share of the
 //!    overlap by inverse mass over the larger of the two particles' contact counts (equal and
-//!    opposite momenta for both ends); x += correction, v += correction / dt. Then, collider by collider (`sim::collider`): a
-//!    particle nearer than its margin to the surface is moved out along the surface normal to the
-//!    margin, its approaching normal velocity is removed, and Coulomb friction bounds the
-//!    tangential impulse by mu times the normal one (`ColliderModel::respond`).
+//!    opposite momenta for both ends); x += correction, v += correction / dt. Then, collider
+//!    by collider (`sim::collider`): a particle nearer than its margin to the surface is moved
+//!    out along the surface normal to the margin, its approaching normal velocity is removed,
+//!    and Coulomb friction bounds the tangential impulse by mu times the normal one
+//!    (`ColliderModel::respond`); where the colliders are thin or sharp, its edges first
+//!    (`collide_edges`).
 //!
 //! After the frame's last substep, cloth normals (angle-weighted over the four structural edges)
 //! and rope tube vertices are computed from the final positions.
@@ -390,9 +392,9 @@ fn constraints(
 }
 
 /// Colliders (but the ground, and those farther from the particle than the margin and half a
-/// shear diagonal at twice its rest length) against the edges of particle `i` of `o` (positions
-/// `x`, the physics output): each structural edge's and shear diagonal's midpoint within the margin of a
-/// collider moves the edge's ends out along the normal there by its depth (twice that when the
+/// shear diagonal at twice its rest length) against the edges of particle `i` of `o`
+/// (positions `x`, the physics output): each structural edge's and shear diagonal's midpoint
+/// within the margin of a collider moves the edge's ends out along the normal there by its depth (twice that when the
 /// other end is pinned); the particle, at `p` with velocity `vel`, takes the mean of its edges'
 /// moves against each collider through the particle response (`respond_along`). The CPU twin
 /// of `collide_edges` in glsl/include/constraints_body.glsl.

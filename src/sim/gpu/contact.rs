@@ -187,8 +187,9 @@ impl SceneContact {
 
     /// Records the substep's contacts after every object's physics (its output ordered for
     /// reading) and before the constraints: count, scan, scatter, the query's two passes
-    /// (the touches over the scene's particles, then each object's sums), each ordered after the one before by barriers on exactly the
-    /// buffers it reads; the contact sums are ordered for the constraint stage at the end.
+    /// (the touches over the scene's particles, then each object's sums), each ordered after
+    /// the one before by barriers on exactly the buffers it reads; the contact sums are
+    /// ordered for the constraint stage at the end.
     pub fn record(&self, rec: &mut Recorder<'_>, pipelines: &Pipelines, objects: &[GpuObject]) {
         let b = BufferBarrier::new;
         let each_object = |rec: &mut Recorder<'_>, stage: Stage, pass: u32| {

@@ -84,8 +84,8 @@ const MIN_BUCKETS: u32 = 32;
 pub const SELF_LIST_ENTRIES: u32 = 16;
 
 /// The features object `o` uses in `model` (the `FEATURES` specialization constant): spring
-/// types with stiffness or dashpots, dashpots, wind, the stretch limit, self-collision, each collider type,
-/// colliders against edges (`sim::collider::edges_needed`).
+/// types with stiffness or dashpots, dashpots, wind, the stretch limit, self-collision, each
+/// collider type, colliders against edges (`sim::collider::edges_needed`).
 pub fn features(o: &ObjectModel, model: &SimModel) -> u32 {
     let mut f = 0;
     for (bit, k) in [FEATURE_STRUCTURAL, FEATURE_SHEAR, FEATURE_BENDING].into_iter().zip(o.stiffness) {
