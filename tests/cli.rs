@@ -491,3 +491,29 @@ fn simulate_runs_the_shaders_of_a_folder() {
         &["--shaders /nonexistent/glsl"],
     );
 }
+
+/// Hostile inputs that used to crash, be refused wrongly or pass as valid: a `--set` key of
+/// 40,000 segments (a stack overflow, exit 134), `MSDSIM_VALIDATION=1` (refused as not a
+/// boolean), a frame of 1e-44 s (a zero substep in f32, run anyway), an object name holding a
+/// terminal escape sequence (printed raw). Each is one line with exit 2, or runs.
+#[test]
+fn hostile_keys_values_and_names_get_one_clear_line() {
+    let deep = format!("{}a=1", "a.".repeat(40_000));
+    rejects(&["simulate", "--preset", "presets/flag.toml", "--set", &deep], &["--set", "at most 16"]);
+    rejects(
+        &["simulate", "--preset", "presets/flag.toml", "--set", "sim.frame_dt=1e-44"],
+        &["sim.frame_dt", "between 1e-5 and 1"],
+    );
+    let out = msdsim(&["simulate", "--preset", "presets/flag.toml", "--set", "cloth.0.name=\"a\u{1b}[2Kb\""]);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{stderr}");
+    assert!(stderr.contains("control characters") && !stderr.contains('\u{1b}'), "{stderr}");
+    for on in ["1", "true", "yes"] {
+        let run = Command::new(env!("CARGO_BIN_EXE_msdsim"))
+            .env("MSDSIM_VALIDATION", on)
+            .args(["simulate", "--preset", "presets/rope.toml", "--frames", "1", "--quiet"])
+            .output()
+            .expect("running the msdsim binary");
+        assert!(run.status.success(), "MSDSIM_VALIDATION={on}: {}", String::from_utf8_lossy(&run.stderr));
+    }
+}

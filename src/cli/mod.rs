@@ -20,8 +20,9 @@ use stdout::say;
 )]
 pub struct Cli {
     /// Enable the Vulkan validation layer with synchronization validation; any validation
-    /// message makes the command fail.
-    #[arg(long, global = true, env = "MSDSIM_VALIDATION")]
+    /// message makes the command fail. `MSDSIM_VALIDATION` takes 1/0, true/false, yes/no, on/off.
+    #[arg(long, global = true, env = "MSDSIM_VALIDATION", action = clap::ArgAction::SetTrue,
+          value_parser = clap::builder::BoolishValueParser::new())]
     pub validation: bool,
     /// GPU to use: an index from `msdsim devices` or part of its name (default: discrete >
     /// integrated > CPU).

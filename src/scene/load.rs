@@ -71,7 +71,7 @@ pub fn parse(text: &str, origin: &str, overrides: &[String]) -> Result<Scene, Us
         UserError(format!("{origin}: {at}{}", one_line(e.message())))
     })?;
     for spec in overrides {
-        apply_override(&mut table, spec).map_err(|e| UserError(format!("--set {spec}: {e}")))?;
+        apply_override(&mut table, spec).map_err(|e| UserError(format!("--set {}: {e}", shortened(spec))))?;
     }
     let origin = if overrides.is_empty() { origin.to_string() } else { format!("{origin} (with --set)") };
     let scene: Scene = serde_path_to_error::deserialize(toml::Value::Table(table)).map_err(|e| {
@@ -87,6 +87,10 @@ pub fn parse(text: &str, origin: &str, overrides: &[String]) -> Result<Scene, Us
     Ok(scene)
 }
 
+/// The most dotted segments a `--set` key may have (the deepest preset key has 4); deeper ones
+/// are refused before the recursive walk.
+const MAX_KEY_SEGMENTS: usize = 16;
+
 /// Applies `KEY=VALUE` to a preset table. KEY is a dotted path (`sim.substeps`); array entries
 /// are chosen by index or by name (`cloth.0.mass`, `cloth.curtain.mass`, `sphere[1].radius`).
 /// VALUE is a TOML value (`32`, `[0, -9.81, 0]`, `true`, `"top_row"`), or a bare string.
@@ -95,6 +99,12 @@ pub fn apply_override(table: &mut toml::Table, spec: &str) -> Result<(), String>
         spec.split_once('=').ok_or_else(|| "expected KEY=VALUE, for example sim.substeps=32".to_string())?;
     let key = key.trim().replace('[', ".").replace(']', "");
     let segments: Vec<&str> = key.split('.').map(str::trim).collect();
+    if segments.len() > MAX_KEY_SEGMENTS {
+        return Err(format!(
+            "key of {} segments: a preset key has at most {MAX_KEY_SEGMENTS} (for example cloth.curtain.stiffness.shear)",
+            segments.len()
+        ));
+    }
     if segments.iter().any(|s| s.is_empty()) {
         return Err(format!("malformed key \"{key}\""));
     }
@@ -132,6 +142,14 @@ fn set_path(table: &mut toml::Table, path: &[&str], value: toml::Value, walked: 
         }
         _ => Err(format!("{here} is a value, not a table")),
     }
+}
+
+/// `text` as it is quoted in a message: at most 80 characters (then "..."), control characters
+/// escaped.
+fn shortened(text: &str) -> String {
+    let cut: String = text.chars().take(80).collect();
+    let more = if cut.len() < text.len() { "..." } else { "" };
+    format!("{}{more}", cut.escape_debug())
 }
 
 /// A message folded onto one line.

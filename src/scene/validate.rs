@@ -106,6 +106,10 @@ fn color(key: &str, c: [f64; 3]) -> Check {
     }
 }
 
+/// The shortest frame [s]: 10 microseconds, whose smallest substep (1 / 4096 of it) is still
+/// far above f32's resolution of the simulated time.
+pub const MIN_FRAME_DT: f64 = 1e-5;
+
 /// Checks every range of a scene; the error names the first key out of range.
 pub fn check(scene: &Scene) -> Check {
     let s = &scene.sim;
@@ -113,8 +117,8 @@ pub fn check(scene: &Scene) -> Check {
     if !(1..=MAX_SUBSTEPS).contains(&s.substeps) {
         return Err(format!("sim.substeps = {}: must be between 1 and {MAX_SUBSTEPS}", s.substeps));
     }
-    if !(s.frame_dt.is_finite() && s.frame_dt > 0.0 && s.frame_dt <= 1.0) {
-        return Err(format!("sim.frame_dt = {}: must be > 0 and <= 1 (s)", s.frame_dt));
+    if !(s.frame_dt.is_finite() && (MIN_FRAME_DT..=1.0).contains(&s.frame_dt)) {
+        return Err(format!("sim.frame_dt = {}: must be between {MIN_FRAME_DT:e} and 1 (s)", s.frame_dt));
     }
     vector("sim.gravity", s.gravity, MAX_ACCELERATION, "m/s^2")?;
     positive("sim.max_speed", s.max_speed, (1e-6, MAX_SPEED), "m/s")?;
@@ -220,10 +224,20 @@ fn check_motion(at: &str, m: &Option<super::Motion>) -> Check {
     Ok(())
 }
 
-fn check_cloth(at: &str, c: &Cloth) -> Check {
-    if c.name.trim().is_empty() {
+/// An object's name: not empty, and no control characters (a name reaches the terminal in
+/// messages, where an escape sequence could rewrite what the user reads).
+fn check_name(at: &str, name: &str) -> Check {
+    if name.trim().is_empty() {
         return Err(format!("{at}.name: must not be empty"));
     }
+    if name.chars().any(char::is_control) {
+        return Err(format!("{at}.name = {}: must not contain control characters", name.escape_debug()));
+    }
+    Ok(())
+}
+
+fn check_cloth(at: &str, c: &Cloth) -> Check {
+    check_name(at, &c.name)?;
     let [cols, rows] = c.resolution;
     if cols < 2 || rows < 2 {
         return Err(format!("{at}.resolution = [{cols}, {rows}]: each side must be at least 2 particles"));
@@ -273,9 +287,7 @@ fn check_cloth(at: &str, c: &Cloth) -> Check {
 }
 
 fn check_rope(at: &str, r: &Rope) -> Check {
-    if r.name.trim().is_empty() {
-        return Err(format!("{at}.name: must not be empty"));
-    }
+    check_name(at, &r.name)?;
     if r.nodes < 2 || r.nodes as u64 > MAX_PARTICLES / 8 {
         return Err(format!("{at}.nodes = {}: must be between 2 and {}", r.nodes, MAX_PARTICLES / 8));
     }
