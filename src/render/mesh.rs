@@ -134,21 +134,38 @@ pub fn cloth_indices(cols: u32, rows: u32) -> Vec<u32> {
 }
 
 /// A tube through the rings of `nodes` rope nodes (ROPE_RING vertices each), with the end rings
-/// closed by fans.
+/// closed by fans; counter-clockwise seen from outside (the ring runs counter-clockwise about
+/// the rope's direction, glsl/rope_vertices.comp).
 pub fn rope_indices(nodes: u32) -> Vec<u32> {
+    let mut out = rope_tube_indices(nodes);
+    out.extend(rope_cap_indices(0, (nodes - 1) * ROPE_RING as u32));
+    out
+}
+
+/// The tube of `rope_indices` alone.
+pub fn rope_tube_indices(nodes: u32) -> Vec<u32> {
     let ring = ROPE_RING as u32;
     let mut out = Vec::new();
-    for n in 0..nodes - 1 {
+    for n in 0..nodes.saturating_sub(1) {
         for k in 0..ring {
             let a = n * ring + k;
             let b = n * ring + (k + 1) % ring;
-            out.extend_from_slice(&[a, a + ring, b, b, a + ring, b + ring]);
+            out.extend_from_slice(&[a, b, a + ring, b, b + ring, a + ring]);
         }
     }
-    for first in [0, (nodes - 1) * ring] {
-        for k in 1..ring - 1 {
-            out.extend_from_slice(&[first, first + k, first + k + 1]);
-        }
+    out
+}
+
+/// Fans closing a rope's first ring (its vertices from `first`, facing back along the rope)
+/// and last ring (from `last`, facing forward).
+pub fn rope_cap_indices(first: u32, last: u32) -> Vec<u32> {
+    let ring = ROPE_RING as u32;
+    let mut out = Vec::new();
+    for k in 1..ring - 1 {
+        out.extend_from_slice(&[first, first + k + 1, first + k]);
+    }
+    for k in 1..ring - 1 {
+        out.extend_from_slice(&[last, last + k, last + k + 1]);
     }
     out
 }

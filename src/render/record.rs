@@ -1,7 +1,8 @@
 //! Recordings of the animated surfaces (`simulate --record`, the app's Record button), one mesh
 //! per object (a cloth's grid, a rope's tube), in the format the file name's extension picks:
-//! - `.usda`: USD (ASCII) with points and normals time-sampled at every frame, so Blender,
-//!   Houdini, usdview and Omniverse play it back. Frames are kept in memory (up to `MAX_BYTES`)
+//! - `.usda`: USD (ASCII) with points, normals and extents time-sampled at every frame (and the
+//!   frame rate as framesPerSecond), so Blender, Houdini, usdview and Omniverse play it back;
+//!   prims are named after the objects, made unique. Frames are kept in memory (up to `MAX_BYTES`)
 //!   and written at the end by the caller (`usda`), so an interrupted run leaves no partial file.
 //! - `.obj`: a sequence of Wavefront OBJ files, `NAME_00001.obj`, `NAME_00002.obj`, ... one per
 //!   frame, written as the frames come (every object an `o` group with vertex colours and
@@ -10,6 +11,7 @@
 
 use crate::render::mesh;
 use crate::sim::gpu::ObjectState;
+use crate::sim::gpu_types::ROPE_RING;
 use crate::sim::model::{ObjectKind, SimModel};
 use anyhow::Result;
 use std::fmt::Write as _;
@@ -52,8 +54,10 @@ struct Track {
     /// The object's kind and grid: a recording keeps one set of meshes.
     shape: (ObjectKind, [u32; 2]),
     counts: usize,
-    /// Surface vertices a frame.
+    /// Surface vertices a frame (the simulation's; a rope's recording adds its two cap rings).
     vertices: usize,
+    /// A rope's nodes: its caps get vertices of their own, with the rope's direction as normal.
+    rope_nodes: Option<u32>,
     indices: Vec<u32>,
     color: [f32; 3],
     points: Vec<Vec<[f32; 3]>>,
@@ -97,17 +101,25 @@ impl Recording {
             ))
             .into());
         }
+        let mut taken = std::collections::HashSet::new();
         let tracks = model
             .objects
             .iter()
             .zip(colors)
             .map(|(o, &color)| {
-                let indices = match o.kind {
-                    ObjectKind::Cloth => mesh::cloth_indices(o.dims[0], o.dims[1]),
-                    ObjectKind::Rope => mesh::rope_indices(o.dims[0]),
+                let (indices, rope_nodes) = match o.kind {
+                    ObjectKind::Cloth => (mesh::cloth_indices(o.dims[0], o.dims[1]), None),
+                    ObjectKind::Rope => {
+                        // The caps on copies of the end rings after the tube's vertices.
+                        let caps = o.surface_count() as u32;
+                        let mut indices = mesh::rope_tube_indices(o.dims[0]);
+                        indices.extend(mesh::rope_cap_indices(caps, caps + ROPE_RING as u32));
+                        (indices, Some(o.dims[0]))
+                    }
                 };
                 Track {
-                    name: usd_name(&o.name),
+                    name: unique_name(&mut taken, usd_name(&o.name)),
+                    rope_nodes,
                     shape: (o.kind, o.dims),
                     counts: indices.len() / 3,
                     vertices: o.surface_count(),
@@ -182,8 +194,9 @@ impl Recording {
             .into());
         }
         for (t, s) in self.tracks.iter_mut().zip(states) {
-            t.points.push(s.surface.iter().map(|v| [v.pos[0], v.pos[1], v.pos[2]]).collect());
-            t.normals.push(s.surface.iter().map(|v| [v.normal[0], v.normal[1], v.normal[2]]).collect());
+            let (points, normals) = t.frame(s);
+            t.points.push(points);
+            t.normals.push(normals);
         }
         Ok(())
     }
@@ -196,17 +209,18 @@ impl Recording {
         for (t, s) in self.tracks.iter().zip(states) {
             let _ = writeln!(out, "o {}", t.name);
             let [r, g, b] = t.color;
-            for v in &s.surface {
-                let _ = writeln!(out, "v {} {} {} {r} {g} {b}", v.pos[0], v.pos[1], v.pos[2]);
+            let (points, normals) = t.frame(s);
+            for [x, y, z] in &points {
+                let _ = writeln!(out, "v {x} {y} {z} {r} {g} {b}");
             }
-            for v in &s.surface {
-                let _ = writeln!(out, "vn {} {} {}", v.normal[0], v.normal[1], v.normal[2]);
+            for [x, y, z] in &normals {
+                let _ = writeln!(out, "vn {x} {y} {z}");
             }
             for tri in t.indices.chunks_exact(3) {
                 let [a, b, c] = [tri[0], tri[1], tri[2]].map(|i| i as usize + base);
                 let _ = writeln!(out, "f {a}//{a} {b}//{b} {c}//{c}");
             }
-            base += s.surface.len();
+            base += points.len();
         }
         out
     }
@@ -221,8 +235,9 @@ impl Recording {
         );
         let _ = writeln!(
             out,
-            "    startTimeCode = 1\n    endTimeCode = {}\n    timeCodesPerSecond = {}\n)\n",
+            "    startTimeCode = 1\n    endTimeCode = {}\n    timeCodesPerSecond = {}\n    framesPerSecond = {}\n)\n",
             frames.max(1),
+            self.fps,
             self.fps
         );
         let _ = writeln!(out, "def Xform \"scene\"\n{{");
@@ -241,11 +256,63 @@ impl Recording {
                 "        normal3f[] normals (\n            interpolation = \"vertex\"\n        )"
             );
             samples(&mut out, "normal3f[] normals", &t.normals);
+            let extents: Vec<Vec<[f32; 3]>> = t.points.iter().map(|p| extent(p).to_vec()).collect();
+            samples(&mut out, "float3[] extent", &extents);
             let _ = writeln!(out, "    }}");
         }
         let _ = writeln!(out, "}}");
         out
     }
+}
+
+impl Track {
+    /// A frame's points and normals from the object's surface: a rope's with copies of its
+    /// first and last rings, whose normals point back and forward along the rope (its caps).
+    fn frame(&self, s: &ObjectState) -> (Vec<[f32; 3]>, Vec<[f32; 3]>) {
+        let mut points: Vec<[f32; 3]> = s.surface.iter().map(|v| [v.pos[0], v.pos[1], v.pos[2]]).collect();
+        let mut normals: Vec<[f32; 3]> =
+            s.surface.iter().map(|v| [v.normal[0], v.normal[1], v.normal[2]]).collect();
+        if let Some(nodes) = self.rope_nodes {
+            let ring = ROPE_RING;
+            let centre = |n: usize| -> glam::Vec3 {
+                points[n * ring..(n + 1) * ring].iter().map(|&p| glam::Vec3::from(p)).sum::<glam::Vec3>()
+                    / ring as f32
+            };
+            let last = nodes as usize - 1;
+            let along = |a: usize, b: usize| (centre(b) - centre(a)).normalize_or(glam::Vec3::X);
+            let (back, forward) = if last > 0 {
+                (-along(0, 1), along(last - 1, last))
+            } else {
+                (-glam::Vec3::X, glam::Vec3::X)
+            };
+            for (n, normal) in [(0, back), (last, forward)] {
+                for k in 0..ring {
+                    points.push(points[n * ring + k]);
+                    normals.push(normal.to_array());
+                }
+            }
+        }
+        (points, normals)
+    }
+}
+
+/// The bounding box of `points`: [min, max].
+fn extent(points: &[[f32; 3]]) -> [[f32; 3]; 2] {
+    let lo = points.iter().fold([f32::MAX; 3], |m, p| std::array::from_fn(|i| m[i].min(p[i])));
+    let hi = points.iter().fold([f32::MIN; 3], |m, p| std::array::from_fn(|i| m[i].max(p[i])));
+    [lo, hi]
+}
+
+/// `name`, or with `_2`, `_3`, ... appended when an earlier object took it (names that differ
+/// only in characters USD does not allow, "my cloth" and "my-cloth", would be one prim).
+fn unique_name(taken: &mut std::collections::HashSet<String>, name: String) -> String {
+    let mut candidate = name.clone();
+    let mut n = 1;
+    while !taken.insert(candidate.clone()) {
+        n += 1;
+        candidate = format!("{name}_{n}");
+    }
+    candidate
 }
 
 /// `name.timeSamples = { 1: [(x, y, z), ...], ... }`, numbers in Rust's shortest exact form.
@@ -274,5 +341,15 @@ mod tests {
         assert_eq!(super::usd_name("my cloth-1"), "my_cloth_1");
         assert_eq!(super::usd_name("3d"), "_3d");
         assert_eq!(super::usd_name(""), "_");
+    }
+
+    #[test]
+    fn prim_names_are_unique() {
+        let mut taken = std::collections::HashSet::new();
+        let names: Vec<String> = ["my cloth", "my-cloth", "my_cloth_2", "my.cloth"]
+            .iter()
+            .map(|n| super::unique_name(&mut taken, super::usd_name(n)))
+            .collect();
+        assert_eq!(names, ["my_cloth", "my_cloth_2", "my_cloth_2_2", "my_cloth_3"]);
     }
 }
