@@ -14,7 +14,10 @@ fn main() {
     std::panic::set_hook(Box::new(|info| {
         let _ = writeln!(std::io::stderr(), "msdsim: internal error (a bug; please report it): {info}");
     }));
-    let cli = msdsim::cli::Cli::parse();
+    let cli = match msdsim::cli::Cli::try_parse() {
+        Ok(cli) => cli,
+        Err(e) => exit_on_argument_error(e),
+    };
     let code = match std::panic::catch_unwind(|| msdsim::cli::run(cli)) {
         Ok(Ok(())) => 0,
         Ok(Err(e)) => {
@@ -31,6 +34,27 @@ fn main() {
         Err(_) => exit::FAILURE,
     };
     std::process::exit(code);
+}
+
+/// Help and version print as clap prints them; an argument error is one line, like every
+/// other error, with exit code 2.
+fn exit_on_argument_error(e: clap::Error) -> ! {
+    use clap::error::ErrorKind;
+    if matches!(e.kind(), ErrorKind::DisplayHelp | ErrorKind::DisplayVersion) {
+        e.exit();
+    }
+    // The message and what it lists (a missing argument, a tip), before the usage.
+    let text = e.render().to_string();
+    let lines: Vec<&str> = text
+        .lines()
+        .map(str::trim)
+        .take_while(|l| !l.starts_with("Usage:") && !l.starts_with("For more information"))
+        .filter(|l| !l.is_empty())
+        .collect();
+    let message = lines.join(" ");
+    let message = message.strip_prefix("error:").unwrap_or(&message).trim();
+    let _ = writeln!(std::io::stderr(), "msdsim: error: {message} (msdsim --help lists the arguments)");
+    std::process::exit(exit::BAD_INPUT);
 }
 
 fn is_selector_error(e: &(dyn std::error::Error + 'static)) -> bool {

@@ -329,13 +329,18 @@ fn auto_integrator_picks_a_method_within_the_tolerance() {
     assert!(stderr.contains("sim.tolerance") && !stderr.contains("panicked"), "{stderr}");
 }
 
-/// Runs `args`, expecting exit code 2 from clap's own checks (its message is several lines):
-/// the argument is named and it is not taken for an unknown flag.
+/// Runs `args`, expecting exit code 2 from clap's own checks, in one line like every other
+/// error (clap's own message spans 3 to 6): the argument is named and it is not taken for an
+/// unknown flag.
 fn clap_rejects(args: &[&str], needle: &str) {
     let out = msdsim(args);
     let stderr = String::from_utf8_lossy(&out.stderr);
     assert_eq!(out.status.code(), Some(2), "{args:?}: {stderr}");
     assert!(stderr.contains(needle) && !stderr.contains("unexpected argument"), "{args:?}: {stderr}");
+    assert!(
+        stderr.starts_with("msdsim: error: ") && stderr.trim_end().lines().count() == 1,
+        "{args:?}: {stderr}"
+    );
 }
 
 /// Negative and non-finite numbers are refused by the argument they were given to.
@@ -344,6 +349,7 @@ fn negative_and_nan_arguments_name_their_option() {
     clap_rejects(&["simulate", "--preset", "presets/rope.toml", "--frames", "-5"], "'--frames");
     clap_rejects(&["stability", "--decades", "nan"], "'--decades");
     clap_rejects(&["stability", "--max-strain", "nan"], "'--max-strain");
+    clap_rejects(&["simulate"], "--preset <FILE>");
 }
 
 /// What would run and report success for nothing is refused: a preset without objects (an
