@@ -492,6 +492,33 @@ fn simulate_runs_the_shaders_of_a_folder() {
     assert!(!stderr.contains("panicked"), "{stderr}");
     assert_eq!(stderr.matches("syntax error").count(), 1, "said once: {stderr}");
     assert!(!broken_out.exists(), "no state written from a run that did not happen");
+    // An include cycle (a header including itself, no guard) and an include from outside the
+    // folders: clear compile errors, not an endless expansion (3 GB in 25 s) or an unwatched file.
+    std::fs::write(&header, text).unwrap();
+    std::fs::write(dir.path().join("outside.glsl"), "// a file beside the shader folder\n").unwrap();
+    let looped = copy.join("include").join("loop.glsl");
+    std::fs::write(&looped, "#include \"loop.glsl\"\n").unwrap();
+    let normals = copy.join("cloth_normals.comp");
+    let source = std::fs::read_to_string(&normals).unwrap();
+    std::fs::write(
+        &normals,
+        source.replacen(
+            "#include \"bindings.glsl\"",
+            "#include \"bindings.glsl\"\n#include \"loop.glsl\"",
+            1,
+        ),
+    )
+    .unwrap();
+    for (content, needle) in [
+        ("#include \"loop.glsl\"\n", "an #include cycle"),
+        ("#include \"../../outside.glsl\"\n", "outside the shader folder"),
+    ] {
+        std::fs::write(&looped, content).unwrap();
+        let (out, _) = run(Some(&copy), "looped.json");
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{stderr}");
+        assert!(stderr.contains(needle) && stderr.contains("loop.glsl"), "{stderr}");
+    }
     rejects(
         &["simulate", "--preset", &preset, "--shaders", "/nonexistent/glsl"],
         &["--shaders /nonexistent/glsl"],

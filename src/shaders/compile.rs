@@ -3,8 +3,10 @@
 //! this file as it is.
 //!
 //! `#include "name"` resolves relative to the including file first, then to `glsl/include/`
-//! (the `include_dir` argument). Every file read is reported in `CompiledShader::dependencies`,
-//! so callers know what to watch.
+//! (the `include_dir` argument), and only to files inside the shader's folder or the include
+//! folder (so everything read is watched); includes nest at most `MAX_INCLUDE_DEPTH` deep (a
+//! header that includes itself without a guard is an error, not an endless expansion). Every
+//! file read is reported in `CompiledShader::dependencies`, so callers know what to watch.
 
 use std::cell::RefCell;
 use std::fmt;
@@ -36,6 +38,9 @@ impl fmt::Display for CompileError {
 
 impl std::error::Error for CompileError {}
 
+/// How deep includes may nest (the shipped shaders nest 4 deep).
+pub const MAX_INCLUDE_DEPTH: usize = 32;
+
 /// Shader stage from the file extension (`.comp`, `.vert`, `.frag`).
 pub fn shader_kind(path: &Path) -> Option<shaderc::ShaderKind> {
     match path.extension()?.to_str()? {
@@ -59,13 +64,23 @@ pub fn compile_glsl(path: &Path, include_dir: &Path) -> Result<CompiledShader, C
         .map_err(|e| fail(format!("cannot read: {e}"), vec![path.to_path_buf()]))?;
 
     let dependencies = RefCell::new(vec![path.to_path_buf()]);
+    // The folders includes may come from.
+    let roots: Vec<PathBuf> = [path.parent().unwrap_or(Path::new(".")), include_dir]
+        .iter()
+        .filter_map(|p| p.canonicalize().ok())
+        .collect();
     let compiler = shaderc::Compiler::new().map_err(|e| fail(format!("shaderc: {e}"), vec![]))?;
     let mut options = shaderc::CompileOptions::new().map_err(|e| fail(format!("shaderc: {e}"), vec![]))?;
     options.set_target_env(shaderc::TargetEnv::Vulkan, shaderc::EnvVersion::Vulkan1_3 as u32);
     // No spirv-opt: it strips the struct and member names that `reflect` uses to check layouts
     // against the Rust mirrors, and the Vulkan drivers optimise SPIR-V themselves.
     options.set_optimization_level(shaderc::OptimizationLevel::Zero);
-    options.set_include_callback(|requested, _kind, requesting, _depth| {
+    options.set_include_callback(|requested, _kind, requesting, depth| {
+        if depth > MAX_INCLUDE_DEPTH {
+            return Err(format!(
+                "includes nest deeper than {MAX_INCLUDE_DEPTH} at \"{requested}\" from {requesting}: an #include cycle (a header without an include guard that includes itself or an includer)?"
+            ));
+        }
         let from = Path::new(requesting).parent().unwrap_or(Path::new("."));
         let candidates = [from.join(requested), include_dir.join(requested)];
         let found = candidates.iter().find(|p| p.is_file()).ok_or_else(|| {
@@ -75,6 +90,13 @@ pub fn compile_glsl(path: &Path, include_dir: &Path) -> Result<CompiledShader, C
                 include_dir.display()
             )
         })?;
+        let inside = found.canonicalize().is_ok_and(|c| roots.iter().any(|r| c.starts_with(r)));
+        if !inside {
+            return Err(format!(
+                "include \"{requested}\" is outside the shader folder and its include folder ({})",
+                found.display()
+            ));
+        }
         let content =
             std::fs::read_to_string(found).map_err(|e| format!("cannot read {}: {e}", found.display()))?;
         let mut deps = dependencies.borrow_mut();
