@@ -349,3 +349,27 @@ fn a_recorded_rope_is_a_closed_tube_wound_outward() {
     let tube = 2.0 * 2f64.sqrt() * 0.02 * 0.02 * length;
     assert!((volume / tube - 1.0).abs() < 0.05, "enclosed volume {volume} against {tube} m^3");
 }
+
+/// An OBJ frame that cannot be written (a full disk: a frame's name linked to /dev/full) stops
+/// the run with exit 1 (a failed write, not bad input) and one line naming the frame; frames
+/// are written whole through a temporary file renamed into place, and none is left behind.
+#[test]
+fn a_failed_obj_frame_is_a_clear_failure() {
+    let dir = tempfile::tempdir().unwrap();
+    std::os::unix::fs::symlink("/dev/full", dir.path().join("f_00002.obj")).unwrap();
+    let out = binary()
+        .args(["simulate", "--preset", "presets/rope.toml", "--frames", "3", "--quiet", "--record"])
+        .arg(dir.path().join("f.obj"))
+        .output()
+        .unwrap();
+    let err = stderr(&out);
+    assert_eq!(out.status.code(), Some(1), "{err}");
+    assert!(err.contains("recording frame 2") && err.contains("No space left"), "{err}");
+    assert_eq!(err.lines().filter(|l| l.contains("error")).count(), 1, "{err}");
+    let mut names: Vec<String> = std::fs::read_dir(dir.path())
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    names.sort();
+    assert_eq!(names, ["f_00001.obj", "f_00002.obj"], "frame 1 whole, the link kept, no temporary file");
+}
