@@ -373,3 +373,31 @@ fn a_failed_obj_frame_is_a_clear_failure() {
     names.sort();
     assert_eq!(names, ["f_00001.obj", "f_00002.obj"], "frame 1 whole, the link kept, no temporary file");
 }
+
+/// A USD recording carries the colliders as shapes where the simulation had them: the
+/// tablecloth's ground as a square mesh at its height, its box as a Cube scaled by the half
+/// extents and turned by the rotation, moving at 0.5 m/s along x with its translation
+/// time-sampled at each frame's simulated time (frame k at k / 60 s).
+#[test]
+fn a_usd_recording_carries_the_colliders() {
+    let dir = tempfile::tempdir().unwrap();
+    let usda = dir.path().join("t.usda");
+    let out = binary()
+        .args(["simulate", "--preset", "presets/tablecloth.toml", "--frames", "3", "--quiet"])
+        .args(["--set", "box.0.motion={velocity=[0.5,0,0]}", "--record", usda.to_str().unwrap()])
+        .output()
+        .unwrap();
+    assert!(out.status.success(), "{}", stderr(&out));
+    let text = std::fs::read_to_string(&usda).unwrap();
+    let colliders = &text[text.find("def Scope \"colliders\"").expect("a colliders scope")..];
+    assert!(colliders.contains("def Mesh \"ground_0\""), "{colliders}");
+    let cube = &colliders[colliders.find("def Cube \"box_1\"").expect("the box")..];
+    assert!(cube.contains("xformOp:scale = (0.5, 0.375, 0.35)"), "{cube}");
+    assert!(cube.contains("xformOpOrder = [\"xformOp:translate\", \"xformOp:orient\", \"xformOp:scale\"]"));
+    for k in 1..=3 {
+        let line =
+            cube.lines().find(|l| l.trim_start().starts_with(&format!("{k}: ("))).expect("a sample a frame");
+        let x: f64 = line.split(['(', ',']).nth(1).unwrap().trim().parse().unwrap();
+        assert!((x - 0.5 * k as f64 / 60.0).abs() < 1e-6, "frame {k}: {line}");
+    }
+}

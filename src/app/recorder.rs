@@ -37,7 +37,8 @@ impl AppRecorder {
     pub fn capture(&mut self, ctx: &GpuContext, host: &mut SimHost) -> Result<(), String> {
         let Some((recording, _)) = self.active.as_mut() else { return Ok(()) };
         let added = if recording.matches(host.model()) {
-            host.sim_mut().read_states(ctx).and_then(|states| recording.add(&states))
+            let time = host.sim_mut().time();
+            host.sim_mut().read_states(ctx).and_then(|states| recording.add(&states, time))
         } else {
             Err(anyhow::anyhow!(
                 "the scene's objects or frame rate changed (a recording keeps one set of meshes)"

@@ -179,7 +179,7 @@ fn simulate(
         }
         if let Some((r, _)) = &mut recording {
             // Recording reads every frame back (it waits for the frames in flight).
-            r.add(&sim.read_states(ctx)?)?;
+            r.add(&sim.read_states(ctx)?, sim.time())?;
         }
     }
     for t in sim.finish_frames(ctx).context("the last frames")? {

@@ -10,8 +10,13 @@
 //!   tools read single frames).
 
 use crate::render::mesh;
+use crate::sim::collider::{ColliderModel, Shape};
 use crate::sim::gpu::ObjectState;
 use crate::sim::gpu_types::ROPE_RING;
+use glam::{DQuat, DVec3};
+
+/// Half the side of the square that stands for the ground in a USD recording [m].
+const GROUND_HALF_SIZE: f64 = 20.0;
 use crate::sim::model::{ObjectKind, SimModel};
 use anyhow::Result;
 use std::fmt::Write as _;
@@ -66,6 +71,11 @@ struct Track {
 
 pub struct Recording {
     tracks: Vec<Track>,
+    /// The scene's colliders (USD writes them as shapes, moving ones with time-sampled
+    /// placements).
+    colliders: Vec<ColliderModel>,
+    /// The simulated time of each frame added [s].
+    times: Vec<f64>,
     fps: f64,
     format: Format,
     /// `.obj`: the path without its extension; frame n goes to `{stem}_{n:05}.obj`.
@@ -132,6 +142,8 @@ impl Recording {
             .collect();
         Ok(Self {
             tracks,
+            colliders: model.colliders.clone(),
+            times: Vec::new(),
             // Frames per second to the millisecond (a frame_dt of 0.016666667 s is 60).
             fps: (1e3 / model.frame_dt).round() / 1e3,
             format,
@@ -164,9 +176,10 @@ impl Recording {
         PathBuf::from(name)
     }
 
-    /// Adds a frame: each object's surface (a cloth's particles, a rope's tube vertices). USD
-    /// keeps it (refused past `MAX_BYTES`); an OBJ sequence writes its file now.
-    pub fn add(&mut self, states: &[ObjectState]) -> Result<()> {
+    /// Adds a frame, the state at simulated time `time`: each object's surface (a cloth's
+    /// particles, a rope's tube vertices). USD keeps it (refused past `MAX_BYTES`); an OBJ
+    /// sequence writes its file now.
+    pub fn add(&mut self, states: &[ObjectState], time: f64) -> Result<()> {
         let same = states.len() == self.tracks.len()
             && self.tracks.iter().zip(states).all(|(t, s)| t.vertices == s.surface.len());
         if !same {
@@ -191,6 +204,7 @@ impl Recording {
             ))
             .into());
         }
+        self.times.push(time);
         for (t, s) in self.tracks.iter_mut().zip(states) {
             let (points, normals) = t.frame(s);
             t.points.push(points);
@@ -258,8 +272,84 @@ impl Recording {
             samples(&mut out, "float3[] extent", &extents);
             let _ = writeln!(out, "    }}");
         }
+        self.usda_colliders(&mut out);
         let _ = writeln!(out, "}}");
         out
+    }
+
+    /// The colliders as USD shapes in a scope `colliders` (grey): a sphere as a Sphere, a
+    /// capsule as a Capsule along its local z, a box as a Cube of size 2 scaled by its half
+    /// extents and turned by its rotation, the ground as a 40 m square Mesh facing up at its
+    /// height. A moving collider's translation is time-sampled at every frame, a fixed one's
+    /// constant.
+    fn usda_colliders(&self, out: &mut String) {
+        if self.colliders.is_empty() {
+            return;
+        }
+        let _ = writeln!(out, "    def Scope \"colliders\"\n    {{");
+        for (i, c) in self.colliders.iter().enumerate() {
+            let kind = c.shape.kind().label();
+            let (prim, place, rotation): (&str, DVec3, Option<DQuat>) = match c.shape {
+                Shape::Sphere { center, .. } => ("Sphere", center, None),
+                Shape::Capsule { a, b, .. } => (
+                    "Capsule",
+                    (a + b) / 2.0,
+                    Some(DQuat::from_rotation_arc(DVec3::Z, (b - a).normalize_or(DVec3::Z))),
+                ),
+                Shape::Box { center, rotation, .. } => ("Cube", center, Some(rotation)),
+                Shape::Ground { height } => ("Mesh", DVec3::new(0.0, height, 0.0), None),
+            };
+            let _ = writeln!(out, "        def {prim} \"{kind}_{i}\"\n        {{");
+            match c.shape {
+                Shape::Sphere { radius, .. } => {
+                    let _ = writeln!(out, "            double radius = {radius}");
+                }
+                Shape::Capsule { a, b, radius } => {
+                    let _ = writeln!(out, "            uniform token axis = \"Z\"\n            double height = {}\n            double radius = {radius}", a.distance(b));
+                }
+                Shape::Box { .. } => {
+                    let _ = writeln!(out, "            double size = 2");
+                }
+                Shape::Ground { .. } => {
+                    let h = GROUND_HALF_SIZE;
+                    let _ = writeln!(out, "            int[] faceVertexCounts = [4]\n            int[] faceVertexIndices = [0, 1, 2, 3]");
+                    let _ = writeln!(out, "            point3f[] points = [(-{h}, 0, -{h}), (-{h}, 0, {h}), ({h}, 0, {h}), ({h}, 0, -{h})]");
+                    let _ = writeln!(
+                        out,
+                        "            normal3f[] normals = [(0, 1, 0), (0, 1, 0), (0, 1, 0), (0, 1, 0)]"
+                    );
+                    let _ = writeln!(out, "            float3[] extent = [(-{h}, 0, -{h}), ({h}, 0, {h})]");
+                }
+            }
+            let _ = writeln!(out, "            color3f[] primvars:displayColor = [(0.5, 0.5, 0.5)]");
+            let mut order = vec!["\"xformOp:translate\""];
+            if c.motion.is_moving() {
+                let _ = writeln!(out, "            double3 xformOp:translate.timeSamples = {{");
+                for (f, &t) in self.times.iter().enumerate() {
+                    let p = place + c.motion.offset(t);
+                    let _ = writeln!(out, "                {}: ({}, {}, {}),", f + 1, p.x, p.y, p.z);
+                }
+                let _ = writeln!(out, "            }}");
+            } else {
+                let _ = writeln!(
+                    out,
+                    "            double3 xformOp:translate = ({}, {}, {})",
+                    place.x, place.y, place.z
+                );
+            }
+            if let Some(q) = rotation {
+                let _ =
+                    writeln!(out, "            quatd xformOp:orient = ({}, {}, {}, {})", q.w, q.x, q.y, q.z);
+                order.push("\"xformOp:orient\"");
+            }
+            if let Shape::Box { half_extents: e, .. } = c.shape {
+                let _ = writeln!(out, "            double3 xformOp:scale = ({}, {}, {})", e.x, e.y, e.z);
+                order.push("\"xformOp:scale\"");
+            }
+            let _ = writeln!(out, "            uniform token[] xformOpOrder = [{}]", order.join(", "));
+            let _ = writeln!(out, "        }}");
+        }
+        let _ = writeln!(out, "    }}");
     }
 }
 
