@@ -528,7 +528,8 @@ fn simulate_runs_the_shaders_of_a_folder() {
 /// Hostile inputs that used to crash, be refused wrongly or pass as valid: a `--set` key of
 /// 40,000 segments (a stack overflow, exit 134), `MSDSIM_VALIDATION=1` (refused as not a
 /// boolean), a frame of 1e-44 s (a zero substep in f32, run anyway), an object name holding a
-/// terminal escape sequence (printed raw). Each is one line with exit 2, or runs.
+/// terminal escape sequence (printed raw), outputs naming an input or each other, ring weights
+/// that overflow f32. Each is one line with exit 2, or runs.
 #[test]
 fn hostile_keys_values_and_names_get_one_clear_line() {
     let deep = format!("{}a=1", "a.".repeat(40_000));
@@ -541,6 +542,27 @@ fn hostile_keys_values_and_names_get_one_clear_line() {
     let stderr = String::from_utf8_lossy(&out.stderr);
     assert_eq!(out.status.code(), Some(2), "{stderr}");
     assert!(stderr.contains("control characters") && !stderr.contains('\u{1b}'), "{stderr}");
+    // Outputs that would destroy an input or each other (exit 0 before: the preset replaced by
+    // JSON, the recording by the state); the preset must be unchanged.
+    let dir = tempfile::tempdir().unwrap();
+    let preset = write(dir.path(), "p.toml", GOOD);
+    let both = dir.path().join("x.usda").display().to_string();
+    rejects(&["simulate", "--preset", &preset, "--out", &preset], &["--out", "the same file as the preset"]);
+    rejects(
+        &["simulate", "--preset", &preset, "--record", &both, "--out", &both],
+        &["--out", "the same file as --record"],
+    );
+    assert_eq!(std::fs::read_to_string(&preset).unwrap(), GOOD);
+    rejects(
+        &[
+            "simulate",
+            "--preset",
+            "presets/rope.toml",
+            "--set",
+            "rope.0.ring_weights=[[1e300,0],[1,0],[1,0],[1,0],[1,0],[1,0],[1,0],[1,0]]",
+        ],
+        &["ring_weights", "between -100 and 100"],
+    );
     for on in ["1", "true", "yes"] {
         let run = Command::new(env!("CARGO_BIN_EXE_msdsim"))
             .env("MSDSIM_VALIDATION", on)

@@ -67,7 +67,38 @@ struct ObjectOut<'a> {
     velocities: Vec<[f32; 3]>,
 }
 
+/// Whether `a` and `b` name the same file: the same file when both exist, else the same
+/// absolute path.
+fn same_file(a: &std::path::Path, b: &std::path::Path) -> bool {
+    match (a.canonicalize(), b.canonicalize()) {
+        (Ok(a), Ok(b)) => a == b,
+        _ => std::path::absolute(a).ok().zip(std::path::absolute(b).ok()).is_some_and(|(a, b)| a == b),
+    }
+}
+
+/// Refuses outputs that would destroy an input or each other: `--out` or `--record` naming the
+/// preset, or the two naming one file.
+fn check_outputs(args: &SimulateArgs) -> Result<(), crate::error::UserError> {
+    let refuse = |what: &str, path: &std::path::Path, other: &str| {
+        Err(crate::error::UserError(format!("{what} {}: the same file as {other}", path.display())))
+    };
+    for (what, path) in [("--out", &args.out), ("--record", &args.record)] {
+        if let Some(path) = path {
+            if same_file(path, &args.preset) {
+                return refuse(what, path, "the preset (it would be replaced)");
+            }
+        }
+    }
+    if let (Some(out), Some(record)) = (&args.out, &args.record) {
+        if same_file(out, record) {
+            return refuse("--out", out, "--record");
+        }
+    }
+    Ok(())
+}
+
 pub fn run(args: &SimulateArgs, options: &ContextOptions) -> Result<()> {
+    check_outputs(args)?;
     let scene = scene::load_runnable(&args.preset, &args.overrides)?;
     // Claim the output file before simulating, so a bad path fails before any work is done.
     let out_file = args.out.as_deref().map(OutFile::claim).transpose()?;

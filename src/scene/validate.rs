@@ -26,6 +26,8 @@ const MAX_DAMPING: f64 = 1e9;
 const MAX_FORCE: f64 = 1e9;
 const MAX_ACCELERATION: f64 = 1e5;
 const MAX_SPEED: f64 = 1e8;
+/// The largest tube vertex offset, in units of the rope's radius (1e300 became inf in f32).
+const MAX_RING_WEIGHT: f64 = 100.0;
 
 /// A value as the user would write it: in exponent form when very large or small.
 fn num(v: f64) -> String {
@@ -308,8 +310,10 @@ fn check_rope(at: &str, r: &Rope) -> Check {
     friction(&format!("{at}.friction"), r.friction)?;
     positive(&format!("{at}.radius"), r.radius, LENGTH, "m")?;
     if let Some(w) = &r.ring_weights {
-        if w.len() != 8 || w.iter().flatten().any(|x| !x.is_finite()) {
-            return Err(format!("{at}.ring_weights: must be 8 finite [side, up] pairs"));
+        if w.len() != 8 || w.iter().flatten().any(|x| !x.is_finite() || x.abs() > MAX_RING_WEIGHT) {
+            return Err(format!(
+                "{at}.ring_weights: must be 8 [side, up] pairs, each between -{MAX_RING_WEIGHT} and {MAX_RING_WEIGHT} (units of the radius)"
+            ));
         }
     }
     if let Some(d) = r.self_collision_distance {
