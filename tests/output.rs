@@ -228,11 +228,13 @@ fn a_recording_reads_back_as_the_simulation() {
     record(&preset, 7, &usda, &json);
     let text = std::fs::read_to_string(&usda).unwrap();
     assert!(text.starts_with("#usda 1.0") && text.contains("endTimeCode = 7"), "{}", &text[..200]);
-    // Two meshes (the cloth "c" and the rope "r"), each with 7 point, normal and extent samples.
+    // Two meshes (the cloth "c" and the rope "r"), each with 8 point, normal and extent samples:
+    // the initial state at time code 0, then one a frame.
     assert!(text.contains("def Mesh \"c\"") && text.contains("def Mesh \"r\""));
     let sample_lines =
         text.lines().filter(|l| l.trim_start().starts_with(|c: char| c.is_ascii_digit())).count();
-    assert_eq!(sample_lines, 2 * 3 * 7, "time samples");
+    assert_eq!(sample_lines, 2 * 3 * 8, "time samples");
+    assert!(text.contains("startTimeCode = 0") && text.contains("            0: [("), "{}", &text[..300]);
     assert!(text.contains("framesPerSecond = 60"), "{}", &text[..300]);
     // The cloth's last points sample against the final state.
     let cloth = &text[text.find("def Mesh \"c\"").unwrap()..];
@@ -256,7 +258,8 @@ fn a_recording_reads_back_as_the_simulation() {
     assert!(stderr(&bad).contains(".usda"), "{}", stderr(&bad));
 }
 
-/// `simulate --record FILE.obj`: one OBJ file per frame, FILE_00001.obj ... FILE_00005.obj,
+/// `simulate --record FILE.obj`: one OBJ file per frame, FILE_00000.obj (the initial state)
+/// ... FILE_00005.obj,
 /// each with both objects; the last frame's cloth vertices are the simulated positions
 /// exactly, and the faces index vertices that exist. A folder that does not exist is refused
 /// before the run.
@@ -267,7 +270,7 @@ fn an_obj_sequence_reads_back_as_the_simulation() {
     let obj = dir.path().join("seq.obj");
     let json = dir.path().join("state.json");
     record(&preset, 5, &obj, &json);
-    for n in 1..=5 {
+    for n in 0..=5 {
         assert!(dir.path().join(format!("seq_{n:05}.obj")).is_file(), "frame {n}");
     }
     assert!(!dir.path().join("seq_00006.obj").exists() && !obj.exists());
@@ -371,7 +374,7 @@ fn a_failed_obj_frame_is_a_clear_failure() {
         .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
         .collect();
     names.sort();
-    assert_eq!(names, ["f_00001.obj", "f_00002.obj"], "frame 1 whole, the link kept, no temporary file");
+    assert_eq!(names, ["f_00000.obj", "f_00001.obj", "f_00002.obj"], "frames 0 and 1 whole, the link kept, no temporary file");
 }
 
 /// A USD recording carries the colliders as shapes where the simulation had them: the

@@ -63,8 +63,8 @@ impl AppRecorder {
             Format::ObjSequence if frames == 0 => Ok("recorded no frames".into()),
             Format::ObjSequence => Ok(format!(
                 "recorded {frames} frames to {} ... {}",
-                recording.obj_path(1).display(),
-                recording.obj_path(frames).display()
+                recording.obj_path(recording.first_code()).display(),
+                recording.obj_path(recording.last_code()).display()
             )),
         }
     }

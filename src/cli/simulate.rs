@@ -202,6 +202,15 @@ fn simulate(
         }
         Ok(())
     };
+    if let Some((r, _)) = &mut recording {
+        // The initial state, at time code 0 (its surface computed without simulating).
+        sim.take_surface_stale();
+        ctx.one_shot("the initial surface", |rec| {
+            sim.record_surface(rec, crate::vk::Access::ComputeReadWrite);
+            Ok(())
+        })?;
+        r.add(&sim.read_states(ctx)?, sim.time())?;
+    }
     // Frames stay in flight as in the app: each submission first collects the frame that
     // used its slot, so timings (and a tripped guard) arrive a frame or two late.
     for frame in 1..=args.frames {
@@ -228,8 +237,8 @@ fn simulate(
                     out,
                     "recorded {} frames to {} ... {}",
                     r.frames(),
-                    r.obj_path(1).display(),
-                    r.obj_path(r.frames()).display()
+                    r.obj_path(r.first_code()).display(),
+                    r.obj_path(r.last_code()).display()
                 )?,
             }
         }

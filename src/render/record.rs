@@ -76,6 +76,9 @@ pub struct Recording {
     colliders: Vec<ColliderModel>,
     /// The simulated time of each frame added [s].
     times: Vec<f64>,
+    /// The time code (and OBJ number) of the first frame: 0 when it is the initial state
+    /// (time 0), else 1; the frames after it count on from there.
+    first_code: u64,
     fps: f64,
     format: Format,
     /// `.obj`: the path without its extension; frame n goes to `{stem}_{n:05}.obj`.
@@ -144,6 +147,7 @@ impl Recording {
             tracks,
             colliders: model.colliders.clone(),
             times: Vec::new(),
+            first_code: 1,
             // Frames per second to the millisecond (a frame_dt of 0.016666667 s is 60).
             fps: (1e3 / model.frame_dt).round() / 1e3,
             format,
@@ -169,7 +173,17 @@ impl Recording {
         self.frames
     }
 
-    /// The file of OBJ frame `n` (1-based).
+    /// The time code (the OBJ file's number) of the first frame added.
+    pub fn first_code(&self) -> u64 {
+        self.first_code
+    }
+
+    /// The time code (the OBJ file's number) of the last frame added.
+    pub fn last_code(&self) -> u64 {
+        (self.first_code + self.frames).saturating_sub(1)
+    }
+
+    /// The file of OBJ frame `n` (its time code).
     pub fn obj_path(&self, n: u64) -> PathBuf {
         let mut name = self.stem.clone().into_os_string();
         name.push(format!("_{n:05}.obj"));
@@ -188,11 +202,15 @@ impl Recording {
             )
             .into());
         }
+        if self.frames == 0 {
+            self.first_code = if time == 0.0 { 0 } else { 1 };
+        }
         self.frames += 1;
         if self.format == Format::ObjSequence {
-            let path = self.obj_path(self.frames);
+            let code = self.last_code();
+            let path = self.obj_path(code);
             return write_whole(&path, self.obj(states).as_bytes())
-                .map_err(|e| anyhow::anyhow!("recording frame {} to {}: {e}", self.frames, path.display()));
+                .map_err(|e| anyhow::anyhow!("recording frame {code} to {}: {e}", path.display()));
         }
         let vertices: u64 = states.iter().map(|s| s.surface.len() as u64).sum();
         if vertices * 24 * self.frames > MAX_BYTES {
@@ -216,7 +234,7 @@ impl Recording {
     /// One frame as OBJ text: every object an `o` group of vertices (with the object's colour),
     /// normals and triangles.
     fn obj(&self, states: &[ObjectState]) -> String {
-        let mut out = format!("# msdsim frame {} ({} frames/s)\n", self.frames, self.fps);
+        let mut out = format!("# msdsim frame {} ({} frames/s)\n", self.last_code(), self.fps);
         let mut base = 1usize;
         for (t, s) in self.tracks.iter().zip(states) {
             let _ = writeln!(out, "o {}", t.name);
@@ -247,8 +265,9 @@ impl Recording {
         );
         let _ = writeln!(
             out,
-            "    startTimeCode = 1\n    endTimeCode = {}\n    timeCodesPerSecond = {}\n    framesPerSecond = {}\n)\n",
-            frames.max(1),
+            "    startTimeCode = {}\n    endTimeCode = {}\n    timeCodesPerSecond = {}\n    framesPerSecond = {}\n)\n",
+            self.first_code,
+            (self.first_code + frames as u64).saturating_sub(1).max(self.first_code),
             self.fps,
             self.fps
         );
@@ -262,14 +281,14 @@ impl Recording {
             let _ = writeln!(out, "        int[] faceVertexIndices = [{}]", indices.join(", "));
             let [r, g, b] = t.color;
             let _ = writeln!(out, "        color3f[] primvars:displayColor = [({r}, {g}, {b})]");
-            samples(&mut out, "point3f[] points", &t.points);
+            samples(&mut out, self.first_code, "point3f[] points", &t.points);
             let _ = writeln!(
                 out,
                 "        normal3f[] normals (\n            interpolation = \"vertex\"\n        )"
             );
-            samples(&mut out, "normal3f[] normals", &t.normals);
+            samples(&mut out, self.first_code, "normal3f[] normals", &t.normals);
             let extents: Vec<Vec<[f32; 3]>> = t.points.iter().map(|p| extent(p).to_vec()).collect();
-            samples(&mut out, "float3[] extent", &extents);
+            samples(&mut out, self.first_code, "float3[] extent", &extents);
             let _ = writeln!(out, "    }}");
         }
         self.usda_colliders(&mut out);
@@ -327,7 +346,7 @@ impl Recording {
                 let _ = writeln!(out, "            double3 xformOp:translate.timeSamples = {{");
                 for (f, &t) in self.times.iter().enumerate() {
                     let p = place + c.motion.offset(t);
-                    let _ = writeln!(out, "                {}: ({}, {}, {}),", f + 1, p.x, p.y, p.z);
+                    let _ = writeln!(out, "                {}: ({}, {}, {}),", self.first_code + f as u64, p.x, p.y, p.z);
                 }
                 let _ = writeln!(out, "            }}");
             } else {
@@ -422,12 +441,13 @@ fn unique_name(taken: &mut std::collections::HashSet<String>, name: String) -> S
     candidate
 }
 
-/// `name.timeSamples = { 1: [(x, y, z), ...], ... }`, numbers in Rust's shortest exact form.
-fn samples(out: &mut String, name: &str, frames: &[Vec<[f32; 3]>]) {
+/// `name.timeSamples = { first: [(x, y, z), ...], ... }`, numbers in Rust's shortest exact
+/// form, the frames at time codes from `first` on.
+fn samples(out: &mut String, first: u64, name: &str, frames: &[Vec<[f32; 3]>]) {
     let _ = writeln!(out, "        {name}.timeSamples = {{");
     for (f, values) in frames.iter().enumerate() {
         let items: Vec<String> = values.iter().map(|[x, y, z]| format!("({x}, {y}, {z})")).collect();
-        let _ = writeln!(out, "            {}: [{}],", f + 1, items.join(", "));
+        let _ = writeln!(out, "            {}: [{}],", first + f as u64, items.join(", "));
     }
     let _ = writeln!(out, "        }}");
 }
