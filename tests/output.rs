@@ -292,7 +292,7 @@ fn an_obj_sequence_reads_back_as_the_simulation() {
     assert_eq!(vertices, normals);
     for face in text.lines().filter(|l| l.starts_with("f ")) {
         for corner in face.split_whitespace().skip(1) {
-            let i: usize = corner.split("//").next().unwrap().parse().unwrap();
+            let i: usize = corner.split('/').next().unwrap().parse().unwrap();
             assert!((1..=vertices).contains(&i), "{face}");
         }
     }
@@ -332,7 +332,7 @@ fn a_recorded_rope_is_a_closed_tube_wound_outward() {
             let c: Vec<usize> = l
                 .split_whitespace()
                 .skip(1)
-                .map(|c| c.split("//").next().unwrap().parse::<usize>().unwrap() - 1)
+                .map(|c| c.split('/').next().unwrap().parse::<usize>().unwrap() - 1)
                 .collect();
             [c[0], c[1], c[2]]
         })
@@ -374,7 +374,11 @@ fn a_failed_obj_frame_is_a_clear_failure() {
         .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
         .collect();
     names.sort();
-    assert_eq!(names, ["f_00000.obj", "f_00001.obj", "f_00002.obj"], "frames 0 and 1 whole, the link kept, no temporary file");
+    assert_eq!(
+        names,
+        ["f_00000.obj", "f_00001.obj", "f_00002.obj"],
+        "frames 0 and 1 whole, the link kept, no temporary file"
+    );
 }
 
 /// A USD recording carries the colliders as shapes where the simulation had them: the
@@ -402,5 +406,62 @@ fn a_usd_recording_carries_the_colliders() {
             cube.lines().find(|l| l.trim_start().starts_with(&format!("{k}: ("))).expect("a sample a frame");
         let x: f64 = line.split(['(', ',']).nth(1).unwrap().trim().parse().unwrap();
         assert!((x - 0.5 * k as f64 / 60.0).abs() < 1e-6, "frame {k}: {line}");
+    }
+}
+
+/// What an artist needs beyond the shapes: texture coordinates (a cloth's grid over the unit
+/// square; a rope's tube unrolled with both sides of its seam, and discs on its caps) as USD's
+/// face-varying `primvars:st` with an index per triangle corner, and as OBJ `vt` with every
+/// face naming vertex/uv/normal; OBJ vertex colours in sRGB (what OBJ readers assume); and a
+/// shorter OBJ recording under an earlier one's name leaves none of its old frames.
+#[test]
+fn recordings_carry_texture_coordinates_and_replace_earlier_frames() {
+    let dir = tempfile::tempdir().unwrap();
+    let preset = preset(dir.path());
+    let (usda, json) = (dir.path().join("uv.usda"), dir.path().join("s.json"));
+    record(&preset, 2, &usda, &json);
+    let text = std::fs::read_to_string(&usda).unwrap();
+    for mesh in ["c", "r"] {
+        let at = &text[text.find(&format!("def Mesh \"{mesh}\"")).unwrap()..];
+        let list = |key: &str| -> usize {
+            let line = at.lines().find(|l| l.contains(key)).unwrap_or_else(|| panic!("{mesh}: no {key}"));
+            line[line.find('[').unwrap()..].split(',').count()
+        };
+        assert!(at.contains("interpolation = \"faceVarying\""), "{mesh}");
+        assert_eq!(list("primvars:st:indices"), list("faceVertexIndices"), "{mesh}: a uv for every corner");
+    }
+    let obj = dir.path().join("seq.obj");
+    record(&preset, 4, &obj, &json);
+    record(&preset, 2, &obj, &json);
+    let mut frames: Vec<String> = std::fs::read_dir(dir.path())
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .filter(|n| n.starts_with("seq_"))
+        .collect();
+    frames.sort();
+    assert_eq!(
+        frames,
+        ["seq_00000.obj", "seq_00001.obj", "seq_00002.obj"],
+        "the longer run's frames 3 and 4 are gone"
+    );
+    let text = std::fs::read_to_string(dir.path().join("seq_00002.obj")).unwrap();
+    // The cloth's colour: linear in USD, sRGB in OBJ.
+    let usd = std::fs::read_to_string(&usda).unwrap();
+    let shown = &usd[usd.find("displayColor = [(").unwrap() + 17..];
+    let linear: Vec<f64> =
+        shown[..shown.find(')').unwrap()].split(',').map(|x| x.trim().parse().unwrap()).collect();
+    let vertex = text.lines().find(|l| l.starts_with("v ")).unwrap();
+    let rgb: Vec<f64> = vertex.split_whitespace().skip(4).map(|x| x.parse().unwrap()).collect();
+    for (c, l) in rgb.iter().zip(&linear) {
+        let srgb = if *l <= 0.0031308 { 12.92 * l } else { 1.055 * l.powf(1.0 / 2.4) - 0.055 };
+        assert!((c - srgb).abs() < 1e-3, "OBJ colour {rgb:?} is not sRGB of {linear:?}");
+    }
+    let uvs = text.lines().filter(|l| l.starts_with("vt ")).count();
+    assert!(uvs > 0);
+    for face in text.lines().filter(|l| l.starts_with("f ")) {
+        for corner in face.split_whitespace().skip(1) {
+            let parts: Vec<usize> = corner.split('/').map(|p| p.parse().unwrap()).collect();
+            assert!(parts.len() == 3 && (1..=uvs).contains(&parts[1]), "{face}");
+        }
     }
 }

@@ -64,6 +64,9 @@ struct Track {
     /// A rope's nodes: its caps get vertices of their own, with the rope's direction as normal.
     rope_nodes: Option<u32>,
     indices: Vec<u32>,
+    /// Texture coordinates, and for each corner of `indices` the one it takes.
+    st: Vec<[f32; 2]>,
+    st_indices: Vec<u32>,
     color: [f32; 3],
     points: Vec<Vec<[f32; 3]>>,
     normals: Vec<Vec<[f32; 3]>>,
@@ -114,12 +117,16 @@ impl Recording {
             ))
             .into());
         }
+        if format == Format::ObjSequence {
+            remove_old_frames(path)?;
+        }
         let mut taken = std::collections::HashSet::new();
         let tracks = model
             .objects
             .iter()
             .zip(colors)
             .map(|(o, &color)| {
+                let (st, st_indices) = texture_coordinates(o.kind, o.dims);
                 let (indices, rope_nodes) = match o.kind {
                     ObjectKind::Cloth => (mesh::cloth_indices(o.dims[0], o.dims[1]), None),
                     ObjectKind::Rope => {
@@ -137,6 +144,8 @@ impl Recording {
                     counts: indices.len() / 3,
                     vertices: o.surface_count(),
                     indices,
+                    st,
+                    st_indices,
                     color,
                     points: Vec::new(),
                     normals: Vec::new(),
@@ -235,10 +244,11 @@ impl Recording {
     /// normals and triangles.
     fn obj(&self, states: &[ObjectState]) -> String {
         let mut out = format!("# msdsim frame {} ({} frames/s)\n", self.last_code(), self.fps);
-        let mut base = 1usize;
+        let (mut base, mut st_base) = (1usize, 1usize);
         for (t, s) in self.tracks.iter().zip(states) {
             let _ = writeln!(out, "o {}", t.name);
-            let [r, g, b] = t.color;
+            // OBJ readers (Blender, MeshLab) take vertex colours as sRGB; the scene's are linear.
+            let [r, g, b] = t.color.map(srgb);
             let (points, normals) = t.frame(s);
             for [x, y, z] in &points {
                 let _ = writeln!(out, "v {x} {y} {z} {r} {g} {b}");
@@ -246,11 +256,16 @@ impl Recording {
             for [x, y, z] in &normals {
                 let _ = writeln!(out, "vn {x} {y} {z}");
             }
-            for tri in t.indices.chunks_exact(3) {
+            for [u, v] in &t.st {
+                let _ = writeln!(out, "vt {u} {v}");
+            }
+            for (tri, uv) in t.indices.chunks_exact(3).zip(t.st_indices.chunks_exact(3)) {
                 let [a, b, c] = [tri[0], tri[1], tri[2]].map(|i| i as usize + base);
-                let _ = writeln!(out, "f {a}//{a} {b}//{b} {c}//{c}");
+                let [ta, tb, tc] = [uv[0], uv[1], uv[2]].map(|i| i as usize + st_base);
+                let _ = writeln!(out, "f {a}/{ta}/{a} {b}/{tb}/{b} {c}/{tc}/{c}");
             }
             base += points.len();
+            st_base += t.st.len();
         }
         out
     }
@@ -281,6 +296,14 @@ impl Recording {
             let _ = writeln!(out, "        int[] faceVertexIndices = [{}]", indices.join(", "));
             let [r, g, b] = t.color;
             let _ = writeln!(out, "        color3f[] primvars:displayColor = [({r}, {g}, {b})]");
+            let st: Vec<String> = t.st.iter().map(|[u, v]| format!("({u}, {v})")).collect();
+            let _ = writeln!(
+                out,
+                "        texCoord2f[] primvars:st = [{}] (\n            interpolation = \"faceVarying\"\n        )",
+                st.join(", ")
+            );
+            let st_indices: Vec<String> = t.st_indices.iter().map(u32::to_string).collect();
+            let _ = writeln!(out, "        int[] primvars:st:indices = [{}]", st_indices.join(", "));
             samples(&mut out, self.first_code, "point3f[] points", &t.points);
             let _ = writeln!(
                 out,
@@ -346,7 +369,14 @@ impl Recording {
                 let _ = writeln!(out, "            double3 xformOp:translate.timeSamples = {{");
                 for (f, &t) in self.times.iter().enumerate() {
                     let p = place + c.motion.offset(t);
-                    let _ = writeln!(out, "                {}: ({}, {}, {}),", self.first_code + f as u64, p.x, p.y, p.z);
+                    let _ = writeln!(
+                        out,
+                        "                {}: ({}, {}, {}),",
+                        self.first_code + f as u64,
+                        p.x,
+                        p.y,
+                        p.z
+                    );
                 }
                 let _ = writeln!(out, "            }}");
             } else {
@@ -370,6 +400,26 @@ impl Recording {
         }
         let _ = writeln!(out, "    }}");
     }
+}
+
+/// Removes the frames an earlier OBJ recording under the same name left
+/// (regular files named `{stem}_NNNNN.obj`, five digits or more), so that a shorter recording leaves no stale
+/// higher-numbered frames for an importer to pick up.
+fn remove_old_frames(path: &Path) -> Result<()> {
+    let stem = path.with_extension("");
+    let (Some(folder), Some(name)) = (stem.parent(), stem.file_name()) else { return Ok(()) };
+    let folder = if folder.as_os_str().is_empty() { Path::new(".") } else { folder };
+    let prefix = format!("{}_", name.to_string_lossy());
+    for entry in std::fs::read_dir(folder)?.flatten() {
+        let file = entry.file_name().to_string_lossy().into_owned();
+        let number = file.strip_prefix(&prefix).and_then(|rest| rest.strip_suffix(".obj"));
+        let regular = entry.file_type().is_ok_and(|t| t.is_file());
+        if regular && number.is_some_and(|n| n.len() >= 5 && n.bytes().all(|b| b.is_ascii_digit())) {
+            std::fs::remove_file(entry.path())
+                .map_err(|e| anyhow::anyhow!("removing the earlier frame {}: {e}", entry.path().display()))?;
+        }
+    }
+    Ok(())
 }
 
 /// Writes `bytes` to `path` so that no reader (and no interrupted run) sees part of it: a
@@ -419,6 +469,60 @@ impl Track {
             }
         }
         (points, normals)
+    }
+}
+
+/// A linear colour channel in sRGB's transfer curve, to 4 decimals.
+fn srgb(linear: f32) -> f32 {
+    let c = linear.clamp(0.0, 1.0);
+    let s = if c <= 0.003_130_8 { 12.92 * c } else { 1.055 * c.powf(1.0 / 2.4) - 0.055 };
+    (s * 1e4).round() / 1e4
+}
+
+/// Texture coordinates of an object's recorded mesh, and the one each triangle corner takes
+/// (in the order of its indices). A cloth: its grid stretched over the unit square, row 0 at
+/// v = 1. A rope: the tube unrolled, u around (0 to 1, the seam given both) and v along; each
+/// cap a disc of radius 1/2 about (1/2, 1/2).
+fn texture_coordinates(kind: ObjectKind, [cols, rows]: [u32; 2]) -> (Vec<[f32; 2]>, Vec<u32>) {
+    match kind {
+        ObjectKind::Cloth => {
+            let span = |n: u32| (n.max(2) - 1) as f32;
+            let st = (0..cols * rows)
+                .map(|i| [(i % cols) as f32 / span(cols), 1.0 - (i / cols) as f32 / span(rows)]);
+            (st.collect(), mesh::cloth_indices(cols, rows))
+        }
+        ObjectKind::Rope => {
+            let (ring, nodes) = (ROPE_RING as u32, cols);
+            let mut st: Vec<[f32; 2]> = (0..nodes)
+                .flat_map(|n| {
+                    (0..=ring).map(move |k| [k as f32 / ring as f32, n as f32 / (nodes.max(2) - 1) as f32])
+                })
+                .collect();
+            // The tube's corners: vertex n ring + k takes (k, n), the seam's wrap (ring, n).
+            let tube = mesh::rope_tube_indices(nodes);
+            let mut st_indices: Vec<u32> = tube
+                .chunks_exact(3)
+                .flat_map(|tri| {
+                    let lo = tri.iter().map(|&i| i % ring).min().unwrap_or(0);
+                    let wraps = tri.iter().any(|&i| i % ring == ring - 1) && lo == 0;
+                    tri.iter()
+                        .map(|&i| {
+                            let (n, k) = (i / ring, i % ring);
+                            let k = if wraps && k == 0 { ring } else { k };
+                            n * (ring + 1) + k
+                        })
+                        .collect::<Vec<_>>()
+                })
+                .collect();
+            let disc = st.len() as u32;
+            st.extend((0..ring).map(|k| {
+                let a = std::f32::consts::TAU * k as f32 / ring as f32;
+                [0.5 + 0.5 * a.cos(), 0.5 + 0.5 * a.sin()]
+            }));
+            // Both caps' corners take the disc (their vertices are ring copies 0..ring).
+            st_indices.extend(mesh::rope_cap_indices(0, 0).into_iter().map(|k| disc + k));
+            (st, st_indices)
+        }
     }
 }
 
