@@ -563,6 +563,10 @@ fn hostile_keys_values_and_names_get_one_clear_line() {
         ],
         &["ring_weights", "between -100 and 100"],
     );
+    rejects(
+        &["simulate", "--preset", "presets/flag.toml", "--set", "wind.model=\"aerodynamic\""],
+        &["wind.speed = 0", "air speed"],
+    );
     for on in ["1", "true", "yes"] {
         let run = Command::new(env!("CARGO_BIN_EXE_msdsim"))
             .env("MSDSIM_VALIDATION", on)

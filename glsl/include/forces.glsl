@@ -8,21 +8,25 @@
 // edit it while the app runs and the cloth falls faster or slower at once.
 const float GRAVITY_SCALE = 1.0;
 
-// The paper's wind: a cone from wind_origin along wind_dir, full force inside the full-force
-// half-angle, falling linearly (in the cosine) to zero at the attenuation half-angle.
-vec3 wind_force(vec3 x) {
-    if (!has(F_WIND)) return vec3(0.0);
+// The wind cone's strength at x: a cone from wind_origin along wind_dir, full inside the
+// full-force half-angle, falling linearly (in the cosine) to zero at the attenuation
+// half-angle.
+float wind_strength(vec3 x) {
     vec3 to_x = x - g.wind_origin;
     float d = length(to_x);
-    if (g.wind_enabled == 0u || d <= 0.0) return vec3(0.0);
+    if (d <= 0.0) return 0.0;
     float c = dot(g.wind_dir, to_x / d);
-    float ratio;
     if (g.wind_cos_full > g.wind_cos_att) {
-        ratio = clamp((c - g.wind_cos_att) / (g.wind_cos_full - g.wind_cos_att), 0.0, 1.0);
-    } else {
-        ratio = c >= g.wind_cos_full ? 1.0 : 0.0;
+        return clamp((c - g.wind_cos_att) / (g.wind_cos_full - g.wind_cos_att), 0.0, 1.0);
     }
-    return g.wind_dir * (g.wind_force * ratio);
+    return c >= g.wind_cos_full ? 1.0 : 0.0;
+}
+
+// The paper's wind: wind_force newtons along the axis on every particle, times the cone's
+// strength (none with the aerodynamic wind, air.glsl).
+vec3 wind_force(vec3 x) {
+    if (!has(F_WIND) || g.wind_enabled == 0u || g.wind_speed > 0.0) return vec3(0.0);
+    return g.wind_dir * (g.wind_force * wind_strength(x));
 }
 
 // Gravity, wind and drag on a particle at x moving at v [N].

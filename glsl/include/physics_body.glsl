@@ -11,6 +11,7 @@
 #include "forces.glsl"
 #include "hash_count.glsl"
 #include "spring_forces.glsl"
+#include "air.glsl"
 
 // Position Verlet instead of symplectic Euler (a pipeline per choice).
 layout(constant_id = 2) const bool VERLET = false;
@@ -22,7 +23,7 @@ float physics_drift() { return VERLET ? 0.5 * g.dt : 0.0; }
 // becomes the new position; v the new velocity.
 void physics_step(uvec2 cell, inout vec3 x, inout vec3 v) {
     float drift = physics_drift();
-    vec3 force = external_force(x, v);
+    vec3 force = external_force(x, v) + air_force(cell, x, v, drift);
     add_spring_forces(cell, x, v, drift, true, force);
     v += force * (g.dt / obj.mass);
     x += v * (g.dt - drift);

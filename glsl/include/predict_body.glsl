@@ -5,6 +5,7 @@
 #define MSD_PREDICT_BODY_GLSL
 #include "forces.glsl"
 #include "spring_forces.glsl"
+#include "air.glsl"
 
 // The BDF2 start of a substep (sim::cpu::integrators::inertial has the formulas) of a free
 // particle at grid `cell`, at x with velocity v and history `hx` (x_n - x_{n-1}, w valid) and
@@ -14,7 +15,7 @@
 // dashpots. Without history the last substep is taken to have been one Jacobi step of
 // implicit Euler (sim::cpu::integrators::inertial and restart).
 vec3 predicted_displacement(uvec2 cell, vec3 x, vec3 v, bool dashpots, vec4 hx, vec3 hv, out vec3 base) {
-    vec3 force = external_force(x, v);
+    vec3 force = external_force(x, v) + air_force(cell, x, v, 0.0);
     if (dashpots) add_spring_forces(cell, x, v, 0.0, false, force);
     vec3 a = force / obj.mass;
     bool known = hx.w > 0.5;

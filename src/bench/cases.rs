@@ -129,6 +129,7 @@ fn wind(span: f64, y: f64) -> Wind {
         full_force_radius: span * 0.3,
         attenuation_radius: span * 0.3,
         reference_distance: span,
+        ..Default::default()
     }
 }
 

@@ -69,6 +69,7 @@ fn builtin(names: &[String], overrides: &[String]) -> Result<Vec<(String, Scene)
         full_force_radius: 2.0,
         attenuation_radius: 1.0,
         reference_distance: 1.0,
+        ..Default::default()
     };
     let mut rope = scene::parse(ROPE, "presets/rope.toml", &[])?;
     rope.clear_colliders();

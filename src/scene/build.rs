@@ -31,6 +31,11 @@ pub fn to_model(scene: &Scene) -> SimModel {
             force: w.force,
             cos_full: cone_cos(w.full_force_radius),
             cos_att: cone_cos(w.full_force_radius + w.attenuation_radius),
+            air: (w.model == crate::scene::WindKind::Aerodynamic).then_some(crate::sim::model::AirModel {
+                speed: w.speed,
+                normal: 0.5 * w.density * w.normal_drag,
+                tangent: 0.5 * w.density * w.tangential_drag,
+            }),
         }
     });
     SimModel {

@@ -152,14 +152,32 @@ impl Default for SimSettings {
     }
 }
 
-/// The paper's wind: a cone from `origin` along `direction`. At `reference_distance` along the
-/// axis the force is full within `full_force_radius` of the axis and falls to zero over a further
-/// `attenuation_radius`.
+/// The wind: a cone from `origin` along `direction`. At `reference_distance` along the axis it
+/// is full within `full_force_radius` of the axis and falls to zero over a further
+/// `attenuation_radius`. As the paper has it (`model = "paper"`), a force on every particle
+/// whatever the cloth's orientation and speed; aerodynamic (`model = "aerodynamic"`), air
+/// flowing at `speed` along the axis that pushes on the cloth's area, by the air's velocity
+/// relative to the cloth: normal drag 1/2 density normal_drag |u_n| u_n per unit area, and
+/// tangential drag likewise with `tangential_drag`.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Wind {
     #[serde(default)]
     pub enabled: bool,
+    #[serde(default)]
+    pub model: WindKind,
+    /// Air speed at full strength [m/s] (aerodynamic).
+    #[serde(default)]
+    pub speed: f64,
+    /// Air density [kg/m^3] (aerodynamic).
+    #[serde(default = "defaults::air_density")]
+    pub density: f64,
+    /// Drag coefficient across the cloth (a flat plate's, about 1.2) (aerodynamic).
+    #[serde(default = "defaults::normal_drag")]
+    pub normal_drag: f64,
+    /// Drag coefficient along the cloth (skin friction, a few hundredths) (aerodynamic).
+    #[serde(default = "defaults::tangential_drag")]
+    pub tangential_drag: f64,
     /// Apex of the cone [m].
     #[serde(default)]
     pub origin: [f64; 3],
@@ -184,6 +202,11 @@ impl Default for Wind {
     fn default() -> Self {
         Self {
             enabled: false,
+            model: WindKind::Paper,
+            speed: 0.0,
+            density: defaults::air_density(),
+            normal_drag: defaults::normal_drag(),
+            tangential_drag: defaults::tangential_drag(),
             origin: [0.0; 3],
             direction: defaults::wind_direction(),
             force: 0.0,
@@ -192,6 +215,17 @@ impl Default for Wind {
             reference_distance: 1.0,
         }
     }
+}
+
+/// How the wind acts on the cloth.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum WindKind {
+    /// The paper's: `force` newtons on every particle in the cone.
+    #[default]
+    Paper,
+    /// Drag from the air's velocity relative to the cloth, on its area and orientation.
+    Aerodynamic,
 }
 
 /// The scene light (drawing only).
@@ -484,6 +518,15 @@ mod defaults {
 
     pub fn tolerance() -> f64 {
         0.01
+    }
+    pub fn air_density() -> f64 {
+        1.2
+    }
+    pub fn normal_drag() -> f64 {
+        1.2
+    }
+    pub fn tangential_drag() -> f64 {
+        0.02
     }
     pub fn wind_direction() -> [f64; 3] {
         [0.0, 0.0, -1.0]

@@ -141,6 +141,13 @@ pub fn check(scene: &Scene) -> Check {
     vector("wind.origin", w.origin, MAX_COORDINATE, "m")?;
     vector("wind.direction", w.direction, MAX_COORDINATE, "a direction")?;
     finite("wind.force", w.force, MAX_FORCE, "N")?;
+    non_negative("wind.speed", w.speed, 1e3, "m/s")?;
+    if w.enabled && w.model == super::WindKind::Aerodynamic && w.speed <= 0.0 {
+        return Err(format!("wind.speed = {}: the aerodynamic wind needs an air speed > 0 (m/s)", w.speed));
+    }
+    positive("wind.density", w.density, (1e-6, 1e5), "kg/m^3")?;
+    non_negative("wind.normal_drag", w.normal_drag, 100.0, "a drag coefficient")?;
+    non_negative("wind.tangential_drag", w.tangential_drag, 100.0, "a drag coefficient")?;
     non_negative("wind.full_force_radius", w.full_force_radius, LENGTH.1, "m")?;
     non_negative("wind.attenuation_radius", w.attenuation_radius, LENGTH.1, "m")?;
     positive("wind.reference_distance", w.reference_distance, LENGTH, "m")?;

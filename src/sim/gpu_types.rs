@@ -66,7 +66,7 @@ gpu_struct!(
 
 gpu_struct!(
     /// Scene-wide parameters.
-    Globals, size 80, {
+    Globals, size 96, {
     gravity: [f32; 3],
     dt: f32,
     wind_origin: [f32; 3],
@@ -81,6 +81,10 @@ gpu_struct!(
     iterations: u32,
     relaxation: f32,
     contact_speed: f32,
+    wind_speed: f32,
+    wind_normal: f32,
+    wind_tangent: f32,
+    wind_pad: u32,
 });
 
 /// Runtime guard bits (`GUARD_*` in the header).

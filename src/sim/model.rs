@@ -115,6 +115,21 @@ pub struct WindModel {
     pub cos_full: f64,
     /// Cosine of the half-angle where the force has fallen to zero.
     pub cos_att: f64,
+    /// The aerodynamic wind (`None`: the paper's force on every particle).
+    pub air: Option<AirModel>,
+}
+
+/// The aerodynamic wind: air flowing along the cone's axis at `speed` times the cone's
+/// strength there, pushing on the cloth by the air's velocity u relative to it: `normal` |u_n|
+/// u_n + `tangent` |u_t| u_t per unit area (for a rope, per unit length of its diameter) [N].
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct AirModel {
+    /// [m/s]
+    pub speed: f64,
+    /// 1/2 density normal drag coefficient [kg/m^3].
+    pub normal: f64,
+    /// 1/2 density tangential drag coefficient [kg/m^3].
+    pub tangent: f64,
 }
 
 /// How self-collision finds its candidate pairs.

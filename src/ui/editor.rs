@@ -3,7 +3,7 @@
 
 use super::colliders;
 use super::widgets::{check, choice, color, drag, drag3, int, optional, tip};
-use crate::scene::{Cloth, ClothPins, Orientation, PerSpring, Rope, RopePins, Scene, MAX_FRICTION};
+use crate::scene::{Cloth, ClothPins, Orientation, PerSpring, Rope, RopePins, Scene, WindKind, MAX_FRICTION};
 use crate::sim::gpu::FrameTiming;
 use imgui::{Condition, TreeNodeFlags, Ui};
 use std::path::PathBuf;
@@ -100,7 +100,15 @@ pub fn build(ui: &Ui, state: &mut EditorState, scene: &mut Scene, stats: &Stats)
                 check(ui, "enabled##wind", &mut w.enabled);
                 drag3(ui, "origin [m]##wind", &mut w.origin, 0.01);
                 drag3(ui, "direction##wind", &mut w.direction, 0.01);
-                drag(ui, "force [N]##wind", &mut w.force, 0.001, -10.0, 10.0);
+                choice(ui, "model##wind", &mut w.model, &[WindKind::Paper, WindKind::Aerodynamic]);
+                if w.model == WindKind::Aerodynamic {
+                    drag(ui, "air speed [m/s]", &mut w.speed, 0.05, 0.0, 100.0);
+                    drag(ui, "air density [kg/m^3]", &mut w.density, 0.01, 0.001, 100.0);
+                    drag(ui, "normal drag", &mut w.normal_drag, 0.01, 0.0, 10.0);
+                    drag(ui, "tangential drag", &mut w.tangential_drag, 0.001, 0.0, 10.0);
+                } else {
+                    drag(ui, "force [N]##wind", &mut w.force, 0.001, -10.0, 10.0);
+                }
                 drag(ui, "full-force radius [m]", &mut w.full_force_radius, 0.01, 0.0, 100.0);
                 drag(ui, "attenuation radius [m]", &mut w.attenuation_radius, 0.01, 0.0, 100.0);
                 drag(ui, "reference distance [m]", &mut w.reference_distance, 0.01, 0.01, 100.0);

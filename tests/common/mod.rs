@@ -120,6 +120,7 @@ pub fn wind(origin: [f64; 3], direction: [f64; 3], force: f64, full: f64, att: f
         force,
         cos_full: full.cos(),
         cos_att: att.cos(),
+        air: None,
     }
 }
 

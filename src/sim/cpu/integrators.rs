@@ -3,7 +3,7 @@
 //! runs the same iterations (Jacobi or colour order, Chebyshev schedule), so the two agree to
 //! rounding.
 
-use super::{rest_length, springs, wind_at, Spring};
+use super::{air_force, rest_length, springs, wind_at, Spring};
 use crate::sim::integrator::{spring_class_parity, vertex_colour, vertex_colours, BDF2_STEP, SPRING_CLASSES};
 use crate::sim::model::{ObjectModel, SimModel};
 use crate::sim::stability::{chebyshev_rho, jacobi_damping, CHEBYSHEV_START};
@@ -58,9 +58,10 @@ fn elastic_springs(o: &ObjectModel, i: usize) -> impl Iterator<Item = (Spring, f
     })
 }
 
-/// Gravity, wind and drag on particle i at (x, v) [N].
-fn external(m: &SimModel, o: &ObjectModel, x: DVec3, v: DVec3) -> DVec3 {
-    m.gravity * o.mass + wind_at(&m.wind, x) - v * o.drag
+/// Gravity, wind and drag on particle i at x[i] with velocity v [N] (x: every particle's
+/// position, for the aerodynamic wind's area and orientation).
+fn external(m: &SimModel, o: &ObjectModel, i: usize, x: &[DVec3], v: DVec3) -> DVec3 {
+    m.gravity * o.mass + wind_at(&m.wind, x[i]) + air_force(m, o, i, x, v) - v * o.drag
 }
 
 /// The springs' force on particle i: elastic (with `elastic`) and dashpot parts [N].
@@ -95,7 +96,7 @@ fn explicit(s: &Substep<'_>, verlet: bool) -> State {
         if o.pinned[i] {
             continue;
         }
-        let force = external(m, o, at[i], v[i]) + spring_force(o, i, &at, v, true);
+        let force = external(m, o, i, &at, v[i]) + spring_force(o, i, &at, v, true);
         nv[i] = v[i] + force / o.mass * dt;
         nx[i] = at[i] + nv[i] * (dt - drift);
     }
@@ -139,7 +140,7 @@ fn inertial(
             if o.pinned[i] {
                 return (x[i], x[i]);
             }
-            let mut force = external(m, o, x[i], v[i]);
+            let mut force = external(m, o, i, x, v[i]);
             if dashpots && o.damping != 0.0 {
                 force += spring_force(o, i, x, v, false);
             }

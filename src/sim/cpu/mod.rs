@@ -72,6 +72,11 @@ fn rounded(model: &SimModel) -> SimModel {
         force: r32(w.force),
         cos_full: r32(w.cos_full),
         cos_att: r32(w.cos_att),
+        air: w.air.map(|a| crate::sim::model::AirModel {
+            speed: r32(a.speed),
+            normal: r32(a.normal),
+            tangent: r32(a.tangent),
+        }),
     });
     m.colliders = m.colliders.iter().map(|c| c.rounded_to_f32()).collect();
     for o in &mut m.objects {
@@ -152,22 +157,71 @@ pub fn rest_lengths(o: &ObjectModel) -> [[f64; 4]; 3] {
     SPRING_GROUPS.map(|(kind, offsets)| offsets.map(|offset| offset_rest_length(o, kind, offset)))
 }
 
-fn wind_at(wind: &Option<WindModel>, x: DVec3) -> DVec3 {
-    let Some(w) = wind else { return DVec3::ZERO };
+/// The cone's strength at x: 1 inside the full-force half-angle, falling linearly in the
+/// cosine to 0 at the attenuation half-angle.
+fn wind_strength(w: &WindModel, x: DVec3) -> f64 {
     let to_x = x - w.origin;
     let d = to_x.length();
     if d <= 0.0 {
-        return DVec3::ZERO;
+        return 0.0;
     }
     let cosine = w.direction.dot(to_x / d);
-    let ratio = if cosine >= w.cos_full {
+    if cosine >= w.cos_full {
         1.0
     } else if cosine <= w.cos_att {
         0.0
     } else {
         (cosine - w.cos_att) / (w.cos_full - w.cos_att)
-    };
-    w.direction * w.force * ratio
+    }
+}
+
+/// The paper's wind force on a particle at x (none with the aerodynamic wind).
+fn wind_at(wind: &Option<WindModel>, x: DVec3) -> DVec3 {
+    match wind {
+        Some(w) if w.air.is_none() => w.direction * w.force * wind_strength(w, x),
+        _ => DVec3::ZERO,
+    }
+}
+
+/// The aerodynamic wind's force on particle i of `o` (positions x, its velocity v), the twin
+/// of `air_force` in glsl/include/air.glsl. The air's velocity relative to the particle is u
+/// = speed strength(x) axis - v. A cloth particle's share of the area is a = (x_right -
+/// x_left) x (x_down - x_up) / 4 (a missing neighbour replaced by the particle itself: half the
+/// share on an edge, a quarter at a corner), its normal n = a / |a|; the force is |a| (normal
+/// |u.n| (u.n) n + tangent |u_t| u_t). A rope node's is the diameter times half its two
+/// segments, drag across the rope (normal) and along it (tangent).
+pub(crate) fn air_force(m: &SimModel, o: &ObjectModel, i: usize, x: &[DVec3], v: DVec3) -> DVec3 {
+    let Some(w) = &m.wind else { return DVec3::ZERO };
+    let Some(air) = w.air else { return DVec3::ZERO };
+    let u = w.direction * (air.speed * wind_strength(w, x[i])) - v;
+    let cols = o.dims[0] as usize;
+    let (c, r) = (i % cols, i / cols);
+    let at = |ok: bool, j: usize| if ok { x[j] } else { x[i] };
+    if o.dims[1] > 1 {
+        let rows = o.dims[1] as usize;
+        let (left, right) = (at(c > 0, i.wrapping_sub(1)), at(c + 1 < cols, i + 1));
+        let (up, down) = (at(r > 0, i.wrapping_sub(cols)), at(r + 1 < rows, i + cols));
+        let area = (right - left).cross(down - up) * 0.25;
+        let a = area.length();
+        if a <= 0.0 {
+            return DVec3::ZERO;
+        }
+        let n = area / a;
+        let un = u.dot(n);
+        let ut = u - n * un;
+        (n * (air.normal * un.abs() * un) + ut * (air.tangent * ut.length())) * a
+    } else {
+        let axis = at(c + 1 < cols, i + 1) - at(c > 0, i.wrapping_sub(1));
+        let len = axis.length();
+        if len <= 0.0 {
+            return DVec3::ZERO;
+        }
+        let t = axis / len;
+        let along = u.dot(t);
+        let across = u - t * along;
+        (across * (air.normal * across.length()) + t * (air.tangent * along.abs() * along))
+            * (o.rope_radius * len)
+    }
 }
 
 impl CpuSim {

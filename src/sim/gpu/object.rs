@@ -452,6 +452,10 @@ pub(super) fn globals(model: &SimModel) -> Globals {
         iterations: model.iterations,
         relaxation: model.relaxation as f32,
         contact_speed: crate::sim::collider::contact_speed(model).map(|c| c.speed as f32).unwrap_or(0.0),
+        wind_speed: wind.and_then(|w| w.air).map(|a| a.speed as f32).unwrap_or(0.0),
+        wind_normal: wind.and_then(|w| w.air).map(|a| a.normal as f32).unwrap_or(0.0),
+        wind_tangent: wind.and_then(|w| w.air).map(|a| a.tangent as f32).unwrap_or(0.0),
+        wind_pad: 0,
     }
 }
 

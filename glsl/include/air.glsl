@@ -1,0 +1,43 @@
+// The aerodynamic wind (Globals.wind_speed > 0): air flowing along the cone's axis at
+// wind_speed times the cone's strength there pushes on the cloth by its velocity u relative to
+// the particle. A cloth particle's share of the area is a = (x_right - x_left) x (x_down -
+// x_up) / 4 (a missing neighbour replaced by the particle itself: half the share on an edge, a
+// quarter at a corner), along its normal n = a / |a|; the force is |a| (wind_normal |u.n| (u.n)
+// n + wind_tangent |u_t| u_t): normal drag on the area the air meets, so an edge-on sheet
+// feels only the small tangential drag, and none once it moves with the air. A rope node's
+// area is the diameter times half its two segments, the drag across the rope (normal) and
+// along it (tangent). The CPU twin is sim::cpu::air_force.
+// Neighbours are read through NPOS(j) with `drift`, as the springs read them.
+// Include after spring_forces.glsl.
+#ifndef MSD_AIR_GLSL
+#define MSD_AIR_GLSL
+#include "forces.glsl"
+
+vec3 air_force(uvec2 cell, vec3 x, vec3 v, float drift) {
+    if (!has(F_WIND) || g.wind_enabled == 0u || g.wind_speed <= 0.0) return vec3(0.0);
+    vec3 u = g.wind_dir * (g.wind_speed * wind_strength(x)) - v;
+    uint cols = obj.dims.x;
+    uint i = cell.x + cell.y * cols;
+    if (obj.dims.y > 1u) {
+        vec3 left = cell.x > 0u ? NPOS(i - 1u) : x;
+        vec3 right = cell.x + 1u < cols ? NPOS(i + 1u) : x;
+        vec3 up = cell.y > 0u ? NPOS(i - cols) : x;
+        vec3 down = cell.y + 1u < obj.dims.y ? NPOS(i + cols) : x;
+        vec3 area = 0.25 * cross(right - left, down - up);
+        float a = length(area);
+        if (a <= 0.0) return vec3(0.0);
+        vec3 n = area / a;
+        float un = dot(u, n);
+        vec3 ut = u - n * un;
+        return a * (n * (g.wind_normal * abs(un) * un) + ut * (g.wind_tangent * length(ut)));
+    }
+    vec3 axis = (cell.x + 1u < cols ? NPOS(i + 1u) : x) - (cell.x > 0u ? NPOS(i - 1u) : x);
+    float len = length(axis);
+    if (len <= 0.0) return vec3(0.0);
+    vec3 t = axis / len;
+    float along = dot(u, t);
+    vec3 across = u - t * along;
+    return (obj.rope_radius * len) * (across * (g.wind_normal * length(across)) + t * (g.wind_tangent * abs(along) * along));
+}
+
+#endif
