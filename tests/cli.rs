@@ -523,6 +523,7 @@ fn simulate_runs_the_shaders_of_a_folder() {
         &["simulate", "--preset", &preset, "--shaders", "/nonexistent/glsl"],
         &["--shaders /nonexistent/glsl"],
     );
+    rejects(&["simulate", "--preset", &preset, "--shaders", "/"], &["--shaders /", "not a shader folder"]);
 }
 
 /// Hostile inputs that used to crash, be refused wrongly or pass as valid: a `--set` key of

@@ -37,8 +37,13 @@ pub enum KeyAction {
     Screenshot,
     Help,
     Record,
+    /// Esc once: the app asks for a second press (`QUIT_CONFIRM`) before quitting.
+    QuitAsk,
     Quit,
 }
+
+/// How long a first Esc waits for the second that quits [s].
+pub const QUIT_CONFIRM: f64 = 3.0;
 
 #[derive(Default)]
 pub struct Input {
@@ -56,10 +61,24 @@ pub struct Input {
     pub released: Option<Grab>,
     /// Left-drag that started on empty space orbits.
     left_orbits: bool,
+    /// When Esc was pressed to quit, waiting for the second press.
+    quit_asked: Option<std::time::Instant>,
     pub actions: Vec<KeyAction>,
 }
 
 impl Input {
+    /// Esc pressed at `now`: quit when it follows a first press within QUIT_CONFIRM seconds,
+    /// else ask (a stray Esc, in the middle of a grab or meant for a text field, loses nothing).
+    fn escape(&mut self, now: std::time::Instant) -> KeyAction {
+        match self.quit_asked.take() {
+            Some(at) if now.duration_since(at).as_secs_f64() <= QUIT_CONFIRM => KeyAction::Quit,
+            _ => {
+                self.quit_asked = Some(now);
+                KeyAction::QuitAsk
+            }
+        }
+    }
+
     /// Handles a window event the UI did not capture (`ui_mouse` / `ui_keys`: ImGui wants them).
     pub fn handle(&mut self, event: &WindowEvent, camera: &mut OrbitCamera, ui_mouse: bool, ui_keys: bool) {
         match event {
@@ -129,7 +148,7 @@ impl Input {
                     KeyCode::F12 => Some(KeyAction::Screenshot),
                     KeyCode::F1 => Some(KeyAction::Help),
                     KeyCode::F9 => Some(KeyAction::Record),
-                    KeyCode::Escape => Some(KeyAction::Quit),
+                    KeyCode::Escape => Some(self.escape(std::time::Instant::now())),
                     _ => None,
                 };
                 self.actions.extend(action);
@@ -232,6 +251,22 @@ pub fn pick(states: &[ObjectState], ray: PickRay, radii: &[f32]) -> Option<(usiz
 
 #[cfg(test)]
 mod tests {
+    #[test]
+    fn esc_quits_only_when_pressed_twice_in_time() {
+        use std::time::{Duration, Instant};
+        let mut input = Input::default();
+        let t0 = Instant::now();
+        assert_eq!(input.escape(t0), KeyAction::QuitAsk);
+        assert_eq!(input.escape(t0 + Duration::from_secs(1)), KeyAction::Quit);
+        assert_eq!(
+            input.escape(t0 + Duration::from_secs(2)),
+            KeyAction::QuitAsk,
+            "asks again after quitting"
+        );
+        assert_eq!(input.escape(t0 + Duration::from_secs(6)), KeyAction::QuitAsk, "too late: asks again");
+        assert_eq!(input.escape(t0 + Duration::from_secs(7)), KeyAction::Quit);
+    }
+
     use super::*;
     use crate::sim::gpu_types::Particle;
 

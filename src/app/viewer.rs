@@ -360,6 +360,13 @@ impl Viewer {
                 KeyAction::Record => {
                     self.run_action(Action::ToggleRecording(PathBuf::from(&self.editor.record_path)))
                 }
+                KeyAction::QuitAsk => self.message(
+                    format!(
+                        "press Esc again within {} s to quit (edits not saved are lost)",
+                        super::input::QUIT_CONFIRM
+                    ),
+                    false,
+                ),
                 KeyAction::Quit => quit = true,
             }
         }

@@ -55,6 +55,15 @@ impl ShaderSet {
         let dir = dir
             .canonicalize()
             .map_err(|e| crate::error::UserError(format!("--shaders {}: {e}", dir.display())))?;
+        // A folder of shaders holds the physics stage at its top (anything else, `/` say, would
+        // be watched through and through).
+        if !dir.join("physics.comp").is_file() {
+            return Err(crate::error::UserError(format!(
+                "--shaders {}: not a shader folder (a copy of glsl/, with physics.comp at its top)",
+                dir.display()
+            ))
+            .into());
+        }
         let (tx, events) = channel();
         let mut watcher = notify::recommended_watcher(move |event| {
             let _ = tx.send(event);

@@ -171,7 +171,7 @@ const CONTROLS: [(&str, &str); 15] = [
     ("F12", "save a screenshot (msdsim-<time>.png)"),
     ("F9", "start or stop recording (the file in the Simulation panel)"),
     ("F1", "show or hide these controls"),
-    ("Esc", "quit"),
+    ("Esc, Esc", "quit (twice within 3 s)"),
 ];
 
 fn help_window(ui: &Ui, open: &mut bool) {
