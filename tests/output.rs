@@ -208,15 +208,20 @@ fn record(preset: &str, frames: u32, to: &Path, json: &Path) {
 
 /// The first object's final positions in a state file, x y z after another.
 fn cloth_positions(json: &Path) -> Vec<f32> {
+    cloth_state(json, "positions")
+}
+
+/// The first object's final `key` ("positions", "velocities") in a state file, flat.
+fn cloth_state(json: &Path, key: &str) -> Vec<f32> {
     let state: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(json).unwrap()).unwrap();
-    let positions = state["objects"][0]["positions"].as_array().unwrap().iter();
+    let positions = state["objects"][0][key].as_array().unwrap().iter();
     positions
         .flat_map(|p| p.as_array().unwrap().iter().map(|x| x.as_f64().unwrap() as f32).collect::<Vec<_>>())
         .collect()
 }
 
 /// `simulate --record FILE.usda`: the recording has a time sample per frame for every
-/// object, and its last frame's cloth points are the simulated positions (`--out` of the same
+/// object, and its last frame's cloth points and velocities are the simulated state (`--out` of the same
 /// run) exactly (both print f32 in their shortest exact form). Another extension is refused
 /// before the run.
 #[test]
@@ -228,27 +233,29 @@ fn a_recording_reads_back_as_the_simulation() {
     record(&preset, 7, &usda, &json);
     let text = std::fs::read_to_string(&usda).unwrap();
     assert!(text.starts_with("#usda 1.0") && text.contains("endTimeCode = 7"), "{}", &text[..200]);
-    // Two meshes (the cloth "c" and the rope "r"), each with 8 point, normal and extent samples:
-    // the initial state at time code 0, then one a frame.
+    // Two meshes (the cloth "c" and the rope "r"), each with 8 point, normal, velocity and extent
+    // samples: the initial state at time code 0, then one a frame.
     assert!(text.contains("def Mesh \"c\"") && text.contains("def Mesh \"r\""));
     let sample_lines =
         text.lines().filter(|l| l.trim_start().starts_with(|c: char| c.is_ascii_digit())).count();
-    assert_eq!(sample_lines, 2 * 3 * 8, "time samples");
+    assert_eq!(sample_lines, 2 * 4 * 8, "time samples");
     assert!(text.contains("startTimeCode = 0") && text.contains("            0: [("), "{}", &text[..300]);
     assert!(text.contains("framesPerSecond = 60"), "{}", &text[..300]);
     // The cloth's last points sample against the final state.
     let cloth = &text[text.find("def Mesh \"c\"").unwrap()..];
-    let points = &cloth[cloth.find("points.timeSamples").unwrap()..];
-    let last = points.lines().find(|l| l.trim_start().starts_with("7:")).unwrap();
-    let numbers: Vec<f32> = last
-        .split(|c: char| !(c.is_ascii_digit() || c == '.' || c == '-' || c == 'e'))
-        .filter(|s| !s.is_empty())
-        .skip(1) // the time code
-        .map(|s| s.parse().unwrap())
-        .collect();
-    let expected = cloth_positions(&json);
+    let last_sample = |attribute: &str| -> Vec<f32> {
+        let samples = &cloth[cloth.find(&format!("{attribute}.timeSamples")).unwrap()..];
+        let last = samples.lines().find(|l| l.trim_start().starts_with("7:")).unwrap();
+        last.split(|c: char| !(c.is_ascii_digit() || c == '.' || c == '-' || c == 'e'))
+            .filter(|s| !s.is_empty())
+            .skip(1) // the time code
+            .map(|s| s.parse().unwrap())
+            .collect()
+    };
+    let (numbers, expected) = (last_sample("points"), cloth_positions(&json));
     assert_eq!(numbers.len(), expected.len(), "5 x 4 cloth points");
     assert_eq!(numbers, expected, "the recorded points are the simulated positions");
+    assert_eq!(last_sample("velocities"), cloth_state(&json, "velocities"), "and its velocities");
     let bad = binary()
         .args(["simulate", "--preset", &preset, "--frames", "2", "--record"])
         .arg(dir.path().join("run.abc"))

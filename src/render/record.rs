@@ -50,7 +50,10 @@ impl Format {
     }
 }
 
-/// The most memory a recording may take (points and normals kept until the end).
+/// What a USD recording keeps of a vertex a frame: its point, normal and velocity [bytes].
+const BYTES_PER_VERTEX: u64 = 36;
+
+/// The most memory a recording may take (points, normals and velocities kept until the end).
 const MAX_BYTES: u64 = 2 << 30;
 
 /// One object's mesh and its frames.
@@ -70,6 +73,8 @@ struct Track {
     color: [f32; 3],
     points: Vec<Vec<[f32; 3]>>,
     normals: Vec<Vec<[f32; 3]>>,
+    /// Each vertex's velocity (a rope's tube vertex takes its node's), for motion blur.
+    velocities: Vec<Vec<[f32; 3]>>,
 }
 
 pub struct Recording {
@@ -96,7 +101,7 @@ impl Recording {
     pub fn new(model: &SimModel, colors: &[[f32; 3]], path: &Path, frames: Option<u64>) -> Result<Self> {
         let format = Format::of(path).map_err(crate::error::UserError)?;
         let vertices: u64 = model.objects.iter().map(|o| o.surface_count() as u64).sum();
-        let bytes = vertices * 24 * frames.unwrap_or(0);
+        let bytes = vertices * BYTES_PER_VERTEX * frames.unwrap_or(0);
         if format == Format::Usd && bytes > MAX_BYTES {
             return Err(crate::error::UserError(format!(
                 "a USD recording would keep {:.1} GiB of frames in memory (at most {} GiB): record fewer frames, or an .obj sequence",
@@ -149,6 +154,7 @@ impl Recording {
                     color,
                     points: Vec::new(),
                     normals: Vec::new(),
+                    velocities: Vec::new(),
                 }
             })
             .collect();
@@ -222,7 +228,7 @@ impl Recording {
                 .map_err(|e| anyhow::anyhow!("recording frame {code} to {}: {e}", path.display()));
         }
         let vertices: u64 = states.iter().map(|s| s.surface.len() as u64).sum();
-        if vertices * 24 * self.frames > MAX_BYTES {
+        if vertices * BYTES_PER_VERTEX * self.frames > MAX_BYTES {
             self.frames -= 1;
             return Err(crate::error::UserError(format!(
                 "the USD recording reached {} GiB of frames in memory after {} frames: stop it, or record an .obj sequence",
@@ -236,6 +242,7 @@ impl Recording {
             let (points, normals) = t.frame(s);
             t.points.push(points);
             t.normals.push(normals);
+            t.velocities.push(t.velocities_of(s));
         }
         Ok(())
     }
@@ -310,6 +317,7 @@ impl Recording {
                 "        normal3f[] normals (\n            interpolation = \"vertex\"\n        )"
             );
             samples(&mut out, self.first_code, "normal3f[] normals", &t.normals);
+            samples(&mut out, self.first_code, "vector3f[] velocities", &t.velocities);
             let extents: Vec<Vec<[f32; 3]>> = t.points.iter().map(|p| extent(p).to_vec()).collect();
             samples(&mut out, self.first_code, "float3[] extent", &extents);
             let _ = writeln!(out, "    }}");
@@ -442,6 +450,23 @@ fn write_whole(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
 }
 
 impl Track {
+    /// A frame's vertex velocities [m/s]: a cloth's particles', a rope's tube vertices (and cap
+    /// copies) their node's.
+    fn velocities_of(&self, s: &ObjectState) -> Vec<[f32; 3]> {
+        let v = |p: &crate::sim::gpu_types::Particle| [p.vel[0], p.vel[1], p.vel[2]];
+        match self.rope_nodes {
+            None => s.particles.iter().map(v).collect(),
+            Some(nodes) => {
+                let last = nodes as usize - 1;
+                let tube =
+                    (0..nodes as usize).flat_map(|n| std::iter::repeat_n(v(&s.particles[n]), ROPE_RING));
+                let caps =
+                    [0, last].into_iter().flat_map(|n| std::iter::repeat_n(v(&s.particles[n]), ROPE_RING));
+                tube.chain(caps).collect()
+            }
+        }
+    }
+
     /// A frame's points and normals from the object's surface: a rope's with copies of its
     /// first and last rings, whose normals point back and forward along the rope (its caps).
     fn frame(&self, s: &ObjectState) -> (Vec<[f32; 3]>, Vec<[f32; 3]>) {
