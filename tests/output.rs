@@ -221,9 +221,9 @@ fn cloth_state(json: &Path, key: &str) -> Vec<f32> {
 }
 
 /// `simulate --record FILE.usda`: the recording has a time sample per frame for every
-/// object, and its last frame's cloth points and velocities are the simulated state (`--out` of the same
-/// run) exactly (both print f32 in their shortest exact form). Another extension is refused
-/// before the run.
+/// object, and its last frame's cloth points and velocities are the simulated state (`--out`
+/// of the same run) exactly (both print f32 in their shortest exact form). Another extension
+/// is refused before the run.
 #[test]
 fn a_recording_reads_back_as_the_simulation() {
     let dir = tempfile::tempdir().unwrap();

@@ -55,9 +55,10 @@ struct Globals {
     uint iterations;                           // solver iterations per substep (iterative methods)
     float relaxation;                          // XPBD over-relaxation of each Gauss-Seidel correction
     float contact_speed;                       // faster than this [m/s], contacts can tunnel (0: no limit)
-    float wind_speed;                          // aerodynamic wind: air speed at full strength [m/s] (0: the paper's force)
-    float wind_normal;                         // 1/2 air density x normal drag coefficient [kg/m^3]
-    float wind_tangent;                        // 1/2 air density x tangential drag coefficient [kg/m^3]
+    float wind_speed;                          // aerodynamic: air speed at full strength [m/s]
+                                               // (0: the paper's force)
+    float wind_normal;                         // 1/2 air density x normal drag coefficient
+    float wind_tangent;                        // 1/2 air density x tangential drag coefficient
     uint wind_pad;
 };
 

@@ -410,8 +410,8 @@ impl Recording {
     }
 }
 
-/// Removes the frames an earlier OBJ recording under the same name left
-/// (regular files named `{stem}_NNNNN.obj`, five digits or more), so that a shorter recording leaves no stale
+/// Removes the frames an earlier OBJ recording under the same name left (regular files named
+/// `{stem}_NNNNN.obj`, five digits or more), so that a shorter recording leaves no stale
 /// higher-numbered frames for an importer to pick up.
 fn remove_old_frames(path: &Path) -> Result<()> {
     let stem = path.with_extension("");
