@@ -37,7 +37,8 @@ vec3 air_force(uvec2 cell, vec3 x, vec3 v, float drift) {
     vec3 t = axis / len;
     float along = dot(u, t);
     vec3 across = u - t * along;
-    return (obj.rope_radius * len) * (across * (g.wind_normal * length(across)) + t * (g.wind_tangent * abs(along) * along));
+    vec3 drag = across * (g.wind_normal * length(across)) + t * (g.wind_tangent * abs(along) * along);
+    return (obj.rope_radius * len) * drag;
 }
 
 #endif
