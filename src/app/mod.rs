@@ -136,9 +136,15 @@ impl ApplicationHandler for Handler {
 /// Opens the window and runs until it is closed (or the scripted frames are done).
 pub fn run(options: &ContextOptions, args: AppArgs, scene: Scene) -> Result<()> {
     let event_loop = EventLoop::new().map_err(|e| {
+        // winit's message names its own source file ("os error at .../linux/mod.rs:765: ..."):
+        // the user needs the reason after it.
+        let text = e.to_string();
+        let reason =
+            text.rsplit_once(".rs:").and_then(|(_, r)| r.split_once(": ")).map_or(text.as_str(), |(_, r)| r);
         UserError(format!(
-            "no display to open a window on ({e}); run headless instead: `msdsim simulate --preset FILE`, \
-             or `msdsim devices`"
+            "no display to open a window on ({}); run headless instead: `msdsim simulate --preset FILE`, \
+             or `msdsim devices`",
+            reason.trim_end_matches(['.', ')'])
         ))
     })?;
     let mut handler = Handler {

@@ -65,11 +65,6 @@ pub struct BenchArgs {
 
 pub fn run(args: &BenchArgs, options: &ContextOptions) -> Result<()> {
     let mut out = Stdout::default();
-    std::fs::create_dir_all(&args.out)
-        .map_err(|e| crate::error::UserError(format!("--out {}: {e}", args.out.display())))?;
-    let ctx = GpuContext::new(options)?;
-    let info = ctx.info().clone();
-    eprintln!("device: {info}");
     let (cloth, rope) = if args.quick {
         (vec![50], vec![256])
     } else {
@@ -97,6 +92,12 @@ pub fn run(args: &BenchArgs, options: &ContextOptions) -> Result<()> {
         ))
         .into());
     }
+    // The folder only once the cases are known (a filter that matches none leaves nothing).
+    std::fs::create_dir_all(&args.out)
+        .map_err(|e| crate::error::UserError(format!("--out {}: {e}", args.out.display())))?;
+    let ctx = GpuContext::new(options)?;
+    let info = ctx.info().clone();
+    eprintln!("device: {info}");
     let fused_slots = if args.per_stage { Some(0) } else { args.fused_slots };
     let mut shaders = match &args.shaders {
         Some(dir) => ShaderSet::directory(dir)?.without_fallback(),

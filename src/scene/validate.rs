@@ -239,6 +239,11 @@ fn check_name(at: &str, name: &str) -> Check {
     if name.trim().is_empty() {
         return Err(format!("{at}.name: must not be empty"));
     }
+    if name.trim().parse::<u64>().is_ok() {
+        return Err(format!(
+            "{at}.name = \"{name}\": must not be a number (--set cloth.1.mass means the cloth at index 1)"
+        ));
+    }
     if name.chars().any(char::is_control) {
         return Err(format!("{at}.name = {}: must not contain control characters", name.escape_debug()));
     }
