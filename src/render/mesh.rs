@@ -145,12 +145,23 @@ pub fn rope_indices(nodes: u32) -> Vec<u32> {
 /// The tube of `rope_indices` alone.
 pub fn rope_tube_indices(nodes: u32) -> Vec<u32> {
     let ring = ROPE_RING as u32;
+    tube_indices(nodes, ring, |k| (k + 1) % ring)
+}
+
+/// The tube's triangles in the same order over a grid of `ROPE_RING + 1` texture coordinates a
+/// node, whose last column repeats the first (the seam gets both sides).
+pub fn rope_tube_uv_indices(nodes: u32) -> Vec<u32> {
+    tube_indices(nodes, ROPE_RING as u32 + 1, |k| k + 1)
+}
+
+/// Two triangles for each of a ring's `ROPE_RING` sides between neighbouring nodes, over a grid
+/// of `stride` entries a node; `next(k)` is the entry after k around the ring.
+fn tube_indices(nodes: u32, stride: u32, next: impl Fn(u32) -> u32) -> Vec<u32> {
     let mut out = Vec::new();
     for n in 0..nodes.saturating_sub(1) {
-        for k in 0..ring {
-            let a = n * ring + k;
-            let b = n * ring + (k + 1) % ring;
-            out.extend_from_slice(&[a, b, a + ring, b, b + ring, a + ring]);
+        for k in 0..ROPE_RING as u32 {
+            let (a, b) = (n * stride + k, n * stride + next(k));
+            out.extend_from_slice(&[a, b, a + stride, b, b + stride, a + stride]);
         }
     }
     out

@@ -13,14 +13,14 @@ use crate::render::mesh;
 use crate::sim::collider::{ColliderModel, Shape};
 use crate::sim::gpu::ObjectState;
 use crate::sim::gpu_types::ROPE_RING;
+use crate::sim::model::{ObjectKind, SimModel};
+use anyhow::Result;
 use glam::{DQuat, DVec3};
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
 
 /// Half the side of the square that stands for the ground in a USD recording [m].
 const GROUND_HALF_SIZE: f64 = 20.0;
-use crate::sim::model::{ObjectKind, SimModel};
-use anyhow::Result;
-use std::fmt::Write as _;
-use std::path::{Path, PathBuf};
 
 /// Each object's display colour (the cloths', then the ropes'), as the recordings write them.
 pub fn colors(scene: &crate::scene::Scene) -> Vec<[f32; 3]> {
@@ -277,9 +277,8 @@ impl Recording {
         out
     }
 
-    /// The USD ASCII text: time codes 1..=frames at the simulation's frame rate.
+    /// The USD ASCII text: time codes `first_code()..=last_code()` at the simulation's frame rate.
     pub fn usda(&self) -> String {
-        let frames = self.tracks.first().map(|t| t.points.len()).unwrap_or(0);
         let mut out = String::new();
         let _ = writeln!(
             out,
@@ -289,7 +288,7 @@ impl Recording {
             out,
             "    startTimeCode = {}\n    endTimeCode = {}\n    timeCodesPerSecond = {}\n    framesPerSecond = {}\n)\n",
             self.first_code,
-            (self.first_code + frames as u64).saturating_sub(1).max(self.first_code),
+            self.last_code().max(self.first_code),
             self.fps,
             self.fps
         );
@@ -523,22 +522,7 @@ fn texture_coordinates(kind: ObjectKind, [cols, rows]: [u32; 2]) -> (Vec<[f32; 2
                     (0..=ring).map(move |k| [k as f32 / ring as f32, n as f32 / (nodes.max(2) - 1) as f32])
                 })
                 .collect();
-            // The tube's corners: vertex n ring + k takes (k, n), the seam's wrap (ring, n).
-            let tube = mesh::rope_tube_indices(nodes);
-            let mut st_indices: Vec<u32> = tube
-                .chunks_exact(3)
-                .flat_map(|tri| {
-                    let lo = tri.iter().map(|&i| i % ring).min().unwrap_or(0);
-                    let wraps = tri.iter().any(|&i| i % ring == ring - 1) && lo == 0;
-                    tri.iter()
-                        .map(|&i| {
-                            let (n, k) = (i / ring, i % ring);
-                            let k = if wraps && k == 0 { ring } else { k };
-                            n * (ring + 1) + k
-                        })
-                        .collect::<Vec<_>>()
-                })
-                .collect();
+            let mut st_indices = mesh::rope_tube_uv_indices(nodes);
             let disc = st.len() as u32;
             st.extend((0..ring).map(|k| {
                 let a = std::f32::consts::TAU * k as f32 / ring as f32;
