@@ -146,12 +146,11 @@ void listed_candidates(uvec2 cell, vec3 x, float reach, inout vec3 correction, i
 // The shared spatial hash: scratch[h] is the first particle of bucket h, scratch[BUCKETS + j]
 // the one after particle j (EMPTY ends a list).
 void visit_bucket(uint h, uvec2 cell, vec3 x, float reach, inout vec3 correction, inout uint n_active) {
+    float listed = LISTED && list_build ? list_reach() : reach;
     for (uint j = scratch[h]; j != EMPTY; j = scratch[BUCKETS + j]) {
         float d = distance(spos(j), x);
-        if (d < reach) self_contact(cell, x, j, reach, correction, n_active);
-        if (LISTED && list_build && d < reach * (1.0 + LIST_SKIN) && !rest_neighbour(cell, j, reach)) {
-            if (list_len < LIST_MAX) self_list[list_entry(list_len, list_particle, CAP)] = j;
-            list_len += 1u;  // past LIST_MAX the list is full: it is rebuilt the next substep
+        if (d < listed && !rest_neighbour(cell, j, obj.self_distance)) {
+            self_candidate(cell, x, j, d, reach, correction, n_active);
         }
     }
 }
@@ -161,10 +160,8 @@ void listed_candidates(uvec2 cell, vec3 x, float reach, inout vec3 correction, i
         visit_cells(cell, x, reach, correction, n_active);
         return;
     }
-    for (uint e = 0u; e < list_len; ++e) {
-        // (rest-state neighbours were left out when the list was built)
-        self_push(x, self_list[list_entry(e, list_particle, CAP)], reach, correction, n_active);
-    }
+    // (rest-state neighbours were left out when the list was built)
+    for (uint e = 0u; e < list_len; ++e) self_listed(x, e, reach, correction, n_active);
 }
 
 // Particles of vertex colour c (springs.glsl: C colours) in row y of a grid of `cols` columns:
@@ -215,6 +212,7 @@ void main() {
     lists_built = LISTED && hashed && self_list[LIST_VALID] == 1u;
     bool stretch = has(F_STRETCH) && (obj.flags & OBJ_STRETCH_LIMIT) != 0u;
     bool self_any = has(F_SELF) && (obj.flags & OBJ_SELF_COLLISION) != 0u;
+    bool self_triangles_on = self_any && has_triangles();
     bool neighbours = stretch || self_any || has(F_EDGES);  // the constraints read other particles
     float drift = physics_drift();
     // The physics (or the prediction) reads the neighbours' velocities: the dashpots, unless
@@ -500,7 +498,7 @@ void main() {
                 if (list_build && t == 0u) self_list[LIST_VALID] = 1u;  // read by the next dispatch
                 if (t == 0u) list_flag[(sub + 1u) & 1u] = 0u;  // read again after two barriers
                 if (rebuild) {
-                    obj.cell_inv = list_build ? cell_inv / (1.0 + LIST_SKIN) : cell_inv;
+                    obj.cell_inv = list_build ? cell_inv * (self_reach() / list_reach()) : cell_inv;
                     for (uint b = t; b < BUCKETS; b += THREADS) scratch[b] = EMPTY;
                     barrier();
                 }
@@ -517,6 +515,32 @@ void main() {
                 barrier();
             }
         }
+        if (self_triangles_on) {
+            // A cloth's contact with its own triangles (self_contact.glsl): every particle
+            // finds and counts its contacts, then applies them, into sums in self_pairs that
+            // the constraints read (global memory: a buffer barrier with each barrier).
+            [[unroll]] for (uint s = 0u; s < MAX_SLOTS; ++s) {
+                if (s >= SLOTS) break;
+                uint k = own[s];
+                if (k >= n) continue;
+                list_particle = k;
+                list_len = LISTED && hashed && !list_rebuild ? floatBitsToUint(header[s].w) : 0u;
+                self_find(cells[s], k, x[s]);
+                if (LISTED && hashed && list_build) header[s] = set_list_header(k, x[s], list_len);
+            }
+            memoryBarrierBuffer();
+            barrier();
+            [[unroll]] for (uint s = 0u; s < MAX_SLOTS; ++s) {
+                if (s >= SLOTS) break;
+                uint k = own[s];
+                if (k >= n) continue;
+                list_particle = k;
+                list_len = LISTED && hashed && !list_rebuild ? floatBitsToUint(header[s].w) : 0u;
+                self_apply(cells[s], k, x[s]);
+            }
+            memoryBarrierBuffer();
+            barrier();
+        }
         [[unroll]] for (uint s = 0u; s < MAX_SLOTS; ++s) {
             if (s >= SLOTS) break;
             uint k = own[s];
@@ -528,7 +552,9 @@ void main() {
                 list_particle = k;
                 list_len = LISTED && hashed && !list_rebuild ? floatBitsToUint(header[s].w) : 0u;
                 vec3 correction = constraint_correction(cells[s], xs);
-                if (LISTED && hashed && list_build) header[s] = set_list_header(k, xs, list_len);
+                if (LISTED && hashed && list_build && !self_triangles_on) {
+                    header[s] = set_list_header(k, xs, list_len);
+                }
                 xs += correction;
                 vs += correction / g.dt;  // velocity follows the position correction
             }

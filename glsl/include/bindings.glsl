@@ -64,6 +64,11 @@ layout(std430, set = 0, binding = 15) buffer SelfListBuf { uint self_list[]; };
 // 1024 x 1024 cloth per stage 39.0 ms a frame with records, 18.3 with arrays, 23.0 before
 // BDF2 reading the particles' 32-byte records).
 layout(std430, set = 0, binding = 16) buffer SolverHistory { vec4 history[]; };
+// A cloth's contact with its own triangles (self_contact.glsl): per particle its summed moves
+// in fixed point and its count of contacts, then the contacts each keeps. Coherent: the fused
+// kernel's phases read what others' atomics wrote, between barriers.
+layout(std430, set = 0, binding = 17) coherent buffer SelfPairsBuf { int self_pairs[]; };
+
 const uint H_DX = 0u;
 const uint H_DV = 1u;
 const uint H_BASE = 2u;

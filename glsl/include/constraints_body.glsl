@@ -29,9 +29,21 @@
 #define CELL_INV obj.cell_inv
 #endif
 
+#ifndef FUSED_SHARED
+// The per-stage contact lists: in a substep that rebuilds them (list_build), what is within
+// their reach is recorded in the list of particle `list_particle` (list_len counts the entries,
+// past LIST_ENTRIES too); fused.comp declares its own.
+uint list_particle;
+uint list_len;
+bool list_build;
+#endif
+#include "self_contact.glsl"
+
 // Whether particle j is nearer than `reach` to `cell` in the rest state (or is that particle):
-// such pairs never push, the springs keep them apart.
+// such pairs never push, the springs keep them apart. In a cloth (whose candidates are the
+// vertices of its triangles, self_contact.glsl), whether j is the particle.
 bool rest_neighbour(uvec2 cell, uint j, float reach) {
+    if (has_triangles()) return cell == uvec2(j % obj.dims.x, j / obj.dims.x);
     ivec2 other = ivec2(int(j % obj.dims.x), int(j / obj.dims.x));
     vec2 rest = vec2(other - ivec2(cell)) * obj.spacing;
     return dot(rest, rest) < reach * reach;
@@ -47,12 +59,33 @@ void self_push(vec3 x, uint j, float reach, inout vec3 correction, inout uint n_
     }
 }
 
-// Adds the push from particle j when it is within `reach` of x (and not a rest-state neighbour).
-void self_contact(uvec2 cell, vec3 x, uint j, float reach, inout vec3 correction, inout uint n_active) {
-    if (!rest_neighbour(cell, j, reach)) self_push(x, j, reach, correction, n_active);
+// The self-contact of the particle at `cell` (at x) with candidate j at distance d, not a
+// rest-state neighbour: in a rope its push when within `reach`, in a cloth the find pass's
+// visit of j's triangles (which records the list's entries itself).
+void self_candidate(uvec2 cell, vec3 x, uint j, float d, float reach, inout vec3 correction, inout uint n_active) {
+    if (has_triangles()) {
+        self_triangles(cell, x, j, list_build ? (1.0 + LIST_SKIN) * obj.self_distance : 0.0);
+        return;
+    }
+    if (d < reach) self_push(x, j, reach, correction, n_active);
+    if (list_build) {
+        if (list_len < LIST_ENTRIES) self_list[list_entry(list_len, list_particle, particle_count())] = j;
+        list_len += 1u;  // past LIST_ENTRIES the list is full: it is rebuilt the next substep
+    }
 }
 
-// Calls self_contact for the particles in hash bucket h.
+// A contact list's entry e of the particle at x: a rope's particle or a cloth's triangle.
+void self_listed(vec3 x, uint e, float reach, inout vec3 correction, inout uint n_active) {
+    uint entry = self_list[list_entry(e, list_particle, particle_count())];
+    if (has_triangles()) {
+        test_pair(uvec2(list_particle % obj.dims.x, list_particle / obj.dims.x), x, entry);
+    } else {
+        self_push(x, entry, reach, correction, n_active);
+    }
+}
+
+// Calls self_candidate for the particles in hash bucket h within `reach` of x (while the
+// lists are built, within list_reach()).
 void visit_bucket(uint h, uvec2 cell, vec3 x, float reach, inout vec3 correction, inout uint n_active);
 
 // Visits the hash buckets that can hold particles within reach of x (or of the contact lists'
@@ -102,6 +135,53 @@ void visit_cells(uvec2 cell, vec3 x, float reach, inout vec3 correction, inout u
 #define SELF_CANDIDATES visit_cells
 #endif
 
+// Self-contact of the particle at `cell` (at x) with its candidates: from the spatial hash (or
+// the contact list) or, as the reference, every particle.
+void self_search(uvec2 cell, vec3 x, inout vec3 correction, inout uint n_active) {
+    float reach = self_reach();
+    if ((obj.flags & OBJ_SELF_HASH) != 0u) {
+        SELF_CANDIDATES(cell, x, reach, correction, n_active);
+    } else {
+        uint n = particle_count();
+        for (uint j = 0u; j < n; ++j) {
+            if (!rest_neighbour(cell, j, obj.self_distance)) {
+                self_candidate(cell, x, j, distance(CPOS(j), x), reach, correction, n_active);
+            }
+        }
+    }
+}
+
+// The find pass of a cloth's self-contact (self_contact.glsl) for particle i at `cell`, at x.
+void self_find(uvec2 cell, uint i, vec3 x) {
+    pair_particle = i;
+    pair_x = x;
+    pair_len = 0u;
+    vec3 unused = vec3(0.0);
+    uint unused_count = 0u;
+    self_search(cell, x, unused, unused_count);
+    self_pairs[pairs_len_word(i)] = int(pair_len);
+}
+
+// The apply pass for particle i at `cell`, at x: the contacts it kept, or when it found more
+// than it keeps, all of them searched again (without recording contact lists).
+void self_apply(uvec2 cell, uint i, vec3 x) {
+    uint len = uint(self_pairs[pairs_len_word(i)]);
+    if (len <= PAIR_MAX) {
+        for (uint k = 0u; k < len; ++k) apply_contact(i, x, uint(self_pairs[pair_word(k, i)]));
+        return;
+    }
+    pair_particle = i;
+    pair_x = x;
+    apply_pass = true;
+    bool building = list_build;
+    list_build = false;
+    vec3 unused = vec3(0.0);
+    uint unused_count = 0u;
+    self_search(cell, x, unused, unused_count);
+    list_build = building;
+    apply_pass = false;
+}
+
 // The position correction of the free particle at grid `cell`, at x after physics.
 vec3 constraint_correction(uvec2 cell, vec3 x) {
     vec3 correction = vec3(0.0);
@@ -124,20 +204,16 @@ vec3 constraint_correction(uvec2 cell, vec3 x) {
         }
     }
 
-    // Self-collision: particles closer than self_distance push apart, except pairs that are
-    // closer than that in the rest state (grid neighbours), which the springs already keep.
-    // Candidates come from the spatial hash or, as the reference, from every particle.
-    if (has(F_SELF) && (obj.flags & OBJ_SELF_COLLISION) != 0u) {
-        float reach = obj.self_distance;
-        if ((obj.flags & OBJ_SELF_HASH) != 0u) {
-            SELF_CANDIDATES(cell, x, reach, correction, n_active);
-        } else {
-            uint n = particle_count();
-            for (uint j = 0u; j < n; ++j) self_contact(cell, x, j, reach, correction, n_active);
-        }
-    }
+    // A rope's self-collision: particles closer than self_distance push apart, except pairs
+    // that are closer than that in the rest state (grid neighbours), which the springs
+    // already keep. A cloth's contact with its own triangles was summed by its passes
+    // (self_contact.glsl) and is added below.
+    bool self_on = has(F_SELF) && (obj.flags & OBJ_SELF_COLLISION) != 0u;
+    if (self_on && !has_triangles()) self_search(cell, x, correction, n_active);
 
     if (n_active > 1u) correction /= float(n_active);
+
+    if (self_on && has_triangles()) correction += self_take(cell.x + cell.y * obj.dims.x);
 
     // Inter-object contact: what contact.comp summed from the other objects' particles, added
     // whole (each pair's share is already split so that the pair conserves momentum).
@@ -194,25 +270,18 @@ void collide_all(uvec2 cell, inout vec3 x, inout vec3 v, float since) {
 
 #ifndef FUSED_SHARED
 // The per-stage hash (hash_count.glsl): candidates are stored contiguously by bucket with
-// their positions, so most are rejected without reading their particle. In a substep that
-// rebuilds the contact lists (list_build), those within the lists' reach are recorded in the
-// list of particle `list_particle` (list_len counts them, past LIST_ENTRIES too).
-uint list_particle;
-uint list_len;
-bool list_build;
+// their positions, so most are rejected without reading their particle.
 void visit_bucket(uint h, uvec2 cell, vec3 x, float reach, inout vec3 correction, inout uint n_active) {
     visit_range(BUCKET_START(h, HASH_MASK), BUCKET_START(h + 1u, HASH_MASK), cell, x, reach, correction, n_active);
 }
 void visit_range(uint from, uint end, uvec2 cell, vec3 x, float reach, inout vec3 correction, inout uint n_active) {
-    float listed = list_build ? reach * (1.0 + LIST_SKIN) : reach;
+    float listed = list_build ? list_reach() : reach;
     for (uint at = from; at < end; ++at) {
         vec4 e = sorted[at];
         float d = distance(e.xyz, x);
         uint j = floatBitsToUint(e.w);
-        if (d < listed && !rest_neighbour(cell, j, reach)) {
-            if (d < reach) self_push(x, j, reach, correction, n_active);
-            if (list_build && list_len < LIST_ENTRIES) self_list[list_entry(list_len, list_particle, particle_count())] = j;
-            list_len += 1u;
+        if (d < listed && !rest_neighbour(cell, j, obj.self_distance)) {
+            self_candidate(cell, x, j, d, reach, correction, n_active);
         }
     }
 }
@@ -226,10 +295,18 @@ void listed_candidates(uvec2 cell, vec3 x, float reach, inout vec3 correction, i
         visit_cells(cell, x, reach, correction, n_active);
         return;
     }
-    for (uint e = 0u; e < list_len; ++e) {
-        // (rest-state neighbours were left out when the list was built)
-        self_push(x, self_list[list_entry(e, list_particle, particle_count())], reach, correction, n_active);
-    }
+    // (rest-state neighbours were left out when the list was built)
+    for (uint e = 0u; e < list_len; ++e) self_listed(x, e, reach, correction, n_active);
+}
+
+// The contact list state of particle i in `substep` of an object whose self-collision
+// searches the hash (with `lists` on, the control block's word 0 says whether the substep
+// rebuilds them, lists.glsl); `listed` false: no lists, no search.
+void list_state(uint i, uint substep, bool listed, bool lists) {
+    list_particle = i;
+    list_build = listed && lists && self_list[list_control(substep)] != 0u;
+    list_rebuild = listed && (!lists || list_build);
+    list_len = listed && !list_rebuild ? self_list[4u * i + 3u] : 0u;
 }
 #endif
 
@@ -238,8 +315,8 @@ uint visiting;  // the particle whose constraints run
 vec3 substep_start() { return START(visiting); }
 
 // `substep`: which of the frame's substeps this is (the colliders move within the frame).
-// With self-collision through the hash and `lists` on, the contact list is walked, or in a
-// substep that rebuilds the lists (the control block's word 0, lists.glsl) built from the hash.
+// With self-collision through the hash and `lists` on, a rope's contact list is walked, or in
+// a substep that rebuilds the lists built from the hash.
 void constraints_particle(uvec2 cell, uint substep, bool lists) {
     uint i = cell.x + cell.y * obj.dims.x;
     Particle p = IN(i);
@@ -249,11 +326,8 @@ void constraints_particle(uvec2 cell, uint substep, bool lists) {
     }
     vec3 x = p.pos.xyz;
     vec3 v = p.vel.xyz;
-    bool listed = has(F_SELF) && self_hashed();
-    list_particle = i;
-    list_build = listed && lists && self_list[list_control(substep)] != 0u;
-    list_rebuild = listed && (!lists || list_build);
-    list_len = listed && !list_rebuild ? self_list[4u * i + 3u] : 0u;
+    bool listed = has(F_SELF) && self_hashed() && !has_triangles();  // (a cloth's: self_pairs.comp)
+    list_state(i, substep, listed, lists);
     vec3 correction = constraint_correction(cell, x);
     if (list_build) set_list_header(i, x, list_len);
     x += correction;

@@ -3,15 +3,15 @@
 // (note_position); when they do not, the hash is built from those positions (hash_count.comp
 // counts, the scan, hash_scatter.comp), with cells twice the lists' reach wide, and the
 // constraints search it and build the lists again. With lists off, that pass counts the
-// position into the hash (cells twice the contact distance) and every substep searches it.
+// position into the hash (cells twice the search's reach) and every substep searches it.
 // Include after bindings.glsl.
 #ifndef MSD_HASH_COUNT_GLSL
 #define MSD_HASH_COUNT_GLSL
 #include "lists.glsl"
 
-// The per-stage hash's 1 / cell edge: with lists its cells are twice the lists' reach,
-// (1 + LIST_SKIN) times the contact distance, wide.
-float hash_cell_inv(bool lists) { return lists ? obj.cell_inv * (1.0 / (1.0 + LIST_SKIN)) : obj.cell_inv; }
+// The per-stage hash's 1 / cell edge: twice the search's reach (obj.cell_inv), with lists
+// twice the lists' reach.
+float hash_cell_inv(bool lists) { return lists ? obj.cell_inv * (self_reach() / list_reach()) : obj.cell_inv; }
 
 // Takes a rank in the bucket of position x of particle i (counts[] were zeroed by the last
 // scan).

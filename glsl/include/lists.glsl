@@ -1,10 +1,13 @@
 // The self-collision contact lists, shared by fused.comp and the per-stage shaders. When the
-// spatial hash is built, each particle records in self_list (binding 15) the others within
-// (1 + LIST_SKIN) times the contact distance, rest-state neighbours left out, and where it was
-// built. The substeps after walk their lists instead of searching the hash, until some
-// particle has moved more than half the skin from where its list was built (then no pair
-// missing from a list can have come within the contact distance: neither end moved the skin's
-// half) or a list overflowed (built at infinity: it counts as moved). Layout for n particles:
+// spatial hash is built, each particle records in self_list (binding 15) what is within the
+// contact distance plus a skin (LIST_SKIN times the self-collision distance): in a rope the
+// other particles, rest-state neighbours left out; in a cloth the triangles not left out
+// (self_contact.glsl); and where it was built. The substeps after walk their lists instead of
+// searching the hash, until some particle has moved more than half the skin from where its
+// list was built (then no pair missing from a list can have come within the contact distance:
+// a distance between particles, or from a particle to a triangle, changes no more than the
+// largest move of the particles involved) or a list overflowed (built at infinity: it counts
+// as moved). Layout for n particles:
 // particle i's header (where its list was built, xyz, and its length, as bits) in words
 // [4 i, 4 i + 4), its entry e at list_entry(e, i, n). The host makes every list invalid
 // whenever something outside the shaders changes the state or the parameters.
@@ -13,6 +16,25 @@
 #define MSD_LISTS_GLSL
 
 const float LIST_SKIN = 1.0;
+
+// How far a cloth's diagonals may stretch with every triangle within the contact distance
+// still found through its nearest vertex (sim::model::TRIANGLE_STRETCH).
+const float TRIANGLE_STRETCH = 1.5;
+
+// Whether self-contact is against triangles: a grid of at least 2 x 2 (a rope is one row).
+bool has_triangles() { return obj.dims.x > 1u && obj.dims.y > 1u; }
+
+// How far from a particle self-contact candidates (particles; in a cloth the vertices through
+// which its triangles are found) are searched when a triangle or particle within `within` of
+// it must be found: a triangle has its vertex nearest the particle within half its longest
+// edge (a grid diagonal stretched by TRIANGLE_STRETCH) more. The hash's cells are twice the
+// reach. sim::model::ObjectModel::self_reach is the twin.
+float vertex_reach(float within) {
+    return has_triangles() ? within + 0.5 * TRIANGLE_STRETCH * length(obj.spacing) : within;
+}
+float self_reach() { return vertex_reach(obj.self_distance); }
+// ... while the lists are built (they hold what is within the contact distance plus the skin).
+float list_reach() { return vertex_reach((1.0 + LIST_SKIN) * obj.self_distance); }
 
 // The object's self-collision searches the spatial hash (and keeps these lists).
 bool self_hashed() {

@@ -5,6 +5,10 @@
 pub use super::integrator::Integrator;
 use glam::DVec3;
 
+/// How far a cloth's grid diagonals may stretch with every self-contact still found
+/// (`TRIANGLE_STRETCH` in glsl/include/lists.glsl).
+pub const TRIANGLE_STRETCH: f64 = 1.5;
+
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, serde::Serialize)]
 #[serde(rename_all = "lowercase")]
 pub enum ObjectKind {
@@ -91,6 +95,21 @@ impl ObjectModel {
 
     pub fn surface_count(&self) -> usize {
         self.shape().surface_count() as usize
+    }
+
+    /// Whether self-contact is against triangles: a grid of at least 2 x 2 (a rope is one row).
+    pub fn has_triangles(&self) -> bool {
+        self.dims[0] > 1 && self.dims[1] > 1
+    }
+
+    /// How far from a particle self-contact candidates are searched (`self_reach` in
+    /// glsl/include/lists.glsl): the self-collision distance h, plus for a cloth half a grid
+    /// cell's diagonal stretched by `TRIANGLE_STRETCH` (a triangle within h has its nearest
+    /// vertex that near).
+    pub fn self_reach(&self) -> Option<f64> {
+        let diagonal = self.spacing[0].hypot(self.spacing[1]);
+        let more = if self.has_triangles() { 0.5 * TRIANGLE_STRETCH * diagonal } else { 0.0 };
+        self.self_distance.map(|h| h + more)
     }
 
     /// Half the distance kept from another object's particles (inter-object contact): a

@@ -8,9 +8,11 @@
 //!    particles keep their position and have zero velocity.
 //! 2. Constraints, Jacobi on the physics result: each free particle sums (a) for every structural
 //!    and shear spring stretched past (1 + limit) L, half the excess towards the neighbour (all of
-//!    it when the neighbour is pinned), and (b) for every particle nearer than the self-collision
-//!    distance s (except pairs nearer than s at rest), half the overlap away from it (all of it when
-//!    that one is pinned). The correction is the mean of these (Jacobi averaging), plus (c) for
+//!    it when the neighbour is pinned), and (b) in a rope, for every particle nearer than the
+//!    self-collision distance s (except pairs nearer than s at rest), half the overlap away from
+//!    it (all of it when that one is pinned). The correction is the mean of these (Jacobi
+//!    averaging), plus in a cloth its moves from contacts with its own triangles (particle
+//!    against triangle, equal and opposite, `self_contact`), plus (c) for
 //!    every particle of another object nearer than the two contact radii, its share of the
 //!    overlap by inverse mass over the larger of the two particles' contact counts (equal and
 //!    opposite momenta for both ends); x += correction, v += correction / dt. Then, collider
@@ -27,6 +29,7 @@
 //! the GPU receives; everything after that is f64.
 
 pub(crate) mod integrators;
+pub mod self_contact;
 
 pub use integrators::{energy, max_strain, History};
 
@@ -391,6 +394,7 @@ fn constraints(
     let mut nv = vec![DVec3::ZERO; x.len()];
     let share = |j: usize| if o.pinned[j] { 1.0 } else { 0.5 };
     let edges = crate::sim::collider::edges_needed(o, &m.colliders);
+    let own = self_contact::self_contact(o, x);
     for i in 0..x.len() {
         if o.pinned[i] {
             continue;
@@ -412,7 +416,7 @@ fn constraints(
                 }
             }
         }
-        if let Some(reach) = o.self_distance {
+        if let Some(reach) = o.self_distance.filter(|_| !o.has_triangles()) {
             for j in 0..x.len() {
                 let rest_c = ((j % cols) as i64 - c) as f64 * o.spacing[0];
                 let rest_r = ((j / cols) as i64 - r) as f64 * o.spacing[1];
@@ -430,7 +434,7 @@ fn constraints(
         if active > 1 {
             correction /= active as f64;
         }
-        correction += contact[i];
+        correction += own[i] + contact[i];
         let mut p = x[i] + correction;
         let mut vel = v[i] + correction / dt;
         if edges {

@@ -146,6 +146,7 @@ impl SceneContact {
                     touch,
                     p,
                     p,
+                    p,
                 ];
                 debug_assert_eq!(bindings.len() as u32, BINDINGS);
                 sets.push(arena.allocate(ctx, layout, &bindings)?);
@@ -163,6 +164,7 @@ impl SceneContact {
                 &c.starts,
                 p,
                 &c.block_sums,
+                p,
                 p,
                 p,
                 p,

@@ -51,7 +51,7 @@ use pipelines::{Pipelines, Stage};
 const CLOTH_GROUP: [u32; 2] = [16, 16];
 const ROPE_GROUP: u32 = 64;
 /// Bindings per set, in the order of `glsl/include/bindings.glsl`.
-const BINDINGS: u32 = 17;
+const BINDINGS: u32 = 18;
 
 /// What each binding holds: the globals (0) are a uniform buffer, read by every invocation
 /// alike (the driver folds its members into the instructions), the rest storage buffers. The
@@ -364,10 +364,14 @@ impl GpuSim {
             let (control, blocks) = object::list_control_range(o.particles as u64);
             Some((o.self_list.as_ref()?, control + blocks, transfer::LISTS_INVALID))
         });
+        // A cloth's contact sums start at zero (the constraints clear them after each read).
+        let pairs = (self.objects.iter())
+            .filter(|_| lists_stale)
+            .filter_map(|o| o.self_pairs.as_ref().map(|p| (p, 16 * o.particles as u64, 0)));
         let histories = (self.objects.iter())
             .filter_map(|o| o.solver.as_ref().map(|s| &s.history).filter(|_| history_stale))
             .map(|h| (h, h.size(), 0));
-        transfer::record_cleared(rec, &lists.chain(histories).collect::<Vec<_>>());
+        transfer::record_cleared(rec, &lists.chain(pairs).chain(histories).collect::<Vec<_>>());
         self.record_list_control_cleared(rec);
         self.record_collider_motion(rec, &dragged);
         let stages = self.stage_timing;
@@ -409,6 +413,7 @@ impl GpuSim {
             if let Some(c) = &self.contact {
                 c.record(rec, &self.pipelines, &self.objects);
             }
+            self.record_self_pairs(rec, s);
             for o in self.objects.iter().filter(|o| !self.is_fused(o)) {
                 rec.dispatch_with(
                     self.pipelines.get(Stage::Constraints(o.kind, o.plan.features, self.lists_on(o))),
@@ -437,6 +442,25 @@ impl GpuSim {
         self.surface_stale = false;
         for o in &mut self.objects {
             o.lists.frame();
+        }
+    }
+
+    /// The find and apply passes of the cloths' contact with their own triangles on the
+    /// per-stage path (`self_pairs.comp`), after the spatial hash's build, each ordered after
+    /// the one before and before the constraints by a barrier on the objects' scratch buffers.
+    fn record_self_pairs(&self, rec: &mut Recorder<'_>, substep: u32) {
+        let cloths: Vec<&GpuObject> =
+            self.objects.iter().filter(|o| !self.is_fused(o) && o.self_pairs.is_some()).collect();
+        if cloths.is_empty() {
+            return;
+        }
+        let barriers: Vec<BufferBarrier<'_>> = cloths.iter().flat_map(|o| o.scratch_barriers()).collect();
+        for apply in [false, true] {
+            for o in &cloths {
+                let stage = Stage::SelfPairs(o.plan.features, self.lists_on(o), apply);
+                rec.dispatch_with(self.pipelines.get(stage), o.sets[1], o.step_groups, &[substep]);
+            }
+            rec.barrier(&barriers);
         }
     }
 

@@ -175,6 +175,9 @@ pub(super) struct GpuObject {
     /// 15; glsl/include/lists.glsl): the fused kernel's (`FusedShape::list`) or the per-stage
     /// path's, with its control blocks and indirect dispatches.
     pub self_list: Option<Buffer>,
+    /// A cloth's contact with its own triangles (binding 17; glsl/include/self_contact.glsl):
+    /// each particle's summed moves and count, its contacts.
+    pub self_pairs: Option<Buffer>,
     /// [A -> B (physics), B -> A (constraints, hash passes); surface uses set 0 (reads A)].
     pub sets: [BindingSet; 2],
     /// Whether its per-stage contact lists are on.
@@ -225,6 +228,7 @@ impl GpuObject {
         let mut solver = None;
         let mut contact = None;
         let mut self_list = None;
+        let mut self_pairs = None;
         let sets = (|| -> Result<[BindingSet; 2], VkError> {
             guard.write(0, &GUARD_CLEAR)?;
             params.write(0, &[object_params(o, model)])?;
@@ -250,6 +254,12 @@ impl GpuObject {
                 let bytes = fused.max(control + size + 8);
                 self_list = Some(Buffer::new(ctx, &name, bytes, usage, MemoryKind::GpuOnly)?);
             }
+            if has_self_pairs(o) {
+                let usage = BufferUsage::STORAGE | BufferUsage::TRANSFER_DST;
+                let bytes = 4 * (5 + SELF_PAIR_MAX) * n;
+                let name = format!("{}.self_pairs", o.name);
+                self_pairs = Some(Buffer::new(ctx, &name, bytes, usage, MemoryKind::GpuOnly)?);
+            }
             let p = &placeholder;
             let [cell_rank, counts, starts, sorted, blocks] = match &hash {
                 Some(h) => h.buffers(),
@@ -261,10 +271,11 @@ impl GpuObject {
             };
             let touch = contact.as_ref().unwrap_or(p);
             let lists = self_list.as_ref().unwrap_or(p);
+            let pairs = self_pairs.as_ref().unwrap_or(p);
             let set = |arena: &mut DescriptorArena, from: &Buffer, to: &Buffer| {
                 let bindings = [
                     globals, &params, from, to, colliders, &surface, cell_rank, counts, starts, sorted,
-                    blocks, &guard, iter, aux, touch, lists, history,
+                    blocks, &guard, iter, aux, touch, lists, history, pairs,
                 ];
                 debug_assert_eq!(bindings.len() as u32, BINDINGS);
                 arena.allocate(ctx, layout, &bindings)
@@ -288,6 +299,7 @@ impl GpuObject {
             guard,
             contact,
             self_list,
+            self_pairs,
             sets,
             lists: Default::default(),
             plan,
@@ -311,6 +323,7 @@ impl GpuObject {
         }
         out.extend(&self.contact);
         out.extend(&self.self_list);
+        out.extend(&self.self_pairs);
         out
     }
 
@@ -341,6 +354,9 @@ impl GpuObject {
         }
         if let Some(l) = self.self_list {
             l.destroy(ctx);
+        }
+        if let Some(p) = self.self_pairs {
+            p.destroy(ctx);
         }
     }
 }
@@ -459,6 +475,14 @@ pub(super) fn globals(model: &SimModel) -> Globals {
     }
 }
 
+/// Contacts a particle keeps in a substep (`PAIR_MAX` in glsl/include/self_contact.glsl).
+pub(super) const SELF_PAIR_MAX: u64 = 16;
+
+/// Whether object `o` has contact with its own triangles (a cloth with self-collision).
+pub(super) fn has_self_pairs(o: &ObjectModel) -> bool {
+    o.self_distance.is_some() && o.has_triangles()
+}
+
 /// Whether object `o` builds a spatial hash of its own (its self-collision, the hash method).
 pub(super) fn builds_hash(o: &ObjectModel, model: &SimModel) -> bool {
     o.self_distance.is_some() && model.self_collision == SelfCollisionMethod::Hash
@@ -476,7 +500,7 @@ pub(super) fn object_params(o: &ObjectModel, model: &SimModel) -> ObjectParams {
         }
     }
     let buckets = hash_table_size(o.particle_count() as u64) as u32;
-    let cell = 2.0 * o.self_distance.unwrap_or(1.0).max(1e-6);
+    let cell = 2.0 * o.self_reach().unwrap_or(1.0).max(1e-6);
     ObjectParams {
         dims: o.dims,
         spacing: o.spacing.map(|s| s as f32),

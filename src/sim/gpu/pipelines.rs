@@ -24,6 +24,9 @@ pub(super) enum Stage {
     Iterate(ObjectKind, Integrator),
     /// The constraints (`lists`: with the self-collision contact lists on, `hash.rs`).
     Constraints(ObjectKind, u32, bool),
+    /// A cloth's contact with its own triangles: the find pass or the apply pass (`lists`:
+    /// with the contact lists on; `self_pairs.comp`).
+    SelfPairs(u32, bool, bool),
     /// Cloth normals or rope tube vertices and the runtime guard (`drawn`), or the guard alone.
     Surface(ObjectKind, bool),
     HashCount,
@@ -60,6 +63,7 @@ impl Stage {
             Stage::Predict(..) => "predict.comp",
             Stage::Iterate(_, method) => solver(method).shader,
             Stage::Constraints(..) => "constraints.comp",
+            Stage::SelfPairs(..) => "self_pairs.comp",
             Stage::Surface(ObjectKind::Cloth, _) => "cloth_normals.comp",
             Stage::Surface(ObjectKind::Rope, _) => "rope_vertices.comp",
             Stage::HashCount => "hash_count.comp",
@@ -83,6 +87,9 @@ impl Stage {
                 [group(kind), vec![s.explicit_dashpots as u32, f, s.keeps_prediction as u32]].concat()
             }
             Stage::Constraints(kind, f, lists) => [group(kind), vec![lists as u32, f]].concat(),
+            Stage::SelfPairs(f, lists, apply) => {
+                [group(ObjectKind::Cloth), vec![lists as u32, f, apply as u32]].concat()
+            }
             Stage::Iterate(kind, _) => group(kind),
             Stage::Surface(_, drawn) => vec![drawn as u32],
             Stage::HashCount
@@ -126,6 +133,13 @@ impl Stage {
         for (o, plan) in model.objects.iter().zip(plans) {
             if super::object::builds_hash(o, model) {
                 stages.push(Stage::Constraints(o.kind, plan.features, true));
+            }
+            if super::object::has_self_pairs(o) {
+                let f = plan.features;
+                stages.extend([Stage::SelfPairs(f, false, false), Stage::SelfPairs(f, false, true)]);
+                if super::object::builds_hash(o, model) {
+                    stages.extend([Stage::SelfPairs(f, true, false), Stage::SelfPairs(f, true, true)]);
+                }
             }
         }
         if model.objects.iter().any(|o| super::object::builds_hash(o, model)) {

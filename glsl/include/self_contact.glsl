@@ -1,0 +1,274 @@
+// A cloth's contact with itself: particles against triangles, each contact's impulse applied
+// equal and opposite. A cloth (a grid of at least 2 x 2) keeps each particle at least the
+// self-collision distance h (its thickness) from its triangles, two a grid cell as the
+// renderer draws them: triangle t = 2 a + k of the cell whose first corner is a is
+// (a, a + cols, a + 1) for k = 0 and (a + 1, a + cols, a + cols + 1) for k = 1.
+//
+// A pair (particle p, triangle t) is left out when t is one of p's own, or nearer than h to p
+// in the rest state (a thickness of a grid spacing or more), and is no contact while t's
+// vertex nearest p is in p's one-ring (p's 8 grid neighbours: folds sharper than a grid cell
+// are left to the springs). Any other pair nearer than h is a contact: with the barycentric
+// weights b of t's point nearest to p and n the unit vector from there to p, the projection of
+// the constraint n . (p - sum b_k x_k) >= h moves p by w_p lambda n and vertex k by
+// -w_k b_k lambda n (w: 1 free, 0 pinned; one mass in a cloth), so the pair's momentum is
+// unchanged. Several contacts on a particle are combined by mass splitting (Tonge et al.
+// 2012): each free particle takes part in each of its n contacts with 1 / n of its mass, so
+// lambda = (h - d) / (n_p w_p + sum n_k w_k b_k^2), and its moves are summed. Each contact is
+// still equal and opposite, and one alone is resolved whole. The count n is smooth: a contact
+// counts fully once its overlap reaches a tenth of h (count_weight), and n is at least 1, so a
+// contact that just begins does not halve the others' shares at once.
+//
+// Three passes a substep (per stage: self_pairs.comp twice, then the constraints; fused: phases
+// between barriers):
+// 1. find (self_find): each particle, pinned too, finds its triangles within h through the
+//    spatial hash (a triangle within h has its nearest vertex within self_reach(), lists.glsl;
+//    it is tested once, from that vertex) or its contact list, which holds the triangles within
+//    h plus the skin; it keeps up to PAIR_MAX contacts and counts each in its free particles;
+// 2. apply (self_apply): each particle computes its contacts again (those it kept; one that
+//    found more searches again) and adds every particle's move to its sum, in fixed point
+//    (exact, order-independent integer atomics);
+// 3. the constraint stage adds its particle's sum to its correction whole and clears it
+//    (self_take).
+// The CPU twin is sim::cpu::self_contact. Buffer self_pairs (binding 17), n particles: words
+// [4 i, 4 i + 4) particle i's sum (x, y, z in units of h / 2^24) and count (in units of
+// 2^-16); 4 n + i the number
+// of contacts it keeps; (5 + k) n + i its contact k's triangle.
+// Include in constraints_body.glsl (CPOS, CPINNED defined).
+#ifndef MSD_SELF_CONTACT_GLSL
+#define MSD_SELF_CONTACT_GLSL
+#include "lists.glsl"
+
+// Contacts a particle keeps in a substep (sim::gpu::object::SELF_PAIR_MAX); one with more
+// searches for them again in the apply pass.
+const uint PAIR_MAX = 16u;
+uint pairs_len_word(uint i) { return 4u * particle_count() + i; }
+uint pair_word(uint k, uint i) { return (5u + k) * particle_count() + i; }
+// Fixed-point units a metre: the sum of a particle's moves stays within a few h.
+float pair_fix() { return 16777216.0 / obj.self_distance; }
+
+// The barycentric weights of the point of triangle (a, b, c) nearest to p (Ericson,
+// Real-Time Collision Detection, 5.1.5).
+vec3 triangle_nearest(vec3 p, vec3 a, vec3 b, vec3 c) {
+    vec3 ab = b - a;
+    vec3 ac = c - a;
+    vec3 ap = p - a;
+    float d1 = dot(ab, ap);
+    float d2 = dot(ac, ap);
+    if (d1 <= 0.0 && d2 <= 0.0) return vec3(1.0, 0.0, 0.0);
+    vec3 bp = p - b;
+    float d3 = dot(ab, bp);
+    float d4 = dot(ac, bp);
+    if (d3 >= 0.0 && d4 <= d3) return vec3(0.0, 1.0, 0.0);
+    float vc = d1 * d4 - d3 * d2;
+    if (vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0) {
+        float t = d1 / (d1 - d3);
+        return vec3(1.0 - t, t, 0.0);
+    }
+    vec3 cp = p - c;
+    float d5 = dot(ab, cp);
+    float d6 = dot(ac, cp);
+    if (d6 >= 0.0 && d5 <= d6) return vec3(0.0, 0.0, 1.0);
+    float vb = d5 * d2 - d1 * d6;
+    if (vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0) {
+        float t = d2 / (d2 - d6);
+        return vec3(1.0 - t, 0.0, t);
+    }
+    float va = d3 * d6 - d5 * d4;
+    if (va <= 0.0 && d4 - d3 >= 0.0 && d5 - d6 >= 0.0) {
+        float t = (d4 - d3) / ((d4 - d3) + (d5 - d6));
+        return vec3(0.0, 1.0 - t, t);
+    }
+    float sum = va + vb + vc;
+    if (!(sum > 0.0)) return vec3(1.0, 0.0, 0.0);  // a degenerate triangle: its first vertex
+    return vec3(va, vb, vc) / sum;
+}
+
+uvec3 triangle_vertices(uint t) {
+    uint a = t >> 1u;
+    uint cols = obj.dims.x;
+    return (t & 1u) == 0u ? uvec3(a, a + cols, a + 1u) : uvec3(a + 1u, a + cols, a + cols + 1u);
+}
+
+// The six triangles around a vertex at grid (c, r): the cell (c + x, r + y) and its triangle z.
+const ivec3 VERTEX_TRIANGLES[6] = ivec3[6](ivec3(0, 0, 0), ivec3(-1, 0, 1), ivec3(-1, 0, 0),
+                                           ivec3(-1, -1, 1), ivec3(0, -1, 0), ivec3(0, -1, 1));
+
+// Whether grid vertex j is the particle at `cell` or one of its 8 neighbours.
+bool in_one_ring(uvec2 cell, uint j) {
+    ivec2 d = abs(ivec2(int(j % obj.dims.x), int(j / obj.dims.x)) - ivec2(cell));
+    return max(d.x, d.y) <= 1;
+}
+
+// Whether a vertex at squared distance da (index ia) is nearer than one at db (index ib).
+bool nearer(float da, uint ia, float db, uint ib) { return da < db || (da == db && ia < ib); }
+
+// The vertex of triangle tv nearest x (ties to the lower index).
+uint nearest_vertex(vec3 x, uvec3 tv) {
+    uint best = tv.x;
+    vec3 e = x - CPOS(tv.x);
+    float best_d2 = dot(e, e);
+    [[unroll]] for (int q = 1; q < 3; ++q) {
+        e = x - CPOS(tv[q]);
+        float d2 = dot(e, e);
+        if (nearer(d2, tv[q], best_d2, best)) {
+            best = tv[q];
+            best_d2 = d2;
+        }
+    }
+    return best;
+}
+
+// Whether triangle t is always left out for the particle at `cell` (see the top): it is one
+// of the particle's own, or nearer than h to it at rest.
+bool pair_left_out(uvec2 cell, uint t) {
+    uvec3 tv = triangle_vertices(t);
+    uint cols = obj.dims.x;
+    ivec2 p = ivec2(cell);
+    vec2 rest[3];
+    [[unroll]] for (int k = 0; k < 3; ++k) {
+        ivec2 q = ivec2(int(tv[k] % cols), int(tv[k] / cols));
+        if (q == p) return true;
+        rest[k] = vec2(q - p) * obj.spacing;
+    }
+    // A triangle with a vertex outside the one-ring is nearer than h at rest only for a
+    // thickness of about a grid spacing or more.
+    if (obj.self_distance < 0.99 * min(obj.spacing.x, obj.spacing.y)) return false;
+    vec3 w = triangle_nearest(vec3(0.0), vec3(rest[0], 0.0), vec3(rest[1], 0.0), vec3(rest[2], 0.0));
+    vec2 q = w.x * rest[0] + w.y * rest[1] + w.z * rest[2];
+    return dot(q, q) < obj.self_distance * obj.self_distance;
+}
+
+// Particle p at x against triangle t: its weights w, the unit vector n from the triangle's
+// nearest point to x, and the distance d.
+float pair_distance(vec3 x, uint t, out uvec3 tv, out vec3 w, out vec3 n) {
+    tv = triangle_vertices(t);
+    vec3 a = CPOS(tv.x);
+    vec3 b = CPOS(tv.y);
+    vec3 c = CPOS(tv.z);
+    w = triangle_nearest(x, a, b, c);
+    vec3 off = x - (w.x * a + w.y * b + w.z * c);
+    float d = length(off);
+    n = off / d;
+    return d;
+}
+
+// The particle whose contacts the find pass collects (at pair_x), how many it finds, and
+// whether the search applies them instead (apply_pass: a particle with more than PAIR_MAX).
+uint pair_particle;
+vec3 pair_x;
+uint pair_len;
+bool apply_pass = false;
+
+void apply_contact(uint p, vec3 x, uint t);
+
+// A contact's weight in its particles' counts, in units of 2^-16 (sim::cpu::self_contact's
+// `count_weight`): 1 once the overlap reaches a tenth of h, less before, so that a contact
+// that begins changes the others' shares gradually.
+int count_weight(float overlap) { return int(round(65536.0 * min(1.0, overlap / (0.1 * obj.self_distance)))); }
+// A free particle's count of contacts (at least 1).
+float split_count(uint i) { return max(1.0, float(self_pairs[4u * i + 3u]) * (1.0 / 65536.0)); }
+
+// Contact (pair_particle, t; overlap h - d): in the find pass counted in its free particles
+// and kept while fewer than PAIR_MAX are; in the apply pass's search, applied.
+void keep_pair(uint t, uvec3 tv, float d) {
+    bool free_p = !CPINNED(pair_particle);
+    bvec3 free_t = bvec3(!CPINNED(tv.x), !CPINNED(tv.y), !CPINNED(tv.z));
+    if (!(free_p || any(free_t))) return;
+    if (apply_pass) {
+        apply_contact(pair_particle, pair_x, t);
+        return;
+    }
+    if (pair_len < PAIR_MAX) self_pairs[pair_word(pair_len, pair_particle)] = int(t);
+    pair_len += 1u;
+    int weight = count_weight(obj.self_distance - d);
+    if (free_p) atomicAdd(self_pairs[4u * pair_particle + 3u], weight);
+    [[unroll]] for (int k = 0; k < 3; ++k) {
+        if (free_t[k]) atomicAdd(self_pairs[4u * tv[k] + 3u], weight);
+    }
+}
+
+// Keeps (pair_particle at `cell`, x; triangle t, not left out, at distance d) when it is a
+// contact: nearer than h, with its vertex nearest x outside the particle's one-ring.
+void test_contact(uvec2 cell, vec3 x, uint t, uvec3 tv, float d) {
+    if (d < obj.self_distance && d > 0.0 && !in_one_ring(cell, nearest_vertex(x, tv))) keep_pair(t, tv, d);
+}
+
+// A contact list's triangle t for the particle at `cell`, at x.
+void test_pair(uvec2 cell, vec3 x, uint t) {
+    uvec3 tv;
+    vec3 w;
+    vec3 n;
+    float d = pair_distance(x, t, tv, w, n);
+    test_contact(cell, x, t, tv, d);
+}
+
+// The find pass's visit of candidate vertex j (not the particle at `cell`, at x): each triangle
+// around j whose vertex nearest x is j (so each triangle is visited once) and that is not left
+// out is kept when a contact and, while the contact lists are built (`list_reach`: h plus the
+// skin, otherwise 0), recorded in the particle's list when nearer than that and not inside the
+// particle's one-ring (as things move, its nearest vertex may leave the one-ring). Without
+// lists being built, candidates in the one-ring are skipped: they are their triangles'
+// nearest vertex only where those are no contact.
+void self_triangles(uvec2 cell, vec3 x, uint j, float list_reach) {
+    if (list_reach == 0.0 && in_one_ring(cell, j)) return;
+    ivec2 dims = ivec2(obj.dims);
+    ivec2 at = ivec2(int(j % obj.dims.x), int(j / obj.dims.x));
+    [[unroll]] for (int k = 0; k < 6; ++k) {
+        ivec2 a = at + VERTEX_TRIANGLES[k].xy;
+        if (any(lessThan(a, ivec2(0))) || any(greaterThanEqual(a, dims - 1))) continue;
+        uint t = 2u * uint(a.x + a.y * dims.x) + uint(VERTEX_TRIANGLES[k].z);
+        uvec3 tv = triangle_vertices(t);
+        if (nearest_vertex(x, tv) != j || pair_left_out(cell, t)) continue;
+        vec3 w;
+        vec3 n;
+        float d = pair_distance(x, t, tv, w, n);
+        test_contact(cell, x, t, tv, d);
+        bool inside = in_one_ring(cell, tv.x) && in_one_ring(cell, tv.y) && in_one_ring(cell, tv.z);
+        if (d < list_reach && !inside) {
+            if (list_len < LIST_ENTRIES) self_list[list_entry(list_len, list_particle, particle_count())] = t;
+            list_len += 1u;  // past LIST_ENTRIES the list is full: it is rebuilt the next substep
+        }
+    }
+}
+
+// Adds `move` to particle i's fixed-point sum.
+void add_move(uint i, vec3 move) {
+    ivec3 q = ivec3(round(move * pair_fix()));
+    if (q.x != 0) atomicAdd(self_pairs[4u * i], q.x);
+    if (q.y != 0) atomicAdd(self_pairs[4u * i + 1u], q.y);
+    if (q.z != 0) atomicAdd(self_pairs[4u * i + 2u], q.z);
+}
+
+// Contact (p at x, t), computed again from the same positions as when it was found: moves its
+// free particles (see the top).
+void apply_contact(uint p, vec3 x, uint t) {
+    uvec3 tv;
+    vec3 w;
+    vec3 n;
+    float d = pair_distance(x, t, tv, w, n);
+    float w_p = CPINNED(p) ? 0.0 : 1.0;
+    vec3 free_t = vec3(CPINNED(tv.x) ? 0.0 : 1.0, CPINNED(tv.y) ? 0.0 : 1.0, CPINNED(tv.z) ? 0.0 : 1.0);
+    // Each free particle's mass split among its contacts: inverse mass w n, n its count.
+    vec3 split_t = vec3(0.0);
+    [[unroll]] for (int q = 0; q < 3; ++q) {
+        if (free_t[q] > 0.0) split_t[q] = split_count(tv[q]);
+    }
+    float split_p = w_p > 0.0 ? split_count(p) : 0.0;
+    float lambda = (obj.self_distance - d) / (split_p + dot(w * w, split_t));
+    if (w_p > 0.0) add_move(p, n * lambda);
+    [[unroll]] for (int q = 0; q < 3; ++q) {
+        if (free_t[q] > 0.0) add_move(tv[q], n * (-w[q] * lambda));
+    }
+}
+
+// The constraint stage's share: particle i's summed moves, cleared for the next substep.
+vec3 self_take(uint i) {
+    ivec3 q = ivec3(self_pairs[4u * i], self_pairs[4u * i + 1u], self_pairs[4u * i + 2u]);
+    self_pairs[4u * i] = 0;
+    self_pairs[4u * i + 1u] = 0;
+    self_pairs[4u * i + 2u] = 0;
+    self_pairs[4u * i + 3u] = 0;
+    return vec3(q) * (1.0 / pair_fix());
+}
+
+#endif

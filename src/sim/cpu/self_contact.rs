@@ -1,0 +1,143 @@
+//! The CPU twin of a cloth's contact with its own triangles (glsl/include/self_contact.glsl):
+//! every pair (particle p, triangle t) not left out (t one of p's own, or nearer than h to p at
+//! rest), nearer than the self-collision distance h, whose vertex nearest p (ties to the lower
+//! index) is outside p's one-ring, is a contact. With the barycentric weights b of t's point
+//! nearest p and n the unit vector from it to p, p moves by w_p lambda n and vertex k by
+//! -w_k b_k lambda n, lambda = (h - d) / (n_p w_p + sum n_k w_k b_k^2) (w: 1 free, 0 pinned;
+//! n: each particle's count of contacts, at least 1, a contact counting fully once its overlap
+//! reaches h / 10; its mass split among them), so every contact conserves momentum. Every pair is tested here; the GPU finds the same through its spatial
+//! hash or contact lists (and keeps at most 8 contacts a particle in a substep).
+
+use crate::sim::model::ObjectModel;
+use glam::{DVec2, DVec3};
+
+/// The grid's triangles as the renderer draws them, each with its number t = 2 a + k (a the
+/// cell's first corner): (a, a + cols, a + 1) for k = 0, (a + 1, a + cols, a + cols + 1) for 1.
+pub fn cloth_triangles(cols: usize, rows: usize) -> Vec<(usize, [usize; 3])> {
+    let mut out = Vec::with_capacity(2 * cols.saturating_sub(1) * rows.saturating_sub(1));
+    for r in 0..rows.saturating_sub(1) {
+        for c in 0..cols.saturating_sub(1) {
+            let a = c + r * cols;
+            out.push((2 * a, [a, a + cols, a + 1]));
+            out.push((2 * a + 1, [a + 1, a + cols, a + cols + 1]));
+        }
+    }
+    out
+}
+
+/// The barycentric weights of the point of triangle (a, b, c) nearest to p (Ericson,
+/// Real-Time Collision Detection, 5.1.5; `triangle_nearest` in the shaders).
+pub fn triangle_nearest(p: DVec3, a: DVec3, b: DVec3, c: DVec3) -> DVec3 {
+    let (ab, ac, ap) = (b - a, c - a, p - a);
+    let (d1, d2) = (ab.dot(ap), ac.dot(ap));
+    if d1 <= 0.0 && d2 <= 0.0 {
+        return DVec3::X;
+    }
+    let bp = p - b;
+    let (d3, d4) = (ab.dot(bp), ac.dot(bp));
+    if d3 >= 0.0 && d4 <= d3 {
+        return DVec3::Y;
+    }
+    let vc = d1 * d4 - d3 * d2;
+    if vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0 {
+        let t = d1 / (d1 - d3);
+        return DVec3::new(1.0 - t, t, 0.0);
+    }
+    let cp = p - c;
+    let (d5, d6) = (ab.dot(cp), ac.dot(cp));
+    if d6 >= 0.0 && d5 <= d6 {
+        return DVec3::Z;
+    }
+    let vb = d5 * d2 - d1 * d6;
+    if vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0 {
+        let t = d2 / (d2 - d6);
+        return DVec3::new(1.0 - t, 0.0, t);
+    }
+    let va = d3 * d6 - d5 * d4;
+    if va <= 0.0 && d4 - d3 >= 0.0 && d5 - d6 >= 0.0 {
+        let t = (d4 - d3) / ((d4 - d3) + (d5 - d6));
+        return DVec3::new(0.0, 1.0 - t, t);
+    }
+    let sum = va + vb + vc;
+    if sum > 0.0 {
+        DVec3::new(va, vb, vc) / sum
+    } else {
+        DVec3::X // a degenerate triangle (or NaN): its first vertex
+    }
+}
+
+/// Whether pair (particle p at `xp`, triangle `tv`) of cloth `o` (positions `x`) is no
+/// contact whatever the distance: left out, or its vertex nearest p in p's one-ring.
+fn left_out(o: &ObjectModel, h: f64, (p, x): (usize, &[DVec3]), tv: [usize; 3]) -> bool {
+    let cols = o.dims[0] as usize;
+    let cell = |k: usize| ((k % cols) as i64, (k / cols) as i64);
+    let (pc, pr) = cell(p);
+    let nearest = (tv.iter().copied())
+        .min_by(|&a, &b| x[p].distance_squared(x[a]).total_cmp(&x[p].distance_squared(x[b])).then(a.cmp(&b)))
+        .unwrap_or(p);
+    if tv.contains(&p) || ((cell(nearest).0 - pc).abs() <= 1 && (cell(nearest).1 - pr).abs() <= 1) {
+        return true;
+    }
+    if h < 0.99 * o.spacing[0].min(o.spacing[1]) {
+        return false; // no triangle with a vertex outside the one-ring is nearer at rest
+    }
+    let rest = |k: usize| {
+        let (c, r) = cell(k);
+        DVec2::new((c - pc) as f64 * o.spacing[0], (r - pr) as f64 * o.spacing[1]).extend(0.0)
+    };
+    let w = triangle_nearest(DVec3::ZERO, rest(tv[0]), rest(tv[1]), rest(tv[2]));
+    (rest(tv[0]) * w.x + rest(tv[1]) * w.y + rest(tv[2]) * w.z).length() < h
+}
+
+/// A contact's weight in its particles' counts: 1 once its overlap reaches a tenth of h, less
+/// before, so that a contact that begins changes the others' shares gradually (a count is at
+/// least 1).
+fn count_weight(overlap: f64, h: f64) -> f64 {
+    (overlap / (0.1 * h)).min(1.0)
+}
+
+/// Each particle's summed moves from cloth `o`'s contacts with its own triangles (positions
+/// `x`, the physics output); zero for pinned particles.
+pub(super) fn self_contact(o: &ObjectModel, x: &[DVec3]) -> Vec<DVec3> {
+    let mut moves = vec![DVec3::ZERO; x.len()];
+    let Some(h) = o.self_distance.filter(|_| o.has_triangles()) else { return moves };
+    let free = |k: usize| if o.pinned[k] { 0.0 } else { 1.0 };
+    // (p, vertices, weights, unit normal, overlap)
+    let mut contacts = Vec::new();
+    for (_, tv) in cloth_triangles(o.dims[0] as usize, o.dims[1] as usize) {
+        let (lo, hi) = tv
+            .iter()
+            .fold((DVec3::INFINITY, DVec3::NEG_INFINITY), |(lo, hi), &k| (lo.min(x[k]), hi.max(x[k])));
+        for (p, &xp) in x.iter().enumerate() {
+            if xp.cmplt(lo - h).any() || xp.cmpgt(hi + h).any() || tv.contains(&p) {
+                continue;
+            }
+            if o.pinned[p] && tv.iter().all(|&k| o.pinned[k]) || left_out(o, h, (p, x), tv) {
+                continue;
+            }
+            let w = triangle_nearest(xp, x[tv[0]], x[tv[1]], x[tv[2]]);
+            let off = xp - (x[tv[0]] * w.x + x[tv[1]] * w.y + x[tv[2]] * w.z);
+            let d = off.length();
+            if d < h && d > 0.0 {
+                contacts.push((p, tv, w, off / d, h - d));
+            }
+        }
+    }
+    let mut count = vec![0.0; x.len()];
+    for &(p, tv, _, _, overlap) in &contacts {
+        for k in std::iter::once(p).chain(tv).filter(|&k| !o.pinned[k]) {
+            count[k] += count_weight(overlap, h);
+        }
+    }
+    for (p, tv, w, n, overlap) in contacts {
+        // Each free particle's mass split among its contacts.
+        let split = |k: usize| free(k) * f64::max(1.0, count[k]);
+        let weights = DVec3::from_array(tv.map(free));
+        let lambda = overlap / (split(p) + (w * w).dot(DVec3::from_array(tv.map(split))));
+        moves[p] += n * (free(p) * lambda);
+        for (k, &v) in tv.iter().enumerate() {
+            moves[v] -= n * (w[k] * weights[k] * lambda);
+        }
+    }
+    moves
+}
