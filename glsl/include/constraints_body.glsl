@@ -41,9 +41,10 @@ bool list_build;
 
 // Whether particle j is nearer than `reach` to `cell` in the rest state (or is that particle):
 // such pairs never push, the springs keep them apart. In a cloth (whose candidates are the
-// vertices of its triangles, self_contact.glsl), whether j is the particle.
+// vertices of its triangles, self_contact.glsl), whether j is in the particle's one-ring: all
+// its triangles are left out.
 bool rest_neighbour(uvec2 cell, uint j, float reach) {
-    if (has_triangles()) return cell == uvec2(j % obj.dims.x, j / obj.dims.x);
+    if (has_triangles()) return in_one_ring(cell, j);
     ivec2 other = ivec2(int(j % obj.dims.x), int(j / obj.dims.x));
     vec2 rest = vec2(other - ivec2(cell)) * obj.spacing;
     return dot(rest, rest) < reach * reach;
@@ -78,7 +79,7 @@ void self_candidate(uvec2 cell, vec3 x, uint j, float d, float reach, inout vec3
 void self_listed(vec3 x, uint e, float reach, inout vec3 correction, inout uint n_active) {
     uint entry = self_list[list_entry(e, list_particle, particle_count())];
     if (has_triangles()) {
-        test_pair(uvec2(list_particle % obj.dims.x, list_particle / obj.dims.x), x, entry);
+        test_pair(x, entry);
     } else {
         self_push(x, entry, reach, correction, n_active);
     }

@@ -21,8 +21,9 @@ const float LIST_SKIN = 1.0;
 // still found through its nearest vertex (sim::model::TRIANGLE_STRETCH).
 const float TRIANGLE_STRETCH = 1.5;
 
-// Whether self-contact is against triangles: a grid of at least 2 x 2 (a rope is one row).
-bool has_triangles() { return obj.dims.x > 1u && obj.dims.y > 1u; }
+// Whether self-contact is against triangles (a cloth that asks for it; else particle against
+// particle).
+bool has_triangles() { return (obj.flags & OBJ_SELF_TRIANGLES) != 0u; }
 
 // How far from a particle self-contact candidates (particles; in a cloth the vertices through
 // which its triangles are found) are searched when a triangle or particle within `within` of

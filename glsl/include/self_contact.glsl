@@ -4,12 +4,12 @@
 // renderer draws them: triangle t = 2 a + k of the cell whose first corner is a is
 // (a, a + cols, a + 1) for k = 0 and (a + 1, a + cols, a + cols + 1) for k = 1.
 //
-// A pair (particle p, triangle t) is left out when t is one of p's own, or nearer than h to p
-// in the rest state (a thickness of a grid spacing or more), and is no contact while t's
-// vertex nearest p is in p's one-ring (p's 8 grid neighbours: folds sharper than a grid cell
-// are left to the springs). Any other pair nearer than h is a contact: with the barycentric
-// weights b of t's point nearest to p and n the unit vector from there to p, the projection of
-// the constraint n . (p - sum b_k x_k) >= h moves p by w_p lambda n and vertex k by
+// A pair (particle p, triangle t) is left out when a vertex of t is p or one of its 8 grid
+// neighbours (its own triangles and the next ring: folds sharper than a grid cell are left to
+// the springs), or when t is nearer than h to p in the rest state (a thickness of two grid
+// spacings or more). Any other pair nearer than h is a contact: with the barycentric weights b
+// of t's point nearest to p and n the unit vector from there to p, the projection of the
+// constraint n . (p - sum b_k x_k) >= h moves p by w_p lambda n and vertex k by
 // -w_k b_k lambda n (w: 1 free, 0 pinned; one mass in a cloth), so the pair's momentum is
 // unchanged. Several contacts on a particle are combined by mass splitting (Tonge et al.
 // 2012): each free particle takes part in each of its n contacts with 1 / n of its mass, so
@@ -102,24 +102,8 @@ bool in_one_ring(uvec2 cell, uint j) {
 // Whether a vertex at squared distance da (index ia) is nearer than one at db (index ib).
 bool nearer(float da, uint ia, float db, uint ib) { return da < db || (da == db && ia < ib); }
 
-// The vertex of triangle tv nearest x (ties to the lower index).
-uint nearest_vertex(vec3 x, uvec3 tv) {
-    uint best = tv.x;
-    vec3 e = x - CPOS(tv.x);
-    float best_d2 = dot(e, e);
-    [[unroll]] for (int q = 1; q < 3; ++q) {
-        e = x - CPOS(tv[q]);
-        float d2 = dot(e, e);
-        if (nearer(d2, tv[q], best_d2, best)) {
-            best = tv[q];
-            best_d2 = d2;
-        }
-    }
-    return best;
-}
-
-// Whether triangle t is always left out for the particle at `cell` (see the top): it is one
-// of the particle's own, or nearer than h to it at rest.
+// Whether triangle t is left out for the particle at `cell` (see the top): a vertex of t is in
+// the particle's one-ring, or t is nearer than h to it at rest.
 bool pair_left_out(uvec2 cell, uint t) {
     uvec3 tv = triangle_vertices(t);
     uint cols = obj.dims.x;
@@ -127,12 +111,13 @@ bool pair_left_out(uvec2 cell, uint t) {
     vec2 rest[3];
     [[unroll]] for (int k = 0; k < 3; ++k) {
         ivec2 q = ivec2(int(tv[k] % cols), int(tv[k] / cols));
-        if (q == p) return true;
+        ivec2 d = abs(q - p);
+        if (max(d.x, d.y) <= 1) return true;
         rest[k] = vec2(q - p) * obj.spacing;
     }
-    // A triangle with a vertex outside the one-ring is nearer than h at rest only for a
-    // thickness of about a grid spacing or more.
-    if (obj.self_distance < 0.99 * min(obj.spacing.x, obj.spacing.y)) return false;
+    // A triangle with no vertex in the one-ring is nearer than h at rest only for a thickness
+    // of about two grid spacings or more.
+    if (obj.self_distance < 1.99 * min(obj.spacing.x, obj.spacing.y)) return false;
     vec3 w = triangle_nearest(vec3(0.0), vec3(rest[0], 0.0), vec3(rest[1], 0.0), vec3(rest[2], 0.0));
     vec2 q = w.x * rest[0] + w.y * rest[1] + w.z * rest[2];
     return dot(q, q) < obj.self_distance * obj.self_distance;
@@ -187,44 +172,59 @@ void keep_pair(uint t, uvec3 tv, float d) {
     }
 }
 
-// Keeps (pair_particle at `cell`, x; triangle t, not left out, at distance d) when it is a
-// contact: nearer than h, with its vertex nearest x outside the particle's one-ring.
-void test_contact(uvec2 cell, vec3 x, uint t, uvec3 tv, float d) {
-    if (d < obj.self_distance && d > 0.0 && !in_one_ring(cell, nearest_vertex(x, tv))) keep_pair(t, tv, d);
+// Keeps (pair_particle; triangle t, not left out, at distance d) when it is a contact.
+void test_contact(uint t, uvec3 tv, float d) {
+    if (d < obj.self_distance && d > 0.0) keep_pair(t, tv, d);
 }
 
-// A contact list's triangle t for the particle at `cell`, at x.
-void test_pair(uvec2 cell, vec3 x, uint t) {
+// A contact list's triangle t (not left out) for the particle at x.
+void test_pair(vec3 x, uint t) {
     uvec3 tv;
     vec3 w;
     vec3 n;
     float d = pair_distance(x, t, tv, w, n);
-    test_contact(cell, x, t, tv, d);
+    test_contact(t, tv, d);
 }
 
-// The find pass's visit of candidate vertex j (not the particle at `cell`, at x): each triangle
-// around j whose vertex nearest x is j (so each triangle is visited once) and that is not left
-// out is kept when a contact and, while the contact lists are built (`list_reach`: h plus the
-// skin, otherwise 0), recorded in the particle's list when nearer than that and not inside the
-// particle's one-ring (as things move, its nearest vertex may leave the one-ring). Without
-// lists being built, candidates in the one-ring are skipped: they are their triangles'
-// nearest vertex only where those are no contact.
+// The one-ring of a vertex in order around it: its triangle k of VERTEX_TRIANGLES has the
+// vertex and ring vertices k and k + 1 (mod 6).
+const ivec2 VERTEX_RING[6] = ivec2[6](ivec2(1, 0), ivec2(0, 1), ivec2(-1, 1), ivec2(-1, 0), ivec2(0, -1), ivec2(1, -1));
+
+// The find pass's visit of candidate vertex j (outside the one-ring of the particle at `cell`,
+// at x): each triangle around j whose vertex nearest x is j (so each triangle is visited once)
+// and that is not left out is kept when a contact and, while the contact lists are built
+// (`list_reach`: h plus the skin, otherwise 0), recorded in the particle's list when nearer
+// than that. The ring's positions are read once, and only for vertices outside the particle's
+// one-ring (a triangle with a vertex inside is left out before anything is read).
 void self_triangles(uvec2 cell, vec3 x, uint j, float list_reach) {
-    if (list_reach == 0.0 && in_one_ring(cell, j)) return;
     ivec2 dims = ivec2(obj.dims);
     ivec2 at = ivec2(int(j % obj.dims.x), int(j / obj.dims.x));
+    vec3 dj = x - CPOS(j);
+    float d2j = dot(dj, dj);
+    bool usable[6];
+    uint ring[6];
+    float d2[6];
+    [[unroll]] for (int r = 0; r < 6; ++r) {
+        ivec2 q = at + VERTEX_RING[r];
+        ivec2 off = abs(q - ivec2(cell));
+        usable[r] = all(greaterThanEqual(q, ivec2(0))) && all(lessThan(q, dims)) && max(off.x, off.y) > 1;
+        ring[r] = usable[r] ? uint(q.x + q.y * dims.x) : j;
+        vec3 e = x - CPOS(ring[r]);
+        d2[r] = usable[r] ? dot(e, e) : 0.0;
+    }
+    bool thick = obj.self_distance >= 1.99 * min(obj.spacing.x, obj.spacing.y);
     [[unroll]] for (int k = 0; k < 6; ++k) {
+        int k1 = (k + 1) % 6;
+        if (!usable[k] || !usable[k1] || nearer(d2[k], ring[k], d2j, j) || nearer(d2[k1], ring[k1], d2j, j)) continue;
         ivec2 a = at + VERTEX_TRIANGLES[k].xy;
-        if (any(lessThan(a, ivec2(0))) || any(greaterThanEqual(a, dims - 1))) continue;
         uint t = 2u * uint(a.x + a.y * dims.x) + uint(VERTEX_TRIANGLES[k].z);
-        uvec3 tv = triangle_vertices(t);
-        if (nearest_vertex(x, tv) != j || pair_left_out(cell, t)) continue;
+        if (thick && pair_left_out(cell, t)) continue;
+        uvec3 tv;
         vec3 w;
         vec3 n;
         float d = pair_distance(x, t, tv, w, n);
-        test_contact(cell, x, t, tv, d);
-        bool inside = in_one_ring(cell, tv.x) && in_one_ring(cell, tv.y) && in_one_ring(cell, tv.z);
-        if (d < list_reach && !inside) {
+        test_contact(t, tv, d);
+        if (d < list_reach) {
             if (list_len < LIST_ENTRIES) self_list[list_entry(list_len, list_particle, particle_count())] = t;
             list_len += 1u;  // past LIST_ENTRIES the list is full: it is rebuilt the next substep
         }
@@ -254,7 +254,7 @@ void apply_contact(uint p, vec3 x, uint t) {
         if (free_t[q] > 0.0) split_t[q] = split_count(tv[q]);
     }
     float split_p = w_p > 0.0 ? split_count(p) : 0.0;
-    float lambda = (obj.self_distance - d) / (split_p + dot(w * w, split_t));
+    float lambda = max(obj.self_distance - d, 0.0) / (split_p + dot(w * w, split_t));
     if (w_p > 0.0) add_move(p, n * lambda);
     [[unroll]] for (int q = 0; q < 3; ++q) {
         if (free_t[q] > 0.0) add_move(tv[q], n * (-w[q] * lambda));

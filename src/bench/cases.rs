@@ -6,7 +6,7 @@
 
 use crate::scene::{
     self, BoxCollider, Capsule, Cloth, ClothPins, Ground, Orientation, PerSpring, Rope, RopePins, Scene,
-    Sphere, Wind,
+    SelfContact, Sphere, Wind,
 };
 
 /// One benchmark scene.
@@ -26,17 +26,21 @@ struct Features {
     /// A ground, a box and a capsule (the other collider types, against the 10 spheres).
     shapes: bool,
     self_collision: bool,
+    /// Self-collision of a cloth against its triangles (`self_contact = "triangles"`).
+    triangles: bool,
 }
 
-const NONE: Features = Features { wind: false, spheres: 0, shapes: false, self_collision: false };
+const NONE: Features =
+    Features { wind: false, spheres: 0, shapes: false, self_collision: false, triangles: false };
 
-const VARIANTS: [(&str, Features); 6] = [
+const VARIANTS: [(&str, Features); 7] = [
     ("springs only", NONE),
     ("+ wind", Features { wind: true, ..NONE }),
     ("+ 10 spheres", Features { spheres: 10, ..NONE }),
     ("+ ground, box, capsule", Features { shapes: true, ..NONE }),
     ("+ self-collision", Features { self_collision: true, ..NONE }),
-    ("all features", Features { wind: true, spheres: 10, shapes: false, self_collision: true }),
+    ("+ triangle self-contact", Features { self_collision: true, triangles: true, ..NONE }),
+    ("all features", Features { wind: true, spheres: 10, self_collision: true, ..NONE }),
 ];
 
 fn base_scene() -> Scene {
@@ -61,6 +65,7 @@ fn cloth(res: u32) -> Cloth {
         collision_margin: 0.005,
         self_collision: false,
         self_collision_distance: Some(SPACING / 2.0),
+        self_contact: SelfContact::Particles,
         pin: ClothPins::TopRow,
         pinned: Vec::new(),
         color: [0.7, 0.2, 0.2],
@@ -144,7 +149,10 @@ fn with_features(mut scene: Scene, f: Features, span: f64, y: f64) -> Scene {
         scene.boxes = vec![block];
         scene.capsules = vec![capsule];
     }
-    scene.cloths.iter_mut().for_each(|c| c.self_collision = f.self_collision);
+    scene.cloths.iter_mut().for_each(|c| {
+        c.self_collision = f.self_collision;
+        c.self_contact = if f.triangles { SelfContact::Triangles } else { SelfContact::Particles };
+    });
     scene.ropes.iter_mut().for_each(|r| r.self_collision = f.self_collision);
     scene
 }
@@ -170,8 +178,11 @@ fn paper_cases() -> Vec<Case> {
     (shaped.ground, shaped.boxes, shaped.capsules) = (Some(ground), vec![block], vec![capsule]);
     let mut no_self = curtain();
     no_self.cloths[0].self_collision = false;
+    let mut triangles = curtain();
+    triangles.cloths[0].self_contact = SelfContact::Triangles;
     for (name, scene) in [
         ("curtain 50x50, all features", all),
+        ("curtain 50x50, all features, triangle self-contact", triangles),
         ("curtain 50x50, all features + 1 sphere", one),
         ("curtain 50x50, all features + 10 spheres", ten),
         ("curtain 50x50, all features + ground, box, capsule", shaped),
@@ -184,12 +195,7 @@ fn paper_cases() -> Vec<Case> {
         let mut r = rope(256);
         r.self_collision = true;
         s.ropes.push(r);
-        with_features(
-            s,
-            Features { wind: true, spheres: spheres_n, shapes: false, self_collision: true },
-            5.1,
-            1.0,
-        )
+        with_features(s, Features { wind: true, spheres: spheres_n, self_collision: true, ..NONE }, 5.1, 1.0)
     };
     cases.push(Case { group: "paper", name: "rope 256, all features".into(), scene: rope_scene(0) });
     cases.push(Case {

@@ -1,6 +1,6 @@
 //! Scene preset -> simulation model: initial positions, pins, derived wind cone.
 
-use super::{Cloth, ClothPins, Orientation, Rope, RopePins, Scene};
+use super::{Cloth, ClothPins, Orientation, Rope, RopePins, Scene, SelfContact};
 use crate::sim::collider::{ColliderModel, Motion, Shape};
 use crate::sim::model::{default_ring_weights, ObjectKind, ObjectModel, ObjectShape, SimModel, WindModel};
 use glam::{DQuat, DVec3, EulerRot};
@@ -140,6 +140,7 @@ fn cloth(c: &Cloth) -> ObjectModel {
         self_distance: c
             .self_collision
             .then(|| c.self_collision_distance.unwrap_or_else(|| c.default_self_collision_distance())),
+        triangle_contact: c.self_contact == SelfContact::Triangles,
         rope_radius: 0.0,
         ring_weights: default_ring_weights(),
         velocities: vec![DVec3::ZERO; n],
@@ -184,6 +185,7 @@ fn rope(r: &Rope) -> ObjectModel {
         margin: r.radius,
         stretch_limit: r.stretch_limit,
         self_distance: r.self_collision.then(|| r.self_collision_distance.unwrap_or(2.0 * r.radius)),
+        triangle_contact: false,
         rope_radius: r.radius,
         ring_weights,
         velocities: vec![DVec3::ZERO; n],

@@ -217,6 +217,23 @@ impl Default for Wind {
     }
 }
 
+/// What a cloth's self-collision keeps apart.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum SelfContact {
+    /// Particles from particles, closer than the self-collision distance (the paper's).
+    #[default]
+    Particles,
+    /// Particles from triangles, equal and opposite: the distance is a thickness.
+    Triangles,
+}
+
+impl SelfContact {
+    fn is_particles(&self) -> bool {
+        *self == SelfContact::Particles
+    }
+}
+
 /// How the wind acts on the cloth.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
@@ -420,6 +437,11 @@ pub struct Cloth {
     /// Self-collision distance [m]; default half the smaller grid spacing.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub self_collision_distance: Option<f64>,
+    /// What self-collision keeps apart: "particles" (the paper's) or "triangles" (the cloth's
+    /// particles from its triangles, the distance a thickness: no layer passes through
+    /// another, at several times the cost).
+    #[serde(default, skip_serializing_if = "SelfContact::is_particles")]
+    pub self_contact: SelfContact,
     #[serde(default)]
     pub pin: ClothPins,
     /// Further pinned particles as [column, row].

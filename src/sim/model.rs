@@ -74,6 +74,9 @@ pub struct ObjectModel {
     pub stretch_limit: Option<f64>,
     /// Self-collision distance [m].
     pub self_distance: Option<f64>,
+    /// A cloth's self-collision keeps its particles from its triangles (equal and opposite
+    /// impulses, `sim::cpu::self_contact`) instead of from its other particles.
+    pub triangle_contact: bool,
     /// Rope tube radius [m] (rope only).
     pub rope_radius: f64,
     /// Rope tube vertex offsets in (side, up) units of the radius (rope only).
@@ -97,9 +100,10 @@ impl ObjectModel {
         self.shape().surface_count() as usize
     }
 
-    /// Whether self-contact is against triangles: a grid of at least 2 x 2 (a rope is one row).
+    /// Whether self-contact is against triangles: asked for, on a grid of at least 2 x 2 (a
+    /// rope is one row).
     pub fn has_triangles(&self) -> bool {
-        self.dims[0] > 1 && self.dims[1] > 1
+        self.triangle_contact && self.dims[0] > 1 && self.dims[1] > 1
     }
 
     /// How far from a particle self-contact candidates are searched (`self_reach` in
@@ -217,6 +221,7 @@ impl SimModel {
                     margin: o.margin,
                     stretch_limit: o.stretch_limit,
                     self_distance: o.self_distance,
+                    triangle_contact: o.triangle_contact,
                     rope_radius: o.rope_radius,
                     ring_weights: o.ring_weights,
                     positions: Vec::new(),

@@ -3,7 +3,9 @@
 
 use super::colliders;
 use super::widgets::{check, choice, color, drag, drag3, int, optional, tip};
-use crate::scene::{Cloth, ClothPins, Orientation, PerSpring, Rope, RopePins, Scene, WindKind, MAX_FRICTION};
+use crate::scene::{
+    Cloth, ClothPins, Orientation, PerSpring, Rope, RopePins, Scene, SelfContact, WindKind, MAX_FRICTION,
+};
 use crate::sim::gpu::FrameTiming;
 use imgui::{Condition, TreeNodeFlags, Ui};
 use std::path::PathBuf;
@@ -358,6 +360,7 @@ fn cloth_panel(ui: &Ui, c: &mut Cloth) {
     if c.self_collision {
         let default = c.default_self_collision_distance();
         optional(ui, "self-collision distance [m]", &mut c.self_collision_distance, default, 0.001, 10.0);
+        choice(ui, "self-contact", &mut c.self_contact, &[SelfContact::Particles, SelfContact::Triangles]);
     }
     color(ui, "front colour", &mut c.color);
     color(ui, "back colour", &mut c.back_color);
@@ -409,6 +412,7 @@ fn new_cloth(name: String) -> Cloth {
         collision_margin: 0.01,
         self_collision: false,
         self_collision_distance: None,
+        self_contact: SelfContact::Particles,
         pin: ClothPins::TopCorners,
         pinned: Vec::new(),
         color: [0.2, 0.45, 0.75],

@@ -58,6 +58,7 @@ const HELP: &[(&str, &str)] = &[
     ("friction", "Coulomb friction coefficient mu against colliders: sticks on slopes flatter than atan(mu), slides on steeper ones (0: ice, 0.4: cloth on wood, 1: rubber)."),
     ("collision margin [m]", "Distance kept from colliders, and the cloth's contact radius against other objects [m]."),
     ("self-collision", "Particles of this object closer than the self-collision distance push apart (grid neighbours excepted)."),
+    ("self-contact", "What a cloth's self-collision keeps apart. particles: its particles, the self-collision distance apart (the paper's; fast, but layers can pass between particles). triangles: its particles from its triangles, the distance a thickness, every contact equal and opposite (no layer passes through another at normal speeds; several times the cost)."),
     ("self-collision distance [m]", "Distance below which two particles of the object push apart (ticked: set here; else from the spacing or radius) [m]."),
     ("front colour", "Colour of the cloth's front side (linear RGB)."),
     ("back colour", "Colour of the cloth's back side (linear RGB)."),

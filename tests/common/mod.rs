@@ -63,6 +63,7 @@ fn plain(kind: ObjectKind, name: String, dims: [u32; 2], spacing: f64, positions
         margin: 0.01,
         stretch_limit: None,
         self_distance: None,
+        triangle_contact: false,
         rope_radius: 0.01,
         ring_weights: default_ring_weights(),
         positions,

@@ -1,7 +1,6 @@
 //! The CPU twin of a cloth's contact with its own triangles (glsl/include/self_contact.glsl):
-//! every pair (particle p, triangle t) not left out (t one of p's own, or nearer than h to p at
-//! rest), nearer than the self-collision distance h, whose vertex nearest p (ties to the lower
-//! index) is outside p's one-ring, is a contact. With the barycentric weights b of t's point
+//! every pair (particle p, triangle t) not left out (a vertex of t in p's one-ring, or t nearer
+//! than h to p at rest) and nearer than the self-collision distance h is a contact. With the barycentric weights b of t's point
 //! nearest p and n the unit vector from it to p, p moves by w_p lambda n and vertex k by
 //! -w_k b_k lambda n, lambda = (h - d) / (n_p w_p + sum n_k w_k b_k^2) (w: 1 free, 0 pinned;
 //! n: each particle's count of contacts, at least 1, a contact counting fully once its overlap
@@ -66,20 +65,17 @@ pub fn triangle_nearest(p: DVec3, a: DVec3, b: DVec3, c: DVec3) -> DVec3 {
     }
 }
 
-/// Whether pair (particle p at `xp`, triangle `tv`) of cloth `o` (positions `x`) is no
-/// contact whatever the distance: left out, or its vertex nearest p in p's one-ring.
-fn left_out(o: &ObjectModel, h: f64, (p, x): (usize, &[DVec3]), tv: [usize; 3]) -> bool {
+/// Whether pair (particle p, triangle `tv`) of cloth `o` is left out: a vertex of the triangle
+/// in p's one-ring, or the triangle nearer than h to p at rest.
+fn left_out(o: &ObjectModel, h: f64, p: usize, tv: [usize; 3]) -> bool {
     let cols = o.dims[0] as usize;
     let cell = |k: usize| ((k % cols) as i64, (k / cols) as i64);
     let (pc, pr) = cell(p);
-    let nearest = (tv.iter().copied())
-        .min_by(|&a, &b| x[p].distance_squared(x[a]).total_cmp(&x[p].distance_squared(x[b])).then(a.cmp(&b)))
-        .unwrap_or(p);
-    if tv.contains(&p) || ((cell(nearest).0 - pc).abs() <= 1 && (cell(nearest).1 - pr).abs() <= 1) {
+    if tv.iter().any(|&k| (cell(k).0 - pc).abs() <= 1 && (cell(k).1 - pr).abs() <= 1) {
         return true;
     }
-    if h < 0.99 * o.spacing[0].min(o.spacing[1]) {
-        return false; // no triangle with a vertex outside the one-ring is nearer at rest
+    if h < 1.99 * o.spacing[0].min(o.spacing[1]) {
+        return false; // no triangle without a vertex in the one-ring is nearer at rest
     }
     let rest = |k: usize| {
         let (c, r) = cell(k);
@@ -112,7 +108,7 @@ pub(super) fn self_contact(o: &ObjectModel, x: &[DVec3]) -> Vec<DVec3> {
             if xp.cmplt(lo - h).any() || xp.cmpgt(hi + h).any() || tv.contains(&p) {
                 continue;
             }
-            if o.pinned[p] && tv.iter().all(|&k| o.pinned[k]) || left_out(o, h, (p, x), tv) {
+            if o.pinned[p] && tv.iter().all(|&k| o.pinned[k]) || left_out(o, h, p, tv) {
                 continue;
             }
             let w = triangle_nearest(xp, x[tv[0]], x[tv[1]], x[tv[2]]);

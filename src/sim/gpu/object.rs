@@ -5,7 +5,8 @@ use super::fused::ObjectPlan;
 use super::{BINDINGS, CLOTH_GROUP, ROPE_GROUP};
 use crate::error::UserError;
 use crate::sim::gpu_types::{
-    Globals, ObjectParams, Particle, SurfaceVertex, OBJ_SELF_COLLISION, OBJ_SELF_HASH, OBJ_STRETCH_LIMIT,
+    Globals, ObjectParams, Particle, SurfaceVertex, OBJ_SELF_COLLISION, OBJ_SELF_HASH, OBJ_SELF_TRIANGLES,
+    OBJ_STRETCH_LIMIT,
 };
 use crate::sim::integrator::{vertex_colours, BDF2_STEP};
 use crate::sim::model::{Integrator, ObjectKind, ObjectModel, ObjectShape, SelfCollisionMethod, SimModel};
@@ -497,6 +498,9 @@ pub(super) fn object_params(o: &ObjectModel, model: &SimModel) -> ObjectParams {
         flags |= OBJ_SELF_COLLISION;
         if model.self_collision == SelfCollisionMethod::Hash {
             flags |= OBJ_SELF_HASH;
+        }
+        if o.has_triangles() {
+            flags |= OBJ_SELF_TRIANGLES;
         }
     }
     let buckets = hash_table_size(o.particle_count() as u64) as u32;
