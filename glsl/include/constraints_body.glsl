@@ -282,7 +282,13 @@ void visit_range(uint from, uint end, uvec2 cell, vec3 x, float reach, inout vec
         float d = distance(e.xyz, x);
         uint j = floatBitsToUint(e.w);
         if (d < listed && !rest_neighbour(cell, j, obj.self_distance)) {
-            self_candidate(cell, x, j, d, reach, correction, n_active);
+            if (has_triangles()) {
+                self_triangles(cell, x, j, list_build ? (1.0 + LIST_SKIN) * obj.self_distance : 0.0);
+                continue;
+            }
+            if (d < reach) self_push(x, j, reach, correction, n_active);
+            if (list_build && list_len < LIST_ENTRIES) self_list[list_entry(list_len, list_particle, particle_count())] = j;
+            list_len += 1u;
         }
     }
 }

@@ -14,6 +14,7 @@
 // Include after bindings.glsl.
 #ifndef MSD_LISTS_GLSL
 #define MSD_LISTS_GLSL
+#include "features.glsl"
 
 const float LIST_SKIN = 1.0;
 
@@ -23,7 +24,8 @@ const float TRIANGLE_STRETCH = 1.5;
 
 // Whether self-contact is against triangles (a cloth that asks for it; else particle against
 // particle).
-bool has_triangles() { return (obj.flags & OBJ_SELF_TRIANGLES) != 0u; }
+// Compiled out where no object asks for it (F_TRIANGLES: the particle search stays as lean).
+bool has_triangles() { return has(F_TRIANGLES) && (obj.flags & OBJ_SELF_TRIANGLES) != 0u; }
 
 // How far from a particle self-contact candidates (particles; in a cloth the vertices through
 // which its triangles are found) are searched when a triangle or particle within `within` of

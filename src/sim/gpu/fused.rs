@@ -98,6 +98,7 @@ pub fn features(o: &ObjectModel, model: &SimModel) -> u32 {
         (FEATURE_WIND, model.wind.is_some()),
         (FEATURE_STRETCH, o.stretch_limit.is_some()),
         (FEATURE_SELF, o.self_distance.is_some()),
+        (crate::sim::gpu_types::FEATURE_TRIANGLES, o.self_distance.is_some() && o.has_triangles()),
     ];
     let f = uses.into_iter().filter(|(_, on)| *on).fold(f, |f, (bit, _)| f | bit);
     let f = if model.inter_object_contact() { f | crate::sim::gpu_types::FEATURE_CONTACT } else { f };
