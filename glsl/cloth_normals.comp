@@ -1,5 +1,6 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
+#extension GL_EXT_control_flow_attributes : require
 // Surface stage for cloth, once per frame after the last substep: angle-weighted smoothed
 // normals from the final positions, and the runtime guard. Reads p_in (the state buffer),
 // writes surface[] and the guard (with the contact lists' counters, lists.glsl); with DRAWN
@@ -16,6 +17,7 @@ void main() {
     if (cell.x >= obj.dims.x || cell.y >= obj.dims.y) return;
     uint i = cell.x + cell.y * obj.dims.x;
     guard_check(i, p_in[i]);
+    guard_strain(cell);
     if (i == 0u) report_lists();
     if (!DRAWN) return;
     vec3 x = p_in[i].pos.xyz;

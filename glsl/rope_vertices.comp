@@ -1,5 +1,6 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
+#extension GL_EXT_control_flow_attributes : require
 // Surface stage for ropes, once per frame: ROPE_RING tube vertices around each node on a
 // rotation-minimising frame (parallel transport): the frame at node 0 is the paper's (section
 // IV-C: side = forward x world up, up = forward x side), and each next node's is the one before
@@ -12,6 +13,7 @@
 // (with the contact lists' counters, lists.glsl).
 // With DRAWN off (nothing draws the rope) only the guard, one thread per node.
 #include "bindings.glsl"
+#include "springs.glsl"
 #include "lists.glsl"
 
 layout(local_size_x = 256) in;
@@ -60,7 +62,10 @@ void main() {
     if (gl_GlobalInvocationID.x == 0u) report_lists();
     if (!DRAWN) {
         uint node = gl_GlobalInvocationID.x;
-        if (node < nodes) guard_check(node, p_in[node]);
+        if (node < nodes) {
+            guard_check(node, p_in[node]);
+            guard_strain(uvec2(node, 0u));
+        }
         return;
     }
     uint t = gl_LocalInvocationID.x;
@@ -71,6 +76,7 @@ void main() {
     vec4 mine = IDENTITY;
     for (uint i = first; i < last; ++i) {
         guard_check(i, p_in[i]);
+        guard_strain(uvec2(i, 0u));
         if (i > 0u) mine = normalize(qmul(turn(forward_at(i - 1u, nodes), forward_at(i, nodes)), mine));
     }
     // Inclusive scan: products[t] = the turns of threads t, t - 1, ..., 0 (later ones applied

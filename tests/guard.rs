@@ -89,3 +89,41 @@ fn headless_frames_skip_the_surface() {
     sim.destroy(&ctx);
     assert_clean(&ctx);
 }
+
+/// An implausible state is an error too, not only a blow-up: a cloth whose pinned corner is
+/// dragged 40 cm away within a frame (its structural springs at several times their rest
+/// length) trips the guard as over-stretched, drawn and headless; with `sim.max_strain = 0`
+/// the check is off. The same cloth hanging from its corners (stretch limit 0.1, so a
+/// plausible strain of 0.3) settles without tripping it.
+#[test]
+fn an_overstretched_cloth_trips_the_guard() {
+    let mut c = cloth(13, 9, 0.05);
+    c.stiffness = [60.0, 20.0, 5.0];
+    c.stretch_limit = Some(0.1);
+    c.pinned[0] = true;
+    c.pinned[12] = true;
+    let mut model = scene(vec![c]);
+    model.gravity = DVec3::new(0.0, -9.81, 0.0);
+    for (drawn, max_strain) in [(true, 1.0), (false, 1.0), (true, 0.0)] {
+        model.max_strain = max_strain;
+        let ctx = gpu();
+        let mut sim = GpuSim::new(&ctx, &model).unwrap();
+        sim.set_drawn(drawn);
+        for _ in 0..30 {
+            sim.step_frame(&ctx).expect("a cloth hanging from its corners is plausible");
+        }
+        sim.set_particle(0, 0, Particle { pos: [-0.4, 1.0, 0.0, 1.0], vel: [0.0; 4] });
+        let result = sim.step_frame(&ctx);
+        if max_strain == 0.0 {
+            result.expect("sim.max_strain = 0 turns the check off");
+        } else {
+            let err = result.expect_err("a spring at several times its rest length must trip the guard");
+            let trip = err.downcast_ref::<GuardTrip>().expect("a GuardTrip");
+            assert_eq!(trip.cause, msdsim::sim::stability::GuardCause::Overstretched, "{trip}");
+            assert!(trip.what.contains("over-stretched") && trip.what.contains("stretch_limit"), "{trip}");
+            assert_eq!(trip.particle, 0, "{trip}");
+        }
+        sim.destroy(&ctx);
+        assert_clean(&ctx);
+    }
+}

@@ -60,13 +60,15 @@ struct Globals {
                                                // (0: the paper's force)
     float wind_normal;                         // 1/2 air density x normal drag coefficient
     float wind_tangent;                        // 1/2 air density x tangential drag coefficient
-    uint wind_pad;
+    float guard_strain;                        // a structural spring stretched past this strain is
+                                               // implausible (0: no check; sim.max_strain)
 };
 
 // Bits of the runtime guard (GuardBuf.flags).
 #define GUARD_NON_FINITE 1u   // a position or velocity is NaN or infinite
 #define GUARD_RUNAWAY    2u   // a speed above Globals.guard_speed
 #define GUARD_FAST       4u   // a speed above Globals.contact_speed (a warning, not a stop)
+#define GUARD_STRAIN     8u   // a structural spring stretched past plausible_strain() (springs.glsl)
 
 struct ObjectParams {
     uvec2 dims;            // grid columns, rows (a rope is nodes x 1)

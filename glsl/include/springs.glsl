@@ -33,6 +33,33 @@ int neighbour(ivec2 cell, ivec2 offset, uvec2 dims) {
 // computed on the host. Include after bindings.glsl.
 float rest_length(int s) { return obj.rest[s >> 2][s & 3]; }
 
+// The strain past which a structural spring of this object is implausible: sim.max_strain,
+// and for an object with a stretch limit at most twice the limit plus 0.1 (a limit the
+// constraints hold to within that); 0: no check.
+float plausible_strain() {
+    float most = g.guard_strain;
+    if ((obj.flags & OBJ_STRETCH_LIMIT) != 0u && most > 0.0) most = min(most, 2.0 * obj.stretch_limit + 0.1);
+    return most;
+}
+
+// The guard's plausibility check of the particle at `cell` (the surface stage, once a frame):
+// one of its structural springs stretched past plausible_strain() flags it (GUARD_STRAIN).
+void guard_strain(uvec2 cell) {
+    float most = plausible_strain();
+    if (!(most > 0.0) || obj.stiffness[SPRING_STRUCTURAL] == 0.0) return;
+    uint i = cell.x + cell.y * obj.dims.x;
+    vec3 x = p_in[i].pos.xyz;
+    [[unroll]] for (int s = 0; s < 4; ++s) {
+        int j = neighbour(ivec2(cell), SPRINGS[s].xy, obj.dims);
+        if (j < 0) continue;
+        if (distance(p_in[j].pos.xyz, x) > (1.0 + most) * rest_length(s)) {
+            atomicOr(guard_flags, GUARD_STRAIN);
+            atomicMin(guard_first, i);
+            return;
+        }
+    }
+}
+
 // The spring classes XPBD sweeps (sim::integrator::SPRING_CLASSES and spring_class_parity):
 // class q = 2 dir + parity; direction dir is the offset from a spring's first node to its
 // second, its springs split by the parity of the first node's coordinate along the line (halved

@@ -47,6 +47,7 @@ pub fn to_model(scene: &Scene) -> SimModel {
         objects: scene.cloths.iter().map(cloth).chain(scene.ropes.iter().map(rope)).collect(),
         self_collision: scene.sim.self_collision,
         max_speed: scene.sim.max_speed,
+        max_strain: scene.sim.max_strain,
         // "auto" starts from the paper's method; the calibration (study::auto) replaces it.
         integrator: scene.sim.integrator.method().unwrap_or_default(),
         iterations: scene.sim.iterations,

@@ -56,6 +56,10 @@ pub struct SimSettings {
     /// The runtime guard stops the simulation when a particle moves faster than this [m/s].
     #[serde(default = "defaults::max_speed")]
     pub max_speed: f64,
+    /// ... or when a structural spring stretches past this strain (1: twice its rest length;
+    /// for an object with a stretch limit, at most twice the limit plus 0.1; 0: no check).
+    #[serde(default = "defaults::max_strain")]
+    pub max_strain: f64,
     /// "symplectic_euler" (the paper's), "verlet", "xpbd", "implicit", or "auto": the cheapest
     /// method and substep count that meets `tolerance`, from a short calibration.
     #[serde(default)]
@@ -143,6 +147,7 @@ impl Default for SimSettings {
             gravity: defaults::gravity(),
             self_collision: Default::default(),
             max_speed: defaults::max_speed(),
+            max_strain: defaults::max_strain(),
             integrator: Default::default(),
             iterations: defaults::iterations(),
             relaxation: 1.0,
@@ -530,6 +535,9 @@ mod defaults {
     }
     pub fn max_speed() -> f64 {
         100.0
+    }
+    pub fn max_strain() -> f64 {
+        1.0
     }
     pub fn iterations() -> u32 {
         10

@@ -124,6 +124,9 @@ pub fn check(scene: &Scene) -> Check {
     }
     vector("sim.gravity", s.gravity, MAX_ACCELERATION, "m/s^2")?;
     positive("sim.max_speed", s.max_speed, (1e-6, MAX_SPEED), "m/s")?;
+    if !(s.max_strain.is_finite() && (0.0..=1e3).contains(&s.max_strain)) {
+        return Err(format!("sim.max_strain = {}: must be between 0 (no check) and 1000", s.max_strain));
+    }
     if !(1..=1000).contains(&s.iterations) {
         return Err(format!("sim.iterations = {}: must be between 1 and 1000", s.iterations));
     }

@@ -86,13 +86,14 @@ gpu_struct!(
     wind_speed: f32,
     wind_normal: f32,
     wind_tangent: f32,
-    wind_pad: u32,
+    guard_strain: f32,
 });
 
 /// Runtime guard bits (`GUARD_*` in the header).
 pub const GUARD_NON_FINITE: u32 = 1;
 pub const GUARD_RUNAWAY: u32 = 2;
 pub const GUARD_FAST: u32 = 4;
+pub const GUARD_STRAIN: u32 = 8;
 
 gpu_struct!(
     /// Per-object parameters (std430; every array is of 16-byte elements, so the layout is

@@ -144,6 +144,8 @@ pub fn predict(model: &SimModel) -> Vec<Prediction> {
 pub struct GuardTrip {
     pub name: String,
     pub kind: ObjectKind,
+    /// What tripped it.
+    pub cause: GuardCause,
     /// First flagged particle (lowest index).
     pub particle: u32,
     pub what: String,
@@ -151,15 +153,66 @@ pub struct GuardTrip {
     pub advice: String,
 }
 
+/// What tripped the runtime guard.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum GuardCause {
+    /// A position or velocity is not a finite number.
+    NonFinite,
+    /// A particle moves faster than `sim.max_speed`.
+    Runaway,
+    /// A structural spring is stretched past the plausible strain (`sim.max_strain`; with a
+    /// stretch limit, at most twice it plus 0.1).
+    Overstretched,
+}
+
+/// The strain past which a structural spring of `o` trips the guard (0: no check); the twin
+/// of `plausible_strain` in glsl/include/springs.glsl.
+pub fn plausible_strain(model: &SimModel, o: &crate::sim::model::ObjectModel) -> f64 {
+    match o.stretch_limit {
+        Some(limit) if model.max_strain > 0.0 => model.max_strain.min(2.0 * limit + 0.1),
+        _ => model.max_strain,
+    }
+}
+
 impl GuardTrip {
     /// Builds the report: what happened and what to change.
-    pub fn new(model: &SimModel, object: usize, particle: u32, non_finite: bool, time: f64) -> Self {
+    pub fn new(model: &SimModel, object: usize, particle: u32, cause: GuardCause, time: f64) -> Self {
         let o = &model.objects[object];
-        let what = if non_finite {
-            "blew up (a position or velocity is no longer a finite number)".to_string()
-        } else {
-            format!("ran away (a particle moves faster than sim.max_speed = {} m/s)", model.max_speed)
+        let what = match cause {
+            GuardCause::NonFinite => {
+                "blew up (a position or velocity is no longer a finite number)".to_string()
+            }
+            GuardCause::Runaway => {
+                format!("ran away (a particle moves faster than sim.max_speed = {} m/s)", model.max_speed)
+            }
+            GuardCause::Overstretched => format!(
+                "is over-stretched (a structural spring at more than {:.2} times its rest length: {})",
+                1.0 + plausible_strain(model, o),
+                match o.stretch_limit {
+                    Some(l) if 2.0 * l + 0.1 < model.max_strain => {
+                        format!("twice its stretch_limit = {l} plus 0.1")
+                    }
+                    _ => format!("sim.max_strain = {}", model.max_strain),
+                }
+            ),
         };
+        if cause == GuardCause::Overstretched {
+            let advice = if model.integrator.iterative() {
+                format!(
+                    "The {} solve stops short of its springs at sim.iterations = {} and sim.substeps = {}: raise \
+                     either; or the material is too soft for its load (a stiffer structural spring, a stretch_limit). \
+                     sim.max_strain = 0 turns this check off.",
+                    model.integrator.label(),
+                    model.iterations,
+                    model.substeps
+                )
+            } else {
+                "The springs do not hold the load: a stiffer structural spring or a stretch_limit, or more \
+                 substeps; sim.max_strain = 0 turns this check off."
+                    .to_string()
+            };
+            return Self { name: o.name.clone(), kind: o.kind, cause, particle, what, time, advice };
+        }
         let p = &predict(model)[object];
         let dt = model.dt();
         let advice = if model.integrator.iterative() {
@@ -188,7 +241,7 @@ impl GuardTrip {
                 model.substeps
             )
         };
-        Self { name: o.name.clone(), kind: o.kind, particle, what, time, advice }
+        Self { name: o.name.clone(), kind: o.kind, cause, particle, what, time, advice }
     }
 }
 

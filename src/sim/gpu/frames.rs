@@ -4,8 +4,8 @@
 
 use super::object::GUARD_CLEAR;
 use super::{FrameTiming, GpuSim, FRAME_SLOTS};
-use crate::sim::gpu_types::{GUARD_FAST, GUARD_NON_FINITE, GUARD_RUNAWAY};
-use crate::sim::stability::GuardTrip;
+use crate::sim::gpu_types::{GUARD_FAST, GUARD_NON_FINITE, GUARD_RUNAWAY, GUARD_STRAIN};
+use crate::sim::stability::{GuardCause, GuardTrip};
 use crate::vk::{Access, GpuContext};
 use anyhow::Result;
 
@@ -75,8 +75,17 @@ impl GpuSim {
                 o.guard.write(0, &GUARD_CLEAR[..2])?;
             }
             let time = self.frames as f64 * self.model.frame_dt;
-            if flags & (GUARD_NON_FINITE | GUARD_RUNAWAY) != 0 {
-                return Ok(Some(GuardTrip::new(&self.model, i, first, flags & GUARD_NON_FINITE != 0, time)));
+            let cause = if flags & GUARD_NON_FINITE != 0 {
+                Some(GuardCause::NonFinite)
+            } else if flags & GUARD_RUNAWAY != 0 {
+                Some(GuardCause::Runaway)
+            } else if flags & GUARD_STRAIN != 0 {
+                Some(GuardCause::Overstretched)
+            } else {
+                None
+            };
+            if let Some(cause) = cause {
+                return Ok(Some(GuardTrip::new(&self.model, i, first, cause, time)));
             }
             if flags & GUARD_FAST != 0 && !self.warned {
                 // Said once per simulation: in the log now, to the app by `take_warning`.

@@ -472,7 +472,7 @@ pub(super) fn globals(model: &SimModel) -> Globals {
         wind_speed: wind.and_then(|w| w.air).map(|a| a.speed as f32).unwrap_or(0.0),
         wind_normal: wind.and_then(|w| w.air).map(|a| a.normal as f32).unwrap_or(0.0),
         wind_tangent: wind.and_then(|w| w.air).map(|a| a.tangent as f32).unwrap_or(0.0),
-        wind_pad: 0,
+        guard_strain: model.max_strain as f32,
     }
 }
 
