@@ -68,7 +68,7 @@ struct Globals {
 #define GUARD_NON_FINITE 1u   // a position or velocity is NaN or infinite
 #define GUARD_RUNAWAY    2u   // a speed above Globals.guard_speed
 #define GUARD_FAST       4u   // a speed above Globals.contact_speed (a warning, not a stop)
-#define GUARD_STRAIN     8u   // a structural spring stretched past plausible_strain() (springs.glsl)
+#define GUARD_STRAIN     8u   // a structural spring stretched past Globals.guard_strain
 
 struct ObjectParams {
     uvec2 dims;            // grid columns, rows (a rope is nodes x 1)

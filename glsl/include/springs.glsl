@@ -33,14 +33,8 @@ int neighbour(ivec2 cell, ivec2 offset, uvec2 dims) {
 // computed on the host. Include after bindings.glsl.
 float rest_length(int s) { return obj.rest[s >> 2][s & 3]; }
 
-// The strain past which a structural spring of this object is implausible: sim.max_strain,
-// and for an object with a stretch limit at most twice the limit plus 0.1 (a limit the
-// constraints hold to within that); 0: no check.
-float plausible_strain() {
-    float most = g.guard_strain;
-    if ((obj.flags & OBJ_STRETCH_LIMIT) != 0u && most > 0.0) most = min(most, 2.0 * obj.stretch_limit + 0.1);
-    return most;
-}
+// The strain past which a structural spring is implausible: sim.max_strain (0: no check).
+float plausible_strain() { return g.guard_strain; }
 
 // The guard's plausibility check of the particle at `cell` (the surface stage, once a frame):
 // one of its structural springs stretched past plausible_strain() flags it (GUARD_STRAIN).

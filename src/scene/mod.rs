@@ -57,7 +57,7 @@ pub struct SimSettings {
     #[serde(default = "defaults::max_speed")]
     pub max_speed: f64,
     /// ... or when a structural spring stretches past this strain (1: twice its rest length;
-    /// for an object with a stretch limit, at most twice the limit plus 0.1; 0: no check).
+    /// 0: no check).
     #[serde(default = "defaults::max_strain")]
     pub max_strain: f64,
     /// "symplectic_euler" (the paper's), "verlet", "xpbd", "implicit", or "auto": the cheapest

@@ -179,8 +179,7 @@ pub struct SimModel {
     pub self_collision: SelfCollisionMethod,
     /// The runtime guard stops a simulation whose particles move faster than this [m/s].
     pub max_speed: f64,
-    /// ... or whose structural springs stretch past this strain (for an object with a stretch
-    /// limit, at most twice the limit plus 0.1; 0: no check).
+    /// ... or whose structural springs stretch past this strain (0: no check).
     pub max_strain: f64,
     pub integrator: Integrator,
     /// Solver iterations per substep (the iterative methods only).

@@ -160,18 +160,8 @@ pub enum GuardCause {
     NonFinite,
     /// A particle moves faster than `sim.max_speed`.
     Runaway,
-    /// A structural spring is stretched past the plausible strain (`sim.max_strain`; with a
-    /// stretch limit, at most twice it plus 0.1).
+    /// A structural spring is stretched past `sim.max_strain`.
     Overstretched,
-}
-
-/// The strain past which a structural spring of `o` trips the guard (0: no check); the twin
-/// of `plausible_strain` in glsl/include/springs.glsl.
-pub fn plausible_strain(model: &SimModel, o: &crate::sim::model::ObjectModel) -> f64 {
-    match o.stretch_limit {
-        Some(limit) if model.max_strain > 0.0 => model.max_strain.min(2.0 * limit + 0.1),
-        _ => model.max_strain,
-    }
 }
 
 impl GuardTrip {
@@ -186,14 +176,9 @@ impl GuardTrip {
                 format!("ran away (a particle moves faster than sim.max_speed = {} m/s)", model.max_speed)
             }
             GuardCause::Overstretched => format!(
-                "is over-stretched (a structural spring at more than {:.2} times its rest length: {})",
-                1.0 + plausible_strain(model, o),
-                match o.stretch_limit {
-                    Some(l) if 2.0 * l + 0.1 < model.max_strain => {
-                        format!("twice its stretch_limit = {l} plus 0.1")
-                    }
-                    _ => format!("sim.max_strain = {}", model.max_strain),
-                }
+                "is over-stretched (a structural spring at more than {:.2} times its rest length: sim.max_strain = {})",
+                1.0 + model.max_strain,
+                model.max_strain
             ),
         };
         if cause == GuardCause::Overstretched {
