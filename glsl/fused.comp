@@ -64,6 +64,8 @@ const uint EMPTY = 0xFFFFFFFFu;
 const bool ITERATIVE = SOLVER == METHOD_XPBD || SOLVER == METHOD_IMPLICIT || SOLVER == METHOD_VBD
     || SOLVER == METHOD_XPBD_JACOBI;
 const bool COLOURED = SOLVER == METHOD_VBD;  // VBD sweeps vertex colours; XPBD spring classes
+// Starts its iterate adaptively (sim::integrator's row: `adaptive_start`).
+const bool ADAPTIVE_START = SOLVER == METHOD_VBD;
 // The springs of the particle being visited that have another end (bit s of SPRINGS), set
 // before each body call. XPBD does without (measured: its class passes ran 20% slower with the
 // masks' registers) and reads its spring constants from the buffer (4% faster than from the copy).
@@ -227,7 +229,7 @@ void main() {
     vec3 dy[MAX_SLOTS];  // iterative methods: the prediction y - x~
     vec3 dx[MAX_SLOTS];  // ... the iterate p - x~
     vec4 hx[MAX_SLOTS];  // ... the history x_n - x_{n-1} (w valid); during a solve, x~ - x_n
-    vec3 hv[MAX_SLOTS];  // ... v_n - v_{n-1}
+    vec4 hv[MAX_SLOTS];  // ... v_n - v_{n-1}, w: the fraction of gravity held (adaptive start)
     vec3 lost[MAX_SLOTS];  // ... what rounding the base left out (bdf2_start)
     uint colour[MAX_SLOTS];
     uint own[MAX_SLOTS];  // the particle of each slot
@@ -259,7 +261,7 @@ void main() {
         dy[s] = vec3(0.0);
         dx[s] = vec3(0.0);
         hx[s] = vec4(0.0);
-        hv[s] = vec3(0.0);
+        hv[s] = vec4(0.0);
         lost[s] = vec3(0.0);
         colour[s] = vertex_colour(cells[s], colours);
         header[s] = lists_built && s < SLOTS && k < n ? list_header(k) : vec4(0.0);
@@ -270,7 +272,7 @@ void main() {
             v[s] = pinned[s] ? vec3(0.0) : p.vel.xyz;
             if (ITERATIVE) {
                 hx[s] = history[hist(k, H_DX)];
-                hv[s] = history[hist(k, H_DV)].xyz;
+                hv[s] = history[hist(k, H_DV)];
             }
         }
     }
@@ -313,13 +315,15 @@ void main() {
                 if (ITERATIVE) {
                     spring_mask = masks[s];
                     vec3 base;
-                    dy[s] = predicted_displacement(cells[s], x[s], v[s], SOLVER == METHOD_IMPLICIT, hx[s], hv[s], base);
+                    vec3 pull;
+                    dy[s] = predicted_displacement(cells[s], x[s], v[s], SOLVER == METHOD_IMPLICIT, hx[s], hv[s].xyz, base, pull);
                     // The solve's start (shared after the barrier below).
                     precise vec3 start;
                     precise vec3 missed;
                     bdf2_start(x[s], base, start, missed);
                     dy[s] += missed;
                     lost[s] = missed;
+                    dx[s] = ADAPTIVE_START ? adaptive_start(dy[s], pull, hx[s], hv[s].w) : dy[s];
                     precise vec3 moved = start - x[s];  // x~ - x_n, exact
                     hx[s].xyz = moved;
                     x[s] = start;
@@ -339,21 +343,21 @@ void main() {
         barrier();  // every read of this substep's positions and velocities is done
 
         if (ITERATIVE) {
-            // The solve, from the prediction; px/py/pz hold the bases x~.
+            // The solve, from where the iterate starts (dx: the prediction dy, or VBD's
+            // adaptive start); px/py/pz hold the bases x~.
             // XPBD: the multipliers of each particle's forward springs (by Jacobi: of its 12)
             vec4 lambda[MAX_SLOTS][3];
             vec3 before[MAX_SLOTS];     // implicit: the iterate before (Chebyshev)
             [[unroll]] for (uint s = 0u; s < MAX_SLOTS; ++s) {
                 if (s >= SLOTS) break;
                 uint k = own[s];
-                dx[s] = dy[s];
-                before[s] = dy[s];
+                before[s] = dx[s];
                 lambda[s] = vec4[3](vec4(0.0), vec4(0.0), vec4(0.0));
                 if (k < n && SOLVER == METHOD_IMPLICIT) {
-                    set_spos(k, x[s] + dy[s]);
+                    set_spos(k, x[s] + dx[s]);
                 } else if (k < n) {
                     set_spos(k, x[s]);
-                    set_sdisp(k, dy[s]);
+                    set_sdisp(k, dx[s]);
                 }
             }
             barrier();
@@ -450,7 +454,7 @@ void main() {
                 x[s] += dx[s];
                 vec3 v_next = (dx[s] - lost[s]) * (1.0 / solve_dt());  // (v[s] is still v_n)
                 hx[s] = vec4(hx[s].xyz + dx[s], 1.0);  // x_{n+1} - x_n
-                hv[s] = v_next - v[s];                 // v_{n+1} - v_n
+                hv[s] = vec4(v_next - v[s], ADAPTIVE_START ? held_fraction(dx[s], dy[s]) : 0.0);
                 v[s] = v_next;
             }
             // XPBD read its displacements back from scratch, which the self-collision hash reuses.
@@ -577,7 +581,7 @@ void main() {
         if (k < n) p_in[k] = Particle(vec4(x[s], pinned[s] ? 1.0 : 0.0), vec4(v[s], 0.0));
         if (ITERATIVE && k < n) {
             history[hist(k, H_DX)] = pinned[s] ? vec4(0.0) : hx[s];
-            history[hist(k, H_DV)] = pinned[s] ? vec4(0.0) : vec4(hv[s], 0.0);
+            history[hist(k, H_DV)] = pinned[s] ? vec4(0.0) : hv[s];
         }
     }
 }

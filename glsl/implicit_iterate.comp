@@ -32,5 +32,5 @@ void main() {
     bool pinned = di.w > 0.5;
     if (!pinned) dx = implicit_particle(cell, it.k, SX(i), dx, aux[i].xyz, iter[prev + i].xyz);
     iter[next + i] = vec4(dx, di.w);
-    if (last_iteration()) finish_particle(i, dx, pinned);
+    if (last_iteration()) finish_particle(i, dx, pinned, 0.0);
 }

@@ -5,7 +5,8 @@
 // start (predict_body.glsl) from p_in (the state x at the start of the substep) and the
 // particle's history: the base x~ into history H_BASE, where the iteration shaders read it
 // as the start position, what its rounding left out into H_DV (finish_particle reads it and
-// writes the new v_n - v_{n-1} there), and the prediction y into the iterates. Resets the solver's auxiliary
+// writes the new v_n - v_{n-1} there), and where the iterate starts (the prediction y, or with
+// ADAPTIVE_START adaptive_start's) into the iterates. Resets the solver's auxiliary
 // data: a copy of y (KEEP_PREDICTION), else the 12 multipliers of XPBD to zero. The constants
 // are the method's row in sim::integrator.
 //
@@ -21,6 +22,7 @@
 layout(local_size_x_id = 0, local_size_y_id = 1, local_size_z = 1) in;
 layout(constant_id = 2) const bool EXPLICIT_DASHPOTS = false;
 layout(constant_id = 4) const bool KEEP_PREDICTION = false;
+layout(constant_id = 5) const bool ADAPTIVE_START = false;
 
 void main() {
     uvec2 cell = gl_GlobalInvocationID.xy;
@@ -30,17 +32,22 @@ void main() {
     vec3 x = p.pos.xyz;
     vec3 v = p.vel.xyz;
     vec3 dy = vec3(0.0);  // y - x~
+    vec3 guess = vec3(0.0);  // where the iterate starts
     precise vec3 start = x;    // x~, rounded
     precise vec3 lost = vec3(0.0);  // what rounding x~ left out (bdf2_start)
     if (p.pos.w <= 0.5) {
         vec3 base;
-        dy = predicted_displacement(cell, x, v, EXPLICIT_DASHPOTS, history[hist(i, H_DX)], history[hist(i, H_DV)].xyz, base);
+        vec3 pull;
+        vec4 hx = history[hist(i, H_DX)];
+        vec4 hv = history[hist(i, H_DV)];
+        dy = predicted_displacement(cell, x, v, EXPLICIT_DASHPOTS, hx, hv.xyz, base, pull);
         bdf2_start(x, base, start, lost);
         dy += lost;
+        guess = ADAPTIVE_START ? adaptive_start(dy, pull, hx, hv.w) : dy;
     }
     history[hist(i, H_DV)] = vec4(lost, 0.0);  // (v_n - v_{n-1} is read; finish_particle rewrites it)
     history[hist(i, H_BASE)] = vec4(start, 0.0);
-    iter[i] = vec4(dy, p.pos.w);
+    iter[i] = vec4(guess, p.pos.w);
     if (KEEP_PREDICTION) {
         aux[i] = vec4(dy, 0.0);
     } else {

@@ -16,6 +16,7 @@ layout(local_size_x_id = 0, local_size_y_id = 1, local_size_z = 1) in;
 #define SD(j) iter[j].xyz
 #define SPIN(j) (iter[j].w > 0.5)
 #include "solver_bodies.glsl"
+#include "forces.glsl"
 #include "solver_end.glsl"
 
 void main() {
@@ -29,5 +30,5 @@ void main() {
         dx = vbd_particle(cell, SX(i), dx, aux[i].xyz);
         iter[i] = vec4(dx, di.w);
     }
-    if (last_iteration()) finish_particle(i, dx, pinned);
+    if (last_iteration()) finish_particle(i, dx, pinned, pinned ? 0.0 : held_fraction(dx, aux[i].xyz));
 }

@@ -26,7 +26,7 @@ void main() {
     uint i = cell.x + cell.y * obj.dims.x;
     if (it.colour == SPRING_CLASS_COUNT) {
         vec4 di = iter[i];
-        finish_particle(i, di.xyz, di.w > 0.5);
+        finish_particle(i, di.xyz, di.w > 0.5, 0.0);
         return;
     }
     uint dir = it.colour >> 1u;

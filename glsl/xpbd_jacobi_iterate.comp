@@ -36,5 +36,5 @@ void main() {
         }
     }
     iter[next + i] = vec4(dx, di.w);
-    if (last_iteration()) finish_particle(i, dx, pinned);
+    if (last_iteration()) finish_particle(i, dx, pinned, 0.0);
 }

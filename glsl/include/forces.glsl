@@ -8,6 +8,17 @@
 // edit it while the app runs and the cloth falls faster or slower at once.
 const float GRAVITY_SCALE = 1.0;
 
+// The fraction of gravity's pull h^2 g that the solve took back from a particle's prediction,
+// from its final displacement `dx` and prediction `dy` (both from the base x~), clamped to
+// [0, 1] (sim::cpu::integrators::held_fraction).
+float held_fraction(vec3 dx, vec3 dy) {
+    vec3 gravity = GRAVITY_SCALE * g.gravity;
+    float g2 = dot(gravity, gravity);
+    if (g2 == 0.0) return 0.0;
+    float h = solve_dt();
+    return clamp(-dot(dx - dy, gravity) / (g2 * h * h), 0.0, 1.0);
+}
+
 // The wind cone's strength at x: a cone from wind_origin along wind_dir, full inside the
 // full-force half-angle, falling linearly (in the cosine) to zero at the attenuation
 // half-angle.

@@ -13,8 +13,9 @@
 // x + (x_n - x_{n-1}) / 3 is what the solve's displacements are measured from. F is the
 // external force and, with `dashpots` (a method that treats damping explicitly), the springs'
 // dashpots. Without history the last substep is taken to have been one Jacobi step of
-// implicit Euler (sim::cpu::integrators::inertial and restart).
-vec3 predicted_displacement(uvec2 cell, vec3 x, vec3 v, bool dashpots, vec4 hx, vec3 hv, out vec3 base) {
+// implicit Euler (sim::cpu::integrators::inertial and restart). `pull` is the prediction's
+// part h^2 F / m.
+vec3 predicted_displacement(uvec2 cell, vec3 x, vec3 v, bool dashpots, vec4 hx, vec3 hv, out vec3 base, out vec3 pull) {
     vec3 force = external_force(x, v) + air_force(cell, x, v, 0.0);
     if (dashpots) add_spring_forces(cell, x, v, 0.0, false, force);
     vec3 a = force / obj.mass;
@@ -30,7 +31,16 @@ vec3 predicted_displacement(uvec2 cell, vec3 x, vec3 v, bool dashpots, vec4 hx, 
     }
     float h = solve_dt();
     base = dx * (1.0 / 3.0);
-    return v * (BDF2_STEP * g.dt) + dv * ((2.0 / 9.0) * g.dt) + a * (h * h);
+    pull = a * (h * h);
+    return v * (BDF2_STEP * g.dt) + dv * ((2.0 / 9.0) * g.dt) + pull;
+}
+
+// Where a method with an adaptive start (sim::integrator's row) starts its iterate: the
+// prediction `dy` less the fraction of its `pull` that the springs held last substep (`held`,
+// history H_DV's w; none without history, hx.w = 0). sim::cpu::integrators::held_fraction
+// says why.
+vec3 adaptive_start(vec3 dy, vec3 pull, vec4 hx, float held) {
+    return hx.w > 0.5 ? dy - pull * held : dy;
 }
 
 // The solve's base x~ = x + base rounded to f32 (`start`) and what the rounding left out

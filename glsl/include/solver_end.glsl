@@ -23,7 +23,9 @@ uvec2 coloured_cell(uvec2 id) {
     return uvec2(colour_first(it.colour, id.y, colours) + colours * id.x, id.y);
 }
 
-void finish_particle(uint i, vec3 dx, bool pinned) {
+// `held`: the fraction of gravity the solve held (held_fraction; 0 without an adaptive start),
+// kept in H_DV's w for the next substep's start.
+void finish_particle(uint i, vec3 dx, bool pinned, float held) {
     Particle start = p_in[i];
     vec3 base = history[hist(i, H_BASE)].xyz;
     vec3 lost = history[hist(i, H_DV)].xyz;  // (predict.comp)
@@ -31,7 +33,7 @@ void finish_particle(uint i, vec3 dx, bool pinned) {
     vec3 v = pinned ? vec3(0.0) : (dx - lost) * (1.0 / solve_dt());
     p_out[i] = Particle(vec4(x, pinned ? 1.0 : 0.0), vec4(v, 0.0));
     history[hist(i, H_DX)] = pinned ? vec4(0.0) : vec4((base - start.pos.xyz) + dx, 1.0);
-    history[hist(i, H_DV)] = pinned ? vec4(0.0) : vec4(v - start.vel.xyz, 0.0);
+    history[hist(i, H_DV)] = pinned ? vec4(0.0) : vec4(v - start.vel.xyz, held);
     note_position(i, x, pinned, it.substep, it.lists != 0u);
 }
 

@@ -62,6 +62,9 @@ pub struct Solver {
     /// `predict.comp` keeps the prediction y - x in the auxiliary buffer (else it zeroes the 12
     /// multipliers a particle keeps there).
     pub keeps_prediction: bool,
+    /// The iterate starts from the prediction less the part of the external pull the springs
+    /// held last substep (`sim::cpu::integrators::held_fraction`), not from the prediction.
+    pub adaptive_start: bool,
     /// Vec4s per particle of iterate slices and of auxiliary data.
     pub slices: u64,
     pub aux: u64,
@@ -119,8 +122,7 @@ pub struct Method {
 
 const fn solver(
     shader: &'static str,
-    dashpots: bool,
-    keeps_y: bool,
+    (dashpots, keeps_y, adaptive): (bool, bool, bool),
     slices: u64,
     aux: u64,
     sweep: Sweep,
@@ -129,6 +131,7 @@ const fn solver(
         shader,
         explicit_dashpots: dashpots,
         keeps_prediction: keeps_y,
+        adaptive_start: adaptive,
         slices,
         aux,
         sweep,
@@ -162,7 +165,7 @@ const METHODS: [Method; 6] = [
         label: "xpbd",
         order: 2.0,
         // In place (one slice); aux: the multipliers of the particle's 6 forward springs.
-        scheme: solver("xpbd_iterate.comp", false, false, 1, 3, Sweep::SpringClasses),
+        scheme: solver("xpbd_iterate.comp", (false, false, false), 1, 3, Sweep::SpringClasses),
         cpu: cpu::xpbd,
         colour: (255, 127, 14),
         few_iterations: 1,
@@ -173,7 +176,7 @@ const METHODS: [Method; 6] = [
         label: "implicit",
         order: 2.0,
         // Three rotating slices (Chebyshev reads the one before); aux: the prediction.
-        scheme: solver("implicit_iterate.comp", true, true, 3, 1, Sweep::Jacobi),
+        scheme: solver("implicit_iterate.comp", (true, true, false), 3, 1, Sweep::Jacobi),
         cpu: cpu::implicit,
         colour: (214, 39, 40),
         few_iterations: 4,
@@ -184,7 +187,7 @@ const METHODS: [Method; 6] = [
         label: "vbd",
         order: 2.0,
         // In place (one slice); aux: the prediction.
-        scheme: solver("vbd_iterate.comp", false, true, 1, 1, Sweep::VertexColours),
+        scheme: solver("vbd_iterate.comp", (false, true, true), 1, 1, Sweep::VertexColours),
         cpu: cpu::vbd,
         colour: (148, 103, 189),
         few_iterations: 4,
@@ -195,7 +198,7 @@ const METHODS: [Method; 6] = [
         label: "xpbd_jacobi",
         order: 2.0,
         // Two alternating slices; aux: the multipliers of the particle's 12 springs.
-        scheme: solver("xpbd_jacobi_iterate.comp", false, false, 2, 3, Sweep::Jacobi),
+        scheme: solver("xpbd_jacobi_iterate.comp", (false, false, false), 2, 3, Sweep::Jacobi),
         cpu: cpu::xpbd_jacobi,
         colour: (140, 86, 75),
         few_iterations: 1,

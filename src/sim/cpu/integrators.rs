@@ -11,13 +11,22 @@ use glam::{DMat3, DVec3};
 
 type State = (Vec<DVec3>, Vec<DVec3>);
 
-/// A particle's BDF2 history for the position-based methods (`sim::integrator::BDF2_STEP`):
-/// its last substep's increments (x_n - x_{n-1}, v_n - v_{n-1}) as the solve made them (the
-/// constraint stage's corrections after the solve are not in them, so a contact shifts the
-/// remembered motion with the particle instead of kicking it back), or `None` where there is
-/// none: the first substep, or a state written from outside. The GPU keeps the same per
-/// particle (`history` in glsl/include/bindings.glsl).
-pub type History = Option<(DVec3, DVec3)>;
+/// A particle's BDF2 history for the position-based methods (`sim::integrator::BDF2_STEP`),
+/// or `None` where there is none: the first substep, or a state written from outside. The GPU
+/// keeps the same per particle (`history` in glsl/include/bindings.glsl).
+pub type History = Option<Past>;
+
+/// What a particle's last substep left: its increments x_n - x_{n-1} and v_n - v_{n-1} as the
+/// solve made them (the constraint stage's corrections after the solve are not in them, so a
+/// contact shifts the remembered motion with the particle instead of kicking it back), and the
+/// fraction of gravity its springs held (`held_fraction`; methods without an adaptive start
+/// leave it 0).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Past {
+    pub dx: DVec3,
+    pub dv: DVec3,
+    pub held: f64,
+}
 
 /// What one substep of an object starts from: the model, the object, the substep's length
 /// [s] and the object's positions and velocities.
@@ -123,6 +132,9 @@ struct Inertial {
     base: Vec<DVec3>,
     /// y (x for a pinned particle).
     y: Vec<DVec3>,
+    /// Where the solve's iterate starts: y, or with `adaptive` y less the part of the external
+    /// acceleration's pull h^2 F / m that the springs held last substep (`held_fraction`).
+    start: Vec<DVec3>,
 }
 
 fn inertial(
@@ -135,27 +147,52 @@ fn inertial(
     dashpots: bool,
 ) -> Inertial {
     let h = BDF2_STEP * dt;
+    let adaptive = adaptive_start(m);
+    let mut start = Vec::with_capacity(x.len());
     let (base, y) = (0..x.len())
         .map(|i| {
             if o.pinned[i] {
+                start.push(x[i]);
                 return (x[i], x[i]);
             }
             let mut force = external(m, o, i, x, v[i]);
             if dashpots && o.damping != 0.0 {
                 force += spring_force(o, i, x, v, false);
             }
-            let a = force / o.mass;
-            let (dx, dv) = history[i].unwrap_or_else(|| restart(o, i, x, v[i], force, dt));
-            let base = x[i] + dx / 3.0;
-            (base, base + v[i] * (2.0 / 3.0 * dt) + dv * (2.0 / 9.0 * dt) + a * (h * h))
+            let pull = force / o.mass * (h * h);
+            let past = history[i].unwrap_or_else(|| restart(o, i, x, v[i], force, dt));
+            let base = x[i] + past.dx / 3.0;
+            let y = base + v[i] * (2.0 / 3.0 * dt) + past.dv * (2.0 / 9.0 * dt) + pull;
+            start.push(if adaptive { y - pull * past.held } else { y });
+            (base, y)
         })
         .unzip();
-    Inertial { h, base, y }
+    Inertial { h, base, y, start }
+}
+
+/// The model's method starts its iterate adaptively (its row's `adaptive_start`).
+fn adaptive_start(m: &SimModel) -> bool {
+    m.integrator.solver().is_some_and(|s| s.adaptive_start)
+}
+
+/// The fraction of gravity's pull h^2 g that the solve took back from particle i's prediction
+/// (0 in free fall, 1 hanging at rest; clamped to [0, 1]): VBD's adaptive initialisation (Chen
+/// et al. 2024, section 3.6) with the solve's own correction p - y in place of the last
+/// acceleration, which near rest is mostly noise. The next substep starts its iterate at y less
+/// that fraction of the external pull, so a cloth at rest starts at rest and a falling one
+/// starts falling: at few iterations and large steps a method from y hangs too low, since its
+/// springs take back only part of each substep's pull (measured in docs/ACCURACY.md).
+pub fn held_fraction(m: &SimModel, h: f64, correction: DVec3) -> f64 {
+    let g2 = m.gravity.length_squared();
+    if g2 == 0.0 {
+        return 0.0;
+    }
+    (-correction.dot(m.gravity) / (g2 * h * h)).clamp(0.0, 1.0)
 }
 
 /// The history of a particle without one (`inertial`): (x_n - x_{n-1}, v_n - v_{n-1}) of one
 /// Jacobi step of implicit Euler from (x, v) under `force` and the springs' elastic force.
-fn restart(o: &ObjectModel, i: usize, x: &[DVec3], v: DVec3, force: DVec3, dt: f64) -> (DVec3, DVec3) {
+fn restart(o: &ObjectModel, i: usize, x: &[DVec3], v: DVec3, force: DVec3, dt: f64) -> Past {
     let (mut elastic, mut stiffness) = (DVec3::ZERO, 0.0);
     for (s, k) in elastic_springs(o, i) {
         let delta = x[s.other] - x[i];
@@ -167,19 +204,14 @@ fn restart(o: &ObjectModel, i: usize, x: &[DVec3], v: DVec3, force: DVec3, dt: f
         stiffness += k;
     }
     let a = (force + elastic) / (o.mass + dt * dt * stiffness);
-    ((v + a * dt) * dt, a * dt)
+    Past { dx: (v + a * dt) * dt, dv: a * dt, held: 0.0 }
 }
 
 /// Positions after the solve, with the velocity that reaches them, v = (p - x~) / h, and each
-/// particle's new history.
-fn finish(
-    o: &ObjectModel,
-    start: &Inertial,
-    x: &[DVec3],
-    v: &[DVec3],
-    p: Vec<DVec3>,
-    history: &mut [History],
-) -> State {
+/// particle's new history (with `adaptive`, the fraction of gravity it held).
+fn finish(s: &Substep<'_>, start: &Inertial, p: Vec<DVec3>, history: &mut [History]) -> State {
+    let (o, x, v) = (s.object, s.x, s.v);
+    let adaptive = adaptive_start(s.model);
     let nv = (0..x.len())
         .map(|i| {
             if o.pinned[i] {
@@ -187,7 +219,8 @@ fn finish(
                 return DVec3::ZERO;
             }
             let nv = (p[i] - start.base[i]) / start.h;
-            history[i] = Some((p[i] - x[i], nv - v[i]));
+            let held = if adaptive { held_fraction(s.model, start.h, p[i] - start.y[i]) } else { 0.0 };
+            history[i] = Some(Past { dx: p[i] - x[i], dv: nv - v[i], held });
             nv
         })
         .collect();
@@ -273,7 +306,7 @@ pub(crate) fn xpbd(s: &Substep<'_>, history: &mut [History]) -> State {
             }
         }
     }
-    finish(o, &start, x0, v, p, history)
+    finish(s, &start, p, history)
 }
 
 /// XPBD by Jacobi, from the BDF2 start (`inertial`; dt below is its step h, x its base x~):
@@ -335,7 +368,7 @@ pub(crate) fn xpbd_jacobi(s: &Substep<'_>, history: &mut [History]) -> State {
         }
         p = next;
     }
-    finish(o, &start, x0, v, p, history)
+    finish(s, &start, p, history)
 }
 
 /// Vertex Block Descent (Chen et al. 2024): from the BDF2 start (`inertial`: dt below is its
@@ -350,7 +383,7 @@ pub(crate) fn vbd(s: &Substep<'_>, history: &mut [History]) -> State {
     let Substep { model: m, object: o, dt, x: x0, v } = *s;
     let start = inertial(m, o, dt, x0, v, history, false);
     let (dt, x, y) = (start.h, &start.base[..], &start.y[..]);
-    let mut p = start.y.clone();
+    let mut p = start.start.clone();
     let inertia = o.mass / (dt * dt);
     let order = colour_order(o);
     for _ in 0..m.iterations {
@@ -385,7 +418,7 @@ pub(crate) fn vbd(s: &Substep<'_>, history: &mut [History]) -> State {
             p[i] += hessian.inverse() * force;
         }
     }
-    finish(o, &start, x0, v, p, history)
+    finish(s, &start, p, history)
 }
 
 /// Chebyshev weight of iteration `k` (0-based) for a Jacobi radius `rho` (Wang 2015).
@@ -434,7 +467,7 @@ pub(crate) fn implicit(s: &Substep<'_>, history: &mut [History]) -> State {
         }
         prev = std::mem::replace(&mut p, next);
     }
-    finish(o, &start, x, v, p, history)
+    finish(s, &start, p, history)
 }
 
 /// Total energy of an object [J]: kinetic, elastic (each spring once) and gravitational
