@@ -140,8 +140,9 @@ void listed_candidates(uvec2 cell, vec3 x, float reach, inout vec3 correction, i
 #include "constraints_body.glsl"
 #include "predict_body.glsl"
 #define SX(j) spos(uint(j))
-// The implicit method keeps its iterate p itself in px/py/pz (one read a neighbour, not two).
-#define SD(j) (SOLVER == METHOD_IMPLICIT ? vec3(0.0) : sdisp(uint(j)))
+// Every method's iterates are displacements from the bases x~ in px/py/pz, so the positions'
+// rounding stays out of the solve (predict.comp says why).
+#define SD(j) sdisp(uint(j))
 #define SPIN(j) spinned(uint(j))
 #include "solver_bodies.glsl"
 
@@ -353,9 +354,7 @@ void main() {
                 uint k = own[s];
                 before[s] = dx[s];
                 lambda[s] = vec4[3](vec4(0.0), vec4(0.0), vec4(0.0));
-                if (k < n && SOLVER == METHOD_IMPLICIT) {
-                    set_spos(k, x[s] + dx[s]);
-                } else if (k < n) {
+                if (k < n) {
                     set_spos(k, x[s]);
                     set_sdisp(k, dx[s]);
                 }
@@ -363,7 +362,9 @@ void main() {
             barrier();
             // One iteration (a pipeline of its own): XPBD's multipliers start and stay at zero.
             uint iterations = ONE_ITERATION ? 1u : g.iterations;
+            float omega = 1.0;  // implicit: the Chebyshev weight
             for (uint it = 0u; it < iterations; ++it) {
+                omega = chebyshev_next(it, omega, obj.cheb_rho);
                 if (SOLVER == METHOD_XPBD) {
                     // The spring classes (springs.glsl) in turn: the thread owning a spring's
                     // first node moves both ends (no other spring of the class touches them).
@@ -433,7 +434,7 @@ void main() {
                         if (k < n && !pinned[s]) {
                             spring_mask = masks[s];
                             inv_diag = inv_diags[s];
-                            next[s] = implicit_particle(cells[s], it, x[s], dx[s], dy[s], before[s]);
+                            next[s] = implicit_particle(cells[s], omega, x[s], dx[s], dy[s], before[s]);
                         }
                     }
                     barrier();  // every read of this iteration's displacements is done
@@ -442,7 +443,7 @@ void main() {
                         uint k = own[s];
                         before[s] = dx[s];
                         dx[s] = next[s];
-                        if (k < n) set_spos(k, x[s] + dx[s]);
+                        if (k < n) set_sdisp(k, dx[s]);
                     }
                     barrier();
                 }

@@ -30,7 +30,7 @@ void main() {
     vec4 di = iter[cur + i];
     vec3 dx = di.xyz;
     bool pinned = di.w > 0.5;
-    if (!pinned) dx = implicit_particle(cell, it.k, SX(i), dx, aux[i].xyz, iter[prev + i].xyz);
+    if (!pinned) dx = implicit_particle(cell, chebyshev_omega(it.k, obj.cheb_rho), SX(i), dx, aux[i].xyz, iter[prev + i].xyz);
     iter[next + i] = vec4(dx, di.w);
     if (last_iteration()) finish_particle(i, dx, pinned, 0.0);
 }

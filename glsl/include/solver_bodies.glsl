@@ -116,20 +116,27 @@ vec3 vbd_particle(uvec2 cell, vec3 x, vec3 dx, vec3 dy) {
 // Must equal sim::stability::CHEBYSHEV_START (the GPU-vs-CPU tests compare).
 const uint CHEBYSHEV_START = 2u;
 
-// Chebyshev weight of iteration k for the Jacobi radius rho (Wang 2015).
+// The Chebyshev weight of iteration k (0-based) from the weight of iteration k - 1 (`before`),
+// for the Jacobi radius rho (Wang 2015): 1 before CHEBYSHEV_START, then 1, 2 / (2 - rho^2),
+// and 4 / (4 - rho^2 omega) (sim::cpu::integrators::chebyshev_omega).
+float chebyshev_next(uint k, float before, float rho) {
+    if (k <= CHEBYSHEV_START) return 1.0;
+    if (k == CHEBYSHEV_START + 1u) return 2.0 / (2.0 - rho * rho);
+    return 4.0 / (4.0 - rho * rho * before);
+}
+
+// The Chebyshev weight of iteration k, by the recurrence from the first.
 float chebyshev_omega(uint k, float rho) {
     float omega = 1.0;
-    for (uint step = 1u; step <= k; ++step) {
-        omega = step == 1u ? 2.0 / (2.0 - rho * rho) : 4.0 / (4.0 - rho * rho * omega);
-    }
+    for (uint step = 0u; step <= k; ++step) omega = chebyshev_next(step, omega, rho);
     return omega;
 }
 
-// The implicit method (projective dynamics), iteration k: the local step (each spring's
+// The implicit method (projective dynamics), one iteration: the local step (each spring's
 // rest-length projection) and the particle's damped Jacobi sweep of the global system,
-// Chebyshev-accelerated against its displacement `before` of the previous iteration. Returns
-// the new displacement.
-vec3 implicit_particle(uvec2 cell, uint k, vec3 x, vec3 dx, vec3 dy, vec3 before) {
+// Chebyshev-accelerated with weight `omega` (chebyshev_omega) against its displacement
+// `before` of the previous iteration. Returns the new displacement.
+vec3 implicit_particle(uvec2 cell, float omega, vec3 x, vec3 dx, vec3 dy, vec3 before) {
     float h = solve_dt();
     float inertia = obj.mass / (h * h);
     vec3 rhs = dy * inertia;
@@ -152,7 +159,6 @@ vec3 implicit_particle(uvec2 cell, uint k, vec3 x, vec3 dx, vec3 dy, vec3 before
 #else
     vec3 damped = dx + (rhs / diag - dx) * obj.jacobi_damping;
 #endif
-    float omega = k < CHEBYSHEV_START ? 1.0 : chebyshev_omega(k - CHEBYSHEV_START, obj.cheb_rho);
     return before + omega * (damped - before);
 }
 
