@@ -755,9 +755,10 @@ fn fused_substeps_equal_the_per_stage_path() {
 /// The iterative methods fused (prediction, colour or Jacobi passes separated by barrier(),
 /// constraints, in one workgroup) equal their per-stage path to f32 rounding, with one and two
 /// particles per thread (the 13 x 9 cloth's 117 particles on 64 threads): 1e-6 m allowed over
-/// 240 substeps, as above (measured: 0 m for XPBD and VBD). The fused implicit method keeps
-/// its iterates as positions where the per-stage one keeps displacements from the BDF2 base,
-/// so they round differently: 3e-6 m allowed for it (measured 1.3e-6 m). Without the barrier
+/// 240 substeps, as above (measured: 0 m for XPBD and VBD). The fused implicit method
+/// multiplies by the reciprocal of each particle's diagonal, computed once, where the per-stage
+/// one divides, so they round differently: 3e-6 m allowed for it (measured 1.1e-6 m; 1.3e-6
+/// while the fused one kept its iterates as positions). Without the barrier
 /// between two colours a particle reads a neighbour's half-updated displacement: XPBD's paths
 /// then part by 0.25 m.
 #[test]
