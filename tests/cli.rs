@@ -296,6 +296,46 @@ fn chart_writes_csv_and_svg() {
     }
 }
 
+/// `chart`'s stiff scene shows what docs/ACCURACY.md's "Large steps" measures: at one 1/60 s
+/// substep and 10 iterations VBD follows the settling stiff cloth (it converges to its sag)
+/// and the implicit method, whose Jacobi sweeps cannot reach the sag mode in 10 iterations,
+/// hangs several times too low: its error at least 5x VBD's (measured on lavapipe: see the
+/// assertion message).
+#[test]
+fn chart_stiff_scene_separates_the_large_step_methods() {
+    let dir = tempfile::tempdir().unwrap();
+    let out_dir = dir.path().join("chart");
+    let out = msdsim(&[
+        "chart",
+        "--scenes",
+        "stiff",
+        "--methods",
+        "vbd,implicit",
+        "--substeps",
+        "1",
+        "--iterations",
+        "10",
+        "--reference-substeps",
+        "128",
+        "--out",
+        out_dir.to_str().unwrap(),
+    ]);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let csv = std::fs::read_to_string(out_dir.join("chart.csv")).unwrap();
+    let error = |method: &str| -> f64 {
+        let row = csv
+            .lines()
+            .filter(|l| !l.starts_with('#'))
+            .map(|l| l.split(',').collect::<Vec<_>>())
+            .find(|r| r[1] == method)
+            .unwrap_or_else(|| panic!("no {method} row:\n{csv}"));
+        row[6].parse().unwrap()
+    };
+    let (vbd, implicit) = (error("vbd"), error("implicit"));
+    assert!(implicit > 5.0 * vbd, "VBD's error {vbd:.2e}, the implicit method's {implicit:.2e}:\n{csv}");
+    assert!(out_dir.join("chart-stiff.svg").exists());
+}
+
 /// `integrator = "auto"` calibrates, says what it picked (a method whose measured error meets
 /// the tolerance) and simulates with it; a tolerance finer than its reference can certify is
 /// refused with exit code 2 and the reason, before any simulation.

@@ -33,13 +33,11 @@ int neighbour(ivec2 cell, ivec2 offset, uvec2 dims) {
 // computed on the host. Include after bindings.glsl.
 float rest_length(int s) { return obj.rest[s >> 2][s & 3]; }
 
-// The strain past which a structural spring is implausible: sim.max_strain (0: no check).
-float plausible_strain() { return g.guard_strain; }
-
 // The guard's plausibility check of the particle at `cell` (the surface stage, once a frame):
-// one of its structural springs stretched past plausible_strain() flags it (GUARD_STRAIN).
+// one of its structural springs stretched past sim.max_strain (g.guard_strain; 0: no check)
+// flags it (GUARD_STRAIN).
 void guard_strain(uvec2 cell) {
-    float most = plausible_strain();
+    float most = g.guard_strain;
     if (!(most > 0.0) || obj.stiffness[SPRING_STRUCTURAL] == 0.0) return;
     uint i = cell.x + cell.y * obj.dims.x;
     vec3 x = p_in[i].pos.xyz;

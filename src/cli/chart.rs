@@ -2,7 +2,7 @@
 
 use super::stdout::{say, Stdout};
 use crate::error::UserError;
-use crate::scene::{self, ClothPins, RopePins, Scene};
+use crate::scene::{self, ClothPins, Orientation, PerSpring, RopePins, Scene};
 use crate::sim::model::Integrator;
 use crate::study::chart::{self, Sweep};
 use crate::vk::{ContextOptions, GpuContext};
@@ -13,13 +13,15 @@ use std::path::PathBuf;
 #[derive(Debug, Args)]
 #[command(allow_negative_numbers = true)]
 pub struct ChartArgs {
-    /// Scene to chart (default: two built-in smooth scenes, a 16 x 16 curtain hanging from two
-    /// corners in a wind cone and a 32-node rope pinned at both ends, sagging and swinging under
-    /// gravity from straight, without contacts).
+    /// Scene to chart (default: three built-in scenes without contacts: a 16 x 16 curtain
+    /// hanging from two corners in a wind cone, a 32-node rope pinned at both ends, sagging and
+    /// swinging under gravity from straight, and a stiff 12 x 12 cloth of 1 g particles at
+    /// 1e4 N/m held at its corners, settling: the large steps the iterative methods are for;
+    /// the explicit methods need 95 substeps there).
     #[arg(long, value_name = "FILE")]
     pub preset: Option<PathBuf>,
     /// Built-in scenes to chart when no preset is given.
-    #[arg(long, value_delimiter = ',', default_value = "cloth,rope", value_parser = ["cloth", "rope"])]
+    #[arg(long, value_delimiter = ',', default_value = "cloth,rope,stiff", value_parser = ["cloth", "rope", "stiff"])]
     pub scenes: Vec<String>,
     /// Override a preset value (repeatable), as for `simulate`; applies to every scene charted.
     #[arg(long = "set", value_name = "KEY=VALUE")]
@@ -82,9 +84,29 @@ fn builtin(names: &[String], overrides: &[String]) -> Result<Vec<(String, Scene)
         r.pin = RopePins::Both;
         r.friction = 0.0;
     }
+    // The stiff cloth of docs/ACCURACY.md's "Large steps" (docs/accuracy/stiff/stiff-cloth.toml),
+    // settling from flat.
+    let mut stiff = scene::parse(CURTAIN, "presets/curtain.toml", &[])?;
+    stiff.clear_colliders();
+    stiff.wind.enabled = false;
+    for c in &mut stiff.cloths {
+        c.resolution = [12, 12];
+        c.size = [0.275, 0.275];
+        c.origin = [-0.1375, 1.0, -0.1375];
+        c.orientation = Orientation::Horizontal;
+        c.mass = 0.001;
+        c.stiffness = PerSpring { structural: 1e4, shear: 5e3, bending: 1e3 };
+        c.damping = 0.0;
+        c.drag = 0.01;
+        c.stretch_limit = None;
+        c.self_collision = false;
+        c.pin = ClothPins::Corners;
+        c.pinned = Vec::new();
+    }
     let mut scenes = Vec::new();
-    for (name, s) in
-        [("cloth", cloth), ("rope", rope)].into_iter().filter(|(n, _)| names.iter().any(|x| x == n))
+    for (name, s) in [("cloth", cloth), ("rope", rope), ("stiff", stiff)]
+        .into_iter()
+        .filter(|(n, _)| names.iter().any(|x| x == n))
     {
         // Overrides apply to the modified scene as to a preset file.
         let text = toml::to_string(&s).context("writing the built-in chart scene")?;
