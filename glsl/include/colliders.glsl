@@ -93,8 +93,10 @@ void contact_response(inout vec3 x, inout vec3 v, vec3 n, float depth, float mu,
     float vn = dot(relative, n);
     // (The depth counts past a few f32 steps of the position only: at rest it equals the
     // approach over the substep, and its rounding, 5 to 15% of it at 64 substeps, would
-    // otherwise add friction through the max.)
-    float jn = max(-vn, (depth - position_slack(x)) / g.dt);
+    // otherwise add friction through the max. A particle leaving with its overlap within
+    // that slack has no normal impulse, so no friction: jn is never negative, which would
+    // push it along its slip and speed it up.)
+    float jn = max(0.0, max(-vn, (depth - position_slack(x)) / g.dt));
     vec3 vt = relative - vn * n;
     vec3 moved = x - substep_start() - velocity * g.dt;  // over the substep, relative
     vec3 slip = moved - dot(moved, n) * n;
