@@ -1,7 +1,7 @@
 //! The simulation behind the app: the scene being edited, its model and the GPU simulation.
 //! Edits are applied by kind: parameter changes rewrite the GPU parameters in place (the state
 //! is kept); a new substep count, integrator or self-collision method rebuilds the simulation
-//! and carries the state over; anything
+//! and carries the state and the simulated time over; anything
 //! that changes the particles' layout (sizes, positions, pins, objects, the colliders' number, types and motions) rebuilds
 //! and starts from the new initial state.
 
@@ -129,6 +129,10 @@ impl SimHost {
         let model = model_for(ctx, &edited)?;
         let carried = if same_layout { Some(self.sim.read_states(ctx)?) } else { None };
         let mut sim = GpuSim::with_shaders(ctx, &model, shaders)?;
+        if carried.is_some() {
+            // The state goes on from where it was, and so do the colliders' motions.
+            sim.continue_at(self.sim.time());
+        }
         if let Some(states) = &carried {
             let particles: Vec<_> = states.iter().map(|s| s.particles.clone()).collect();
             if let Err(e) = sim.upload_states(ctx, &particles) {

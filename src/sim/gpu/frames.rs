@@ -63,6 +63,7 @@ impl GpuSim {
     /// guard is cleared, so a resumed simulation reports again only if it trips again.
     pub fn check_guard(&mut self) -> Result<Option<GuardTrip>> {
         let listed: Vec<bool> = self.objects.iter().map(|o| self.lists_on(o)).collect();
+        let time = self.time();
         for (i, o) in self.objects.iter_mut().enumerate() {
             let [flags, first, lists_on, lists_rebuilt] = o.guard.read::<u32>(4)?[..] else {
                 unreachable!("four words read")
@@ -74,7 +75,6 @@ impl GpuSim {
                 // Flags and first particle only: words 2 and 3 are the contact lists' counters.
                 o.guard.write(0, &GUARD_CLEAR[..2])?;
             }
-            let time = self.frames as f64 * self.model.frame_dt;
             let cause = if flags & GUARD_NON_FINITE != 0 {
                 Some(GuardCause::NonFinite)
             } else if flags & GUARD_RUNAWAY != 0 {

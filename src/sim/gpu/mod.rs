@@ -122,6 +122,8 @@ pub struct GpuSim {
     /// Whether the surface stage writes the surface buffers (else it only runs the guard).
     drawn: bool,
     frames: u64,
+    /// The simulated time at frame 0 [s] (`continue_at`; kept continuous when frame_dt changes).
+    start: f64,
     /// How far each collider was moved by `update_params` since the last frame (the app's
     /// editor dragging it): the next frame moves it there during the frame.
     dragged: Vec<glam::DVec3>,
@@ -284,6 +286,7 @@ impl GpuSim {
             limits,
             drawn: true,
             frames: 0,
+            start: 0.0,
             pending_writes: Vec::new(),
             lists_stale: true,
             history_stale: true,
@@ -497,7 +500,13 @@ impl GpuSim {
 
     /// Starts the simulated time again from zero (a reset to the initial state).
     pub fn reset_time(&mut self) {
-        self.frames = 0;
+        (self.frames, self.start) = (0, 0.0);
+    }
+
+    /// Goes on from simulated time `t` (a rebuilt simulation carrying another's state), so that
+    /// moving colliders stay where that one had them.
+    pub fn continue_at(&mut self, t: f64) {
+        self.start = t - self.frames as f64 * self.model.frame_dt;
     }
 
     /// Moving colliders: this frame's records (where each is at the frame's start, its velocity
@@ -622,7 +631,9 @@ impl GpuSim {
             gpu.params.write(0, &[object_params(o, model)])?;
         }
         self.history_stale |= model.dt() != self.model.dt();
+        let now = self.time();
         self.model = model.without_particles();
+        self.continue_at(now);
         self.lists_stale = true;
         Ok(())
     }
@@ -659,7 +670,7 @@ impl GpuSim {
 
     /// Simulated time so far [s].
     pub fn time(&self) -> f64 {
-        self.frames as f64 * self.model.frame_dt
+        self.start + self.frames as f64 * self.model.frame_dt
     }
 
     pub fn frames(&self) -> u64 {
