@@ -66,6 +66,20 @@ pub struct EditorState {
     pub recording: Option<u64>,
     /// Simulate as many frames per drawn frame as the wall clock asks (up to 4), instead of one.
     pub real_time: bool,
+    /// The existing file a Save would replace, once asked: Save again (Replace) writes it.
+    pub replace: Option<String>,
+}
+
+/// What pressing Save on the file field's `path` does: a file that does not exist yet is
+/// written at once; one that exists is written only when the press confirms the question the
+/// first press asked (`state.replace` names it; editing the path asks again).
+pub fn save_pressed(state: &mut EditorState, path: &str, exists: bool) -> Option<Action> {
+    if !exists || state.replace.as_deref() == Some(path) {
+        state.replace = None;
+        return Some(Action::Save(PathBuf::from(path)));
+    }
+    state.replace = Some(path.to_string());
+    None
 }
 
 /// Where the Scene panel first appears (ImGui's logical pixels): x, y, width, height.
@@ -126,13 +140,28 @@ pub fn build(ui: &Ui, state: &mut EditorState, scene: &mut Scene, stats: &Stats)
                 selected_panel(ui, state, scene);
             }
             if ui.collapsing_header("Presets", TreeNodeFlags::DEFAULT_OPEN) {
-                ui.input_text("file##preset", &mut state.preset_path).build();
+                if ui.input_text("file##preset", &mut state.preset_path).build() {
+                    state.replace = None;
+                }
+                tip(ui, "The preset file to load or save, from the folder the app was started in; type a new name to save a copy");
                 if ui.button("Load") {
                     actions.push(Action::Load(PathBuf::from(&state.preset_path)));
                 }
                 ui.same_line();
-                if ui.button("Save") {
-                    actions.push(Action::Save(PathBuf::from(&state.preset_path)));
+                let path = state.preset_path.clone();
+                if state.replace.as_deref() == Some(path.as_str()) {
+                    ui.text_colored([1.0, 0.8, 0.4, 1.0], "exists:");
+                    ui.same_line();
+                    if ui.button("Replace") {
+                        actions.extend(save_pressed(state, &path, true));
+                    }
+                    ui.same_line();
+                    if ui.button("Cancel##save") {
+                        state.replace = None;
+                    }
+                } else if ui.button("Save") {
+                    let exists = std::path::Path::new(&path).exists();
+                    actions.extend(save_pressed(state, &path, exists));
                 }
                 ui.input_text("cloth preset##add", &mut state.cloth_preset_path).build();
                 if ui.button("Add cloths from that preset") {
@@ -500,4 +529,27 @@ fn stats_window(ui: &Ui, stats: &Stats, state: &EditorState) {
             }
         },
     );
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Save writes a new file at once; an existing one only on the second press (Replace), and
+    /// a changed path asks again.
+    #[test]
+    fn save_asks_before_replacing_a_file() {
+        let mut state = EditorState::default();
+        assert_eq!(save_pressed(&mut state, "new.toml", false), Some(Action::Save("new.toml".into())));
+        assert_eq!(save_pressed(&mut state, "presets/curtain.toml", true), None, "asks first");
+        assert_eq!(state.replace.as_deref(), Some("presets/curtain.toml"));
+        assert_eq!(
+            save_pressed(&mut state, "presets/curtain.toml", true),
+            Some(Action::Save("presets/curtain.toml".into())),
+            "the second press replaces it"
+        );
+        assert_eq!(state.replace, None);
+        assert_eq!(save_pressed(&mut state, "presets/towel.toml", true), None);
+        assert_eq!(save_pressed(&mut state, "presets/flag.toml", true), None, "another file asks again");
+    }
 }

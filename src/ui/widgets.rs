@@ -1,29 +1,69 @@
 //! Small ImGui helpers for editing f64 scene values through f32 widgets; each shows its
-//! label's tooltip (`help`) when hovered.
+//! label's tooltip (`help`) when hovered. A number typed into a field (an int field, or a drag
+//! field after Ctrl+click or a double-click) applies on Enter or when the field loses focus,
+//! not on every keystroke: typing 200000 must not apply 2, 20, 200 on the way (`commit`).
+//! Dragging and the step buttons apply live.
 
 use super::help::help;
 use imgui::{Drag, Ui};
+use std::cell::RefCell;
+
+thread_local! {
+    /// The value typed into the field being edited, by its label, until it is committed.
+    static TYPED: RefCell<Option<(String, [f64; 3])>> = const { RefCell::new(None) };
+}
+
+/// What the widget just drawn applies this frame, given whether it reported a change and the
+/// value it holds: a change made by typing is kept aside until the field is left (Enter, a
+/// click elsewhere, Tab), then applied; any other change (a drag, a step button, Enter's own
+/// frame) applies at once. Esc in the field reverts it and applies nothing new.
+fn commit(ui: &Ui, label: &str, changed: bool, edited: [f64; 3]) -> Option<[f64; 3]> {
+    let typing = ui.is_item_active() && ui.io().want_text_input;
+    if changed && typing {
+        TYPED.with(|t| *t.borrow_mut() = Some((label.to_string(), edited)));
+        return None;
+    }
+    if changed {
+        TYPED.with(|t| t.borrow_mut().take());
+        return Some(edited);
+    }
+    if ui.is_item_deactivated_after_edit() {
+        return TYPED.with(|t| match t.borrow_mut().take() {
+            Some((typed, v)) if typed == label => Some(v),
+            _ => None,
+        });
+    }
+    None
+}
+
+/// An f32 widget value as the f64 it shows: the shortest decimal that gives back the f32
+/// (0.2, not 0.20000000298023224), so that saved presets read as typed.
+fn shown(v: f32) -> f64 {
+    v.to_string().parse().unwrap_or(v as f64)
+}
 
 /// A drag field for an f64 in [min, max]; returns true when it changed.
 pub fn drag(ui: &Ui, label: &str, value: &mut f64, speed: f32, min: f64, max: f64) -> bool {
     let mut v = *value as f32;
     let changed = Drag::new(label).speed(speed).range(min as f32, max as f32).build(ui, &mut v);
+    let applied = commit(ui, label, changed, [shown(v), 0.0, 0.0]);
     explain(ui, label);
-    if changed {
-        *value = (v as f64).clamp(min, max);
+    if let Some([v, _, _]) = applied {
+        *value = v.clamp(min, max);
     }
-    changed
+    applied.is_some()
 }
 
 /// A drag field for an [f64; 3].
 pub fn drag3(ui: &Ui, label: &str, value: &mut [f64; 3], speed: f32) -> bool {
     let mut v = value.map(|x| x as f32);
     let changed = Drag::new(label).speed(speed).build_array(ui, &mut v);
+    let applied = commit(ui, label, changed, v.map(shown));
     explain(ui, label);
-    if changed {
-        *value = v.map(|x| x as f64);
+    if let Some(v) = applied {
+        *value = v;
     }
-    changed
+    applied.is_some()
 }
 
 /// An RGB colour picker for an [f64; 3] in 0..1.
@@ -32,7 +72,7 @@ pub fn color(ui: &Ui, label: &str, value: &mut [f64; 3]) -> bool {
     let changed = ui.color_edit3(label, &mut v);
     explain(ui, label);
     if changed {
-        *value = v.map(|x| (x as f64).clamp(0.0, 1.0));
+        *value = v.map(|x| shown(x).clamp(0.0, 1.0));
     }
     changed
 }
@@ -41,11 +81,12 @@ pub fn color(ui: &Ui, label: &str, value: &mut [f64; 3]) -> bool {
 pub fn int(ui: &Ui, label: &str, value: &mut u32, min: u32, max: u32) -> bool {
     let mut v = *value as i32;
     let changed = ui.input_int(label, &mut v).build();
+    let applied = commit(ui, label, changed, [v as f64, 0.0, 0.0]);
     explain(ui, label);
-    if changed {
-        *value = (v.max(0) as u32).clamp(min, max);
+    if let Some([v, _, _]) = applied {
+        *value = (v.max(0.0) as u32).clamp(min, max);
     }
-    changed
+    applied.is_some()
 }
 
 /// An optional f64 behind a checkbox (`None` when unticked).
@@ -105,5 +146,121 @@ pub fn check(ui: &Ui, label: &str, value: &mut bool) -> bool {
 fn explain(ui: &Ui, label: &str) {
     if let Some(text) = help(label) {
         tip(ui, text);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use imgui::{Condition, Context, Io, Key, MouseButton};
+
+    /// An ImGui context without a window or renderer: a 400 x 300 display, fonts built.
+    fn context() -> Context {
+        let mut ctx = Context::create();
+        ctx.set_ini_filename(None);
+        ctx.io_mut().display_size = [400.0, 300.0];
+        ctx.fonts().build_rgba32_texture();
+        ctx
+    }
+
+    /// One frame with `input` queued first: a window at the origin holding a drag field and an
+    /// int field; returns what each reported.
+    fn frame(
+        ctx: &mut Context,
+        value: &mut f64,
+        count: &mut u32,
+        input: impl FnOnce(&mut Io),
+    ) -> (bool, bool) {
+        input(ctx.io_mut());
+        ctx.io_mut().delta_time = 1.0 / 60.0;
+        let ui = ctx.new_frame();
+        let mut changed = (false, false);
+        ui.window("editor")
+            .position([0.0, 0.0], Condition::Always)
+            .size([400.0, 300.0], Condition::Always)
+            .build(|| {
+                changed.0 = drag(ui, "stiffness", value, 1.0, 0.0, 1e9);
+                changed.1 = int(ui, "substeps", count, 1, 4096);
+            });
+        ctx.render();
+        changed
+    }
+
+    /// Where the two fields are: the first row and the second below the title bar.
+    const DRAG_AT: [f32; 2] = [60.0, 30.0];
+    const INT_AT: [f32; 2] = [40.0, 54.0];
+    const ELSEWHERE: [f32; 2] = [200.0, 250.0];
+
+    fn click(ctx: &mut Context, value: &mut f64, count: &mut u32, at: [f32; 2], ctrl: bool) {
+        frame(ctx, value, count, |io| io.add_mouse_pos_event(at));
+        frame(ctx, value, count, |io| {
+            if ctrl {
+                io.add_key_event(Key::ModCtrl, true);
+            }
+            io.add_mouse_button_event(MouseButton::Left, true)
+        });
+        frame(ctx, value, count, |io| {
+            io.add_mouse_button_event(MouseButton::Left, false);
+            if ctrl {
+                io.add_key_event(Key::ModCtrl, false);
+            }
+        });
+    }
+
+    fn type_text(ctx: &mut Context, value: &mut f64, count: &mut u32, text: &str) -> Vec<(f64, u32)> {
+        let mut seen = Vec::new();
+        for c in text.chars() {
+            frame(ctx, value, count, |io| io.add_input_character(c));
+            seen.push((*value, *count));
+        }
+        seen
+    }
+
+    fn enter(ctx: &mut Context, value: &mut f64, count: &mut u32) {
+        frame(ctx, value, count, |io| io.add_key_event(Key::Enter, true));
+        frame(ctx, value, count, |io| io.add_key_event(Key::Enter, false));
+    }
+
+    /// Widget values reach the scene as the decimals they show.
+    #[test]
+    fn values_are_the_shortest_decimals() {
+        assert_eq!(shown(0.2), 0.2);
+        assert_eq!(shown(200000.0), 200000.0);
+        assert_eq!(shown(1e-6), 1e-6);
+        assert_eq!(shown(0.1 + 0.2), 0.3);
+    }
+
+    /// Typed numbers apply on Enter or when the field loses focus, nothing on the way; a drag
+    /// applies live.
+    #[test]
+    fn typed_numbers_apply_on_enter_or_focus_loss_drags_live() {
+        let mut ctx = context();
+        let (mut value, mut count) = (400.0, 16u32);
+        for _ in 0..3 {
+            frame(&mut ctx, &mut value, &mut count, |_| {});
+        }
+        // Ctrl+click turns the drag field into a text field; typing applies nothing.
+        click(&mut ctx, &mut value, &mut count, DRAG_AT, true);
+        let seen = type_text(&mut ctx, &mut value, &mut count, "200000");
+        assert!(seen.iter().all(|&(v, _)| v == 400.0), "applied while typing: {seen:?}");
+        enter(&mut ctx, &mut value, &mut count);
+        assert_eq!(value, 200000.0, "Enter applies the typed value");
+        // The int field: typing applies nothing until a click elsewhere takes its focus.
+        click(&mut ctx, &mut value, &mut count, INT_AT, false);
+        let seen = type_text(&mut ctx, &mut value, &mut count, "128");
+        assert!(seen.iter().all(|&(_, n)| n == 16), "applied while typing: {seen:?}");
+        click(&mut ctx, &mut value, &mut count, ELSEWHERE, false);
+        assert_eq!(count, 128, "leaving the field applies what was typed");
+        // A drag applies while the mouse moves, before it is released.
+        let before = value;
+        frame(&mut ctx, &mut value, &mut count, |io| io.add_mouse_pos_event(DRAG_AT));
+        frame(&mut ctx, &mut value, &mut count, |io| io.add_mouse_button_event(MouseButton::Left, true));
+        for k in 1..=10 {
+            frame(&mut ctx, &mut value, &mut count, |io| {
+                io.add_mouse_pos_event([DRAG_AT[0] + 4.0 * k as f32, DRAG_AT[1]])
+            });
+        }
+        assert!(value > before, "a drag applies live ({before} -> {value})");
+        frame(&mut ctx, &mut value, &mut count, |io| io.add_mouse_button_event(MouseButton::Left, false));
     }
 }
