@@ -296,6 +296,30 @@ fn chart_writes_csv_and_svg() {
     }
 }
 
+/// Runs `chart` on built-in scene `scene` with `args`; returns its chart.csv and checks that
+/// chart-SCENE.svg was written.
+fn chart_scene(scene: &str, args: &[&str]) -> String {
+    let dir = tempfile::tempdir().unwrap();
+    let out_dir = dir.path().join("chart");
+    let mut all = vec!["chart", "--scenes", scene, "--out", out_dir.to_str().unwrap()];
+    all.extend_from_slice(args);
+    let out = msdsim(&all);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(out_dir.join(format!("chart-{scene}.svg")).exists());
+    std::fs::read_to_string(out_dir.join("chart.csv")).unwrap()
+}
+
+/// The RMS error at 0.5 s of a chart.csv's row for `method` at `substeps`.
+fn chart_error(csv: &str, method: &str, substeps: &str) -> f64 {
+    let row = csv
+        .lines()
+        .filter(|l| !l.starts_with('#'))
+        .map(|l| l.split(',').collect::<Vec<_>>())
+        .find(|r| r[1] == method && r[2] == substeps)
+        .unwrap_or_else(|| panic!("no {method} row at {substeps} substeps:\n{csv}"));
+    row[6].parse().unwrap()
+}
+
 /// `chart`'s stiff scene shows what docs/ACCURACY.md's "Large steps" measures: at one 1/60 s
 /// substep and 10 iterations VBD follows the settling stiff cloth (it converges to its sag)
 /// and the implicit method, whose Jacobi sweeps cannot reach the sag mode in 10 iterations,
@@ -303,37 +327,11 @@ fn chart_writes_csv_and_svg() {
 /// assertion message).
 #[test]
 fn chart_stiff_scene_separates_the_large_step_methods() {
-    let dir = tempfile::tempdir().unwrap();
-    let out_dir = dir.path().join("chart");
-    let out = msdsim(&[
-        "chart",
-        "--scenes",
-        "stiff",
-        "--methods",
-        "vbd,implicit",
-        "--substeps",
-        "1",
-        "--iterations",
-        "10",
-        "--reference-substeps",
-        "128",
-        "--out",
-        out_dir.to_str().unwrap(),
-    ]);
-    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
-    let csv = std::fs::read_to_string(out_dir.join("chart.csv")).unwrap();
-    let error = |method: &str| -> f64 {
-        let row = csv
-            .lines()
-            .filter(|l| !l.starts_with('#'))
-            .map(|l| l.split(',').collect::<Vec<_>>())
-            .find(|r| r[1] == method)
-            .unwrap_or_else(|| panic!("no {method} row:\n{csv}"));
-        row[6].parse().unwrap()
-    };
-    let (vbd, implicit) = (error("vbd"), error("implicit"));
+    let args =
+        ["--methods", "vbd,implicit", "--substeps", "1", "--iterations", "10", "--reference-substeps", "128"];
+    let csv = chart_scene("stiff", &args);
+    let (vbd, implicit) = (chart_error(&csv, "vbd", "1"), chart_error(&csv, "implicit", "1"));
     assert!(implicit > 5.0 * vbd, "VBD's error {vbd:.2e}, the implicit method's {implicit:.2e}:\n{csv}");
-    assert!(out_dir.join("chart-stiff.svg").exists());
 }
 
 /// `chart`'s contact scene (the curtain preset draped over its sphere, with Coulomb friction
@@ -343,35 +341,10 @@ fn chart_stiff_scene_separates_the_large_step_methods() {
 /// parted, 3.0e-3 to 2.0e-3, which the chart shows).
 #[test]
 fn chart_contact_scene_converges_with_substeps() {
-    let dir = tempfile::tempdir().unwrap();
-    let out_dir = dir.path().join("chart");
-    let out = msdsim(&[
-        "chart",
-        "--scenes",
-        "contact",
-        "--methods",
-        "verlet",
-        "--substeps",
-        "4,16",
-        "--reference-substeps",
-        "128",
-        "--out",
-        out_dir.to_str().unwrap(),
-    ]);
-    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
-    let csv = std::fs::read_to_string(out_dir.join("chart.csv")).unwrap();
-    let error = |substeps: &str| -> f64 {
-        let row = csv
-            .lines()
-            .filter(|l| !l.starts_with('#'))
-            .map(|l| l.split(',').collect::<Vec<_>>())
-            .find(|r| r[1] == "verlet" && r[2] == substeps)
-            .unwrap_or_else(|| panic!("no verlet row at {substeps} substeps:\n{csv}"));
-        row[6].parse().unwrap()
-    };
-    let (coarse, fine) = (error("4"), error("16"));
+    let csv =
+        chart_scene("contact", &["--methods", "verlet", "--substeps", "4,16", "--reference-substeps", "128"]);
+    let (coarse, fine) = (chart_error(&csv, "verlet", "4"), chart_error(&csv, "verlet", "16"));
     assert!(coarse > 2.0 * fine, "at 0.5 s: {coarse:.2e} at 4 substeps, {fine:.2e} at 16:\n{csv}");
-    assert!(out_dir.join("chart-contact.svg").exists());
 }
 
 /// `integrator = "auto"` calibrates, says what it picked (a method whose measured error meets
