@@ -1,93 +1,196 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
-// Inter-object contact, 3 of 3, in two passes over the particles of other objects nearer than
-// the sum of the two objects' contact radii. Pass 0, one dispatch over every particle of the
-// scene (read from the hash's sorted copy through cell_rank), finds them in the scene's hash
-// and counts them (touches[], per scene particle), noting the first PAIR_MAX of them (their
-// slots in the hash, pairs[]). Pass 1, per object, visits those again (searching the hash
-// only for a particle with more) and sums for each pair (i, j)
-// the overlap C = reach - d split by inverse mass (i moves C w_i / (w_i + w_j) away from j;
-// all of C when j is pinned), scaled by 1 / max(n_i, n_j), the larger of the two particles'
-// counts: the same for both ends of a pair, so every pair's corrections are equal and opposite
-// in momentum (m_i dx_i = -m_j dx_j) and contact between objects conserves linear momentum,
-// while a particle touching n others moves at most by the largest overlap. Pass 1 writes every
-// particle's sum (xyz) and whether it touches anything (w) into contact[]; the constraint
-// stage adds it to its own correction. The CPU twin is sim::cpu::inter_object.
+#extension GL_EXT_control_flow_attributes : require
+// Inter-object contact, 3 of 3, in three passes: 0 and 1 over the scene's particles (read from
+// the hash's copies), 2 per object. Two kinds of contact, the reach
+// being the two objects' contact radii added:
+// - particle p of object A against triangle t of object B, a cloth (its triangles as the
+//   renderer draws them): p nearer than the reach to t's nearest point (weights b), and t's
+//   corner nearest to p (ties to the lower index) nearer than the reach plus B's corner reach
+//   (which holds while t's edges are within TRIANGLE_STRETCH times their rest length); p
+//   finds t through that corner. With n from
+//   the nearest point to p and inverse masses w (0 pinned),
+//   lambda = (reach - d) / (w_p + sum w_k b_k^2): p moves w_p lambda n, corner k
+//   -w_k b_k lambda n, so the contact's momentum is unchanged. p computes all four moves;
+// - particle against particle between two objects neither of which is a cloth (ropes): d the
+//   distance between them, p moves (reach - d) w_p / (w_p + w_q) away from q (all of it when q
+//   is pinned); q, finding p, the opposite.
+// Every contact's moves are divided by the largest count of contacts among its particles, the
+// same for all of them (equal and opposite momenta; a particle in n contacts moves at most by
+// the largest overlap). Pass 0 counts each particle's contacts (touches[], with atomics: a
+// triangle's corners are counted by the particle that touches it) and notes, for a particle
+// that sees no triangles, its first PAIR_MAX partners' hash slots (pairs[]). Pass 1 sums the
+// moves into moves[] in fixed point (integer atomics: exact and in any order). Pass 2 writes
+// each particle's sum (xyz) and whether it touches anything (w) into its object's contact[];
+// the constraint stage adds it to its own correction. touches[] and moves[] are cleared by
+// contact_count.comp. The CPU twin is sim::cpu::inter_object.
 #include "layout.glsl"
 #include "contact_common.glsl"
+#include "triangle.glsl"
 
 layout(local_size_x = 256) in;
+
+uint object_count() { return uint(objects.length()) / 2u; }
+float radius_of(uint q) { return objects[2u * q].z; }
+float mass_of(uint q) { return objects[2u * q].w; }
+// (columns, rows) of object q's grid; columns 0 when its triangles take no part.
+uvec2 grid_of(uint q) { return floatBitsToUint(objects[2u * q + 1u].xy); }
+// What object q's particles look for: SEES_TRIANGLES another object's triangles,
+// SEES_PARTICLES another object's particles (neither object a cloth).
+const uint SEES_TRIANGLES = 1u;
+const uint SEES_PARTICLES = 2u;
+uint sees(uint q) { return floatBitsToUint(objects[2u * q + 1u].z); }
 
 // The object a scene index belongs to (objects are few: a linear search).
 uint owner(uint k) {
     uint o = 0u;
-    for (uint q = 1u; q < objects.length(); ++q) {
-        if (k >= floatBitsToUint(objects[q].x)) o = q;
+    for (uint q = 1u; q < object_count(); ++q) {
+        if (k >= first_of(q)) o = q;
     }
     return o;
 }
 
 // Particles in the scene (the last object's first index and count).
 uint scene_count() {
-    vec4 last = objects[objects.length() - 1];
+    vec4 last = objects[2u * (object_count() - 1u)];
     return floatBitsToUint(last.x) + floatBitsToUint(last.y);
+}
+
+// Scene particle k's hash entry: position, and its index with PINNED_BIT.
+vec4 entry_of(uint k) { return particles[k]; }
+
+float inverse_mass(vec4 e, uint q) { return (floatBitsToUint(e.w) & PINNED_BIT) != 0u ? 0.0 : 1.0 / mass_of(q); }
+
+// How much farther than the reach a triangle's nearest corner may be from a particle touching
+// it: half its rest diagonal stretched TRIANGLE_STRETCH times (ObjectModel::corner_reach).
+float corner_reach(uint q) { return objects[2u * q + 1u].w; }
+
+// Fixed-point units a metre of moves[] (2^28 a cell): a particle's sum stays within its
+// largest overlap, under half a cell, far inside the 8 cells an int holds.
+float move_fix() { return 268435456.0 * table.cell_inv; }
+
+void add_move(uint k, vec3 v) {
+    ivec3 q = ivec3(round(v * move_fix()));
+    if (q.x != 0) atomicAdd(moves[4u * k], q.x);
+    if (q.y != 0) atomicAdd(moves[4u * k + 1u], q.y);
+    if (q.z != 0) atomicAdd(moves[4u * k + 2u], q.z);
+}
+
+// The six grid neighbours of a vertex in turn around it: each two next to each other make one
+// of the vertex's six triangles with it (the triangles as the renderer draws them).
+const ivec2 RING[6] = ivec2[6](ivec2(1, 0), ivec2(0, 1), ivec2(-1, 1), ivec2(-1, 0), ivec2(0, -1), ivec2(1, -1));
+
+// Whether a corner at squared distance da (index ia) is nearer than one at db (index ib).
+bool nearer(float da, uint ia, float db, uint ib) { return da < db || (da == db && ia < ib); }
+
+// Particle k (entry ek, object me) against the triangles of object q around its vertex j (at
+// squared distance dj) of which j is the corner nearest to k: pass 0 counts each contact into
+// n and its corners' touches, pass 1 adds its four moves.
+void triangles_around(uint k, vec4 ek, uint me, uint j, vec4 ej, float dj, uint q, bool sum, inout uint n) {
+    uvec2 grid = grid_of(q);
+    uint local = j - first_of(q);
+    ivec2 at = ivec2(local % grid.x, local / grid.x);
+    float reach = radius_of(me) + radius_of(q);
+    vec4 ring[6];
+    uint index[6];
+    bool closer[6];  // whether j is nearer to k than the neighbour (false where there is none)
+    [[unroll]] for (int r = 0; r < 6; ++r) {
+        ivec2 c = at + RING[r];
+        closer[r] = c.x >= 0 && c.y >= 0 && c.x < int(grid.x) && c.y < int(grid.y);
+        if (!closer[r]) continue;
+        index[r] = first_of(q) + uint(c.x) + uint(c.y) * grid.x;
+        ring[r] = entry_of(index[r]);
+        vec3 dr = ring[r].xyz - ek.xyz;
+        closer[r] = nearer(dj, j, dot(dr, dr), index[r]);
+    }
+    [[unroll]] for (int r = 0; r < 6; ++r) {
+        int s = r == 5 ? 0 : r + 1;
+        if (!closer[r] || !closer[s]) continue;
+        vec3 w = triangle_nearest(ek.xyz, ej.xyz, ring[r].xyz, ring[s].xyz);
+        vec3 off = ek.xyz - (w.x * ej.xyz + w.y * ring[r].xyz + w.z * ring[s].xyz);
+        float d = length(off);
+        if (!(d > 0.0 && d < reach)) continue;
+        n += 1u;
+        uvec3 tv = uvec3(j, index[r], index[s]);
+        if (!sum) {
+            atomicAdd(touches[tv.x], 1u);
+            atomicAdd(touches[tv.y], 1u);
+            atomicAdd(touches[tv.z], 1u);
+            continue;
+        }
+        float wp = inverse_mass(ek, me);
+        vec3 wk = vec3(inverse_mass(ej, q), inverse_mass(ring[r], q), inverse_mass(ring[s], q));
+        float denom = wp + dot(wk, w * w);
+        if (!(denom > 0.0)) continue;
+        uint split = max(max(touches[k], touches[tv.x]), max(touches[tv.y], touches[tv.z]));
+        vec3 push = (off / d) * ((reach - d) / (denom * float(split)));
+        add_move(k, wp * push);
+        add_move(tv.x, -wk.x * w.x * push);
+        add_move(tv.y, -wk.y * w.y * push);
+        add_move(tv.z, -wk.z * w.z * push);
+    }
 }
 
 // Partners a particle keeps from the count pass; one with more searches the hash again.
 const uint PAIR_MAX = 8u;
 
-// The pair of the particle at x (scene index `k_self`, object `me`, `mine` touches) and the
-// hash entry at slot `at`, if they touch: counted into n; pass 0 notes the slot (its first
-// PAIR_MAX), pass 1 adds the particle's share of the overlap to `correction`.
-void visit(uint at, vec3 x, uint k_self, uint me, uint mine, bool sum, inout uint n, inout vec3 correction) {
+// The contacts of scene particle k (entry ek, object me) that the hash entry at slot `at`
+// leads to: counted into n; pass 0 notes a particle pair's slot (the first PAIR_MAX), pass 1
+// sums the moves (a particle pair's move of k into `move`).
+void visit(uint at, vec4 ek, uint k, uint me, bool sum, inout uint n, inout vec3 move) {
     vec4 e = sorted[at];
     uint bits = floatBitsToUint(e.w);
-    uint k = bits & ~PINNED_BIT;
-    uint other = owner(k);
+    uint j = bits & ~PINNED_BIT;
+    uint other = owner(j);
     if (other == me) return;
-    vec4 self_entry = objects[me];
-    vec4 them = objects[other];
-    float reach = self_entry.z + them.z;
-    vec3 to_j = e.xyz - x;
-    float d = length(to_j);
-    if (d < reach && d > 0.0) {
-        if (!sum && n < PAIR_MAX) pairs[k_self * PAIR_MAX + n] = at;
-        n += 1u;
-        if (sum) {
-            float w = (bits & PINNED_BIT) != 0u ? 1.0 : them.w / (self_entry.w + them.w);
-            float split = 1.0 / float(max(mine, touches[k]));
-            correction += (to_j / d) * ((d - reach) * w * split);
+    vec3 to_j = e.xyz - ek.xyz;
+    float dj = dot(to_j, to_j);
+    if (grid_of(other).x != 0u) {
+        float r = radius_of(me) + radius_of(other) + corner_reach(other);
+        if (dj < r * r) triangles_around(k, ek, me, j, e, dj, other, sum, n);
+    } else if (grid_of(me).x == 0u) {
+        float reach = radius_of(me) + radius_of(other);
+        float d = sqrt(dj);
+        if (d < reach && d > 0.0) {
+            if (!sum && n < PAIR_MAX) pairs[k * PAIR_MAX + n] = at;
+            n += 1u;
+            if (sum) {
+                float w = (bits & PINNED_BIT) != 0u ? 1.0 : mass_of(other) / (mass_of(me) + mass_of(other));
+                float split = 1.0 / float(max(touches[k], touches[j]));
+                move += (to_j / d) * ((d - reach) * w * split);
+            }
         }
     }
 }
 
 void main() {
     uint i = gl_GlobalInvocationID.x;
-    bool sum = which.pass == 1u;
-    // Pass 1: particle i of this object; pass 0: particle i of the scene.
-    if (i >= (sum ? particle_count() : scene_count())) return;
-    uint me = sum ? which.object : owner(i);
-    uint k_self = sum ? first_index() + i : i;
-    uint mine = sum ? touches[k_self] : 0u;
-    vec3 correction = vec3(0.0);
-    uint n = 0u;
-    vec4 p;
-    if (sum) {
-        p = p_in[i].pos;
-    } else {
-        uvec2 cr = cell_rank[i];
-        p = sorted[BUCKET_START(cr.x, table.hash_mask) + cr.y];
+    if (which.pass == 2u) {
+        if (i >= particle_count()) return;
+        uint k = first_index() + i;
+        vec3 sum = vec3(moves[4u * k], moves[4u * k + 1u], moves[4u * k + 2u]) / move_fix();
+        contact[i] = vec4(sum, touches[k] > 0u ? 1.0 : 0.0);
+        return;
     }
-    vec3 x = p.xyz;
-    if (sum && mine <= PAIR_MAX) {
+    if (i >= scene_count()) return;
+    bool sum = which.pass == 1u;
+    uint k = i;
+    uint me = owner(k);
+    uint looks = sees(me);
+    if (looks == 0u) return;
+    vec4 ek = entry_of(k);
+    bool pinned = (floatBitsToUint(ek.w) & PINNED_BIT) != 0u;
+    uint n = 0u;
+    vec3 move = vec3(0.0);
+    if (sum && looks == SEES_PARTICLES && (pinned || touches[k] <= PAIR_MAX)) {
         // The partners the count pass noted (none for most particles).
-        if (p.w <= 0.5) {
-            for (uint e = 0u; e < mine; ++e) visit(pairs[k_self * PAIR_MAX + e], x, k_self, me, mine, true, n, correction);
+        if (!pinned) {
+            for (uint e = 0u; e < touches[k]; ++e) visit(pairs[k * PAIR_MAX + e], ek, k, me, true, n, move);
         }
-    } else if (!sum || p.w <= 0.5) {
-        // Cells are at least twice the largest reach (object.rs), so every particle within
-        // reach lies in the 2 x 2 x 2 block of cells nearest to x. Buckets visited once.
-        ivec3 base = ivec3(floor(x * table.cell_inv - 0.5));
+    } else {
+        // Cells are sized so that everything a contact needs lies in the 2 x 2 x 2 block of
+        // cells nearest to the particle (SimModel::contact_cell). Buckets visited once.
+        ivec3 base = ivec3(floor(ek.xyz * table.cell_inv - 0.5));
         uint seen[8];
         for (int c = 0; c < 8; ++c) {
             uint h = cell_hash(base + ivec3(c & 1, (c >> 1) & 1, c >> 2), table.hash_mask);
@@ -96,12 +199,12 @@ void main() {
             for (int q = 0; q < c; ++q) again = again || seen[q] == h;
             if (again) continue;
             uint end = BUCKET_START(h + 1u, table.hash_mask);
-            for (uint at = BUCKET_START(h, table.hash_mask); at < end; ++at) visit(at, x, k_self, me, mine, sum, n, correction);
+            for (uint at = BUCKET_START(h, table.hash_mask); at < end; ++at) visit(at, ek, k, me, sum, n, move);
         }
     }
     if (sum) {
-        contact[i] = vec4(correction, n > 0u ? 1.0 : 0.0);
-    } else {
-        touches[i] = n;
+        add_move(k, pinned ? vec3(0.0) : move);
+    } else if (n > 0u) {
+        atomicAdd(touches[k], n);
     }
 }

@@ -2,7 +2,8 @@
 #extension GL_GOOGLE_include_directive : require
 // Inter-object contact, 1 of 3: counts this object's particles (after physics) into the
 // scene's spatial hash (contact_common.glsl). counts[] is zero here: the scan of the last
-// substep (or the upload) cleared it.
+// substep (or the upload) cleared it. Clears each particle's contact count and moves for
+// contact.comp.
 #include "layout.glsl"
 #include "contact_common.glsl"
 
@@ -12,5 +13,10 @@ void main() {
     uint i = gl_GlobalInvocationID.x;
     if (i >= particle_count()) return;
     uint h = cell_hash(ivec3(floor(p_in[i].pos.xyz * table.cell_inv)), table.hash_mask);
-    cell_rank[first_index() + i] = uvec2(h, atomicAdd(counts[h], 1u));
+    uint k = first_index() + i;
+    cell_rank[k] = uvec2(h, atomicAdd(counts[h], 1u));
+    touches[k] = 0u;
+    moves[4u * k] = 0;
+    moves[4u * k + 1u] = 0;
+    moves[4u * k + 2u] = 0;
 }

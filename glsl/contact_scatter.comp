@@ -1,7 +1,8 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
 // Inter-object contact, 2 of 3: after the scan, writes this object's particles into the
-// scene's hash by bucket: position, and the scene index with the pinned flag in its top bit.
+// scene's hash by bucket: position, and the scene index with the pinned flag in its top bit;
+// the same by scene index into particles[] (contact.comp reads a triangle's corners there).
 #include "layout.glsl"
 #include "contact_common.glsl"
 
@@ -13,5 +14,7 @@ void main() {
     uint k = first_index() + i;
     uvec2 cr = cell_rank[k];
     vec4 p = p_in[i].pos;
-    sorted[BUCKET_START(cr.x, table.hash_mask) + cr.y] = vec4(p.xyz, uintBitsToFloat(k | (p.w > 0.5 ? PINNED_BIT : 0u)));
+    vec4 e = vec4(p.xyz, uintBitsToFloat(k | (p.w > 0.5 ? PINNED_BIT : 0u)));
+    sorted[BUCKET_START(cr.x, table.hash_mask) + cr.y] = e;
+    particles[k] = e;
 }

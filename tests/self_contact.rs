@@ -14,81 +14,10 @@ use msdsim::sim::cpu::CpuSim;
 use msdsim::sim::gpu::GpuSim;
 use msdsim::sim::model::SimModel;
 
-/// Whether segment (p, q) passes through triangle (a, b, c) (Moller-Trumbore on the segment;
-/// touching counts, a segment in the triangle's plane does not).
-fn segment_through(p: DVec3, q: DVec3, [a, b, c]: [DVec3; 3]) -> bool {
-    let (e1, e2, dir) = (b - a, c - a, q - p);
-    let h = dir.cross(e2);
-    let det = e1.dot(h);
-    if det.abs() < 1e-18 {
-        return false;
-    }
-    let s = p - a;
-    let u = s.dot(h) / det;
-    let qv = s.cross(e1);
-    let v = dir.dot(qv) / det;
-    let t = e2.dot(qv) / det;
-    (0.0..=1.0).contains(&u) && v >= 0.0 && u + v <= 1.0 && (0.0..=1.0).contains(&t)
-}
-
-/// The triangles of a cloth grid as the renderer draws them (src/render/mesh.rs), two a cell.
-fn cloth_triangles(cols: usize, rows: usize) -> Vec<[usize; 3]> {
-    let mut t = Vec::new();
-    for r in 0..rows - 1 {
-        for c in 0..cols - 1 {
-            let a = c + r * cols;
-            t.push([a, a + cols, a + 1]);
-            t.push([a + 1, a + cols, a + cols + 1]);
-        }
-    }
-    t
-}
-
-/// The edges of a cloth grid as drawn: rows, columns and each cell's diagonal from (c + 1, r)
-/// to (c, r + 1).
-fn cloth_edges(cols: usize, rows: usize) -> Vec<[usize; 2]> {
-    let mut e = Vec::new();
-    for r in 0..rows {
-        for c in 0..cols {
-            let a = c + r * cols;
-            if c + 1 < cols {
-                e.push([a, a + 1]);
-            }
-            if r + 1 < rows {
-                e.push([a, a + cols]);
-            }
-            if c + 1 < cols && r + 1 < rows {
-                e.push([a + 1, a + cols]);
-            }
-        }
-    }
-    e
-}
-
 /// Edges of the cloth (positions `x`, `cols` x `rows`) through one of its triangles that does
 /// not share a vertex with them.
 fn crossings(x: &[DVec3], cols: usize, rows: usize) -> usize {
-    let tris = cloth_triangles(cols, rows);
-    let bounds: Vec<(DVec3, DVec3)> = tris
-        .iter()
-        .map(|t| {
-            let p = t.map(|k| x[k]);
-            (p[0].min(p[1]).min(p[2]), p[0].max(p[1]).max(p[2]))
-        })
-        .collect();
-    cloth_edges(cols, rows)
-        .iter()
-        .filter(|&&[i, j]| {
-            let (lo, hi) = (x[i].min(x[j]), x[i].max(x[j]));
-            tris.iter().zip(&bounds).any(|(t, &(tlo, thi))| {
-                !t.contains(&i)
-                    && !t.contains(&j)
-                    && lo.cmple(thi).all()
-                    && tlo.cmple(hi).all()
-                    && segment_through(x[i], x[j], t.map(|k| x[k]))
-            })
-        })
-        .count()
+    segments_through(x, &cloth_edges(cols, rows), x, &cloth_triangles(cols, rows), true)
 }
 
 /// The most crossing edges over `frames` frames of `s` (object 0), on each GPU path: fused,

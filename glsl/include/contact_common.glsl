@@ -17,24 +17,30 @@ layout(std430, set = 0, binding = 6) buffer SceneCellRank { uvec2 cell_rank[]; }
 layout(std430, set = 0, binding = 7) buffer SceneCounts { uint counts[]; };
 layout(std430, set = 0, binding = 8) buffer SceneStarts { uint starts[]; };
 layout(std430, set = 0, binding = 9) buffer SceneSorted { vec4 sorted[]; };         // xyz, w: scene index | pinned << 31
+layout(std430, set = 0, binding = 16) buffer SceneParticles { vec4 particles[]; };  // the same, by scene index
 layout(std430, set = 0, binding = 10) buffer SceneBlocks { uint block_sums[]; };
 layout(std430, set = 0, binding = 12) restrict readonly buffer SceneHash { ObjectParams table; };  // hash_mask, cell_inv
-// Per object: x first scene index, y particle count (as float bits), z contact radius, w mass.
+// Per object two rows: [first scene index, particle count (float bits), contact radius, mass]
+// and [grid columns, grid rows, what its particles look for (float bits; columns 0 when its
+// triangles take no part), its triangles' corner reach].
 layout(std430, set = 0, binding = 13) restrict readonly buffer Objects { vec4 objects[]; };
 layout(std430, set = 0, binding = 14) buffer ContactBuf { vec4 contact[]; };
 // Per scene particle: how many particles of other objects it touches (contact.comp's first pass),
 // and the hash slots of the first of them (PAIR_MAX a particle).
 layout(std430, set = 0, binding = 3) buffer SceneTouches { uint touches[]; };
 layout(std430, set = 0, binding = 5) buffer ScenePairs { uint pairs[]; };
+// Per scene particle: the sum of its moves in fixed point (x, y, z, unused; contact.comp).
+layout(std430, set = 0, binding = 17) buffer SceneMoves { int moves[]; };
 
 layout(push_constant) uniform Which {
     uint object;  // this object's index in `objects`
-    uint pass;    // contact.comp: 0 counts each particle's touches, 1 sums the corrections
+    uint pass;    // contact.comp: 0 counts each particle's contacts, 1 sums the moves, 2 takes them
 } which;
 
 const uint PINNED_BIT = 0x80000000u;
 
-uint first_index() { return floatBitsToUint(objects[which.object].x); }
+uint first_of(uint q) { return floatBitsToUint(objects[2u * q].x); }
+uint first_index() { return first_of(which.object); }
 uint particle_count() { return obj.dims.x * obj.dims.y; }
 
 #endif

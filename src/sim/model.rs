@@ -9,6 +9,11 @@ use glam::DVec3;
 /// (`TRIANGLE_STRETCH` in glsl/include/lists.glsl).
 pub const TRIANGLE_STRETCH: f64 = 1.5;
 
+/// How far from a particle, in contact hash cells, its 2 x 2 x 2 block of cells surely reaches
+/// (half a cell, less a margin for rounding): the cell is sized so that this covers every
+/// contact's reach plus its corner reach.
+pub const CONTACT_BLOCK_REACH: f64 = 0.49;
+
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, serde::Serialize)]
 #[serde(rename_all = "lowercase")]
 pub enum ObjectKind {
@@ -116,6 +121,24 @@ impl ObjectModel {
         self.self_distance.map(|h| h + more)
     }
 
+    /// Whether other objects' particles touch this object's triangles (contact between
+    /// objects): a cloth of at least 2 x 2 (else its particles, like a rope's nodes).
+    pub fn contact_triangles(&self) -> bool {
+        self.kind == ObjectKind::Cloth && self.dims[0] > 1 && self.dims[1] > 1
+    }
+
+    /// How much farther than the reach a triangle's nearest corner may be from another
+    /// object's particle touching it: half the cell's rest diagonal stretched
+    /// `TRIANGLE_STRETCH` times (a triangle's farthest point from its corners, the middle of
+    /// that diagonal); 0 for an object whose triangles take no part.
+    pub fn corner_reach(&self) -> f64 {
+        if self.contact_triangles() {
+            0.5 * TRIANGLE_STRETCH * self.spacing[0].hypot(self.spacing[1])
+        } else {
+            0.0
+        }
+    }
+
     /// Half the distance kept from another object's particles (inter-object contact): a
     /// rope's tube radius, a cloth's collision margin.
     pub fn contact_radius(&self) -> f64 {
@@ -195,6 +218,16 @@ impl SimModel {
     /// Whether the objects touch each other: asked for, and more than one object.
     pub fn inter_object_contact(&self) -> bool {
         self.inter_object && self.objects.len() > 1
+    }
+
+    /// The cell of the scene's contact hash (contact between objects) [m], such that a
+    /// particle's block of cells reaches (`CONTACT_BLOCK_REACH` cells) the largest reach (two
+    /// contact radii) plus the largest corner reach (`ObjectModel::corner_reach`): a triangle
+    /// within reach has its nearest corner in sight.
+    pub fn contact_cell(&self) -> f64 {
+        let widest = self.objects.iter().map(ObjectModel::contact_radius).fold(0.0, f64::max);
+        let edge = self.objects.iter().map(ObjectModel::corner_reach).fold(0.0, f64::max);
+        ((2.0 * widest + edge) / CONTACT_BLOCK_REACH).max(1e-6)
     }
 
     /// Length of one substep [s].

@@ -330,3 +330,85 @@ mass = 0.01
 stiffness = 100.0
 radius = 0.01
 "#;
+
+/// Whether segment (p, q) passes through triangle (a, b, c) (Moller-Trumbore on the segment;
+/// touching counts, a segment in the triangle's plane does not).
+pub fn segment_through(p: DVec3, q: DVec3, [a, b, c]: [DVec3; 3]) -> bool {
+    let (e1, e2, dir) = (b - a, c - a, q - p);
+    let h = dir.cross(e2);
+    let det = e1.dot(h);
+    if det.abs() < 1e-18 {
+        return false;
+    }
+    let s = p - a;
+    let u = s.dot(h) / det;
+    let qv = s.cross(e1);
+    let v = dir.dot(qv) / det;
+    let t = e2.dot(qv) / det;
+    (0.0..=1.0).contains(&u) && v >= 0.0 && u + v <= 1.0 && (0.0..=1.0).contains(&t)
+}
+
+/// The triangles of a cloth grid as the renderer draws them (src/render/mesh.rs), two a cell.
+pub fn cloth_triangles(cols: usize, rows: usize) -> Vec<[usize; 3]> {
+    let mut t = Vec::new();
+    for r in 0..rows - 1 {
+        for c in 0..cols - 1 {
+            let a = c + r * cols;
+            t.push([a, a + cols, a + 1]);
+            t.push([a + 1, a + cols, a + cols + 1]);
+        }
+    }
+    t
+}
+
+/// The edges of a cloth grid as drawn: rows, columns and each cell's diagonal from (c + 1, r)
+/// to (c, r + 1).
+pub fn cloth_edges(cols: usize, rows: usize) -> Vec<[usize; 2]> {
+    let mut e = Vec::new();
+    for r in 0..rows {
+        for c in 0..cols {
+            let a = c + r * cols;
+            if c + 1 < cols {
+                e.push([a, a + 1]);
+            }
+            if r + 1 < rows {
+                e.push([a, a + cols]);
+            }
+            if c + 1 < cols && r + 1 < rows {
+                e.push([a + 1, a + cols]);
+            }
+        }
+    }
+    e
+}
+
+/// Segments (`edges` of positions `ex`) through a triangle (`tris` of positions `tx`) that
+/// shares no vertex with them (`same`: the two are one object), tested exactly after a bounding
+/// box check.
+pub fn segments_through(
+    ex: &[DVec3],
+    edges: &[[usize; 2]],
+    tx: &[DVec3],
+    tris: &[[usize; 3]],
+    same: bool,
+) -> usize {
+    let bounds: Vec<(DVec3, DVec3)> = tris
+        .iter()
+        .map(|t| {
+            let p = t.map(|k| tx[k]);
+            (p[0].min(p[1]).min(p[2]), p[0].max(p[1]).max(p[2]))
+        })
+        .collect();
+    edges
+        .iter()
+        .filter(|&&[i, j]| {
+            let (lo, hi) = (ex[i].min(ex[j]), ex[i].max(ex[j]));
+            tris.iter().zip(&bounds).any(|(t, &(tlo, thi))| {
+                !(same && (t.contains(&i) || t.contains(&j)))
+                    && lo.cmple(thi).all()
+                    && tlo.cmple(hi).all()
+                    && segment_through(ex[i], ex[j], t.map(|k| tx[k]))
+            })
+        })
+        .count()
+}

@@ -29,6 +29,7 @@
 //! the GPU receives; everything after that is f64.
 
 pub(crate) mod integrators;
+mod inter_object;
 pub mod self_contact;
 
 pub use integrators::{energy, max_strain, History};
@@ -312,7 +313,7 @@ impl CpuSim {
             .collect();
         let positions: Vec<&[DVec3]> = advanced.iter().map(|(x, _)| x.as_slice()).collect();
         let contact = if m.inter_object_contact() {
-            inter_object(m, &positions)
+            inter_object::inter_object(m, &positions)
         } else {
             positions.iter().map(|x| vec![DVec3::ZERO; x.len()]).collect()
         };
@@ -323,58 +324,6 @@ impl CpuSim {
             state.v = cv;
         }
     }
-}
-
-/// Calls `f(i, b, j, delta, reach)` for every pair of particle i of object `a` and particle j
-/// of another object b nearer than the sum of their contact radii (`delta` from i to j, not 0).
-fn touching_pairs(
-    m: &SimModel,
-    a: usize,
-    x: &[&[DVec3]],
-    mut f: impl FnMut(usize, usize, usize, DVec3, f64),
-) {
-    let o = &m.objects[a];
-    for (b, other) in m.objects.iter().enumerate().filter(|&(b, _)| b != a) {
-        let reach = o.contact_radius() + other.contact_radius();
-        for (i, xi) in x[a].iter().enumerate() {
-            for (j, yj) in x[b].iter().enumerate() {
-                let delta = *yj - *xi;
-                let d = delta.length();
-                if d > 0.0 && d < reach {
-                    f(i, b, j, delta, reach);
-                }
-            }
-        }
-    }
-}
-
-/// Contacts between the objects (positions `x`): for every pair (i, j) of particles of two
-/// objects nearer than the sum of their contact radii, each particle not pinned is moved away
-/// by its share of the overlap (the other's mass over both, all of it when the other is
-/// pinned) over max(n_i, n_j), the larger of the two particles' counts of touches, so that
-/// both ends of a pair move by equal and opposite momenta. Returns each object's corrections.
-fn inter_object(m: &SimModel, x: &[&[DVec3]]) -> Vec<Vec<DVec3>> {
-    // Every touching pair from each side, (a, i, b, j, delta from i to j, reach), found once.
-    let mut pairs = Vec::new();
-    for a in 0..m.objects.len() {
-        touching_pairs(m, a, x, |i, b, j, delta, reach| pairs.push((a, i, b, j, delta, reach)));
-    }
-    let mut touches: Vec<Vec<u32>> = x.iter().map(|x| vec![0; x.len()]).collect();
-    for &(a, i, ..) in &pairs {
-        touches[a][i] += 1;
-    }
-    let mut contact: Vec<Vec<DVec3>> = x.iter().map(|x| vec![DVec3::ZERO; x.len()]).collect();
-    for (a, i, b, j, delta, reach) in pairs {
-        let (o, other) = (&m.objects[a], &m.objects[b]);
-        if o.pinned[i] {
-            continue;
-        }
-        let d = delta.length();
-        let w = if other.pinned[j] { 1.0 } else { other.mass / (o.mass + other.mass) };
-        let split = touches[a][i].max(touches[b][j]) as f64;
-        contact[a][i] += delta / d * (d - reach) * w / split;
-    }
-    contact
 }
 
 /// The constraint stage of object `o` on the physics result `(x, v)`; `motions` holds each

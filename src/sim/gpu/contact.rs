@@ -9,7 +9,7 @@ use super::object::{GpuObject, SCAN_BLOCK};
 use super::pipelines::{Pipelines, Stage};
 use super::BINDINGS;
 use crate::sim::gpu_types::ObjectParams;
-use crate::sim::model::{ObjectModel, SimModel};
+use crate::sim::model::SimModel;
 use crate::vk::{
     Access, BindingSet, BindingSetLayout, Buffer, BufferBarrier, BufferUsage, DescriptorArena, GpuContext,
     MemoryKind, Recorder, VkError,
@@ -20,15 +20,20 @@ pub(super) struct SceneContact {
     /// `ObjectParams` with the table's `hash_mask` and `cell_inv` (binding 12; binding 1 of
     /// the scan's set).
     table: Buffer,
-    /// Per object: first scene index (bits), particle count (bits), contact radius, mass.
+    /// Per object two rows (contact_common.glsl): first scene index, particle count, contact
+    /// radius, mass; grid columns and rows where its triangles take part, what it looks for.
     objects: Buffer,
+    /// Per scene particle: its contacts' summed moves, in fixed point (binding 17).
+    moves: Buffer,
     cell_rank: Buffer,
     pub counts: Buffer,
     starts: Buffer,
     sorted: Buffer,
+    /// The same entries by scene index (binding 16).
+    particles: Buffer,
     block_sums: Buffer,
-    /// Per scene particle: how many particles of other objects it touches (binding 3), and
-    /// the hash slots of the first `PAIR_MAX` of them (binding 5).
+    /// Per scene particle: how many contacts with other objects it takes part in (binding 3),
+    /// and the hash slots of the first `PAIR_MAX` particles it touches (binding 5).
     touches: Buffer,
     pairs: Buffer,
     /// Particles in the scene.
@@ -54,8 +59,8 @@ pub(super) fn sets_needed(model: &SimModel) -> u32 {
 
 impl SceneContact {
     /// The scene's hash for `model`'s objects (`gpu`, in order), or `None` when the objects do
-    /// not touch each other. Cells are twice the largest reach of any pair, so a query finds
-    /// every particle within reach in the 2 x 2 x 2 block of cells nearest to it.
+    /// not touch each other. Cells are `SimModel::contact_cell`, so a query finds everything a
+    /// contact needs in the 2 x 2 x 2 block of cells nearest to it.
     pub fn new(
         ctx: &GpuContext,
         layout: &BindingSetLayout,
@@ -69,8 +74,7 @@ impl SceneContact {
         }
         let total: u64 = gpu.iter().map(|o| o.particles as u64).sum();
         let buckets = super::object::hash_table_size(total);
-        let widest = model.objects.iter().map(ObjectModel::contact_radius).fold(0.0, f64::max);
-        let cell = (4.0 * widest).max(1e-6);
+        let cell = model.contact_cell();
         let mut table_params: ObjectParams = bytemuck::Zeroable::zeroed();
         table_params.hash_mask = buckets as u32 - 1;
         table_params.cell_inv = (1.0 / cell) as f32;
@@ -79,38 +83,48 @@ impl SceneContact {
             .objects
             .iter()
             .zip(gpu)
-            .map(|(o, g)| {
-                let row = [
-                    f32::from_bits(first),
-                    f32::from_bits(g.particles),
-                    o.contact_radius() as f32,
-                    o.mass as f32,
+            .enumerate()
+            .flat_map(|(q, (o, g))| {
+                let grid = if o.contact_triangles() { o.dims } else { [0, 0] };
+                let others =
+                    || model.objects.iter().enumerate().filter(move |&(k, _)| k != q).map(|(_, o)| o);
+                // SEES_TRIANGLES, SEES_PARTICLES in contact.comp.
+                let sees = others().any(|p| p.contact_triangles()) as u32
+                    | ((!o.contact_triangles() && others().any(|p| !p.contact_triangles())) as u32) << 1;
+                let bits = f32::from_bits;
+                let rows = [
+                    [bits(first), bits(g.particles), o.contact_radius() as f32, o.mass as f32],
+                    [bits(grid[0]), bits(grid[1]), bits(sees), o.corner_reach() as f32],
                 ];
                 first += g.particles;
-                row
+                rows
             })
             .collect();
         let (storage, gpu_only) = (BufferUsage::STORAGE, MemoryKind::GpuOnly);
         let specs = [
             ("table", std::mem::size_of::<ObjectParams>() as u64, storage, MemoryKind::Upload),
             ("objects", 16 * rows.len() as u64, storage, MemoryKind::Upload),
+            ("moves", 16 * total, storage, gpu_only),
             ("cell_rank", 8 * total, storage, gpu_only),
             ("counts", 4 * (buckets + 1), storage | BufferUsage::TRANSFER_DST, gpu_only),
             ("starts", 4 * (buckets + 1), storage, gpu_only),
             ("sorted", 16 * total, storage, gpu_only),
+            ("particles", 16 * total, storage, gpu_only),
             ("block_sums", 4 * buckets.div_ceil(SCAN_BLOCK), storage, gpu_only),
             ("touches", 4 * total, storage, gpu_only),
             ("pairs", 4 * PAIR_MAX * total, storage, gpu_only),
         ];
-        let [table, objects, cell_rank, counts, starts, sorted, block_sums, touches, pairs] =
+        let [table, objects, moves, cell_rank, counts, starts, sorted, particles, block_sums, touches, pairs] =
             super::object::buffers(ctx, "contact", specs)?;
         let mut contact = Self {
             table,
             objects,
+            moves,
             cell_rank,
             counts,
             starts,
             sorted,
+            particles,
             block_sums,
             touches,
             pairs,
@@ -145,8 +159,8 @@ impl SceneContact {
                     &c.objects,
                     touch,
                     p,
-                    p,
-                    p,
+                    &c.particles,
+                    &c.moves,
                 ];
                 debug_assert_eq!(bindings.len() as u32, BINDINGS);
                 sets.push(arena.allocate(ctx, layout, &bindings)?);
@@ -188,10 +202,11 @@ impl SceneContact {
     }
 
     /// Records the substep's contacts after every object's physics (its output ordered for
-    /// reading) and before the constraints: count, scan, scatter, the query's two passes
-    /// (the touches over the scene's particles, then each object's sums), each ordered after
-    /// the one before by barriers on exactly the buffers it reads; the contact sums are
-    /// ordered for the constraint stage at the end.
+    /// reading) and before the constraints: count (which also clears the contact counts and
+    /// moves), scan, scatter, then contact.comp's passes: the counts and the moves over the
+    /// scene's particles, then each object's sums. Each is ordered after the one before by
+    /// barriers on exactly the buffers it uses; the contact sums are ordered for the
+    /// constraint stage at the end.
     pub fn record(&self, rec: &mut Recorder<'_>, pipelines: &Pipelines, objects: &[GpuObject]) {
         let b = BufferBarrier::new;
         let each_object = |rec: &mut Recorder<'_>, stage: Stage, pass: u32| {
@@ -200,10 +215,18 @@ impl SceneContact {
                 rec.dispatch_with(pipelines.get(stage), set, groups, &[k as u32, pass]);
             }
         };
-        // The last scan zeroed the counts; the last scatter read the ranks.
+        // Over the scene's particles (any object's set holds the scene's buffers).
+        let scene = |rec: &mut Recorder<'_>, pass: u32| {
+            let groups = [self.total.div_ceil(256), 1, 1];
+            rec.dispatch_with(pipelines.get(Stage::Contact), self.sets[0], groups, &[0, pass]);
+        };
+        // The last scan zeroed the counts; the last substep's passes used the ranks, contact
+        // counts and moves that the count pass rewrites.
         rec.barrier(&[
             b(&self.counts, Access::ComputeWrite, Access::ComputeReadWrite),
             b(&self.cell_rank, Access::ComputeRead, Access::ComputeWrite),
+            b(&self.touches, Access::ComputeReadWrite, Access::ComputeWrite),
+            b(&self.moves, Access::ComputeReadWrite, Access::ComputeWrite),
         ]);
         each_object(rec, Stage::ContactCount, 0);
         // The scan reads the counts and rewrites the starts the last query read.
@@ -219,28 +242,32 @@ impl SceneContact {
             b(&self.starts, Access::ComputeWrite, Access::ComputeRead),
             b(&self.block_sums, Access::ComputeWrite, Access::ComputeRead),
             b(&self.sorted, Access::ComputeRead, Access::ComputeWrite),
+            b(&self.particles, Access::ComputeRead, Access::ComputeWrite),
         ]);
         each_object(rec, Stage::ContactScatter, 0);
+        rec.barrier(&[
+            b(&self.sorted, Access::ComputeWrite, Access::ComputeRead),
+            b(&self.particles, Access::ComputeWrite, Access::ComputeRead),
+            b(&self.touches, Access::ComputeWrite, Access::ComputeReadWrite),
+            b(&self.moves, Access::ComputeWrite, Access::ComputeReadWrite),
+            b(&self.pairs, Access::ComputeReadWrite, Access::ComputeReadWrite),
+        ]);
+        // contact.comp's passes share one shader, which uses the counts, moves and pairs with
+        // atomics or writes: each pass is ordered as reading and writing all three.
+        let between = [
+            b(&self.touches, Access::ComputeReadWrite, Access::ComputeReadWrite),
+            b(&self.moves, Access::ComputeReadWrite, Access::ComputeReadWrite),
+            b(&self.pairs, Access::ComputeReadWrite, Access::ComputeReadWrite),
+        ];
+        scene(rec, 0);
+        rec.barrier(&between);
+        scene(rec, 1);
         let sums: Vec<_> = objects.iter().filter_map(|o| o.contact.as_ref()).collect();
         let mut before: Vec<_> =
             sums.iter().map(|c| b(c, Access::ComputeRead, Access::ComputeWrite)).collect();
-        before.push(b(&self.sorted, Access::ComputeWrite, Access::ComputeRead));
-        // The last substep's sums read the touches and pairs this one's count rewrites.
-        before.push(b(&self.touches, Access::ComputeRead, Access::ComputeWrite));
-        before.push(b(&self.pairs, Access::ComputeRead, Access::ComputeWrite));
+        before.extend(between);
         rec.barrier(&before);
-        // The touches: one dispatch over the scene's particles (any object's set holds the hash).
-        rec.dispatch_with(
-            pipelines.get(Stage::Contact),
-            self.sets[0],
-            [self.total.div_ceil(256), 1, 1],
-            &[0, 0],
-        );
-        rec.barrier(&[
-            b(&self.touches, Access::ComputeWrite, Access::ComputeRead),
-            b(&self.pairs, Access::ComputeWrite, Access::ComputeRead),
-        ]);
-        each_object(rec, Stage::Contact, 1);
+        each_object(rec, Stage::Contact, 2);
         rec.barrier(
             &sums.iter().map(|c| b(c, Access::ComputeWrite, Access::ComputeRead)).collect::<Vec<_>>(),
         );
@@ -250,10 +277,12 @@ impl SceneContact {
         for buffer in [
             self.table,
             self.objects,
+            self.moves,
             self.cell_rank,
             self.counts,
             self.starts,
             self.sorted,
+            self.particles,
             self.block_sums,
             self.touches,
             self.pairs,

@@ -1,0 +1,44 @@
+// The point of a triangle nearest to a point: shared by a cloth's contact with itself
+// (self_contact.glsl) and contact between objects (contact.comp). CPU twin:
+// sim::cpu::self_contact::triangle_nearest.
+#ifndef MSD_TRIANGLE_GLSL
+#define MSD_TRIANGLE_GLSL
+
+// The barycentric weights of the point of triangle (a, b, c) nearest to p (Ericson,
+// Real-Time Collision Detection, 5.1.5).
+vec3 triangle_nearest(vec3 p, vec3 a, vec3 b, vec3 c) {
+    vec3 ab = b - a;
+    vec3 ac = c - a;
+    vec3 ap = p - a;
+    float d1 = dot(ab, ap);
+    float d2 = dot(ac, ap);
+    if (d1 <= 0.0 && d2 <= 0.0) return vec3(1.0, 0.0, 0.0);
+    vec3 bp = p - b;
+    float d3 = dot(ab, bp);
+    float d4 = dot(ac, bp);
+    if (d3 >= 0.0 && d4 <= d3) return vec3(0.0, 1.0, 0.0);
+    float vc = d1 * d4 - d3 * d2;
+    if (vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0) {
+        float t = d1 / (d1 - d3);
+        return vec3(1.0 - t, t, 0.0);
+    }
+    vec3 cp = p - c;
+    float d5 = dot(ab, cp);
+    float d6 = dot(ac, cp);
+    if (d6 >= 0.0 && d5 <= d6) return vec3(0.0, 0.0, 1.0);
+    float vb = d5 * d2 - d1 * d6;
+    if (vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0) {
+        float t = d2 / (d2 - d6);
+        return vec3(1.0 - t, 0.0, t);
+    }
+    float va = d3 * d6 - d5 * d4;
+    if (va <= 0.0 && d4 - d3 >= 0.0 && d5 - d6 >= 0.0) {
+        float t = (d4 - d3) / ((d4 - d3) + (d5 - d6));
+        return vec3(0.0, 1.0 - t, t);
+    }
+    float sum = va + vb + vc;
+    if (!(sum > 0.0)) return vec3(1.0, 0.0, 0.0);  // a degenerate triangle: its first vertex
+    return vec3(va, vb, vc) / sum;
+}
+
+#endif
