@@ -18,12 +18,12 @@
 // Every contact's moves are divided by the largest count of contacts among its particles, the
 // same for all of them (equal and opposite momenta; a particle in n contacts moves at most by
 // the largest overlap). Pass 0 counts each particle's contacts (touches[], with atomics: a
-// triangle's corners are counted by the particle that touches it) and notes, for a particle
-// that sees no triangles, its first PAIR_MAX partners' hash slots (pairs[]). Pass 1 sums the
-// moves into moves[] in fixed point (integer atomics: exact and in any order). Pass 2 writes
-// each particle's sum (xyz) and whether it touches anything (w) into its object's contact[];
-// the constraint stage adds it to its own correction. touches[] and moves[] are cleared by
-// contact_count.comp. The CPU twin is sim::cpu::inter_object.
+// triangle's corners are counted by the particle that touches it) and notes the first
+// PAIR_MAX of its own. Pass 1 sums the moves into moves[] in fixed point (integer atomics:
+// exact and in any order), from the notes (searching again only for a particle with more).
+// Pass 2 writes each particle's sum (xyz) and whether it touches anything (w) into its
+// object's contact[]; the constraint stage adds it to its own correction. touches[] and
+// moves[] are cleared by contact_count.comp. The CPU twin is sim::cpu::inter_object.
 #include "layout.glsl"
 #include "contact_common.glsl"
 #include "triangle.glsl"
@@ -83,22 +83,69 @@ const ivec2 RING[6] = ivec2[6](ivec2(1, 0), ivec2(0, 1), ivec2(-1, 1), ivec2(-1,
 // Whether a corner at squared distance da (index ia) is nearer than one at db (index ib).
 bool nearer(float da, uint ia, float db, uint ib) { return da < db || (da == db && ia < ib); }
 
-// Particle k (entry ek, object me) against the triangles of object q around its vertex j (at
-// squared distance dj) of which j is the corner nearest to k: pass 0 counts each contact into
-// n and its corners' touches, pass 1 adds its four moves.
-void triangles_around(uint k, vec4 ek, uint me, uint j, vec4 ej, float dj, uint q, bool sum, inout uint n) {
+// Contacts a particle notes in pass 0 for pass 1 (pairs[], PAIR_MAX a particle, each the other
+// particle's scene index << 3 | the ring index r of triangle (j, ring r, ring r + 1) of j's
+// object, or PAIR_NOTE for a particle pair); one with more searches the hash again. Its count
+// of contacts as the particle (not as a corner) is moves[4 k + 3].
+const uint PAIR_MAX = 8u;
+const uint PAIR_NOTE = 7u;
+
+// The scene index of vertex j's ring neighbour r in object q (j's grid position `at`), if any.
+bool ring_vertex(uint q, ivec2 at, int r, out uint index) {
     uvec2 grid = grid_of(q);
+    ivec2 c = at + RING[r];
+    index = first_of(q) + uint(c.x) + uint(c.y) * grid.x;
+    return c.x >= 0 && c.y >= 0 && c.x < int(grid.x) && c.y < int(grid.y);
+}
+
+ivec2 grid_position(uint q, uint j) {
     uint local = j - first_of(q);
-    ivec2 at = ivec2(local % grid.x, local / grid.x);
+    return ivec2(local % grid_of(q).x, local / grid_of(q).x);
+}
+
+// Pass 1: the moves of particle k (entry ek, object me) against triangle (j, a, b) of object q,
+// the corners' entries ej, ea, eb, summed into moves[].
+void triangle_moves(uint k, vec4 ek, uint me, uvec3 tv, vec4 ej, vec4 ea, vec4 eb, uint q) {
+    float reach = radius_of(me) + radius_of(q);
+    vec3 w = triangle_nearest(ek.xyz, ej.xyz, ea.xyz, eb.xyz);
+    vec3 off = ek.xyz - (w.x * ej.xyz + w.y * ea.xyz + w.z * eb.xyz);
+    float d = length(off);
+    float wp = inverse_mass(ek, me);
+    vec3 wk = vec3(inverse_mass(ej, q), inverse_mass(ea, q), inverse_mass(eb, q));
+    float denom = wp + dot(wk, w * w);
+    if (!(d > 0.0 && d < reach && denom > 0.0)) return;
+    uint split = max(max(touches[k], touches[tv.x]), max(touches[tv.y], touches[tv.z]));
+    vec3 push = (off / d) * ((reach - d) / (denom * float(split)));
+    add_move(k, wp * push);
+    add_move(tv.x, -wk.x * w.x * push);
+    add_move(tv.y, -wk.y * w.y * push);
+    add_move(tv.z, -wk.z * w.z * push);
+}
+
+// Pass 1: particle k's move (entry ek, object me) in its pair with particle j (entry ej,
+// object q) into `move`.
+void pair_move(uint k, vec4 ek, uint me, uint j, vec4 ej, uint q, inout vec3 move) {
+    float reach = radius_of(me) + radius_of(q);
+    vec3 to_j = ej.xyz - ek.xyz;
+    float d = length(to_j);
+    if (!(d > 0.0 && d < reach)) return;
+    float w = (floatBitsToUint(ej.w) & PINNED_BIT) != 0u ? 1.0 : mass_of(q) / (mass_of(me) + mass_of(q));
+    float split = 1.0 / float(max(touches[k], touches[j]));
+    move += (to_j / d) * ((d - reach) * w * split);
+}
+
+// Particle k (entry ek, object me) against the triangles of object q around its vertex j (entry
+// ej, at squared distance dj) of which j is the corner nearest to k: pass 0 counts each contact
+// into n, notes it and counts it into its corners' touches; pass 1 sums its moves.
+void triangles_around(uint k, vec4 ek, uint me, uint j, vec4 ej, float dj, uint q, bool sum, inout uint n) {
+    ivec2 at = grid_position(q, j);
     float reach = radius_of(me) + radius_of(q);
     vec4 ring[6];
     uint index[6];
     bool closer[6];  // whether j is nearer to k than the neighbour (false where there is none)
     [[unroll]] for (int r = 0; r < 6; ++r) {
-        ivec2 c = at + RING[r];
-        closer[r] = c.x >= 0 && c.y >= 0 && c.x < int(grid.x) && c.y < int(grid.y);
+        closer[r] = ring_vertex(q, at, r, index[r]);
         if (!closer[r]) continue;
-        index[r] = first_of(q) + uint(c.x) + uint(c.y) * grid.x;
         ring[r] = entry_of(index[r]);
         vec3 dr = ring[r].xyz - ek.xyz;
         closer[r] = nearer(dj, j, dot(dr, dr), index[r]);
@@ -106,61 +153,81 @@ void triangles_around(uint k, vec4 ek, uint me, uint j, vec4 ej, float dj, uint 
     [[unroll]] for (int r = 0; r < 6; ++r) {
         int s = r == 5 ? 0 : r + 1;
         if (!closer[r] || !closer[s]) continue;
-        vec3 w = triangle_nearest(ek.xyz, ej.xyz, ring[r].xyz, ring[s].xyz);
-        vec3 off = ek.xyz - (w.x * ej.xyz + w.y * ring[r].xyz + w.z * ring[s].xyz);
-        float d = length(off);
-        if (!(d > 0.0 && d < reach)) continue;
-        n += 1u;
         uvec3 tv = uvec3(j, index[r], index[s]);
-        if (!sum) {
-            atomicAdd(touches[tv.x], 1u);
-            atomicAdd(touches[tv.y], 1u);
-            atomicAdd(touches[tv.z], 1u);
+        if (sum) {
+            triangle_moves(k, ek, me, tv, ej, ring[r], ring[s], q);
             continue;
         }
-        float wp = inverse_mass(ek, me);
-        vec3 wk = vec3(inverse_mass(ej, q), inverse_mass(ring[r], q), inverse_mass(ring[s], q));
-        float denom = wp + dot(wk, w * w);
-        if (!(denom > 0.0)) continue;
-        uint split = max(max(touches[k], touches[tv.x]), max(touches[tv.y], touches[tv.z]));
-        vec3 push = (off / d) * ((reach - d) / (denom * float(split)));
-        add_move(k, wp * push);
-        add_move(tv.x, -wk.x * w.x * push);
-        add_move(tv.y, -wk.y * w.y * push);
-        add_move(tv.z, -wk.z * w.z * push);
+        vec3 w = triangle_nearest(ek.xyz, ej.xyz, ring[r].xyz, ring[s].xyz);
+        float d = length(ek.xyz - (w.x * ej.xyz + w.y * ring[r].xyz + w.z * ring[s].xyz));
+        if (!(d > 0.0 && d < reach)) continue;
+        if (n < PAIR_MAX) pairs[k * PAIR_MAX + n] = j << 3u | uint(r);
+        n += 1u;
+        atomicAdd(touches[tv.x], 1u);
+        atomicAdd(touches[tv.y], 1u);
+        atomicAdd(touches[tv.z], 1u);
     }
 }
 
-// Partners a particle keeps from the count pass; one with more searches the hash again.
-const uint PAIR_MAX = 8u;
+// Hash slots of another cloth's vertices near enough to lead to a contact, gathered by the
+// search and tested after it (`test_candidates`): the threads of a subgroup then test their
+// candidates side by side instead of one thread after another as each finds one.
+const uint CANDIDATE_MAX = 32u;
 
-// The contacts of scene particle k (entry ek, object me) that the hash entry at slot `at`
-// leads to: counted into n; pass 0 notes a particle pair's slot (the first PAIR_MAX), pass 1
-// sums the moves (a particle pair's move of k into `move`).
-void visit(uint at, vec4 ek, uint k, uint me, bool sum, inout uint n, inout vec3 move) {
+// The hash entry at slot `at` for scene particle k (entry ek, object me): a vertex of another
+// cloth near enough is kept as a candidate (the caller tests them when `candidates` is full);
+// a particle of another object neither being a cloth is a pair: pass 0 counts it into n and
+// notes it, pass 1 adds k's move to `move`.
+void visit(uint at, vec4 ek, uint k, uint me, bool sum, inout uint n, inout vec3 move, inout uint candidates[CANDIDATE_MAX], inout uint found) {
     vec4 e = sorted[at];
-    uint bits = floatBitsToUint(e.w);
-    uint j = bits & ~PINNED_BIT;
+    uint j = floatBitsToUint(e.w) & ~PINNED_BIT;
     uint other = owner(j);
     if (other == me) return;
     vec3 to_j = e.xyz - ek.xyz;
     float dj = dot(to_j, to_j);
     if (grid_of(other).x != 0u) {
         float r = radius_of(me) + radius_of(other) + corner_reach(other);
-        if (dj < r * r) triangles_around(k, ek, me, j, e, dj, other, sum, n);
+        if (dj < r * r) candidates[found++] = at;
     } else if (grid_of(me).x == 0u) {
+        if (sum) {
+            pair_move(k, ek, me, j, e, other, move);
+            return;
+        }
         float reach = radius_of(me) + radius_of(other);
         float d = sqrt(dj);
         if (d < reach && d > 0.0) {
-            if (!sum && n < PAIR_MAX) pairs[k * PAIR_MAX + n] = at;
+            if (n < PAIR_MAX) pairs[k * PAIR_MAX + n] = j << 3u | PAIR_NOTE;
             n += 1u;
-            if (sum) {
-                float w = (bits & PINNED_BIT) != 0u ? 1.0 : mass_of(other) / (mass_of(me) + mass_of(other));
-                float split = 1.0 / float(max(touches[k], touches[j]));
-                move += (to_j / d) * ((d - reach) * w * split);
-            }
         }
     }
+}
+
+// The triangles around each candidate vertex (see `visit`).
+void test_candidates(vec4 ek, uint k, uint me, bool sum, inout uint n, uint candidates[CANDIDATE_MAX], uint found) {
+    for (uint c = 0u; c < found; ++c) {
+        vec4 e = sorted[candidates[c]];
+        uint j = floatBitsToUint(e.w) & ~PINNED_BIT;
+        vec3 to_j = e.xyz - ek.xyz;
+        triangles_around(k, ek, me, j, e, dot(to_j, to_j), owner(j), sum, n);
+    }
+}
+
+// Pass 1: the moves of the contact particle k noted in pass 0.
+void replay(uint note, vec4 ek, uint k, uint me, inout vec3 move) {
+    uint j = note >> 3u;
+    uint q = owner(j);
+    vec4 ej = entry_of(j);
+    if ((note & 7u) == PAIR_NOTE) {
+        pair_move(k, ek, me, j, ej, q, move);
+        return;
+    }
+    int r = int(note & 7u);
+    int s = r == 5 ? 0 : r + 1;
+    ivec2 at = grid_position(q, j);
+    uvec3 tv = uvec3(j, 0u, 0u);
+    ring_vertex(q, at, r, tv.y);
+    ring_vertex(q, at, s, tv.z);
+    triangle_moves(k, ek, me, tv, ej, entry_of(tv.y), entry_of(tv.z), q);
 }
 
 void main() {
@@ -176,21 +243,20 @@ void main() {
     bool sum = which.pass == 1u;
     uint k = i;
     uint me = owner(k);
-    uint looks = sees(me);
-    if (looks == 0u) return;
+    if (sees(me) == 0u) return;
+    uint own = sum ? uint(moves[4u * k + 3u]) : 0u;
+    if (sum && own == 0u) return;
     vec4 ek = entry_of(k);
-    bool pinned = (floatBitsToUint(ek.w) & PINNED_BIT) != 0u;
     uint n = 0u;
     vec3 move = vec3(0.0);
-    if (sum && looks == SEES_PARTICLES && (pinned || touches[k] <= PAIR_MAX)) {
-        // The partners the count pass noted (none for most particles).
-        if (!pinned) {
-            for (uint e = 0u; e < touches[k]; ++e) visit(pairs[k * PAIR_MAX + e], ek, k, me, true, n, move);
-        }
+    if (sum && own <= PAIR_MAX) {
+        for (uint e = 0u; e < own; ++e) replay(pairs[k * PAIR_MAX + e], ek, k, me, move);
     } else {
         // Cells are sized so that everything a contact needs lies in the 2 x 2 x 2 block of
         // cells nearest to the particle (SimModel::contact_cell). Buckets visited once.
         ivec3 base = ivec3(floor(ek.xyz * table.cell_inv - 0.5));
+        uint candidates[CANDIDATE_MAX];
+        uint found = 0u;
         uint seen[8];
         for (int c = 0; c < 8; ++c) {
             uint h = cell_hash(base + ivec3(c & 1, (c >> 1) & 1, c >> 2), table.hash_mask);
@@ -199,12 +265,21 @@ void main() {
             for (int q = 0; q < c; ++q) again = again || seen[q] == h;
             if (again) continue;
             uint end = BUCKET_START(h + 1u, table.hash_mask);
-            for (uint at = BUCKET_START(h, table.hash_mask); at < end; ++at) visit(at, ek, k, me, sum, n, move);
+            for (uint at = BUCKET_START(h, table.hash_mask); at < end; ++at) {
+                visit(at, ek, k, me, sum, n, move, candidates, found);
+                if (found == CANDIDATE_MAX) {
+                    test_candidates(ek, k, me, sum, n, candidates, found);
+                    found = 0u;
+                }
+            }
         }
+        test_candidates(ek, k, me, sum, n, candidates, found);
     }
     if (sum) {
+        bool pinned = (floatBitsToUint(ek.w) & PINNED_BIT) != 0u;
         add_move(k, pinned ? vec3(0.0) : move);
     } else if (n > 0u) {
         atomicAdd(touches[k], n);
+        moves[4u * k + 3u] = int(n);
     }
 }

@@ -11,20 +11,17 @@ use glam::DVec3;
 use msdsim::sim::gpu::GpuSim;
 
 /// A 30 x 30 cloth (2.5 cm spacing, 0.73 m, 1.8 kg) pinned at its corners at y = 0.5 and a
-/// 0.5 m rope (radius 2 cm) dropped across its middle from `drop` metres above it. Contact is
-/// between particles: it keeps rope nodes 3 cm (rope radius + cloth margin) from cloth
-/// particles, so the cloth is solid to the rope only where its holes are smaller: a cell's
-/// centre is 1.8 cm from its four corners here, a node there overlaps all four by 1.2 cm.
-/// (With 4 cm spacing the centre is 2.8 cm away and nodes sink into the cells: measured.)
-/// At every frame each rope node must be on the upper side of the cloth: above the tangent
+/// 0.5 m rope (radius 2 cm) dropped across its middle from `drop` metres above it (0.1 and 2 m:
+/// 1.4 and 6.3 m/s at impact). Contact keeps rope nodes 3 cm (rope radius + cloth margin) from
+/// the cloth's triangles. At every frame each rope node must be on the upper side of the cloth: above the tangent
 /// plane at the cloth particle nearest to it (the cloth's smoothed normal there, turned up);
 /// a node that slipped through would be about 3 cm below it. At the end (2.5 s) the rope must
 /// lie on the cloth: every node within 6 cm of that plane (not thrown off). (It may still
-/// slide: contact between objects has no friction yet, measured 0.3 m/s.)
+/// slide: contact between objects has no friction yet.)
 #[test]
 fn a_rope_dropped_on_a_cloth_rests_on_it() {
     let ctx = gpu();
-    for drop in [0.1, 1.0, 2.0] {
+    for drop in [0.1, 2.0] {
         let n = 30;
         let mut c = cloth(n, n, 0.025);
         for (i, p) in c.positions.iter_mut().enumerate() {
