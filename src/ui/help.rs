@@ -11,7 +11,7 @@ const HELP: &[(&str, &str)] = &[
     ("substeps", "Substeps per simulated frame: each advances frame dt / substeps. More substeps are more accurate and stable, and cost proportionally more."),
     ("frame dt [ms]", "Simulated time per frame [ms]; 16.667 is 60 frames a second."),
     ("gravity [m/s^2]", "Gravitational acceleration, x y z [m/s^2]; -9.81 in y is Earth's."),
-    ("objects touch each other", "Contact between objects: each pair of particles of two objects is kept the sum of their contact radii apart (a cloth's collision margin, a rope's radius). Scenes pay for it only with two or more objects."),
+    ("objects touch each other", "Contact between objects: every particle is kept the sum of the two objects' contact radii (a cloth's collision margin, a rope's radius) from another cloth's triangles, and a rope's nodes that far from another rope's; equal and opposite, no friction yet. Scenes pay for it only with two or more objects."),
     ("integrator", "How a substep advances the springs: symplectic Euler (the paper's) and Verlet are explicit (fast, limited by the stiffest spring); XPBD, implicit and VBD are stable at any stiffness and converge to BDF2, a second-order implicit method; auto picks the cheapest method within the tolerance."),
     ("iterations", "Solver iterations per substep of an iterative method: more converge closer to the method's implicit (BDF2) solve and cost more."),
     ("relaxation", "XPBD over-relaxation of each Gauss-Seidel correction (1: none; below 2)."),
