@@ -22,32 +22,7 @@ use msdsim::sim::gpu::GpuSim;
 fn a_rope_dropped_on_a_cloth_rests_on_it() {
     let ctx = gpu();
     for drop in [0.1, 2.0] {
-        let n = 30;
-        let mut c = cloth(n, n, 0.025);
-        for (i, p) in c.positions.iter_mut().enumerate() {
-            let (col, row) = ((i as u32 % n) as f64, (i as u32 / n) as f64);
-            *p = DVec3::new(col * 0.025 - 0.3625, 0.5, row * 0.025 - 0.3625);
-        }
-        for corner in [0, n - 1, n * (n - 1), n * n - 1] {
-            c.pinned[corner as usize] = true;
-        }
-        c.stiffness = [1000.0, 250.0, 5.0];
-        c.mass = 0.002;
-        c.damping = 0.02;
-        c.drag = 0.002;
-        c.margin = 0.01;
-        let mut r = rope(21, 0.025);
-        for (i, p) in r.positions.iter_mut().enumerate() {
-            *p = DVec3::new(i as f64 * 0.025 - 0.25, 0.5 + drop, 0.02);
-        }
-        r.stiffness = [800.0, 0.0, 5.0];
-        r.damping = 0.02;
-        r.drag = 0.005;
-        r.rope_radius = 0.02;
-        r.mass = 0.01;
-        let mut s = scene(vec![c, r]);
-        s.gravity = DVec3::new(0.0, -9.81, 0.0);
-        s.inter_object = true;
+        let s = rope_over(held_cloth(30, 0.025, 0.5), 0.5 + drop, 0.02);
         let mut gpu = GpuSim::new(&ctx, &s).unwrap();
         let frames = 150;
         let mut lowest = f64::MAX;
@@ -194,6 +169,24 @@ fn held_cloth(n: u32, spacing: f64, y: f64) -> msdsim::sim::model::ObjectModel {
     c
 }
 
+/// `cloth` and a 0.5 m rope (21 nodes, radius 2 cm, 10 g nodes) along x at height y and depth
+/// z above it, under gravity, touching each other.
+fn rope_over(cloth: msdsim::sim::model::ObjectModel, y: f64, z: f64) -> msdsim::sim::model::SimModel {
+    let mut r = rope(21, 0.025);
+    for (i, p) in r.positions.iter_mut().enumerate() {
+        *p = DVec3::new(i as f64 * 0.025 - 0.25, y, z);
+    }
+    r.stiffness = [800.0, 0.0, 5.0];
+    r.damping = 0.02;
+    r.drag = 0.005;
+    r.rope_radius = 0.02;
+    r.mass = 0.01;
+    let mut s = scene(vec![cloth, r]);
+    s.gravity = DVec3::new(0.0, -9.81, 0.0);
+    s.inter_object = true;
+    s
+}
+
 /// How far each of `points` is above the cloth (positions `x`, `cols` x `rows`) straight
 /// below or above it (the height over the triangle its xz position falls in; points outside
 /// the cloth's outline are left out).
@@ -229,19 +222,7 @@ fn heights_above(points: &[DVec3], x: &[DVec3], cols: usize, rows: usize) -> Vec
 fn a_rope_stays_on_a_coarse_cloth() {
     let ctx = gpu();
     for (n, spacing) in [(17u32, 0.04), (9, 0.08)] {
-        let c = held_cloth(n, spacing, 0.5);
-        let mut r = rope(21, 0.025);
-        for (i, p) in r.positions.iter_mut().enumerate() {
-            *p = DVec3::new(i as f64 * 0.025 - 0.25, 0.6, 0.5 * spacing);
-        }
-        r.stiffness = [800.0, 0.0, 5.0];
-        r.damping = 0.02;
-        r.drag = 0.005;
-        r.rope_radius = 0.02;
-        r.mass = 0.01;
-        let mut s = scene(vec![c, r]);
-        s.gravity = DVec3::new(0.0, -9.81, 0.0);
-        s.inter_object = true;
+        let s = rope_over(held_cloth(n, spacing, 0.5), 0.6, 0.5 * spacing);
         let (cols, rows) = (n as usize, n as usize);
         let (tris, segments): (Vec<_>, Vec<_>) =
             (cloth_triangles(cols, rows), (0..20).map(|k| [k, k + 1]).collect());
