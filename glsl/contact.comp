@@ -15,7 +15,7 @@
 // - particle against particle between two objects neither of which is a cloth (ropes): d the
 //   distance between them, p moves (reach - d) w_p / (w_p + w_q) away from q (all of it when q
 //   is pinned); q, finding p, the opposite.
-// Every contact's moves are divided by the largest count of contacts among its particles, the
+// Every contact's moves are divided by the largest count of contacts among its free particles, the
 // same for all of them (equal and opposite momenta; a particle in n contacts moves at most by
 // the largest overlap). Pass 0 counts each particle's contacts (touches[], with atomics: a
 // triangle's corners are counted by the particle that touches it) and notes the first
@@ -30,16 +30,18 @@
 
 layout(local_size_x = 256) in;
 
-uint object_count() { return uint(objects.length()) / 2u; }
-float radius_of(uint q) { return objects[2u * q].z; }
-float mass_of(uint q) { return objects[2u * q].w; }
+uint object_count() { return uint(objects.length()) / OBJECT_ROWS; }
+// Object q's friction coefficient (Coulomb's mu) with others.
+float friction_of(uint q) { return objects[OBJECT_ROWS * q + 2u].x; }
+float radius_of(uint q) { return objects[OBJECT_ROWS * q].z; }
+float mass_of(uint q) { return objects[OBJECT_ROWS * q].w; }
 // (columns, rows) of object q's grid; columns 0 when its triangles take no part.
-uvec2 grid_of(uint q) { return floatBitsToUint(objects[2u * q + 1u].xy); }
+uvec2 grid_of(uint q) { return floatBitsToUint(objects[OBJECT_ROWS * q + 1u].xy); }
 // What object q's particles look for: SEES_TRIANGLES another object's triangles,
 // SEES_PARTICLES another object's particles (neither object a cloth).
 const uint SEES_TRIANGLES = 1u;
 const uint SEES_PARTICLES = 2u;
-uint sees(uint q) { return floatBitsToUint(objects[2u * q + 1u].z); }
+uint sees(uint q) { return floatBitsToUint(objects[OBJECT_ROWS * q + 1u].z); }
 
 // The object a scene index belongs to (objects are few: a linear search).
 uint owner(uint k) {
@@ -52,7 +54,7 @@ uint owner(uint k) {
 
 // Particles in the scene (the last object's first index and count).
 uint scene_count() {
-    vec4 last = objects[2u * (object_count() - 1u)];
+    vec4 last = objects[OBJECT_ROWS * (object_count() - 1u)];
     return floatBitsToUint(last.x) + floatBitsToUint(last.y);
 }
 
@@ -63,7 +65,7 @@ float inverse_mass(vec4 e, uint q) { return (floatBitsToUint(e.w) & PINNED_BIT) 
 
 // How much farther than the reach a triangle's nearest corner may be from a particle touching
 // it: half its rest diagonal stretched TRIANGLE_STRETCH times (ObjectModel::corner_reach).
-float corner_reach(uint q) { return objects[2u * q + 1u].w; }
+float corner_reach(uint q) { return objects[OBJECT_ROWS * q + 1u].w; }
 
 // Fixed-point units a metre of moves[] (2^28 a cell): a particle's sum stays within its
 // largest overlap, under half a cell, far inside the 8 cells an int holds.
@@ -82,6 +84,25 @@ const ivec2 RING[6] = ivec2[6](ivec2(1, 0), ivec2(0, 1), ivec2(-1, 1), ivec2(-1,
 
 // Whether a corner at squared distance da (index ia) is nearer than one at db (index ib).
 bool nearer(float da, uint ia, float db, uint ib) { return da < db || (da == db && ia < ib); }
+
+// A particle's count of contacts for the split (at least 1), none when it is pinned (inverse
+// mass w 0: it takes no share of any contact's correction, so its count would only dilute
+// its partners' corrections, which friction must make whole within a substep).
+uint count_of(uint k, float w) { return w > 0.0 ? max(touches[k], 1u) : 1u; }
+
+// Two objects' friction coefficient with each other: the mean of theirs.
+float pair_friction(uint a, uint b) { return 0.5 * (friction_of(a) + friction_of(b)); }
+
+// How much of the relative motion `moved` over the substep friction undoes in a contact of
+// normal n whose normal correction is `normal`: all of its tangential part within the cone
+// (static), else mu times the normal correction of it (kinetic: Coulomb's bound on the
+// tangential impulse). Twin: sim::cpu::inter_object::friction_correction.
+vec3 friction_correction(vec3 moved, vec3 n, float normal, float mu) {
+    vec3 slip = moved - dot(moved, n) * n;
+    float len = length(slip);
+    float most = mu * normal;
+    return len <= most ? slip : slip * (most / len);
+}
 
 // Contacts a particle notes in pass 0 for pass 1 (pairs[], PAIR_MAX a particle, each the other
 // particle's scene index << 3 | the ring index r of triangle (j, ring r, ring r + 1) of j's
@@ -114,8 +135,14 @@ void triangle_moves(uint k, vec4 ek, uint me, uvec3 tv, vec4 ej, vec4 ea, vec4 e
     vec3 wk = vec3(inverse_mass(ej, q), inverse_mass(ea, q), inverse_mass(eb, q));
     float denom = wp + dot(wk, w * w);
     if (!(d > 0.0 && d < reach && denom > 0.0)) return;
-    uint split = max(max(touches[k], touches[tv.x]), max(touches[tv.y], touches[tv.z]));
-    vec3 push = (off / d) * ((reach - d) / (denom * float(split)));
+    uint split = max(max(count_of(k, wp), count_of(tv.x, wk.x)), max(count_of(tv.y, wk.y), count_of(tv.z, wk.z)));
+    vec3 n = off / d;
+    // The relative motion over the substep, along the contact's tangent: undone whole within
+    // the friction cone, else by mu times the normal correction (Coulomb).
+    vec3 moved = (ek.xyz - begun[k].xyz)
+               - (w.x * (ej.xyz - begun[tv.x].xyz) + w.y * (ea.xyz - begun[tv.y].xyz) + w.z * (eb.xyz - begun[tv.z].xyz));
+    vec3 correction = n * (reach - d) - friction_correction(moved, n, reach - d, pair_friction(me, q));
+    vec3 push = correction / (denom * float(split));
     add_move(k, wp * push);
     add_move(tv.x, -wk.x * w.x * push);
     add_move(tv.y, -wk.y * w.y * push);
@@ -129,9 +156,13 @@ void pair_move(uint k, vec4 ek, uint me, uint j, vec4 ej, uint q, inout vec3 mov
     vec3 to_j = ej.xyz - ek.xyz;
     float d = length(to_j);
     if (!(d > 0.0 && d < reach)) return;
-    float w = (floatBitsToUint(ej.w) & PINNED_BIT) != 0u ? 1.0 : mass_of(q) / (mass_of(me) + mass_of(q));
-    float split = 1.0 / float(max(touches[k], touches[j]));
-    move += (to_j / d) * ((d - reach) * w * split);
+    bool j_pinned = (floatBitsToUint(ej.w) & PINNED_BIT) != 0u;
+    float w = j_pinned ? 1.0 : mass_of(q) / (mass_of(me) + mass_of(q));
+    float split = 1.0 / float(max(count_of(k, 1.0), count_of(j, j_pinned ? 0.0 : 1.0)));
+    vec3 n = -to_j / d;
+    vec3 moved = (ek.xyz - begun[k].xyz) - (ej.xyz - begun[j].xyz);
+    vec3 correction = n * (reach - d) - friction_correction(moved, n, reach - d, pair_friction(me, q));
+    move += correction * (w * split);
 }
 
 // Particle k (entry ek, object me) against the triangles of object q around its vertex j (entry

@@ -72,7 +72,8 @@ fn momentum(model: &msdsim::sim::model::SimModel, velocities: &[Vec<DVec3>]) -> 
 
 /// A rope (20 g nodes, radius 2 cm) thrown at 2 m/s into a free 12 x 12 cloth (5 g particles,
 /// 2.5 cm spacing), and a tilted free 7 x 7 cloth (8 g particles) thrown the same way into it
-/// (each cloth's particles against the other's triangles), no gravity, pins, drag, stretch
+/// (each cloth's particles against the other's triangles), friction 0.5 (its corrections are
+/// equal and opposite too), no gravity, pins, drag, stretch
 /// limit or self-collision: nothing outside the two objects acts on them, so their total
 /// momentum must stay what it was, to 1e-5 of it (the f32 floor of the GPU's velocity sums
 /// over 640 substeps is about 1e-6; before each contact's moves were split equally among its
@@ -93,6 +94,7 @@ fn contact_between_objects_conserves_momentum() {
     c.mass = 0.005;
     c.damping = 0.01;
     c.margin = 0.01;
+    c.friction = 0.5;
     let mut r = rope(8, 0.025);
     for (i, p) in r.positions.iter_mut().enumerate() {
         *p = DVec3::new(i as f64 * 0.025 - 0.0875, 0.6, 0.013);
@@ -102,6 +104,7 @@ fn contact_between_objects_conserves_momentum() {
     r.damping = 0.02;
     r.rope_radius = 0.02;
     r.mass = 0.02;
+    r.friction = 0.5;
     let mut top = cloth(7, 7, 0.025);
     for (i, p) in top.positions.iter_mut().enumerate() {
         let (col, row) = ((i % 7) as f64, (i / 7) as f64);
@@ -112,6 +115,7 @@ fn contact_between_objects_conserves_momentum() {
     top.mass = 0.008;
     top.damping = 0.01;
     top.margin = 0.01;
+    top.friction = 0.5;
     for (name, thrown) in [("rope", r), ("cloth", top)] {
         let mut s = scene(vec![c.clone(), thrown]);
         s.inter_object = true;

@@ -18,11 +18,13 @@ layout(std430, set = 0, binding = 7) buffer SceneCounts { uint counts[]; };
 layout(std430, set = 0, binding = 8) buffer SceneStarts { uint starts[]; };
 layout(std430, set = 0, binding = 9) buffer SceneSorted { vec4 sorted[]; };         // xyz, w: scene index | pinned << 31
 layout(std430, set = 0, binding = 16) buffer SceneParticles { vec4 particles[]; };  // the same, by scene index
+layout(std430, set = 0, binding = 11) buffer SceneBegun { vec4 begun[]; };          // where each began the substep
+layout(std430, set = 0, binding = 15) readonly buffer StartIn { Particle p_start[]; };  // this object's state at the substep's start
 layout(std430, set = 0, binding = 10) buffer SceneBlocks { uint block_sums[]; };
 layout(std430, set = 0, binding = 12) restrict readonly buffer SceneHash { ObjectParams table; };  // hash_mask, cell_inv
-// Per object two rows: [first scene index, particle count (float bits), contact radius, mass]
-// and [grid columns, grid rows, what its particles look for (float bits; columns 0 when its
-// triangles take no part), its triangles' corner reach].
+// Per object three rows (OBJECT_ROWS): [first scene index, particle count (float bits),
+// contact radius, mass], [grid columns, grid rows, what its particles look for (float bits;
+// columns 0 when its triangles take no part), its triangles' corner reach], [friction, 0, 0, 0].
 layout(std430, set = 0, binding = 13) restrict readonly buffer Objects { vec4 objects[]; };
 layout(std430, set = 0, binding = 14) buffer ContactBuf { vec4 contact[]; };
 // Per scene particle: how many particles of other objects it touches (contact.comp's first pass),
@@ -39,7 +41,8 @@ layout(push_constant) uniform Which {
 
 const uint PINNED_BIT = 0x80000000u;
 
-uint first_of(uint q) { return floatBitsToUint(objects[2u * q].x); }
+const uint OBJECT_ROWS = 3u;
+uint first_of(uint q) { return floatBitsToUint(objects[OBJECT_ROWS * q].x); }
 uint first_index() { return first_of(which.object); }
 uint particle_count() { return obj.dims.x * obj.dims.y; }
 

@@ -10,8 +10,11 @@
 //!   away from the other by its share of the overlap (the other's mass over both, all of it
 //!   when the other is pinned).
 //!
-//! Every contact's moves are divided by the largest count of contacts among its particles
-//! (the same for all: equal and opposite momenta). Every pair is tested here; the GPU finds
+//! Both kinds have Coulomb friction (mu the mean of the two objects' `friction`): the
+//! contact's relative motion over the substep along its tangent is undone whole when it is
+//! within mu times the normal correction (static), else by that much (kinetic), with the same
+//! weights as the normal correction. Every contact's moves are divided by the largest count of
+//! contacts among its free particles (the same for all: equal and opposite momenta). Every pair is tested here; the GPU finds
 //! the same through the scene's spatial hash.
 
 use super::self_contact::{cloth_triangles, triangle_nearest};
@@ -21,14 +24,38 @@ use glam::DVec3;
 /// The particles of one contact, each as (object, particle, its move before the split).
 type Contact = Vec<(usize, usize, DVec3)>;
 
-/// Every contact between the objects at positions `x`.
-fn contacts(m: &SimModel, x: &[&[DVec3]]) -> Vec<Contact> {
+/// How much of the relative motion `moved` over the substep friction undoes in a contact of
+/// normal n whose normal correction is `normal` (`friction_correction` in glsl/contact.comp).
+fn friction_correction(moved: DVec3, n: DVec3, normal: f64, mu: f64) -> DVec3 {
+    let slip = moved - moved.dot(n) * n;
+    let (len, most) = (slip.length(), mu * normal);
+    if len <= most {
+        slip
+    } else {
+        slip * (most / len)
+    }
+}
+
+/// Whether objects a and b (positions x) are near enough to touch: their bounding boxes
+/// within `gap` of each other.
+fn near(x: &[&[DVec3]], a: usize, b: usize, gap: f64) -> bool {
+    let bounds = |p: &[DVec3]| p.iter().fold((DVec3::MAX, DVec3::MIN), |(lo, hi), &v| (lo.min(v), hi.max(v)));
+    let ((la, ha), (lb, hb)) = (bounds(x[a]), bounds(x[b]));
+    (la - hb).max(lb - ha).max_element() < gap
+}
+
+/// Every contact between the objects at positions `x` (`x0` where they began the substep).
+fn contacts(m: &SimModel, x: &[&[DVec3]], x0: &[&[DVec3]]) -> Vec<Contact> {
     let inverse_mass =
         |o: usize, i: usize| if m.objects[o].pinned[i] { 0.0 } else { 1.0 / m.objects[o].mass };
     let mut found = Vec::new();
     for (a, o) in m.objects.iter().enumerate() {
         for (b, other) in m.objects.iter().enumerate().filter(|&(b, _)| b != a) {
             let reach = o.contact_radius() + other.contact_radius();
+            let mu = 0.5 * (o.friction + other.friction);
+            if !near(x, a, b, reach + other.corner_reach().max(o.corner_reach())) {
+                continue;
+            }
             if other.contact_triangles() {
                 let triangles = cloth_triangles(other.dims[0] as usize, other.dims[1] as usize);
                 for (i, &p) in x[a].iter().enumerate() {
@@ -49,9 +76,12 @@ fn contacts(m: &SimModel, x: &[&[DVec3]]) -> Vec<Contact> {
                         let n = off / d;
                         let (wp, wk) = (inverse_mass(a, i), tv.map(|k| inverse_mass(b, k)));
                         let denom = wp + (0..3).map(|k| wk[k] * w[k] * w[k]).sum::<f64>();
-                        let lambda = if denom > 0.0 { (reach - d) / denom } else { 0.0 };
-                        let mut contact = vec![(a, i, wp * lambda * n)];
-                        contact.extend((0..3).map(|k| (b, tv[k], -wk[k] * w[k] * lambda * n)));
+                        let began = |o: usize, k: usize| x[o][k] - x0[o][k];
+                        let moved = began(a, i) - (0..3).map(|k| w[k] * began(b, tv[k])).sum::<DVec3>();
+                        let correction = n * (reach - d) - friction_correction(moved, n, reach - d, mu);
+                        let push = if denom > 0.0 { correction / denom } else { DVec3::ZERO };
+                        let mut contact = vec![(a, i, wp * push)];
+                        contact.extend((0..3).map(|k| (b, tv[k], -wk[k] * w[k] * push)));
                         found.push(contact);
                     }
                 }
@@ -85,16 +115,19 @@ fn contacts(m: &SimModel, x: &[&[DVec3]]) -> Vec<Contact> {
     found
 }
 
-/// Each object's corrections from the contacts between the objects at positions `x`.
-pub(super) fn inter_object(m: &SimModel, x: &[&[DVec3]]) -> Vec<Vec<DVec3>> {
-    let found = contacts(m, x);
+/// Each object's corrections from the contacts between the objects at positions `x` (`x0`
+/// where they began the substep).
+pub(super) fn inter_object(m: &SimModel, x: &[&[DVec3]], x0: &[&[DVec3]]) -> Vec<Vec<DVec3>> {
+    let found = contacts(m, x, x0);
     let mut touches: Vec<Vec<u32>> = x.iter().map(|x| vec![0; x.len()]).collect();
     for &(o, i, _) in found.iter().flatten() {
         touches[o][i] += 1;
     }
     let mut moves: Vec<Vec<DVec3>> = x.iter().map(|x| vec![DVec3::ZERO; x.len()]).collect();
     for contact in &found {
-        let split = contact.iter().map(|&(o, i, _)| touches[o][i]).max().unwrap_or(1) as f64;
+        // Pinned particles take no share, so their counts do not dilute the others'.
+        let free = contact.iter().filter(|&&(o, i, _)| !m.objects[o].pinned[i]);
+        let split = free.map(|&(o, i, _)| touches[o][i]).max().unwrap_or(1).max(1) as f64;
         for &(o, i, v) in contact {
             moves[o][i] += v / split;
         }

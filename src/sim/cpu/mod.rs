@@ -313,7 +313,8 @@ impl CpuSim {
             .collect();
         let positions: Vec<&[DVec3]> = advanced.iter().map(|(x, _)| x.as_slice()).collect();
         let contact = if m.inter_object_contact() {
-            inter_object::inter_object(m, &positions)
+            let starts: Vec<&[DVec3]> = self.objects.iter().map(|o| o.x.as_slice()).collect();
+            inter_object::inter_object(m, &positions, &starts)
         } else {
             positions.iter().map(|x| vec![DVec3::ZERO; x.len()]).collect()
         };

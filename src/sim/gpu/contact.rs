@@ -20,8 +20,9 @@ pub(super) struct SceneContact {
     /// `ObjectParams` with the table's `hash_mask` and `cell_inv` (binding 12; binding 1 of
     /// the scan's set).
     table: Buffer,
-    /// Per object two rows (contact_common.glsl): first scene index, particle count, contact
-    /// radius, mass; grid columns and rows where its triangles take part, what it looks for.
+    /// Per object three rows (contact_common.glsl): first scene index, particle count, contact
+    /// radius, mass; grid columns and rows where its triangles take part, what it looks for,
+    /// its corner reach; its friction.
     objects: Buffer,
     /// Per scene particle: its contacts' summed moves, in fixed point (binding 17).
     moves: Buffer,
@@ -31,6 +32,8 @@ pub(super) struct SceneContact {
     sorted: Buffer,
     /// The same entries by scene index (binding 16).
     particles: Buffer,
+    /// Where each scene particle began the substep (binding 11; friction).
+    begun: Buffer,
     block_sums: Buffer,
     /// Per scene particle: how many contacts with other objects it takes part in (binding 3),
     /// and the hash slots of the first `PAIR_MAX` particles it touches (binding 5).
@@ -39,8 +42,8 @@ pub(super) struct SceneContact {
     /// Particles in the scene.
     total: u32,
     buckets: u32,
-    /// The scan's set, and each object's set (the object's own buffers at 1, 2 and 14; contact
-    /// runs per stage, so no contact list at 15).
+    /// The scan's set, and each object's set (the object's own buffers at 1, 2, 14 and its
+    /// state at the substep's start at 15).
     scan_set: BindingSet,
     sets: Vec<BindingSet>,
 }
@@ -95,6 +98,7 @@ impl SceneContact {
                 let rows = [
                     [bits(first), bits(g.particles), o.contact_radius() as f32, o.mass as f32],
                     [bits(grid[0]), bits(grid[1]), bits(sees), o.corner_reach() as f32],
+                    [o.friction as f32, 0.0, 0.0, 0.0],
                 ];
                 first += g.particles;
                 rows
@@ -110,11 +114,12 @@ impl SceneContact {
             ("starts", 4 * (buckets + 1), storage, gpu_only),
             ("sorted", 16 * total, storage, gpu_only),
             ("particles", 16 * total, storage, gpu_only),
+            ("begun", 16 * total, storage, gpu_only),
             ("block_sums", 4 * buckets.div_ceil(SCAN_BLOCK), storage, gpu_only),
             ("touches", 4 * total, storage, gpu_only),
             ("pairs", 4 * PAIR_MAX * total, storage, gpu_only),
         ];
-        let [table, objects, moves, cell_rank, counts, starts, sorted, particles, block_sums, touches, pairs] =
+        let [table, objects, moves, cell_rank, counts, starts, sorted, particles, begun, block_sums, touches, pairs] =
             super::object::buffers(ctx, "contact", specs)?;
         let mut contact = Self {
             table,
@@ -125,6 +130,7 @@ impl SceneContact {
             starts,
             sorted,
             particles,
+            begun,
             block_sums,
             touches,
             pairs,
@@ -154,11 +160,11 @@ impl SceneContact {
                     &c.starts,
                     &c.sorted,
                     &c.block_sums,
-                    p,
+                    &c.begun,
                     &c.table,
                     &c.objects,
                     touch,
-                    p,
+                    &o.state[0],
                     &c.particles,
                     &c.moves,
                 ];
@@ -243,11 +249,13 @@ impl SceneContact {
             b(&self.block_sums, Access::ComputeWrite, Access::ComputeRead),
             b(&self.sorted, Access::ComputeRead, Access::ComputeWrite),
             b(&self.particles, Access::ComputeRead, Access::ComputeWrite),
+            b(&self.begun, Access::ComputeRead, Access::ComputeWrite),
         ]);
         each_object(rec, Stage::ContactScatter, 0);
         rec.barrier(&[
             b(&self.sorted, Access::ComputeWrite, Access::ComputeRead),
             b(&self.particles, Access::ComputeWrite, Access::ComputeRead),
+            b(&self.begun, Access::ComputeWrite, Access::ComputeRead),
             b(&self.touches, Access::ComputeWrite, Access::ComputeReadWrite),
             b(&self.moves, Access::ComputeWrite, Access::ComputeReadWrite),
             b(&self.pairs, Access::ComputeReadWrite, Access::ComputeReadWrite),
@@ -268,9 +276,11 @@ impl SceneContact {
         before.extend(between);
         rec.barrier(&before);
         each_object(rec, Stage::Contact, 2);
-        rec.barrier(
-            &sums.iter().map(|c| b(c, Access::ComputeWrite, Access::ComputeRead)).collect::<Vec<_>>(),
-        );
+        // The constraint stage reads the sums and writes the states the scatter read.
+        let mut after: Vec<_> =
+            sums.iter().map(|c| b(c, Access::ComputeWrite, Access::ComputeRead)).collect();
+        after.extend(objects.iter().map(|o| b(&o.state[0], Access::ComputeRead, Access::ComputeReadWrite)));
+        rec.barrier(&after);
     }
 
     pub fn destroy(self, ctx: &GpuContext) {
@@ -283,6 +293,7 @@ impl SceneContact {
             self.starts,
             self.sorted,
             self.particles,
+            self.begun,
             self.block_sums,
             self.touches,
             self.pairs,
