@@ -16,8 +16,8 @@ use msdsim::sim::gpu::GpuSim;
 /// the cloth's triangles. At every frame each rope node must be on the upper side of the cloth: above the tangent
 /// plane at the cloth particle nearest to it (the cloth's smoothed normal there, turned up);
 /// a node that slipped through would be about 3 cm below it. At the end (2.5 s) the rope must
-/// lie on the cloth: every node within 6 cm of that plane (not thrown off). (It may still
-/// slide: contact between objects has no friction yet.)
+/// lie on the cloth: every node within 6 cm of that plane (not thrown off). (Friction 0,
+/// the default here: it may slide.)
 #[test]
 fn a_rope_dropped_on_a_cloth_rests_on_it() {
     let ctx = gpu();
