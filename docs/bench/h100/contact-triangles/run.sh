@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # A/B on the H100: contact between objects before (msdsim-old, 10720ed: particles only) and
-# after (particles against cloth triangles), interleaved, three runs each.
+# after (particles against cloth triangles, with friction between objects), interleaved, three runs each.
 for f in .gl/*.deb; do dpkg -x "$f" /; done; ldconfig
 export VK_DRIVER_FILES=/usr/local/nvidia/share/vulkan/icd.d/nvidia_icd.json
 cd "$(dirname "$0")/.."
