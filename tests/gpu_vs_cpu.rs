@@ -373,6 +373,36 @@ fn inter_object_contact() {
     check_mode("inter-object contact", &s, Mode::Resync);
 }
 
+/// Two ropes crossing (one held at its ends, one thrown across it), friction 0.8 between them:
+/// contact between two objects neither of which is a cloth is particle against particle, with
+/// Coulomb friction on both paths (the reference had none for such pairs until 2026-11-24 and
+/// was 1.1 cm a frame off here).
+#[test]
+fn rope_pairs_with_friction() {
+    let mut a = rope(12, 0.025);
+    for (i, p) in a.positions.iter_mut().enumerate() {
+        *p = DVec3::new(i as f64 * 0.025 - 0.14, 0.5, 0.0);
+    }
+    a.pinned[0] = true;
+    a.pinned[11] = true;
+    let mut b = rope(12, 0.025);
+    for (i, p) in b.positions.iter_mut().enumerate() {
+        *p = DVec3::new(0.0, 0.54, i as f64 * 0.025 - 0.14);
+    }
+    b.velocities.fill(DVec3::new(0.5, -0.5, 0.0));
+    for r in [&mut a, &mut b] {
+        r.stiffness = [300.0, 0.0, 2.0];
+        r.rope_radius = 0.02;
+        r.mass = 0.02;
+        r.friction = 0.8;
+    }
+    let mut s = scene(vec![a, b]);
+    s.gravity = DVec3::new(0.0, -9.81, 0.0);
+    s.inter_object = true;
+    assert_matters("rope friction", &s, |m| m.objects.iter_mut().for_each(|o| o.friction = 0.0));
+    check_mode("rope pairs with friction", &s, Mode::Resync);
+}
+
 /// A 13 x 9 cloth folded over itself: rows 0..4 go down, rows 5..8 come back up `gap` in front
 /// (along +z), `spacing` apart within each layer.
 fn folded_cloth(spacing: f64, gap: f64) -> msdsim::sim::model::ObjectModel {

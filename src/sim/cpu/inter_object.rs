@@ -58,12 +58,12 @@ fn contacts(m: &SimModel, x: &[&[DVec3]], x0: &[&[DVec3]]) -> Vec<Contact> {
             }
             if other.contact_triangles() {
                 let triangles = cloth_triangles(other.dims[0] as usize, other.dims[1] as usize);
+                let sight = reach + other.corner_reach();
                 for (i, &p) in x[a].iter().enumerate() {
                     for &(_, tv) in &triangles {
                         let corners = tv.map(|k| x[b][k]);
                         let nearest =
                             corners.iter().map(|c| (*c - p).length_squared()).fold(f64::MAX, f64::min);
-                        let sight = reach + other.corner_reach();
                         if nearest >= sight * sight {
                             continue;
                         }
@@ -92,7 +92,7 @@ fn contacts(m: &SimModel, x: &[&[DVec3]], x0: &[&[DVec3]]) -> Vec<Contact> {
                         if !(d > 0.0 && d < reach) {
                             continue;
                         }
-                        let n = (q - p) / d;
+                        let n = (p - q) / d;
                         let share = |pinned_other: bool, mine: f64, theirs: f64| {
                             if pinned_other {
                                 1.0
@@ -100,8 +100,10 @@ fn contacts(m: &SimModel, x: &[&[DVec3]], x0: &[&[DVec3]]) -> Vec<Contact> {
                                 theirs / (mine + theirs)
                             }
                         };
-                        let move_p = n * (d - reach) * share(other.pinned[j], o.mass, other.mass);
-                        let move_q = -n * (d - reach) * share(o.pinned[i], other.mass, o.mass);
+                        let moved = (p - x0[a][i]) - (q - x0[b][j]);
+                        let correction = n * (reach - d) - friction_correction(moved, n, reach - d, mu);
+                        let move_p = correction * share(other.pinned[j], o.mass, other.mass);
+                        let move_q = -correction * share(o.pinned[i], other.mass, o.mass);
                         let keep = |pinned: bool, v: DVec3| if pinned { DVec3::ZERO } else { v };
                         found.push(vec![
                             (a, i, keep(o.pinned[i], move_p)),
