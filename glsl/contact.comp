@@ -37,11 +37,9 @@ float radius_of(uint q) { return objects[OBJECT_ROWS * q].z; }
 float mass_of(uint q) { return objects[OBJECT_ROWS * q].w; }
 // (columns, rows) of object q's grid; columns 0 when its triangles take no part.
 uvec2 grid_of(uint q) { return floatBitsToUint(objects[OBJECT_ROWS * q + 1u].xy); }
-// What object q's particles look for: SEES_TRIANGLES another object's triangles,
-// SEES_PARTICLES another object's particles (neither object a cloth).
-const uint SEES_TRIANGLES = 1u;
-const uint SEES_PARTICLES = 2u;
-uint sees(uint q) { return floatBitsToUint(objects[OBJECT_ROWS * q + 1u].z); }
+// Whether object q's particles have anything to look for: another object's triangles, or
+// (neither being a cloth) another object's particles.
+bool looks(uint q) { return floatBitsToUint(objects[OBJECT_ROWS * q + 1u].z) != 0u; }
 
 // The object a scene index belongs to (objects are few: a linear search).
 uint owner(uint k) {
@@ -78,13 +76,6 @@ void add_move(uint k, vec3 v) {
     if (q.z != 0) atomicAdd(moves[4u * k + 2u], q.z);
 }
 
-// The six grid neighbours of a vertex in turn around it: each two next to each other make one
-// of the vertex's six triangles with it (the triangles as the renderer draws them).
-const ivec2 RING[6] = ivec2[6](ivec2(1, 0), ivec2(0, 1), ivec2(-1, 1), ivec2(-1, 0), ivec2(0, -1), ivec2(1, -1));
-
-// Whether a corner at squared distance da (index ia) is nearer than one at db (index ib).
-bool nearer(float da, uint ia, float db, uint ib) { return da < db || (da == db && ia < ib); }
-
 // A particle's count of contacts for the split (at least 1), none when it is pinned (inverse
 // mass w 0: it takes no share of any contact's correction, so its count would only dilute
 // its partners' corrections, which friction must make whole within a substep).
@@ -106,7 +97,7 @@ vec3 friction_correction(vec3 moved, vec3 n, float normal, float mu) {
 
 // Contacts a particle notes in pass 0 for pass 1 (pairs[], PAIR_MAX a particle, each the other
 // particle's scene index << 3 | the ring index r of triangle (j, ring r, ring r + 1) of j's
-// object, or PAIR_NOTE for a particle pair); one with more searches the hash again. Its count
+// object (VERTEX_RING), or PAIR_NOTE for a particle pair); one with more searches the hash again. Its count
 // of contacts as the particle (not as a corner) is moves[4 k + 3].
 const uint PAIR_MAX = 8u;
 const uint PAIR_NOTE = 7u;
@@ -114,7 +105,7 @@ const uint PAIR_NOTE = 7u;
 // The scene index of vertex j's ring neighbour r in object q (j's grid position `at`), if any.
 bool ring_vertex(uint q, ivec2 at, int r, out uint index) {
     uvec2 grid = grid_of(q);
-    ivec2 c = at + RING[r];
+    ivec2 c = at + VERTEX_RING[r];
     index = first_of(q) + uint(c.x) + uint(c.y) * grid.x;
     return c.x >= 0 && c.y >= 0 && c.x < int(grid.x) && c.y < int(grid.y);
 }
@@ -274,7 +265,7 @@ void main() {
     bool sum = which.pass == 1u;
     uint k = i;
     uint me = owner(k);
-    if (sees(me) == 0u) return;
+    if (!looks(me)) return;
     uint own = sum ? uint(moves[4u * k + 3u]) : 0u;
     if (sum && own == 0u) return;
     vec4 ek = entry_of(k);

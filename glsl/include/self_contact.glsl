@@ -53,18 +53,11 @@ uvec3 triangle_vertices(uint t) {
     return (t & 1u) == 0u ? uvec3(a, a + cols, a + 1u) : uvec3(a + 1u, a + cols, a + cols + 1u);
 }
 
-// The six triangles around a vertex at grid (c, r): the cell (c + x, r + y) and its triangle z.
-const ivec3 VERTEX_TRIANGLES[6] = ivec3[6](ivec3(0, 0, 0), ivec3(-1, 0, 1), ivec3(-1, 0, 0),
-                                           ivec3(-1, -1, 1), ivec3(0, -1, 0), ivec3(0, -1, 1));
-
 // Whether grid vertex j is the particle at `cell` or one of its 8 neighbours.
 bool in_one_ring(uvec2 cell, uint j) {
     ivec2 d = abs(ivec2(int(j % obj.dims.x), int(j / obj.dims.x)) - ivec2(cell));
     return max(d.x, d.y) <= 1;
 }
-
-// Whether a vertex at squared distance da (index ia) is nearer than one at db (index ib).
-bool nearer(float da, uint ia, float db, uint ib) { return da < db || (da == db && ia < ib); }
 
 // Whether triangle t is left out for the particle at `cell` (see the top): a vertex of t is in
 // the particle's one-ring, or t is nearer than h to it at rest.
@@ -149,10 +142,6 @@ void test_pair(vec3 x, uint t) {
     float d = pair_distance(x, t, tv, w, n);
     test_contact(t, tv, d);
 }
-
-// The one-ring of a vertex in order around it: its triangle k of VERTEX_TRIANGLES has the
-// vertex and ring vertices k and k + 1 (mod 6).
-const ivec2 VERTEX_RING[6] = ivec2[6](ivec2(1, 0), ivec2(0, 1), ivec2(-1, 1), ivec2(-1, 0), ivec2(0, -1), ivec2(1, -1));
 
 // The find pass's visit of candidate vertex j (outside the one-ring of the particle at `cell`,
 // at x): each triangle around j whose vertex nearest x is j (so each triangle is visited once)

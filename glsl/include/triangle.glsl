@@ -1,8 +1,19 @@
-// The point of a triangle nearest to a point: shared by a cloth's contact with itself
-// (self_contact.glsl) and contact between objects (contact.comp). CPU twin:
-// sim::cpu::self_contact::triangle_nearest.
+// A cloth grid's triangles around a vertex, and the point of a triangle nearest to a point:
+// shared by a cloth's contact with itself (self_contact.glsl) and contact between objects
+// (contact.comp). CPU twin: sim::cpu::self_contact (cloth_triangles, triangle_nearest).
 #ifndef MSD_TRIANGLE_GLSL
 #define MSD_TRIANGLE_GLSL
+
+// The six triangles around a vertex at grid (c, r): the cell (c + x, r + y) and its triangle z.
+const ivec3 VERTEX_TRIANGLES[6] = ivec3[6](ivec3(0, 0, 0), ivec3(-1, 0, 1), ivec3(-1, 0, 0),
+                                           ivec3(-1, -1, 1), ivec3(0, -1, 0), ivec3(0, -1, 1));
+
+// The one-ring of a vertex in order around it: its triangle k of VERTEX_TRIANGLES has the
+// vertex and ring vertices k and k + 1 (mod 6).
+const ivec2 VERTEX_RING[6] = ivec2[6](ivec2(1, 0), ivec2(0, 1), ivec2(-1, 1), ivec2(-1, 0), ivec2(0, -1), ivec2(1, -1));
+
+// Whether a vertex at squared distance da (index ia) is nearer than one at db (index ib).
+bool nearer(float da, uint ia, float db, uint ib) { return da < db || (da == db && ia < ib); }
 
 // The barycentric weights of the point of triangle (a, b, c) nearest to p (Ericson,
 // Real-Time Collision Detection, 5.1.5).

@@ -21,8 +21,8 @@ pub(super) struct SceneContact {
     /// the scan's set).
     table: Buffer,
     /// Per object three rows (contact_common.glsl): first scene index, particle count, contact
-    /// radius, mass; grid columns and rows where its triangles take part, what it looks for,
-    /// its corner reach; its friction.
+    /// radius, mass; grid columns and rows where its triangles take part, whether it looks for
+    /// anything, its corner reach; its friction.
     objects: Buffer,
     /// Per scene particle: its contacts' summed moves, in fixed point (binding 17).
     moves: Buffer,
@@ -36,7 +36,7 @@ pub(super) struct SceneContact {
     begun: Buffer,
     block_sums: Buffer,
     /// Per scene particle: how many contacts with other objects it takes part in (binding 3),
-    /// and the hash slots of the first `PAIR_MAX` particles it touches (binding 5).
+    /// and the first `PAIR_MAX` contacts it found itself (binding 5).
     touches: Buffer,
     pairs: Buffer,
     /// Particles in the scene.
@@ -89,15 +89,14 @@ impl SceneContact {
             .enumerate()
             .flat_map(|(q, (o, g))| {
                 let grid = if o.contact_triangles() { o.dims } else { [0, 0] };
-                let others =
-                    || model.objects.iter().enumerate().filter(move |&(k, _)| k != q).map(|(_, o)| o);
-                // SEES_TRIANGLES, SEES_PARTICLES in contact.comp.
-                let sees = others().any(|p| p.contact_triangles()) as u32
-                    | ((!o.contact_triangles() && others().any(|p| !p.contact_triangles())) as u32) << 1;
+                // Whether its particles look for anything (`looks` in contact.comp): another
+                // object's triangles, or, neither being a cloth, another object's particles.
+                let mut others = model.objects.iter().enumerate().filter(|&(k, _)| k != q).map(|(_, p)| p);
+                let looks = others.any(|p| p.contact_triangles() || !o.contact_triangles()) as u32;
                 let bits = f32::from_bits;
                 let rows = [
                     [bits(first), bits(g.particles), o.contact_radius() as f32, o.mass as f32],
-                    [bits(grid[0]), bits(grid[1]), bits(sees), o.corner_reach() as f32],
+                    [bits(grid[0]), bits(grid[1]), bits(looks), o.corner_reach() as f32],
                     [o.friction as f32, 0.0, 0.0, 0.0],
                 ];
                 first += g.particles;
