@@ -84,17 +84,6 @@ uint count_of(uint k, float w) { return w > 0.0 ? max(touches[k], 1u) : 1u; }
 // Two objects' friction coefficient with each other: the mean of theirs.
 float pair_friction(uint a, uint b) { return 0.5 * (friction_of(a) + friction_of(b)); }
 
-// How much of the relative motion `moved` over the substep friction undoes in a contact of
-// normal n whose normal correction is `normal`: all of its tangential part within the cone
-// (static), else mu times the normal correction of it (kinetic: Coulomb's bound on the
-// tangential impulse). Twin: sim::cpu::inter_object::friction_correction.
-vec3 friction_correction(vec3 moved, vec3 n, float normal, float mu) {
-    vec3 slip = moved - dot(moved, n) * n;
-    float len = length(slip);
-    float most = mu * normal;
-    return len <= most ? slip : slip * (most / len);
-}
-
 // Contacts a particle notes in pass 0 for pass 1 (pairs[], PAIR_MAX a particle, each the other
 // particle's scene index << 3 | the ring index r of triangle (j, ring r, ring r + 1) of j's
 // object (VERTEX_RING), or PAIR_NOTE for a particle pair); one with more searches the hash again. Its count

@@ -240,7 +240,7 @@ void main() {
     // Each particle's contact list header (list_header), kept here from the dispatch's start
     // on (read from the buffer every substep, it cost 1.5 to 2%).
     vec4 header[MAX_SLOTS];
-    vec3 began[MAX_SLOTS];  // where each particle began the substep (the colliders' friction)
+    vec3 began[MAX_SLOTS];  // where each particle began the substep (friction)
     [[unroll]] for (uint s = 0u; s < MAX_SLOTS; ++s) {
         uint k = particle_of_rank(t + s * THREADS);
         own[s] = k;
@@ -289,7 +289,7 @@ void main() {
     }
 
     for (uint sub = 0u; sub < g.substeps; ++sub) {
-        [[unroll]] for (uint s = 0u; s < MAX_SLOTS; ++s) began[s] = has(F_COLLIDERS) ? x[s] : vec3(0.0);
+        [[unroll]] for (uint s = 0u; s < MAX_SLOTS; ++s) began[s] = has(F_COLLIDERS) || self_triangles_on ? x[s] : vec3(0.0);
         // Physics: forces on the drifted positions (and, with dashpots, the neighbours'
         // velocities staged pass by pass), new state into registers.
         [[unroll]] for (uint chunk = 0u; chunk < MAX_SLOTS; ++chunk) {
@@ -530,7 +530,7 @@ void main() {
                 if (k >= n) continue;
                 list_particle = k;
                 list_len = LISTED && hashed && !list_rebuild ? floatBitsToUint(header[s].w) : 0u;
-                self_find(cells[s], k, x[s]);
+                self_find(cells[s], k, x[s], began[s]);
                 if (LISTED && hashed && list_build) header[s] = set_list_header(k, x[s], list_len);
             }
             memoryBarrierBuffer();
@@ -561,7 +561,7 @@ void main() {
                     header[s] = set_list_header(k, xs, list_len);
                 }
                 xs += correction;
-                vs += correction / g.dt;  // velocity follows the position correction
+                vs += (correction - position_only) / g.dt;  // velocity follows the position correction
             }
             visiting_start = began[s];
             collide_all(cells[s], xs, vs, float(sub + 1u) * g.dt);

@@ -10,6 +10,7 @@
 // four particles). The work is in self_contact.glsl and constraints_body.glsl, shared with
 // fused.comp; the constraint stage adds the sums. Both passes read the contact lists' state
 // (LISTS: the pipelines with lists on).
+#define STATE_OUT_READ
 #include "bindings.glsl"
 #include "springs.glsl"
 
@@ -37,6 +38,6 @@ void main() {
         self_apply(cell, i, x);
         return;
     }
-    self_find(cell, i, x);
+    self_find(cell, i, x, p_out[i].pos.xyz);  // (p_out: the substep's start)
     if (list_build) set_list_header(i, x, list_len);
 }

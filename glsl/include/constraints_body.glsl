@@ -152,8 +152,10 @@ void self_search(uvec2 cell, vec3 x, inout vec3 correction, inout uint n_active)
     }
 }
 
-// The find pass of a cloth's self-contact (self_contact.glsl) for particle i at `cell`, at x.
-void self_find(uvec2 cell, uint i, vec3 x) {
+// The find pass of a cloth's self-contact (self_contact.glsl) for particle i at `cell`, at x,
+// which began the substep at `start`.
+void self_find(uvec2 cell, uint i, vec3 x, vec3 start) {
+    set_pair_start(i, start);
     pair_particle = i;
     pair_x = x;
     pair_len = 0u;
@@ -183,9 +185,15 @@ void self_apply(uvec2 cell, uint i, vec3 x) {
     apply_pass = false;
 }
 
-// The position correction of the free particle at grid `cell`, at x after physics.
+// The part of the last constraint_correction that moves the position only, not the velocity
+// (a cloth's self-contact undoing an overlap from an earlier substep).
+vec3 position_only;
+
+// The position correction of the free particle at grid `cell`, at x after physics; the
+// velocity follows it but for position_only.
 vec3 constraint_correction(uvec2 cell, vec3 x) {
     vec3 correction = vec3(0.0);
+    position_only = vec3(0.0);
     uint n_active = 0u;
 
     // Springs may not stretch past (1 + stretch_limit) * rest: each end moves half the excess
@@ -214,7 +222,7 @@ vec3 constraint_correction(uvec2 cell, vec3 x) {
 
     if (n_active > 1u) correction /= float(n_active);
 
-    if (self_on && has_triangles()) correction += self_take(cell.x + cell.y * obj.dims.x);
+    if (self_on && has_triangles()) correction += self_take(cell.x + cell.y * obj.dims.x, position_only);
 
     // Inter-object contact: what contact.comp summed from the other objects' particles, added
     // whole (each pair's share is already split so that the pair conserves momentum).
@@ -338,7 +346,7 @@ void constraints_particle(uvec2 cell, uint substep, bool lists) {
     vec3 correction = constraint_correction(cell, x);
     if (list_build) set_list_header(i, x, list_len);
     x += correction;
-    v += correction / g.dt;  // velocity follows the position correction
+    v += (correction - position_only) / g.dt;  // velocity follows the position correction
     visiting = i;
     collide_all(cell, x, v, float(substep + 1u) * g.dt);
     OUT(i) = Particle(vec4(x, 0.0), vec4(v, 0.0));

@@ -78,7 +78,7 @@ struct ObjectParams {
     float mass;            // per particle [kg]
     float drag;            // Stokes coefficient c, drag force -c v [N s/m]
     float stretch_limit;   // maximum elongation as a fraction of rest length
-    float friction;        // 0..1: fraction of tangential velocity removed on collider contact
+    float friction;        // Coulomb's mu: colliders, other objects (the mean), its own triangles
     float margin;          // distance kept from collider surfaces [m]
     float self_distance;   // particles closer than this push apart [m]
     float rope_radius;     // rope tube radius [m]

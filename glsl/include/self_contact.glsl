@@ -11,17 +11,27 @@
 // of t's point nearest to p and n the unit vector from there to p, the projection of the
 // constraint n . (p - sum b_k x_k) >= h moves p by w_p lambda n and vertex k by
 // -w_k b_k lambda n (w: 1 free, 0 pinned; one mass in a cloth), so the pair's momentum is
-// unchanged. Several contacts on a particle are combined by mass splitting (Tonge et al.
+// unchanged. Of the overlap h - d, the part the substep's approach made (the relative motion
+// of p and t's nearest point along -n since the substep began) is undone with the velocity
+// that made it, and the rest, left from earlier substeps, in position only (the constraint
+// stage's velocity follows the correction but for that part: a late-resolved overlap does not
+// bounce). Coulomb friction (mu: the cloth's `friction`) adds to the normal correction the
+// relative motion along the tangent, undone whole while within mu times the approach (the
+// normal impulse), else that much of it (friction_correction, triangle.glsl), with the same
+// weights, so it is equal and opposite too. Several contacts on
+// a particle are combined by mass splitting (Tonge et al.
 // 2012): each free particle takes part in each of its n contacts with 1 / n of its mass, so
-// lambda = (h - d) / (n_p w_p + sum n_k w_k b_k^2), and its moves are summed. Each contact is
+// lambda = c (h - d) / (n_p w_p + sum n_k w_k b_k^2), and its moves are summed. Each contact is
 // still equal and opposite, and one alone is resolved whole. The count n is smooth: a contact
-// counts fully once its overlap reaches a tenth of h (count_weight), and n is at least 1, so a
-// contact that just begins does not halve the others' shares at once.
+// counts by its weight c, fully once its overlap reaches a tenth of h (count_weight), and n is
+// at least 1, so a contact that just begins does not halve the others' shares at once; it
+// takes part in lambda by the same weight, so a particle's contacts never add up to more than
+// its largest overlap.
 //
 // Three passes a substep (per stage: self_pairs.comp twice, then the constraints; fused: phases
 // between barriers):
-// 1. find (self_find): each particle, pinned too, finds its triangles within h through the
-//    spatial hash (a triangle within h has its nearest vertex within self_reach(), lists.glsl;
+// 1. find (self_find): each particle, pinned too, notes where it began the substep (when
+//    the cloth has friction) and finds its triangles within h through the spatial hash (a triangle within h has its nearest vertex within self_reach(), lists.glsl;
 //    it is tested once, from that vertex) or its contact list, which holds the triangles within
 //    h plus the skin; it keeps up to PAIR_MAX contacts and counts each in its free particles;
 // 2. apply (self_apply): each particle computes its contacts again (those it kept; one that
@@ -30,9 +40,10 @@
 // 3. the constraint stage adds its particle's sum to its correction whole and clears it
 //    (self_take).
 // The CPU twin is sim::cpu::self_contact. Buffer self_pairs (binding 17), n particles: words
-// [4 i, 4 i + 4) particle i's sum (x, y, z in units of h / 2^24) and count (in units of
-// 2^-16); 4 n + i the number
-// of contacts it keeps; (5 + k) n + i its contact k's triangle.
+// [4 i, 4 i + 4) particle i's sum (x, y, z in units of h / 2^26) and count (in units of
+// 2^-16); 4 n + i the number of contacts it keeps; (5 + k) n + i its contact k's triangle;
+// [(5 + PAIR_MAX) n + 3 i, + 3) where it began the substep; [(8 + PAIR_MAX) n + 3 i, + 3) the
+// part of its sum that moves the position only (units as the sum).
 // Include in constraints_body.glsl (CPOS, CPINNED defined).
 #ifndef MSD_SELF_CONTACT_GLSL
 #define MSD_SELF_CONTACT_GLSL
@@ -44,8 +55,22 @@
 const uint PAIR_MAX = 16u;
 uint pairs_len_word(uint i) { return 4u * particle_count() + i; }
 uint pair_word(uint k, uint i) { return (5u + k) * particle_count() + i; }
-// Fixed-point units a metre: the sum of a particle's moves stays within a few h.
-float pair_fix() { return 16777216.0 / obj.self_distance; }
+uint start_word(uint i) { return (5u + PAIR_MAX) * particle_count() + 3u * i; }
+uint rest_word(uint i) { return (8u + PAIR_MAX) * particle_count() + 3u * i; }
+// Where particle i began the substep, as the find pass noted it.
+vec3 pair_start(uint i) {
+    uint w = start_word(i);
+    return vec3(intBitsToFloat(self_pairs[w]), intBitsToFloat(self_pairs[w + 1u]), intBitsToFloat(self_pairs[w + 2u]));
+}
+void set_pair_start(uint i, vec3 x) {
+    uint w = start_word(i);
+    self_pairs[w] = floatBitsToInt(x.x);
+    self_pairs[w + 1u] = floatBitsToInt(x.y);
+    self_pairs[w + 2u] = floatBitsToInt(x.z);
+}
+// Fixed-point units a metre: the sum of a particle's moves stays within its largest overlap
+// plus mu times it, far inside the 32 h an int holds.
+float pair_fix() { return 67108864.0 / obj.self_distance; }
 
 uvec3 triangle_vertices(uint t) {
     uint a = t >> 1u;
@@ -184,12 +209,18 @@ void self_triangles(uvec2 cell, vec3 x, uint j, float list_reach) {
     }
 }
 
-// Adds `move` to particle i's fixed-point sum.
-void add_move(uint i, vec3 move) {
+// Adds `move` to particle i's fixed-point sum, and `rest`, the part of it that moves the
+// position only, to that sum.
+void add_move(uint i, vec3 move, vec3 rest) {
     ivec3 q = ivec3(round(move * pair_fix()));
     if (q.x != 0) atomicAdd(self_pairs[4u * i], q.x);
     if (q.y != 0) atomicAdd(self_pairs[4u * i + 1u], q.y);
     if (q.z != 0) atomicAdd(self_pairs[4u * i + 2u], q.z);
+    ivec3 r = ivec3(round(rest * pair_fix()));
+    uint w = rest_word(i);
+    if (r.x != 0) atomicAdd(self_pairs[w], r.x);
+    if (r.y != 0) atomicAdd(self_pairs[w + 1u], r.y);
+    if (r.z != 0) atomicAdd(self_pairs[w + 2u], r.z);
 }
 
 // Contact (p at x, t), computed again from the same positions as when it was found: moves its
@@ -207,20 +238,42 @@ void apply_contact(uint p, vec3 x, uint t) {
         if (free_t[q] > 0.0) split_t[q] = split_count(tv[q]);
     }
     float split_p = w_p > 0.0 ? split_count(p) : 0.0;
-    float lambda = max(obj.self_distance - d, 0.0) / (split_p + dot(w * w, split_t));
-    if (w_p > 0.0) add_move(p, n * lambda);
+    float overlap = max(obj.self_distance - d, 0.0);
+    // A contact takes part by its weight in the counts: one that begins (overlap under h / 10)
+    // moves its particles by that fraction of its share, so that the counts' smoothing never
+    // lets a particle's contacts add up to more than its largest overlap.
+    float weight = min(1.0, overlap / (0.1 * obj.self_distance));
+    // The relative motion of p and t's nearest point over the substep: the overlap it made
+    // (its approach along n) is undone with the velocity that made it; what overlap remains
+    // from before is undone in position only (no bounce from an overlap resolved late).
+    vec3 moved = (x - pair_start(p))
+               - (w.x * (CPOS(tv.x) - pair_start(tv.x)) + w.y * (CPOS(tv.y) - pair_start(tv.y))
+                  + w.z * (CPOS(tv.z) - pair_start(tv.z)));
+    float approach = clamp(-dot(moved, n), 0.0, overlap);
+    // Coulomb: the tangential slip undone within mu times the normal impulse (the approach).
+    vec3 correction = n * overlap - friction_correction(moved, n, approach, obj.friction);
+    float k = weight / (split_p + dot(w * w, split_t));
+    vec3 push = correction * k;
+    vec3 rest = n * ((overlap - approach) * k);
+    if (w_p > 0.0) add_move(p, push, rest);
     [[unroll]] for (int q = 0; q < 3; ++q) {
-        if (free_t[q] > 0.0) add_move(tv[q], n * (-w[q] * lambda));
+        if (free_t[q] > 0.0) add_move(tv[q], push * -w[q], rest * -w[q]);
     }
 }
 
-// The constraint stage's share: particle i's summed moves, cleared for the next substep.
-vec3 self_take(uint i) {
+// The constraint stage's share: particle i's summed moves (and in `rest` the part of them
+// that moves the position only), cleared for the next substep.
+vec3 self_take(uint i, out vec3 rest) {
     ivec3 q = ivec3(self_pairs[4u * i], self_pairs[4u * i + 1u], self_pairs[4u * i + 2u]);
+    uint w = rest_word(i);
+    rest = vec3(ivec3(self_pairs[w], self_pairs[w + 1u], self_pairs[w + 2u])) * (1.0 / pair_fix());
     self_pairs[4u * i] = 0;
     self_pairs[4u * i + 1u] = 0;
     self_pairs[4u * i + 2u] = 0;
     self_pairs[4u * i + 3u] = 0;
+    self_pairs[w] = 0;
+    self_pairs[w + 1u] = 0;
+    self_pairs[w + 2u] = 0;
     return vec3(q) * (1.0 / pair_fix());
 }
 

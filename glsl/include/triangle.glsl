@@ -1,6 +1,7 @@
-// A cloth grid's triangles around a vertex, and the point of a triangle nearest to a point:
-// shared by a cloth's contact with itself (self_contact.glsl) and contact between objects
-// (contact.comp). CPU twin: sim::cpu::self_contact (cloth_triangles, triangle_nearest).
+// A cloth grid's triangles around a vertex, the point of a triangle nearest to a point, and a
+// contact's Coulomb friction: shared by a cloth's contact with itself (self_contact.glsl) and
+// contact between objects (contact.comp). CPU twin: sim::cpu::self_contact (cloth_triangles,
+// triangle_nearest, friction_correction).
 #ifndef MSD_TRIANGLE_GLSL
 #define MSD_TRIANGLE_GLSL
 
@@ -50,6 +51,17 @@ vec3 triangle_nearest(vec3 p, vec3 a, vec3 b, vec3 c) {
     float sum = va + vb + vc;
     if (!(sum > 0.0)) return vec3(1.0, 0.0, 0.0);  // a degenerate triangle: its first vertex
     return vec3(va, vb, vc) / sum;
+}
+
+// How much of the relative motion `moved` over the substep friction undoes in a contact of
+// normal n whose normal correction is `normal`: all of its tangential part within the cone
+// (static), else mu times the normal correction of it (kinetic: Coulomb's bound on the
+// tangential impulse). Twin: sim::cpu::self_contact::friction_correction.
+vec3 friction_correction(vec3 moved, vec3 n, float normal, float mu) {
+    vec3 slip = moved - dot(moved, n) * n;
+    float len = length(slip);
+    float most = mu * normal;
+    return len <= most ? slip : slip * (most / len);
 }
 
 #endif

@@ -71,7 +71,8 @@ pub struct ObjectModel {
     pub mass: f64,
     /// Stokes drag coefficient: force -drag * v [N s/m].
     pub drag: f64,
-    /// Fraction of tangential velocity removed on sphere contact, 0..1.
+    /// Coulomb's friction coefficient mu: against colliders (unless a collider sets its own),
+    /// other objects (the mean of the two objects') and, with triangle self-contact, itself.
     pub friction: f64,
     /// Distance kept from sphere surfaces [m].
     pub margin: f64,

@@ -55,7 +55,7 @@ const HELP: &[(&str, &str)] = &[
     ("spring damping [N s/m]", "Dashpot along each spring [N s/m]: damps stretching and bending oscillations."),
     ("drag [N s/m]", "Air drag on each particle, force = -drag x velocity [N s/m]."),
     ("stretch limit", "Springs may not stretch more than this fraction of their rest length (ticked: enforced every substep)."),
-    ("friction", "Coulomb friction coefficient mu against colliders (and, averaged with the other's, against other objects): sticks on slopes flatter than atan(mu), slides on steeper ones (0: ice, 0.4: cloth on wood, 1: rubber)."),
+    ("friction", "Coulomb friction coefficient mu against colliders (and, averaged with the other's, against other objects; with triangle self-contact, between its own layers): sticks on slopes flatter than atan(mu), slides on steeper ones (0: ice, 0.4: cloth on wood, 1: rubber)."),
     ("collision margin [m]", "Distance kept from colliders, and the cloth's contact radius against other objects [m]."),
     ("self-collision", "Particles of this object closer than the self-collision distance push apart (grid neighbours excepted)."),
     ("self-contact", "What a cloth's self-collision keeps apart. particles: its particles, the self-collision distance apart (the paper's; fast, but layers can pass between particles). triangles: its particles from its triangles, the distance a thickness, every contact equal and opposite (no layer passes through another at normal speeds; several times the cost)."),

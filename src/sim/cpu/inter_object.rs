@@ -17,24 +17,12 @@
 //! contacts among its free particles (the same for all: equal and opposite momenta). Every pair is tested here; the GPU finds
 //! the same through the scene's spatial hash.
 
-use super::self_contact::{cloth_triangles, triangle_nearest};
+use super::self_contact::{cloth_triangles, friction_correction, triangle_nearest};
 use crate::sim::model::SimModel;
 use glam::DVec3;
 
 /// The particles of one contact, each as (object, particle, its move before the split).
 type Contact = Vec<(usize, usize, DVec3)>;
-
-/// How much of the relative motion `moved` over the substep friction undoes in a contact of
-/// normal n whose normal correction is `normal` (`friction_correction` in glsl/contact.comp).
-fn friction_correction(moved: DVec3, n: DVec3, normal: f64, mu: f64) -> DVec3 {
-    let slip = moved - moved.dot(n) * n;
-    let (len, most) = (slip.length(), mu * normal);
-    if len <= most {
-        slip
-    } else {
-        slip * (most / len)
-    }
-}
 
 /// Whether objects a and b (positions x) are near enough to touch: their bounding boxes
 /// within `gap` of each other.

@@ -344,7 +344,7 @@ fn constraints(
     let mut nv = vec![DVec3::ZERO; x.len()];
     let share = |j: usize| if o.pinned[j] { 1.0 } else { 0.5 };
     let edges = crate::sim::collider::edges_needed(o, &m.colliders);
-    let own = self_contact::self_contact(o, x);
+    let (own, own_rest) = self_contact::self_contact(o, x, start);
     for i in 0..x.len() {
         if o.pinned[i] {
             continue;
@@ -386,7 +386,7 @@ fn constraints(
         }
         correction += own[i] + contact[i];
         let mut p = x[i] + correction;
-        let mut vel = v[i] + correction / dt;
+        let mut vel = v[i] + (correction - own_rest[i]) / dt;
         if edges {
             collide_edges(m, o, (i, x), motions, (start[i], dt), (&mut p, &mut vel));
         }

@@ -2,10 +2,15 @@
 //! every pair (particle p, triangle t) not left out (a vertex of t in p's one-ring, or t nearer
 //! than h to p at rest) and nearer than the self-collision distance h is a contact. With the barycentric weights b of t's point
 //! nearest p and n the unit vector from it to p, p moves by w_p lambda n and vertex k by
-//! -w_k b_k lambda n, lambda = (h - d) / (n_p w_p + sum n_k w_k b_k^2) (w: 1 free, 0 pinned;
-//! n: each particle's count of contacts, at least 1, a contact counting fully once its overlap
-//! reaches h / 10; its mass split among them), so every contact conserves momentum. Every pair is tested here; the GPU finds the same through its spatial
-//! hash or contact lists (and keeps at most 8 contacts a particle in a substep).
+//! -w_k b_k lambda n, lambda = c (h - d) / (n_p w_p + sum n_k w_k b_k^2) (w: 1 free, 0 pinned;
+//! n: each particle's count of contacts, at least 1, a contact counting by its weight c, fully
+//! once its overlap reaches h / 10; its mass split among them), so every contact conserves
+//! momentum. The part of the overlap the substep's approach made moves the velocity too, the
+//! rest the position only. Coulomb friction (mu: the cloth's `friction`) adds the relative
+//! motion over the substep of p and t's nearest point along the tangent, undone whole while
+//! within mu times the approach, else that much of it, with the same weights. Every pair is tested here;
+//! the GPU finds the same through its spatial hash or contact lists (and keeps at most 16
+//! contacts a particle in a substep).
 
 use crate::sim::model::ObjectModel;
 use glam::{DVec2, DVec3};
@@ -65,6 +70,20 @@ pub fn triangle_nearest(p: DVec3, a: DVec3, b: DVec3, c: DVec3) -> DVec3 {
     }
 }
 
+/// How much of the relative motion `moved` over the substep friction undoes in a contact of
+/// normal n whose normal correction is `normal`: all of its tangential part within the cone
+/// (static), else mu times the normal correction of it (kinetic: Coulomb's bound on the
+/// tangential impulse). `friction_correction` in glsl/include/triangle.glsl.
+pub(super) fn friction_correction(moved: DVec3, n: DVec3, normal: f64, mu: f64) -> DVec3 {
+    let slip = moved - moved.dot(n) * n;
+    let (len, most) = (slip.length(), mu * normal);
+    if len <= most {
+        slip
+    } else {
+        slip * (most / len)
+    }
+}
+
 /// Whether pair (particle p, triangle `tv`) of cloth `o` is left out: a vertex of the triangle
 /// in p's one-ring, or the triangle nearer than h to p at rest.
 fn left_out(o: &ObjectModel, h: f64, p: usize, tv: [usize; 3]) -> bool {
@@ -93,10 +112,13 @@ fn count_weight(overlap: f64, h: f64) -> f64 {
 }
 
 /// Each particle's summed moves from cloth `o`'s contacts with its own triangles (positions
-/// `x`, the physics output); zero for pinned particles.
-pub(super) fn self_contact(o: &ObjectModel, x: &[DVec3]) -> Vec<DVec3> {
+/// `x`, the physics output; `start`, where each began the substep), and the parts of them
+/// that move the position only (undoing overlaps from earlier substeps); zero for pinned
+/// particles.
+pub(super) fn self_contact(o: &ObjectModel, x: &[DVec3], start: &[DVec3]) -> (Vec<DVec3>, Vec<DVec3>) {
     let mut moves = vec![DVec3::ZERO; x.len()];
-    let Some(h) = o.self_distance.filter(|_| o.has_triangles()) else { return moves };
+    let mut rests = vec![DVec3::ZERO; x.len()];
+    let Some(h) = o.self_distance.filter(|_| o.has_triangles()) else { return (moves, rests) };
     let free = |k: usize| if o.pinned[k] { 0.0 } else { 1.0 };
     // (p, vertices, weights, unit normal, overlap)
     let mut contacts = Vec::new();
@@ -129,11 +151,21 @@ pub(super) fn self_contact(o: &ObjectModel, x: &[DVec3]) -> Vec<DVec3> {
         // Each free particle's mass split among its contacts.
         let split = |k: usize| free(k) * f64::max(1.0, count[k]);
         let weights = DVec3::from_array(tv.map(free));
-        let lambda = overlap / (split(p) + (w * w).dot(DVec3::from_array(tv.map(split))));
-        moves[p] += n * (free(p) * lambda);
-        for (k, &v) in tv.iter().enumerate() {
-            moves[v] -= n * (w[k] * weights[k] * lambda);
+        // The overlap this substep's approach made is undone with its velocity, the rest in
+        // position only; friction within mu times the approach (the normal impulse).
+        let moved = |k: usize| x[k] - start[k];
+        let slip = moved(p) - (0..3).map(|k| moved(tv[k]) * w[k]).sum::<DVec3>();
+        let approach = (-slip.dot(n)).clamp(0.0, overlap);
+        let correction = n * overlap - friction_correction(slip, n, approach, o.friction);
+        // A contact that begins takes part by its count weight (see the GPU's apply_contact).
+        let k = count_weight(overlap, h) / (split(p) + (w * w).dot(DVec3::from_array(tv.map(split))));
+        let (push, rest) = (correction * k, n * ((overlap - approach) * k));
+        moves[p] += push * free(p);
+        rests[p] += rest * free(p);
+        for (j, &v) in tv.iter().enumerate() {
+            moves[v] -= push * (w[j] * weights[j]);
+            rests[v] -= rest * (w[j] * weights[j]);
         }
     }
-    moves
+    (moves, rests)
 }

@@ -370,7 +370,7 @@ impl GpuSim {
         // A cloth's contact sums start at zero (the constraints clear them after each read).
         let pairs = (self.objects.iter())
             .filter(|_| lists_stale)
-            .filter_map(|o| o.self_pairs.as_ref().map(|p| (p, 16 * o.particles as u64, 0)));
+            .filter_map(|o| o.self_pairs.as_ref().map(|p| (p, p.size(), 0)));
         let histories = (self.objects.iter())
             .filter_map(|o| o.solver.as_ref().map(|s| &s.history).filter(|_| history_stale))
             .map(|h| (h, h.size(), 0));
@@ -450,14 +450,20 @@ impl GpuSim {
 
     /// The find and apply passes of the cloths' contact with their own triangles on the
     /// per-stage path (`self_pairs.comp`), after the spatial hash's build, each ordered after
-    /// the one before and before the constraints by a barrier on the objects' scratch buffers.
+    /// the one before and before the constraints by a barrier on the objects' scratch buffers
+    /// and on the state the constraints write (which the passes read: where each particle
+    /// began the substep, for friction).
     fn record_self_pairs(&self, rec: &mut Recorder<'_>, substep: u32) {
         let cloths: Vec<&GpuObject> =
             self.objects.iter().filter(|o| !self.is_fused(o) && o.self_pairs.is_some()).collect();
         if cloths.is_empty() {
             return;
         }
-        let barriers: Vec<BufferBarrier<'_>> = cloths.iter().flat_map(|o| o.scratch_barriers()).collect();
+        let mut barriers: Vec<BufferBarrier<'_>> = cloths.iter().flat_map(|o| o.scratch_barriers()).collect();
+        // (sets[1] reads state[1] and writes state[0], binding 3)
+        barriers.extend(
+            cloths.iter().map(|o| BufferBarrier::new(&o.state[0], Access::ComputeRead, Access::ComputeWrite)),
+        );
         for apply in [false, true] {
             for o in &cloths {
                 let stage = Stage::SelfPairs(o.plan.features, self.lists_on(o), apply);

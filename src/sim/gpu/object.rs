@@ -257,7 +257,9 @@ impl GpuObject {
             }
             if has_self_pairs(o) {
                 let usage = BufferUsage::STORAGE | BufferUsage::TRANSFER_DST;
-                let bytes = 4 * (5 + SELF_PAIR_MAX) * n;
+                // Sums and counts (4), lengths (1), contacts, where each began the substep (3),
+                // the sums' parts that move the position only (3).
+                let bytes = 4 * (5 + SELF_PAIR_MAX + 6) * n;
                 let name = format!("{}.self_pairs", o.name);
                 self_pairs = Some(Buffer::new(ctx, &name, bytes, usage, MemoryKind::GpuOnly)?);
             }
