@@ -111,8 +111,10 @@ fn resizes_and_minimize_restore_are_clean() {
 }
 
 /// The editor's code paths with frames in flight: a parameter edit (in place), a substep
-/// change (rebuild keeping the state), a new sphere (rebuild), reset, save and load; the app
-/// fails if any edit is refused or anything reaches validation.
+/// change (rebuild keeping the state), a new sphere (rebuild), reset, save and load, a sphere
+/// dragged by its handle, then Ctrl+Z (the drag undone in one step: the sphere back where it
+/// began) and Ctrl+Shift+Z (redone); the app fails if any edit is refused, a check fails or
+/// anything reaches validation.
 #[test]
 fn editor_edits_rebuilds_reset_save_and_load_are_clean() {
     app(&["--preset", "presets/rope.toml", "--size", "640x480", "--exercise-editor"]);

@@ -3,7 +3,8 @@
 //! Left-drag on a particle grabs it (it follows the cursor at its depth, pinned, until the
 //! button is released); left-drag elsewhere or right-drag orbits; middle-drag or Shift+drag pans;
 //! the wheel zooms; W/A/S/D/Q/E fly; F fits the scene; Home resets the camera; Space pauses;
-//! N steps one frame; Ctrl+R resets the simulation; Esc quits.
+//! N steps one frame; Ctrl+R resets the simulation; Ctrl+Z undoes an edit, Ctrl+Shift+Z or
+//! Ctrl+Y redoes it; Esc quits.
 
 use crate::render::camera::OrbitCamera;
 use crate::sim::gpu::ObjectState;
@@ -37,6 +38,8 @@ pub enum KeyAction {
     Screenshot,
     Help,
     Record,
+    Undo,
+    Redo,
     /// Esc once: the app asks for a second press (`QUIT_CONFIRM`) before quitting.
     QuitAsk,
     Quit,
@@ -143,6 +146,11 @@ impl Input {
                     KeyCode::Space => Some(KeyAction::TogglePause),
                     KeyCode::KeyN => Some(KeyAction::Step),
                     KeyCode::KeyR if self.modifiers.control_key() => Some(KeyAction::Reset),
+                    KeyCode::KeyZ if self.modifiers.control_key() && self.modifiers.shift_key() => {
+                        Some(KeyAction::Redo)
+                    }
+                    KeyCode::KeyZ if self.modifiers.control_key() => Some(KeyAction::Undo),
+                    KeyCode::KeyY if self.modifiers.control_key() => Some(KeyAction::Redo),
                     KeyCode::KeyF => Some(KeyAction::Fit),
                     KeyCode::Home => Some(KeyAction::ResetCamera),
                     KeyCode::F12 => Some(KeyAction::Screenshot),

@@ -3,6 +3,7 @@
 //! mouse and keyboard.
 
 mod handles;
+mod history;
 mod input;
 pub mod offscreen;
 mod recorder;

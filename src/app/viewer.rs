@@ -96,6 +96,8 @@ pub struct Viewer {
     exercise_rope_x: f32,
     /// The UI's edited scene and actions, applied at the start of the next frame.
     pending_scene: Option<Scene>,
+    /// Undo and redo of scene edits (created with the scene).
+    history: Option<super::history::History>,
     pending_actions: Vec<Action>,
 }
 
@@ -160,6 +162,7 @@ impl Viewer {
             screenshot: None,
             shot: None,
             pending_scene: None,
+            history: None,
             pending_actions: Vec::new(),
         };
         // `viewer` owns what exists so far: a failure below is cleaned up by its Drop.
@@ -248,9 +251,9 @@ impl Viewer {
         self.editor.message = Some((text, error));
     }
 
-    /// Applies an edited scene, reporting refusals in the editor.
-    fn apply(&mut self, edited: Scene) {
-        let (Some(host), Some(renderer)) = (self.host.as_mut(), self.renderer.as_mut()) else { return };
+    /// Applies an edited scene, reporting refusals in the editor; false when refused.
+    fn apply(&mut self, edited: Scene) -> bool {
+        let (Some(host), Some(renderer)) = (self.host.as_mut(), self.renderer.as_mut()) else { return false };
         let applied = host.apply(&self.ctx, renderer, &mut self.shaders, edited);
         if matches!(applied, Ok(Applied::Rebuilt | Applied::RebuiltKeepingState)) {
             // The new simulation's timestamp pools were never written: waiting on them would hang.
@@ -260,8 +263,12 @@ impl Viewer {
             Ok(Applied::Rebuilt) => self.message("scene rebuilt from its initial state", false),
             Ok(Applied::RebuiltKeepingState) => self.message("simulation rebuilt; state kept", false),
             Ok(_) => {}
-            Err(e) => self.message(format!("not applied: {e:#}"), true),
+            Err(e) => {
+                self.message(format!("not applied: {e:#}"), true);
+                return false;
+            }
         }
+        true
     }
 
     fn run_action(&mut self, action: Action) {
@@ -280,6 +287,8 @@ impl Viewer {
             }
             Action::FitCamera => self.fit_camera(),
             Action::ResetCamera => self.camera = OrbitCamera::default(),
+            Action::Undo => self.undo(false),
+            Action::Redo => self.undo(true),
             Action::ToggleRecording(path) => {
                 let said = match (self.recorder.frames(), self.host.as_ref()) {
                     (Some(_), _) => self.recorder.stop(),
@@ -367,6 +376,8 @@ impl Viewer {
                     ),
                     false,
                 ),
+                KeyAction::Undo => self.undo(false),
+                KeyAction::Redo => self.undo(true),
                 KeyAction::Quit => quit = true,
             }
         }
@@ -448,6 +459,7 @@ impl Viewer {
         }
         self.input.fly(&mut self.camera, dt as f32);
         self.update_grab();
+        self.observe_edits();
 
         let run_sim = !self.editor.paused || std::mem::take(&mut self.step_once);
         // Simulated frames this drawn frame: one, or in real-time mode as many frame_dt as the
@@ -712,6 +724,7 @@ impl Drop for Viewer {
 
 mod exercise;
 mod grab;
+mod undo;
 
 /// Real-time mode simulates at most this many frames per drawn frame.
 const REAL_TIME_MOST: u32 = 4;

@@ -23,6 +23,8 @@ pub enum Action {
     AddClothFromPreset(PathBuf),
     /// Start recording into the file (`.usda` or `.obj`), or stop and write it.
     ToggleRecording(PathBuf),
+    Undo,
+    Redo,
 }
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -68,6 +70,10 @@ pub struct EditorState {
     pub real_time: bool,
     /// The existing file a Save would replace, once asked: Save again (Replace) writes it.
     pub replace: Option<String>,
+    /// Edits that can be undone and redone.
+    pub undo_depth: (usize, usize),
+    /// A field or other widget is being edited (a drag in progress): its edits are one step.
+    pub ui_active: bool,
 }
 
 /// What pressing Save on the file field's `path` does: a file that does not exist yet is
@@ -102,6 +108,7 @@ pub struct Stats {
 /// Builds the editor windows over `scene` (edited in place) and returns the actions.
 pub fn build(ui: &Ui, state: &mut EditorState, scene: &mut Scene, stats: &Stats) -> Vec<Action> {
     let mut actions = Vec::new();
+    state.ui_active = false;
     if state.hide_ui {
         return actions;
     }
@@ -183,11 +190,12 @@ pub fn build(ui: &Ui, state: &mut EditorState, scene: &mut Scene, stats: &Stats)
     if state.show_help {
         help_window(ui, &mut state.show_help);
     }
+    state.ui_active = ui.is_any_item_active();
     actions
 }
 
 /// The app's controls (the README's table), shown with F1.
-const CONTROLS: [(&str, &str); 15] = [
+const CONTROLS: [(&str, &str); 17] = [
     ("left-drag on cloth or rope", "grab the particle (within 12 pixels) and drag it"),
     ("Ctrl + left click", "pin the particle where it is, or free it"),
     ("left-drag on empty space, right-drag", "orbit"),
@@ -199,6 +207,8 @@ const CONTROLS: [(&str, &str); 15] = [
     ("Space", "pause or resume"),
     ("N", "step one frame"),
     ("Ctrl + R", "reset the simulation"),
+    ("Ctrl + Z", "undo the last edit of the scene (not the simulation)"),
+    ("Ctrl + Shift + Z, Ctrl + Y", "redo it"),
     ("F12", "save a screenshot (msdsim-<time>.png)"),
     ("F9", "start or stop recording (the file in the Simulation panel)"),
     ("F1", "show or hide these controls"),
@@ -241,6 +251,19 @@ fn simulation_panel(ui: &Ui, state: &mut EditorState, scene: &mut Scene, actions
     if ui.button("Reset (Ctrl+R)") {
         actions.push(Action::Reset);
     }
+    let (undo, redo) = state.undo_depth;
+    ui.disabled(undo == 0, || {
+        if ui.button(format!("Undo (Ctrl+Z): {undo}###undo")) {
+            actions.push(Action::Undo);
+        }
+    });
+    tip(ui, "Take back the last edit of the scene: a value, a drag of a handle, a pin, an object added or removed, a load. The simulation is not rewound: the scene is applied as an edit is.");
+    ui.same_line();
+    ui.disabled(redo == 0, || {
+        if ui.button(format!("Redo (Ctrl+Shift+Z): {redo}###redo")) {
+            actions.push(Action::Redo);
+        }
+    });
     if ui.button("Fit camera (F)") {
         actions.push(Action::FitCamera);
     }

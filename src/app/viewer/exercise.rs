@@ -3,6 +3,7 @@
 //! and fail on anything refused.
 
 use super::super::handles;
+use super::super::input::KeyAction;
 use super::{Outcome, Viewer};
 use crate::app::SimHost;
 use crate::scene;
@@ -39,8 +40,9 @@ impl Viewer {
 
     /// The scripted editor exercise of `--exercise-editor`: the editor's code paths (a parameter
     /// edit, a substep change, a layout change, an F12 screenshot, reset, pinning by click, save
-    /// and load, the Record button, dragging a sphere by its translate handle with the rope on it)
-    /// with frames in flight, then exit. Any refusal is an error.
+    /// and load, the Record button, dragging a sphere by its translate handle with the rope on it,
+    /// undoing the drag with Ctrl+Z and redoing it) with frames in flight, then exit. Any
+    /// refusal is an error.
     pub(super) fn exercise_editor(&mut self) -> Result<Outcome> {
         let mut scene = self.host().scene().clone();
         let saved = std::env::temp_dir().join(format!("msdsim-exercise-{}.toml", std::process::id()));
@@ -135,7 +137,26 @@ impl Viewer {
                 if let Some((text, true)) = &self.editor.message {
                     anyhow::bail!("exercise: the editor reported an error: {text}");
                 }
-                return Ok(Outcome::Exit);
+                self.input.actions.push(KeyAction::Undo);
+            }
+            // The drag was one step: undone, the sphere is back where it started; redone, it is
+            // where the drag left it.
+            77 | 79 => {
+                let at = handles::position(self.host().scene(), Selection::Sphere(0)).unwrap_or_default();
+                let start = self.exercise_start.unwrap_or_default();
+                if self.tick == 77 {
+                    let back = at.distance(start) < 1e-6;
+                    expect(
+                        self.host(),
+                        &format!("Ctrl+Z undoing the drag (sphere at {at}, began at {start})"),
+                        back,
+                    )?;
+                    self.input.actions.push(KeyAction::Redo);
+                } else {
+                    let redone = at.x - start.x > 0.01;
+                    expect(self.host(), &format!("Ctrl+Shift+Z redoing the drag (sphere at {at})"), redone)?;
+                    return Ok(Outcome::Exit);
+                }
             }
             _ => {}
         }
