@@ -238,10 +238,11 @@ impl GpuObject {
             }
             if model.inter_object_contact() {
                 let usage = BufferUsage::STORAGE | BufferUsage::TRANSFER_DST;
+                // Per particle two vec4: the summed moves, their position-only part.
                 contact = Some(Buffer::new(
                     ctx,
                     &format!("{}.contact", o.name),
-                    16 * n,
+                    32 * n,
                     usage,
                     MemoryKind::GpuOnly,
                 )?);
