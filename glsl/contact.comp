@@ -21,11 +21,8 @@
 // triangle's corners are counted by the particle that touches it) and notes the first
 // PAIR_MAX of its own. Pass 1 sums the moves into moves[] in fixed point (integer atomics:
 // exact and in any order), from the notes (searching again only for a particle with more).
-// Every contact's normal correction is split: what the substep's approach made is undone with
-// its velocity, an overlap left from before (or found deep) in position only, so that it gives
-// no speed. Pass 2 writes each particle's sum (xyz) and whether it touches anything (w) into
-// its object's contact[2 i], the position-only part into contact[2 i + 1]; the constraint
-// stage adds the sum to its own correction, and its velocity follows all but that part. touches[] and
+// Pass 2 writes each particle's sum (xyz) and whether it touches anything (w) into its
+// object's contact[]; the constraint stage adds it to its own correction. touches[] and
 // moves[] are cleared by contact_count.comp. The CPU twin is sim::cpu::inter_object.
 #include "layout.glsl"
 #include "contact_common.glsl"
@@ -72,24 +69,11 @@ float corner_reach(uint q) { return objects[OBJECT_ROWS * q + 1u].w; }
 // largest overlap, under half a cell, far inside the 8 cells an int holds.
 float move_fix() { return 268435456.0 * table.cell_inv; }
 
-// Adds move v to particle k's sum, and `rest`, the part of it that moves the position only,
-// to that sum (moves[] holds 8 words a particle: MOVE_WORDS).
-void add_move(uint k, vec3 v, vec3 rest) {
+void add_move(uint k, vec3 v) {
     ivec3 q = ivec3(round(v * move_fix()));
-    if (q.x != 0) atomicAdd(moves[MOVE_WORDS * k], q.x);
-    if (q.y != 0) atomicAdd(moves[MOVE_WORDS * k + 1u], q.y);
-    if (q.z != 0) atomicAdd(moves[MOVE_WORDS * k + 2u], q.z);
-    ivec3 r = ivec3(round(rest * move_fix()));
-    if (r.x != 0) atomicAdd(moves[MOVE_WORDS * k + 4u], r.x);
-    if (r.y != 0) atomicAdd(moves[MOVE_WORDS * k + 5u], r.y);
-    if (r.z != 0) atomicAdd(moves[MOVE_WORDS * k + 6u], r.z);
-}
-
-// Of a contact's normal correction `overlap`, the part that moves the position only: what the
-// relative motion `moved` over the substep did not make by approaching along n (an overlap
-// left from earlier substeps, or one found deep), so that undoing it gives no speed.
-float position_only_part(vec3 moved, vec3 n, float overlap) {
-    return overlap - clamp(-dot(moved, n), 0.0, overlap);
+    if (q.x != 0) atomicAdd(moves[4u * k], q.x);
+    if (q.y != 0) atomicAdd(moves[4u * k + 1u], q.y);
+    if (q.z != 0) atomicAdd(moves[4u * k + 2u], q.z);
 }
 
 // A particle's count of contacts for the split (at least 1), none when it is pinned (inverse
@@ -103,7 +87,7 @@ float pair_friction(uint a, uint b) { return 0.5 * (friction_of(a) + friction_of
 // Contacts a particle notes in pass 0 for pass 1 (pairs[], PAIR_MAX a particle, each the other
 // particle's scene index << 3 | the ring index r of triangle (j, ring r, ring r + 1) of j's
 // object (VERTEX_RING), or PAIR_NOTE for a particle pair); one with more searches the hash again. Its count
-// of contacts as the particle (not as a corner) is moves[MOVE_WORDS k + 3].
+// of contacts as the particle (not as a corner) is moves[4 k + 3].
 const uint PAIR_MAX = 8u;
 const uint PAIR_NOTE = 7u;
 
@@ -134,24 +118,20 @@ void triangle_moves(uint k, vec4 ek, uint me, uvec3 tv, vec4 ej, vec4 ea, vec4 e
     uint split = max(max(count_of(k, wp), count_of(tv.x, wk.x)), max(count_of(tv.y, wk.y), count_of(tv.z, wk.z)));
     vec3 n = off / d;
     // The relative motion over the substep, along the contact's tangent: undone whole within
-    // the friction cone, else by mu times the normal impulse (Coulomb): the part of the normal
-    // correction that the approach made, not what is `held` over from earlier substeps.
+    // the friction cone, else by mu times the normal correction (Coulomb).
     vec3 moved = (ek.xyz - begun[k].xyz)
                - (w.x * (ej.xyz - begun[tv.x].xyz) + w.y * (ea.xyz - begun[tv.y].xyz) + w.z * (eb.xyz - begun[tv.z].xyz));
-    float held = position_only_part(moved, n, reach - d);
-    vec3 correction = n * (reach - d) - friction_correction(moved, n, reach - d - held, pair_friction(me, q));
-    float scale = 1.0 / (denom * float(split));
-    vec3 push = correction * scale;
-    vec3 rest = n * (held * scale);
-    add_move(k, wp * push, wp * rest);
-    add_move(tv.x, -wk.x * w.x * push, -wk.x * w.x * rest);
-    add_move(tv.y, -wk.y * w.y * push, -wk.y * w.y * rest);
-    add_move(tv.z, -wk.z * w.z * push, -wk.z * w.z * rest);
+    vec3 correction = n * (reach - d) - friction_correction(moved, n, reach - d, pair_friction(me, q));
+    vec3 push = correction / (denom * float(split));
+    add_move(k, wp * push);
+    add_move(tv.x, -wk.x * w.x * push);
+    add_move(tv.y, -wk.y * w.y * push);
+    add_move(tv.z, -wk.z * w.z * push);
 }
 
 // Pass 1: particle k's move (entry ek, object me) in its pair with particle j (entry ej,
-// object q) into `move`, its position-only part into `rest`.
-void pair_move(uint k, vec4 ek, uint me, uint j, vec4 ej, uint q, inout vec3 move, inout vec3 rest) {
+// object q) into `move`.
+void pair_move(uint k, vec4 ek, uint me, uint j, vec4 ej, uint q, inout vec3 move) {
     float reach = radius_of(me) + radius_of(q);
     vec3 to_j = ej.xyz - ek.xyz;
     float d = length(to_j);
@@ -161,10 +141,8 @@ void pair_move(uint k, vec4 ek, uint me, uint j, vec4 ej, uint q, inout vec3 mov
     float split = 1.0 / float(max(count_of(k, 1.0), count_of(j, j_pinned ? 0.0 : 1.0)));
     vec3 n = -to_j / d;
     vec3 moved = (ek.xyz - begun[k].xyz) - (ej.xyz - begun[j].xyz);
-    float held = position_only_part(moved, n, reach - d);
-    vec3 correction = n * (reach - d) - friction_correction(moved, n, reach - d - held, pair_friction(me, q));
+    vec3 correction = n * (reach - d) - friction_correction(moved, n, reach - d, pair_friction(me, q));
     move += correction * (w * split);
-    rest += n * (held * w * split);
 }
 
 // Particle k (entry ek, object me) against the triangles of object q around its vertex j (entry
@@ -211,7 +189,7 @@ const uint CANDIDATE_MAX = 32u;
 // cloth near enough is kept as a candidate (the caller tests them when `candidates` is full);
 // a particle of another object neither being a cloth is a pair: pass 0 counts it into n and
 // notes it, pass 1 adds k's move to `move`.
-void visit(uint at, vec4 ek, uint k, uint me, bool sum, inout uint n, inout vec3 move, inout vec3 rest, inout uint candidates[CANDIDATE_MAX], inout uint found) {
+void visit(uint at, vec4 ek, uint k, uint me, bool sum, inout uint n, inout vec3 move, inout uint candidates[CANDIDATE_MAX], inout uint found) {
     vec4 e = sorted[at];
     uint j = floatBitsToUint(e.w) & ~PINNED_BIT;
     uint other = owner(j);
@@ -223,7 +201,7 @@ void visit(uint at, vec4 ek, uint k, uint me, bool sum, inout uint n, inout vec3
         if (dj < r * r) candidates[found++] = at;
     } else if (grid_of(me).x == 0u) {
         if (sum) {
-            pair_move(k, ek, me, j, e, other, move, rest);
+            pair_move(k, ek, me, j, e, other, move);
             return;
         }
         float reach = radius_of(me) + radius_of(other);
@@ -246,12 +224,12 @@ void test_candidates(vec4 ek, uint k, uint me, bool sum, inout uint n, uint cand
 }
 
 // Pass 1: the moves of the contact particle k noted in pass 0.
-void replay(uint note, vec4 ek, uint k, uint me, inout vec3 move, inout vec3 rest) {
+void replay(uint note, vec4 ek, uint k, uint me, inout vec3 move) {
     uint j = note >> 3u;
     uint q = owner(j);
     vec4 ej = entry_of(j);
     if ((note & 7u) == PAIR_NOTE) {
-        pair_move(k, ek, me, j, ej, q, move, rest);
+        pair_move(k, ek, me, j, ej, q, move);
         return;
     }
     int r = int(note & 7u);
@@ -268,11 +246,8 @@ void main() {
     if (which.pass == 2u) {
         if (i >= particle_count()) return;
         uint k = first_index() + i;
-        uint m = MOVE_WORDS * k;
-        vec3 sum = vec3(moves[m], moves[m + 1u], moves[m + 2u]) / move_fix();
-        vec3 rest = vec3(moves[m + 4u], moves[m + 5u], moves[m + 6u]) / move_fix();
-        contact[2u * i] = vec4(sum, touches[k] > 0u ? 1.0 : 0.0);
-        contact[2u * i + 1u] = vec4(rest, 0.0);
+        vec3 sum = vec3(moves[4u * k], moves[4u * k + 1u], moves[4u * k + 2u]) / move_fix();
+        contact[i] = vec4(sum, touches[k] > 0u ? 1.0 : 0.0);
         return;
     }
     if (i >= scene_count()) return;
@@ -280,14 +255,13 @@ void main() {
     uint k = i;
     uint me = owner(k);
     if (!looks(me)) return;
-    uint own = sum ? uint(moves[MOVE_WORDS * k + 3u]) : 0u;
+    uint own = sum ? uint(moves[4u * k + 3u]) : 0u;
     if (sum && own == 0u) return;
     vec4 ek = entry_of(k);
     uint n = 0u;
     vec3 move = vec3(0.0);
-    vec3 rest = vec3(0.0);
     if (sum && own <= PAIR_MAX) {
-        for (uint e = 0u; e < own; ++e) replay(pairs[k * PAIR_MAX + e], ek, k, me, move, rest);
+        for (uint e = 0u; e < own; ++e) replay(pairs[k * PAIR_MAX + e], ek, k, me, move);
     } else {
         // Cells are sized so that everything a contact needs lies in the 2 x 2 x 2 block of
         // cells nearest to the particle (SimModel::contact_cell). Buckets visited once.
@@ -303,7 +277,7 @@ void main() {
             if (again) continue;
             uint end = BUCKET_START(h + 1u, table.hash_mask);
             for (uint at = BUCKET_START(h, table.hash_mask); at < end; ++at) {
-                visit(at, ek, k, me, sum, n, move, rest, candidates, found);
+                visit(at, ek, k, me, sum, n, move, candidates, found);
                 if (found == CANDIDATE_MAX) {
                     test_candidates(ek, k, me, sum, n, candidates, found);
                     found = 0u;
@@ -314,9 +288,9 @@ void main() {
     }
     if (sum) {
         bool pinned = (floatBitsToUint(ek.w) & PINNED_BIT) != 0u;
-        add_move(k, pinned ? vec3(0.0) : move, pinned ? vec3(0.0) : rest);
+        add_move(k, pinned ? vec3(0.0) : move);
     } else if (n > 0u) {
         atomicAdd(touches[k], n);
-        moves[MOVE_WORDS * k + 3u] = int(n);
+        moves[4u * k + 3u] = int(n);
     }
 }

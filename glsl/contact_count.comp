@@ -16,5 +16,7 @@ void main() {
     uint k = first_index() + i;
     cell_rank[k] = uvec2(h, atomicAdd(counts[h], 1u));
     touches[k] = 0u;
-    for (uint w = 0u; w < MOVE_WORDS; ++w) moves[MOVE_WORDS * k + w] = 0;
+    moves[4u * k] = 0;
+    moves[4u * k + 1u] = 0;
+    moves[4u * k + 2u] = 0;
 }

@@ -258,9 +258,9 @@ fn slopes_on_cloths(substeps: u32) -> SimModel {
 
 /// Coulomb friction in contact between objects, against the same closed forms as against a
 /// box: above the friction angle and sliding on the level the small cloth goes Coulomb's
-/// distance within 10% (measured: within 3.4% at 8 substeps, 1.5% at 16, 0.3% at 64); below
+/// distance within 10% (measured: within 3.2% at 8 substeps, 1.2% at 16, 0.2% at 64); below
 /// it Coulomb's answer is no motion, and the cloth must creep less than 1% of the distance it
-/// would slide without friction in 0.5 s (measured: at most 0.18% at 8 substeps, 0.09% at 16,
+/// would slide without friction in 0.5 s (measured: at most 0.18% at 8 substeps, 0.07% at 16,
 /// 0.02% at 64, first order in the step: a contact's correction is split among a particle's
 /// contacts, so a substep undoes slightly less than the whole slip; the pinned cloth's own
 /// counts, which would make that a tenth, are left out of the split). At 8, 16 and 64

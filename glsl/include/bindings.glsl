@@ -45,9 +45,8 @@ layout(std430, set = 0, binding = 11) buffer GuardBuf { uint guard_flags; uint g
 // Iterates of the iterative integrators (objects of the explicit ones bind a placeholder).
 layout(std430, set = 0, binding = 12) buffer SolverIter { vec4 iter[]; }; // slices of N positions; w = 1 pinned
 layout(std430, set = 0, binding = 13) buffer SolverAux { vec4 aux[]; };   // xpbd: 12 multipliers per particle; implicit: y
-// Inter-object contact: per particle i, the summed corrections from other objects (xyz) and
-// whether it touches any (w) at 2 i, the part of them that moves the position only at 2 i + 1,
-// written by contact.comp each substep, read by the constraint stage.
+// Inter-object contact: per particle, the summed corrections from other objects (xyz) and
+// their count (w), written by contact.comp each substep, read by the constraint stage.
 layout(std430, set = 0, binding = 14) buffer ContactBuf { vec4 contact[]; };
 
 // The fused kernel's self-collision contact list (fused.comp): per particle a header (the

@@ -186,7 +186,7 @@ void self_apply(uvec2 cell, uint i, vec3 x) {
 }
 
 // The part of the last constraint_correction that moves the position only, not the velocity
-// (self-contact and contact between objects undoing an overlap from an earlier substep).
+// (a cloth's self-contact undoing an overlap from an earlier substep).
 vec3 position_only;
 
 // The position correction of the free particle at grid `cell`, at x after physics; the
@@ -226,11 +226,7 @@ vec3 constraint_correction(uvec2 cell, vec3 x) {
 
     // Inter-object contact: what contact.comp summed from the other objects' particles, added
     // whole (each pair's share is already split so that the pair conserves momentum).
-    if (has(F_CONTACT)) {
-        uint c = 2u * (cell.x + cell.y * obj.dims.x);
-        correction += contact[c].xyz;
-        position_only += contact[c + 1u].xyz;
-    }
+    if (has(F_CONTACT)) correction += contact[cell.x + cell.y * obj.dims.x].xyz;
     return correction;
 }
 

@@ -32,11 +32,8 @@ layout(std430, set = 0, binding = 14) buffer ContactBuf { vec4 contact[]; };
 // and the contacts it noted in pass 0 (PAIR_MAX a particle, contact.comp).
 layout(std430, set = 0, binding = 3) buffer SceneTouches { uint touches[]; };
 layout(std430, set = 0, binding = 5) buffer ScenePairs { uint pairs[]; };
-// Per scene particle, MOVE_WORDS words: the sum of its moves in fixed point (x, y, z), its
-// count of contacts as the particle, and the part of the sum that moves the position only
-// (x, y, z; contact.comp), one unused.
+// Per scene particle: the sum of its moves in fixed point (x, y, z, unused; contact.comp).
 layout(std430, set = 0, binding = 17) buffer SceneMoves { int moves[]; };
-const uint MOVE_WORDS = 8u;
 
 layout(push_constant) uniform Which {
     uint object;  // this object's index in `objects`

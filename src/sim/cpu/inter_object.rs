@@ -12,8 +12,7 @@
 //!
 //! Both kinds have Coulomb friction (mu the mean of the two objects' `friction`): the
 //! contact's relative motion over the substep along its tangent is undone whole when it is
-//! within mu times the normal impulse, the part of the normal correction the substep's approach
-//! made (static), else by that much (kinetic), with the same
+//! within mu times the normal correction (static), else by that much (kinetic), with the same
 //! weights as the normal correction. Every contact's moves are divided by the largest count of
 //! contacts among its free particles (the same for all: equal and opposite momenta). Every pair is tested here; the GPU finds
 //! the same through the scene's spatial hash.
@@ -22,16 +21,8 @@ use super::self_contact::{cloth_triangles, friction_correction, triangle_nearest
 use crate::sim::model::SimModel;
 use glam::DVec3;
 
-/// The particles of one contact, each as (object, particle, its move before the split, the
-/// part of that move that moves the position only).
-type Contact = Vec<(usize, usize, DVec3, DVec3)>;
-
-/// Of a contact's normal correction `overlap`, the part that moves the position only: what the
-/// relative motion `moved` over the substep did not make by approaching along n
-/// (`position_only_part` in glsl/contact.comp).
-fn position_only_part(moved: DVec3, n: DVec3, overlap: f64) -> f64 {
-    overlap - (-moved.dot(n)).clamp(0.0, overlap)
-}
+/// The particles of one contact, each as (object, particle, its move before the split).
+type Contact = Vec<(usize, usize, DVec3)>;
 
 /// Whether objects a and b (positions x) are near enough to touch: their bounding boxes
 /// within `gap` of each other.
@@ -75,14 +66,10 @@ fn contacts(m: &SimModel, x: &[&[DVec3]], x0: &[&[DVec3]]) -> Vec<Contact> {
                         let denom = wp + (0..3).map(|k| wk[k] * w[k] * w[k]).sum::<f64>();
                         let began = |o: usize, k: usize| x[o][k] - x0[o][k];
                         let moved = began(a, i) - (0..3).map(|k| w[k] * began(b, tv[k])).sum::<DVec3>();
-                        let held = position_only_part(moved, n, reach - d);
-                        let correction =
-                            n * (reach - d) - friction_correction(moved, n, reach - d - held, mu);
-                        let scale = if denom > 0.0 { 1.0 / denom } else { 0.0 };
-                        let (push, rest) = (correction * scale, n * (held * scale));
-                        let mut contact = vec![(a, i, wp * push, wp * rest)];
-                        contact
-                            .extend((0..3).map(|k| (b, tv[k], -wk[k] * w[k] * push, -wk[k] * w[k] * rest)));
+                        let correction = n * (reach - d) - friction_correction(moved, n, reach - d, mu);
+                        let push = if denom > 0.0 { correction / denom } else { DVec3::ZERO };
+                        let mut contact = vec![(a, i, wp * push)];
+                        contact.extend((0..3).map(|k| (b, tv[k], -wk[k] * w[k] * push)));
                         found.push(contact);
                     }
                 }
@@ -102,28 +89,13 @@ fn contacts(m: &SimModel, x: &[&[DVec3]], x0: &[&[DVec3]]) -> Vec<Contact> {
                             }
                         };
                         let moved = (p - x0[a][i]) - (q - x0[b][j]);
-                        let held = position_only_part(moved, n, reach - d);
-                        let correction =
-                            n * (reach - d) - friction_correction(moved, n, reach - d - held, mu);
-                        let rest = n * held;
-                        let (share_p, share_q) = (
-                            share(other.pinned[j], o.mass, other.mass),
-                            share(o.pinned[i], other.mass, o.mass),
-                        );
+                        let correction = n * (reach - d) - friction_correction(moved, n, reach - d, mu);
+                        let move_p = correction * share(other.pinned[j], o.mass, other.mass);
+                        let move_q = -correction * share(o.pinned[i], other.mass, o.mass);
                         let keep = |pinned: bool, v: DVec3| if pinned { DVec3::ZERO } else { v };
                         found.push(vec![
-                            (
-                                a,
-                                i,
-                                keep(o.pinned[i], correction * share_p),
-                                keep(o.pinned[i], rest * share_p),
-                            ),
-                            (
-                                b,
-                                j,
-                                keep(other.pinned[j], -correction * share_q),
-                                keep(other.pinned[j], -rest * share_q),
-                            ),
+                            (a, i, keep(o.pinned[i], move_p)),
+                            (b, j, keep(other.pinned[j], move_q)),
                         ]);
                     }
                 }
@@ -134,24 +106,21 @@ fn contacts(m: &SimModel, x: &[&[DVec3]], x0: &[&[DVec3]]) -> Vec<Contact> {
 }
 
 /// Each object's corrections from the contacts between the objects at positions `x` (`x0`
-/// where they began the substep), with the parts of them that move the position only (an
-/// overlap the substep's approach did not make: undone without speed).
-pub(super) fn inter_object(m: &SimModel, x: &[&[DVec3]], x0: &[&[DVec3]]) -> Vec<(Vec<DVec3>, Vec<DVec3>)> {
+/// where they began the substep).
+pub(super) fn inter_object(m: &SimModel, x: &[&[DVec3]], x0: &[&[DVec3]]) -> Vec<Vec<DVec3>> {
     let found = contacts(m, x, x0);
     let mut touches: Vec<Vec<u32>> = x.iter().map(|x| vec![0; x.len()]).collect();
-    for &(o, i, _, _) in found.iter().flatten() {
+    for &(o, i, _) in found.iter().flatten() {
         touches[o][i] += 1;
     }
-    let mut out: Vec<(Vec<DVec3>, Vec<DVec3>)> =
-        x.iter().map(|x| (vec![DVec3::ZERO; x.len()], vec![DVec3::ZERO; x.len()])).collect();
+    let mut moves: Vec<Vec<DVec3>> = x.iter().map(|x| vec![DVec3::ZERO; x.len()]).collect();
     for contact in &found {
         // Pinned particles take no share, so their counts do not dilute the others'.
-        let free = contact.iter().filter(|&&(o, i, _, _)| !m.objects[o].pinned[i]);
-        let split = free.map(|&(o, i, _, _)| touches[o][i]).max().unwrap_or(1).max(1) as f64;
-        for &(o, i, v, rest) in contact {
-            out[o].0[i] += v / split;
-            out[o].1[i] += rest / split;
+        let free = contact.iter().filter(|&&(o, i, _)| !m.objects[o].pinned[i]);
+        let split = free.map(|&(o, i, _)| touches[o][i]).max().unwrap_or(1).max(1) as f64;
+        for &(o, i, v) in contact {
+            moves[o][i] += v / split;
         }
     }
-    out
+    moves
 }

@@ -316,7 +316,7 @@ impl CpuSim {
             let starts: Vec<&[DVec3]> = self.objects.iter().map(|o| o.x.as_slice()).collect();
             inter_object::inter_object(m, &positions, &starts)
         } else {
-            positions.iter().map(|x| (vec![DVec3::ZERO; x.len()], vec![DVec3::ZERO; x.len()])).collect()
+            positions.iter().map(|x| vec![DVec3::ZERO; x.len()]).collect()
         };
         for (a, (o, state)) in m.objects.iter().zip(&mut self.objects).enumerate() {
             let (px, pv) = &advanced[a];
@@ -328,15 +328,14 @@ impl CpuSim {
 }
 
 /// The constraint stage of object `o` on the physics result `(x, v)`; `motions` holds each
-/// collider's offset and velocity, `contact` each particle's summed inter-object corrections
-/// and their position-only parts,
+/// collider's offset and velocity, `contact` each particle's summed inter-object corrections,
 /// `start` where each particle began the substep (the colliders' friction).
 fn constraints(
     m: &SimModel,
     o: &ObjectModel,
     dt: f64,
     motions: &[(DVec3, DVec3)],
-    contact: &(Vec<DVec3>, Vec<DVec3>),
+    contact: &[DVec3],
     start: &[DVec3],
     (x, v): (&[DVec3], &[DVec3]),
 ) -> (Vec<DVec3>, Vec<DVec3>) {
@@ -385,9 +384,9 @@ fn constraints(
         if active > 1 {
             correction /= active as f64;
         }
-        correction += own[i] + contact.0[i];
+        correction += own[i] + contact[i];
         let mut p = x[i] + correction;
-        let mut vel = v[i] + (correction - own_rest[i] - contact.1[i]) / dt;
+        let mut vel = v[i] + (correction - own_rest[i]) / dt;
         if edges {
             collide_edges(m, o, (i, x), motions, (start[i], dt), (&mut p, &mut vel));
         }

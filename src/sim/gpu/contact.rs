@@ -107,7 +107,7 @@ impl SceneContact {
         let specs = [
             ("table", std::mem::size_of::<ObjectParams>() as u64, storage, MemoryKind::Upload),
             ("objects", 16 * rows.len() as u64, storage, MemoryKind::Upload),
-            ("moves", 32 * total, storage, gpu_only),
+            ("moves", 16 * total, storage, gpu_only),
             ("cell_rank", 8 * total, storage, gpu_only),
             ("counts", 4 * (buckets + 1), storage | BufferUsage::TRANSFER_DST, gpu_only),
             ("starts", 4 * (buckets + 1), storage, gpu_only),

@@ -238,11 +238,10 @@ impl GpuObject {
             }
             if model.inter_object_contact() {
                 let usage = BufferUsage::STORAGE | BufferUsage::TRANSFER_DST;
-                // Per particle two vec4: the summed moves, their position-only part.
                 contact = Some(Buffer::new(
                     ctx,
                     &format!("{}.contact", o.name),
-                    32 * n,
+                    16 * n,
                     usage,
                     MemoryKind::GpuOnly,
                 )?);
