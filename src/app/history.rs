@@ -3,6 +3,9 @@
 //! simulation state is not part of it: an undone edit is applied as any edit is (parameters in
 //! place, layout changes from the initial state).
 //!
+//! It also keeps the scene as last loaded or saved, so the app knows whether there are
+//! unsaved edits (Save is marked, and quitting asks first).
+//!
 //! The history keeps the scene as last committed and, before it, what it replaced. An edit is
 //! committed once nothing is being dragged (a drag of a field or a handle is one step, however
 //! many frames it runs), so `observe` is given the scene every frame with whether an edit is
@@ -17,11 +20,22 @@ pub struct History {
     past: Vec<Scene>,
     future: Vec<Scene>,
     committed: Scene,
+    saved: Scene,
 }
 
 impl History {
     pub fn new(scene: &Scene) -> Self {
-        Self { past: Vec::new(), future: Vec::new(), committed: scene.clone() }
+        Self { past: Vec::new(), future: Vec::new(), committed: scene.clone(), saved: scene.clone() }
+    }
+
+    /// `scene` was just loaded or saved.
+    pub fn mark_saved(&mut self, scene: &Scene) {
+        self.saved = scene.clone();
+    }
+
+    /// Whether `now` differs from the scene as last loaded or saved.
+    pub fn unsaved(&self, now: &Scene) -> bool {
+        *now != self.saved
     }
 
     /// The scene as it is now; `busy` while an edit is in progress (a field, handle or particle
@@ -123,5 +137,10 @@ mod tests {
         assert_eq!(h.redo().as_ref(), Some(&d));
         h.refuse_redo();
         assert_eq!(h.depth(), (1, 1), "a refused redo is taken back");
+
+        // Unsaved edits: against the scene as last loaded or saved, whatever the steps.
+        assert!(h.unsaved(&b) && !h.unsaved(&a), "the first scene is the saved one");
+        h.mark_saved(&b);
+        assert!(!h.unsaved(&b) && h.unsaved(&a), "saved");
     }
 }

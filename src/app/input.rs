@@ -72,7 +72,7 @@ pub struct Input {
 impl Input {
     /// Esc pressed at `now`: quit when it follows a first press within QUIT_CONFIRM seconds,
     /// else ask (a stray Esc, in the middle of a grab or meant for a text field, loses nothing).
-    fn escape(&mut self, now: std::time::Instant) -> KeyAction {
+    pub(super) fn escape(&mut self, now: std::time::Instant) -> KeyAction {
         match self.quit_asked.take() {
             Some(at) if now.duration_since(at).as_secs_f64() <= QUIT_CONFIRM => KeyAction::Quit,
             _ => {

@@ -209,7 +209,7 @@ impl Viewer {
         let (ui_mouse, ui_keys) = (io.want_capture_mouse, io.want_capture_keyboard);
         self.input.handle(event, &mut self.camera, ui_mouse, ui_keys);
         match event {
-            WindowEvent::CloseRequested => return true,
+            WindowEvent::CloseRequested => return self.close_requested(),
             WindowEvent::Resized(size) => self.resized(*size),
             _ => {}
         }
@@ -303,14 +303,19 @@ impl Viewer {
             }
             Action::Load(path) => match scene::load(&path, &[]) {
                 Ok(loaded) => {
-                    self.apply(loaded);
+                    if self.apply(loaded) {
+                        self.mark_saved();
+                    }
                     self.fit_camera();
                     self.message(format!("loaded {}", path.display()), false);
                 }
                 Err(e) => self.message(e.to_string(), true),
             },
             Action::Save(path) => match scene::save(self.host().scene(), &path) {
-                Ok(()) => self.message(format!("saved {}", path.display()), false),
+                Ok(()) => {
+                    self.mark_saved();
+                    self.message(format!("saved {}", path.display()), false)
+                }
                 Err(e) => self.message(format!("{e:#}"), true),
             },
             Action::AddClothFromPreset(path) => match scene::load(&path, &[]) {
@@ -369,13 +374,13 @@ impl Viewer {
                 KeyAction::Record => {
                     self.run_action(Action::ToggleRecording(PathBuf::from(&self.editor.record_path)))
                 }
-                KeyAction::QuitAsk => self.message(
-                    format!(
-                        "press Esc again within {} s to quit (edits not saved are lost)",
-                        super::input::QUIT_CONFIRM
-                    ),
-                    false,
-                ),
+                KeyAction::QuitAsk => {
+                    self.observe_edits();
+                    let lost = if self.editor.unsaved { " (the unsaved edits are lost)" } else { "" };
+                    let text =
+                        format!("press Esc again within {} s to quit{lost}", super::input::QUIT_CONFIRM);
+                    self.message(text, false)
+                }
                 KeyAction::Undo => self.undo(false),
                 KeyAction::Redo => self.undo(true),
                 KeyAction::Quit => quit = true,

@@ -72,6 +72,8 @@ pub struct EditorState {
     pub replace: Option<String>,
     /// Edits that can be undone and redone.
     pub undo_depth: (usize, usize),
+    /// The scene differs from the one last loaded or saved.
+    pub unsaved: bool,
     /// A field or other widget is being edited (a drag in progress): its edits are one step.
     pub ui_active: bool,
 }
@@ -166,7 +168,7 @@ pub fn build(ui: &Ui, state: &mut EditorState, scene: &mut Scene, stats: &Stats)
                     if ui.button("Cancel##save") {
                         state.replace = None;
                     }
-                } else if ui.button("Save") {
+                } else if ui.button(if state.unsaved { "Save*###save" } else { "Save###save" }) {
                     let exists = std::path::Path::new(&path).exists();
                     actions.extend(save_pressed(state, &path, exists));
                 }
@@ -212,7 +214,7 @@ const CONTROLS: [(&str, &str); 17] = [
     ("F12", "save a screenshot (msdsim-<time>.png)"),
     ("F9", "start or stop recording (the file in the Simulation panel)"),
     ("F1", "show or hide these controls"),
-    ("Esc, Esc", "quit (twice within 3 s)"),
+    ("Esc, Esc", "quit (twice within 3 s; the close button too, with unsaved edits)"),
 ];
 
 fn help_window(ui: &Ui, open: &mut bool) {

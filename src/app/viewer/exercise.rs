@@ -41,8 +41,8 @@ impl Viewer {
     /// The scripted editor exercise of `--exercise-editor`: the editor's code paths (a parameter
     /// edit, a substep change, a layout change, an F12 screenshot, reset, pinning by click, save
     /// and load, the Record button, dragging a sphere by its translate handle with the rope on it,
-    /// undoing the drag with Ctrl+Z and redoing it) with frames in flight, then exit. Any
-    /// refusal is an error.
+    /// closing the window with that edit unsaved (it asks), undoing the drag with Ctrl+Z and
+    /// redoing it) with frames in flight, then exit. Any refusal is an error.
     pub(super) fn exercise_editor(&mut self) -> Result<Outcome> {
         let mut scene = self.host().scene().clone();
         let saved = std::env::temp_dir().join(format!("msdsim-exercise-{}.toml", std::process::id()));
@@ -119,6 +119,13 @@ impl Viewer {
                     self.exercise_rope_x = self.rope_mean_x()?;
                 }
                 self.input.script_left(self.tick < 63, cursor);
+            }
+            // The drag left an unsaved edit: the window's close button asks first (and the
+            // second press would quit; the exercise goes on instead).
+            74 => {
+                let quit = self.handle_event(&winit::event::WindowEvent::CloseRequested);
+                let asked = self.editor.message.as_ref().is_some_and(|(m, _)| m.contains("unsaved edits"));
+                expect(self.host(), "closing with unsaved edits asking first", !quit && asked)?;
             }
             // It moved along x only, and the rope lying on it came along (friction).
             75 => {

@@ -1,7 +1,9 @@
 //! Undo and redo in the app: the history (`app::history`) sees the scene after every frame's
-//! edits, and an undone or redone scene is applied as an edit is.
+//! edits, and an undone or redone scene is applied as an edit is; and what is unsaved, which
+//! makes closing the window ask first.
 
 use super::super::history::History;
+use super::super::input::KeyAction;
 use super::Viewer;
 
 impl Viewer {
@@ -13,6 +15,35 @@ impl Viewer {
         let history = self.history.get_or_insert_with(|| History::new(host.scene()));
         history.observe(host.scene(), busy || self.pending_scene.is_some());
         self.editor.undo_depth = history.depth();
+        self.editor.unsaved = history.unsaved(host.scene());
+    }
+
+    /// The scene was just loaded or saved: no unsaved edits.
+    pub(super) fn mark_saved(&mut self) {
+        if let (Some(history), Some(host)) = (self.history.as_mut(), self.host.as_ref()) {
+            history.mark_saved(host.scene());
+            self.editor.unsaved = false;
+        }
+    }
+
+    /// The window's close button: quits at once without unsaved edits; with them, only when
+    /// pressed again within QUIT_CONFIRM seconds (as Esc), saying so.
+    pub(super) fn close_requested(&mut self) -> bool {
+        self.observe_edits();
+        if !self.editor.unsaved {
+            return true;
+        }
+        if self.input.escape(std::time::Instant::now()) == KeyAction::Quit {
+            return true;
+        }
+        self.message(
+            format!(
+                "the scene has unsaved edits: close again within {} s to quit without saving them",
+                super::super::input::QUIT_CONFIRM
+            ),
+            false,
+        );
+        false
     }
 
     /// Applies the scene before the last edit (`redo`: after the last undone one); says so,
