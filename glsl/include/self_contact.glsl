@@ -18,11 +18,11 @@
 // bounce). Coulomb friction (mu: the cloth's `friction`) adds to the normal correction the
 // relative motion along the tangent, undone whole while within mu times the approach (the
 // normal impulse), else that much of it (friction_correction, triangle.glsl), with the same
-// weights, so it is equal and opposite too. Several contacts on
-// a particle are combined by mass splitting (Tonge et al.
-// 2012): each free particle takes part in each of its n contacts with 1 / n of its mass, so
-// lambda = c (h - d) / (n_p w_p + sum n_k w_k b_k^2), and its moves are summed. Each contact is
-// still equal and opposite, and one alone is resolved whole. The count n is smooth: a contact
+// weights, so it is equal and opposite too. Several contacts on a particle are combined by
+// mass splitting (Tonge et al. 2012): each free particle takes part in each of its n
+// contacts with 1 / n of its mass, so lambda = c (h - d) / (n_p w_p + sum n_k w_k b_k^2), and
+// its moves are summed. Each contact is still equal and opposite, and one alone is resolved
+// whole. The count n is smooth: a contact
 // counts by its weight c, fully once its overlap reaches a tenth of h (count_weight), and n is
 // at least 1, so a contact that just begins does not halve the others' shares at once; it
 // takes part in lambda by the same weight, so a particle's contacts never add up to more than
@@ -30,10 +30,11 @@
 //
 // Three passes a substep (per stage: self_pairs.comp twice, then the constraints; fused: phases
 // between barriers):
-// 1. find (self_find): each particle, pinned too, notes where it began the substep (when
-//    the cloth has friction) and finds its triangles within h through the spatial hash (a triangle within h has its nearest vertex within self_reach(), lists.glsl;
-//    it is tested once, from that vertex) or its contact list, which holds the triangles within
-//    h plus the skin; it keeps up to PAIR_MAX contacts and counts each in its free particles;
+// 1. find (self_find): each particle, pinned too, notes where it began the substep (the
+//    approach and friction read it) and finds its triangles within h through the spatial
+//    hash (a triangle within h has its nearest vertex within self_reach(), lists.glsl; it is
+//    tested once, from that vertex) or its contact list, which holds the triangles within h
+//    plus the skin; it keeps up to PAIR_MAX contacts and counts each in its free particles;
 // 2. apply (self_apply): each particle computes its contacts again (those it kept; one that
 //    found more searches again) and adds every particle's move to its sum, in fixed point
 //    (exact, order-independent integer atomics);

@@ -39,9 +39,8 @@ impl History {
     }
 
     /// The scene as it is now; `busy` while an edit is in progress (a field, handle or particle
-    /// dragged).
-    /// A scene that differs from the last committed one is a new step (and forgets what was
-    /// undone).
+    /// dragged). A scene that differs from the last committed one is a new step (and forgets
+    /// what was undone).
     pub fn observe(&mut self, now: &Scene, busy: bool) {
         if busy || *now == self.committed {
             return;
