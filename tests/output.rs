@@ -283,7 +283,7 @@ fn an_obj_sequence_reads_back_as_the_simulation() {
     assert!(!dir.path().join("seq_00006.obj").exists() && !obj.exists());
     let text = std::fs::read_to_string(dir.path().join("seq_00005.obj")).unwrap();
     let groups: Vec<&str> = text.lines().filter(|l| l.starts_with("o ")).collect();
-    assert_eq!(groups, ["o c", "o r"], "a group per object");
+    assert_eq!(groups, ["o c", "o r", "o collider_sphere_0"], "a group per object, then per collider");
     let cloth = &text[text.find("o c").unwrap()..text.find("o r").unwrap()];
     let points: Vec<f32> = cloth
         .lines()
@@ -325,7 +325,8 @@ fn a_recorded_rope_is_a_closed_tube_wound_outward() {
     let obj = dir.path().join("rope.obj");
     let json = dir.path().join("state.json");
     record("presets/rope.toml", 20, &obj, &json);
-    let text = std::fs::read_to_string(dir.path().join("rope_00020.obj")).unwrap();
+    let whole = std::fs::read_to_string(dir.path().join("rope_00020.obj")).unwrap();
+    let text = objects_only(&whole);
     let v3 = |l: &str| -> glam::DVec3 {
         let n: Vec<f64> = l.split_whitespace().skip(1).take(3).map(|s| s.parse().unwrap()).collect();
         glam::DVec3::new(n[0], n[1], n[2])
@@ -465,10 +466,111 @@ fn recordings_carry_texture_coordinates_and_replace_earlier_frames() {
     }
     let uvs = text.lines().filter(|l| l.starts_with("vt ")).count();
     assert!(uvs > 0);
-    for face in text.lines().filter(|l| l.starts_with("f ")) {
+    for face in objects_only(&text).lines().filter(|l| l.starts_with("f ")) {
         for corner in face.split_whitespace().skip(1) {
             let parts: Vec<usize> = corner.split('/').map(|p| p.parse().unwrap()).collect();
             assert!(parts.len() == 3 && (1..=uvs).contains(&parts[1]), "{face}");
         }
     }
+}
+
+/// An OBJ frame's text up to its colliders' groups (the objects' only).
+fn objects_only(text: &str) -> &str {
+    &text[..text.find("\no collider_").map_or(text.len(), |i| i + 1)]
+}
+
+/// An OBJ frame's `o` groups, each as (name, points, normals, triangles: 0-based indices into
+/// the frame's points).
+type ObjGroup = (String, Vec<glam::DVec3>, Vec<glam::DVec3>, Vec<[usize; 3]>);
+
+fn obj_groups(text: &str) -> Vec<ObjGroup> {
+    let v3 = |l: &str| -> glam::DVec3 {
+        let n: Vec<f64> = l.split_whitespace().skip(1).take(3).map(|s| s.parse().unwrap()).collect();
+        glam::DVec3::new(n[0], n[1], n[2])
+    };
+    let points: Vec<glam::DVec3> = text.lines().filter(|l| l.starts_with("v ")).map(v3).collect();
+    let normals: Vec<glam::DVec3> = text.lines().filter(|l| l.starts_with("vn ")).map(v3).collect();
+    let mut groups: Vec<ObjGroup> = Vec::new();
+    for l in text.lines() {
+        if let Some(name) = l.strip_prefix("o ") {
+            groups.push((name.to_string(), Vec::new(), Vec::new(), Vec::new()));
+        } else if l.starts_with("f ") {
+            let c: Vec<usize> = l
+                .split_whitespace()
+                .skip(1)
+                .map(|c| c.split('/').next().unwrap().parse::<usize>().unwrap() - 1)
+                .collect();
+            groups.last_mut().unwrap().3.push([c[0], c[1], c[2]]);
+        }
+    }
+    for g in &mut groups {
+        g.1 = points.clone();
+        g.2 = normals.clone();
+    }
+    groups
+}
+
+/// An OBJ recording carries the colliders too, each its own group where the simulation had it
+/// at that frame, as closed meshes wound counter-clockwise seen from outside (every face's
+/// winding agrees with its normals): the tablecloth's box (volume 8 hx hy hz, exact for a
+/// cube) moving at 0.5 m/s along x (its centre at 0.5 k / 60 m in frame k) and its ground
+/// facing up; the rope preset's sphere (r = 0.4 m, volume within 5% of 4/3 pi r^3: 12 x 16
+/// facets) closed, every edge shared by two faces.
+#[test]
+fn an_obj_recording_carries_the_colliders() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = binary()
+        .args(["simulate", "--preset", "presets/tablecloth.toml", "--frames", "3", "--quiet"])
+        .args(["--set", "box.0.motion={velocity=[0.5,0,0]}", "--record"])
+        .arg(dir.path().join("t.obj"))
+        .output()
+        .unwrap();
+    assert!(out.status.success(), "{}", stderr(&out));
+    let rope = binary()
+        .args(["simulate", "--preset", "presets/rope.toml", "--frames", "1", "--quiet", "--record"])
+        .arg(dir.path().join("r.obj"))
+        .output()
+        .unwrap();
+    assert!(rope.status.success(), "{}", stderr(&rope));
+    let check = |g: &ObjGroup| -> f64 {
+        let (name, points, normals, faces) = g;
+        let mut volume = 0.0;
+        let mut edges = std::collections::HashMap::new();
+        for &[a, b, c] in faces {
+            let winding = (points[b] - points[a]).cross(points[c] - points[a]);
+            assert!(winding.dot(normals[a] + normals[b] + normals[c]) > 0.0, "{name}: face {a} {b} {c}");
+            volume += points[a].dot(points[b].cross(points[c])) / 6.0;
+            // By position: a box's faces have vertices of their own (flat normals).
+            let key = |i: usize| (points[i] * 1e6).round().as_ivec3().to_array();
+            for (p, q) in [(a, b), (b, c), (c, a)] {
+                let (p, q) = (key(p), key(q));
+                *edges.entry((p.min(q), p.max(q))).or_insert(0) += 1;
+            }
+        }
+        if !name.contains("ground") {
+            assert!(edges.values().all(|&n| n == 2), "{name} is not closed");
+        }
+        volume
+    };
+    for k in 1..=3 {
+        let text = std::fs::read_to_string(dir.path().join(format!("t_{k:05}.obj"))).unwrap();
+        let groups = obj_groups(&text);
+        let names: Vec<&str> = groups.iter().map(|g| g.0.as_str()).collect();
+        assert_eq!(names, ["tablecloth", "collider_ground_0", "collider_box_1"]);
+        let ground = &groups[1];
+        assert!(ground.3.iter().all(|f| f.iter().all(|&i| ground.1[i].y == 0.0)), "the ground at its height");
+        assert_eq!(check(ground), 0.0);
+        let volume = check(&groups[2]);
+        let expected = 8.0 * 0.5 * 0.375 * 0.35;
+        assert!((volume / expected - 1.0).abs() < 1e-5, "box volume {volume} against {expected}");
+        let used: std::collections::BTreeSet<usize> = groups[2].3.iter().flatten().copied().collect();
+        let centre = used.iter().map(|&i| groups[2].1[i]).sum::<glam::DVec3>() / used.len() as f64;
+        assert!((centre.x - 0.5 * k as f64 / 60.0).abs() < 1e-5, "frame {k}: box centre {centre}");
+    }
+    let text = std::fs::read_to_string(dir.path().join("r_00001.obj")).unwrap();
+    let groups = obj_groups(&text);
+    let sphere = groups.iter().find(|g| g.0 == "collider_sphere_1").expect("the sphere");
+    let volume = check(sphere);
+    let expected = 4.0 / 3.0 * std::f64::consts::PI * 0.4f64.powi(3);
+    assert!((volume / expected - 1.0).abs() < 0.05, "sphere volume {volume} against {expected}");
 }

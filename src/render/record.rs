@@ -2,12 +2,13 @@
 //! per object (a cloth's grid, a rope's tube), in the format the file name's extension picks:
 //! - `.usda`: USD (ASCII) with points, normals and extents time-sampled at every frame (and the
 //!   frame rate as framesPerSecond), so Blender, Houdini, usdview and Omniverse play it back;
-//!   prims are named after the objects, made unique. Frames are kept in memory (up to `MAX_BYTES`)
+//!   prims are named after the objects, made unique; each mesh and shape has a UsdPreviewSurface
+//!   material bound, and the colliders are shapes. Frames are kept in memory (up to `MAX_BYTES`)
 //!   and written at the end by the caller (`usda`), so an interrupted run leaves no partial file.
 //! - `.obj`: a sequence of Wavefront OBJ files, `NAME_00001.obj`, `NAME_00002.obj`, ... one per
-//!   frame, written as the frames come (every object an `o` group with vertex colours and
-//!   normals; Blender imports a sequence with its "Stop-motion OBJ" add-on, MeshLab and most
-//!   tools read single frames).
+//!   frame, written as the frames come (every object and then every collider an `o` group with
+//!   vertex colours and normals; Blender imports a sequence with its "Stop-motion OBJ" add-on,
+//!   MeshLab and most tools read single frames).
 
 use crate::render::mesh;
 use crate::sim::collider::{ColliderModel, Shape};
@@ -22,11 +23,16 @@ use std::path::{Path, PathBuf};
 /// Half the side of the square that stands for the ground in a USD recording [m].
 const GROUND_HALF_SIZE: f64 = 20.0;
 
-/// Each object's display colour (the cloths', then the ropes'), as the recordings write them.
-pub fn colors(scene: &crate::scene::Scene) -> Vec<[f32; 3]> {
-    let cloths = scene.cloths.iter().map(|c| c.color);
-    cloths.chain(scene.ropes.iter().map(|r| r.color)).map(|c| c.map(|x| x as f32)).collect()
+/// Each object's front and back colours (the cloths', then the ropes', whose back is their
+/// front), as the recordings write them.
+pub fn colors(scene: &crate::scene::Scene) -> Vec<[[f32; 3]; 2]> {
+    let cloths = scene.cloths.iter().map(|c| [c.color, c.back_color]);
+    let ropes = scene.ropes.iter().map(|r| [r.color, r.color]);
+    cloths.chain(ropes).map(|c| c.map(|c| c.map(|x| x as f32))).collect()
 }
+
+/// The colour colliders are recorded in (linear).
+const COLLIDER_GREY: f32 = 0.5;
 
 /// The recording formats, by file extension.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -71,6 +77,8 @@ struct Track {
     st: Vec<[f32; 2]>,
     st_indices: Vec<u32>,
     color: [f32; 3],
+    /// The colour of a cloth's back (a rope's is its front).
+    back: [f32; 3],
     points: Vec<Vec<[f32; 3]>>,
     normals: Vec<Vec<[f32; 3]>>,
     /// Each vertex's velocity (a rope's tube vertex takes its node's), for motion blur.
@@ -82,6 +90,8 @@ pub struct Recording {
     /// The scene's colliders (USD writes them as shapes, moving ones with time-sampled
     /// placements).
     colliders: Vec<ColliderModel>,
+    /// Each collider's group name in an OBJ frame.
+    collider_names: Vec<String>,
     /// The simulated time of each frame added [s].
     times: Vec<f64>,
     /// The time code (and OBJ number) of the first frame: 0 when it is the initial state
@@ -97,8 +107,9 @@ pub struct Recording {
 impl Recording {
     /// A recording of `model` into `path` (its format from the extension), of `frames`
     /// frames when known: a USD recording that would not fit in memory is refused before any
-    /// work; an OBJ sequence needs its folder to exist. `colors` is each object's display colour.
-    pub fn new(model: &SimModel, colors: &[[f32; 3]], path: &Path, frames: Option<u64>) -> Result<Self> {
+    /// work; an OBJ sequence needs its folder to exist. `colors` is each object's front and back
+    /// colour (`colors`).
+    pub fn new(model: &SimModel, colors: &[[[f32; 3]; 2]], path: &Path, frames: Option<u64>) -> Result<Self> {
         let format = Format::of(path).map_err(crate::error::UserError)?;
         let vertices: u64 = model.objects.iter().map(|o| o.surface_count() as u64).sum();
         let bytes = vertices * BYTES_PER_VERTEX * frames.unwrap_or(0);
@@ -130,7 +141,7 @@ impl Recording {
             .objects
             .iter()
             .zip(colors)
-            .map(|(o, &color)| {
+            .map(|(o, &[color, back])| {
                 let (st, st_indices) = texture_coordinates(o.kind, o.dims);
                 let (indices, rope_nodes) = match o.kind {
                     ObjectKind::Cloth => (mesh::cloth_indices(o.dims[0], o.dims[1]), None),
@@ -152,15 +163,20 @@ impl Recording {
                     st,
                     st_indices,
                     color,
+                    back,
                     points: Vec::new(),
                     normals: Vec::new(),
                     velocities: Vec::new(),
                 }
             })
             .collect();
+        let collider_names = (model.colliders.iter().enumerate())
+            .map(|(i, c)| unique_name(&mut taken, format!("collider_{}_{i}", c.shape.kind().label())))
+            .collect();
         Ok(Self {
             tracks,
             colliders: model.colliders.clone(),
+            collider_names,
             times: Vec::new(),
             first_code: 1,
             // Frames per second to the millisecond (a frame_dt of 0.016666667 s is 60).
@@ -224,7 +240,7 @@ impl Recording {
         if self.format == Format::ObjSequence {
             let code = self.last_code();
             let path = self.obj_path(code);
-            return write_whole(&path, self.obj(states).as_bytes())
+            return write_whole(&path, self.obj(states, time).as_bytes())
                 .map_err(|e| anyhow::anyhow!("recording frame {code} to {}: {e}", path.display()));
         }
         let vertices: u64 = states.iter().map(|s| s.surface.len() as u64).sum();
@@ -247,9 +263,10 @@ impl Recording {
         Ok(())
     }
 
-    /// One frame as OBJ text: every object an `o` group of vertices (with the object's colour),
-    /// normals and triangles.
-    fn obj(&self, states: &[ObjectState]) -> String {
+    /// One frame as OBJ text, at simulated time `time`: every object an `o` group of vertices
+    /// (with the object's colour), normals and triangles, then every collider one (grey) where
+    /// it is at that time.
+    fn obj(&self, states: &[ObjectState], time: f64) -> String {
         let mut out = format!("# msdsim frame {} ({} frames/s)\n", self.last_code(), self.fps);
         let (mut base, mut st_base) = (1usize, 1usize);
         for (t, s) in self.tracks.iter().zip(states) {
@@ -274,6 +291,22 @@ impl Recording {
             base += points.len();
             st_base += t.st.len();
         }
+        let grey = srgb(COLLIDER_GREY);
+        for (c, name) in self.colliders.iter().zip(&self.collider_names) {
+            let _ = writeln!(out, "o {name}");
+            let (points, normals, triangles) = collider_mesh(c, time);
+            for p in &points {
+                let _ = writeln!(out, "v {} {} {} {grey} {grey} {grey}", p.x, p.y, p.z);
+            }
+            for n in &normals {
+                let _ = writeln!(out, "vn {} {} {}", n.x, n.y, n.z);
+            }
+            for tri in &triangles {
+                let [a, b, c] = tri.map(|i| i as usize + base);
+                let _ = writeln!(out, "f {a}//{a} {b}//{b} {c}//{c}");
+            }
+            base += points.len();
+        }
         out
     }
 
@@ -294,7 +327,12 @@ impl Recording {
         );
         let _ = writeln!(out, "def Xform \"scene\"\n{{");
         for t in &self.tracks {
-            let _ = writeln!(out, "    def Mesh \"{}\"\n    {{", t.name);
+            let _ = writeln!(
+                out,
+                "    def Mesh \"{}\" (\n        prepend apiSchemas = [\"MaterialBindingAPI\"]\n    )\n    {{",
+                t.name
+            );
+            let _ = writeln!(out, "        rel material:binding = </scene/materials/{}>", t.name);
             let _ = writeln!(out, "        uniform token subdivisionScheme = \"none\"");
             let _ = writeln!(out, "        uniform bool doubleSided = 1");
             let _ = writeln!(out, "        int[] faceVertexCounts = [{}]", vec!["3"; t.counts].join(", "));
@@ -302,6 +340,9 @@ impl Recording {
             let _ = writeln!(out, "        int[] faceVertexIndices = [{}]", indices.join(", "));
             let [r, g, b] = t.color;
             let _ = writeln!(out, "        color3f[] primvars:displayColor = [({r}, {g}, {b})]");
+            // UsdPreviewSurface has one colour for both sides: a cloth's back goes in a primvar.
+            let [r, g, b] = t.back;
+            let _ = writeln!(out, "        color3f primvars:msdsim:backColor = ({r}, {g}, {b}) (\n            interpolation = \"constant\"\n        )");
             let st: Vec<String> = t.st.iter().map(|[u, v]| format!("({u}, {v})")).collect();
             let _ = writeln!(
                 out,
@@ -322,8 +363,38 @@ impl Recording {
             let _ = writeln!(out, "    }}");
         }
         self.usda_colliders(&mut out);
+        self.usda_materials(&mut out);
         let _ = writeln!(out, "}}");
         out
+    }
+
+    /// The name of the colliders' material: `colliders`, made unique against the objects'.
+    fn collider_material(&self) -> String {
+        let mut taken = self.tracks.iter().map(|t| t.name.clone()).collect();
+        unique_name(&mut taken, "colliders".into())
+    }
+
+    /// A `UsdPreviewSurface` material for each object (its front colour) and one for the
+    /// colliders (grey), in a scope `materials`; the meshes and shapes bind them.
+    fn usda_materials(&self, out: &mut String) {
+        let _ = writeln!(out, "    def Scope \"materials\"\n    {{");
+        let grey = [COLLIDER_GREY; 3];
+        let shared = self.collider_material();
+        let colliders = (!self.colliders.is_empty()).then_some((shared.as_str(), &grey));
+        for (name, [r, g, b]) in self.tracks.iter().map(|t| (t.name.as_str(), &t.color)).chain(colliders) {
+            let _ = writeln!(out, "        def Material \"{name}\"\n        {{");
+            let _ = writeln!(
+                out,
+                "            token outputs:surface.connect = </scene/materials/{name}/surface.outputs:surface>"
+            );
+            let _ = writeln!(out, "            def Shader \"surface\"\n            {{");
+            let _ = writeln!(out, "                uniform token info:id = \"UsdPreviewSurface\"");
+            let _ = writeln!(out, "                color3f inputs:diffuseColor = ({r}, {g}, {b})");
+            let _ = writeln!(out, "                float inputs:roughness = 0.8");
+            let _ = writeln!(out, "                token outputs:surface");
+            let _ = writeln!(out, "            }}\n        }}");
+        }
+        let _ = writeln!(out, "    }}");
     }
 
     /// The colliders as USD shapes in a scope `colliders` (grey): a sphere as a Sphere, a
@@ -348,7 +419,12 @@ impl Recording {
                 Shape::Box { center, rotation, .. } => ("Cube", center, Some(rotation)),
                 Shape::Ground { height } => ("Mesh", DVec3::new(0.0, height, 0.0), None),
             };
-            let _ = writeln!(out, "        def {prim} \"{kind}_{i}\"\n        {{");
+            let _ = writeln!(out, "        def {prim} \"{kind}_{i}\" (\n            prepend apiSchemas = [\"MaterialBindingAPI\"]\n        )\n        {{");
+            let _ = writeln!(
+                out,
+                "            rel material:binding = </scene/materials/{}>",
+                self.collider_material()
+            );
             match c.shape {
                 Shape::Sphere { radius, .. } => {
                     let _ = writeln!(out, "            double radius = {radius}");
@@ -370,7 +446,7 @@ impl Recording {
                     let _ = writeln!(out, "            float3[] extent = [(-{h}, 0, -{h}), ({h}, 0, {h})]");
                 }
             }
-            let _ = writeln!(out, "            color3f[] primvars:displayColor = [(0.5, 0.5, 0.5)]");
+            let _ = writeln!(out, "            color3f[] primvars:displayColor = [({COLLIDER_GREY}, {COLLIDER_GREY}, {COLLIDER_GREY})]");
             let mut order = vec!["\"xformOp:translate\""];
             if c.motion.is_moving() {
                 let _ = writeln!(out, "            double3 xformOp:translate.timeSamples = {{");
@@ -407,6 +483,61 @@ impl Recording {
         }
         let _ = writeln!(out, "    }}");
     }
+}
+
+/// Collider `c` where it is at simulated time `t` as a triangle mesh for formats without
+/// shapes (OBJ): points, outward unit normals, and triangles wound counter-clockwise seen from
+/// outside (the renderer's unit meshes, placed as the app draws them; the ground a
+/// `GROUND_HALF_SIZE` square facing up). Triangles of no area (a sphere's poles) are left out.
+fn collider_mesh(c: &ColliderModel, t: f64) -> (Vec<DVec3>, Vec<DVec3>, Vec<[u32; 3]>) {
+    let shape = c.shape.translated(c.motion.offset(t));
+    if let Shape::Ground { height } = shape {
+        let h = GROUND_HALF_SIZE;
+        let points = [(-h, -h), (-h, h), (h, h), (h, -h)].map(|(x, z)| DVec3::new(x, height, z));
+        return (points.to_vec(), vec![DVec3::Y; 4], vec![[0, 1, 2], [0, 2, 3]]);
+    }
+    let (mut points, mut normals, mut triangles) = (Vec::new(), Vec::new(), Vec::new());
+    for item in super::view::collider_items(&shape) {
+        let unit = match item.shape {
+            super::Shape::Sphere => mesh::sphere(12, 16),
+            super::Shape::Tube => mesh::tube(16),
+            super::Shape::Cube => mesh::cube(),
+            _ => continue,
+        };
+        let model = item.model.as_dmat4();
+        let normal_matrix = glam::DMat3::from_mat4(model).inverse().transpose();
+        // The unit meshes repeat vertices along a sphere's seam and at its poles (apart by f32
+        // rounding): one vertex for each position and normal, so that the mesh is closed.
+        let mut at = std::collections::HashMap::new();
+        let index: Vec<usize> = (unit.vertices.iter())
+            .map(|v| {
+                let key = |a: [f32; 4]| a.map(|x| (f64::from(x) * 1e5).round() as i64);
+                *at.entry((key(v.pos), key(v.normal))).or_insert_with(|| {
+                    let [x, y, z, _] = v.pos.map(f64::from);
+                    let [nx, ny, nz, _] = v.normal.map(f64::from);
+                    points.push(model.transform_point3(DVec3::new(x, y, z)));
+                    normals.push((normal_matrix * DVec3::new(nx, ny, nz)).normalize_or_zero());
+                    points.len() - 1
+                })
+            })
+            .collect();
+        for tri in unit.indices.chunks_exact(3) {
+            let [a, b, c] = [tri[0], tri[1], tri[2]].map(|i| index[i as usize]);
+            if a == b || b == c || a == c {
+                continue;
+            }
+            let area = (points[b] - points[a]).cross(points[c] - points[a]);
+            if area.length_squared() <= 1e-24 {
+                continue;
+            }
+            // The unit meshes' windings differ (the renderer draws both sides): wind each
+            // triangle to agree with its vertices' outward normals.
+            let outward = area.dot(normals[a] + normals[b] + normals[c]) > 0.0;
+            let [a, b, c] = [a, b, c].map(|i| i as u32);
+            triangles.push(if outward { [a, b, c] } else { [a, c, b] });
+        }
+    }
+    (points, normals, triangles)
 }
 
 /// Removes the frames an earlier OBJ recording under the same name left (regular files named
