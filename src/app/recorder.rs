@@ -20,6 +20,13 @@ impl AppRecorder {
         self.active.as_ref().map(|(r, _)| r.frames())
     }
 
+    /// Frames recorded so far and the file's name, while recording.
+    pub fn status(&self) -> Option<(u64, String)> {
+        let name =
+            |p: &Path| p.file_name().map_or_else(|| p.display().to_string(), |n| n.to_string_lossy().into());
+        self.active.as_ref().map(|(r, path)| (r.frames(), name(path)))
+    }
+
     /// Starts recording the scene of `host` into `path`; refused for an unknown extension or a
     /// missing folder.
     pub fn start(&mut self, host: &SimHost, path: &Path) -> Result<String> {

@@ -299,7 +299,7 @@ impl Viewer {
                     Ok(text) => self.message(text, false),
                     Err(e) => self.message(format!("{e:#}"), true),
                 }
-                self.editor.recording = self.recorder.frames();
+                self.editor.recording = self.recorder.status();
             }
             Action::Load(path) => match scene::load(&path, &[]) {
                 Ok(loaded) => {
@@ -591,7 +591,7 @@ impl Viewer {
             if let Err(e) = self.recorder.capture(&self.ctx, host) {
                 self.message(e, true);
             }
-            self.editor.recording = self.recorder.frames();
+            self.editor.recording = self.recorder.status();
         }
         let host = self.host.as_ref().expect("host");
         self.stats.simulated_time = host.sim().time();

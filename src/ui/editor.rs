@@ -64,8 +64,8 @@ pub struct EditorState {
     pub panel: Option<[f32; 4]>,
     /// The file the Record button writes (`.usda` or `.obj`).
     pub record_path: String,
-    /// Frames recorded so far, while recording.
-    pub recording: Option<u64>,
+    /// Frames recorded so far and the file, while recording.
+    pub recording: Option<(u64, String)>,
     /// Simulate as many frames per drawn frame as the wall clock asks (up to 4), instead of one.
     pub real_time: bool,
     /// The existing file a Save would replace, once asked: Save again (Replace) writes it.
@@ -111,6 +111,7 @@ pub struct Stats {
 pub fn build(ui: &Ui, state: &mut EditorState, scene: &mut Scene, stats: &Stats) -> Vec<Action> {
     let mut actions = Vec::new();
     state.ui_active = false;
+    recording_indicator(ui, state);
     if state.hide_ui {
         return actions;
     }
@@ -196,6 +197,24 @@ pub fn build(ui: &Ui, state: &mut EditorState, scene: &mut Scene, stats: &Stats)
     actions
 }
 
+/// While recording, a red dot and "REC", the frames so far and the file, at the top right of
+/// the view (also with the panels hidden): a recording slows the app, and should not be left
+/// running unnoticed.
+fn recording_indicator(ui: &Ui, state: &EditorState) {
+    let Some((frames, file)) = &state.recording else { return };
+    let text = format!("REC  {frames} frame{}  {file}", if *frames == 1 { "" } else { "s" });
+    let [width, _] = ui.io().display_size;
+    let size = ui.calc_text_size(&text);
+    let (x, y) = ((width - size[0] - 40.0).max(8.0), 10.0);
+    let draw = ui.get_foreground_draw_list();
+    draw.add_rect([x - 8.0, y - 4.0], [x + size[0] + 30.0, y + size[1] + 4.0], [0.0, 0.0, 0.0, 0.6])
+        .filled(true)
+        .rounding(4.0)
+        .build();
+    draw.add_circle([x + 6.0, y + size[1] / 2.0], 6.0, [0.95, 0.15, 0.15, 1.0]).filled(true).build();
+    draw.add_text([x + 20.0, y], [1.0, 1.0, 1.0, 1.0], &text);
+}
+
 /// The app's controls (the README's table), shown with F1.
 const CONTROLS: [(&str, &str); 17] = [
     ("left-drag on cloth or rope", "grab the particle (within 12 pixels) and drag it"),
@@ -273,8 +292,8 @@ fn simulation_panel(ui: &Ui, state: &mut EditorState, scene: &mut Scene, actions
     if ui.button("Reset camera (Home)") {
         actions.push(Action::ResetCamera);
     }
-    let label = match state.recording {
-        Some(n) => format!("Stop recording (F9): {n} frames###record"),
+    let label = match &state.recording {
+        Some((n, _)) => format!("Stop recording (F9): {n} frames###record"),
         None => "Record (F9)###record".to_string(),
     };
     if ui.button(label) {

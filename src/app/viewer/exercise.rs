@@ -85,6 +85,8 @@ impl Viewer {
             }
             // The Record button's path: frames 17 and 18 into a USD file, written at 19.
             17 | 19 => self.pending_actions.push(Action::ToggleRecording(saved.with_extension("usda"))),
+            // While it records, the view shows so (checked at 20).
+            18 => self.shot = Some((saved.with_extension("rec.png"), false)),
             20 => {
                 let host = self.host();
                 expect(host, "the stiffness edit", host.scene().sim.gravity[0] == 1.0)?;
@@ -97,6 +99,9 @@ impl Viewer {
                 let usda = std::fs::read_to_string(saved.with_extension("usda")).unwrap_or_default();
                 let recorded = usda.starts_with("#usda 1.0") && usda.contains("endTimeCode = 2\n");
                 expect(host, "the recording of two frames", recorded && usda.contains("def Mesh"))?;
+                let indicator = recording_indicator_shown(&saved.with_extension("rec.png"));
+                expect(host, "the recording indicator (a red dot at the top right)", indicator)?;
+                let _ = std::fs::remove_file(saved.with_extension("rec.png"));
                 let _ = std::fs::remove_file(&saved);
                 let _ = std::fs::remove_file(&shot);
                 let _ = std::fs::remove_file(saved.with_extension("usda"));
@@ -177,4 +182,20 @@ impl Viewer {
         let rope = &states[0].particles;
         Ok(rope.iter().map(|p| p.pos[0]).sum::<f32>() / rope.len() as f32)
     }
+}
+
+/// Whether the screenshot at `path` shows the recording indicator: at least 50 saturated red
+/// pixels (its dot, 6 pixels in radius, has about 110) in the top 40 rows of the right half.
+fn recording_indicator_shown(path: &std::path::Path) -> bool {
+    let Ok(file) = std::fs::File::open(path) else { return false };
+    let Ok(mut reader) = png::Decoder::new(std::io::BufReader::new(file)).read_info() else { return false };
+    let mut pixels = vec![0; reader.output_buffer_size()];
+    let Ok(info) = reader.next_frame(&mut pixels) else { return false };
+    let channels = info.color_type.samples();
+    let (width, rows) = (info.width as usize, (info.height as usize).min(40));
+    let red = (0..rows)
+        .flat_map(|y| (width / 2..width).map(move |x| (y * width + x) * channels))
+        .filter(|&i| pixels[i] > 200 && pixels[i + 1] < 80 && pixels[i + 2] < 80)
+        .count();
+    red >= 50
 }
