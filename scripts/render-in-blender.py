@@ -3,8 +3,10 @@
 
     pip install bpy==4.2.0          # Blender 4.2 as a Python module (Python 3.11)
     scripts/render-in-blender.py recording.usda picture.png [FRAME]
+    scripts/render-in-blender.py recording.pc2 picture.png [FRAME]
 
-Imports the file with Blender's own USD importer, prints what came in (objects, their
+Imports the file with Blender's own USD importer (a `.pc2` recording: its OBJ meshes, each with
+a Mesh Cache modifier reading its point cache, as a user would set them up), prints what came in (objects, their
 materials and colours, the frame range), and renders FRAME (default: the last) at 640 x 400
 with a sun and a camera looking at everything but the ground. docs/images/recording-in-blender.jpg
 was made with it from `simulate --preset presets/tablecloth.toml --frames 90 --record`.
@@ -15,9 +17,42 @@ import bpy
 import mathutils
 
 
+def import_point_caches(path):
+    """A `.pc2` recording: the meshes from `STEM.obj` (Blender's OBJ importer keeps the file's
+    Y-up coordinates in the mesh and turns the object to Z-up), each animated by its
+    `STEM_NAME.pc2` through a Mesh Cache modifier (its default axes: the points as stored)."""
+    import os
+    import struct
+
+    stem = path[: -len(".pc2")]  # the name given to --record, not one mesh's cache
+    bpy.ops.wm.obj_import(filepath=stem + ".obj")
+    scene = bpy.context.scene
+    for o in bpy.data.objects:
+        cache = f"{stem}_{o.name}.pc2"
+        if o.type != "MESH" or not os.path.exists(cache):
+            continue
+        with open(cache, "rb") as f:
+            _, _, points, start, _, samples = struct.unpack("<12siiffi", f.read(32))
+        if points != len(o.data.vertices):
+            raise SystemExit(f"{cache}: {points} points for {len(o.data.vertices)} vertices")
+        # The OBJ's normals are the first frame's: shade from the cached points instead.
+        if o.data.has_custom_normals:
+            bpy.context.view_layer.objects.active = o
+            bpy.ops.mesh.customdata_custom_splitnormals_clear()
+        o.data.polygons.foreach_set("use_smooth", [True] * len(o.data.polygons))
+        modifier = o.modifiers.new("msdsim", "MESH_CACHE")
+        modifier.cache_format = "PC2"
+        modifier.filepath = cache
+        modifier.frame_start = start
+        scene.frame_start, scene.frame_end = int(start), int(start) + samples - 1
+
+
 def main(path, picture, frame=None):
     bpy.ops.wm.read_factory_settings(use_empty=True)
-    bpy.ops.wm.usd_import(filepath=path)
+    if path.endswith(".pc2"):
+        import_point_caches(path)
+    else:
+        bpy.ops.wm.usd_import(filepath=path)
     scene = bpy.context.scene
     print(f"frames {scene.frame_start}..{scene.frame_end}")
     for o in bpy.data.objects:
@@ -31,7 +66,7 @@ def main(path, picture, frame=None):
     bpy.context.view_layer.update()
     # Everything but the ground, in Blender's Z-up world (the importer turns USD's Y-up).
     corners = [o.matrix_world @ mathutils.Vector(c) for o in bpy.data.objects
-               if o.type == "MESH" and not o.name.startswith("ground") for c in o.bound_box]
+               if o.type == "MESH" and "ground" not in o.name for c in o.bound_box]
     lo = mathutils.Vector([min(c[k] for c in corners) for k in range(3)])
     hi = mathutils.Vector([max(c[k] for c in corners) for k in range(3)])
     centre, size = (lo + hi) / 2, (hi - lo).length

@@ -574,3 +574,39 @@ fn an_obj_recording_carries_the_colliders() {
     let expected = 4.0 / 3.0 * std::f64::consts::PI * 0.4f64.powi(3);
     assert!((volume / expected - 1.0).abs() < 0.05, "sphere volume {volume} against {expected}");
 }
+
+/// `simulate --record FILE.pc2`: a PC2 point cache a mesh (`FILE_c.pc2`, `FILE_r.pc2`: header
+/// "POINTCACHE2\0", version 1, the mesh's points, start frame 0, one sample a frame, then the
+/// samples as f32 x y z), streamed as frames come, with the meshes' first frame in `FILE.obj`
+/// (the vertices the caches animate, in the same order). The cloth's last sample is the
+/// simulated state (`--out` of the same run) exactly, its first the OBJ's vertices; the rope's
+/// cache has its tube's rings and two cap rings.
+#[test]
+fn a_point_cache_recording_reads_back_as_the_simulation() {
+    let dir = tempfile::tempdir().unwrap();
+    let preset = preset(dir.path());
+    let (pc2, json) = (dir.path().join("anim.pc2"), dir.path().join("state.json"));
+    record(&preset, 5, &pc2, &json);
+    let read = |name: &str| -> (usize, f32, f32, Vec<Vec<f32>>) {
+        let bytes = std::fs::read(dir.path().join(name)).unwrap();
+        assert_eq!(&bytes[..12], b"POINTCACHE2\0", "{name}");
+        let int = |at: usize| i32::from_le_bytes(bytes[at..at + 4].try_into().unwrap());
+        let float = |at: usize| f32::from_le_bytes(bytes[at..at + 4].try_into().unwrap());
+        assert_eq!(int(12), 1, "version");
+        let (points, samples) = (int(16) as usize, int(28) as usize);
+        assert_eq!(bytes.len(), 32 + samples * points * 12, "{name}: the header's count of samples");
+        let values: Vec<f32> =
+            bytes[32..].chunks_exact(4).map(|b| f32::from_le_bytes(b.try_into().unwrap())).collect();
+        (points, float(20), float(24), values.chunks(points * 3).map(<[f32]>::to_vec).collect())
+    };
+    let (points, start, rate, cloth) = read("anim_c.pc2");
+    assert_eq!((points, start, rate, cloth.len()), (20, 0.0, 1.0, 6), "5 x 4 points, frames 0 to 5");
+    assert_eq!(cloth[5], cloth_positions(&json), "the last sample is the simulated state");
+    let (rope_points, _, _, rope) = read("anim_r.pc2");
+    assert_eq!((rope_points, rope.len()), (8 * (6 + 2), 6), "6 nodes' rings and the caps' rings");
+    let obj = std::fs::read_to_string(dir.path().join("anim.obj")).unwrap();
+    let groups = obj_groups(&obj);
+    let cloth_group = groups.iter().find(|g| g.0 == "c").expect("the cloth in the OBJ");
+    let first: Vec<f32> = (0..points).flat_map(|i| cloth_group.1[i].to_array().map(|x| x as f32)).collect();
+    assert_eq!(first, cloth[0], "the OBJ holds the first sample's vertices");
+}

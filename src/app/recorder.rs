@@ -34,6 +34,9 @@ impl AppRecorder {
         let what = match recording.format() {
             Format::Usd => format!("recording to {} (written when you stop)", path.display()),
             Format::ObjSequence => format!("recording to {} ...", recording.obj_path(1).display()),
+            Format::PointCache => {
+                format!("recording to {} and its point caches", recording.base_path().display())
+            }
         };
         self.active = Some((recording, path.to_path_buf()));
         Ok(what)
@@ -60,19 +63,10 @@ impl AppRecorder {
     /// Stops recording and writes the USD file; says what was written.
     pub fn stop(&mut self) -> Result<String> {
         let Some((recording, path)) = self.active.take() else { return Ok("not recording".into()) };
-        let frames = recording.frames();
-        match recording.format() {
-            Format::Usd => {
-                std::fs::write(&path, recording.usda())
-                    .map_err(|e| anyhow::anyhow!("writing {}: {e}", path.display()))?;
-                Ok(format!("recorded {frames} frames to {}", path.display()))
-            }
-            Format::ObjSequence if frames == 0 => Ok("recorded no frames".into()),
-            Format::ObjSequence => Ok(format!(
-                "recorded {frames} frames to {} ... {}",
-                recording.obj_path(recording.first_code()).display(),
-                recording.obj_path(recording.last_code()).display()
-            )),
+        if recording.format() == Format::Usd {
+            std::fs::write(&path, recording.usda())
+                .map_err(|e| anyhow::anyhow!("writing {}: {e}", path.display()))?;
         }
+        Ok(recording.summary(&path))
     }
 }

@@ -33,8 +33,10 @@ pub struct SimulateArgs {
     pub quiet: bool,
     /// Record the animated surfaces, a mesh per object: FILE.usda is USD with points and
     /// normals time-sampled every frame (opens in Blender, Houdini, usdview, Omniverse);
-    /// FILE.obj is a sequence FILE_00001.obj, FILE_00002.obj, ... one OBJ file per frame.
-    #[arg(long, value_name = "FILE.usda|FILE.obj")]
+    /// FILE.obj is a sequence FILE_00001.obj, FILE_00002.obj, ... one OBJ file per frame;
+    /// FILE.pc2 is a PC2 point cache FILE_NAME.pc2 per mesh, with the meshes in FILE.obj
+    /// (Blender's Mesh Cache modifier).
+    #[arg(long, value_name = "FILE.usda|FILE.obj|FILE.pc2")]
     pub record: Option<PathBuf>,
     /// Compile the shaders from this GLSL folder (with DIR/include for headers) instead of
     /// using the ones built into the binary: to run an edited shader without rebuilding.
@@ -107,7 +109,7 @@ pub fn run(args: &SimulateArgs, options: &ContextOptions) -> Result<()> {
     let record_file = match &args.record {
         Some(path) => match Format::of(path).map_err(|e| crate::error::UserError(format!("--record {e}")))? {
             Format::Usd => Some(OutFile::claim(path)?),
-            Format::ObjSequence => None,
+            Format::ObjSequence | Format::PointCache => None,
         },
         None => None,
     };
@@ -231,16 +233,7 @@ fn simulate(
             file.write_bytes(r.usda().as_bytes())?;
         }
         if let Some(path) = &args.record {
-            match r.format() {
-                Format::Usd => say!(out, "recorded {} frames to {}", r.frames(), path.display())?,
-                Format::ObjSequence => say!(
-                    out,
-                    "recorded {} frames to {} ... {}",
-                    r.frames(),
-                    r.obj_path(r.first_code()).display(),
-                    r.obj_path(r.last_code()).display()
-                )?,
-            }
+            say!(out, "{}", r.summary(path))?;
         }
     }
     if let Some(warning) = sim.take_warning() {

@@ -39,6 +39,9 @@ const COLLIDER_GREY: f32 = 0.5;
 pub enum Format {
     Usd,
     ObjSequence,
+    /// PC2 point caches (one a mesh) with the meshes' first frame as OBJ, for Blender's Mesh
+    /// Cache modifier: streamed, so memory stays at one frame.
+    PointCache,
 }
 
 impl Format {
@@ -48,13 +51,18 @@ impl Format {
         match path.extension().and_then(|e| e.to_str()).map(str::to_ascii_lowercase).as_deref() {
             Some("usda") => Ok(Format::Usd),
             Some("obj") => Ok(Format::ObjSequence),
+            Some("pc2") => Ok(Format::PointCache),
             _ => Err(format!(
-                "{}: the recording format follows the extension: .usda (USD ASCII, one file) or .obj (a numbered sequence of OBJ files)",
+                "{}: the recording format follows the extension: .usda (USD ASCII, one file), .obj (a numbered sequence of OBJ files) or .pc2 (a PC2 point cache a mesh, with the meshes as OBJ)",
                 path.display()
             )),
         }
     }
 }
+
+/// The bytes of a PC2 header: "POINTCACHE2\0", version, points, start frame, sample rate,
+/// samples (the last, updated as frames come).
+const PC2_HEADER: u64 = 32;
 
 /// What a USD recording keeps of a vertex a frame: its point, normal and velocity [bytes].
 const BYTES_PER_VERTEX: u64 = 36;
@@ -102,6 +110,8 @@ pub struct Recording {
     /// `.obj`: the path without its extension; frame n goes to `{stem}_{n:05}.obj`.
     stem: PathBuf,
     frames: u64,
+    /// `.pc2`: each mesh's point cache, once the first frame has come.
+    caches: Vec<std::fs::File>,
 }
 
 impl Recording {
@@ -184,6 +194,7 @@ impl Recording {
             format,
             stem: path.with_extension(""),
             frames: 0,
+            caches: Vec::new(),
         })
     }
 
@@ -243,6 +254,9 @@ impl Recording {
             return write_whole(&path, self.obj(states, time).as_bytes())
                 .map_err(|e| anyhow::anyhow!("recording frame {code} to {}: {e}", path.display()));
         }
+        if self.format == Format::PointCache {
+            return self.add_to_caches(states, time);
+        }
         let vertices: u64 = states.iter().map(|s| s.surface.len() as u64).sum();
         if vertices * BYTES_PER_VERTEX * self.frames > MAX_BYTES {
             self.frames -= 1;
@@ -259,6 +273,84 @@ impl Recording {
             t.points.push(points);
             t.normals.push(normals);
             t.velocities.push(t.velocities_of(s));
+        }
+        Ok(())
+    }
+
+    /// The file of mesh k's point cache: `{stem}_{name}.pc2`.
+    pub fn cache_path(&self, k: usize) -> PathBuf {
+        let mut name = self.stem.clone().into_os_string();
+        name.push(format!("_{}.pc2", self.tracks[k].name));
+        PathBuf::from(name)
+    }
+
+    /// The OBJ file with the meshes a point cache animates: `{stem}.obj`.
+    pub fn base_path(&self) -> PathBuf {
+        self.stem.with_extension("obj")
+    }
+
+    /// What a finished recording into `path` wrote (a USD file: once the caller has written it).
+    pub fn summary(&self, path: &Path) -> String {
+        let n = self.frames;
+        match self.format {
+            _ if n == 0 => "recorded no frames".into(),
+            Format::Usd => format!("recorded {n} frames to {}", path.display()),
+            Format::ObjSequence => format!(
+                "recorded {n} frames to {} ... {}",
+                self.obj_path(self.first_code).display(),
+                self.obj_path(self.last_code()).display()
+            ),
+            Format::PointCache => {
+                let caches: Vec<String> =
+                    (0..self.tracks.len()).map(|k| self.cache_path(k).display().to_string()).collect();
+                format!(
+                    "recorded {n} frames to {} (the meshes in {})",
+                    caches.join(", "),
+                    self.base_path().display()
+                )
+            }
+        }
+    }
+
+    /// `.pc2`: appends a frame to each mesh's point cache (the first frame also writes the
+    /// meshes as OBJ and starts the caches), then counts it in their headers, so that a run
+    /// stopped at any point leaves caches of the whole frames so far.
+    fn add_to_caches(&mut self, states: &[ObjectState], time: f64) -> Result<()> {
+        use std::io::{Seek, SeekFrom, Write};
+        let code = self.last_code();
+        if self.caches.is_empty() {
+            let base = self.base_path();
+            write_whole(&base, self.obj(states, time).as_bytes())
+                .map_err(|e| anyhow::anyhow!("recording the meshes to {}: {e}", base.display()))?;
+            for (k, state) in states.iter().enumerate() {
+                let path = self.cache_path(k);
+                let points = self.tracks[k].frame(state).0.len();
+                let mut header = Vec::with_capacity(PC2_HEADER as usize);
+                header.extend_from_slice(b"POINTCACHE2\0");
+                header.extend_from_slice(&1i32.to_le_bytes()); // version
+                header.extend_from_slice(&(points as i32).to_le_bytes());
+                header.extend_from_slice(&(self.first_code as f32).to_le_bytes()); // start frame
+                header.extend_from_slice(&1f32.to_le_bytes()); // samples a frame
+                header.extend_from_slice(&0i32.to_le_bytes()); // samples so far
+                let file = std::fs::File::create(&path)
+                    .and_then(|mut f| f.write_all(&header).map(|()| f))
+                    .map_err(|e| anyhow::anyhow!("recording to {}: {e}", path.display()))?;
+                self.caches.push(file);
+            }
+        }
+        for (k, state) in states.iter().enumerate() {
+            let (points, _) = self.tracks[k].frame(state);
+            let bytes: Vec<u8> = points.iter().flatten().flat_map(|x| x.to_le_bytes()).collect();
+            let count = (self.frames as i32).to_le_bytes();
+            let file = &mut self.caches[k];
+            let written = file
+                .seek(SeekFrom::End(0))
+                .and_then(|_| file.write_all(&bytes))
+                .and_then(|()| file.seek(SeekFrom::Start(PC2_HEADER - 4)))
+                .and_then(|_| file.write_all(&count));
+            written.map_err(|e| {
+                anyhow::anyhow!("recording frame {code} to {}: {e}", self.cache_path(k).display())
+            })?;
         }
         Ok(())
     }
