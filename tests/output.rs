@@ -610,3 +610,41 @@ fn a_point_cache_recording_reads_back_as_the_simulation() {
     let first: Vec<f32> = (0..points).flat_map(|i| cloth_group.1[i].to_array().map(|x| x as f32)).collect();
     assert_eq!(first, cloth[0], "the OBJ holds the first sample's vertices");
 }
+
+/// Ctrl-C during a point-cache recording leaves caches a reader takes whole: the header counts
+/// only frames whose samples are in the file (at most one frame's samples past them, which
+/// readers skip), every counted sample finite, and the meshes' OBJ beside them.
+#[test]
+fn ctrl_c_leaves_point_caches_of_whole_frames() {
+    let dir = tempfile::tempdir().unwrap();
+    let p = preset(dir.path());
+    let pc2 = dir.path().join("long.pc2");
+    let mut child = binary()
+        .args(["simulate", "--preset", &p, "--frames", "1000000", "--record", pc2.to_str().unwrap()])
+        .stdout(Stdio::piped())
+        .stderr(Stdio::null())
+        .spawn()
+        .unwrap();
+    let mut lines = BufReader::new(child.stdout.take().unwrap()).lines();
+    let mut frames = 0;
+    while let Some(Ok(line)) = lines.next() {
+        frames += line.starts_with("frame") as u32;
+        if frames == 5 {
+            break; // a few frames recorded
+        }
+    }
+    let killed = Command::new("kill").args(["-INT", &child.id().to_string()]).status().unwrap();
+    assert!(killed.success());
+    child.wait().unwrap();
+    let bytes = std::fs::read(dir.path().join("long_c.pc2")).unwrap();
+    let int = |at: usize| i32::from_le_bytes(bytes[at..at + 4].try_into().unwrap()) as usize;
+    let (points, samples) = (int(16), int(28));
+    let whole = 32 + samples * points * 12;
+    assert!(
+        samples >= 1 && bytes.len() >= whole && bytes.len() <= whole + points * 12,
+        "{samples} samples, {} bytes",
+        bytes.len()
+    );
+    assert!(bytes[32..whole].chunks_exact(4).all(|b| f32::from_le_bytes(b.try_into().unwrap()).is_finite()));
+    assert!(dir.path().join("long.obj").is_file());
+}
