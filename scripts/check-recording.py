@@ -4,6 +4,7 @@
     pip install usd-core trimesh
     scripts/check-recording.py out.usda          # USD: Pixar's own reader and validators
     scripts/check-recording.py out_00010.obj     # one OBJ frame, read with trimesh
+    scripts/check-recording.py out.glb           # glTF binary, read with trimesh (first frame)
 
 USD: the stage opens, every validator usd-core registers passes (UsdValidation), and at every 10th time code each mesh's
 faces are wound as its normals point (counter-clockwise seen from the side the normals face;
@@ -123,13 +124,33 @@ def check_obj(path):
     return failures
 
 
+def check_gltf(path):
+    import trimesh
+
+    failures = []
+    scene = trimesh.load(path, process=False)
+    print(f"{path}: {len(scene.geometry)} meshes")
+    for name, mesh in scene.geometry.items():
+        normals = mesh.vertex_normals  # the file's, with process=False
+        agree = winding_agrees(mesh.vertices, normals, mesh.faces)
+        print(f"  {name}: {len(mesh.faces)} triangles, faces agree with normals: {100 * agree:.1f}%")
+        if agree < AGREE:
+            failures.append(f"{name}: {100 * (1 - agree):.1f}% of faces wound against their normals")
+    return failures
+
+
 def main():
     if len(sys.argv) < 2:
         print(__doc__)
         return 2
     failures = []
     for path in sys.argv[1:]:
-        failures += check_usd(path) if path.endswith(".usda") else check_obj(path)
+        if path.endswith(".usda"):
+            failures += check_usd(path)
+        elif path.endswith(".glb"):
+            failures += check_gltf(path)
+        else:
+            failures += check_obj(path)
     for f in failures:
         print(f"FAILED {f}")
     print("ok" if not failures else f"{len(failures)} problems")

@@ -4,6 +4,7 @@
     pip install bpy==4.2.0          # Blender 4.2 as a Python module (Python 3.11)
     scripts/render-in-blender.py recording.usda picture.png [FRAME]
     scripts/render-in-blender.py recording.pc2 picture.png [FRAME]
+    scripts/render-in-blender.py recording.glb picture.png [FRAME]
 
 Imports the file with Blender's own USD importer (a `.pc2` recording: its OBJ meshes, each with
 a Mesh Cache modifier reading its point cache, as a user would set them up), prints what came in (objects, their
@@ -51,6 +52,15 @@ def main(path, picture, frame=None):
     bpy.ops.wm.read_factory_settings(use_empty=True)
     if path.endswith(".pc2"):
         import_point_caches(path)
+    elif path.endswith(".glb"):
+        # The importer turns the animation's seconds into frames at the scene's rate: the
+        # presets' 60 frames/s, so that frame n is the recording's frame n.
+        bpy.context.scene.render.fps = 60
+        # Shading "SMOOTH": normals from the animated points (the file's are the first frame's
+        # plus each target's, which Blender does not blend into its custom normals).
+        bpy.ops.import_scene.gltf(filepath=path, import_shading="SMOOTH")
+        ends = [a.frame_range[1] for a in bpy.data.actions]
+        bpy.context.scene.frame_start, bpy.context.scene.frame_end = 0, int(max(ends, default=0))
     else:
         bpy.ops.wm.usd_import(filepath=path)
     scene = bpy.context.scene

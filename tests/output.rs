@@ -648,3 +648,77 @@ fn ctrl_c_leaves_point_caches_of_whole_frames() {
     assert!(bytes[32..whole].chunks_exact(4).all(|b| f32::from_le_bytes(b.try_into().unwrap()).is_finite()));
     assert!(dir.path().join("long.obj").is_file());
 }
+
+/// `simulate --record FILE.glb`: glTF 2.0 binary ("glTF", version 2, a JSON and a BIN chunk).
+/// The cloth is a mesh whose vertices are the first frame and whose morph target k is frame k + 1
+/// less the first: the last target added to the vertices is the simulated state (`--out` of the
+/// same run) to f32 rounding (1e-6 m); one animation weighs target k fully at keyframe k + 1
+/// (sparse, 5 ones in 6 x 5 weights), at the frames' times; the tablecloth's box is a collider
+/// mesh whose node's translation is animated at 0.5 m/s along x.
+#[test]
+fn a_gltf_recording_reads_back_as_the_simulation() {
+    let dir = tempfile::tempdir().unwrap();
+    let preset = preset(dir.path());
+    let (glb, json) = (dir.path().join("anim.glb"), dir.path().join("state.json"));
+    record(&preset, 5, &glb, &json);
+    let parse = |path: &Path| -> (serde_json::Value, Vec<u8>) {
+        let bytes = std::fs::read(path).unwrap();
+        let word = |at: usize| u32::from_le_bytes(bytes[at..at + 4].try_into().unwrap()) as usize;
+        assert_eq!((&bytes[..4], word(4), word(8)), (&b"glTF"[..], 2, bytes.len()), "the GLB header");
+        let text = word(12);
+        assert_eq!(&bytes[16..20], b"JSON");
+        assert_eq!(&bytes[24 + text..28 + text], b"BIN\0");
+        (serde_json::from_slice(&bytes[20..20 + text]).unwrap(), bytes[28 + text..].to_vec())
+    };
+    let (doc, bin) = parse(&glb);
+    let floats = |accessor: &serde_json::Value| -> Vec<f32> {
+        let view = &doc["bufferViews"][accessor["bufferView"].as_u64().unwrap() as usize];
+        let at = view["byteOffset"].as_u64().unwrap() as usize;
+        let len = view["byteLength"].as_u64().unwrap() as usize;
+        bin[at..at + len].chunks_exact(4).map(|b| f32::from_le_bytes(b.try_into().unwrap())).collect()
+    };
+    let mesh = doc["meshes"].as_array().unwrap().iter().find(|m| m["name"] == "c").expect("the cloth's mesh");
+    let primitive = &mesh["primitives"][0];
+    let accessor = |i: &serde_json::Value| &doc["accessors"][i.as_u64().unwrap() as usize];
+    let base = floats(accessor(&primitive["attributes"]["POSITION"]));
+    let targets = primitive["targets"].as_array().unwrap();
+    assert_eq!(targets.len(), 5, "a target for each frame after the first");
+    let last: Vec<f32> =
+        floats(accessor(&targets[4]["POSITION"])).iter().zip(&base).map(|(d, p)| p + d).collect();
+    let want = cloth_positions(&json);
+    let worst = last.iter().zip(&want).map(|(a, b)| (a - b).abs()).fold(0.0, f32::max);
+    assert!(worst < 1e-6, "the last frame differs from the simulated state by {worst} m");
+    let animation = &doc["animations"][0];
+    let channel =
+        animation["channels"].as_array().unwrap().iter().find(|c| c["target"]["path"] == "weights").unwrap();
+    let sampler = &animation["samplers"][channel["sampler"].as_u64().unwrap() as usize];
+    let times = floats(accessor(&sampler["input"]));
+    assert_eq!(times.len(), 6);
+    assert!((times[5] - 5.0 / 60.0).abs() < 1e-6, "{times:?}");
+    let weights = accessor(&sampler["output"]);
+    assert_eq!((weights["count"].as_u64(), weights["sparse"]["count"].as_u64()), (Some(30), Some(5)));
+
+    let table = dir.path().join("table.glb");
+    let out = binary()
+        .args(["simulate", "--preset", "presets/tablecloth.toml", "--frames", "3", "--quiet"])
+        .args(["--set", "box.0.motion={velocity=[0.5,0,0]}", "--record", table.to_str().unwrap()])
+        .output()
+        .unwrap();
+    assert!(out.status.success(), "{}", stderr(&out));
+    let (doc, bin) = parse(&table);
+    let node =
+        doc["nodes"].as_array().unwrap().iter().position(|n| n["name"] == "collider_box_1").expect("the box");
+    let animation = &doc["animations"][0];
+    let channel = (animation["channels"].as_array().unwrap().iter())
+        .find(|c| c["target"]["node"] == node && c["target"]["path"] == "translation")
+        .expect("the box's translation animated");
+    let sampler = &animation["samplers"][channel["sampler"].as_u64().unwrap() as usize];
+    let output = &doc["accessors"][sampler["output"].as_u64().unwrap() as usize];
+    let view = &doc["bufferViews"][output["bufferView"].as_u64().unwrap() as usize];
+    let at = view["byteOffset"].as_u64().unwrap() as usize;
+    let x: Vec<f32> =
+        bin[at..at + 48].chunks_exact(12).map(|b| f32::from_le_bytes(b[..4].try_into().unwrap())).collect();
+    for (k, x) in x.iter().enumerate() {
+        assert!((x - 0.5 * k as f32 / 60.0).abs() < 1e-6, "frame {k}: the box moved {x} m");
+    }
+}

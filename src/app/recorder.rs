@@ -32,7 +32,7 @@ impl AppRecorder {
     pub fn start(&mut self, host: &SimHost, path: &Path) -> Result<String> {
         let recording = Recording::new(host.model(), &record::colors(host.scene()), path, None)?;
         let what = match recording.format() {
-            Format::Usd => format!("recording to {} (written when you stop)", path.display()),
+            Format::Usd | Format::Gltf => format!("recording to {} (written when you stop)", path.display()),
             Format::ObjSequence => format!("recording to {} ...", recording.obj_path(1).display()),
             Format::PointCache => {
                 format!("recording to {} and its point caches", recording.base_path().display())
@@ -63,9 +63,8 @@ impl AppRecorder {
     /// Stops recording and writes the USD file; says what was written.
     pub fn stop(&mut self) -> Result<String> {
         let Some((recording, path)) = self.active.take() else { return Ok("not recording".into()) };
-        if recording.format() == Format::Usd {
-            std::fs::write(&path, recording.usda())
-                .map_err(|e| anyhow::anyhow!("writing {}: {e}", path.display()))?;
+        if let Some(bytes) = recording.whole_file()? {
+            std::fs::write(&path, bytes).map_err(|e| anyhow::anyhow!("writing {}: {e}", path.display()))?;
         }
         Ok(recording.summary(&path))
     }

@@ -34,9 +34,9 @@ pub struct SimulateArgs {
     /// Record the animated surfaces, a mesh per object: FILE.usda is USD with points and
     /// normals time-sampled every frame (opens in Blender, Houdini, usdview, Omniverse);
     /// FILE.obj is a sequence FILE_00001.obj, FILE_00002.obj, ... one OBJ file per frame;
-    /// FILE.pc2 is a PC2 point cache FILE_NAME.pc2 per mesh, with the meshes in FILE.obj
-    /// (Blender's Mesh Cache modifier).
-    #[arg(long, value_name = "FILE.usda|FILE.obj|FILE.pc2")]
+    /// FILE.glb is glTF 2.0 binary, each frame a morph target; FILE.pc2 is a PC2 point cache
+    /// FILE_NAME.pc2 per mesh, with the meshes in FILE.obj (Blender's Mesh Cache modifier).
+    #[arg(long, value_name = "FILE.usda|FILE.obj|FILE.glb|FILE.pc2")]
     pub record: Option<PathBuf>,
     /// Compile the shaders from this GLSL folder (with DIR/include for headers) instead of
     /// using the ones built into the binary: to run an edited shader without rebuilding.
@@ -108,7 +108,7 @@ pub fn run(args: &SimulateArgs, options: &ContextOptions) -> Result<()> {
     // they come (Recording::new checks its folder).
     let record_file = match &args.record {
         Some(path) => match Format::of(path).map_err(|e| crate::error::UserError(format!("--record {e}")))? {
-            Format::Usd => Some(OutFile::claim(path)?),
+            Format::Usd | Format::Gltf => Some(OutFile::claim(path)?),
             Format::ObjSequence | Format::PointCache => None,
         },
         None => None,
@@ -229,8 +229,8 @@ fn simulate(
     }
     print_summary(out, sim, &timings)?;
     if let Some((r, file)) = recording {
-        if let Some(file) = file {
-            file.write_bytes(r.usda().as_bytes())?;
+        if let (Some(file), Some(bytes)) = (file, r.whole_file()?) {
+            file.write_bytes(&bytes)?;
         }
         if let Some(path) = &args.record {
             say!(out, "{}", r.summary(path))?;

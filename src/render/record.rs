@@ -5,6 +5,8 @@
 //!   prims are named after the objects, made unique; each mesh and shape has a UsdPreviewSurface
 //!   material bound, and the colliders are shapes. Frames are kept in memory (up to `MAX_BYTES`)
 //!   and written at the end by the caller (`usda`), so an interrupted run leaves no partial file.
+//! - `.glb`: glTF 2.0 binary (`super::gltf`), frames kept as for USD, each a morph target.
+//! - `.pc2`: a PC2 point cache a mesh, streamed, with the meshes in an OBJ file.
 //! - `.obj`: a sequence of Wavefront OBJ files, `NAME_00001.obj`, `NAME_00002.obj`, ... one per
 //!   frame, written as the frames come (every object and then every collider an `o` group with
 //!   vertex colours and normals; Blender imports a sequence with its "Stop-motion OBJ" add-on,
@@ -39,12 +41,19 @@ const COLLIDER_GREY: f32 = 0.5;
 pub enum Format {
     Usd,
     ObjSequence,
+    /// glTF 2.0 binary: each mesh's frames as morph targets, played by one animation.
+    Gltf,
     /// PC2 point caches (one a mesh) with the meshes' first frame as OBJ, for Blender's Mesh
     /// Cache modifier: streamed, so memory stays at one frame.
     PointCache,
 }
 
 impl Format {
+    /// Whether the frames are kept in memory and the file written when the recording ends.
+    pub fn keeps_frames(self) -> bool {
+        matches!(self, Format::Usd | Format::Gltf)
+    }
+
     /// The format of `path`, from its extension (`usda` or `obj`), or a message naming the
     /// supported ones.
     pub fn of(path: &Path) -> Result<Self, String> {
@@ -52,8 +61,9 @@ impl Format {
             Some("usda") => Ok(Format::Usd),
             Some("obj") => Ok(Format::ObjSequence),
             Some("pc2") => Ok(Format::PointCache),
+            Some("glb") => Ok(Format::Gltf),
             _ => Err(format!(
-                "{}: the recording format follows the extension: .usda (USD ASCII, one file), .obj (a numbered sequence of OBJ files) or .pc2 (a PC2 point cache a mesh, with the meshes as OBJ)",
+                "{}: the recording format follows the extension: .usda (USD ASCII, one file), .obj (a numbered sequence of OBJ files), .glb (glTF 2.0 binary) or .pc2 (a PC2 point cache a mesh, with the meshes as OBJ)",
                 path.display()
             )),
         }
@@ -123,9 +133,9 @@ impl Recording {
         let format = Format::of(path).map_err(crate::error::UserError)?;
         let vertices: u64 = model.objects.iter().map(|o| o.surface_count() as u64).sum();
         let bytes = vertices * BYTES_PER_VERTEX * frames.unwrap_or(0);
-        if format == Format::Usd && bytes > MAX_BYTES {
+        if format.keeps_frames() && bytes > MAX_BYTES {
             return Err(crate::error::UserError(format!(
-                "a USD recording would keep {:.1} GiB of frames in memory (at most {} GiB): record fewer frames, or an .obj sequence",
+                "a USD or glTF recording would keep {:.1} GiB of frames in memory (at most {} GiB): record fewer frames, or an .obj sequence",
                 bytes as f64 / (1u64 << 30) as f64,
                 MAX_BYTES >> 30
             ))
@@ -277,6 +287,51 @@ impl Recording {
         Ok(())
     }
 
+    /// The whole file of a format written when the recording ends (USD, glTF), else None.
+    pub fn whole_file(&self) -> Result<Option<Vec<u8>>> {
+        Ok(match self.format {
+            Format::Usd => Some(self.usda().into_bytes()),
+            Format::Gltf => Some(self.glb()?),
+            Format::ObjSequence | Format::PointCache => None,
+        })
+    }
+
+    /// The glTF binary (`super::gltf`): a cloth's texture coordinates go along (a rope's are
+    /// face-varying), the colliders as meshes where the first frame had them.
+    pub fn glb(&self) -> Result<Vec<u8>> {
+        let meshes: Vec<super::gltf::MeshFrames> = (self.tracks.iter())
+            .map(|t| super::gltf::MeshFrames {
+                name: &t.name,
+                indices: &t.indices,
+                st: (t.shape.0 == ObjectKind::Cloth).then_some(t.st.as_slice()),
+                color: t.color,
+                double_sided: t.shape.0 == ObjectKind::Cloth,
+                points: &t.points,
+                normals: &t.normals,
+            })
+            .collect();
+        let first = self.times.first().copied().unwrap_or(0.0);
+        let f32s = |v: DVec3| v.as_vec3().to_array();
+        let colliders: Vec<super::gltf::ColliderMesh> = (self.colliders.iter().zip(&self.collider_names))
+            .map(|(c, name)| {
+                let (points, normals, triangles) = collider_mesh(c, first);
+                let start = c.motion.offset(first);
+                super::gltf::ColliderMesh {
+                    name: name.clone(),
+                    points: points.into_iter().map(f32s).collect(),
+                    normals: normals.into_iter().map(f32s).collect(),
+                    indices: triangles.into_iter().flatten().collect(),
+                    offsets: c
+                        .motion
+                        .is_moving()
+                        .then(|| self.times.iter().map(|&t| f32s(c.motion.offset(t) - start)).collect()),
+                }
+            })
+            .collect();
+        let times: Vec<f32> = self.times.iter().map(|&t| (t - first) as f32).collect();
+        super::gltf::glb(&meshes, &colliders, &times)
+    }
+
     /// The file of mesh k's point cache: `{stem}_{name}.pc2`.
     pub fn cache_path(&self, k: usize) -> PathBuf {
         let mut name = self.stem.clone().into_os_string();
@@ -294,7 +349,7 @@ impl Recording {
         let n = self.frames;
         match self.format {
             _ if n == 0 => "recorded no frames".into(),
-            Format::Usd => format!("recorded {n} frames to {}", path.display()),
+            Format::Usd | Format::Gltf => format!("recorded {n} frames to {}", path.display()),
             Format::ObjSequence => format!(
                 "recorded {n} frames to {} ... {}",
                 self.obj_path(self.first_code).display(),

@@ -303,7 +303,7 @@ fn simulation_panel(ui: &Ui, state: &mut EditorState, scene: &mut Scene, actions
     ui.same_line();
     ui.set_next_item_width(-1.0);
     ui.input_text("##record file", &mut state.record_path).build();
-    tip(ui, "the recording's file: NAME.usda, NAME.obj for NAME_00001.obj, NAME_00002.obj, ..., or NAME.pc2 for a point cache a mesh with the meshes in NAME.obj");
+    tip(ui, "the recording's file: NAME.usda, NAME.obj for NAME_00001.obj, NAME_00002.obj, ..., NAME.glb (glTF), or NAME.pc2 for a point cache a mesh with the meshes in NAME.obj");
     check(ui, "real time", &mut state.real_time);
     int(ui, "substeps", &mut scene.sim.substeps, 1, 4096);
     let mut ms = scene.sim.frame_dt * 1e3;
