@@ -741,3 +741,19 @@ fn a_usd_recording_past_its_memory_is_refused_before_the_run() {
     let stdout = String::from_utf8_lossy(&out.stdout).into_owned();
     assert!(!stdout.lines().any(|l| l.starts_with("frame")), "refused before the run: {stdout}");
 }
+
+/// `--record` refusals name `--record` (issue 30, item 12: they said `--out`), whatever the
+/// format, with exit 2 before the run.
+#[test]
+fn record_refusals_name_record() {
+    for file in ["x.usda", "x.glb", "x.pc2", "x.obj"] {
+        let out = binary()
+            .args(["simulate", "--preset", "presets/rope.toml", "--frames", "2", "--record"])
+            .arg(format!("/nonexistent-folder/{file}"))
+            .output()
+            .unwrap();
+        let err = stderr(&out);
+        assert_eq!(out.status.code(), Some(2), "{file}: {err}");
+        assert!(err.starts_with("msdsim: error: --record /nonexistent-folder/"), "{file}: {err}");
+    }
+}

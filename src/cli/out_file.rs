@@ -54,9 +54,10 @@ fn through_devices(path: &Path) -> bool {
 }
 
 impl OutFile {
-    /// Checks that `path` can be written and how, without writing it.
-    pub fn claim(path: &Path) -> Result<Self> {
-        let refuse = |why: String| UserError(format!("--out {}: {why}", path.display()));
+    /// Checks that `path`, given to `option` (`--out`, `--record`), can be written and how,
+    /// without writing it; a refusal names the option.
+    pub fn claim(option: &str, path: &Path) -> Result<Self> {
+        let refuse = |why: String| UserError(format!("{option} {}: {why}", path.display()));
         let writable = |p: &Path| {
             std::fs::OpenOptions::new()
                 .write(true)
@@ -71,7 +72,7 @@ impl OutFile {
                     std::fs::canonicalize(path).map_err(|e| refuse(format!("cannot resolve: {e}")))?;
                 if target.starts_with("/proc") || target.starts_with("/sys") {
                     return Err(refuse(
-                        "is a file of the kernel (/proc, /sys), not a place for the state".into(),
+                        "is a file of the kernel (/proc, /sys), not a place for output".into(),
                     )
                     .into());
                 }

@@ -103,12 +103,12 @@ pub fn run(args: &SimulateArgs, options: &ContextOptions) -> Result<()> {
     check_outputs(args)?;
     let scene = scene::load_runnable(&args.preset, &args.overrides)?;
     // Claim the output file before simulating, so a bad path fails before any work is done.
-    let out_file = args.out.as_deref().map(OutFile::claim).transpose()?;
+    let out_file = args.out.as_deref().map(|p| OutFile::claim("--out", p)).transpose()?;
     // A USD recording is one file, claimed like --out; an OBJ sequence writes its frames as
     // they come (Recording::new checks its folder).
     let record_file = match &args.record {
         Some(path) => match Format::of(path).map_err(|e| crate::error::UserError(format!("--record {e}")))? {
-            Format::Usd | Format::Gltf => Some(OutFile::claim(path)?),
+            Format::Usd | Format::Gltf => Some(OutFile::claim("--record", path)?),
             Format::ObjSequence | Format::PointCache => None,
         },
         None => None,
@@ -165,7 +165,13 @@ pub fn run(args: &SimulateArgs, options: &ContextOptions) -> Result<()> {
     let recording = match &args.record {
         Some(path) => {
             let colors = crate::render::record::colors(&scene);
-            Some((Recording::new(&model, &colors, path, Some(args.frames))?, record_file))
+            let recording = Recording::new(&model, &colors, path, Some(args.frames)).map_err(|e| {
+                match e.downcast::<crate::error::UserError>() {
+                    Ok(refused) => crate::error::UserError(format!("--record {}", refused.0)).into(),
+                    Err(e) => e,
+                }
+            })?;
+            Some((recording, record_file))
         }
         None => None,
     };
