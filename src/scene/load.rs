@@ -68,7 +68,15 @@ pub fn parse(text: &str, origin: &str, overrides: &[String]) -> Result<Scene, Us
                 format!("line {line}, column {column}: ")
             })
             .unwrap_or_default();
-        UserError(format!("{origin}: {at}{}", one_line(e.message())))
+        // A carriage return without a line feed (old Mac line endings) reads as a bad character
+        // in the middle of a line: say so.
+        let bare_cr = text.match_indices('\r').any(|(i, _)| !text[i + 1..].starts_with('\n'));
+        let why = if bare_cr {
+            " (the file has a carriage return without a line feed: save it with Unix (LF) or Windows (CRLF) line endings)"
+        } else {
+            ""
+        };
+        UserError(format!("{origin}: {at}{}{why}", one_line(e.message())))
     })?;
     for spec in overrides {
         apply_override(&mut table, spec).map_err(|e| UserError(format!("--set {}: {e}", shortened(spec))))?;
@@ -175,6 +183,21 @@ fn parse_value(raw: &str) -> toml::Value {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// A carriage return without a line feed is named as the reason (issue 30, item 12: the
+    /// error gave none); Windows line endings parse as Unix ones.
+    #[test]
+    fn a_bare_carriage_return_is_named() {
+        let err = parse("[sim]\rsubsteps = 8\n", "p.toml", &[]).unwrap_err().0;
+        assert!(
+            err.starts_with("p.toml: line 1") && err.contains("carriage return without a line feed"),
+            "{err}"
+        );
+        let windows = parse("[sim]\r\nsubsteps = 8\r\n", "p.toml", &[]).unwrap();
+        assert_eq!(windows.sim.substeps, 8);
+        let other = parse("[sim\nsubsteps = 8\n", "p.toml", &[]).unwrap_err().0;
+        assert!(!other.contains("carriage"), "{other}");
+    }
 
     const BASE: &str = r#"
 [sim]

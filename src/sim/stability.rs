@@ -47,6 +47,18 @@ impl Prediction {
 /// The most substeps per frame a scene may ask for (`sim.substeps`).
 pub const MAX_SUBSTEPS: u32 = 4096;
 
+/// Advice for shorter substeps: more of them, or at `MAX_SUBSTEPS` a shorter frame.
+fn more_substeps(model: &SimModel) -> String {
+    if model.substeps >= MAX_SUBSTEPS {
+        format!(
+            "a shorter sim.frame_dt (now {} s; sim.substeps is at its maximum, {MAX_SUBSTEPS})",
+            model.frame_dt
+        )
+    } else {
+        format!("more substeps (sim.substeps, now {})", model.substeps)
+    }
+}
+
 /// The integrators stable at any stiffness, for advice: `"xpbd", "implicit" or "vbd"`.
 pub fn stable_integrators() -> String {
     let names: Vec<String> =
@@ -185,16 +197,19 @@ impl GuardTrip {
             let advice = if model.integrator.iterative() {
                 format!(
                     "The {} solve stops short of its springs at sim.iterations = {} and sim.substeps = {}: raise \
-                     either; or the material is too soft for its load (a stiffer structural spring, a stretch_limit). \
-                     sim.max_strain = 0 turns this check off.",
+                     sim.iterations, or try {}; or the material is too soft for its load (a stiffer structural \
+                     spring, a stretch_limit). sim.max_strain = 0 turns this check off.",
                     model.integrator.label(),
                     model.iterations,
-                    model.substeps
+                    model.substeps,
+                    more_substeps(model)
                 )
             } else {
-                "The springs do not hold the load: a stiffer structural spring or a stretch_limit, or more \
-                 substeps; sim.max_strain = 0 turns this check off."
-                    .to_string()
+                format!(
+                    "The springs do not hold the load: a stiffer structural spring or a stretch_limit, or {}; \
+                     sim.max_strain = 0 turns this check off.",
+                    more_substeps(model)
+                )
             };
             return Self { name: o.name.clone(), kind: o.kind, cause, particle, what, time, advice };
         }
@@ -204,9 +219,9 @@ impl GuardTrip {
             format!(
                 "The {} integrator is stable for any spring stiffness, so look at what it treats explicitly and at the \
                  constraints: strong spring damping (explicit in the implicit method's prediction), drag, contacts; try \
-                 more substeps (sim.substeps, now {}) or more iterations (sim.iterations, now {}).",
+                 {} or more iterations (sim.iterations, now {}).",
                 model.integrator.label(),
-                model.substeps,
+                more_substeps(model),
                 model.iterations
             )
         } else if dt > p.dt_max {
@@ -222,8 +237,8 @@ impl GuardTrip {
         } else {
             format!(
                 "The substep is within the predicted spring limit, so look at the constraints and contacts: \
-                 try more substeps (sim.substeps, now {}), a smaller stretch limit correction, or slower colliders.",
-                model.substeps
+                 try {}, a smaller stretch limit correction, or slower colliders.",
+                more_substeps(model)
             )
         };
         Self { name: o.name.clone(), kind: o.kind, cause, particle, what, time, advice }
@@ -246,5 +261,32 @@ mod tests {
         s.ropes[0].bending_stiffness = 0.0;
         let p = &predict(&scene::to_model(&s))[0];
         assert!((p.omega_max - (4.0f64 * 100.0 / 0.01).sqrt()).abs() < 1e-9, "{p:?}");
+    }
+
+    /// The guard's advice never asks for more substeps than a scene may have (issue 30, item
+    /// 12: "try more substeps (sim.substeps, now 4096)"): at the maximum it asks for a shorter
+    /// frame, for every cause and integrator family; below it, for more substeps.
+    #[test]
+    fn advice_at_the_substep_maximum_asks_for_a_shorter_frame() {
+        let rope = "[[rope]]\nname = \"r\"\nnodes = 5\nstart = [0, 0, 0]\nend = [1, 0, 0]\nmass = 0.01\nstiffness = 100.0\nradius = 0.01\n";
+        for integrator in [Integrator::SymplecticEuler, Integrator::Vbd] {
+            for substeps in [16, MAX_SUBSTEPS] {
+                let mut s = scene::parse(rope, "t", &[]).unwrap();
+                s.sim.substeps = substeps;
+                s.sim.integrator = scene::IntegratorChoice::Method(integrator);
+                let model = scene::to_model(&s);
+                for cause in [GuardCause::Runaway, GuardCause::Overstretched] {
+                    let advice = GuardTrip::new(&model, 0, 0, cause, 1.0).advice;
+                    let at_max = substeps == MAX_SUBSTEPS;
+                    let what = integrator.label();
+                    assert_eq!(advice.contains("more substeps"), !at_max, "{what} at {substeps}: {advice}");
+                    assert_eq!(
+                        advice.contains("shorter sim.frame_dt"),
+                        at_max,
+                        "{what} at {substeps}: {advice}"
+                    );
+                }
+            }
+        }
     }
 }
