@@ -60,7 +60,8 @@ impl AppRecorder {
         })
     }
 
-    /// Stops recording and writes the USD file; says what was written.
+    /// Stops recording and writes a USD or glTF file (the others are written as frames come);
+    /// says what was written.
     pub fn stop(&mut self) -> Result<String> {
         let Some((recording, path)) = self.active.take() else { return Ok("not recording".into()) };
         if let Some(bytes) = recording.whole_file()? {

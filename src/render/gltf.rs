@@ -162,9 +162,6 @@ pub fn glb(meshes: &[MeshFrames], colliders: &[ColliderMesh], times: &[f32]) -> 
         min_version: None,
     };
     let frames = times.len();
-    let time_view = b.view(bytemuck::cast_slice(times), None);
-    let bounds = (vec![times.first().copied().unwrap_or(0.0)], vec![times.last().copied().unwrap_or(0.0)]);
-    let input = b.accessor(Some(time_view), frames, json::accessor::Type::Scalar, Some(bounds));
     let (mut nodes, mut channels, mut samplers) = (Vec::new(), Vec::new(), Vec::new());
     for m in meshes {
         let (Some(first), Some(first_normals)) = (m.points.first(), m.normals.first()) else { continue };
@@ -234,7 +231,7 @@ pub fn glb(meshes: &[MeshFrames], colliders: &[ColliderMesh], times: &[f32]) -> 
                 vec![(json::mesh::Semantic::Positions, position), (json::mesh::Semantic::Normals, normal)];
             let node = b.mesh(&c.name, attributes, indices, material, None);
             nodes.push(node);
-            if let Some(offsets) = &c.offsets {
+            if let Some(offsets) = c.offsets.as_ref().filter(|o| frames > 1 && o.len() == frames) {
                 let output = b.vec3(offsets, None);
                 channels.push((node, json::animation::Property::Translation, samplers.len()));
                 samplers.push(output);
@@ -242,6 +239,10 @@ pub fn glb(meshes: &[MeshFrames], colliders: &[ColliderMesh], times: &[f32]) -> 
         }
     }
     if !channels.is_empty() {
+        // The keyframes' times (an accessor must hold at least one element: only with frames).
+        let time_view = b.view(bytemuck::cast_slice(times), None);
+        let bounds = (vec![times[0]], vec![times[frames - 1]]);
+        let input = b.accessor(Some(time_view), frames, json::accessor::Type::Scalar, Some(bounds));
         b.root.push(json::Animation {
             extensions: None,
             extras: Default::default(),
@@ -300,4 +301,44 @@ pub fn glb(meshes: &[MeshFrames], colliders: &[ColliderMesh], times: &[f32]) -> 
     out.extend_from_slice(b"BIN\0");
     out.extend_from_slice(&b.bin);
     Ok(out)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A recording stopped after its first frame (or before any: the app's Record pressed
+    /// twice) is still valid glTF: no animation and no accessor without elements (glTF needs
+    /// at least one), the meshes and colliders still there.
+    #[test]
+    fn no_accessor_is_empty_with_one_frame_or_none() {
+        let triangle = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]];
+        let up = [[0.0, 0.0, 1.0]; 3];
+        for frames in [0, 1] {
+            let (points, normals) = (vec![triangle.to_vec(); frames], vec![up.to_vec(); frames]);
+            let mesh = MeshFrames {
+                name: "c",
+                indices: &[0, 1, 2],
+                st: None,
+                color: [0.5; 3],
+                double_sided: true,
+                points: &points,
+                normals: &normals,
+            };
+            let collider = ColliderMesh {
+                name: "box".into(),
+                points: triangle.to_vec(),
+                normals: up.to_vec(),
+                indices: vec![0, 1, 2],
+                offsets: Some(vec![[0.0; 3]; frames]),
+            };
+            let bytes = glb(&[mesh], &[collider], &vec![0.0; frames]).unwrap();
+            let text = u32::from_le_bytes(bytes[12..16].try_into().unwrap()) as usize;
+            let doc: serde_json::Value = serde_json::from_slice(&bytes[20..20 + text]).unwrap();
+            let accessors = doc["accessors"].as_array().unwrap();
+            assert!(accessors.iter().all(|a| a["count"].as_u64() > Some(0)), "{frames} frames: {doc}");
+            assert!(doc.get("animations").is_none(), "{frames} frames: {doc}");
+            assert_eq!(doc["meshes"].as_array().unwrap().len(), frames + 1, "{frames} frames: {doc}");
+        }
+    }
 }
