@@ -326,30 +326,13 @@ fn a_recorded_rope_is_a_closed_tube_wound_outward() {
     let json = dir.path().join("state.json");
     record("presets/rope.toml", 20, &obj, &json);
     let whole = std::fs::read_to_string(dir.path().join("rope_00020.obj")).unwrap();
-    let text = objects_only(&whole);
-    let v3 = |l: &str| -> glam::DVec3 {
-        let n: Vec<f64> = l.split_whitespace().skip(1).take(3).map(|s| s.parse().unwrap()).collect();
-        glam::DVec3::new(n[0], n[1], n[2])
-    };
-    let points: Vec<glam::DVec3> = text.lines().filter(|l| l.starts_with("v ")).map(v3).collect();
-    let normals: Vec<glam::DVec3> = text.lines().filter(|l| l.starts_with("vn ")).map(v3).collect();
-    let faces: Vec<[usize; 3]> = text
-        .lines()
-        .filter(|l| l.starts_with("f "))
-        .map(|l| {
-            let c: Vec<usize> = l
-                .split_whitespace()
-                .skip(1)
-                .map(|c| c.split('/').next().unwrap().parse::<usize>().unwrap() - 1)
-                .collect();
-            [c[0], c[1], c[2]]
-        })
-        .collect();
+    let groups = obj_groups(objects_only(&whole));
+    let (_, points, normals, faces) = &groups[0];
     let ring = 8;
     let nodes = 64;
     assert_eq!(points.len(), (nodes + 2) * ring, "the tube's rings and two cap rings");
     let mut volume = 0.0;
-    for &[a, b, c] in &faces {
+    for &[a, b, c] in faces {
         let winding = (points[b] - points[a]).cross(points[c] - points[a]);
         let shading = normals[a] + normals[b] + normals[c];
         assert!(winding.dot(shading) > 0.0, "face {a} {b} {c} is wound against its normals");

@@ -32,11 +32,11 @@ impl AppRecorder {
     pub fn start(&mut self, host: &SimHost, path: &Path) -> Result<String> {
         let recording = Recording::new(host.model(), &record::colors(host.scene()), path, None)?;
         let what = match recording.format() {
-            Format::Usd | Format::Gltf => format!("recording to {} (written when you stop)", path.display()),
-            Format::ObjSequence => format!("recording to {} ...", recording.obj_path(1).display()),
+            f if f.keeps_frames() => format!("recording to {} (written when you stop)", path.display()),
             Format::PointCache => {
                 format!("recording to {} and its point caches", recording.base_path().display())
             }
+            _ => format!("recording to {} ...", recording.obj_path(1).display()),
         };
         self.active = Some((recording, path.to_path_buf()));
         Ok(what)

@@ -104,13 +104,13 @@ pub fn run(args: &SimulateArgs, options: &ContextOptions) -> Result<()> {
     let scene = scene::load_runnable(&args.preset, &args.overrides)?;
     // Claim the output file before simulating, so a bad path fails before any work is done.
     let out_file = args.out.as_deref().map(|p| OutFile::claim("--out", p)).transpose()?;
-    // A USD recording is one file, claimed like --out; an OBJ sequence writes its frames as
-    // they come (Recording::new checks its folder).
+    // A USD or glTF recording is one file written at the end, claimed like --out; OBJ and PC2
+    // write theirs as the frames come (Recording::new checks their folder).
     let record_file = match &args.record {
-        Some(path) => match Format::of(path).map_err(|e| crate::error::UserError(format!("--record {e}")))? {
-            Format::Usd | Format::Gltf => Some(OutFile::claim("--record", path)?),
-            Format::ObjSequence | Format::PointCache => None,
-        },
+        Some(path) => {
+            let format = Format::of(path).map_err(|e| crate::error::UserError(format!("--record {e}")))?;
+            format.keeps_frames().then(|| OutFile::claim("--record", path)).transpose()?
+        }
         None => None,
     };
     // A folder of shaders (an edited copy of glsl/) is checked before any work, compiled later.

@@ -394,13 +394,16 @@ impl Recording {
             let base = self.base_path();
             write_whole(&base, self.obj(states, time).as_bytes())
                 .map_err(|e| anyhow::anyhow!("recording the meshes to {}: {e}", base.display()))?;
-            for (k, state) in states.iter().enumerate() {
+        }
+        for (k, state) in states.iter().enumerate() {
+            let (points, _) = self.tracks[k].frame(state);
+            if k == self.caches.len() {
+                // The first frame starts the cache: its header, with no sample counted yet.
                 let path = self.cache_path(k);
-                let points = self.tracks[k].frame(state).0.len();
                 let mut header = Vec::with_capacity(PC2_HEADER as usize);
                 header.extend_from_slice(b"POINTCACHE2\0");
                 header.extend_from_slice(&1i32.to_le_bytes()); // version
-                header.extend_from_slice(&(points as i32).to_le_bytes());
+                header.extend_from_slice(&(points.len() as i32).to_le_bytes());
                 header.extend_from_slice(&(self.first_code as f32).to_le_bytes()); // start frame
                 header.extend_from_slice(&1f32.to_le_bytes()); // samples a frame
                 header.extend_from_slice(&0i32.to_le_bytes()); // samples so far
@@ -409,9 +412,6 @@ impl Recording {
                     .map_err(|e| anyhow::anyhow!("recording to {}: {e}", path.display()))?;
                 self.caches.push(file);
             }
-        }
-        for (k, state) in states.iter().enumerate() {
-            let (points, _) = self.tracks[k].frame(state);
             let bytes: Vec<u8> = points.iter().flatten().flat_map(|x| x.to_le_bytes()).collect();
             let count = (self.frames as i32).to_le_bytes();
             let file = &mut self.caches[k];
@@ -571,6 +571,7 @@ impl Recording {
             return;
         }
         let _ = writeln!(out, "    def Scope \"colliders\"\n    {{");
+        let material = self.collider_material();
         for (i, c) in self.colliders.iter().enumerate() {
             let kind = c.shape.kind().label();
             let (prim, place, rotation): (&str, DVec3, Option<DQuat>) = match c.shape {
@@ -584,11 +585,7 @@ impl Recording {
                 Shape::Ground { height } => ("Mesh", DVec3::new(0.0, height, 0.0), None),
             };
             let _ = writeln!(out, "        def {prim} \"{kind}_{i}\" (\n            prepend apiSchemas = [\"MaterialBindingAPI\"]\n        )\n        {{");
-            let _ = writeln!(
-                out,
-                "            rel material:binding = </scene/materials/{}>",
-                self.collider_material()
-            );
+            let _ = writeln!(out, "            rel material:binding = </scene/materials/{material}>");
             match c.shape {
                 Shape::Sphere { radius, .. } => {
                     let _ = writeln!(out, "            double radius = {radius}");
