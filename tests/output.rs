@@ -126,6 +126,59 @@ fn ctrl_c_leaves_no_partial_file() {
     assert_eq!(leftovers(dir.path()), Vec::<String>::new());
 }
 
+/// A signal while the final file is being written (the temporary file beside it exists, held
+/// there by a test hook) removes the temporary and leaves the target as it was; the process
+/// still ends by the signal. `--out` with SIGINT and SIGTERM, a USD recording with SIGTERM,
+/// an OBJ frame with SIGINT (issue 30, item 4: each left a `.partial` file of 8-121 MB).
+#[test]
+fn a_signal_during_the_final_write_leaves_no_partial_file() {
+    use std::os::unix::process::ExitStatusExt as _;
+    let cases: [(&str, &str, &str); 4] = [
+        ("INT", "--out", "state.json"),
+        ("TERM", "--out", "state.json"),
+        ("TERM", "--record", "rec.usda"),
+        ("INT", "--record", "frames.obj"),
+    ];
+    for (signal, option, name) in cases {
+        let dir = tempfile::tempdir().unwrap();
+        let p = preset(dir.path());
+        // An OBJ sequence removes earlier frames when it starts, so there is no "old" to keep.
+        let target = dir.path().join(name);
+        let sequence = name.ends_with(".obj");
+        if !sequence {
+            std::fs::write(&target, "old").unwrap();
+        }
+        let mut child = binary()
+            .args(["simulate", "--preset", &p, "--frames", "2", "--quiet", option])
+            .arg(&target)
+            .env("MSDSIM_TEST_HOLD_PARTIAL", "30")
+            .stdout(Stdio::null())
+            .stderr(Stdio::null())
+            .spawn()
+            .unwrap();
+        let start = std::time::Instant::now();
+        while leftovers(dir.path()).is_empty() {
+            assert!(start.elapsed().as_secs() < 60, "{signal} {option}: no temporary file appeared");
+            std::thread::sleep(std::time::Duration::from_millis(20));
+        }
+        let killed = Command::new("kill").args([&format!("-{signal}"), &child.id().to_string()]).status().unwrap();
+        assert!(killed.success());
+        let status = child.wait().unwrap();
+        let number = if signal == "INT" { 2 } else { 15 };
+        assert_eq!(status.signal(), Some(number), "{signal} {option}: {status:?}");
+        assert!(start.elapsed().as_secs() < 30, "{signal} {option}: the signal waited for the hold");
+        assert_eq!(leftovers(dir.path()), Vec::<String>::new(), "{signal} {option}");
+        if sequence {
+            let frames = std::fs::read_dir(dir.path()).unwrap().filter(|e| {
+                e.as_ref().unwrap().file_name().to_string_lossy().starts_with("frames_")
+            });
+            assert_eq!(frames.count(), 0, "the frame being written when the signal came was left");
+        } else {
+            assert_eq!(std::fs::read_to_string(&target).unwrap(), "old", "{signal} {option}");
+        }
+    }
+}
+
 /// A reader that closes the pipe early (`| head -1`) ends neither in a panic nor a leak: the
 /// run finishes, writes its --out file and exits 0.
 #[test]

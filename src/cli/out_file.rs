@@ -3,8 +3,9 @@
 //! written at the end:
 //! - a regular file, or a new one: through a temporary file beside it (created new, never
 //!   through an existing name), renamed over it, so a reader never sees half a file; the
-//!   temporary exists only while it is written (a run stopped by Ctrl-C leaves nothing behind),
-//!   and takes the replaced file's permissions;
+//!   temporary exists only while it is written (a run stopped by Ctrl-C or SIGTERM, even
+//!   during the write, leaves nothing behind: `crate::temporary`), and takes the replaced
+//!   file's permissions;
 //! - a symbolic link: the same at the file it points to; the link stays a link;
 //! - anything else (/dev/null, a FIFO): written through in place, never replaced; a FIFO is
 //!   opened only at the end (opening it waits for a reader);
@@ -118,25 +119,9 @@ impl OutFile {
         }
     }
 
-    /// Creates a new temporary file beside the target (a name not taken yet).
-    fn create_temporary(&self) -> std::io::Result<(PathBuf, std::fs::File)> {
-        let name = self.target.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_default();
-        let mut last = None;
-        for attempt in 0..100 {
-            let tmp = self.target.with_file_name(format!(".{name}.{}-{attempt}.partial", std::process::id()));
-            match std::fs::OpenOptions::new().write(true).create_new(true).open(&tmp) {
-                Ok(file) => return Ok((tmp, file)),
-                Err(e) if e.kind() == std::io::ErrorKind::AlreadyExists => last = Some(e),
-                Err(e) => return Err(e),
-            }
-        }
-        Err(last.unwrap_or_else(|| std::io::Error::other("no free temporary name")))
-    }
-
     /// Creates and removes a temporary file: the folder takes it.
     fn probe_temporary(&self) -> std::io::Result<()> {
-        let (tmp, _) = self.create_temporary()?;
-        std::fs::remove_file(&tmp)
+        crate::temporary::probe_beside(&self.target)
     }
 
     /// Writes `bytes` (a whole file).
@@ -160,18 +145,6 @@ impl OutFile {
             let mut file = options.open(&self.target)?;
             return file.write_all(bytes).and_then(|_| file.flush());
         }
-        let (tmp, mut file) = self.create_temporary()?;
-        let written = (|| {
-            file.write_all(bytes)?;
-            if let Ok(old) = std::fs::metadata(&self.target) {
-                file.set_permissions(old.permissions())?;
-            }
-            file.sync_all()?;
-            std::fs::rename(&tmp, &self.target)
-        })();
-        if written.is_err() {
-            let _ = std::fs::remove_file(&tmp);
-        }
-        written
+        crate::temporary::replace(&self.target, bytes, true)
     }
 }

@@ -724,20 +724,13 @@ fn remove_old_frames(path: &Path) -> Result<()> {
 /// Writes `bytes` to `path` so that no reader (and no interrupted run) sees part of it: a
 /// regular file, or a new one, through a temporary file beside it renamed over it (at a
 /// symbolic link's target: the link stays); anything else (/dev/null, a device) in place. A
-/// failed write removes its temporary file.
+/// failed write, or a signal during it, removes its temporary file.
 fn write_whole(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
     let target = if path.is_symlink() { path.canonicalize()? } else { path.to_path_buf() };
     if target.exists() && !target.is_file() {
         return std::fs::write(&target, bytes);
     }
-    let mut name = target.file_name().unwrap_or_default().to_os_string();
-    name.push(format!(".{}.partial", std::process::id()));
-    let temporary = target.with_file_name(format!(".{}", name.to_string_lossy()));
-    let written = std::fs::write(&temporary, bytes).and_then(|()| std::fs::rename(&temporary, &target));
-    if written.is_err() {
-        let _ = std::fs::remove_file(&temporary);
-    }
-    written
+    crate::temporary::replace(&target, bytes, false)
 }
 
 impl Track {
