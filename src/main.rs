@@ -18,9 +18,11 @@ fn main() {
         Ok(cli) => cli,
         Err(e) => exit_on_argument_error(e),
     };
+    let mut stuck = false;
     let code = match std::panic::catch_unwind(|| msdsim::cli::run(cli)) {
         Ok(Ok(())) => 0,
         Ok(Err(e)) => {
+            stuck = e.chain().any(|c| matches!(c.downcast_ref(), Some(msdsim::vk::VkError::Stuck { .. })));
             let line = format!("{e:#}").replace('\n', " ");
             let _ = writeln!(std::io::stderr(), "msdsim: error: {line}");
             if e.chain().any(|c| c.is::<msdsim::sim::stability::GuardTrip>()) {
@@ -33,6 +35,11 @@ fn main() {
         }
         Err(_) => exit::FAILURE,
     };
+    if stuck {
+        // The driver's exit handlers would wait for the work that never ends.
+        let _ = std::io::stdout().flush();
+        msdsim::vk::exit_without_teardown(code);
+    }
     std::process::exit(code);
 }
 

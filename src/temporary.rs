@@ -95,7 +95,9 @@ fn install_handlers() {
             // SAFETY: sigaction with valid pointers; the handler is async-signal-safe (above).
             unsafe {
                 let mut old: libc::sigaction = std::mem::zeroed();
-                if libc::sigaction(signal, std::ptr::null(), &mut old) != 0 || old.sa_sigaction == libc::SIG_IGN {
+                if libc::sigaction(signal, std::ptr::null(), &mut old) != 0
+                    || old.sa_sigaction == libc::SIG_IGN
+                {
                     continue;
                 }
                 let mut action: libc::sigaction = std::mem::zeroed();
@@ -156,7 +158,9 @@ pub fn replace(target: &Path, bytes: &[u8], durable: bool) -> std::io::Result<()
 /// For the tests that send a signal while a temporary exists: `MSDSIM_TEST_HOLD_PARTIAL=SECONDS`
 /// keeps each temporary, written, that long before it is renamed.
 fn hold_for_tests() {
-    if let Some(s) = std::env::var_os("MSDSIM_TEST_HOLD_PARTIAL").and_then(|s| s.to_str()?.parse::<f64>().ok()) {
+    if let Some(s) =
+        std::env::var_os("MSDSIM_TEST_HOLD_PARTIAL").and_then(|s| s.to_str()?.parse::<f64>().ok())
+    {
         if s.is_finite() && s > 0.0 {
             std::thread::sleep(std::time::Duration::from_secs_f64(s.min(60.0)));
         }

@@ -632,3 +632,39 @@ fn hostile_keys_values_and_names_get_one_clear_line() {
         assert!(run.status.success(), "MSDSIM_VALIDATION={on}: {}", String::from_utf8_lossy(&run.stderr));
     }
 }
+
+/// A submission that outlives `--gpu-timeout` (a shader that never ends, here a frame far
+/// slower than the 0.1 s allowed: 160,000 particles at 64 substeps on lavapipe) stops the run
+/// with exit code 1 and one line saying what to do; the process ends without waiting for the
+/// work (before, fences waited for ever). A timeout outside 0.1 to 86400 s is refused.
+#[test]
+fn gpu_work_past_the_timeout_stops_with_exit_1() {
+    let dir = tempfile::tempdir().unwrap();
+    let p = write(dir.path(), "p.toml", GOOD);
+    let start = std::time::Instant::now();
+    let args = [
+        "--gpu-timeout",
+        "0.1",
+        "simulate",
+        "--preset",
+        &p,
+        "--set",
+        "cloth.0.resolution=[400,400]",
+        "--set",
+        "sim.substeps=64",
+        "--frames",
+        "20",
+        "--quiet",
+    ];
+    let out = msdsim(&args);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(1), "{stderr}");
+    let lines: Vec<&str> = stderr.lines().filter(|l| !l.trim().is_empty()).collect();
+    assert_eq!(lines.len(), 1, "{stderr}");
+    assert!(
+        lines[0].contains("did not finish its work within 0.1 s") && lines[0].contains("--gpu-timeout"),
+        "{stderr}"
+    );
+    assert!(start.elapsed().as_secs() < 60, "the run waited for the work: {:?}", start.elapsed());
+    rejects(&["--gpu-timeout", "0", "devices"], &["--gpu-timeout", "0.1 to 86400"]);
+}

@@ -161,7 +161,8 @@ fn a_signal_during_the_final_write_leaves_no_partial_file() {
             assert!(start.elapsed().as_secs() < 60, "{signal} {option}: no temporary file appeared");
             std::thread::sleep(std::time::Duration::from_millis(20));
         }
-        let killed = Command::new("kill").args([&format!("-{signal}"), &child.id().to_string()]).status().unwrap();
+        let killed =
+            Command::new("kill").args([&format!("-{signal}"), &child.id().to_string()]).status().unwrap();
         assert!(killed.success());
         let status = child.wait().unwrap();
         let number = if signal == "INT" { 2 } else { 15 };
@@ -169,9 +170,9 @@ fn a_signal_during_the_final_write_leaves_no_partial_file() {
         assert!(start.elapsed().as_secs() < 30, "{signal} {option}: the signal waited for the hold");
         assert_eq!(leftovers(dir.path()), Vec::<String>::new(), "{signal} {option}");
         if sequence {
-            let frames = std::fs::read_dir(dir.path()).unwrap().filter(|e| {
-                e.as_ref().unwrap().file_name().to_string_lossy().starts_with("frames_")
-            });
+            let frames = std::fs::read_dir(dir.path())
+                .unwrap()
+                .filter(|e| e.as_ref().unwrap().file_name().to_string_lossy().starts_with("frames_"));
             assert_eq!(frames.count(), 0, "the frame being written when the signal came was left");
         } else {
             assert_eq!(std::fs::read_to_string(&target).unwrap(), "old", "{signal} {option}");

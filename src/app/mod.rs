@@ -117,7 +117,21 @@ impl ApplicationHandler for Handler {
             match viewer.frame() {
                 Ok(Outcome::Continue) => {}
                 Ok(Outcome::Exit) => self.stop(event_loop, None),
-                Err(e) => self.stop(event_loop, Some(e)),
+                Err(e) => {
+                    // The GPU is gone for this run (one queue: nothing drawn can pass a stuck
+                    // submission), so the app stops; the edits are not lost with it.
+                    let gpu_gone = e.chain().any(|c| {
+                        matches!(
+                            c.downcast_ref(),
+                            Some(crate::vk::VkError::Stuck { .. } | crate::vk::VkError::DeviceLost)
+                        )
+                    });
+                    let e = match gpu_gone.then(|| viewer.rescue_unsaved()).flatten() {
+                        Some(rescued) => e.context(rescued),
+                        None => e,
+                    };
+                    self.stop(event_loop, Some(e))
+                }
             }
             return;
         }

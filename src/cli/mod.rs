@@ -28,6 +28,11 @@ pub struct Cli {
     /// integrated > CPU).
     #[arg(long, global = true, env = "MSDSIM_DEVICE")]
     pub device: Option<String>,
+    /// Seconds to wait for the GPU to finish a submission before taking it to be stuck (a
+    /// shader that never ends): the command then stops with exit code 1 and says so.
+    #[arg(long, global = true, env = "MSDSIM_GPU_TIMEOUT", value_name = "SECONDS", default_value_t = 60.0,
+          value_parser = parse_gpu_timeout)]
+    pub gpu_timeout: f64,
     #[command(subcommand)]
     pub command: Option<Command>,
 }
@@ -50,7 +55,18 @@ pub enum Command {
 
 impl Cli {
     fn context_options(&self) -> ContextOptions {
-        ContextOptions { validation: self.validation, device: self.device.clone() }
+        ContextOptions {
+            validation: self.validation,
+            device: self.device.clone(),
+            gpu_timeout: Some(std::time::Duration::from_secs_f64(self.gpu_timeout)),
+        }
+    }
+}
+
+fn parse_gpu_timeout(text: &str) -> Result<f64, String> {
+    match text.trim().parse::<f64>() {
+        Ok(s) if (0.1..=86_400.0).contains(&s) => Ok(s),
+        _ => Err("must be a number of seconds from 0.1 to 86400".into()),
     }
 }
 

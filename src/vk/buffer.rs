@@ -149,6 +149,9 @@ impl Buffer {
     }
 
     pub fn destroy(self, ctx: &GpuContext) {
+        if ctx.stuck() {
+            return; // kept: the GPU may still use it
+        }
         if let Err(e) = ctx.allocator().free(self.allocation) {
             log::error!("freeing {}: {e}", self.name);
         }

@@ -103,8 +103,14 @@ impl CommandSlot {
     /// Waits for the last submission to finish.
     pub fn wait(&mut self, ctx: &GpuContext) -> Result<(), VkError> {
         if self.pending {
+            if ctx.stuck() {
+                return Err(ctx.stuck_error());
+            }
             // SAFETY: the fence belongs to this device and was submitted.
-            unsafe { ctx.device.wait_for_fences(&[self.fence], true, u64::MAX) }.check("vkWaitForFences")?;
+            match unsafe { ctx.device.wait_for_fences(&[self.fence], true, ctx.fence_timeout_ns()) } {
+                Err(vk::Result::TIMEOUT) => return Err(ctx.stuck_error()),
+                result => result.check("vkWaitForFences")?,
+            }
             self.pending = false;
         }
         Ok(())
@@ -112,6 +118,9 @@ impl CommandSlot {
 
     /// Frees the slot; the caller has waited for it (or the device is idle).
     pub fn destroy(self, ctx: &GpuContext) {
+        if ctx.stuck() {
+            return; // kept: the GPU may still use it
+        }
         // SAFETY: not pending (callers wait first); both objects belong to this device.
         unsafe {
             ctx.device.destroy_fence(self.fence, None);

@@ -10,6 +10,7 @@ use gpu_allocator::vulkan::{Allocator, AllocatorCreateDesc};
 use raw_window_handle::{RawDisplayHandle, RawWindowHandle};
 use std::ffi::{c_char, CStr};
 use std::mem::ManuallyDrop;
+use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::{Arc, Mutex, MutexGuard};
 
 const VALIDATION_LAYER: &CStr = c"VK_LAYER_KHRONOS_validation";
@@ -21,7 +22,14 @@ pub struct ContextOptions {
     pub validation: bool,
     /// Device index or part of its name; `None` picks the most capable kind.
     pub device: Option<String>,
+    /// How long to wait for a submission before the device is taken to be stuck (a shader
+    /// that never ends); `None`: `DEFAULT_GPU_TIMEOUT`.
+    pub gpu_timeout: Option<std::time::Duration>,
 }
+
+/// The default of `ContextOptions::gpu_timeout`: far above any one submission msdsim makes
+/// (a frame's substeps), also on lavapipe.
+pub const DEFAULT_GPU_TIMEOUT: std::time::Duration = std::time::Duration::from_secs(60);
 
 /// A window to present to: its platform handles.
 #[derive(Debug, Clone, Copy)]
@@ -50,6 +58,10 @@ pub struct GpuContext {
     pub(crate) surface: Option<Surface>,
     allocator: ManuallyDrop<Arc<Mutex<Allocator>>>,
     info: DeviceInfo,
+    timeout: std::time::Duration,
+    /// A submission outlived `timeout`: the GPU may still be running it, so nothing it could
+    /// use is freed or waited for again (see `stuck`).
+    stuck: AtomicBool,
 }
 
 impl GpuContext {
@@ -155,6 +167,8 @@ impl GpuContext {
                     surface,
                     allocator: ManuallyDrop::new(Arc::new(Mutex::new(allocator))),
                     info: candidate.info,
+                    timeout: options.gpu_timeout.unwrap_or(DEFAULT_GPU_TIMEOUT),
+                    stuck: AtomicBool::new(false),
                 })
             }
             Err(e) => {
@@ -272,10 +286,33 @@ impl GpuContext {
         self.allocator().generate_report().allocations.into_iter().map(|a| a.name).collect()
     }
 
-    /// Waits until the queue has finished all submitted work.
+    /// Waits until the queue has finished all submitted work (at once an error when the device
+    /// is stuck).
     pub fn wait_idle(&self) -> Result<(), VkError> {
+        if self.stuck() {
+            return Err(self.stuck_error());
+        }
         // SAFETY: valid device; no other thread submits to this queue.
         unsafe { self.device.device_wait_idle() }.check("vkDeviceWaitIdle")
+    }
+
+    /// Whether a submission outlived the timeout. The GPU may still be running it (a shader
+    /// that never ends), so from then on every wait fails at once and every `destroy` keeps
+    /// its object: freeing memory a running shader uses is undefined, and the driver's own
+    /// teardown would wait for that work for ever. The process is expected to end
+    /// (`exit_without_teardown`).
+    pub fn stuck(&self) -> bool {
+        self.stuck.load(Ordering::Acquire)
+    }
+
+    pub(crate) fn fence_timeout_ns(&self) -> u64 {
+        self.timeout.as_nanos().min(u64::MAX as u128) as u64
+    }
+
+    /// Marks the device stuck and says so.
+    pub(crate) fn stuck_error(&self) -> VkError {
+        self.stuck.store(true, Ordering::Release);
+        VkError::Stuck { seconds: self.timeout.as_secs_f64() }
     }
 
     /// Gives a Vulkan object a name shown in validation messages (when validation is on).
@@ -305,8 +342,18 @@ fn messenger_create_info(canary: &Arc<ValidationCanary>) -> vk::DebugUtilsMessen
         .user_data(Arc::as_ptr(canary) as *mut std::ffi::c_void)
 }
 
+/// Ends the process with `code` without running exit handlers: after a stuck device, the
+/// driver's handlers would wait for the work that never ends.
+pub fn exit_without_teardown(code: i32) -> ! {
+    // SAFETY: `_exit` ends the process; nothing after it runs.
+    unsafe { libc::_exit(code) }
+}
+
 impl Drop for GpuContext {
     fn drop(&mut self) {
+        if self.stuck() {
+            return; // everything is kept (see `stuck`)
+        }
         // SAFETY: reverse creation order after the GPU is idle; every child object has been
         // destroyed by its owner's `destroy` (leaks are reported by the allocator below).
         unsafe {

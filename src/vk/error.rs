@@ -14,6 +14,8 @@ pub enum VkError {
     NoValidationLayer,
     #[error("the GPU device was lost (driver reset or crash); the simulation state on it is gone")]
     DeviceLost,
+    #[error("the GPU did not finish its work within {seconds} s: a shader that never ends (a loop in an edited shader?) or a hung device; nothing more can run on it. Fix the shader, or give slow work longer with --gpu-timeout SECONDS")]
+    Stuck { seconds: f64 },
     #[error("GPU memory exhausted while allocating {what}")]
     OutOfMemory { what: String },
     #[error("{call} failed: {result}")]

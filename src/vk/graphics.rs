@@ -182,6 +182,9 @@ impl GraphicsPipeline {
     }
 
     pub fn destroy(self, ctx: &GpuContext) {
+        if ctx.stuck() {
+            return; // kept: the GPU may still use it
+        }
         // SAFETY: no pending submission uses the pipeline (callers wait or defer the release).
         unsafe {
             ctx.device.destroy_pipeline(self.raw, None);

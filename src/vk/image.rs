@@ -146,6 +146,9 @@ impl Image {
     }
 
     pub fn destroy(self, ctx: &GpuContext) {
+        if ctx.stuck() {
+            return; // kept: the GPU may still use it
+        }
         // SAFETY: the GPU no longer uses the image (callers wait first).
         unsafe {
             ctx.device.destroy_image_view(self.view, None);

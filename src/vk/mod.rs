@@ -1,10 +1,12 @@
-//! Thin, safe-ish wrappers over raw Vulkan (ash). All `unsafe` in the crate lives in this module.
+//! Thin, safe-ish wrappers over raw Vulkan (ash). All `unsafe` in the crate but the signal handler
+//! of `temporary` lives in this module.
 //!
 //! Invariants:
 //! - [`GpuContext`] is the one owner of destruction order: entry -> instance -> debug messenger ->
 //!   device -> allocator are created in that order and destroyed in reverse after `device_wait_idle`.
 //!   Every other object is freed through a consuming `destroy(self, &GpuContext)`; a resource that
-//!   is dropped without it shows up in the allocator's leak report.
+//!   is dropped without it shows up in the allocator's leak report. A device that is stuck (a
+//!   submission outlived `ContextOptions::gpu_timeout`) keeps everything instead.
 //! - Every allocation is named; the allocator logs leaks on shutdown and
 //!   [`GpuContext::live_allocations`] exposes the same report to tests.
 //! - Barriers go through [`barrier`]: call sites name accesses ([`Access`]), and one place maps them
@@ -31,7 +33,7 @@ mod ui;
 pub use barrier::{Access, BufferBarrier, ImageBarrier};
 pub use buffer::{Buffer, BufferUsage, MemoryKind};
 pub use commands::{CommandSlot, Recorder};
-pub use context::{ContextOptions, GpuContext, WindowHandles};
+pub use context::{exit_without_teardown, ContextOptions, GpuContext, WindowHandles, DEFAULT_GPU_TIMEOUT};
 pub use debug::ValidationCanary;
 pub use device::{DeviceInfo, DeviceKind};
 pub use error::VkError;

@@ -68,6 +68,9 @@ impl BindingSetLayout {
     }
 
     pub fn destroy(self, ctx: &GpuContext) {
+        if ctx.stuck() {
+            return; // kept: the GPU may still use it
+        }
         // SAFETY: no pipeline layout is created from it after this, and sets using it are freed
         // with their arena.
         unsafe { ctx.device.destroy_descriptor_set_layout(self.raw, None) };
@@ -134,6 +137,9 @@ impl DescriptorArena {
     }
 
     pub fn destroy(self, ctx: &GpuContext) {
+        if ctx.stuck() {
+            return; // kept: the GPU may still use it
+        }
         // SAFETY: no pending submission uses the sets (callers wait first).
         unsafe { ctx.device.destroy_descriptor_pool(self.raw, None) };
     }
@@ -208,6 +214,9 @@ impl ComputePipeline {
     }
 
     pub fn destroy(self, ctx: &GpuContext) {
+        if ctx.stuck() {
+            return; // kept: the GPU may still use it
+        }
         // SAFETY: no pending submission uses the pipeline (callers wait or defer the release).
         unsafe {
             ctx.device.destroy_pipeline(self.raw, None);

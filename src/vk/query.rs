@@ -56,6 +56,9 @@ impl TimestampPool {
     }
 
     pub fn destroy(self, ctx: &GpuContext) {
+        if ctx.stuck() {
+            return; // kept: the GPU may still use it
+        }
         // SAFETY: no pending submission uses the pool (callers wait first).
         unsafe { ctx.device.destroy_query_pool(self.raw, None) };
     }

@@ -52,6 +52,9 @@ impl RetireQueue {
 
     /// Destroys everything; the device must be idle.
     pub fn destroy(self, ctx: &GpuContext) {
+        if ctx.stuck() {
+            return; // kept: the GPU may still use it
+        }
         for (_, item) in self.items {
             item.destroy(ctx);
         }

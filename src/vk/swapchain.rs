@@ -159,10 +159,16 @@ impl Swapchain {
         let surface = ctx.surface.as_ref().expect("a swapchain exists only with a surface");
         // SAFETY: live swapchain; the semaphore is unsignalled (the previous use was waited on).
         match unsafe {
-            surface.swapchain_loader.acquire_next_image(self.raw, u64::MAX, available.raw, vk::Fence::null())
+            surface.swapchain_loader.acquire_next_image(
+                self.raw,
+                ctx.fence_timeout_ns(),
+                available.raw,
+                vk::Fence::null(),
+            )
         } {
             Ok((index, _suboptimal)) => Ok(Acquired::Image(index)),
             Err(vk::Result::ERROR_OUT_OF_DATE_KHR) => Ok(Acquired::OutOfDate),
+            Err(vk::Result::TIMEOUT | vk::Result::NOT_READY) => Err(ctx.stuck_error()),
             Err(e) => Err(VkError::from_call("vkAcquireNextImageKHR", e)),
         }
     }
@@ -188,6 +194,9 @@ impl Swapchain {
 
     /// Frees the swapchain; the device must be idle.
     pub fn destroy(self, ctx: &GpuContext) {
+        if ctx.stuck() {
+            return; // kept: the GPU may still use it
+        }
         let Some(surface) = ctx.surface.as_ref() else { return };
         // SAFETY: the device is idle (callers wait), so no image, view or semaphore is in use.
         unsafe {

@@ -17,6 +17,9 @@ impl Semaphore {
     }
 
     pub fn destroy(self, ctx: &GpuContext) {
+        if ctx.stuck() {
+            return; // kept: the GPU may still use it
+        }
         // SAFETY: no pending operation waits on or signals it (callers wait idle first).
         unsafe { ctx.device.destroy_semaphore(self.raw, None) };
     }

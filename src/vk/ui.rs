@@ -43,8 +43,12 @@ impl UiRenderer {
         Ok(())
     }
 
-    /// Frees the renderer's buffers and pipeline; the device must be idle.
-    pub fn destroy(mut self, _ctx: &GpuContext) {
-        drop(self.inner.take());
+    /// Frees the renderer's buffers and pipeline; the device must be idle (a stuck one keeps
+    /// them, as every `destroy` does).
+    pub fn destroy(mut self, ctx: &GpuContext) {
+        let inner = self.inner.take();
+        if ctx.stuck() {
+            std::mem::forget(inner);
+        }
     }
 }

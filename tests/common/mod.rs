@@ -12,7 +12,11 @@ use msdsim::vk::{ContextOptions, GpuContext};
 /// A context with validation and synchronization validation. Panics (never skips) when no
 /// Vulkan device or validation layer is available.
 pub fn gpu() -> GpuContext {
-    let options = ContextOptions { validation: true, device: std::env::var("MSDSIM_DEVICE").ok() };
+    let options = ContextOptions {
+        validation: true,
+        device: std::env::var("MSDSIM_DEVICE").ok(),
+        ..Default::default()
+    };
     GpuContext::new(&options).unwrap_or_else(|e| {
         panic!(
             "GPU tests need a Vulkan device and the validation layer (Debian: mesa-vulkan-drivers \

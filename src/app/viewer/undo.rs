@@ -26,6 +26,23 @@ impl Viewer {
         }
     }
 
+    /// When the app must stop on a failure of the GPU (stuck or lost) with unsaved edits: saves
+    /// the scene as `msdsim-rescued-<seconds since 1970>.toml` in the current folder and says
+    /// where; `None` when there was nothing to save or it could not be saved.
+    pub fn rescue_unsaved(&mut self) -> Option<String> {
+        self.observe_edits();
+        if !self.editor.unsaved {
+            return None;
+        }
+        let now = std::time::SystemTime::now().duration_since(std::time::UNIX_EPOCH).unwrap_or_default();
+        let path = std::path::PathBuf::from(format!("msdsim-rescued-{}.toml", now.as_secs()));
+        let saved = crate::scene::save(self.host.as_ref()?.scene(), &path);
+        Some(match saved {
+            Ok(()) => format!("the unsaved scene was saved to {}", path.display()),
+            Err(e) => format!("the unsaved scene could not be saved ({e:#})"),
+        })
+    }
+
     /// The window's close button: quits at once without unsaved edits; with them, only when
     /// pressed again within QUIT_CONFIRM seconds (as Esc), saying so.
     pub(super) fn close_requested(&mut self) -> bool {
