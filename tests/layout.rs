@@ -34,6 +34,46 @@ fn a_shifted_member_is_refused() {
     assert!(err.contains("ObjectParams"), "{err}");
 }
 
+/// Compiles physics.comp with the header edited by `edit`, and returns the layout check's
+/// verdict.
+fn check_edited(edit: impl Fn(&str) -> String) -> Result<Vec<&'static str>, String> {
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("glsl");
+    let tmp = tempfile::tempdir().unwrap();
+    common::copy_dir(&dir, tmp.path());
+    let header = tmp.path().join("include/layout.glsl");
+    let text = std::fs::read_to_string(&header).unwrap();
+    let edited = edit(&text);
+    assert_ne!(edited, text, "the edit no longer applies: update the test");
+    std::fs::write(&header, edited).unwrap();
+    let compiled =
+        shaders::compile::compile_glsl(&tmp.path().join("physics.comp"), &tmp.path().join("include"))
+            .unwrap();
+    layout_check::check(&compiled.spirv)
+}
+
+/// The check does not depend on the shader's names (issue 30, item 9): a struct renamed by a
+/// `#define` with its members swapped, and a member whose type changed at the same offset, are
+/// refused (both ran before with the wrong layout).
+#[test]
+fn renamed_structs_and_changed_types_are_refused() {
+    let err = check_edited(|t| {
+        t.replacen("struct Particle {", "#define Particle Prt\nstruct Particle {", 1).replacen(
+            "    vec4 pos;   // xyz position [m]; w = 1 pinned, 0 free\n    vec4 vel;",
+            "    vec4 vel;\n    vec4 pos;",
+            1,
+        )
+    })
+    .unwrap_err();
+    assert!(err.contains("`Prt`") && err.contains("binding"), "{err}");
+    let err = check_edited(|t| t.replacen("    float mass; ", "    uint mass; ", 1)).unwrap_err();
+    assert!(
+        err.contains("ObjectParams")
+            && err.contains("a uint at byte 48")
+            && err.contains("a float at byte 48"),
+        "{err}"
+    );
+}
+
 /// The `#define`d constants of the headers (flag bits, feature bits, the rope ring, the
 /// integrator and collider type ids) equal the host's mirrors in `sim::gpu_types`,
 /// `sim::integrator` and `sim::collider`.

@@ -1,9 +1,14 @@
-//! Checks compiled SPIR-V against the host's struct layouts (`sim::gpu_types`): every member
-//! offset and array stride of every shared struct the module declares. Used by the tests and
-//! by hot reload, which refuses a header change that would break the host layout.
+//! Checks compiled SPIR-V against the host's struct layouts (`sim::gpu_types`): every struct
+//! a buffer, uniform or push constant holds must be one the host shares, by name, and agree
+//! with it in every member's name and offset, every scalar's offset and type (float, uint,
+//! int), and the stride of arrays of it. So a renamed struct (`#define Particle Prt`) or a
+//! member of another type (`uint mass`) is refused as a moved one is. Used by the tests and by
+//! hot reload, which refuses a header change that would break the host layout.
 
-use super::reflect::struct_layouts;
-use crate::sim::gpu_types::{Camera, Draw, Globals, GpuLayout, ObjectParams, Particle, SurfaceVertex};
+use super::reflect::{bound_structs, struct_layouts, Scalar};
+use crate::sim::gpu_types::{
+    Camera, Collider, Draw, Globals, GpuLayout, GpuScalar, ObjectParams, Particle, SurfaceVertex,
+};
 
 /// A struct the host shares with the shaders.
 pub struct HostLayout {
@@ -11,15 +16,18 @@ pub struct HostLayout {
     pub size: usize,
     /// (member name, byte offset) in declaration order.
     pub offsets: Vec<(&'static str, usize)>,
+    /// Every scalar, (byte offset, kind).
+    pub scalars: Vec<(usize, GpuScalar)>,
 }
 
 /// Every struct shared with the shaders.
 pub fn host_layouts() -> Vec<HostLayout> {
     fn one<T: GpuLayout>() -> HostLayout {
-        HostLayout { name: T::NAME, size: T::SIZE, offsets: T::offsets() }
+        HostLayout { name: T::NAME, size: T::SIZE, offsets: T::offsets(), scalars: T::scalars() }
     }
     vec![
         one::<Particle>(),
+        one::<Collider>(),
         one::<SurfaceVertex>(),
         one::<Globals>(),
         one::<ObjectParams>(),
@@ -31,9 +39,19 @@ pub fn host_layouts() -> Vec<HostLayout> {
 /// Names of the shared structs the module declares, or the first disagreement with the host.
 pub fn check(words: &[u32]) -> Result<Vec<&'static str>, String> {
     let host = host_layouts();
+    for (place, name) in bound_structs(words) {
+        if !host.iter().any(|h| h.name == name) {
+            let shared: Vec<&str> = host.iter().map(|h| h.name).collect();
+            return Err(format!(
+                "{place} holds struct `{name}`, which is not one the host shares ({}): a renamed struct's layout cannot be checked",
+                shared.join(", ")
+            ));
+        }
+    }
     let mut found = Vec::new();
     for layout in struct_layouts(words) {
-        let Some(HostLayout { name, size, offsets }) = host.iter().find(|h| h.name == layout.name) else {
+        let Some(HostLayout { name, size, offsets, scalars }) = host.iter().find(|h| h.name == layout.name)
+        else {
             continue;
         };
         let spirv: Vec<(&str, usize)> =
@@ -51,6 +69,34 @@ pub fn check(words: &[u32]) -> Result<Vec<&'static str>, String> {
                     "struct {name}: the shader has `{m}` at byte {o}, the host (src/sim/gpu_types.rs) has `{hm}` at byte {ho}"
                 ));
             }
+        }
+        let kind = |s: GpuScalar| match s {
+            GpuScalar::F32 => Scalar::F32,
+            GpuScalar::U32 => Scalar::U32,
+            GpuScalar::I32 => Scalar::I32,
+        };
+        let host_scalars: Vec<(u32, Scalar)> = scalars.iter().map(|&(o, s)| (o as u32, kind(s))).collect();
+        if layout.scalars != host_scalars {
+            let at = layout.scalars.iter().zip(&host_scalars).position(|(a, b)| a != b);
+            let word = |v: &[(u32, Scalar)], k: Option<usize>| {
+                k.and_then(|k| v.get(k)).map_or("nothing".to_string(), |(o, s)| {
+                    let glsl = match s {
+                        Scalar::F32 => "a float",
+                        Scalar::U32 => "a uint",
+                        Scalar::I32 => "an int",
+                        Scalar::Other => "a scalar the host has no type for",
+                    };
+                    format!("{glsl} at byte {o}")
+                })
+            };
+            let k = at.or(Some(layout.scalars.len().min(host_scalars.len())));
+            return Err(format!(
+                "struct {name}: the shader has {}, the host (src/sim/gpu_types.rs) has {} ({} and {} scalars)",
+                word(&layout.scalars, k),
+                word(&host_scalars, k),
+                layout.scalars.len(),
+                host_scalars.len()
+            ));
         }
         if let Some(stride) = layout.array_strides.iter().find(|s| **s as usize != *size) {
             return Err(format!("struct {name}: arrays of it have a stride of {stride} bytes in the shader, the host's size is {size}"));

@@ -1,6 +1,7 @@
 //! Rust mirrors of the std430 structs in `glsl/include/layout.glsl` (the source of truth).
 //! Each is `#[repr(C)]` + `Pod` with explicit padding and a `const` size assert; `tests/layout.rs`
-//! compares every member offset (and array stride) with the compiled SPIR-V.
+//! compares every member offset, every scalar's offset and type, and array strides with the
+//! compiled SPIR-V.
 
 /// A struct whose layout must agree with a GLSL struct of the same name.
 pub trait GpuLayout {
@@ -8,6 +9,47 @@ pub trait GpuLayout {
     const SIZE: usize;
     /// (member name, byte offset) in declaration order.
     fn offsets() -> Vec<(&'static str, usize)>;
+    /// Every scalar, (byte offset, kind), in member order.
+    fn scalars() -> Vec<(usize, GpuScalar)>;
+}
+
+/// What a 32-bit word of a shared struct holds.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum GpuScalar {
+    F32,
+    U32,
+    I32,
+}
+
+/// A member type of a shared struct: its scalars from byte `base`.
+pub trait GpuMember {
+    fn scalars(base: usize, out: &mut Vec<(usize, GpuScalar)>);
+}
+
+impl GpuMember for f32 {
+    fn scalars(base: usize, out: &mut Vec<(usize, GpuScalar)>) {
+        out.push((base, GpuScalar::F32));
+    }
+}
+
+impl GpuMember for u32 {
+    fn scalars(base: usize, out: &mut Vec<(usize, GpuScalar)>) {
+        out.push((base, GpuScalar::U32));
+    }
+}
+
+impl GpuMember for i32 {
+    fn scalars(base: usize, out: &mut Vec<(usize, GpuScalar)>) {
+        out.push((base, GpuScalar::I32));
+    }
+}
+
+impl<T: GpuMember, const N: usize> GpuMember for [T; N] {
+    fn scalars(base: usize, out: &mut Vec<(usize, GpuScalar)>) {
+        for k in 0..N {
+            T::scalars(base + k * std::mem::size_of::<T>(), out);
+        }
+    }
 }
 
 macro_rules! gpu_struct {
@@ -22,6 +64,11 @@ macro_rules! gpu_struct {
             const SIZE: usize = $size;
             fn offsets() -> Vec<(&'static str, usize)> {
                 vec![$((stringify!($field), std::mem::offset_of!($name, $field)),)*]
+            }
+            fn scalars() -> Vec<(usize, GpuScalar)> {
+                let mut out = Vec::new();
+                $(<$ty as GpuMember>::scalars(std::mem::offset_of!($name, $field), &mut out);)*
+                out
             }
         }
     };
@@ -57,6 +104,15 @@ gpu_struct!(
     pos: [f32; 4],
     /// xyz velocity [m/s].
     vel: [f32; 4],
+});
+
+gpu_struct!(
+    /// One collider as the shaders read it (`ColliderModel::gpu` packs these four in order).
+    Collider, size 64, {
+    a: [f32; 4],
+    b: [f32; 4],
+    rotation: [f32; 4],
+    extra: [f32; 4],
 });
 
 gpu_struct!(
