@@ -415,6 +415,8 @@ fn runs_that_would_mean_nothing_are_refused() {
     rejects(&["chart", "--preset", "/dev/null"], &["no cloth or rope"]);
     rejects(&["stability", "--preset", "/dev/null"], &["no cloth or rope"]);
     rejects(&["simulate", "--preset", "/dev/urandom"], &["/dev/urandom", "not a preset"]);
+    let big = write(dir.path(), "big.toml", &format!("{GOOD}\n#{}\n", "x".repeat(2 << 20)));
+    rejects(&["simulate", "--preset", &big], &["big.toml", "larger than 2 MiB"]);
     let out = dir.path().join("bench");
     let out_arg = out.to_str().unwrap();
     let bench = msdsim(&["bench", "--filter", "no such case", "--out", out_arg]);
