@@ -83,7 +83,17 @@ impl Input {
     }
 
     /// Handles a window event the UI did not capture (`ui_mouse` / `ui_keys`: ImGui wants them).
-    pub fn handle(&mut self, event: &WindowEvent, camera: &mut OrbitCamera, ui_mouse: bool, ui_keys: bool) {
+    /// `floor`: the ground's height, which an orbit keeps the eye above unless Alt is held;
+    /// `size`: the window's, in pixels.
+    pub fn handle(
+        &mut self,
+        event: &WindowEvent,
+        camera: &mut OrbitCamera,
+        view: (Option<f32>, [f32; 2]),
+        ui_mouse: bool,
+        ui_keys: bool,
+    ) {
+        let (floor, size) = view;
         match event {
             WindowEvent::CursorMoved { position, .. } => {
                 let now = [position.x as f32, position.y as f32];
@@ -96,7 +106,7 @@ impl Input {
                     if middle || ((left || right) && self.modifiers.shift_key()) {
                         camera.pan(dx, dy);
                     } else if left || right {
-                        camera.orbit(dx, dy);
+                        camera.orbit(dx, dy, floor.filter(|_| !self.modifiers.alt_key()));
                     }
                 }
                 self.cursor = now;
@@ -126,7 +136,7 @@ impl Input {
                     MouseScrollDelta::LineDelta(_, y) => *y,
                     MouseScrollDelta::PixelDelta(p) => p.y as f32 / 40.0,
                 };
-                camera.zoom(steps);
+                camera.zoom_at(steps, self.cursor, size);
             }
             WindowEvent::ModifiersChanged(m) => self.modifiers = m.state(),
             WindowEvent::KeyboardInput { event, .. } => {

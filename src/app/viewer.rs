@@ -207,7 +207,10 @@ impl Viewer {
         self.platform.handle_event(self.imgui.io_mut(), &self.window, &wrapped);
         let io = self.imgui.io();
         let (ui_mouse, ui_keys) = (io.want_capture_mouse, io.want_capture_keyboard);
-        self.input.handle(event, &mut self.camera, ui_mouse, ui_keys);
+        let floor = self.host.as_ref().and_then(|h| h.scene().ground.as_ref()).map(|g| g.height as f32);
+        let size = self.window.inner_size();
+        let view = (floor, [size.width as f32, size.height as f32]);
+        self.input.handle(event, &mut self.camera, view, ui_mouse, ui_keys);
         match event {
             WindowEvent::CloseRequested => return self.close_requested(),
             WindowEvent::Resized(size) => self.resized(*size),
@@ -635,10 +638,6 @@ impl Viewer {
         Ok(Outcome::Continue)
     }
 
-    fn screenshot_due(&self) -> bool {
-        self.args.screenshot.is_some() && self.args.frames.is_none_or(|n| self.frame + 1 >= n)
-    }
-
     fn read_timings(&mut self, slot: usize) -> Result<()> {
         let (used, simulated) = (self.frames[slot].used, self.frames[slot].simulated);
         if !used {
@@ -664,18 +663,6 @@ impl Viewer {
             }
         }
         Ok(())
-    }
-
-    fn write_screenshot(&self, path: &std::path::Path, extent: [u32; 2], bgra: bool) -> Result<()> {
-        let Some(buffer) = &self.screenshot else { return Ok(()) };
-        let mut pixels: Vec<u8> = buffer.read::<u8>((extent[0] * extent[1] * 4) as usize)?;
-        for px in pixels.chunks_exact_mut(4) {
-            if bgra {
-                px.swap(0, 2);
-            }
-            px[3] = 255;
-        }
-        write_png(path, extent, &pixels)
     }
 
     /// Waits for the GPU and frees everything in order (also run by Drop).
@@ -729,34 +716,14 @@ impl Drop for Viewer {
 
 mod exercise;
 mod grab;
+mod screenshot;
 mod undo;
+
+pub use screenshot::write_png;
+use screenshot::{screenshot_name, swapchain_is_bgra};
 
 /// Real-time mode simulates at most this many frames per drawn frame.
 const REAL_TIME_MOST: u32 = 4;
-
-/// The F12 screenshot's file: `msdsim-<seconds since 1970>-<milliseconds>.png` in the current
-/// folder.
-fn screenshot_name() -> PathBuf {
-    let now = std::time::SystemTime::now().duration_since(std::time::UNIX_EPOCH).unwrap_or_default();
-    PathBuf::from(format!("msdsim-{}-{:03}.png", now.as_secs(), now.subsec_millis()))
-}
-
-fn swapchain_is_bgra(s: Option<&Swapchain>) -> bool {
-    s.is_some_and(|s| s.format() == Format::Bgra8Unorm)
-}
-
-/// Writes RGBA8 pixels as a PNG.
-pub fn write_png(path: &std::path::Path, extent: [u32; 2], rgba: &[u8]) -> Result<()> {
-    let file = std::fs::File::create(path).map_err(|e| {
-        crate::error::UserError(format!("--screenshot {}: cannot write: {e}", path.display()))
-    })?;
-    let mut encoder = png::Encoder::new(std::io::BufWriter::new(file), extent[0], extent[1]);
-    encoder.set_color(png::ColorType::Rgba);
-    encoder.set_depth(png::BitDepth::Eight);
-    let mut writer = encoder.write_header().context("writing the PNG header")?;
-    writer.write_image_data(rgba).context("writing the PNG")?;
-    Ok(())
-}
 
 /// The path shown in the editor's preset field for a preset argument.
 pub fn preset_label(path: Option<&PathBuf>) -> String {

@@ -1,7 +1,11 @@
 //! An orbit camera: it looks at `target` from `distance` along a direction given by yaw and
-//! pitch. Dragging orbits, shift-dragging pans, the wheel zooms, WASD/QE fly the target.
+//! pitch. Dragging orbits (the eye kept above the ground), shift-dragging pans, the wheel zooms
+//! towards the cursor, WASD/QE fly the target.
 
 use glam::{Mat4, Vec2, Vec3, Vec4};
+
+/// How far above the ground an orbit keeps the eye [m].
+pub const EYE_CLEARANCE: f32 = 0.02;
 
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct OrbitCamera {
@@ -56,10 +60,20 @@ impl OrbitCamera {
         Mat4::from_translation(self.shift.extend(0.0)) * self.projection(aspect) * self.view()
     }
 
-    /// Orbits by a drag of (dx, dy) pixels.
-    pub fn orbit(&mut self, dx: f32, dy: f32) {
+    /// Orbits by a drag of (dx, dy) pixels; with a `floor` (the ground's height) the eye stays
+    /// above it.
+    pub fn orbit(&mut self, dx: f32, dy: f32, floor: Option<f32>) {
         self.yaw -= dx * 0.008;
         self.pitch = (self.pitch + dy * 0.008).clamp(-1.55, 1.55);
+        if let Some(floor) = floor {
+            self.keep_above(floor);
+        }
+    }
+
+    /// Raises the pitch, if it must, so that the eye is `EYE_CLEARANCE` above height `floor`.
+    pub fn keep_above(&mut self, floor: f32) {
+        let lowest = ((floor + EYE_CLEARANCE - self.target.y) / self.distance).clamp(-1.0, 1.0).asin();
+        self.pitch = self.pitch.max(lowest.min(1.55));
     }
 
     /// Pans by a drag of (dx, dy) pixels, moving the target in the view plane.
@@ -70,9 +84,28 @@ impl OrbitCamera {
         self.target += (right * dx - up * dy) * scale;
     }
 
-    /// Zooms by wheel `steps` (positive: closer).
+    /// Zooms by wheel `steps` (positive: closer) towards the target.
     pub fn zoom(&mut self, steps: f32) {
         self.distance = (self.distance * 0.9f32.powf(steps)).clamp(0.05, 500.0);
+    }
+
+    /// Zooms by wheel `steps` towards what is under `pixel` of a view of `size` pixels: the
+    /// point of the target's depth under the cursor stays under it (the eye moves along the
+    /// line from it; the view keeps its direction).
+    pub fn zoom_at(&mut self, steps: f32, pixel: [f32; 2], size: [f32; 2]) {
+        let (origin, dir) = self.ray(pixel, size);
+        let before = self.distance;
+        self.zoom(steps);
+        let factor = self.distance / before;
+        let normal = self.back();
+        let facing = dir.dot(normal);
+        if facing.abs() < 1e-6 {
+            return;
+        }
+        let under = origin + dir * ((self.target - origin).dot(normal) / facing);
+        if under.is_finite() {
+            self.target = under + (self.target - under) * factor;
+        }
     }
 
     /// Moves the target along the view: `forward`, `right`, `up` in -1..1, for `dt` seconds.
@@ -160,6 +193,39 @@ mod tests {
         let (origin, dir) = cam.ray(centre, size);
         let to_centre = (min + max) * 0.5 - origin;
         assert!(to_centre.cross(dir).length() < 1e-3 * to_centre.length(), "the ray through the centre");
+    }
+
+    /// The point under the cursor stays under it through a zoom (issue 28, item 9: the wheel
+    /// zoomed to the orbit centre), also with a lens shift.
+    #[test]
+    fn zoom_keeps_the_point_under_the_cursor() {
+        let mut c = OrbitCamera { shift: Vec2::new(0.2, -0.1), ..OrbitCamera::default() };
+        let size = [800.0, 600.0];
+        let pixel = [620.0, 140.0];
+        let (o, d) = c.ray(pixel, size);
+        let n = c.back();
+        let under = o + d * ((c.target - o).dot(n) / d.dot(n));
+        for steps in [3.0, -2.0, 5.0] {
+            c.zoom_at(steps, pixel, size);
+            let (o2, d2) = c.ray(pixel, size);
+            let off = (under - o2) - d2 * (under - o2).dot(d2);
+            assert!(off.length() < 1e-4 * c.distance.max(1.0), "{steps}: {off:?} off the cursor's ray");
+        }
+    }
+
+    /// Orbiting down keeps the eye above the ground, from any target height and distance.
+    #[test]
+    fn orbit_keeps_the_eye_above_the_ground() {
+        for (target_y, distance) in [(1.0, 4.5), (0.05, 10.0), (0.0, 0.5), (-0.3, 2.0)] {
+            let mut c =
+                OrbitCamera { target: Vec3::new(0.0, target_y, 0.0), distance, ..OrbitCamera::default() };
+            for _ in 0..200 {
+                c.orbit(3.0, -20.0, Some(0.0));
+                assert!(c.eye().y >= EYE_CLEARANCE - 1e-5, "{target_y} {distance}: eye at {}", c.eye().y);
+            }
+            c.orbit(0.0, -400.0, None);
+            assert!(c.pitch < -1.5, "without a floor (Alt held) the orbit goes below: {}", c.pitch);
+        }
     }
 
     #[test]

@@ -271,6 +271,17 @@ impl Recording {
             )
             .into());
         }
+        // The guard checks the particles; the surface derived from them (normals, a rope's
+        // tube) is checked here, so that no file holds a NaN or an infinity.
+        for (t, s) in self.tracks.iter().zip(states) {
+            let finite = |v: &[f32; 4]| v.iter().all(|c| c.is_finite());
+            if let Some(k) = s.surface.iter().position(|v| !finite(&v.pos) || !finite(&v.normal)) {
+                anyhow::bail!(
+                    "the recording stopped at t = {time:.3} s: '{}' has a surface vertex ({k}) that is not a finite number, which no file format carries; the frames before it are whole",
+                    t.name
+                );
+            }
+        }
         if self.frames == 0 {
             self.first_code = if time == 0.0 { 0 } else { 1 };
         }
@@ -876,5 +887,28 @@ mod tests {
             .map(|n| super::unique_name(&mut taken, super::usd_name(n)))
             .collect();
         assert_eq!(names, ["my_cloth", "my_cloth_2", "my_cloth_2_2", "my_cloth_3"]);
+    }
+
+    /// A surface vertex that is not finite stops the recording with a line naming the object,
+    /// in every format, and is never written (issue 30, item 7: the guard checks only the
+    /// particles, and a USD with a NaN does not parse).
+    #[test]
+    fn a_non_finite_surface_is_refused() {
+        use crate::sim::gpu::ObjectState;
+        use crate::sim::gpu_types::{Particle, SurfaceVertex};
+        let text = "[[cloth]]\nname = \"c\"\nresolution = [2, 2]\nsize = [1.0, 1.0]\norigin = [0.0, 1.0, 0.0]\nmass = 0.1\nstiffness = { structural = 1.0, shear = 1.0, bending = 1.0 }\n";
+        let scene = crate::scene::parse(text, "t.toml", &[]).unwrap();
+        let model = crate::scene::to_model(&scene);
+        let dir = tempfile::tempdir().unwrap();
+        for name in ["r.usda", "r.obj", "r.pc2", "r.glb"] {
+            let path = dir.path().join(name);
+            let mut rec = super::Recording::new(&model, &super::colors(&scene), &path, Some(2)).unwrap();
+            let vertex = SurfaceVertex { pos: [0.0, 1.0, 0.0, 1.0], normal: [0.0, 0.0, 1.0, 0.0] };
+            let mut state = ObjectState { particles: vec![Particle::default(); 4], surface: vec![vertex; 4] };
+            rec.add(std::slice::from_ref(&state), 0.0).unwrap();
+            state.surface[3].normal[1] = f32::NAN;
+            let err = format!("{:#}", rec.add(std::slice::from_ref(&state), 1.0 / 60.0).unwrap_err());
+            assert!(err.contains("'c'") && err.contains("not a finite number"), "{name}: {err}");
+        }
     }
 }

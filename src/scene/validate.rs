@@ -253,6 +253,13 @@ fn check_name(at: &str, name: &str) -> Check {
     Ok(())
 }
 
+/// How many grid spacings a cloth's self-collision distance may span (a rope's reach may span
+/// four times as many node spacings, its contacts being along one line): past it each particle
+/// is in contact with hundreds or thousands of others at rest, and the contact search grows
+/// with their number (a rope of 21,000 nodes on 0.5 m with a 2 cm radius, 1,700 a node, took
+/// over 60 s a frame on lavapipe), for a result no finer than at the bound.
+const MAX_CONTACT_SPAN: f64 = 16.0;
+
 fn check_cloth(at: &str, c: &Cloth) -> Check {
     check_name(at, &c.name)?;
     let [cols, rows] = c.resolution;
@@ -292,6 +299,18 @@ fn check_cloth(at: &str, c: &Cloth) -> Check {
     non_negative(&format!("{at}.collision_margin"), c.collision_margin, LENGTH.1, "m")?;
     if let Some(d) = c.self_collision_distance {
         positive(&format!("{at}.self_collision_distance"), d, LENGTH, "m")?;
+    }
+    if c.self_collision {
+        let d = c.self_collision_distance.unwrap_or_else(|| c.default_self_collision_distance());
+        let spacing = c.spacing()[0].min(c.spacing()[1]);
+        if d / spacing > MAX_CONTACT_SPAN {
+            return Err(format!(
+                "{at}.self_collision_distance = {} m: {:.0} times the grid spacing ({spacing:.3e} m), so each particle would be in contact with thousands of others and contact search would take minutes a frame; keep it at most {MAX_CONTACT_SPAN} spacings ({:.3e} m), or use a coarser grid",
+                num(d),
+                d / spacing,
+                MAX_CONTACT_SPAN * spacing
+            ));
+        }
     }
     color(&format!("{at}.color"), c.color)?;
     color(&format!("{at}.back_color"), c.back_color)?;
@@ -333,6 +352,19 @@ fn check_rope(at: &str, r: &Rope) -> Check {
     }
     if let Some(d) = r.self_collision_distance {
         positive(&format!("{at}.self_collision_distance"), d, LENGTH, "m")?;
+    }
+    // A node's contact reach (its tube's diameter, or the self-collision distance) against the
+    // node spacing: far past it, every node is in contact with hundreds along its own rope.
+    let length = r.start.iter().zip(r.end).map(|(a, b)| (b - a) * (b - a)).sum::<f64>().sqrt();
+    let spacing = length / (r.nodes - 1) as f64;
+    let reach = (2.0 * r.radius).max(r.self_collision_distance.unwrap_or(0.0));
+    if reach / spacing > 4.0 * MAX_CONTACT_SPAN {
+        return Err(format!(
+            "{at}.nodes = {}: nodes {spacing:.3e} m apart with a contact reach of {reach:.3e} m (twice the radius, or the self-collision distance) would each touch {:.0} others along the rope, and contact search would take minutes a frame; use at most {} nodes for this length and radius",
+            r.nodes,
+            reach / spacing,
+            (4.0 * MAX_CONTACT_SPAN * length / reach).floor() as u64 + 1
+        ));
     }
     color(&format!("{at}.color"), r.color)?;
     for (k, &p) in r.pinned.iter().enumerate() {

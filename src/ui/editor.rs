@@ -219,9 +219,9 @@ fn recording_indicator(ui: &Ui, state: &EditorState) {
 const CONTROLS: [(&str, &str); 17] = [
     ("left-drag on cloth or rope", "grab the particle (within 12 pixels) and drag it"),
     ("Ctrl + left click", "pin the particle where it is, or free it"),
-    ("left-drag on empty space, right-drag", "orbit"),
+    ("left-drag on empty space, right-drag", "orbit (above the ground; Alt: also below)"),
     ("middle-drag, Shift + drag", "pan"),
-    ("wheel", "zoom"),
+    ("wheel", "zoom towards the cursor"),
     ("W A S D, Q E", "fly forward/left/back/right, down/up"),
     ("F", "fit the scene in view"),
     ("Home", "reset the camera"),
