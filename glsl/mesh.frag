@@ -9,8 +9,9 @@ layout(location = 1) in vec3 world_normal;
 layout(location = 0) out vec4 out_color;
 
 void main() {
-    if (draw.params.y > 0.5) {  // a ground shadow: darkens what lies below
-        out_color = vec4(0.0, 0.0, 0.0, 0.35);
+    if (draw.params.y > 0.5) {  // a ground shadow: the floor's colour (draw.front) darkened,
+        // blended by keeping the darker (overlapping layers darken once)
+        out_color = vec4(pow(clamp(draw.front.rgb, 0.0, 1.0), vec3(1.0 / 2.2)) * 0.65, 1.0);
         return;
     }
     vec3 to_eye = normalize(cam.eye.xyz - world_pos);

@@ -10,7 +10,8 @@ and sorts the outcome:
   ran       exit 0
   unstable  exit 3, one line `msdsim: error: ...` (the runtime guard)
   other     anything else: another exit code, a signal, a panic or internal error, more than
-            one line on standard error, a validation message, or no end within the timeout
+            one line on standard error (besides the log's warnings), a validation message, or
+            no end within the timeout
 
 Every `other` case is kept in OUT/other/ with the command and its output. Ends with the table
 of outcomes (markdown) and exit code 1 when any case is `other`.
@@ -21,6 +22,7 @@ of outcomes (markdown) and exit code 1 when any case is `other`.
 
 import argparse
 import concurrent.futures
+import copy
 import math
 import os
 import random
@@ -106,6 +108,11 @@ def container(doc, path):
     return node
 
 
+def extreme(rng):
+    """A fresh copy of an extreme value (never shared, so no list can come to hold itself)."""
+    return copy.deepcopy(rng.choice(EXTREMES))
+
+
 def mutate(rng, doc, sets):
     """Applies one mutation to the parsed document (or adds a --set); returns its name."""
     all_paths = list(paths(doc))
@@ -121,23 +128,23 @@ def mutate(rng, doc, sets):
             parent[path[-1]] = type(value)(value * rng.choice([-1, 0, 0.5, 2, 10, 1000]))
         elif kind == "nudge" and isinstance(value, list) and value:
             i = rng.randrange(len(value))
-            value[i] = rng.choice(EXTREMES)
+            value[i] = extreme(rng)
         else:
-            parent[path[-1]] = rng.choice(EXTREMES)
+            parent[path[-1]] = extreme(rng)
         return kind
     if kind == "duplicate":
         arrays = [(p, v) for p, v in all_paths if isinstance(v, list) and v]
         if not arrays:
             return "duplicate (none)"
         path, value = rng.choice(arrays)
-        value.append(value[rng.randrange(len(value))] if not isinstance(value[0], dict) else dict(value[0]))
+        value.append(copy.deepcopy(value[rng.randrange(len(value))]))
         return kind
     # A --set of a known key (or a made-up one) to a random value.
     path, _ = rng.choice(all_paths)
     key = ".".join(str(p) for p in path)
     if rng.random() < 0.2:
         key = rng.choice([key + ".x", "nope." + key, key.replace(".", "..", 1), "cloth.99.mass", "sim"])
-    v = rng.choice(EXTREMES)
+    v = extreme(rng)
     text = toml_value(v) if not isinstance(v, str) or rng.random() < 0.7 else v
     sets.append(f"{key}={text}")
     return "set"
@@ -166,7 +173,8 @@ def make_case(rng, presets):
 
 
 def classify(code, stderr, timed_out):
-    lines = [l for l in stderr.splitlines() if l.strip()]
+    # The log's warnings (a contact faster than exact, say) may come before the outcome.
+    lines = [l for l in stderr.splitlines() if l.strip() and not l.startswith("[WARN ")]
     bad = timed_out or "panicked" in stderr or "internal error" in stderr or "alidation" in stderr
     if bad:
         return "other"

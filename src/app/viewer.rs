@@ -251,6 +251,7 @@ impl Viewer {
         } else {
             log::info!("{text}");
         }
+        self.editor.notices.push(&text, error);
         self.editor.message = Some((text, error));
     }
 

@@ -2,9 +2,11 @@
 //! compute buffers, after the simulation's compute -> vertex-input barrier), primitive meshes
 //! for colliders and gizmos, the ground grid and, on the ground, the shadows the light casts of
 //! the surfaces and colliders (planar projection from the point light, so contact with the
-//! ground reads at a glance: `mesh.vert` flattens each shadow caster onto the ground plane, a
-//! translucent overlay without depth writes darkens what it covers; where two layers of a
-//! caster overlap, as a closed collider's near and far sides do, they darken twice).
+//! ground reads at a glance: `mesh.vert` flattens each shadow caster onto the ground plane and
+//! draws it, without depth writes, in the floor's colour darkened, keeping the darker of it and
+//! what is there: where layers of a caster overlap (a folded towel, a closed collider's near
+//! and far sides) the ground darkens once, not once per layer. The grid is drawn after them,
+//! so its lines show through.)
 //!
 //! Per frame slot it owns a camera uniform buffer, written by the host only after that slot's
 //! fence, so no frame in flight reads a buffer being written.
@@ -15,8 +17,9 @@ use crate::sim::gpu::{GpuSim, FRAME_SLOTS};
 use crate::sim::gpu_types::{Camera, Draw, SurfaceVertex};
 use crate::sim::model::{ObjectKind, ObjectShape};
 use crate::vk::{
-    BindingKind, BindingSet, BindingSetLayout, Buffer, BufferUsage, DescriptorArena, Format, GpuContext,
-    GraphicsDesc, GraphicsPipeline, MemoryKind, Recorder, Retired, Topology, VertexFormat, VertexLayout,
+    BindingKind, BindingSet, BindingSetLayout, Blend, Buffer, BufferUsage, DescriptorArena, Format,
+    GpuContext, GraphicsDesc, GraphicsPipeline, MemoryKind, Recorder, Retired, Topology, VertexFormat,
+    VertexLayout,
 };
 use anyhow::{Context as _, Result};
 use glam::Mat4;
@@ -171,7 +174,7 @@ impl SceneRenderer {
     ) -> Result<[GraphicsPipeline; 3]> {
         let stride = std::mem::size_of::<SurfaceVertex>() as u32;
         let attributes = [(0, VertexFormat::Float32x4, 0), (1, VertexFormat::Float32x4, 16)];
-        let desc = |name, topology, overlay: bool| GraphicsDesc {
+        let desc = |name, topology, blend: Blend| GraphicsDesc {
             name,
             vertex,
             fragment,
@@ -179,15 +182,15 @@ impl SceneRenderer {
             topology,
             color,
             depth,
-            depth_write: !overlay,
-            overlay,
+            depth_write: blend == Blend::Opaque,
+            blend,
             set_layout: layout,
             push_constant_bytes: std::mem::size_of::<Draw>() as u32,
         };
         let descs = [
-            desc("scene triangles", Topology::Triangles, false),
-            desc("scene lines", Topology::Lines, false),
-            desc("scene shadows", Topology::Triangles, true),
+            desc("scene triangles", Topology::Triangles, Blend::Opaque),
+            desc("scene lines", Topology::Lines, Blend::Opaque),
+            desc("scene shadows", Topology::Triangles, Blend::Darker),
         ];
         let mut made = Vec::new();
         for d in &descs {
@@ -272,9 +275,11 @@ impl SceneRenderer {
                     pipeline: &GraphicsPipeline,
                     item: &DrawItem,
                     shadow: Option<f32>| {
+            // A shadow is drawn in the floor's colour (darkened by the shader).
+            let front = if shadow.is_some() { FLOOR } else { item.front };
             let draw = Draw {
                 model: item.model.to_cols_array_2d(),
-                front: [item.front[0], item.front[1], item.front[2], 1.0],
+                front: [front[0], front[1], front[2], 1.0],
                 back: [item.back[0], item.back[1], item.back[2], 1.0],
                 params: [item.lit as u32 as f32, shadow.is_some() as u32 as f32, shadow.unwrap_or(0.0), 0.0],
             };
@@ -310,6 +315,15 @@ impl SceneRenderer {
             );
             push(rec, &self.triangles, &floor, None);
             mesh(rec, Shape::Cube);
+            // The shadows of what stands on the ground: surfaces and colliders, not gizmos.
+            if shadows {
+                rec.bind_graphics(&self.shadows, self.sets[slot]);
+                for item in items.iter().filter(|i| item_casts_shadow(i)) {
+                    push(rec, &self.shadows, item, Some(height));
+                    mesh(rec, item.shape);
+                }
+            }
+            // The grid after the shadows, so that its lines show through them.
             rec.bind_graphics(&self.lines, self.sets[slot]);
             let item = DrawItem {
                 shape: Shape::Cube,
@@ -320,14 +334,6 @@ impl SceneRenderer {
             };
             push(rec, &self.lines, &item, None);
             rec.draw_indexed(&self.grid.vertices, &self.grid.indices, self.grid.count, 1);
-            // The shadows of what stands on the ground: surfaces and colliders, not gizmos.
-            if shadows {
-                rec.bind_graphics(&self.shadows, self.sets[slot]);
-                for item in items.iter().filter(|i| item_casts_shadow(i)) {
-                    push(rec, &self.shadows, item, Some(height));
-                    mesh(rec, item.shape);
-                }
-            }
         }
         rec.bind_graphics(&self.triangles, self.sets[slot]);
         for item in items {

@@ -50,6 +50,8 @@ pub struct EditorState {
     pub cloth_preset_path: String,
     /// The last status line and whether it is an error.
     pub message: Option<(String, bool)>,
+    /// Every message: the newest over the view for a few seconds, all in the Log window.
+    pub notices: super::notices::Notices,
     pub paused: bool,
     pub shaders_note: String,
     /// Hide the stats window (reproducible screenshots).
@@ -112,6 +114,10 @@ pub fn build(ui: &Ui, state: &mut EditorState, scene: &mut Scene, stats: &Stats)
     let mut actions = Vec::new();
     state.ui_active = false;
     recording_indicator(ui, state);
+    // Notices over the part of the view the Scene panel leaves free.
+    let size = ui.io().display_size;
+    let left = state.panel.filter(|_| !state.hide_ui).map_or(0.0, |[x, _, w, _]| x + w);
+    state.notices.draw(ui, [left, 0.0, size[0], size[1]]);
     if state.hide_ui {
         return actions;
     }
@@ -178,14 +184,18 @@ pub fn build(ui: &Ui, state: &mut EditorState, scene: &mut Scene, stats: &Stats)
                     actions.push(Action::AddClothFromPreset(PathBuf::from(&state.cloth_preset_path)));
                 }
             }
+            if ui.small_button(format!("Log ({})###log", state.notices.len())) {
+                state.notices.show_log = !state.notices.show_log;
+            }
             if let Some((text, error)) = &state.message {
                 let colour = if *error { [1.0, 0.45, 0.4, 1.0] } else { [0.6, 0.9, 0.6, 1.0] };
+                ui.same_line();
                 ui.text_wrapped_colored(colour, text);
             }
         },
     );
     if !state.hide_stats {
-        stats_window(ui, stats, state);
+        stats_window(ui, stats, state, scene);
     }
     if !state.shader_errors.is_empty() {
         shader_errors(ui, &state.shader_errors);
@@ -532,7 +542,7 @@ fn shader_errors(ui: &Ui, errors: &[String]) {
         });
 }
 
-fn stats_window(ui: &Ui, stats: &Stats, state: &EditorState) {
+fn stats_window(ui: &Ui, stats: &Stats, state: &EditorState, scene: &Scene) {
     // Sized to its content, so no line is cut off.
     ui.window("Stats").position([380.0, 10.0], Condition::FirstUseEver).always_auto_resize(true).build(
         || {
@@ -562,11 +572,26 @@ fn stats_window(ui: &Ui, stats: &Stats, state: &EditorState) {
             ui.text(format!("GPU {} per frame ({:.0} fps GPU-only)", ms(Some(gpu)), 1e3 / gpu.max(1e-6)));
             ui.separator();
             ui.text("GPU time per frame (timestamps):");
-            ui.text(format!("  physics      {}", ms(stats.sim.map(|s| s.physics_ms))));
-            ui.text(format!("  constraints  {}", ms(stats.sim.map(|s| s.constraints_ms))));
-            ui.text(format!("  rope verts / normals {}", ms(stats.sim.map(|s| s.surface_ms))));
-            ui.text(format!("  render       {}", ms(stats.render_ms)));
-            ui.text(format!("  UI           {}", ms(stats.ui_ms)));
+            let row = |label: &str, v: Option<f64>| ui.text(format!("  {label:<26} {}", ms(v)));
+            let physics = stats.sim.map(|s| s.physics_ms);
+            match stats.sim.and_then(|s| s.fused) {
+                // A fused object runs all its stages in one pass: not separable.
+                Some(true) => row("simulation (fused)", physics),
+                Some(false) => row("physics + fused objects", physics),
+                None => row("physics", physics),
+            }
+            if stats.sim.and_then(|s| s.fused) != Some(true) {
+                row("constraints", stats.sim.map(|s| s.constraints_ms));
+            }
+            let surface = match (scene.cloths.is_empty(), scene.ropes.is_empty()) {
+                (false, false) => "cloth normals + rope tubes",
+                (false, true) => "cloth normals",
+                (true, false) => "rope tubes",
+                (true, true) => "surface",
+            };
+            row(surface, stats.sim.map(|s| s.surface_ms));
+            row("render", stats.render_ms);
+            row("UI", stats.ui_ms);
             if !state.shaders_note.is_empty() {
                 ui.separator();
                 ui.text_wrapped(&state.shaders_note);

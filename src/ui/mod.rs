@@ -4,6 +4,7 @@
 mod colliders;
 mod editor;
 mod help;
+mod notices;
 mod widgets;
 
 pub use editor::{build, unique_name, Action, EditorState, Selection, Stats, PANEL_START};

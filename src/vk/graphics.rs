@@ -35,11 +35,23 @@ pub struct GraphicsDesc<'a> {
     pub depth: Format,
     /// Depth test on; writes only when `depth_write`.
     pub depth_write: bool,
-    /// A translucent overlay: alpha blending (source alpha over the target).
-    pub overlay: bool,
+    /// How the fragments combine with the target (anything but `Opaque` writes no depth
+    /// unless `depth_write`).
+    pub blend: Blend,
     pub set_layout: &'a BindingSetLayout,
     /// Bytes of push constants, visible to both stages.
     pub push_constant_bytes: u32,
+}
+
+/// How a pipeline's fragments combine with the colour target.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Blend {
+    /// Replace it.
+    Opaque,
+    /// Source alpha over it.
+    Alpha,
+    /// Keep the darker of the two, channel by channel: a layer drawn twice darkens once.
+    Darker,
 }
 
 pub struct GraphicsPipeline {
@@ -130,8 +142,8 @@ impl GraphicsPipeline {
                 .depth_compare_op(vk::CompareOp::LESS_OR_EQUAL);
             let attachment = vk::PipelineColorBlendAttachmentState::default()
                 .color_write_mask(vk::ColorComponentFlags::RGBA);
-            let attachment = match desc.overlay {
-                true => attachment
+            let attachment = match desc.blend {
+                Blend::Alpha => attachment
                     .blend_enable(true)
                     .src_color_blend_factor(vk::BlendFactor::SRC_ALPHA)
                     .dst_color_blend_factor(vk::BlendFactor::ONE_MINUS_SRC_ALPHA)
@@ -139,7 +151,16 @@ impl GraphicsPipeline {
                     .src_alpha_blend_factor(vk::BlendFactor::ZERO)
                     .dst_alpha_blend_factor(vk::BlendFactor::ONE)
                     .alpha_blend_op(vk::BlendOp::ADD),
-                false => attachment,
+                // MIN ignores the factors: the darker of the two, channel by channel.
+                Blend::Darker => attachment
+                    .blend_enable(true)
+                    .src_color_blend_factor(vk::BlendFactor::ONE)
+                    .dst_color_blend_factor(vk::BlendFactor::ONE)
+                    .color_blend_op(vk::BlendOp::MIN)
+                    .src_alpha_blend_factor(vk::BlendFactor::ZERO)
+                    .dst_alpha_blend_factor(vk::BlendFactor::ONE)
+                    .alpha_blend_op(vk::BlendOp::ADD),
+                Blend::Opaque => attachment,
             };
             let attachments = [attachment];
             let blend = vk::PipelineColorBlendStateCreateInfo::default().attachments(&attachments);

@@ -37,7 +37,7 @@ pub use context::{exit_without_teardown, ContextOptions, GpuContext, WindowHandl
 pub use debug::ValidationCanary;
 pub use device::{DeviceInfo, DeviceKind};
 pub use error::VkError;
-pub use graphics::{GraphicsDesc, GraphicsPipeline, Topology, VertexFormat, VertexLayout};
+pub use graphics::{Blend, GraphicsDesc, GraphicsPipeline, Topology, VertexFormat, VertexLayout};
 pub use image::{Format, Image, ImageRef, ViewRef};
 pub use pipeline::{BindingKind, BindingSet, BindingSetLayout, ComputePipeline, DescriptorArena};
 pub use query::TimestampPool;

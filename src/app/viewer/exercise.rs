@@ -99,6 +99,8 @@ impl Viewer {
                 let usda = std::fs::read_to_string(saved.with_extension("usda")).unwrap_or_default();
                 let recorded = usda.starts_with("#usda 1.0") && usda.contains("endTimeCode = 2\n");
                 expect(host, "the recording of two frames", recorded && usda.contains("def Mesh"))?;
+                let notice = self.editor.notices.current(std::time::Instant::now()).is_some();
+                expect(host, "the recording's notice over the view", notice)?;
                 let indicator = recording_indicator_shown(&saved.with_extension("rec.png"));
                 expect(host, "the recording indicator (a red dot at the top right)", indicator)?;
                 let _ = std::fs::remove_file(saved.with_extension("rec.png"));

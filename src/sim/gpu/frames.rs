@@ -3,11 +3,25 @@
 //! at a time; each finished frame's timestamps and runtime guard are read after its fence.
 
 use super::object::GUARD_CLEAR;
-use super::{FrameTiming, GpuSim, FRAME_SLOTS};
+use super::{GpuSim, FRAME_SLOTS};
 use crate::sim::gpu_types::{GUARD_FAST, GUARD_NON_FINITE, GUARD_RUNAWAY, GUARD_STRAIN};
 use crate::sim::stability::{GuardCause, GuardTrip};
 use crate::vk::{Access, GpuContext};
 use anyhow::Result;
+
+/// GPU time of one frame by stage, from timestamps [ms].
+#[derive(Debug, Clone, Copy, Default, PartialEq, serde::Serialize)]
+pub struct FrameTiming {
+    pub total_ms: f64,
+    pub physics_ms: f64,
+    pub constraints_ms: f64,
+    pub surface_ms: f64,
+    /// Where fused objects' time is: `None`, there are none; `Some(true)`, every object is
+    /// fused, so `physics_ms` is the whole simulation and the stages are not separable;
+    /// `Some(false)`, some are, and their whole step is in `physics_ms`.
+    #[serde(skip)]
+    pub fused: Option<bool>,
+}
 
 impl GpuSim {
     /// Records and submits the next frame without waiting for it. First waits for the frame
@@ -93,7 +107,7 @@ impl GpuSim {
                 let o = &self.model.objects[i];
                 let limit = crate::sim::collider::contact_speed(&self.model);
                 let text = format!(
-                    "{} '{}' moved faster than contacts are exact for at t = {time:.3} s (particle {first}): {}; \
+                    "{} '{}' moved faster than contacts are exact at t = {time:.3} s (particle {first}): {}; \
                      past it a particle can pass through a collider or another object. More substeps raise the limit.",
                     o.kind.label(),
                     o.name,
@@ -117,7 +131,9 @@ impl GpuSim {
         let Some(pool) = self.timestamps.get(slot) else { return Ok(None) };
         let ms = |a: f64, b: f64| (b - a).max(0.0) * 1e-6;
         let last = 1 + 2 * self.model.substeps;
-        let mut timing = FrameTiming::default();
+        let fused = self.objects.iter().filter(|o| self.is_fused(o)).count();
+        let mut timing =
+            FrameTiming { fused: (fused > 0).then_some(fused == self.objects.len()), ..Default::default() };
         if self.stage_timing {
             let t = pool.read_ns(ctx, last + 1)?;
             for s in 0..self.model.substeps as usize {

@@ -32,6 +32,7 @@ mod step;
 mod transfer;
 
 use contact::SceneContact;
+pub use frames::FrameTiming;
 use fused::ObjectPlan;
 pub use fused::{FusedLimits, FusedShape, FUSED_DEFAULT_SLOTS, FUSED_SLOTS};
 pub use object::{check_fits, particles};
@@ -69,15 +70,6 @@ const COLLIDER_BYTES: u64 = 64;
 const UPDATE_RECORDS: usize = 1024;
 /// Frames that may be in flight at once (each has its own timestamps).
 pub const FRAME_SLOTS: usize = 2;
-
-/// GPU time of one frame by stage, from timestamps [ms].
-#[derive(Debug, Clone, Copy, Default, PartialEq, serde::Serialize)]
-pub struct FrameTiming {
-    pub total_ms: f64,
-    pub physics_ms: f64,
-    pub constraints_ms: f64,
-    pub surface_ms: f64,
-}
 
 /// An object's state read back from the GPU.
 #[derive(Debug, Clone)]
