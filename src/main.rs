@@ -21,6 +21,13 @@ fn main() {
     let mut stuck = false;
     let code = match std::panic::catch_unwind(|| msdsim::cli::run(cli)) {
         Ok(Ok(())) => 0,
+        Ok(Err(e)) if e.chain().any(|c| c.is::<msdsim::temporary::Interrupted>()) => {
+            let signal =
+                e.chain().find_map(|c| c.downcast_ref::<msdsim::temporary::Interrupted>()).map_or(2, |i| i.0);
+            let _ = writeln!(std::io::stderr(), "msdsim: {e:#}");
+            let _ = std::io::stdout().flush();
+            msdsim::temporary::end_by_signal(signal);
+        }
         Ok(Err(e)) => {
             stuck = e.chain().any(|c| matches!(c.downcast_ref(), Some(msdsim::vk::VkError::Stuck { .. })));
             let line = format!("{e:#}").replace('\n', " ");

@@ -10,13 +10,18 @@
 //! `unlink`, `signal` and `raise`, all async-signal-safe. A signal the process was started
 //! with ignored (`nohup`, a background job) stays ignored.
 //!
+//! A command that can stop cleanly (a recording whose file is written at the end) holds a
+//! `Graceful` while it runs: the first SIGINT or SIGTERM then only asks it to stop
+//! (`stop_requested`); it finishes what it has, and ends by the signal (`end_by_signal`). A
+//! second signal ends the process at once, as above.
+//!
 //! This module and `vk` are the only places with `unsafe`.
 
 use std::cell::UnsafeCell;
 use std::io::Write as _;
 use std::os::unix::ffi::OsStrExt as _;
 use std::path::{Path, PathBuf};
-use std::sync::atomic::{AtomicU8, Ordering};
+use std::sync::atomic::{AtomicI32, AtomicU8, AtomicUsize, Ordering};
 
 /// Temporaries tracked at once (a run has one or two).
 const SLOTS: usize = 8;
@@ -73,7 +78,70 @@ impl Drop for Tracked {
     }
 }
 
+/// `Graceful` guards alive.
+static GRACEFUL: AtomicUsize = AtomicUsize::new(0);
+/// The signal that asked a graceful stop (0: none).
+static STOP: AtomicI32 = AtomicI32::new(0);
+
+/// While alive, the first SIGINT or SIGTERM asks for a stop instead of ending the process.
+pub struct Graceful(());
+
+impl Graceful {
+    pub fn new() -> Self {
+        install_handlers();
+        GRACEFUL.fetch_add(1, Ordering::AcqRel);
+        Self(())
+    }
+}
+
+impl Default for Graceful {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
+impl Drop for Graceful {
+    fn drop(&mut self) {
+        GRACEFUL.fetch_sub(1, Ordering::AcqRel);
+    }
+}
+
+/// The signal that asked for a stop, if one did.
+pub fn stop_requested() -> Option<i32> {
+    Some(STOP.load(Ordering::Acquire)).filter(|s| *s != 0)
+}
+
+/// A stop asked by a signal, carried up as an error: `main` ends the process by the signal.
+#[derive(Debug, thiserror::Error)]
+#[error("stopped by {}", signal_name(*.0))]
+pub struct Interrupted(pub i32);
+
+pub fn signal_name(signal: i32) -> &'static str {
+    match signal {
+        libc::SIGINT => "SIGINT (Ctrl-C)",
+        libc::SIGTERM => "SIGTERM",
+        libc::SIGHUP => "SIGHUP",
+        _ => "a signal",
+    }
+}
+
+/// Ends the process as `signal` would have (the shell then reports 128 + signal).
+pub fn end_by_signal(signal: i32) -> ! {
+    // SAFETY: plain libc calls; the default action of these signals ends the process.
+    unsafe {
+        libc::signal(signal, libc::SIG_DFL);
+        libc::raise(signal);
+    }
+    std::process::exit(128 + signal)
+}
+
 extern "C" fn on_signal(signal: libc::c_int) {
+    if signal != libc::SIGHUP
+        && GRACEFUL.load(Ordering::Acquire) > 0
+        && STOP.compare_exchange(0, signal, Ordering::AcqRel, Ordering::Acquire).is_ok()
+    {
+        return; // the command stops at its next check
+    }
     for (state, path) in TABLE.state.iter().zip(&TABLE.paths) {
         if state.load(Ordering::Acquire) == READY {
             // SAFETY: a READY slot holds a NUL-terminated path that no one writes.

@@ -210,3 +210,39 @@ fn record_frames_writes_a_png_per_frame() {
     let (w, h, _) = read_png(&frames.join("frame_00003.png"));
     assert_eq!((w, h), (320, 240));
 }
+
+/// Ctrl-C (SIGINT) stops the app as its close button does: it tears down cleanly (validation
+/// and leak checks included), writes a recording that is running and unsaved edits (as
+/// `msdsim-rescued-*.toml`), says so, and ends by the signal (exit 130 from the shell).
+#[test]
+fn ctrl_c_stops_the_app_cleanly() {
+    let dir = tempfile::tempdir().unwrap();
+    let preset = dir.path().join("ctrl-c-rope.toml");
+    std::fs::copy(Path::new(env!("CARGO_MANIFEST_DIR")).join("presets/rope.toml"), &preset).unwrap();
+    let child = Command::new("xvfb-run")
+        .args(["-a", "-s", "-screen 0 1280x1024x24", env!("CARGO_BIN_EXE_msdsim"), "--validation", "app"])
+        .args(["--preset", preset.to_str().unwrap(), "--size", "480x320"])
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .expect("the app tests need xvfb-run (Debian: xvfb xauth)");
+    // The app's own process (xvfb-run is a shell script around it).
+    let pattern = format!("^{} --validation app --preset {}", env!("CARGO_BIN_EXE_msdsim"), preset.display());
+    let start = std::time::Instant::now();
+    let pid = loop {
+        let found = Command::new("pgrep").args(["-f", &pattern]).output().unwrap();
+        let text = String::from_utf8_lossy(&found.stdout).trim().to_string();
+        if let Some(pid) = text.lines().next().filter(|p| !p.is_empty()) {
+            break pid.to_string();
+        }
+        assert!(start.elapsed().as_secs() < 60, "the app did not start");
+        std::thread::sleep(std::time::Duration::from_millis(100));
+    };
+    std::thread::sleep(std::time::Duration::from_secs(3)); // its window up and frames running
+    assert!(Command::new("kill").args(["-INT", &pid]).status().unwrap().success());
+    let out = child.wait_with_output().unwrap();
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(130), "{stderr}");
+    assert!(stderr.contains("stopped by SIGINT"), "{stderr}");
+    assert!(!stderr.contains("validation") && !stderr.contains("leaked"), "{stderr}");
+}

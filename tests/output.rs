@@ -180,6 +180,72 @@ fn a_signal_during_the_final_write_leaves_no_partial_file() {
     }
 }
 
+/// A recording written at the end (USD, glTF) is kept when a signal stops the run (issue 29:
+/// Ctrl-C left no file): the first SIGINT or SIGTERM ends the frames, the file holds those so
+/// far, `--out` is left as it was, and the process still ends by the signal.
+#[test]
+fn a_signal_mid_run_keeps_the_recording_so_far() {
+    use std::os::unix::process::ExitStatusExt as _;
+    for (signal, name) in [("INT", "rec.usda"), ("TERM", "rec.glb")] {
+        let dir = tempfile::tempdir().unwrap();
+        let p = preset(dir.path());
+        let record = dir.path().join(name);
+        let state = dir.path().join("state.json");
+        std::fs::write(&state, "old").unwrap();
+        let mut child = binary()
+            .args([
+                "simulate",
+                "--preset",
+                &p,
+                "--frames",
+                "3000",
+                "--out",
+                state.to_str().unwrap(),
+                "--record",
+            ])
+            .arg(&record)
+            .stdout(Stdio::piped())
+            .stderr(Stdio::piped())
+            .spawn()
+            .unwrap();
+        let mut lines = BufReader::new(child.stdout.take().unwrap()).lines();
+        let mut frames = 0;
+        while let Some(Ok(line)) = lines.next() {
+            frames += line.starts_with("frame") as u32;
+            if frames == 5 {
+                break;
+            }
+        }
+        let killed =
+            Command::new("kill").args([&format!("-{signal}"), &child.id().to_string()]).status().unwrap();
+        assert!(killed.success());
+        let rest: Vec<String> = lines.map_while(Result::ok).collect();
+        let status = child.wait().unwrap();
+        let mut err = String::new();
+        child.stderr.take().unwrap().read_to_string(&mut err).unwrap();
+        assert_eq!(status.signal(), Some(if signal == "INT" { 2 } else { 15 }), "{signal}: {status:?} {err}");
+        assert!(err.contains("stopped by SIG"), "{err}");
+        assert!(rest.iter().any(|l| l.starts_with("recorded ")), "{rest:?}");
+        assert_eq!(std::fs::read_to_string(&state).unwrap(), "old", "--out is for a finished run");
+        let bytes = std::fs::read(&record).unwrap();
+        if name.ends_with(".usda") {
+            let text = String::from_utf8(bytes).unwrap();
+            let end = text.lines().find_map(|l| l.trim().strip_prefix("endTimeCode = ")).unwrap();
+            let end: u32 = end.parse().unwrap();
+            assert!((5..3000).contains(&end), "{end} frames");
+            assert!(text.trim_end().ends_with('}'), "a whole file");
+        } else {
+            assert_eq!(&bytes[..4], b"glTF");
+            assert_eq!(
+                u32::from_le_bytes(bytes[8..12].try_into().unwrap()) as usize,
+                bytes.len(),
+                "a whole file"
+            );
+        }
+        assert_eq!(leftovers(dir.path()), Vec::<String>::new());
+    }
+}
+
 /// A reader that closes the pipe early (`| head -1`) ends neither in a panic nor a leak: the
 /// run finishes, writes its --out file and exits 0.
 #[test]

@@ -141,6 +141,17 @@ impl ApplicationHandler for Handler {
     }
 
     fn about_to_wait(&mut self, event_loop: &ActiveEventLoop) {
+        // SIGINT or SIGTERM: stop as the close button would, keeping a recording (written by
+        // the teardown) and unsaved edits.
+        if let Some(signal) = crate::temporary::stop_requested().filter(|_| self.error.is_none()) {
+            let stopped = anyhow::Error::from(crate::temporary::Interrupted(signal));
+            let rescued = self.viewer.as_mut().and_then(|v| v.rescue_unsaved());
+            let error = match rescued {
+                Some(r) => stopped.context(r),
+                None => stopped,
+            };
+            return self.stop(event_loop, Some(error));
+        }
         if let Some(v) = &self.viewer {
             event_loop.set_control_flow(ControlFlow::Poll);
             v.window().request_redraw();
@@ -162,6 +173,8 @@ pub fn run(options: &ContextOptions, args: AppArgs, scene: Scene) -> Result<()> 
             reason.trim_end_matches(['.', ')'])
         ))
     })?;
+    // The first SIGINT or SIGTERM asks the app to stop (`about_to_wait`), a second ends it.
+    let _graceful = crate::temporary::Graceful::new();
     let mut handler = Handler {
         options: options.clone(),
         args,
@@ -174,7 +187,10 @@ pub fn run(options: &ContextOptions, args: AppArgs, scene: Scene) -> Result<()> 
     if let Some(v) = handler.viewer.take() {
         handler.report = Some(v.finish());
     }
-    if let Some(e) = handler.error {
+    // A stop by a signal is reported after the teardown's checks, which it also passes.
+    let interrupted =
+        handler.error.as_ref().is_some_and(|e| e.chain().any(|c| c.is::<crate::temporary::Interrupted>()));
+    if let Some(e) = handler.error.take_if(|_| !interrupted) {
         return Err(e);
     }
     if let Some((count, first, leaks)) = handler.report {
@@ -185,5 +201,5 @@ pub fn run(options: &ContextOptions, args: AppArgs, scene: Scene) -> Result<()> 
             anyhow::bail!("GPU allocations leaked: {leaks:?}");
         }
     }
-    Ok(())
+    handler.error.map_or(Ok(()), Err)
 }

@@ -219,9 +219,21 @@ fn simulate(
         })?;
         r.add(&sim.read_states(ctx)?, sim.time())?;
     }
+    // A recording written at the end is kept when a signal stops the run: the first SIGINT or
+    // SIGTERM ends the frames, the file is written with those so far, and the process then
+    // ends by the signal.
+    let graceful =
+        recording.as_ref().filter(|(_, file)| file.is_some()).map(|_| crate::temporary::Graceful::new());
+    let mut interrupted = None;
     // Frames stay in flight as in the app: each submission first collects the frame that
     // used its slot, so timings (and a tripped guard) arrive a frame or two late.
     for frame in 1..=args.frames {
+        if graceful.is_some() {
+            interrupted = crate::temporary::stop_requested();
+            if interrupted.is_some() {
+                break;
+            }
+        }
         if let Some(t) = sim.submit_frame(ctx).with_context(|| format!("frame {frame}"))? {
             report(out, t)?;
         }
@@ -230,6 +242,10 @@ fn simulate(
             r.add(&sim.read_states(ctx)?, sim.time())?;
         }
     }
+    // From here a signal ends the process at once again (a write it interrupts leaves the
+    // file as it was).
+    drop(graceful);
+    interrupted = interrupted.or_else(crate::temporary::stop_requested);
     for t in sim.finish_frames(ctx).context("the last frames")? {
         report(out, t)?;
     }
@@ -241,6 +257,10 @@ fn simulate(
         if let Some(path) = &args.record {
             say!(out, "{}", r.summary(path))?;
         }
+    }
+    if let Some(signal) = interrupted {
+        // The state file is for a finished run: left as it was.
+        return Err(crate::temporary::Interrupted(signal).into());
     }
     if let Some(warning) = sim.take_warning() {
         say!(out, "warning: {warning}")?;
