@@ -49,6 +49,23 @@ fn leftovers(dir: &Path) -> Vec<String> {
         .collect()
 }
 
+/// Reads the child's standard output until `n` lines of frames have come (the run is under
+/// way, and with a recording `n` frames are in it); the rest of its lines follow.
+fn after_frames(
+    child: &mut std::process::Child,
+    n: u32,
+) -> std::io::Lines<BufReader<std::process::ChildStdout>> {
+    let mut lines = BufReader::new(child.stdout.take().unwrap()).lines();
+    let mut frames = 0;
+    while let Some(Ok(line)) = lines.next() {
+        frames += line.starts_with("frame") as u32;
+        if frames == n {
+            break;
+        }
+    }
+    lines
+}
+
 /// A folder is refused before the run (exit 2, one line naming it); nothing is written.
 #[test]
 fn out_on_a_folder_is_refused_before_the_run() {
@@ -113,12 +130,7 @@ fn ctrl_c_leaves_no_partial_file() {
         .stderr(Stdio::null())
         .spawn()
         .unwrap();
-    let mut lines = BufReader::new(child.stdout.take().unwrap()).lines();
-    while let Some(Ok(line)) = lines.next() {
-        if line.starts_with("frame") {
-            break; // the run is under way
-        }
-    }
+    let _lines = after_frames(&mut child, 1);
     let killed = Command::new("kill").args(["-INT", &child.id().to_string()]).status().unwrap();
     assert!(killed.success());
     child.wait().unwrap();
@@ -208,14 +220,7 @@ fn a_signal_mid_run_keeps_the_recording_so_far() {
             .stderr(Stdio::piped())
             .spawn()
             .unwrap();
-        let mut lines = BufReader::new(child.stdout.take().unwrap()).lines();
-        let mut frames = 0;
-        while let Some(Ok(line)) = lines.next() {
-            frames += line.starts_with("frame") as u32;
-            if frames == 5 {
-                break;
-            }
-        }
+        let lines = after_frames(&mut child, 5);
         let killed =
             Command::new("kill").args([&format!("-{signal}"), &child.id().to_string()]).status().unwrap();
         assert!(killed.success());
@@ -728,14 +733,7 @@ fn ctrl_c_leaves_point_caches_of_whole_frames() {
         .stderr(Stdio::null())
         .spawn()
         .unwrap();
-    let mut lines = BufReader::new(child.stdout.take().unwrap()).lines();
-    let mut frames = 0;
-    while let Some(Ok(line)) = lines.next() {
-        frames += line.starts_with("frame") as u32;
-        if frames == 5 {
-            break; // a few frames recorded
-        }
-    }
+    let _lines = after_frames(&mut child, 5); // a few frames recorded
     let killed = Command::new("kill").args(["-INT", &child.id().to_string()]).status().unwrap();
     assert!(killed.success());
     child.wait().unwrap();
