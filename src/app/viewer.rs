@@ -513,6 +513,7 @@ impl Viewer {
         let ui = self.imgui.new_frame();
         let mut edited = self.host.as_ref().expect("host").scene().clone();
         self.editor.shader_errors = self.shaders.errors().map(|(_, e)| e.clone()).collect();
+        self.editor.look_at = self.camera.target.as_dvec3().to_array();
         self.pending_actions = ui::build(ui, &mut self.editor, &mut edited, &self.stats);
         if edited != *self.host.as_ref().expect("host").scene() {
             self.pending_scene = Some(edited);

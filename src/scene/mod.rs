@@ -5,6 +5,7 @@
 
 mod build;
 mod load;
+pub mod place;
 mod validate;
 
 pub use build::{colliders, shapes, to_model};

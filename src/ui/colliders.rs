@@ -26,17 +26,25 @@ pub fn entries(scene: &Scene) -> Vec<(String, Selection)> {
     out
 }
 
-/// The add buttons (on the current line); returns what was added.
-pub fn add_buttons(ui: &Ui, scene: &mut Scene) -> Option<Selection> {
+/// The add buttons (on the current line); returns what was added. A new collider is placed
+/// where the camera looks (`look_at`), above the ground and clear of the rest of the scene.
+pub fn add_buttons(ui: &Ui, scene: &mut Scene, look_at: [f64; 3]) -> Option<Selection> {
     let mut added = None;
+    let place = |scene: &Scene, min: [f64; 3], max: [f64; 3]| {
+        let (min, max) = (glam::DVec3::from_array(min), glam::DVec3::from_array(max));
+        crate::scene::place::offset(scene, (min, max), glam::DVec3::from_array(look_at))
+    };
+    let moved = |p: [f64; 3], d: glam::DVec3| (glam::DVec3::from_array(p) + d).to_array();
     if ui.button("+ sphere") {
-        scene.spheres.push(Sphere { center: [0.0, 0.5, 0.0], radius: 0.25, motion: None });
+        let d = place(scene, [-0.25; 3], [0.25; 3]);
+        scene.spheres.push(Sphere { center: moved([0.0; 3], d), radius: 0.25, motion: None });
         added = Some(Selection::Sphere(scene.spheres.len() - 1));
     }
     ui.same_line();
     if ui.button("+ box") {
+        let d = place(scene, [-0.3, -0.25, -0.3], [0.3, 0.25, 0.3]);
         scene.boxes.push(BoxCollider {
-            center: [0.0, 0.25, 0.0],
+            center: moved([0.0; 3], d),
             half_extents: [0.3, 0.25, 0.3],
             rotation: [0.0; 3],
             motion: None,
@@ -45,9 +53,10 @@ pub fn add_buttons(ui: &Ui, scene: &mut Scene) -> Option<Selection> {
     }
     ui.same_line();
     if ui.button("+ capsule") {
+        let d = place(scene, [-0.5, -0.1, -0.1], [0.5, 0.1, 0.1]);
         scene.capsules.push(Capsule {
-            start: [-0.4, 0.3, 0.0],
-            end: [0.4, 0.3, 0.0],
+            start: moved([-0.4, 0.0, 0.0], d),
+            end: moved([0.4, 0.0, 0.0], d),
             radius: 0.1,
             motion: None,
         });

@@ -52,6 +52,8 @@ pub struct EditorState {
     pub message: Option<(String, bool)>,
     /// Every message: the newest over the view for a few seconds, all in the Log window.
     pub notices: super::notices::Notices,
+    /// The point the camera looks at, where new objects are placed [m].
+    pub look_at: [f64; 3],
     pub paused: bool,
     pub shaders_note: String,
     /// Hide the stats window (reproducible screenshots).
@@ -360,13 +362,19 @@ fn object_list(ui: &Ui, state: &mut EditorState, scene: &mut Scene) {
         pick("wind".into(), Selection::Wind);
     }
     pick("light".into(), Selection::Light);
+    // New objects go where the camera looks, clear of the rest of the scene.
+    let look_at = glam::DVec3::from_array(state.look_at);
     if ui.button("+ cloth") {
-        scene.cloths.push(new_cloth(unique_name(scene, "cloth")));
+        let mut cloth = new_cloth(unique_name(scene, "cloth"));
+        crate::scene::place::place_cloth(scene, &mut cloth, look_at);
+        scene.cloths.push(cloth);
         state.selected = Selection::Cloth(scene.cloths.len() - 1);
     }
     ui.same_line();
     if ui.button("+ rope") {
-        scene.ropes.push(new_rope(unique_name(scene, "rope")));
+        let mut rope = new_rope(unique_name(scene, "rope"));
+        crate::scene::place::place_rope(scene, &mut rope, look_at);
+        scene.ropes.push(rope);
         state.selected = Selection::Rope(scene.ropes.len() - 1);
     }
     ui.same_line();
@@ -378,7 +386,7 @@ fn object_list(ui: &Ui, state: &mut EditorState, scene: &mut Scene) {
         }
         state.selected = Selection::None;
     }
-    if let Some(added) = colliders::add_buttons(ui, scene) {
+    if let Some(added) = colliders::add_buttons(ui, scene, state.look_at) {
         state.selected = added;
     }
 }
