@@ -1,6 +1,7 @@
 //! The `msdsim` binary: parses the command line, runs it, and turns errors into a one-line
 //! message and an exit code (2: bad input, 3: the runtime guard stopped an unstable
-//! simulation, 1: other failures). No panic reaches the user.
+//! simulation, 1: other failures; a run stopped by SIGINT or SIGTERM ends by that signal). No
+//! panic reaches the user.
 
 use clap::Parser;
 use msdsim::error::{exit, UserError};
