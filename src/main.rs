@@ -19,7 +19,6 @@ fn main() {
         Ok(cli) => cli,
         Err(e) => exit_on_argument_error(e),
     };
-    let mut stuck = false;
     let code = match std::panic::catch_unwind(|| msdsim::cli::run(cli)) {
         Ok(Ok(())) => 0,
         Ok(Err(e)) if e.chain().any(|c| c.is::<msdsim::temporary::Interrupted>()) => {
@@ -30,7 +29,6 @@ fn main() {
             msdsim::temporary::end_by_signal(signal);
         }
         Ok(Err(e)) => {
-            stuck = e.chain().any(|c| matches!(c.downcast_ref(), Some(msdsim::vk::VkError::Stuck { .. })));
             let line = format!("{e:#}").replace('\n', " ");
             let _ = writeln!(std::io::stderr(), "msdsim: error: {line}");
             if e.chain().any(|c| c.is::<msdsim::sim::stability::GuardTrip>()) {
@@ -43,7 +41,7 @@ fn main() {
         }
         Err(_) => exit::FAILURE,
     };
-    if stuck {
+    if msdsim::vk::any_device_stuck() {
         // The driver's exit handlers would wait for the work that never ends.
         let _ = std::io::stdout().flush();
         msdsim::vk::exit_without_teardown(code);

@@ -11,7 +11,8 @@
 //! with ignored (`nohup`, a background job) stays ignored.
 //!
 //! A command that can stop cleanly (a recording whose file is written at the end) holds a
-//! `Graceful` while it runs: the first SIGINT or SIGTERM then only asks it to stop
+//! `Graceful` while it runs: the first SIGINT, SIGTERM or SIGHUP (the terminal closed) then only
+//! asks it to stop
 //! (`stop_requested`); it finishes what it has, and ends by the signal (`end_by_signal`). A
 //! second signal ends the process at once, as above.
 //!
@@ -83,7 +84,8 @@ static GRACEFUL: AtomicUsize = AtomicUsize::new(0);
 /// The signal that asked a graceful stop (0: none).
 static STOP: AtomicI32 = AtomicI32::new(0);
 
-/// While alive, the first SIGINT or SIGTERM asks for a stop instead of ending the process.
+/// While alive, the first SIGINT, SIGTERM or SIGHUP asks for a stop instead of ending the
+/// process.
 pub struct Graceful(());
 
 impl Graceful {
@@ -136,8 +138,7 @@ pub fn end_by_signal(signal: i32) -> ! {
 }
 
 extern "C" fn on_signal(signal: libc::c_int) {
-    if signal != libc::SIGHUP
-        && GRACEFUL.load(Ordering::Acquire) > 0
+    if GRACEFUL.load(Ordering::Acquire) > 0
         && STOP.compare_exchange(0, signal, Ordering::AcqRel, Ordering::Acquire).is_ok()
     {
         return; // the command stops at its next check
@@ -170,6 +171,8 @@ fn install_handlers() {
                 }
                 let mut action: libc::sigaction = std::mem::zeroed();
                 action.sa_sigaction = on_signal as extern "C" fn(libc::c_int) as libc::sighandler_t;
+                // A stop request returns from the handler: calls it interrupted go on.
+                action.sa_flags = libc::SA_RESTART;
                 libc::sigemptyset(&mut action.sa_mask);
                 libc::sigaction(signal, &action, std::ptr::null_mut());
             }

@@ -37,17 +37,25 @@ fn a_shifted_member_is_refused() {
 /// Compiles physics.comp with the header edited by `edit`, and returns the layout check's
 /// verdict.
 fn check_edited(edit: impl Fn(&str) -> String) -> Result<Vec<&'static str>, String> {
+    check_edited_in("include/layout.glsl", "physics.comp", edit)
+}
+
+/// Compiles `shader` with `header` edited by `edit`, and returns the layout check's verdict.
+fn check_edited_in(
+    header: &str,
+    shader: &str,
+    edit: impl Fn(&str) -> String,
+) -> Result<Vec<&'static str>, String> {
     let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("glsl");
     let tmp = tempfile::tempdir().unwrap();
     common::copy_dir(&dir, tmp.path());
-    let header = tmp.path().join("include/layout.glsl");
+    let header = tmp.path().join(header);
     let text = std::fs::read_to_string(&header).unwrap();
     let edited = edit(&text);
     assert_ne!(edited, text, "the edit no longer applies: update the test");
     std::fs::write(&header, edited).unwrap();
     let compiled =
-        shaders::compile::compile_glsl(&tmp.path().join("physics.comp"), &tmp.path().join("include"))
-            .unwrap();
+        shaders::compile::compile_glsl(&tmp.path().join(shader), &tmp.path().join("include")).unwrap();
     layout_check::check(&compiled.spirv)
 }
 
@@ -72,6 +80,16 @@ fn renamed_structs_and_changed_types_are_refused() {
             && err.contains("a float at byte 48"),
         "{err}"
     );
+    // A transposed matrix has the same scalars at other places.
+    let err = check_edited_in("include/render.glsl", "mesh.vert", |t| {
+        t.replacen(
+            "layout(std140, set = 0, binding = 0) uniform CameraBuf",
+            "layout(std140, row_major, set = 0, binding = 0) uniform CameraBuf",
+            1,
+        )
+    })
+    .unwrap_err();
+    assert!(err.contains("Camera"), "{err}");
 }
 
 /// The `#define`d constants of the headers (flag bits, feature bits, the rope ring, the

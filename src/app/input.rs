@@ -136,7 +136,7 @@ impl Input {
                     MouseScrollDelta::LineDelta(_, y) => *y,
                     MouseScrollDelta::PixelDelta(p) => p.y as f32 / 40.0,
                 };
-                camera.zoom_at(steps, self.cursor, size);
+                camera.zoom_at(steps, self.cursor, size, floor.filter(|_| !self.modifiers.alt_key()));
             }
             WindowEvent::ModifiersChanged(m) => self.modifiers = m.state(),
             WindowEvent::KeyboardInput { event, .. } => {

@@ -187,6 +187,10 @@ pub fn run(options: &ContextOptions, args: AppArgs, scene: Scene) -> Result<()> 
     if let Some(v) = handler.viewer.take() {
         handler.report = Some(v.finish());
     }
+    // A signal that came during the teardown (it was let finish) is a stop too.
+    if let Some(signal) = crate::temporary::stop_requested().filter(|_| handler.error.is_none()) {
+        handler.error = Some(crate::temporary::Interrupted(signal).into());
+    }
     // A stop by a signal is reported after the teardown's checks, which it also passes.
     let interrupted =
         handler.error.as_ref().is_some_and(|e| e.chain().any(|c| c.is::<crate::temporary::Interrupted>()));

@@ -92,7 +92,8 @@ impl OrbitCamera {
     /// Zooms by wheel `steps` towards what is under `pixel` of a view of `size` pixels: the
     /// point of the target's depth under the cursor stays under it (the eye moves along the
     /// line from it; the view keeps its direction).
-    pub fn zoom_at(&mut self, steps: f32, pixel: [f32; 2], size: [f32; 2]) {
+    /// With a `floor`, the eye stays above it.
+    pub fn zoom_at(&mut self, steps: f32, pixel: [f32; 2], size: [f32; 2], floor: Option<f32>) {
         let (origin, dir) = self.ray(pixel, size);
         let before = self.distance;
         self.zoom(steps);
@@ -105,6 +106,9 @@ impl OrbitCamera {
         let under = origin + dir * ((self.target - origin).dot(normal) / facing);
         if under.is_finite() {
             self.target = under + (self.target - under) * factor;
+        }
+        if let Some(floor) = floor {
+            self.keep_above(floor);
         }
     }
 
@@ -206,7 +210,7 @@ mod tests {
         let n = c.back();
         let under = o + d * ((c.target - o).dot(n) / d.dot(n));
         for steps in [3.0, -2.0, 5.0] {
-            c.zoom_at(steps, pixel, size);
+            c.zoom_at(steps, pixel, size, None);
             let (o2, d2) = c.ray(pixel, size);
             let off = (under - o2) - d2 * (under - o2).dot(d2);
             assert!(off.length() < 1e-4 * c.distance.max(1.0), "{steps}: {off:?} off the cursor's ray");

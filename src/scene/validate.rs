@@ -195,8 +195,10 @@ pub fn check(scene: &Scene) -> Check {
             return Err(format!("cloth[{i}].name = \"{}\": another object has this name", c.name));
         }
     }
+    // A rope's nodes meet others' through contact between objects, where there are others.
+    let between = scene.sim.inter_object && scene.cloths.len() + scene.ropes.len() > 1;
     for (i, r) in scene.ropes.iter().enumerate() {
-        check_rope(&format!("rope[{i}]"), r)?;
+        check_rope(&format!("rope[{i}]"), r, between)?;
         if !names.insert(r.name.as_str()) {
             return Err(format!("rope[{i}].name = \"{}\": another object has this name", r.name));
         }
@@ -322,7 +324,7 @@ fn check_cloth(at: &str, c: &Cloth) -> Check {
     Ok(())
 }
 
-fn check_rope(at: &str, r: &Rope) -> Check {
+fn check_rope(at: &str, r: &Rope, between: bool) -> Check {
     check_name(at, &r.name)?;
     if r.nodes < 2 || r.nodes as u64 > MAX_PARTICLES / 8 {
         return Err(format!("{at}.nodes = {}: must be between 2 and {}", r.nodes, MAX_PARTICLES / 8));
@@ -354,11 +356,13 @@ fn check_rope(at: &str, r: &Rope) -> Check {
         positive(&format!("{at}.self_collision_distance"), d, LENGTH, "m")?;
     }
     // A node's contact reach (its tube's diameter, or the self-collision distance) against the
-    // node spacing: far past it, every node is in contact with hundreds along its own rope.
+    // node spacing, where the rope has contacts: far past it, every node is in contact with
+    // hundreds along its own rope.
     let length = r.start.iter().zip(r.end).map(|(a, b)| (b - a) * (b - a)).sum::<f64>().sqrt();
     let spacing = length / (r.nodes - 1) as f64;
-    let reach = (2.0 * r.radius).max(r.self_collision_distance.unwrap_or(0.0));
-    if reach / spacing > 4.0 * MAX_CONTACT_SPAN {
+    let own = if r.self_collision { r.self_collision_distance.unwrap_or(2.0 * r.radius) } else { 0.0 };
+    let reach = if between { own.max(2.0 * r.radius) } else { own };
+    if spacing > 0.0 && reach / spacing > 4.0 * MAX_CONTACT_SPAN {
         return Err(format!(
             "{at}.nodes = {}: nodes {spacing:.3e} m apart with a contact reach of {reach:.3e} m (twice the radius, or the self-collision distance) would each touch {:.0} others along the rope, and contact search would take minutes a frame; use at most {} nodes for this length and radius",
             r.nodes,

@@ -39,7 +39,13 @@ pub fn host_layouts() -> Vec<HostLayout> {
 /// Names of the shared structs the module declares, or the first disagreement with the host.
 pub fn check(words: &[u32]) -> Result<Vec<&'static str>, String> {
     let host = host_layouts();
+    let layouts = struct_layouts(words);
     for (place, name) in bound_structs(words) {
+        if !layouts.iter().any(|l| l.name == name) && host.iter().any(|h| h.name == name) {
+            return Err(format!(
+                "{place} holds struct `{name}`, whose layout cannot be read from the SPIR-V (an array length set by a specialization constant?)"
+            ));
+        }
         if !host.iter().any(|h| h.name == name) {
             let shared: Vec<&str> = host.iter().map(|h| h.name).collect();
             return Err(format!(
@@ -49,7 +55,7 @@ pub fn check(words: &[u32]) -> Result<Vec<&'static str>, String> {
         }
     }
     let mut found = Vec::new();
-    for layout in struct_layouts(words) {
+    for layout in layouts {
         let Some(HostLayout { name, size, offsets, scalars }) = host.iter().find(|h| h.name == layout.name)
         else {
             continue;

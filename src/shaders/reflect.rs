@@ -20,6 +20,7 @@ const OP_VARIABLE: u32 = 59;
 const OP_DECORATE: u32 = 71;
 const OP_MEMBER_DECORATE: u32 = 72;
 const DECORATION_ARRAY_STRIDE: u32 = 6;
+const DECORATION_ROW_MAJOR: u32 = 4;
 const DECORATION_MATRIX_STRIDE: u32 = 7;
 const DECORATION_BINDING: u32 = 33;
 const DECORATION_OFFSET: u32 = 35;
@@ -69,6 +70,7 @@ struct Module {
     member_names: HashMap<(u32, u32), String>,
     offsets: HashMap<(u32, u32), u32>,
     matrix_strides: HashMap<(u32, u32), u32>,
+    row_major: std::collections::HashSet<(u32, u32)>,
     strides: HashMap<u32, u32>,
     constants: HashMap<u32, u32>,
     types: HashMap<u32, Type>,
@@ -102,6 +104,9 @@ impl Module {
                 }
                 OP_MEMBER_DECORATE if a.len() >= 4 && a[2] == DECORATION_MATRIX_STRIDE => {
                     m.matrix_strides.insert((a[0], a[1]), a[3]);
+                }
+                OP_MEMBER_DECORATE if a.len() >= 3 && a[2] == DECORATION_ROW_MAJOR => {
+                    m.row_major.insert((a[0], a[1]));
                 }
                 OP_DECORATE if a.len() >= 3 && a[1] == DECORATION_ARRAY_STRIDE => {
                     m.strides.insert(a[0], a[2]);
@@ -151,13 +156,15 @@ impl Module {
         m
     }
 
-    /// Appends the scalars of a value of type `id` at byte `base`; `matrix_stride` for a
-    /// matrix member. `None` when a size or stride is not known (no explicit layout).
+    /// Appends the scalars of a value of type `id` at byte `base`, in column order for a
+    /// matrix; `matrix`: a matrix member's (or array of matrices') stride and whether it is
+    /// row-major. `None` when a size or stride is not known (no explicit layout, or an array
+    /// length that is a specialization constant).
     fn flatten(
         &self,
         id: u32,
         base: u32,
-        matrix_stride: Option<u32>,
+        matrix: Option<(u32, bool)>,
         out: &mut Vec<(u32, Scalar)>,
     ) -> Option<()> {
         match self.types.get(&id)? {
@@ -168,22 +175,29 @@ impl Module {
                 }
             }
             Type::Matrix(col, n) => {
+                let (stride, row_major) = matrix?;
+                let Some(Type::Vector(c, rows)) = self.types.get(col) else { return None };
                 for k in 0..*n {
-                    self.flatten(*col, base + matrix_stride? * k, None, out)?;
+                    for r in 0..*rows {
+                        let at =
+                            if row_major { base + r * stride + 4 * k } else { base + k * stride + 4 * r };
+                        self.flatten(*c, at, None, out)?;
+                    }
                 }
             }
             Type::Array(e, len) => {
                 let stride = *self.strides.get(&id)?;
                 for k in 0..*self.constants.get(len)? {
-                    self.flatten(*e, base + stride * k, None, out)?;
+                    self.flatten(*e, base + stride * k, matrix, out)?;
                 }
             }
-            Type::RuntimeArray(e) => self.flatten(*e, base, None, out)?,
+            Type::RuntimeArray(e) => self.flatten(*e, base, matrix, out)?,
             Type::Struct(members) => {
                 for k in 0..members.len() as u32 {
                     let offset = *self.offsets.get(&(id, k))?;
-                    let ms = self.matrix_strides.get(&(id, k)).copied();
-                    self.flatten(members[k as usize], base + offset, ms, out)?;
+                    let matrix =
+                        self.matrix_strides.get(&(id, k)).map(|s| (*s, self.row_major.contains(&(id, k))));
+                    self.flatten(members[k as usize], base + offset, matrix, out)?;
                 }
             }
             Type::Pointer(..) => return None,

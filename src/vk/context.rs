@@ -292,8 +292,23 @@ impl GpuContext {
         if self.stuck() {
             return Err(self.stuck_error());
         }
-        // SAFETY: valid device; no other thread submits to this queue.
-        unsafe { self.device.device_wait_idle() }.check("vkDeviceWaitIdle")
+        // An empty submission's fence signals once all earlier work on the queue is done, and
+        // can be waited for with the timeout (vkDeviceWaitIdle has none).
+        // SAFETY: valid device; no other thread submits to this queue; the fence is destroyed
+        // only after it signalled (or, stuck, never).
+        unsafe {
+            let fence =
+                self.device.create_fence(&vk::FenceCreateInfo::default(), None).check("vkCreateFence")?;
+            self.device.queue_submit2(self.queue, &[], fence).check("vkQueueSubmit2")?;
+            match self.device.wait_for_fences(&[fence], true, self.fence_timeout_ns()) {
+                Err(vk::Result::TIMEOUT) => return Err(self.stuck_error()),
+                result => {
+                    self.device.destroy_fence(fence, None);
+                    result.check("vkWaitForFences")?;
+                }
+            }
+            self.device.device_wait_idle().check("vkDeviceWaitIdle")
+        }
     }
 
     /// Whether a submission outlived the timeout. The GPU may still be running it (a shader
@@ -312,6 +327,7 @@ impl GpuContext {
     /// Marks the device stuck and says so.
     pub(crate) fn stuck_error(&self) -> VkError {
         self.stuck.store(true, Ordering::Release);
+        ANY_STUCK.store(true, Ordering::Release);
         VkError::Stuck { seconds: self.timeout.as_secs_f64() }
     }
 
@@ -340,6 +356,15 @@ fn messenger_create_info(canary: &Arc<ValidationCanary>) -> vk::DebugUtilsMessen
         )
         .pfn_user_callback(Some(messenger_callback))
         .user_data(Arc::as_ptr(canary) as *mut std::ffi::c_void)
+}
+
+/// Set once any context's device is stuck: the process must then end through
+/// `exit_without_teardown`, whatever error it reports.
+static ANY_STUCK: AtomicBool = AtomicBool::new(false);
+
+/// Whether a device of this process got stuck.
+pub fn any_device_stuck() -> bool {
+    ANY_STUCK.load(Ordering::Acquire)
 }
 
 /// Ends the process with `code` without running exit handlers: after a stuck device, the

@@ -33,7 +33,9 @@ mod ui;
 pub use barrier::{Access, BufferBarrier, ImageBarrier};
 pub use buffer::{Buffer, BufferUsage, MemoryKind};
 pub use commands::{CommandSlot, Recorder};
-pub use context::{exit_without_teardown, ContextOptions, GpuContext, WindowHandles, DEFAULT_GPU_TIMEOUT};
+pub use context::{
+    any_device_stuck, exit_without_teardown, ContextOptions, GpuContext, WindowHandles, DEFAULT_GPU_TIMEOUT,
+};
 pub use debug::ValidationCanary;
 pub use device::{DeviceInfo, DeviceKind};
 pub use error::VkError;

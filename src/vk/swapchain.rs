@@ -159,16 +159,12 @@ impl Swapchain {
         let surface = ctx.surface.as_ref().expect("a swapchain exists only with a surface");
         // SAFETY: live swapchain; the semaphore is unsignalled (the previous use was waited on).
         match unsafe {
-            surface.swapchain_loader.acquire_next_image(
-                self.raw,
-                ctx.fence_timeout_ns(),
-                available.raw,
-                vk::Fence::null(),
-            )
+            // No timeout here: a hidden window can hold its images for any time, and a stuck
+            // frame is found by its fence first.
+            surface.swapchain_loader.acquire_next_image(self.raw, u64::MAX, available.raw, vk::Fence::null())
         } {
             Ok((index, _suboptimal)) => Ok(Acquired::Image(index)),
             Err(vk::Result::ERROR_OUT_OF_DATE_KHR) => Ok(Acquired::OutOfDate),
-            Err(vk::Result::TIMEOUT | vk::Result::NOT_READY) => Err(ctx.stuck_error()),
             Err(e) => Err(VkError::from_call("vkAcquireNextImageKHR", e)),
         }
     }
