@@ -5,6 +5,7 @@
 
 use clap::Parser;
 use msdsim::error::{exit, UserError};
+use msdsim::temporary::Interrupted;
 use std::io::Write as _;
 
 fn main() {
@@ -21,14 +22,12 @@ fn main() {
     };
     let code = match std::panic::catch_unwind(|| msdsim::cli::run(cli)) {
         Ok(Ok(())) => 0,
-        Ok(Err(e)) if e.chain().any(|c| c.is::<msdsim::temporary::Interrupted>()) => {
-            let signal =
-                e.chain().find_map(|c| c.downcast_ref::<msdsim::temporary::Interrupted>()).map_or(2, |i| i.0);
-            let _ = writeln!(std::io::stderr(), "msdsim: {e:#}");
-            let _ = std::io::stdout().flush();
-            msdsim::temporary::end_by_signal(signal);
-        }
         Ok(Err(e)) => {
+            if let Some(signal) = Interrupted::signal_of(&e) {
+                let _ = writeln!(std::io::stderr(), "msdsim: {e:#}");
+                let _ = std::io::stdout().flush();
+                msdsim::temporary::end_by_signal(signal);
+            }
             let line = format!("{e:#}").replace('\n', " ");
             let _ = writeln!(std::io::stderr(), "msdsim: error: {line}");
             if e.chain().any(|c| c.is::<msdsim::sim::stability::GuardTrip>()) {

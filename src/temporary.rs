@@ -12,9 +12,8 @@
 //!
 //! A command that can stop cleanly (a recording whose file is written at the end) holds a
 //! `Graceful` while it runs: the first SIGINT, SIGTERM or SIGHUP (the terminal closed) then only
-//! asks it to stop
-//! (`stop_requested`); it finishes what it has, and ends by the signal (`end_by_signal`). A
-//! second signal ends the process at once, as above.
+//! asks it to stop (`stop_requested`); it finishes what it has, and ends by the signal
+//! (`end_by_signal`). A second signal ends the process at once, as above.
 //!
 //! This module and `vk` are the only places with `unsafe`.
 
@@ -118,7 +117,14 @@ pub fn stop_requested() -> Option<i32> {
 #[error("stopped by {}", signal_name(*.0))]
 pub struct Interrupted(pub i32);
 
-pub fn signal_name(signal: i32) -> &'static str {
+impl Interrupted {
+    /// The signal, when `e` is (or was caused by) a stop it asked for.
+    pub fn signal_of(e: &anyhow::Error) -> Option<i32> {
+        e.chain().find_map(|c| c.downcast_ref::<Interrupted>()).map(|i| i.0)
+    }
+}
+
+fn signal_name(signal: i32) -> &'static str {
     match signal {
         libc::SIGINT => "SIGINT (Ctrl-C)",
         libc::SIGTERM => "SIGTERM",
@@ -129,12 +135,19 @@ pub fn signal_name(signal: i32) -> &'static str {
 
 /// Ends the process as `signal` would have (the shell then reports 128 + signal).
 pub fn end_by_signal(signal: i32) -> ! {
-    // SAFETY: plain libc calls; the default action of these signals ends the process.
+    raise_default(signal);
+    std::process::exit(128 + signal)
+}
+
+/// Restores `signal`'s default action and raises it (async-signal-safe). Inside its own
+/// handler the signal is blocked, so it is delivered when the handler returns.
+fn raise_default(signal: i32) {
+    // SAFETY: plain libc calls, async-signal-safe; the default action of these signals ends
+    // the process.
     unsafe {
         libc::signal(signal, libc::SIG_DFL);
         libc::raise(signal);
     }
-    std::process::exit(128 + signal)
 }
 
 extern "C" fn on_signal(signal: libc::c_int) {
@@ -149,12 +162,7 @@ extern "C" fn on_signal(signal: libc::c_int) {
             unsafe { libc::unlink(path.get().cast::<libc::c_char>()) };
         }
     }
-    // SAFETY: async-signal-safe calls; the signal is blocked in its own handler, so the raised
-    // one is delivered, with the default action, when the handler returns.
-    unsafe {
-        libc::signal(signal, libc::SIG_DFL);
-        libc::raise(signal);
-    }
+    raise_default(signal);
 }
 
 fn install_handlers() {

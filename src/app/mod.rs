@@ -16,6 +16,7 @@ pub use viewer::{preset_label, write_png};
 
 use crate::error::UserError;
 use crate::scene::{self, Scene};
+use crate::temporary::Interrupted;
 use crate::vk::ContextOptions;
 use anyhow::Result;
 use std::path::PathBuf;
@@ -82,6 +83,18 @@ impl Handler {
     }
 }
 
+impl Handler {
+    /// `stop` for a failure that ends the run with edits unsaved: they are saved first, and
+    /// the error says where.
+    fn stop_rescuing(&mut self, event_loop: &ActiveEventLoop, e: anyhow::Error) {
+        let e = match self.viewer.as_mut().and_then(|v| v.rescue_unsaved()) {
+            Some(rescued) => e.context(rescued),
+            None => e,
+        };
+        self.stop(event_loop, Some(e))
+    }
+}
+
 impl ApplicationHandler for Handler {
     fn resumed(&mut self, event_loop: &ActiveEventLoop) {
         if self.viewer.is_some() {
@@ -126,11 +139,11 @@ impl ApplicationHandler for Handler {
                             Some(crate::vk::VkError::Stuck { .. } | crate::vk::VkError::DeviceLost)
                         )
                     });
-                    let e = match gpu_gone.then(|| viewer.rescue_unsaved()).flatten() {
-                        Some(rescued) => e.context(rescued),
-                        None => e,
-                    };
-                    self.stop(event_loop, Some(e))
+                    if gpu_gone {
+                        self.stop_rescuing(event_loop, e)
+                    } else {
+                        self.stop(event_loop, Some(e))
+                    }
                 }
             }
             return;
@@ -144,13 +157,7 @@ impl ApplicationHandler for Handler {
         // SIGINT or SIGTERM: stop as the close button would, keeping a recording (written by
         // the teardown) and unsaved edits.
         if let Some(signal) = crate::temporary::stop_requested().filter(|_| self.error.is_none()) {
-            let stopped = anyhow::Error::from(crate::temporary::Interrupted(signal));
-            let rescued = self.viewer.as_mut().and_then(|v| v.rescue_unsaved());
-            let error = match rescued {
-                Some(r) => stopped.context(r),
-                None => stopped,
-            };
-            return self.stop(event_loop, Some(error));
+            return self.stop_rescuing(event_loop, Interrupted(signal).into());
         }
         if let Some(v) = &self.viewer {
             event_loop.set_control_flow(ControlFlow::Poll);
@@ -189,11 +196,10 @@ pub fn run(options: &ContextOptions, args: AppArgs, scene: Scene) -> Result<()> 
     }
     // A signal that came during the teardown (it was let finish) is a stop too.
     if let Some(signal) = crate::temporary::stop_requested().filter(|_| handler.error.is_none()) {
-        handler.error = Some(crate::temporary::Interrupted(signal).into());
+        handler.error = Some(Interrupted(signal).into());
     }
     // A stop by a signal is reported after the teardown's checks, which it also passes.
-    let interrupted =
-        handler.error.as_ref().is_some_and(|e| e.chain().any(|c| c.is::<crate::temporary::Interrupted>()));
+    let interrupted = handler.error.as_ref().and_then(Interrupted::signal_of).is_some();
     if let Some(e) = handler.error.take_if(|_| !interrupted) {
         return Err(e);
     }

@@ -252,7 +252,6 @@ impl Viewer {
             log::info!("{text}");
         }
         self.editor.notices.push(&text, error);
-        self.editor.message = Some((text, error));
     }
 
     /// Applies an edited scene, reporting refusals in the editor; false when refused.

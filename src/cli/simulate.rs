@@ -228,11 +228,10 @@ fn simulate(
     // Frames stay in flight as in the app: each submission first collects the frame that
     // used its slot, so timings (and a tripped guard) arrive a frame or two late.
     for frame in 1..=args.frames {
-        if graceful.is_some() {
-            interrupted = crate::temporary::stop_requested();
-            if interrupted.is_some() {
-                break;
-            }
+        // (Only a `Graceful` alive lets a signal ask for a stop.)
+        interrupted = crate::temporary::stop_requested();
+        if interrupted.is_some() {
+            break;
         }
         if let Some(t) = sim.submit_frame(ctx).with_context(|| format!("frame {frame}"))? {
             report(out, t)?;

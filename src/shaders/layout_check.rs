@@ -5,7 +5,7 @@
 //! member of another type (`uint mass`) is refused as a moved one is. Used by the tests and by
 //! hot reload, which refuses a header change that would break the host layout.
 
-use super::reflect::{bound_structs, struct_layouts, Scalar};
+use super::reflect::{reflect, Reflection, Scalar};
 use crate::sim::gpu_types::{
     Camera, Collider, Draw, Globals, GpuLayout, GpuScalar, ObjectParams, Particle, SurfaceVertex,
 };
@@ -39,18 +39,18 @@ pub fn host_layouts() -> Vec<HostLayout> {
 /// Names of the shared structs the module declares, or the first disagreement with the host.
 pub fn check(words: &[u32]) -> Result<Vec<&'static str>, String> {
     let host = host_layouts();
-    let layouts = struct_layouts(words);
-    for (place, name) in bound_structs(words) {
-        if !layouts.iter().any(|l| l.name == name) && host.iter().any(|h| h.name == name) {
-            return Err(format!(
-                "{place} holds struct `{name}`, whose layout cannot be read from the SPIR-V (an array length set by a specialization constant?)"
-            ));
-        }
+    let Reflection { layouts, bound } = reflect(words);
+    for (place, name) in bound {
         if !host.iter().any(|h| h.name == name) {
             let shared: Vec<&str> = host.iter().map(|h| h.name).collect();
             return Err(format!(
                 "{place} holds struct `{name}`, which is not one the host shares ({}): a renamed struct's layout cannot be checked",
                 shared.join(", ")
+            ));
+        }
+        if !layouts.iter().any(|l| l.name == name) {
+            return Err(format!(
+                "{place} holds struct `{name}`, whose layout cannot be read from the SPIR-V (an array length set by a specialization constant?)"
             ));
         }
     }
@@ -76,21 +76,16 @@ pub fn check(words: &[u32]) -> Result<Vec<&'static str>, String> {
                 ));
             }
         }
-        let kind = |s: GpuScalar| match s {
-            GpuScalar::F32 => Scalar::F32,
-            GpuScalar::U32 => Scalar::U32,
-            GpuScalar::I32 => Scalar::I32,
-        };
-        let host_scalars: Vec<(u32, Scalar)> = scalars.iter().map(|&(o, s)| (o as u32, kind(s))).collect();
+        let host_scalars: Vec<(u32, Scalar)> = scalars.iter().map(|&(o, s)| (o as u32, Some(s))).collect();
         if layout.scalars != host_scalars {
             let at = layout.scalars.iter().zip(&host_scalars).position(|(a, b)| a != b);
             let word = |v: &[(u32, Scalar)], k: Option<usize>| {
                 k.and_then(|k| v.get(k)).map_or("nothing".to_string(), |(o, s)| {
                     let glsl = match s {
-                        Scalar::F32 => "a float",
-                        Scalar::U32 => "a uint",
-                        Scalar::I32 => "an int",
-                        Scalar::Other => "a scalar the host has no type for",
+                        Some(GpuScalar::F32) => "a float",
+                        Some(GpuScalar::U32) => "a uint",
+                        Some(GpuScalar::I32) => "an int",
+                        None => "a scalar the host has no type for",
                     };
                     format!("{glsl} at byte {o}")
                 })

@@ -3,7 +3,11 @@
 //! buffers and push constants hold, so tests and hot reload can check the GLSL header against
 //! the Rust mirrors in `sim::gpu_types` whatever the shader calls its types.
 
+use crate::sim::gpu_types::GpuScalar;
 use std::collections::HashMap;
+
+/// A scalar as the module has it: one the host has a type for, or `None` (another width).
+pub type Scalar = Option<GpuScalar>;
 
 const OP_NAME: u32 = 5;
 const OP_MEMBER_NAME: u32 = 6;
@@ -27,16 +31,6 @@ const DECORATION_OFFSET: u32 = 35;
 const STORAGE_UNIFORM: u32 = 2;
 const STORAGE_PUSH_CONSTANT: u32 = 9;
 const STORAGE_STORAGE_BUFFER: u32 = 12;
-
-/// A 32-bit scalar's kind: what the host must write there.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Scalar {
-    F32,
-    U32,
-    I32,
-    /// Any other width or type (the host has none).
-    Other,
-}
 
 /// One struct type as the SPIR-V lays it out.
 #[derive(Debug, Clone, PartialEq)]
@@ -119,14 +113,14 @@ impl Module {
                 }
                 OP_TYPE_INT if a.len() >= 3 => {
                     let kind = match (a[1], a[2]) {
-                        (32, 0) => Scalar::U32,
-                        (32, _) => Scalar::I32,
-                        _ => Scalar::Other,
+                        (32, 0) => Some(GpuScalar::U32),
+                        (32, _) => Some(GpuScalar::I32),
+                        _ => None,
                     };
                     m.types.insert(a[0], Type::Scalar(kind));
                 }
                 OP_TYPE_FLOAT if a.len() >= 2 => {
-                    let kind = if a[1] == 32 { Scalar::F32 } else { Scalar::Other };
+                    let kind = (a[1] == 32).then_some(GpuScalar::F32);
                     m.types.insert(a[0], Type::Scalar(kind));
                 }
                 OP_TYPE_VECTOR if a.len() >= 3 => {
@@ -215,9 +209,21 @@ impl Module {
     }
 }
 
-/// Every named struct type in the module that carries explicit offsets.
-pub fn struct_layouts(words: &[u32]) -> Vec<StructLayout> {
+/// What the layout check reads from a module.
+pub struct Reflection {
+    /// Every named struct type in the module that carries explicit offsets.
+    pub layouts: Vec<StructLayout>,
+    /// The structs that the module's buffers, uniforms and push constants hold (`bound_structs`).
+    pub bound: Vec<(String, String)>,
+}
+
+/// Reads `words` once for both.
+pub fn reflect(words: &[u32]) -> Reflection {
     let m = Module::read(words);
+    Reflection { layouts: struct_layouts(&m), bound: bound_structs(&m) }
+}
+
+fn struct_layouts(m: &Module) -> Vec<StructLayout> {
     m.structs
         .iter()
         .filter_map(|&id| {
@@ -246,8 +252,7 @@ pub fn struct_layouts(words: &[u32]) -> Vec<StructLayout> {
 /// blocks: (where, e.g. "binding 2", the struct's name in the module, "" when it has none).
 /// A push-constant block is listed itself (its own name is the shared struct) unless it holds
 /// only uint words, as the compute passes' do.
-pub fn bound_structs(words: &[u32]) -> Vec<(String, String)> {
-    let m = Module::read(words);
+fn bound_structs(m: &Module) -> Vec<(String, String)> {
     let mut found = Vec::new();
     for &(pointer, storage, var) in &m.variables {
         if ![STORAGE_UNIFORM, STORAGE_STORAGE_BUFFER, STORAGE_PUSH_CONSTANT].contains(&storage) {
@@ -265,7 +270,7 @@ pub fn bound_structs(words: &[u32]) -> Vec<(String, String)> {
             // shared struct.
             let mut scalars = Vec::new();
             let words = m.flatten(*block, 0, None, &mut scalars).is_some()
-                && scalars.iter().all(|(_, s)| *s == Scalar::U32);
+                && scalars.iter().all(|(_, s)| *s == Some(GpuScalar::U32));
             if !words {
                 found.push((place.clone(), name(block)));
             }

@@ -48,9 +48,8 @@ pub struct EditorState {
     pub selected: Selection,
     pub preset_path: String,
     pub cloth_preset_path: String,
-    /// The last status line and whether it is an error.
-    pub message: Option<(String, bool)>,
-    /// Every message: the newest over the view for a few seconds, all in the Log window.
+    /// Every message (the last is the status line under the Scene panel): the newest over the
+    /// view for a few seconds, all in the Log window.
     pub notices: super::notices::Notices,
     /// The point the camera looks at, where new objects are placed [m].
     pub look_at: [f64; 3],
@@ -189,8 +188,8 @@ pub fn build(ui: &Ui, state: &mut EditorState, scene: &mut Scene, stats: &Stats)
             if ui.small_button(format!("Log ({})###log", state.notices.len())) {
                 state.notices.show_log = !state.notices.show_log;
             }
-            if let Some((text, error)) = &state.message {
-                let colour = if *error { [1.0, 0.45, 0.4, 1.0] } else { [0.6, 0.9, 0.6, 1.0] };
+            if let Some((text, error)) = state.notices.last() {
+                let colour = if error { [1.0, 0.45, 0.4, 1.0] } else { [0.6, 0.9, 0.6, 1.0] };
                 ui.same_line();
                 ui.text_wrapped_colored(colour, text);
             }

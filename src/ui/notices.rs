@@ -44,6 +44,11 @@ impl Notices {
         }
     }
 
+    /// The newest message: (text, error).
+    pub fn last(&self) -> Option<(&str, bool)> {
+        self.entries.last().map(|e| (e.text.as_str(), e.error))
+    }
+
     pub fn len(&self) -> usize {
         self.entries.len()
     }
@@ -56,7 +61,7 @@ impl Notices {
     pub fn current(&self, now: Instant) -> Option<(&str, bool)> {
         let last = self.entries.last()?;
         let keep = if last.error { ERROR_NOTICE } else { NOTICE };
-        (now.duration_since(last.at) < keep).then_some((last.text.as_str(), last.error))
+        (now.duration_since(last.at) < keep).then(|| self.last()).flatten()
     }
 
     /// Draws the notice over the free part of the view (`free`: x0, y0, x1, y1 in pixels) and,

@@ -103,14 +103,7 @@ impl CommandSlot {
     /// Waits for the last submission to finish.
     pub fn wait(&mut self, ctx: &GpuContext) -> Result<(), VkError> {
         if self.pending {
-            if ctx.stuck() {
-                return Err(ctx.stuck_error());
-            }
-            // SAFETY: the fence belongs to this device and was submitted.
-            match unsafe { ctx.device.wait_for_fences(&[self.fence], true, ctx.fence_timeout_ns()) } {
-                Err(vk::Result::TIMEOUT) => return Err(ctx.stuck_error()),
-                result => result.check("vkWaitForFences")?,
-            }
+            ctx.wait_fence(self.fence)?;
             self.pending = false;
         }
         Ok(())

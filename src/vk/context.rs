@@ -300,14 +300,22 @@ impl GpuContext {
             let fence =
                 self.device.create_fence(&vk::FenceCreateInfo::default(), None).check("vkCreateFence")?;
             self.device.queue_submit2(self.queue, &[], fence).check("vkQueueSubmit2")?;
-            match self.device.wait_for_fences(&[fence], true, self.fence_timeout_ns()) {
-                Err(vk::Result::TIMEOUT) => return Err(self.stuck_error()),
-                result => {
-                    self.device.destroy_fence(fence, None);
-                    result.check("vkWaitForFences")?;
-                }
-            }
+            self.wait_fence(fence)?;
+            self.device.destroy_fence(fence, None);
             self.device.device_wait_idle().check("vkDeviceWaitIdle")
+        }
+    }
+
+    /// Waits for a submitted `fence` with the timeout; past it, or when the device is already
+    /// stuck, the device is stuck (`stuck`) and the fence must not be destroyed.
+    pub(crate) fn wait_fence(&self, fence: vk::Fence) -> Result<(), VkError> {
+        if self.stuck() {
+            return Err(self.stuck_error());
+        }
+        // SAFETY: the fence belongs to this device and was submitted.
+        match unsafe { self.device.wait_for_fences(&[fence], true, self.fence_timeout_ns()) } {
+            Err(vk::Result::TIMEOUT) => Err(self.stuck_error()),
+            result => result.check("vkWaitForFences"),
         }
     }
 
@@ -320,7 +328,7 @@ impl GpuContext {
         self.stuck.load(Ordering::Acquire)
     }
 
-    pub(crate) fn fence_timeout_ns(&self) -> u64 {
+    fn fence_timeout_ns(&self) -> u64 {
         self.timeout.as_nanos().min(u64::MAX as u128) as u64
     }
 

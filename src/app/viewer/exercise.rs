@@ -107,7 +107,7 @@ impl Viewer {
                 let _ = std::fs::remove_file(&saved);
                 let _ = std::fs::remove_file(&shot);
                 let _ = std::fs::remove_file(saved.with_extension("usda"));
-                if let Some((text, true)) = &self.editor.message {
+                if let Some((text, true)) = self.editor.notices.last() {
                     anyhow::bail!("exercise: the editor reported an error: {text}");
                 }
             }
@@ -131,7 +131,7 @@ impl Viewer {
             // second press would quit; the exercise goes on instead).
             74 => {
                 let quit = self.handle_event(&winit::event::WindowEvent::CloseRequested);
-                let asked = self.editor.message.as_ref().is_some_and(|(m, _)| m.contains("unsaved edits"));
+                let asked = self.editor.notices.last().is_some_and(|(m, _)| m.contains("unsaved edits"));
                 expect(self.host(), "closing with unsaved edits asking first", !quit && asked)?;
             }
             // It moved along x only, and the rope lying on it came along (friction).
@@ -148,7 +148,7 @@ impl Viewer {
                     &format!("the rope on the dragged sphere moving with it ({rope_x} m)"),
                     dragged,
                 )?;
-                if let Some((text, true)) = &self.editor.message {
+                if let Some((text, true)) = self.editor.notices.last() {
                     anyhow::bail!("exercise: the editor reported an error: {text}");
                 }
                 self.input.actions.push(KeyAction::Undo);
