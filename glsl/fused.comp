@@ -215,7 +215,7 @@ void main() {
     lists_built = LISTED && hashed && self_list[LIST_VALID] == 1u;
     bool stretch = has(F_STRETCH) && (obj.flags & OBJ_STRETCH_LIMIT) != 0u;
     bool self_any = has(F_SELF) && (obj.flags & OBJ_SELF_COLLISION) != 0u;
-    bool self_triangles_on = self_any && has_triangles();
+    bool self_triangles_on = self_any && triangle_contact();
     bool neighbours = stretch || self_any || has(F_EDGES);  // the constraints read other particles
     float drift = physics_drift();
     // The physics (or the prediction) reads the neighbours' velocities: the dashpots, unless
@@ -523,28 +523,22 @@ void main() {
         if (self_triangles_on) {
             // A cloth's contact with its own triangles (self_contact.glsl): every particle
             // finds and counts its contacts, then applies them, into sums in self_pairs that
-            // the constraints read (global memory: a buffer barrier with each barrier).
-            [[unroll]] for (uint s = 0u; s < MAX_SLOTS; ++s) {
-                if (s >= SLOTS) break;
-                uint k = own[s];
-                if (k >= n) continue;
-                list_particle = k;
-                list_len = LISTED && hashed && !list_rebuild ? floatBitsToUint(header[s].w) : 0u;
-                self_find(cells[s], k, x[s], began[s]);
-                if (LISTED && hashed && list_build) header[s] = set_list_header(k, x[s], list_len);
+            // the constraints read (global memory: a buffer barrier with each barrier). The
+            // two passes are one loop, so that the contact tests are compiled once.
+            [[dont_unroll]] for (uint pass = 0u; pass < 2u; ++pass) {
+                bool apply = pass == 1u;
+                [[unroll]] for (uint s = 0u; s < MAX_SLOTS; ++s) {
+                    if (s >= SLOTS) break;
+                    uint k = own[s];
+                    if (k >= n) continue;
+                    list_particle = k;
+                    list_len = LISTED && hashed && !list_rebuild ? floatBitsToUint(header[s].w) : 0u;
+                    self_pass(cells[s], k, x[s], began[s], apply);
+                    if (!apply && LISTED && hashed && list_build) header[s] = set_list_header(k, x[s], list_len);
+                }
+                memoryBarrierBuffer();
+                barrier();
             }
-            memoryBarrierBuffer();
-            barrier();
-            [[unroll]] for (uint s = 0u; s < MAX_SLOTS; ++s) {
-                if (s >= SLOTS) break;
-                uint k = own[s];
-                if (k >= n) continue;
-                list_particle = k;
-                list_len = LISTED && hashed && !list_rebuild ? floatBitsToUint(header[s].w) : 0u;
-                self_apply(cells[s], k, x[s]);
-            }
-            memoryBarrierBuffer();
-            barrier();
         }
         [[unroll]] for (uint s = 0u; s < MAX_SLOTS; ++s) {
             if (s >= SLOTS) break;

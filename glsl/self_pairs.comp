@@ -34,10 +34,6 @@ void main() {
     uint i = cell.x + cell.y * obj.dims.x;
     vec3 x = p_in[i].pos.xyz;
     list_state(i, pc.substep, self_hashed(), LISTS);
-    if (APPLY) {
-        self_apply(cell, i, x);
-        return;
-    }
-    self_find(cell, i, x, p_out[i].pos.xyz);  // (p_out: the substep's start)
-    if (list_build) set_list_header(i, x, list_len);
+    self_pass(cell, i, x, p_out[i].pos.xyz, APPLY);  // (p_out: the substep's start)
+    if (!APPLY && list_build) set_list_header(i, x, list_len);
 }

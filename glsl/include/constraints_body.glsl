@@ -39,12 +39,19 @@ bool list_build;
 #endif
 #include "self_contact.glsl"
 
+// Whether this pipeline's self-contact is against triangles. The stages that include this
+// file (constraints, self pairs, fused) are specialized with their object's own features,
+// and F_TRIANGLES is set exactly where the object asks for triangles (has_triangles() reads
+// the same from its flags), so the choice is made when the pipeline is compiled and only one
+// of the two searches is in it.
+bool triangle_contact() { return has(F_TRIANGLES); }
+
 // Whether particle j is nearer than `reach` to `cell` in the rest state (or is that particle):
 // such pairs never push, the springs keep them apart. In a cloth (whose candidates are the
 // vertices of its triangles, self_contact.glsl), whether j is in the particle's one-ring: all
 // its triangles are left out.
 bool rest_neighbour(uvec2 cell, uint j, float reach) {
-    if (has_triangles()) return in_one_ring(cell, j);
+    if (triangle_contact()) return in_one_ring(cell, j);
     ivec2 other = ivec2(int(j % obj.dims.x), int(j / obj.dims.x));
     vec2 rest = vec2(other - ivec2(cell)) * obj.spacing;
     return dot(rest, rest) < reach * reach;
@@ -64,7 +71,7 @@ void self_push(vec3 x, uint j, float reach, inout vec3 correction, inout uint n_
 // rest-state neighbour: in a rope its push when within `reach`, in a cloth the find pass's
 // visit of j's triangles (which records the list's entries itself).
 void self_candidate(uvec2 cell, vec3 x, uint j, float d, float reach, inout vec3 correction, inout uint n_active) {
-    if (has_triangles()) {
+    if (triangle_contact()) {
         self_triangles(cell, x, j, list_build ? (1.0 + LIST_SKIN) * obj.self_distance : 0.0);
         return;
     }
@@ -78,7 +85,7 @@ void self_candidate(uvec2 cell, vec3 x, uint j, float d, float reach, inout vec3
 // A contact list's entry e of the particle at x: a rope's particle or a cloth's triangle.
 void self_listed(vec3 x, uint e, float reach, inout vec3 correction, inout uint n_active) {
     uint entry = self_list[list_entry(e, list_particle, particle_count())];
-    if (has_triangles()) {
+    if (triangle_contact()) {
         test_pair(x, entry);
     } else {
         self_push(x, entry, reach, correction, n_active);
@@ -100,17 +107,27 @@ void visit_range(uint from, uint to, uvec2 cell, vec3 x, float reach, inout vec3
 #endif
 void visit_cells(uvec2 cell, vec3 x, float reach, inout vec3 correction, inout uint n_active) {
     ivec3 base = ivec3(floor(x * CELL_INV - 0.5));
+    // The buckets (fused) or runs of sorted candidates (per stage) are gathered first and
+    // visited in one loop, so that the visit, with every contact test in it, is compiled once
+    // (unrolled over the cells it made the fused kernel's triangle contact take a minute to
+    // compile on lavapipe).
 #ifdef FUSED_SHARED
     uint seen[8];
+    uint count = 0u;
     [[unroll]] for (int c = 0; c < 8; ++c) {
         uint h = cell_hash(base + ivec3(c & 1, (c >> 1) & 1, c >> 2), HASH_MASK);
-        seen[c] = h;
         bool again = false;
-        for (int k = 0; k < c; ++k) again = again || seen[k] == h;
-        if (!again) visit_bucket(h, cell, x, reach, correction, n_active);
+        for (uint k = 0u; k < count; ++k) again = again || seen[k] == h;
+        if (!again) {
+            seen[count] = h;
+            count += 1u;
+        }
     }
+    for (uint k = 0u; k < count; ++k) visit_bucket(seen[k], cell, x, reach, correction, n_active);
 #else
     uint seen[4];
+    uvec2 runs[8];
+    uint count = 0u;
     [[unroll]] for (int c = 0; c < 4; ++c) {
         uint h = cell_hash(base + ivec3(0, c & 1, c >> 1), HASH_MASK);
         seen[c] = h;
@@ -122,12 +139,21 @@ void visit_cells(uvec2 cell, vec3 x, float reach, inout vec3 correction, inout u
             a1 = a1 || d == 0u || d == HASH_MASK;
         }
         if (!a0 && !a1 && h < HASH_MASK) {
-            visit_range(BUCKET_START(h, HASH_MASK), BUCKET_START(h + 2u, HASH_MASK), cell, x, reach, correction, n_active);
+            runs[count] = uvec2(BUCKET_START(h, HASH_MASK), BUCKET_START(h + 2u, HASH_MASK));
+            count += 1u;
         } else {
-            if (!a0) visit_bucket(h, cell, x, reach, correction, n_active);
-            if (!a1) visit_bucket((h + 1u) & HASH_MASK, cell, x, reach, correction, n_active);
+            if (!a0) {
+                runs[count] = uvec2(BUCKET_START(h, HASH_MASK), BUCKET_START(h + 1u, HASH_MASK));
+                count += 1u;
+            }
+            if (!a1) {
+                uint h1 = (h + 1u) & HASH_MASK;
+                runs[count] = uvec2(BUCKET_START(h1, HASH_MASK), BUCKET_START(h1 + 1u, HASH_MASK));
+                count += 1u;
+            }
         }
     }
+    for (uint k = 0u; k < count; ++k) visit_range(runs[k].x, runs[k].y, cell, x, reach, correction, n_active);
 #endif
 }
 
@@ -152,37 +178,42 @@ void self_search(uvec2 cell, vec3 x, inout vec3 correction, inout uint n_active)
     }
 }
 
-// The find pass of a cloth's self-contact (self_contact.glsl) for particle i at `cell`, at x,
-// which began the substep at `start`.
-void self_find(uvec2 cell, uint i, vec3 x, vec3 start) {
-    set_pair_start(i, start);
-    pair_particle = i;
-    pair_x = x;
-    pair_len = 0u;
-    vec3 unused = vec3(0.0);
-    uint unused_count = 0u;
-    self_search(cell, x, unused, unused_count);
-    self_pairs[pairs_len_word(i)] = int(pair_len);
-}
-
-// The apply pass for particle i at `cell`, at x: the contacts it kept, or when it found more
-// than it keeps, all of them searched again (without recording contact lists).
-void self_apply(uvec2 cell, uint i, vec3 x) {
-    uint len = uint(self_pairs[pairs_len_word(i)]);
-    if (len <= PAIR_MAX) {
-        for (uint k = 0u; k < len; ++k) apply_contact(i, x, uint(self_pairs[pair_word(k, i)]));
-        return;
-    }
-    pair_particle = i;
-    pair_x = x;
-    apply_pass = true;
-    bool building = list_build;
-    list_build = false;
-    vec3 unused = vec3(0.0);
-    uint unused_count = 0u;
-    self_search(cell, x, unused, unused_count);
-    list_build = building;
-    apply_pass = false;
+// A pass of a cloth's self-contact (self_contact.glsl) for particle i at `cell`, at x: the
+// find pass (`apply` false; the particle began the substep at `start`) searches for its
+// contacts, keeps and counts them; the apply pass applies those it kept, or when it found
+// more than it keeps, searches again (without recording contact lists) for each further
+// PAIR_MAX of them in the order that search finds them. Both passes search and apply in one
+// place each, so that the compiled kernel holds the contact tests once.
+void self_pass(uvec2 cell, uint i, vec3 x, vec3 start, bool apply) {
+    uint len = apply ? uint(self_pairs[pairs_len_word(i)]) : 0u;
+    bool search = !apply || len > PAIR_MAX;
+    if (!apply) set_pair_start(i, start);
+    uint from = 0u;
+    do {
+        if (search) {
+            pair_particle = i;
+            pair_x = x;
+            pair_len = 0u;
+            pair_skip = from;
+            apply_pass = apply;
+            bool building = list_build;
+            list_build = building && !apply;
+            vec3 unused = vec3(0.0);
+            uint unused_count = 0u;
+            self_search(cell, x, unused, unused_count);
+            list_build = building;
+            apply_pass = false;
+            pair_skip = 0u;
+            if (!apply) {
+                self_pairs[pairs_len_word(i)] = int(pair_len);
+                return;
+            }
+            len = pair_len;
+        }
+        uint batch = min(len - from, PAIR_MAX);
+        for (uint k = 0u; k < batch; ++k) apply_contact(i, x, uint(self_pairs[pair_word(k, i)]));
+        from += PAIR_MAX;
+    } while (from < len);
 }
 
 // The part of the last constraint_correction that moves the position only, not the velocity
@@ -218,11 +249,11 @@ vec3 constraint_correction(uvec2 cell, vec3 x) {
     // already keep. A cloth's contact with its own triangles was summed by its passes
     // (self_contact.glsl) and is added below.
     bool self_on = has(F_SELF) && (obj.flags & OBJ_SELF_COLLISION) != 0u;
-    if (self_on && !has_triangles()) self_search(cell, x, correction, n_active);
+    if (self_on && !triangle_contact()) self_search(cell, x, correction, n_active);
 
     if (n_active > 1u) correction /= float(n_active);
 
-    if (self_on && has_triangles()) correction += self_take(cell.x + cell.y * obj.dims.x, position_only);
+    if (self_on && triangle_contact()) correction += self_take(cell.x + cell.y * obj.dims.x, position_only);
 
     // Inter-object contact: what contact.comp summed from the other objects' particles, added
     // whole (each pair's share is already split so that the pair conserves momentum).
@@ -290,7 +321,7 @@ void visit_range(uint from, uint end, uvec2 cell, vec3 x, float reach, inout vec
         float d = distance(e.xyz, x);
         uint j = floatBitsToUint(e.w);
         if (d < listed && !rest_neighbour(cell, j, obj.self_distance)) {
-            if (has_triangles()) {
+            if (triangle_contact()) {
                 self_triangles(cell, x, j, list_build ? (1.0 + LIST_SKIN) * obj.self_distance : 0.0);
                 continue;
             }
@@ -341,7 +372,7 @@ void constraints_particle(uvec2 cell, uint substep, bool lists) {
     }
     vec3 x = p.pos.xyz;
     vec3 v = p.vel.xyz;
-    bool listed = has(F_SELF) && self_hashed() && !has_triangles();  // (a cloth's: self_pairs.comp)
+    bool listed = has(F_SELF) && self_hashed() && !triangle_contact();  // (a cloth's: self_pairs.comp)
     list_state(i, substep, listed, lists);
     vec3 correction = constraint_correction(cell, x);
     if (list_build) set_list_header(i, x, list_len);

@@ -30,14 +30,15 @@
 //
 // Three passes a substep (per stage: self_pairs.comp twice, then the constraints; fused: phases
 // between barriers):
-// 1. find (self_find): each particle, pinned too, notes where it began the substep (the
-//    approach and friction read it) and finds its triangles within h through the spatial
-//    hash (a triangle within h has its nearest vertex within self_reach(), lists.glsl; it is
-//    tested once, from that vertex) or its contact list, which holds the triangles within h
-//    plus the skin; it keeps up to PAIR_MAX contacts and counts each in its free particles;
-// 2. apply (self_apply): each particle computes its contacts again (those it kept; one that
-//    found more searches again) and adds every particle's move to its sum, in fixed point
-//    (exact, order-independent integer atomics);
+// 1. find (self_pass, constraints_body.glsl): each particle, pinned too, notes where it began
+//    the substep (the approach and friction read it) and finds its triangles within h through
+//    the spatial hash (a triangle within h has its nearest vertex within self_reach(),
+//    lists.glsl; it is tested once, from that vertex) or its contact list, which holds the
+//    triangles within h plus the skin; it keeps up to PAIR_MAX contacts and counts each in its
+//    free particles;
+// 2. apply (self_pass): each particle computes its contacts again (those it kept; one that
+//    found more searches again for each further PAIR_MAX) and adds every particle's move to its
+//    sum, in fixed point (exact, order-independent integer atomics);
 // 3. the constraint stage adds its particle's sum to its correction whole and clears it
 //    (self_take).
 // The CPU twin is sim::cpu::self_contact. Buffer self_pairs (binding 17), n particles: words
@@ -120,14 +121,16 @@ float pair_distance(vec3 x, uint t, out uvec3 tv, out vec3 w, out vec3 n) {
     return d;
 }
 
-// The particle whose contacts the find pass collects (at pair_x), how many it finds, and
-// whether the search applies them instead (apply_pass: a particle with more than PAIR_MAX).
+// The particle whose contacts the search collects (at pair_x), how many it finds, and
+// whether it is the apply pass's search again (apply_pass: a particle with more than
+// PAIR_MAX), which counts nothing.
 uint pair_particle;
 vec3 pair_x;
 uint pair_len;
 bool apply_pass = false;
-
-void apply_contact(uint p, vec3 x, uint t);
+// In the apply pass's search, the contacts before pair_skip were applied already: the next
+// PAIR_MAX are noted in the particle's slots.
+uint pair_skip = 0u;
 
 // A contact's weight in its particles' counts, in units of 2^-16 (sim::cpu::self_contact's
 // `count_weight`): 1 once the overlap reaches a tenth of h, less before, so that a contact
@@ -136,18 +139,17 @@ int count_weight(float overlap) { return int(round(65536.0 * min(1.0, overlap / 
 // A free particle's count of contacts (at least 1).
 float split_count(uint i) { return max(1.0, float(self_pairs[4u * i + 3u]) * (1.0 / 65536.0)); }
 
-// Contact (pair_particle, t; overlap h - d): in the find pass counted in its free particles
-// and kept while fewer than PAIR_MAX are; in the apply pass's search, applied.
+// Contact (pair_particle, t; overlap h - d), the pair_len-th found: noted in the particle's
+// slots when among the PAIR_MAX from pair_skip on, and in the find pass counted in its free
+// particles (the apply pass applies what the slots hold).
 void keep_pair(uint t, uvec3 tv, float d) {
     bool free_p = !CPINNED(pair_particle);
     bvec3 free_t = bvec3(!CPINNED(tv.x), !CPINNED(tv.y), !CPINNED(tv.z));
     if (!(free_p || any(free_t))) return;
-    if (apply_pass) {
-        apply_contact(pair_particle, pair_x, t);
-        return;
-    }
-    if (pair_len < PAIR_MAX) self_pairs[pair_word(pair_len, pair_particle)] = int(t);
+    uint slot = pair_len - pair_skip;
+    if (pair_len >= pair_skip && slot < PAIR_MAX) self_pairs[pair_word(slot, pair_particle)] = int(t);
     pair_len += 1u;
+    if (apply_pass) return;
     int weight = count_weight(obj.self_distance - d);
     if (free_p) atomicAdd(self_pairs[4u * pair_particle + 3u], weight);
     [[unroll]] for (int k = 0; k < 3; ++k) {
