@@ -139,35 +139,71 @@ fn contact_between_layers_conserves_momentum() {
 /// towards the back at `speed` and sideways at a quarter of it, jittered by up to 2 mm,
 /// contact against triangles at 3 cm with friction 0.5.
 fn fold(gap: f64, speed: f64) -> SimModel {
-    let mut c = cloth(13, 10, 0.05);
+    fold_of(0.05, 0.03, gap, speed)
+}
+
+/// The same fold with the particles `spacing` apart and contact at `h`.
+fn fold_of(spacing: f64, h: f64, gap: f64, speed: f64) -> SimModel {
+    let mut c = cloth(13, 10, spacing);
     for (i, p) in c.positions.iter_mut().enumerate() {
         let (col, row) = ((i % 13) as f64, (i / 13) as i64);
         let (rows_down, z) = if row <= 4 { (row, 0.0) } else { (9 - row, gap) };
         let k = i as u64 * 3;
         let jitter = DVec3::new(noise(k), noise(k + 1), noise(k + 2)) * 0.002;
-        *p = DVec3::new(col * 0.05, 1.0 - rows_down as f64 * 0.05, z) + jitter;
+        *p = DVec3::new(col * spacing, 1.0 - rows_down as f64 * spacing, z) + jitter;
     }
     for v in &mut c.velocities[5 * 13..] {
         *v = DVec3::new(0.25 * speed, 0.0, -speed);
     }
     c.stiffness = [60.0, 20.0, 0.0];
     c.friction = 0.5;
-    c.self_distance = Some(0.03);
+    c.self_distance = Some(h);
     c.triangle_contact = true;
     scene(vec![c])
 }
 
+/// The most contacts any particle of object 0 has at the start (triangles nearer than its
+/// self-collision distance with no vertex in the particle's one-ring).
+fn most_contacts(s: &SimModel) -> usize {
+    use msdsim::sim::cpu::self_contact::{cloth_triangles, triangle_nearest};
+    let o = &s.objects[0];
+    let (cols, h) = (o.dims[0] as usize, o.self_distance.unwrap());
+    let tris = cloth_triangles(cols, o.dims[1] as usize);
+    let ring = |a: usize, b: usize| {
+        let (ca, ra, cb, rb) = ((a % cols) as i64, (a / cols) as i64, (b % cols) as i64, (b / cols) as i64);
+        (ca - cb).abs() <= 1 && (ra - rb).abs() <= 1
+    };
+    (0..o.positions.len())
+        .map(|p| {
+            let x = o.positions[p];
+            tris.iter()
+                .filter(|(_, t)| !t.iter().any(|&k| ring(p, k)))
+                .filter(|(_, t)| {
+                    let [a, b, c] = t.map(|k| o.positions[k]);
+                    let w = triangle_nearest(x, a, b, c);
+                    x.distance(w.x * a + w.y * b + w.z * c) < h
+                })
+                .count()
+        })
+        .max()
+        .unwrap_or(0)
+}
+
 /// The GPU against the CPU reference (which tests every particle against every triangle),
 /// frame by frame from the same state: a fold whose layers start inside each other's thickness
-/// (1.5 cm apart), and one thrown together from 7 cm at 4 m/s (contact lists rebuilt within
-/// frames); every search (every pair, the hash; per stage with contact lists on and off) and
+/// (1.5 cm apart), one thrown together from 7 cm at 4 m/s (contact lists rebuilt within
+/// frames), and a dense one (1 cm spacing, 1.9 cm thickness, layers 5 mm apart: particles with
+/// more contacts than the 16 a particle keeps, which the apply pass finds again); every search (every pair, the hash; per stage with contact lists on and off) and
 /// both paths. Within 1e-4 m a frame (f32 against f64; the contacts' sums are exact integers on
 /// the GPU, so every GPU path gives the same state).
 #[test]
 fn the_gpu_finds_the_contacts_the_reference_finds() {
     use msdsim::sim::model::SelfCollisionMethod;
     let ctx = gpu();
-    for (name, s) in [("inside", fold(0.015, 0.0)), ("thrown", fold(0.07, 4.0))] {
+    let dense = fold_of(0.01, 0.019, 0.005, 0.0);
+    let most = most_contacts(&dense);
+    assert!(most > 16, "the dense fold should give particles more than 16 contacts, not {most}");
+    for (name, s) in [("inside", fold(0.015, 0.0)), ("thrown", fold(0.07, 4.0)), ("dense", dense)] {
         let mut states = Vec::new();
         for (method, fused, lists) in [
             (SelfCollisionMethod::BruteForce, true, None),

@@ -180,17 +180,18 @@ void self_search(uvec2 cell, vec3 x, inout vec3 correction, inout uint n_active)
 
 // A pass of a cloth's self-contact (self_contact.glsl) for particle i at `cell`, at x: the
 // find pass (`apply` false; the particle began the substep at `start`) searches for its
-// contacts, keeps and counts them; the apply pass applies those it kept, or when it found
-// more than it keeps, searches again (without recording contact lists) for each further
-// PAIR_MAX of them in the order that search finds them. Both passes search and apply in one
-// place each, so that the compiled kernel holds the contact tests once.
+// contacts, keeps the first PAIR_MAX and counts them all; the apply pass applies those it
+// kept and, when it found more, searches again (without recording contact lists) for each
+// further PAIR_MAX of them. Both passes find the same contacts in the same order (the same
+// positions and candidates: the contact list, or the hash's buckets in the same order). The
+// search and the application are each in one place, so the compiled kernel holds the contact
+// tests once.
 void self_pass(uvec2 cell, uint i, vec3 x, vec3 start, bool apply) {
     uint len = apply ? uint(self_pairs[pairs_len_word(i)]) : 0u;
-    bool search = !apply || len > PAIR_MAX;
     if (!apply) set_pair_start(i, start);
     uint from = 0u;
     do {
-        if (search) {
+        if (!apply || from > 0u) {
             pair_particle = i;
             pair_x = x;
             pair_len = 0u;
