@@ -34,6 +34,7 @@ void main() {
     uint i = cell.x + cell.y * obj.dims.x;
     vec3 x = p_in[i].pos.xyz;
     list_state(i, pc.substep, self_hashed(), LISTS);
-    self_pass(cell, i, x, p_out[i].pos.xyz, APPLY);  // (p_out: the substep's start)
+    // (p_out: the substep's start, which only the find pass notes)
+    self_pass(cell, i, x, APPLY ? x : p_out[i].pos.xyz, APPLY);
     if (!APPLY && list_build) set_list_header(i, x, list_len);
 }

@@ -162,31 +162,15 @@ fn fold_of(spacing: f64, h: f64, gap: f64, speed: f64) -> SimModel {
     scene(vec![c])
 }
 
-/// The most contacts any particle of object 0 has at the start (triangles nearer than its
-/// self-collision distance with no vertex in the particle's one-ring).
+/// The most contacts any particle of object 0 has at the start (the reference's: triangles
+/// nearer than its self-collision distance, not left out).
 fn most_contacts(s: &SimModel) -> usize {
-    use msdsim::sim::cpu::self_contact::{cloth_triangles, triangle_nearest};
     let o = &s.objects[0];
-    let (cols, h) = (o.dims[0] as usize, o.self_distance.unwrap());
-    let tris = cloth_triangles(cols, o.dims[1] as usize);
-    let ring = |a: usize, b: usize| {
-        let (ca, ra, cb, rb) = ((a % cols) as i64, (a / cols) as i64, (b % cols) as i64, (b / cols) as i64);
-        (ca - cb).abs() <= 1 && (ra - rb).abs() <= 1
-    };
-    (0..o.positions.len())
-        .map(|p| {
-            let x = o.positions[p];
-            tris.iter()
-                .filter(|(_, t)| !t.iter().any(|&k| ring(p, k)))
-                .filter(|(_, t)| {
-                    let [a, b, c] = t.map(|k| o.positions[k]);
-                    let w = triangle_nearest(x, a, b, c);
-                    x.distance(w.x * a + w.y * b + w.z * c) < h
-                })
-                .count()
-        })
-        .max()
-        .unwrap_or(0)
+    let mut count = vec![0; o.positions.len()];
+    for (p, ..) in msdsim::sim::cpu::self_contact::contacts(o, &o.positions) {
+        count[p] += 1;
+    }
+    count.into_iter().max().unwrap_or(0)
 }
 
 /// The GPU against the CPU reference (which tests every particle against every triangle),

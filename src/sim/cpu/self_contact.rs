@@ -111,17 +111,15 @@ fn count_weight(overlap: f64, h: f64) -> f64 {
     (overlap / (0.1 * h)).min(1.0)
 }
 
-/// Each particle's summed moves from cloth `o`'s contacts with its own triangles (positions
-/// `x`, the physics output; `start`, where each began the substep), and the parts of them
-/// that move the position only (undoing overlaps from earlier substeps); zero for pinned
-/// particles.
-pub(super) fn self_contact(o: &ObjectModel, x: &[DVec3], start: &[DVec3]) -> (Vec<DVec3>, Vec<DVec3>) {
-    let mut moves = vec![DVec3::ZERO; x.len()];
-    let mut rests = vec![DVec3::ZERO; x.len()];
-    let Some(h) = o.self_distance.filter(|_| o.has_triangles()) else { return (moves, rests) };
-    let free = |k: usize| if o.pinned[k] { 0.0 } else { 1.0 };
-    // (p, vertices, weights, unit normal, overlap)
+/// One contact of a cloth with its own triangles: particle p, the triangle's vertices, the
+/// barycentric weights of its point nearest p, the unit normal from there to p, the overlap.
+pub type Contact = (usize, [usize; 3], DVec3, DVec3, f64);
+
+/// Cloth `o`'s contacts with its own triangles at positions `x` (none without triangle
+/// self-contact): every pair not left out, with a free particle, nearer than h.
+pub fn contacts(o: &ObjectModel, x: &[DVec3]) -> Vec<Contact> {
     let mut contacts = Vec::new();
+    let Some(h) = o.self_distance.filter(|_| o.has_triangles()) else { return contacts };
     for (_, tv) in cloth_triangles(o.dims[0] as usize, o.dims[1] as usize) {
         let (lo, hi) = tv
             .iter()
@@ -141,6 +139,19 @@ pub(super) fn self_contact(o: &ObjectModel, x: &[DVec3], start: &[DVec3]) -> (Ve
             }
         }
     }
+    contacts
+}
+
+/// Each particle's summed moves from cloth `o`'s contacts with its own triangles (positions
+/// `x`, the physics output; `start`, where each began the substep), and the parts of them
+/// that move the position only (undoing overlaps from earlier substeps); zero for pinned
+/// particles.
+pub(super) fn self_contact(o: &ObjectModel, x: &[DVec3], start: &[DVec3]) -> (Vec<DVec3>, Vec<DVec3>) {
+    let mut moves = vec![DVec3::ZERO; x.len()];
+    let mut rests = vec![DVec3::ZERO; x.len()];
+    let Some(h) = o.self_distance.filter(|_| o.has_triangles()) else { return (moves, rests) };
+    let free = |k: usize| if o.pinned[k] { 0.0 } else { 1.0 };
+    let contacts = contacts(o, x);
     let mut count = vec![0.0; x.len()];
     for &(p, tv, _, _, overlap) in &contacts {
         for k in std::iter::once(p).chain(tv).filter(|&k| !o.pinned[k]) {
