@@ -117,7 +117,7 @@ impl Viewer {
         let size = window.inner_size();
         let swapchain = Swapchain::new(&ctx, [size.width, size.height], args.vsync, None)?;
         let mut imgui = imgui::Context::create();
-        imgui.set_ini_filename(None);
+        imgui.set_ini_filename(layout::panels_file(&args));
         let mut platform = WinitPlatform::new(&mut imgui);
         platform.attach_window(imgui.io_mut(), &window, HiDpiMode::Default);
         let stats = Stats { device: ctx.info().to_string(), ..Default::default() };
@@ -222,26 +222,6 @@ impl Viewer {
     fn resized(&mut self, size: PhysicalSize<u32>) {
         self.minimized = size.width == 0 || size.height == 0;
         self.recreate = true;
-    }
-
-    /// Fits the camera to the scene in the part of the window the Scene panel leaves free
-    /// (beside it: the wider side; the whole window when it is hidden behind nothing useful).
-    fn fit_camera(&mut self) {
-        let Some(host) = &self.host else { return };
-        let size = self.window.inner_size();
-        let [w, h] = [size.width as f32, size.height as f32];
-        let scale = self.imgui.io().display_framebuffer_scale[0];
-        let panel = if self.editor.hide_ui { [0.0; 4] } else { self.editor.panel.unwrap_or(ui::PANEL_START) };
-        let [px, _, pw, _] = panel.map(|v| v * scale);
-        let (left, right) = (px, w - (px + pw));
-        let free = if right >= left && right > 0.3 * w {
-            [px + pw, 0.0, w, h]
-        } else if left > 0.3 * w {
-            [0.0, 0.0, px, h]
-        } else {
-            [0.0, 0.0, w, h]
-        };
-        view::fit_camera_in(&mut self.camera, host.model(), free, [w, h]);
     }
 
     fn message(&mut self, text: impl Into<String>, error: bool) {
@@ -717,6 +697,7 @@ impl Drop for Viewer {
 
 mod exercise;
 mod grab;
+mod layout;
 mod screenshot;
 mod undo;
 

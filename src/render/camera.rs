@@ -158,6 +158,50 @@ impl OrbitCamera {
     }
 }
 
+/// The largest rectangle of a view of `size` pixels that none of the `covered` rectangles
+/// (x, y, width, height in pixels: the panels over the view) overlaps, as (x0, y0, x1, y1):
+/// "largest" by its narrower side, which bounds how large a fitted scene appears, then by its
+/// area. The whole view when nothing covers it, or when what is left is under a fifth of it
+/// either way (a panel over most of a small window: fitting to the sliver would help nobody).
+pub fn free_rect(size: [f32; 2], covered: &[[f32; 4]]) -> [f32; 4] {
+    let [w, h] = size;
+    let boxes: Vec<[f32; 4]> = covered
+        .iter()
+        .map(|&[x, y, cw, ch]| [x.max(0.0), y.max(0.0), (x + cw).min(w), (y + ch).min(h)])
+        .filter(|b| b[0] < b[2] && b[1] < b[3])
+        .collect();
+    let mut xs0 = vec![0.0];
+    let mut xs1 = vec![w];
+    let mut ys0 = vec![0.0];
+    let mut ys1 = vec![h];
+    for b in &boxes {
+        xs0.push(b[2]);
+        xs1.push(b[0]);
+        ys0.push(b[3]);
+        ys1.push(b[1]);
+    }
+    let overlaps =
+        |r: [f32; 4]| boxes.iter().any(|b| r[0] < b[2] && b[0] < r[2] && r[1] < b[3] && b[1] < r[3]);
+    let score = |r: [f32; 4]| ((r[2] - r[0]).min(r[3] - r[1]), (r[2] - r[0]) * (r[3] - r[1]));
+    let mut best: Option<[f32; 4]> = None;
+    for &x0 in &xs0 {
+        for &x1 in xs1.iter().filter(|&&x1| x1 > x0) {
+            for &y0 in &ys0 {
+                for &y1 in ys1.iter().filter(|&&y1| y1 > y0) {
+                    let r = [x0, y0, x1, y1];
+                    if !overlaps(r) && best.is_none_or(|b| score(r) > score(b)) {
+                        best = Some(r);
+                    }
+                }
+            }
+        }
+    }
+    match best {
+        Some(r) if r[2] - r[0] >= 0.2 * w && r[3] - r[1] >= 0.2 * h => r,
+        _ => [0.0, 0.0, w, h],
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -237,5 +281,23 @@ mod tests {
         let cam = OrbitCamera::default();
         let clip = cam.view_proj(1.0) * (cam.target + Vec3::Y * 0.1).extend(1.0);
         assert!(clip.y / clip.w < 0.0, "Vulkan clip space has y down");
+    }
+
+    /// The free part beside the Scene panel (left) and under the Stats window (top right) is
+    /// the larger of the strip between them and the part under Stats; a panel over nearly all
+    /// of the view leaves the whole view.
+    #[test]
+    fn the_free_rectangle_avoids_every_panel() {
+        let scene = [10.0, 10.0, 360.0, 620.0];
+        assert_eq!(free_rect([1280.0, 720.0], &[scene]), [370.0, 0.0, 1280.0, 720.0]);
+        let stats = [940.0, 10.0, 330.0, 200.0];
+        // Between them: 570 x 720; under Stats: 910 x 510. The narrower sides: 570 and 510.
+        assert_eq!(free_rect([1280.0, 720.0], &[scene, stats]), [370.0, 0.0, 940.0, 720.0]);
+        let tall_stats = [940.0, 10.0, 330.0, 600.0];
+        assert_eq!(free_rect([1280.0, 720.0], &[scene, tall_stats]), [370.0, 0.0, 940.0, 720.0]);
+        let wide_stats = [380.0, 10.0, 890.0, 150.0];
+        assert_eq!(free_rect([1280.0, 720.0], &[scene, wide_stats]), [370.0, 160.0, 1280.0, 720.0]);
+        assert_eq!(free_rect([400.0, 300.0], &[[0.0, 0.0, 380.0, 300.0]]), [0.0, 0.0, 400.0, 300.0]);
+        assert_eq!(free_rect([800.0, 600.0], &[]), [0.0, 0.0, 800.0, 600.0]);
     }
 }

@@ -40,12 +40,16 @@ pub fn scene_items(scene: &Scene, time: f64) -> Vec<DrawItem> {
     items.push(DrawItem::solid(Shape::Sphere, light, [1.0, 0.9, 0.5], false));
     if scene.wind.enabled {
         let dir = v(scene.wind.direction).normalize_or(Vec3::Z);
-        let model =
-            placed(Vec3::new(0.12, 0.12, 0.35), Quat::from_rotation_arc(Vec3::Z, dir), v(scene.wind.origin));
+        let (r, l) = (WIND_CONE_RADIUS, WIND_CONE_LENGTH);
+        let model = placed(Vec3::new(r, r, l), Quat::from_rotation_arc(Vec3::Z, dir), v(scene.wind.origin));
         items.push(DrawItem::solid(Shape::Cone, model, [0.25, 0.45, 0.95], true));
     }
     items
 }
+
+/// The wind cone's base radius and length [m]: a gizmo at the wind's origin along its axis.
+const WIND_CONE_RADIUS: f32 = 0.12;
+const WIND_CONE_LENGTH: f32 = 0.35;
 
 /// The colour colliders are drawn in.
 const COLLIDER_COLOR: [f32; 3] = [0.45, 0.5, 0.58];
@@ -121,7 +125,7 @@ pub fn fit_camera(camera: &mut OrbitCamera, model: &SimModel) {
 }
 
 /// Like `fit_camera`, within the rectangle `free` (x0, y0, x1, y1 pixels) of a view of `size`
-/// pixels: the part that panels leave free.
+/// pixels: the part that panels leave free. The wind cone counts as part of the scene.
 pub fn fit_camera_in(camera: &mut OrbitCamera, model: &SimModel, free: [f32; 4], size: [f32; 2]) {
     let mut min = Vec3::splat(f32::MAX);
     let mut max = Vec3::splat(f32::MIN);
@@ -134,6 +138,12 @@ pub fn fit_camera_in(camera: &mut OrbitCamera, model: &SimModel, free: [f32; 4],
     for (lo, hi) in model.colliders.iter().filter_map(|c| c.shape.bounds()) {
         min = min.min(lo.as_vec3());
         max = max.max(hi.as_vec3());
+    }
+    if let Some(w) = &model.wind {
+        let (origin, dir) = (w.origin.as_vec3(), w.direction.as_vec3());
+        let base = origin + dir * WIND_CONE_LENGTH;
+        min = min.min(origin).min(base - Vec3::splat(WIND_CONE_RADIUS));
+        max = max.max(origin).max(base + Vec3::splat(WIND_CONE_RADIUS));
     }
     if min.x <= max.x {
         camera.fit_in(min, max, free, size);

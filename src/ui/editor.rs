@@ -65,6 +65,8 @@ pub struct EditorState {
     pub show_help: bool,
     /// Where the Scene panel was last drawn: x, y, width, height in ImGui's (logical) pixels.
     pub panel: Option<[f32; 4]>,
+    /// Where the Stats window was last drawn, the same way.
+    pub stats_panel: Option<[f32; 4]>,
     /// The file the Record button writes (`.usda` or `.obj`).
     pub record_path: String,
     /// Frames recorded so far and the file, while recording.
@@ -93,8 +95,34 @@ pub fn save_pressed(state: &mut EditorState, path: &str, exists: bool) -> Option
     None
 }
 
-/// Where the Scene panel first appears (ImGui's logical pixels): x, y, width, height.
-pub const PANEL_START: [f32; 4] = [10.0, 10.0, 360.0, 620.0];
+/// Where the Scene panel first appears in a view of `size` logical pixels: x, y, width,
+/// height (at most the view's height less a margin; it scrolls).
+pub fn panel_start(size: [f32; 2]) -> [f32; 4] {
+    [10.0, 10.0, 400.0, 620f32.min(size[1] - 20.0).max(100.0)]
+}
+
+/// The Stats window's width (its lines wrap within it) and height before it is first drawn;
+/// it first appears at the top right of the view.
+pub const STATS_WIDTH: f32 = 330.0;
+const STATS_HEIGHT: f32 = 280.0;
+
+/// The rectangles (x, y, width, height, logical pixels) of the windows over a view of
+/// `size` logical pixels: where they were last drawn, or where they will first appear.
+pub fn covered(state: &EditorState, size: [f32; 2]) -> Vec<[f32; 4]> {
+    if state.hide_ui {
+        return Vec::new();
+    }
+    let mut rects = vec![state.panel.unwrap_or(panel_start(size))];
+    if !state.hide_stats {
+        rects.push(state.stats_panel.unwrap_or([
+            size[0] - STATS_WIDTH - 10.0,
+            10.0,
+            STATS_WIDTH,
+            STATS_HEIGHT,
+        ]));
+    }
+    rects
+}
 
 /// Timings shown in the stats panel.
 #[derive(Debug, Clone, Default)]
@@ -115,18 +143,27 @@ pub fn build(ui: &Ui, state: &mut EditorState, scene: &mut Scene, stats: &Stats)
     let mut actions = Vec::new();
     state.ui_active = false;
     recording_indicator(ui, state);
-    // Notices over the part of the view the Scene panel leaves free.
+    // Notices over the part of the view between the Scene panel and the Stats window (when
+    // that leaves room for them).
     let size = ui.io().display_size;
     let left = state.panel.filter(|_| !state.hide_ui).map_or(0.0, |[x, _, w, _]| x + w);
-    state.notices.draw(ui, [left, 0.0, size[0], size[1]]);
+    let right = (state.stats_panel.filter(|_| !state.hide_ui && !state.hide_stats))
+        .map(|[x, ..]| x)
+        .filter(|&x| x - left >= 240.0)
+        .unwrap_or(size[0]);
+    state.notices.draw(ui, [left, 0.0, right, size[1]]);
     if state.hide_ui {
         return actions;
     }
-    let [x, y, w, h] = PANEL_START;
+    let [x, y, w, h] = panel_start(size);
     ui.window("Scene").position([x, y], Condition::FirstUseEver).size([w, h], Condition::FirstUseEver).build(
         || {
             let ([x, y], [w, h]) = (ui.window_pos(), ui.window_size());
             state.panel = Some([x, y, w, h]);
+            // Fields leave room on their right for the longest label, so that no label is
+            // cut off whatever the panel's width (a scrollbar takes some).
+            let label = ui.calc_text_size("self-collision distance [m]")[0] + ui.clone_style().item_inner_spacing[0];
+            let _width = ui.push_item_width(-label);
             simulation_panel(ui, state, scene, &mut actions);
             if ui.collapsing_header("Wind", TreeNodeFlags::empty()) {
                 let w = &mut scene.wind;
@@ -549,62 +586,65 @@ fn shader_errors(ui: &Ui, errors: &[String]) {
         });
 }
 
-fn stats_window(ui: &Ui, stats: &Stats, state: &EditorState, scene: &Scene) {
-    // Sized to its content, so no line is cut off.
-    ui.window("Stats").position([380.0, 10.0], Condition::FirstUseEver).always_auto_resize(true).build(
-        || {
-            ui.text_disabled("F1: the controls");
-            ui.text(&stats.device);
-            ui.text(format!(
-                "frame {:.2} ms ({:.0} fps, wall clock), t = {:.2} s, {} particles",
-                stats.cpu_frame_ms,
-                1e3 / stats.cpu_frame_ms.max(1e-6),
-                stats.simulated_time,
-                stats.particles
-            ));
-            match stats.speed {
-                Some(s) if s < 0.95 => ui.text_colored(
-                    [1.0, 0.75, 0.3, 1.0],
-                    format!("running at {s:.2}x real time (one frame's dt per drawn frame)"),
-                ),
-                Some(s) => ui.text(format!("running at {s:.2}x real time")),
-                None => ui.text("paused"),
-            }
-            let ms = |v: Option<f64>| v.map(|v| format!("{v:.3} ms")).unwrap_or_else(|| "-".into());
-            // The same two figures as `bench --end-to-end`: the wall clock above, the GPU's
-            // own time here (simulation + scene + UI).
-            let gpu = stats.sim.map(|s| s.total_ms).unwrap_or(0.0)
-                + stats.render_ms.unwrap_or(0.0)
-                + stats.ui_ms.unwrap_or(0.0);
-            ui.text(format!("GPU {} per frame ({:.0} fps GPU-only)", ms(Some(gpu)), 1e3 / gpu.max(1e-6)));
+fn stats_window(ui: &Ui, stats: &Stats, state: &mut EditorState, scene: &Scene) {
+    // At the top right, out of the middle of the view; as tall as its content, its lines
+    // wrapped at its width, so none is cut off.
+    let size = ui.io().display_size;
+    let start = [(size[0] - STATS_WIDTH - 10.0).max(0.0), 10.0];
+    ui.window("Stats").position(start, Condition::FirstUseEver).always_auto_resize(true).build(|| {
+        let ([x, y], [w, h]) = (ui.window_pos(), ui.window_size());
+        state.stats_panel = Some([x, y, w, h]);
+        let _wrap = ui.push_text_wrap_pos_with_pos(STATS_WIDTH - 2.0 * ui.clone_style().window_padding[0]);
+        ui.text_disabled("F1: the controls");
+        ui.text_wrapped(&stats.device);
+        ui.text(format!(
+            "frame {:.2} ms ({:.0} fps, wall clock)",
+            stats.cpu_frame_ms,
+            1e3 / stats.cpu_frame_ms.max(1e-6)
+        ));
+        ui.text(format!("t = {:.2} s, {} particles", stats.simulated_time, stats.particles));
+        match stats.speed {
+            Some(s) if s < 0.95 => ui.text_colored(
+                [1.0, 0.75, 0.3, 1.0],
+                format!("running at {s:.2}x real time\n(one frame's dt per drawn frame)"),
+            ),
+            Some(s) => ui.text(format!("running at {s:.2}x real time")),
+            None => ui.text("paused"),
+        }
+        let ms = |v: Option<f64>| v.map(|v| format!("{v:.3} ms")).unwrap_or_else(|| "-".into());
+        // The same two figures as `bench --end-to-end`: the wall clock above, the GPU's
+        // own time here (simulation + scene + UI).
+        let gpu = stats.sim.map(|s| s.total_ms).unwrap_or(0.0)
+            + stats.render_ms.unwrap_or(0.0)
+            + stats.ui_ms.unwrap_or(0.0);
+        ui.text(format!("GPU {} per frame ({:.0} fps GPU-only)", ms(Some(gpu)), 1e3 / gpu.max(1e-6)));
+        ui.separator();
+        ui.text("GPU time per frame (timestamps):");
+        let row = |label: &str, v: Option<f64>| ui.text(format!("  {label:<26} {}", ms(v)));
+        let physics = stats.sim.map(|s| s.physics_ms);
+        match stats.sim.and_then(|s| s.fused) {
+            // A fused object runs all its stages in one pass: not separable.
+            Some(true) => row("simulation (fused)", physics),
+            Some(false) => row("physics + fused objects", physics),
+            None => row("physics", physics),
+        }
+        if stats.sim.and_then(|s| s.fused) != Some(true) {
+            row("constraints", stats.sim.map(|s| s.constraints_ms));
+        }
+        let surface = match (scene.cloths.is_empty(), scene.ropes.is_empty()) {
+            (false, false) => "cloth normals + rope tubes",
+            (false, true) => "cloth normals",
+            (true, false) => "rope tubes",
+            (true, true) => "surface",
+        };
+        row(surface, stats.sim.map(|s| s.surface_ms));
+        row("render", stats.render_ms);
+        row("UI", stats.ui_ms);
+        if !state.shaders_note.is_empty() {
             ui.separator();
-            ui.text("GPU time per frame (timestamps):");
-            let row = |label: &str, v: Option<f64>| ui.text(format!("  {label:<26} {}", ms(v)));
-            let physics = stats.sim.map(|s| s.physics_ms);
-            match stats.sim.and_then(|s| s.fused) {
-                // A fused object runs all its stages in one pass: not separable.
-                Some(true) => row("simulation (fused)", physics),
-                Some(false) => row("physics + fused objects", physics),
-                None => row("physics", physics),
-            }
-            if stats.sim.and_then(|s| s.fused) != Some(true) {
-                row("constraints", stats.sim.map(|s| s.constraints_ms));
-            }
-            let surface = match (scene.cloths.is_empty(), scene.ropes.is_empty()) {
-                (false, false) => "cloth normals + rope tubes",
-                (false, true) => "cloth normals",
-                (true, false) => "rope tubes",
-                (true, true) => "surface",
-            };
-            row(surface, stats.sim.map(|s| s.surface_ms));
-            row("render", stats.render_ms);
-            row("UI", stats.ui_ms);
-            if !state.shaders_note.is_empty() {
-                ui.separator();
-                ui.text_wrapped(&state.shaders_note);
-            }
-        },
-    );
+            ui.text_wrapped(&state.shaders_note);
+        }
+    });
 }
 
 #[cfg(test)]

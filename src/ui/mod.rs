@@ -7,4 +7,4 @@ mod help;
 mod notices;
 mod widgets;
 
-pub use editor::{build, unique_name, Action, EditorState, Selection, Stats, PANEL_START};
+pub use editor::{build, covered, unique_name, Action, EditorState, Selection, Stats};
