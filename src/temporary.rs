@@ -18,7 +18,6 @@
 //! This module and `vk` are the only places with `unsafe`.
 
 use std::cell::UnsafeCell;
-use std::io::Write as _;
 use std::os::unix::ffi::OsStrExt as _;
 use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicI32, AtomicU8, AtomicUsize, Ordering};
@@ -205,6 +204,16 @@ fn create_beside(target: &Path) -> std::io::Result<(PathBuf, Tracked, std::fs::F
     Err(last.unwrap_or_else(|| std::io::Error::other("no free temporary name")))
 }
 
+/// A new file beside `target` for reading and writing, already unlinked: it takes disk space
+/// only while open, and nothing is left behind however the process ends.
+pub fn anonymous_beside(target: &Path) -> std::io::Result<std::fs::File> {
+    let (tmp, _tracked, file) = create_beside(target)?;
+    drop(file);
+    let file = std::fs::OpenOptions::new().read(true).write(true).open(&tmp);
+    std::fs::remove_file(&tmp)?;
+    file
+}
+
 /// Whether a temporary file can be created beside `target` (creates and removes one).
 pub fn probe_beside(target: &Path) -> std::io::Result<()> {
     let (tmp, _tracked, _) = create_beside(target)?;
@@ -216,9 +225,21 @@ pub fn probe_beside(target: &Path) -> std::io::Result<()> {
 /// permissions; `durable` also flushes it to the disk before the rename. A failed write, or a
 /// signal during it, removes the temporary.
 pub fn replace(target: &Path, bytes: &[u8], durable: bool) -> std::io::Result<()> {
-    let (tmp, _tracked, mut file) = create_beside(target)?;
+    replace_with(target, durable, |w| w.write_all(bytes))
+}
+
+/// Like `replace`, with the content written by `write` (buffered), so that a large file need
+/// not be in memory whole.
+pub fn replace_with(
+    target: &Path,
+    durable: bool,
+    write: impl FnOnce(&mut dyn std::io::Write) -> std::io::Result<()>,
+) -> std::io::Result<()> {
+    let (tmp, _tracked, file) = create_beside(target)?;
     let written = (|| {
-        file.write_all(bytes)?;
+        let mut buffered = std::io::BufWriter::with_capacity(1 << 20, file);
+        write(&mut buffered)?;
+        let file = buffered.into_inner().map_err(std::io::IntoInnerError::into_error)?;
         hold_for_tests();
         if let Ok(old) = std::fs::metadata(target) {
             file.set_permissions(old.permissions())?;

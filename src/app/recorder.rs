@@ -64,8 +64,9 @@ impl AppRecorder {
     /// says what was written.
     pub fn stop(&mut self) -> Result<String> {
         let Some((recording, path)) = self.active.take() else { return Ok("not recording".into()) };
-        if let Some(bytes) = recording.whole_file()? {
-            std::fs::write(&path, bytes).map_err(|e| anyhow::anyhow!("writing {}: {e}", path.display()))?;
+        if recording.format().keeps_frames() {
+            crate::temporary::replace_with(&path, false, |w| recording.write_to(w))
+                .map_err(|e| anyhow::anyhow!("writing {}: {e}", path.display()))?;
         }
         Ok(recording.summary(&path))
     }

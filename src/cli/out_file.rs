@@ -126,25 +126,37 @@ impl OutFile {
 
     /// Writes `bytes` (a whole file).
     pub fn write_bytes(self, bytes: &[u8]) -> Result<()> {
-        self.write(bytes).with_context(|| format!("writing {}", self.target.display()))
+        self.write_with(|w| w.write_all(bytes))
+    }
+
+    /// Writes what `write` writes (buffered), so that a large file need not be in memory.
+    pub fn write_with(
+        self,
+        write: impl FnOnce(&mut dyn std::io::Write) -> std::io::Result<()>,
+    ) -> Result<()> {
+        self.write(write).with_context(|| format!("writing {}", self.target.display()))
     }
 
     /// Writes `value` as JSON.
     pub fn write_json(self, value: &impl serde::Serialize) -> Result<()> {
         let json = serde_json::to_vec(value).context("serialising the state")?;
-        self.write(&json).with_context(|| format!("writing {}", self.target.display()))
+        self.write_bytes(&json)
     }
 
-    fn write(&self, bytes: &[u8]) -> std::io::Result<()> {
+    fn write(
+        &self,
+        write: impl FnOnce(&mut dyn std::io::Write) -> std::io::Result<()>,
+    ) -> std::io::Result<()> {
         if self.mode != Mode::Replace {
             let mut options = std::fs::OpenOptions::new();
             match self.mode {
                 Mode::Append => options.append(true),
                 _ => options.write(true).create(true).truncate(true),
             };
-            let mut file = options.open(&self.target)?;
-            return file.write_all(bytes).and_then(|_| file.flush());
+            let mut file = std::io::BufWriter::with_capacity(1 << 20, options.open(&self.target)?);
+            write(&mut file)?;
+            return file.flush();
         }
-        crate::temporary::replace(&self.target, bytes, true)
+        crate::temporary::replace_with(&self.target, true, write)
     }
 }

@@ -250,8 +250,8 @@ fn simulate(
     }
     print_summary(out, sim, &timings)?;
     if let Some((r, file)) = recording {
-        if let (Some(file), Some(bytes)) = (file, r.whole_file()?) {
-            file.write_bytes(&bytes)?;
+        if let Some(file) = file {
+            file.write_with(|w| r.write_to(w))?;
         }
         if let Some(path) = &args.record {
             say!(out, "{}", r.summary(path))?;

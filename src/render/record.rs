@@ -3,9 +3,12 @@
 //! - `.usda`: USD (ASCII) with points, normals and extents time-sampled at every frame (and the
 //!   frame rate as framesPerSecond), so Blender, Houdini, usdview and Omniverse play it back;
 //!   prims are named after the objects, made unique; each mesh and shape has a UsdPreviewSurface
-//!   material bound, and the colliders are shapes. Frames are kept in memory (up to `MAX_BYTES`)
-//!   and written at the end by the caller (`usda`), so an interrupted run leaves no partial file.
-//! - `.glb`: glTF 2.0 binary (`super::gltf`), frames kept as for USD, each a morph target.
+//!   material bound, and the colliders are shapes. USD's text groups each attribute's samples,
+//!   so it is written when the recording ends (`write_to`, by the caller, through a temporary
+//!   file: an interrupted run leaves no partial file); until then the frames go to a spool file
+//!   beside it, unlinked from the start, so memory stays at a frame however long the recording.
+//! - `.glb`: glTF 2.0 binary (`super::gltf`), frames kept in memory (up to `MAX_BYTES`), each a
+//!   morph target, written at the end as USD is.
 //! - `.pc2`: a PC2 point cache a mesh, streamed, with the meshes in an OBJ file.
 //! - `.obj`: a sequence of Wavefront OBJ files, `NAME_00001.obj`, `NAME_00002.obj`, ... one per
 //!   frame, written as the frames come (every object and then every collider an `o` group with
@@ -49,7 +52,8 @@ pub enum Format {
 }
 
 impl Format {
-    /// Whether the frames are kept in memory and the file written when the recording ends.
+    /// Whether the file is written when the recording ends (USD from its spool, glTF from the
+    /// frames kept in memory), not as the frames come.
     pub fn keeps_frames(self) -> bool {
         matches!(self, Format::Usd | Format::Gltf)
     }
@@ -75,24 +79,22 @@ impl Format {
 const PC2_HEADER: u64 = 32;
 
 /// What a USD or glTF recording keeps of a vertex a frame: its point, normal and velocity
-/// [bytes].
+/// [bytes] (USD in its spool, glTF in memory).
 const BYTES_PER_VERTEX: u64 = 36;
 
-/// The most memory a recording may take: the frames it keeps and the file built from them at
-/// the end.
+/// The most memory a glTF recording may take: the frames it keeps and the file built from them
+/// at the end.
 const MAX_BYTES: u64 = 2 << 30;
 
 impl Format {
-    /// The memory a recording in this format takes a vertex a frame at its end [bytes]: the
-    /// frames kept, and the file built from them. USD's text takes up to 150 (a point, normal
-    /// and velocity, each as "(x, y, z), " with up to 14 characters a number; 119 measured on
-    /// the curtain: 401 frames of 2,500 vertices peaked at 155 a vertex a frame in all); glTF's
-    /// binary 24 (a target's points and normals). The streamed formats keep none.
+    /// The memory a recording in this format takes a vertex a frame at its end [bytes]: glTF's
+    /// frames kept and its binary file built from them (24: a target's points and normals).
+    /// USD spools its frames to disk and writes its text from there; the other formats write
+    /// as the frames come: none.
     fn peak_bytes_per_vertex(self) -> u64 {
         match self {
-            Format::Usd => BYTES_PER_VERTEX + 150,
             Format::Gltf => BYTES_PER_VERTEX + 24,
-            Format::ObjSequence | Format::PointCache => 0,
+            Format::Usd | Format::ObjSequence | Format::PointCache => 0,
         }
     }
 }
@@ -114,10 +116,19 @@ struct Track {
     color: [f32; 3],
     /// The colour of a cloth's back (a rope's is its front).
     back: [f32; 3],
+    /// glTF's frames (USD's are in the spool).
     points: Vec<Vec<[f32; 3]>>,
     normals: Vec<Vec<[f32; 3]>>,
-    /// Each vertex's velocity (a rope's tube vertex takes its node's), for motion blur.
-    velocities: Vec<Vec<[f32; 3]>>,
+    /// Where the track's frame starts in a frame of the spool [bytes].
+    spooled_at: u64,
+}
+
+/// A USD recording's frames on disk: frame f at `f * frame_bytes`; in it each track's points,
+/// normals and velocities (a rope's tube vertex takes its node's, for motion blur), f32 x, y, z
+/// a vertex, from the track's `spooled_at`.
+struct Spool {
+    file: std::fs::File,
+    frame_bytes: u64,
 }
 
 pub struct Recording {
@@ -139,6 +150,8 @@ pub struct Recording {
     frames: u64,
     /// `.pc2`: each mesh's point cache, once the first frame has come.
     caches: Vec<std::fs::File>,
+    /// `.usda`: the frames so far.
+    spool: Option<Spool>,
 }
 
 impl Recording {
@@ -152,7 +165,7 @@ impl Recording {
         let bytes = vertices * format.peak_bytes_per_vertex() * frames.unwrap_or(0);
         if bytes > MAX_BYTES {
             return Err(crate::error::UserError(format!(
-                "a USD or glTF recording would take {:.1} GiB of memory for its frames and file (at most {} GiB): record fewer frames, or a .pc2 point cache or an .obj sequence (streamed)",
+                "a glTF recording would take {:.1} GiB of memory for its frames and file (at most {} GiB): record fewer frames, or as .usda, a .pc2 point cache or an .obj sequence (kept on disk)",
                 bytes as f64 / (1u64 << 30) as f64,
                 MAX_BYTES >> 30
             ))
@@ -174,7 +187,8 @@ impl Recording {
             remove_old_frames(path)?;
         }
         let mut taken = std::collections::HashSet::new();
-        let tracks = model
+        let mut spooled = 0;
+        let tracks: Vec<Track> = model
             .objects
             .iter()
             .zip(colors)
@@ -190,6 +204,9 @@ impl Recording {
                         (indices, Some(o.dims[0]))
                     }
                 };
+                let recorded = o.surface_count() + if rope_nodes.is_some() { 2 * ROPE_RING } else { 0 };
+                let spooled_at = spooled;
+                spooled += 3 * 12 * recorded as u64;
                 Track {
                     name: unique_name(&mut taken, usd_name(&o.name)),
                     rope_nodes,
@@ -203,10 +220,19 @@ impl Recording {
                     back,
                     points: Vec::new(),
                     normals: Vec::new(),
-                    velocities: Vec::new(),
+                    spooled_at,
                 }
             })
             .collect();
+        let spool = match format {
+            Format::Usd => Some(Spool {
+                file: crate::temporary::anonymous_beside(path).map_err(|e| {
+                    anyhow::anyhow!("{}: cannot make the recording's spool beside it: {e}", path.display())
+                })?,
+                frame_bytes: spooled,
+            }),
+            _ => None,
+        };
         let collider_names = (model.colliders.iter().enumerate())
             .map(|(i, c)| unique_name(&mut taken, format!("collider_{}_{i}", c.shape.kind().label())))
             .collect();
@@ -222,6 +248,7 @@ impl Recording {
             stem: path.with_extension(""),
             frames: 0,
             caches: Vec::new(),
+            spool,
         })
     }
 
@@ -305,23 +332,39 @@ impl Recording {
             ))
             .into());
         }
-        self.times.push(time);
-        for (t, s) in self.tracks.iter_mut().zip(states) {
-            let (points, normals) = t.frame(s);
-            t.points.push(points);
-            t.normals.push(normals);
-            t.velocities.push(t.velocities_of(s));
+        if let Some(spool) = &self.spool {
+            use std::os::unix::fs::FileExt as _;
+            let mut bytes = Vec::with_capacity(spool.frame_bytes as usize);
+            for (t, s) in self.tracks.iter().zip(states) {
+                let (points, normals) = t.frame(s);
+                for v in points.iter().chain(&normals).chain(&t.velocities_of(s)) {
+                    bytes.extend(v.iter().flat_map(|x| x.to_le_bytes()));
+                }
+            }
+            let at = (self.frames - 1) * spool.frame_bytes;
+            if let Err(e) = spool.file.write_all_at(&bytes, at) {
+                self.frames -= 1;
+                anyhow::bail!("recording frame {} to the spool beside the file: {e}", self.last_code() + 1);
+            }
+        } else {
+            for (t, s) in self.tracks.iter_mut().zip(states) {
+                let (points, normals) = t.frame(s);
+                t.points.push(points);
+                t.normals.push(normals);
+            }
         }
+        self.times.push(time);
         Ok(())
     }
 
-    /// The whole file of a format written when the recording ends (USD, glTF), else None.
-    pub fn whole_file(&self) -> Result<Option<Vec<u8>>> {
-        Ok(match self.format {
-            Format::Usd => Some(self.usda().into_bytes()),
-            Format::Gltf => Some(self.glb()?),
-            Format::ObjSequence | Format::PointCache => None,
-        })
+    /// Writes the file of a format written when the recording ends (USD, glTF: `keeps_frames`);
+    /// nothing for the others.
+    pub fn write_to(&self, w: &mut dyn std::io::Write) -> std::io::Result<()> {
+        match self.format {
+            Format::Usd => self.write_usda(w),
+            Format::Gltf => w.write_all(&self.glb().map_err(std::io::Error::other)?),
+            Format::ObjSequence | Format::PointCache => Ok(()),
+        }
     }
 
     /// The glTF binary (`super::gltf`): a cloth's texture coordinates go along (a rope's are
@@ -485,8 +528,9 @@ impl Recording {
         out
     }
 
-    /// The USD ASCII text: time codes `first_code()..=last_code()` at the simulation's frame rate.
-    pub fn usda(&self) -> String {
+    /// Writes the USD ASCII text: time codes `first_code()..=last_code()` at the simulation's
+    /// frame rate; the meshes' time samples from the spool, a frame at a time.
+    fn write_usda(&self, w: &mut dyn std::io::Write) -> std::io::Result<()> {
         let mut out = String::new();
         let _ = writeln!(
             out,
@@ -526,21 +570,45 @@ impl Recording {
             );
             let st_indices: Vec<String> = t.st_indices.iter().map(u32::to_string).collect();
             let _ = writeln!(out, "        int[] primvars:st:indices = [{}]", st_indices.join(", "));
-            samples(&mut out, self.first_code, "point3f[] points", &t.points);
+            w.write_all(out.as_bytes())?;
+            out.clear();
+            let spooled = |k: u64| move |f: u64, values: &mut Vec<[f32; 3]>| self.spooled(t, k, f, values);
+            samples(w, self.first_code, self.frames, "point3f[] points", spooled(0))?;
             let _ = writeln!(
                 out,
                 "        normal3f[] normals (\n            interpolation = \"vertex\"\n        )"
             );
-            samples(&mut out, self.first_code, "normal3f[] normals", &t.normals);
-            samples(&mut out, self.first_code, "vector3f[] velocities", &t.velocities);
-            let extents: Vec<Vec<[f32; 3]>> = t.points.iter().map(|p| extent(p).to_vec()).collect();
-            samples(&mut out, self.first_code, "float3[] extent", &extents);
+            w.write_all(out.as_bytes())?;
+            out.clear();
+            samples(w, self.first_code, self.frames, "normal3f[] normals", spooled(1))?;
+            samples(w, self.first_code, self.frames, "vector3f[] velocities", spooled(2))?;
+            let extents = |f: u64, values: &mut Vec<[f32; 3]>| {
+                self.spooled(t, 0, f, values)?;
+                *values = extent(values).to_vec();
+                Ok(())
+            };
+            samples(w, self.first_code, self.frames, "float3[] extent", extents)?;
             let _ = writeln!(out, "    }}");
         }
         self.usda_colliders(&mut out);
         self.usda_materials(&mut out);
         let _ = writeln!(out, "}}");
-        out
+        w.write_all(out.as_bytes())
+    }
+
+    /// Track `t`'s attribute k (0 points, 1 normals, 2 velocities) in frame f, from the spool.
+    fn spooled(&self, t: &Track, k: u64, f: u64, values: &mut Vec<[f32; 3]>) -> std::io::Result<()> {
+        use std::os::unix::fs::FileExt as _;
+        let spool =
+            self.spool.as_ref().ok_or_else(|| std::io::Error::other("a USD recording has a spool"))?;
+        let n = (t.vertices + if t.rope_nodes.is_some() { 2 * ROPE_RING } else { 0 }) as u64;
+        let mut bytes = vec![0u8; 12 * n as usize];
+        spool.file.read_exact_at(&mut bytes, f * spool.frame_bytes + t.spooled_at + k * 12 * n)?;
+        values.clear();
+        values.extend(bytes.chunks_exact(12).map(|c| {
+            std::array::from_fn(|i| f32::from_le_bytes([c[4 * i], c[4 * i + 1], c[4 * i + 2], c[4 * i + 3]]))
+        }));
+        Ok(())
     }
 
     /// The name of the colliders' material: `colliders`, made unique against the objects'.
@@ -851,14 +919,25 @@ fn unique_name(taken: &mut std::collections::HashSet<String>, name: String) -> S
 }
 
 /// `name.timeSamples = { first: [(x, y, z), ...], ... }`, numbers in Rust's shortest exact
-/// form, the frames at time codes from `first` on.
-fn samples(out: &mut String, first: u64, name: &str, frames: &[Vec<[f32; 3]>]) {
-    let _ = writeln!(out, "        {name}.timeSamples = {{");
-    for (f, values) in frames.iter().enumerate() {
-        let items: Vec<String> = values.iter().map(|[x, y, z]| format!("({x}, {y}, {z})")).collect();
-        let _ = writeln!(out, "            {}: [{}],", first + f as u64, items.join(", "));
+/// form, `frames` frames (each read by `frame`) at time codes from `first` on.
+fn samples(
+    w: &mut dyn std::io::Write,
+    first: u64,
+    frames: u64,
+    name: &str,
+    mut frame: impl FnMut(u64, &mut Vec<[f32; 3]>) -> std::io::Result<()>,
+) -> std::io::Result<()> {
+    writeln!(w, "        {name}.timeSamples = {{")?;
+    let mut values = Vec::new();
+    for f in 0..frames {
+        frame(f, &mut values)?;
+        write!(w, "            {}: [", first + f)?;
+        for (i, [x, y, z]) in values.iter().enumerate() {
+            write!(w, "{}({x}, {y}, {z})", if i == 0 { "" } else { ", " })?;
+        }
+        writeln!(w, "],")?;
     }
-    let _ = writeln!(out, "        }}");
+    writeln!(w, "        }}")
 }
 
 /// A valid USD prim name: letters, digits and underscores, not starting with a digit.
