@@ -217,10 +217,17 @@ pub fn build(ui: &Ui, state: &mut EditorState, scene: &mut Scene, stats: &Stats)
                     let exists = std::path::Path::new(&path).exists();
                     actions.extend(save_pressed(state, &path, exists));
                 }
+                ui.same_line();
+                if super::browse::browse_button(ui, "preset", &mut state.preset_path) {
+                    state.replace = None;
+                }
+                tip(ui, "Pick the file from its folder's presets");
                 ui.input_text("cloth preset##add", &mut state.cloth_preset_path).build();
                 if ui.button("Add cloths from that preset") {
                     actions.push(Action::AddClothFromPreset(PathBuf::from(&state.cloth_preset_path)));
                 }
+                ui.same_line();
+                super::browse::browse_button(ui, "cloth", &mut state.cloth_preset_path);
             }
             if ui.small_button(format!("Log ({})###log", state.notices.len())) {
                 state.notices.show_log = !state.notices.show_log;

@@ -1,6 +1,7 @@
 //! The ImGui scene editor and stats panel. The editor edits a copy of the scene; the app applies
 //! the copy (see `app::sim_host`) and carries out the returned actions.
 
+mod browse;
 mod colliders;
 mod editor;
 mod help;
