@@ -47,6 +47,9 @@
 #include "springs.glsl"
 
 layout(local_size_x_id = 0) in;
+// The substeps this dispatch runs: from `first`, `count` of them (a frame's all, or on a device
+// that ends long loops early a few a dispatch: sim::gpu::FusedLimits::substeps_per_dispatch).
+layout(push_constant) uniform Chunk { uint first; uint count; } chunk;
 layout(constant_id = 1) const bool ONE_ITERATION = false;  // an iterative method runs 1 iteration
 layout(constant_id = 4) const uint CAP = 1u;         // particles of the object
 layout(constant_id = 5) const uint SCRATCH = 1u;     // words of scratch
@@ -288,7 +291,7 @@ void main() {
         set_spos(k, x[s] + drift * v[s]);
     }
 
-    for (uint sub = 0u; sub < g.substeps; ++sub) {
+    for (uint sub = chunk.first; sub < chunk.first + chunk.count; ++sub) {
         [[unroll]] for (uint s = 0u; s < MAX_SLOTS; ++s) began[s] = has(F_COLLIDERS) || self_triangles_on ? x[s] : vec3(0.0);
         // Physics: forces on the drifted positions (and, with dashpots, the neighbours'
         // velocities staged pass by pass), new state into registers.

@@ -47,6 +47,11 @@ pub struct DeviceInfo {
     pub subgroup_size: u32,
     /// Compute shaders may use the clustered subgroup reductions (`subgroupClusteredAdd`).
     pub subgroup_clustered: bool,
+    /// Loop iterations an invocation may run in all, its loops together, before the driver
+    /// ends every loop early: lavapipe (Mesa's llvmpipe) stops a shader's loops after 65,535
+    /// (`LP_MAX_TGSI_LOOP_ITERATIONS` in gallivm, one counter shared by all its loops and never
+    /// reset), silently. `None`: no such limit.
+    pub loop_iteration_limit: Option<u32>,
 }
 
 impl std::fmt::Display for DeviceInfo {
@@ -159,6 +164,7 @@ pub(crate) fn candidates(
                 subgroup_size: v11.subgroup_size,
                 subgroup_clustered: v11.subgroup_supported_stages.contains(vk::ShaderStageFlags::COMPUTE)
                     && v11.subgroup_supported_operations.contains(vk::SubgroupFeatureFlags::CLUSTERED),
+                loop_iteration_limit: (v12.driver_id == vk::DriverId::MESA_LLVMPIPE).then_some(65_535),
             },
         });
     }

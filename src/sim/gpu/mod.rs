@@ -372,17 +372,24 @@ impl GpuSim {
         let stages = self.stage_timing;
         // Small objects: every substep in one dispatch each. The state ends in A, as on the
         // per-stage path; the barrier orders it (and B) for the surface stage and next frame.
+        // On a device that ends long loops early (lavapipe), in several dispatches of
+        // `substeps_per_dispatch` substeps (the kernel's push constants: the first substep and
+        // how many), each ordered after the one before.
         let fused: Vec<&GpuObject> = self.objects.iter().filter(|o| self.is_fused(o)).collect();
-        for o in &fused {
-            if let Some(shape) = o.plan.fused {
-                rec.dispatch(
-                    self.pipelines.get(Stage::Fused(self.model.integrator, o.plan.features, shape)),
-                    o.sets[0],
-                    [1, 1, 1],
-                );
+        let chunk = self.limits.substeps_per_dispatch.clamp(1, self.model.substeps.max(1));
+        let mut first = 0;
+        while !fused.is_empty() && first < self.model.substeps {
+            let count = chunk.min(self.model.substeps - first);
+            for o in &fused {
+                if let Some(shape) = o.plan.fused {
+                    rec.dispatch_with(
+                        self.pipelines.get(Stage::Fused(self.model.integrator, o.plan.features, shape)),
+                        o.sets[0],
+                        [1, 1, 1],
+                        &[first, count],
+                    );
+                }
             }
-        }
-        if !fused.is_empty() {
             rec.barrier(
                 &fused
                     .iter()
@@ -390,6 +397,7 @@ impl GpuSim {
                     .map(|b| BufferBarrier::new(b, Access::ComputeReadWrite, Access::ComputeReadWrite))
                     .collect::<Vec<_>>(),
             );
+            first += count;
         }
         let stepped = fused.len() < self.objects.len();
         for s in 0..self.model.substeps {
