@@ -4,8 +4,8 @@
 //! (linear in time: the weights as sparse accessors, one 1.0 per keyframe, so the file grows
 //! with the frames, not their square); colliders as meshes, a moving one's node translated over
 //! time. Blender imports the targets as shape keys with their values animated. glTF is Y-up in
-//! metres, as the simulation. A cloth carries its texture coordinates (a rope's tube has a
-//! seam, so face-varying ones, and it has none here).
+//! metres, as the simulation. Every mesh carries texture coordinates, per vertex (a rope's
+//! tube comes split along its seam: `record::split_seams`).
 
 use gltf_json as json;
 use json::validation::Checked::Valid;

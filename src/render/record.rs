@@ -367,18 +367,32 @@ impl Recording {
         }
     }
 
-    /// The glTF binary (`super::gltf`): a cloth's texture coordinates go along (a rope's are
-    /// face-varying), the colliders as meshes where the first frame had them.
+    /// The glTF binary (`super::gltf`): texture coordinates per vertex (a rope's tube, whose
+    /// coordinates are face-varying at its seam and caps, with a vertex for each coordinate a
+    /// point takes: `split_seams`), the colliders as meshes where the first frame had them.
     pub fn glb(&self) -> Result<Vec<u8>> {
-        let meshes: Vec<super::gltf::MeshFrames> = (self.tracks.iter())
-            .map(|t| super::gltf::MeshFrames {
-                name: &t.name,
-                indices: &t.indices,
-                st: (t.shape.0 == ObjectKind::Cloth).then_some(t.st.as_slice()),
-                color: t.color,
-                double_sided: t.shape.0 == ObjectKind::Cloth,
-                points: &t.points,
-                normals: &t.normals,
+        let split: Vec<Option<Seams>> =
+            (self.tracks.iter()).map(|t| (t.st_indices != t.indices).then(|| split_seams(t))).collect();
+        let meshes: Vec<super::gltf::MeshFrames> = (self.tracks.iter().zip(&split))
+            .map(|(t, seams)| match seams {
+                None => super::gltf::MeshFrames {
+                    name: &t.name,
+                    indices: &t.indices,
+                    st: Some(t.st.as_slice()),
+                    color: t.color,
+                    double_sided: t.shape.0 == ObjectKind::Cloth,
+                    points: &t.points,
+                    normals: &t.normals,
+                },
+                Some(seams) => super::gltf::MeshFrames {
+                    name: &t.name,
+                    indices: &seams.indices,
+                    st: Some(seams.st.as_slice()),
+                    color: t.color,
+                    double_sided: t.shape.0 == ObjectKind::Cloth,
+                    points: &seams.points,
+                    normals: &seams.normals,
+                },
             })
             .collect();
         let first = self.times.first().copied().unwrap_or(0.0);
@@ -800,6 +814,45 @@ fn remove_old_frames(path: &Path) -> Result<()> {
     Ok(())
 }
 
+/// A track's mesh with a vertex for each point and texture coordinate its corners pair (glTF's
+/// attributes are per vertex): its points and normals at every frame, coordinates, triangles.
+struct Seams {
+    points: Vec<Vec<[f32; 3]>>,
+    normals: Vec<Vec<[f32; 3]>>,
+    st: Vec<[f32; 2]>,
+    indices: Vec<u32>,
+}
+
+/// `t`'s mesh split along its seams (`Seams`): vertex v keeps its index with the coordinate of
+/// its first corner; a corner with another coordinate gets a copy of v after the others.
+fn split_seams(t: &Track) -> Seams {
+    let vertices = t.points.first().map_or(0, Vec::len);
+    let mut first_st: Vec<Option<u32>> = vec![None; vertices];
+    let mut copies = std::collections::HashMap::new();
+    let mut source: Vec<u32> = (0..vertices as u32).collect();
+    let mut indices = Vec::with_capacity(t.indices.len());
+    for (&v, &uv) in t.indices.iter().zip(&t.st_indices) {
+        let at = first_st[v as usize].get_or_insert(uv);
+        if *at == uv {
+            indices.push(v);
+        } else {
+            let copy = *copies.entry((v, uv)).or_insert_with(|| {
+                source.push(v);
+                source.len() as u32 - 1
+            });
+            indices.push(copy);
+        }
+    }
+    let mut st: Vec<[f32; 2]> = first_st.iter().map(|uv| uv.map_or([0.0; 2], |k| t.st[k as usize])).collect();
+    let mut extra: Vec<(u32, u32)> = copies.into_iter().map(|((_, uv), copy)| (copy, uv)).collect();
+    extra.sort_unstable();
+    st.extend(extra.iter().map(|&(_, uv)| t.st[uv as usize]));
+    let remap = |frames: &[Vec<[f32; 3]>]| -> Vec<Vec<[f32; 3]>> {
+        frames.iter().map(|f| source.iter().map(|&v| f[v as usize]).collect()).collect()
+    };
+    Seams { points: remap(&t.points), normals: remap(&t.normals), st, indices }
+}
+
 /// Writes `bytes` to `path` so that no reader (and no interrupted run) sees part of it: a
 /// regular file, or a new one, through a temporary file beside it renamed over it (at a
 /// symbolic link's target: the link stays); anything else (/dev/null, a device) in place. A
@@ -971,6 +1024,50 @@ mod tests {
     /// A surface vertex that is not finite stops the recording with a line naming the object,
     /// in every format, and is never written (issue 30, item 7: the guard checks only the
     /// particles, and a USD with a NaN does not parse).
+    /// A rope's glTF mesh has a vertex for each point and coordinate its corners pair: every
+    /// corner keeps its point (at every frame) and its face-varying coordinate, the seam's and
+    /// caps' points are copied, the others are not.
+    #[test]
+    fn a_rope_splits_along_its_seams_for_gltf() {
+        use crate::sim::gpu::ObjectState;
+        use crate::sim::gpu_types::{Particle, SurfaceVertex};
+        let text = "[[rope]]\nname = \"r\"\nnodes = 5\nstart = [0.0, 1.0, 0.0]\nend = [1.0, 1.0, 0.0]\nmass = 0.1\nstiffness = 1.0\nradius = 0.02\n";
+        let scene = crate::scene::parse(text, "t.toml", &[]).unwrap();
+        let model = crate::scene::to_model(&scene);
+        let dir = tempfile::tempdir().unwrap();
+        let mut rec =
+            super::Recording::new(&model, &super::colors(&scene), &dir.path().join("r.glb"), Some(2))
+                .unwrap();
+        let n = model.objects[0].surface_count();
+        for f in 0..2 {
+            let surface = (0..n)
+                .map(|k| SurfaceVertex { pos: [k as f32, f as f32, 0.0, 1.0], normal: [0.0, 1.0, 0.0, 0.0] })
+                .collect();
+            let state = ObjectState { particles: vec![Particle::default(); 5], surface };
+            rec.add(&[state], f as f64 / 60.0).unwrap();
+        }
+        let t = &rec.tracks[0];
+        let seams = super::split_seams(t);
+        assert_eq!(seams.indices.len(), t.indices.len());
+        for (c, (&v, &uv)) in t.indices.iter().zip(&t.st_indices).enumerate() {
+            let w = seams.indices[c] as usize;
+            assert_eq!(seams.st[w], t.st[uv as usize], "corner {c}");
+            for f in 0..2 {
+                assert_eq!(seams.points[f][w], t.points[f][v as usize], "corner {c}, frame {f}");
+            }
+        }
+        let vertices = t.points[0].len();
+        let copies = seams.points[0].len() - vertices;
+        // The seam: a copy of each ring's first vertex (5 rings); the caps' ring copies take
+        // the disc's coordinates at their first corner, so they need none.
+        assert_eq!(copies, 5, "{copies} copies of {vertices} vertices");
+        let bytes = rec.glb().unwrap();
+        let len = u32::from_le_bytes(bytes[12..16].try_into().unwrap()) as usize;
+        let doc: serde_json::Value = serde_json::from_slice(&bytes[20..20 + len]).unwrap();
+        let attributes = &doc["meshes"][0]["primitives"][0]["attributes"];
+        assert!(attributes.get("TEXCOORD_0").is_some(), "{attributes}");
+    }
+
     #[test]
     fn a_non_finite_surface_is_refused() {
         use crate::sim::gpu::ObjectState;
