@@ -30,6 +30,9 @@ pub struct SimHost {
     scene: Scene,
     model: SimModel,
     sim: GpuSim,
+    /// Where particles pinned by Ctrl + click were pinned (object, index), for their markers;
+    /// the others are pinned where the model places them.
+    pinned_at: std::collections::HashMap<(usize, u32), [f32; 3]>,
 }
 
 /// The model of a scene, calibrated first when it asks for `integrator = "auto"` (the pick is
@@ -78,7 +81,7 @@ impl SimHost {
             sim.destroy(ctx);
             return Err(e);
         }
-        Ok(Self { scene, model, sim })
+        Ok(Self { scene, model, sim, pinned_at: Default::default() })
     }
 
     pub fn scene(&self) -> &Scene {
@@ -149,6 +152,9 @@ impl SimHost {
         std::mem::replace(&mut self.sim, sim).destroy(ctx);
         self.model = model;
         self.scene = edited;
+        if carried.is_none() {
+            self.pinned_at.clear();
+        }
         Ok(if carried.is_some() { Applied::RebuiltKeepingState } else { Applied::Rebuilt })
     }
 
@@ -183,6 +189,11 @@ impl SimHost {
             }
         }
         o.pinned[i] = pin;
+        if pin {
+            self.pinned_at.insert((object, index), at);
+        } else {
+            self.pinned_at.remove(&(object, index));
+        }
         let particle = Particle { pos: [at[0], at[1], at[2], pin as u32 as f32], vel: [0.0; 4] };
         self.sim.set_particle(object, index, particle);
         Ok(())
@@ -194,7 +205,22 @@ impl SimHost {
         let initial: Vec<_> = self.model.objects.iter().map(gpu::particles).collect();
         self.sim.upload_states(ctx, &initial)?;
         self.sim.reset_time();
+        self.pinned_at.clear();
         Ok(())
+    }
+
+    /// Where every pinned particle is held (its marker in the view).
+    pub fn pin_markers(&self) -> Vec<glam::Vec3> {
+        let mut out = Vec::new();
+        for (k, o) in self.model.objects.iter().enumerate() {
+            for (i, _) in o.pinned.iter().enumerate().filter(|(_, &p)| p) {
+                out.push(match self.pinned_at.get(&(k, i as u32)) {
+                    Some(&at) => glam::Vec3::from(at),
+                    None => o.positions[i].as_vec3(),
+                });
+            }
+        }
+        out
     }
 
     pub fn destroy(self, ctx: &GpuContext) {

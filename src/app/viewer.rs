@@ -15,7 +15,7 @@ use super::sim_host::{Applied, SimHost};
 use super::AppArgs;
 use crate::render::camera::OrbitCamera;
 use crate::render::view::{self, SKY};
-use crate::render::{DrawItem, SceneRenderer, Shape};
+use crate::render::SceneRenderer;
 use crate::scene::{self, Scene};
 use crate::shaders::ShaderSet;
 use crate::sim::gpu::FRAME_SLOTS;
@@ -25,7 +25,7 @@ use crate::vk::{
     ImageBarrier, MemoryKind, RetireQueue, Semaphore, Swapchain, TimestampPool, UiRenderer, WindowHandles,
 };
 use anyhow::{Context as _, Result};
-use glam::{Mat4, Quat, Vec3};
+use glam::Vec3;
 use imgui_winit_support::{HiDpiMode, WinitPlatform};
 use raw_window_handle::{HasDisplayHandle, HasWindowHandle};
 use std::path::PathBuf;
@@ -372,19 +372,6 @@ impl Viewer {
         quit
     }
 
-    fn draw_items(&self) -> Vec<DrawItem> {
-        let host = self.host();
-        let mut items = view::scene_items(host.scene(), host.sim().time());
-        if let Some(at) = handles::position(host.scene(), self.editor.selected) {
-            items.extend(handles::items(&self.camera, at, self.handle.map(|h| h.axis)));
-        }
-        if let Some(g) = self.input.grab {
-            let model = Mat4::from_scale_rotation_translation(Vec3::splat(0.015), Quat::IDENTITY, g.target);
-            items.push(DrawItem::solid(Shape::Cube, model, [1.0, 0.85, 0.1], false));
-        }
-        items
-    }
-
     /// One frame: UI, edits, simulation, drawing, presentation.
     pub fn frame(&mut self) -> Result<Outcome> {
         self.tick += 1;
@@ -697,6 +684,7 @@ impl Drop for Viewer {
 
 mod exercise;
 mod grab;
+mod items;
 mod layout;
 mod screenshot;
 mod undo;

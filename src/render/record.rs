@@ -374,25 +374,20 @@ impl Recording {
         let split: Vec<Option<Seams>> =
             (self.tracks.iter()).map(|t| (t.st_indices != t.indices).then(|| split_seams(t))).collect();
         let meshes: Vec<super::gltf::MeshFrames> = (self.tracks.iter().zip(&split))
-            .map(|(t, seams)| match seams {
-                None => super::gltf::MeshFrames {
+            .map(|(t, seams)| {
+                let (indices, st, points, normals) = match seams {
+                    None => (&t.indices, &t.st, &t.points, &t.normals),
+                    Some(s) => (&s.indices, &s.st, &s.points, &s.normals),
+                };
+                super::gltf::MeshFrames {
                     name: &t.name,
-                    indices: &t.indices,
-                    st: Some(t.st.as_slice()),
+                    indices,
+                    st: Some(st.as_slice()),
                     color: t.color,
                     double_sided: t.shape.0 == ObjectKind::Cloth,
-                    points: &t.points,
-                    normals: &t.normals,
-                },
-                Some(seams) => super::gltf::MeshFrames {
-                    name: &t.name,
-                    indices: &seams.indices,
-                    st: Some(seams.st.as_slice()),
-                    color: t.color,
-                    double_sided: t.shape.0 == ObjectKind::Cloth,
-                    points: &seams.points,
-                    normals: &seams.normals,
-                },
+                    points,
+                    normals,
+                }
             })
             .collect();
         let first = self.times.first().copied().unwrap_or(0.0);
@@ -1021,9 +1016,13 @@ mod tests {
         assert_eq!(names, ["my_cloth", "my_cloth_2", "my_cloth_2_2", "my_cloth_3"]);
     }
 
-    /// A surface vertex that is not finite stops the recording with a line naming the object,
-    /// in every format, and is never written (issue 30, item 7: the guard checks only the
-    /// particles, and a USD with a NaN does not parse).
+    /// A scene from preset text, and its model.
+    fn parsed(text: &str) -> (crate::scene::Scene, crate::sim::model::SimModel) {
+        let scene = crate::scene::parse(text, "t.toml", &[]).unwrap();
+        let model = crate::scene::to_model(&scene);
+        (scene, model)
+    }
+
     /// A rope's glTF mesh has a vertex for each point and coordinate its corners pair: every
     /// corner keeps its point (at every frame) and its face-varying coordinate, the seam's and
     /// caps' points are copied, the others are not.
@@ -1032,8 +1031,7 @@ mod tests {
         use crate::sim::gpu::ObjectState;
         use crate::sim::gpu_types::{Particle, SurfaceVertex};
         let text = "[[rope]]\nname = \"r\"\nnodes = 5\nstart = [0.0, 1.0, 0.0]\nend = [1.0, 1.0, 0.0]\nmass = 0.1\nstiffness = 1.0\nradius = 0.02\n";
-        let scene = crate::scene::parse(text, "t.toml", &[]).unwrap();
-        let model = crate::scene::to_model(&scene);
+        let (scene, model) = parsed(text);
         let dir = tempfile::tempdir().unwrap();
         let mut rec =
             super::Recording::new(&model, &super::colors(&scene), &dir.path().join("r.glb"), Some(2))
@@ -1068,13 +1066,15 @@ mod tests {
         assert!(attributes.get("TEXCOORD_0").is_some(), "{attributes}");
     }
 
+    /// A surface vertex that is not finite stops the recording with a line naming the object,
+    /// in every format, and is never written (issue 30, item 7: the guard checks only the
+    /// particles, and a USD with a NaN does not parse).
     #[test]
     fn a_non_finite_surface_is_refused() {
         use crate::sim::gpu::ObjectState;
         use crate::sim::gpu_types::{Particle, SurfaceVertex};
         let text = "[[cloth]]\nname = \"c\"\nresolution = [2, 2]\nsize = [1.0, 1.0]\norigin = [0.0, 1.0, 0.0]\nmass = 0.1\nstiffness = { structural = 1.0, shear = 1.0, bending = 1.0 }\n";
-        let scene = crate::scene::parse(text, "t.toml", &[]).unwrap();
-        let model = crate::scene::to_model(&scene);
+        let (scene, model) = parsed(text);
         let dir = tempfile::tempdir().unwrap();
         for name in ["r.usda", "r.obj", "r.pc2", "r.glb"] {
             let path = dir.path().join(name);

@@ -47,6 +47,36 @@ pub fn scene_items(scene: &Scene, time: f64) -> Vec<DrawItem> {
     items
 }
 
+/// Surface `surface` (the selected cloth or rope) drawn tinted towards `SELECTED`, so the
+/// object the panel edits is seen in the view (colliders, the wind and the light get arrows).
+pub fn mark_selected(items: &mut [DrawItem], surface: usize) {
+    let tint = |c: [f32; 3]| std::array::from_fn(|k| c[k] + (SELECTED[k] - c[k]) * 0.45);
+    for item in items.iter_mut().filter(|it| it.shape == Shape::Surface(surface)) {
+        item.front = tint(item.front);
+        item.back = tint(item.back);
+    }
+}
+
+/// The colour a selected surface is tinted towards.
+const SELECTED: [f32; 3] = [1.0, 0.9, 0.35];
+
+/// A marker (a small unlit sphere) on every pinned particle at `at`: its size a third of the
+/// finest grid spacing in the scene, between 4 mm and 2 cm.
+pub fn pin_items(at: &[Vec3], model: &SimModel) -> Vec<DrawItem> {
+    let spacing =
+        (model.objects.iter()).flat_map(|o| o.spacing).filter(|s| *s > 0.0).fold(f64::INFINITY, f64::min);
+    let radius = if spacing.is_finite() { (spacing as f32 / 3.0).clamp(0.004, 0.02) } else { 0.01 };
+    at.iter()
+        .map(|&p| {
+            let model = Mat4::from_scale_rotation_translation(Vec3::splat(radius), Quat::IDENTITY, p);
+            DrawItem::solid(Shape::Sphere, model, PIN_COLOR, false)
+        })
+        .collect()
+}
+
+/// The pin markers' colour.
+const PIN_COLOR: [f32; 3] = [0.95, 0.35, 0.2];
+
 /// The wind cone's base radius and length [m]: a gizmo at the wind's origin along its axis.
 const WIND_CONE_RADIUS: f32 = 0.12;
 const WIND_CONE_LENGTH: f32 = 0.35;

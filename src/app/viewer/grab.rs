@@ -70,7 +70,14 @@ impl Viewer {
                 Ok(states) => match pick(&states, ray, &radii) {
                     Some((object, index, depth, was_pinned)) => {
                         self.input.grab =
-                            Some(Grab { object, index, depth, was_pinned, target: origin + dir * depth })
+                            Some(Grab { object, index, depth, was_pinned, target: origin + dir * depth });
+                        // Clicking an object also selects it (its parameters in the panel).
+                        let cloths = host.scene().cloths.len();
+                        self.editor.selected = if object < cloths {
+                            crate::ui::Selection::Cloth(object)
+                        } else {
+                            crate::ui::Selection::Rope(object - cloths)
+                        };
                     }
                     None => self.input.pick_missed(),
                 },
