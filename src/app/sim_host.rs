@@ -33,16 +33,18 @@ pub struct SimHost {
     /// Where particles pinned by Ctrl + click were pinned (object, index), for their markers;
     /// the others are pinned where the model places them.
     pinned_at: std::collections::HashMap<(usize, u32), [f32; 3]>,
+    /// What `integrator = "auto"` picked for the running simulation (None for a named method).
+    auto_picked: Option<String>,
 }
 
-/// The model of a scene, calibrated first when it asks for `integrator = "auto"` (the pick is
-/// logged).
-fn model_for(ctx: &GpuContext, scene: &Scene) -> Result<SimModel> {
+/// The model of a scene, calibrated first when it asks for `integrator = "auto"`, and then
+/// what it picked (also logged).
+fn model_for(ctx: &GpuContext, scene: &Scene) -> Result<(SimModel, Option<String>)> {
     let (model, picked) = crate::study::auto::model_for(ctx, scene)?;
-    if let Some(p) = picked {
+    if let Some(p) = &picked {
         log::info!("{p}");
     }
-    Ok(model)
+    Ok((model, picked))
 }
 
 /// The parts of a scene that fix the particles' layout and the buffers' sizes.
@@ -75,17 +77,22 @@ impl SimHost {
         shaders: &mut ShaderSet,
     ) -> Result<Self> {
         gpu::check_fits(ctx.info(), &scene::shapes(&scene))?;
-        let model = model_for(ctx, &scene)?;
+        let (model, auto_picked) = model_for(ctx, &scene)?;
         let sim = GpuSim::with_shaders(ctx, &model, shaders)?;
         if let Err(e) = renderer.set_objects(ctx, &scene::shapes(&scene)) {
             sim.destroy(ctx);
             return Err(e);
         }
-        Ok(Self { scene, model, sim, pinned_at: Default::default() })
+        Ok(Self { scene, model, sim, pinned_at: Default::default(), auto_picked })
     }
 
     pub fn scene(&self) -> &Scene {
         &self.scene
+    }
+
+    /// What `integrator = "auto"` picked for the running simulation (None for a named method).
+    pub fn auto_picked(&self) -> Option<&str> {
+        self.auto_picked.as_deref()
     }
 
     pub fn model(&self) -> &SimModel {
@@ -129,7 +136,7 @@ impl SimHost {
         }
         gpu::check_fits(ctx.info(), &scene::shapes(&edited))?;
         ctx.wait_idle()?;
-        let model = model_for(ctx, &edited)?;
+        let (model, auto_picked) = model_for(ctx, &edited)?;
         let carried = if same_layout { Some(self.sim.read_states(ctx)?) } else { None };
         let mut sim = GpuSim::with_shaders(ctx, &model, shaders)?;
         if carried.is_some() {
@@ -152,6 +159,7 @@ impl SimHost {
         std::mem::replace(&mut self.sim, sim).destroy(ctx);
         self.model = model;
         self.scene = edited;
+        self.auto_picked = auto_picked;
         if carried.is_none() {
             self.pinned_at.clear();
         }

@@ -11,7 +11,7 @@
 use super::handles;
 use super::input::{Input, KeyAction};
 use super::recorder::AppRecorder;
-use super::sim_host::{Applied, SimHost};
+use super::sim_host::SimHost;
 use super::AppArgs;
 use crate::render::camera::OrbitCamera;
 use crate::render::view::{self, SKY};
@@ -186,6 +186,7 @@ impl Viewer {
         let renderer =
             self.renderer.insert(SceneRenderer::new(ctx, format, Format::Depth32, &mut self.shaders)?);
         self.host = Some(SimHost::new(ctx, scene, renderer, &mut self.shaders)?);
+        self.show_auto_pick();
         self.editor.shaders_note = self.shaders.status();
         log::info!("{}", self.editor.shaders_note);
         self.fit_camera();
@@ -232,26 +233,6 @@ impl Viewer {
             log::info!("{text}");
         }
         self.editor.notices.push(&text, error);
-    }
-
-    /// Applies an edited scene, reporting refusals in the editor; false when refused.
-    fn apply(&mut self, edited: Scene) -> bool {
-        let (Some(host), Some(renderer)) = (self.host.as_mut(), self.renderer.as_mut()) else { return false };
-        let applied = host.apply(&self.ctx, renderer, &mut self.shaders, edited);
-        if matches!(applied, Ok(Applied::Rebuilt | Applied::RebuiltKeepingState)) {
-            // The new simulation's timestamp pools were never written: waiting on them would hang.
-            self.frames.iter_mut().for_each(|f| f.simulated = false);
-        }
-        match applied {
-            Ok(Applied::Rebuilt) => self.message("scene rebuilt from its initial state", false),
-            Ok(Applied::RebuiltKeepingState) => self.message("simulation rebuilt; state kept", false),
-            Ok(_) => {}
-            Err(e) => {
-                self.message(format!("not applied: {e:#}"), true);
-                return false;
-            }
-        }
-        true
     }
 
     fn run_action(&mut self, action: Action) {
@@ -682,6 +663,7 @@ impl Drop for Viewer {
     }
 }
 
+mod edits;
 mod exercise;
 mod grab;
 mod items;

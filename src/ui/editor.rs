@@ -67,6 +67,8 @@ pub struct EditorState {
     pub panel: Option<[f32; 4]>,
     /// Where the Stats window was last drawn, the same way.
     pub stats_panel: Option<[f32; 4]>,
+    /// What `integrator = "auto"` picked for the running simulation.
+    pub auto_picked: Option<String>,
     /// The file the Record button writes (`.usda` or `.obj`).
     pub record_path: String,
     /// Frames recorded so far and the file, while recording.
@@ -382,6 +384,9 @@ fn simulation_panel(ui: &Ui, state: &mut EditorState, scene: &mut Scene, actions
         I::Method(_) => {}
         I::Auto => {
             drag(ui, "tolerance (of size)", &mut scene.sim.tolerance, 0.0005, 1e-4, 0.5);
+            if let Some(picked) = &state.auto_picked {
+                ui.text_wrapped(picked);
+            }
         }
     }
 }
