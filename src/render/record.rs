@@ -187,8 +187,7 @@ impl Recording {
             remove_old_frames(path)?;
         }
         let mut taken = std::collections::HashSet::new();
-        let mut spooled = 0;
-        let tracks: Vec<Track> = model
+        let mut tracks: Vec<Track> = model
             .objects
             .iter()
             .zip(colors)
@@ -204,9 +203,6 @@ impl Recording {
                         (indices, Some(o.dims[0]))
                     }
                 };
-                let recorded = o.surface_count() + if rope_nodes.is_some() { 2 * ROPE_RING } else { 0 };
-                let spooled_at = spooled;
-                spooled += 3 * 12 * recorded as u64;
                 Track {
                     name: unique_name(&mut taken, usd_name(&o.name)),
                     rope_nodes,
@@ -220,10 +216,15 @@ impl Recording {
                     back,
                     points: Vec::new(),
                     normals: Vec::new(),
-                    spooled_at,
+                    spooled_at: 0,
                 }
             })
             .collect();
+        let mut spooled = 0;
+        for t in &mut tracks {
+            t.spooled_at = spooled;
+            spooled += 3 * 12 * t.recorded_vertices() as u64;
+        }
         let spool = match format {
             Format::Usd => Some(Spool {
                 file: crate::temporary::anonymous_beside(path).map_err(|e| {
@@ -610,7 +611,7 @@ impl Recording {
         use std::os::unix::fs::FileExt as _;
         let spool =
             self.spool.as_ref().ok_or_else(|| std::io::Error::other("a USD recording has a spool"))?;
-        let n = (t.vertices + if t.rope_nodes.is_some() { 2 * ROPE_RING } else { 0 }) as u64;
+        let n = t.recorded_vertices() as u64;
         let mut bytes = vec![0u8; 12 * n as usize];
         spool.file.read_exact_at(&mut bytes, f * spool.frame_bytes + t.spooled_at + k * 12 * n)?;
         values.clear();
@@ -821,7 +822,7 @@ struct Seams {
 /// `t`'s mesh split along its seams (`Seams`): vertex v keeps its index with the coordinate of
 /// its first corner; a corner with another coordinate gets a copy of v after the others.
 fn split_seams(t: &Track) -> Seams {
-    let vertices = t.points.first().map_or(0, Vec::len);
+    let vertices = t.recorded_vertices();
     let mut first_st: Vec<Option<u32>> = vec![None; vertices];
     let mut copies = std::collections::HashMap::new();
     let mut source: Vec<u32> = (0..vertices as u32).collect();
@@ -861,6 +862,11 @@ fn write_whole(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
 }
 
 impl Track {
+    /// Vertices a frame of the recorded mesh has: the surface's, and a rope's two cap rings.
+    fn recorded_vertices(&self) -> usize {
+        self.vertices + if self.rope_nodes.is_some() { 2 * ROPE_RING } else { 0 }
+    }
+
     /// A frame's vertex velocities [m/s]: a cloth's particles', a rope's tube vertices (and cap
     /// copies) their node's.
     fn velocities_of(&self, s: &ObjectState) -> Vec<[f32; 3]> {

@@ -42,6 +42,28 @@ pub enum Selection {
     Light,
 }
 
+impl Selection {
+    /// Object `object` of the simulation (the cloths, then the ropes) in a scene of `cloths`
+    /// cloths.
+    pub fn of_object(object: usize, cloths: usize) -> Self {
+        if object < cloths {
+            Selection::Cloth(object)
+        } else {
+            Selection::Rope(object - cloths)
+        }
+    }
+
+    /// The simulation's object this selects in a scene of `cloths` cloths (None: a collider,
+    /// the wind, the light or nothing).
+    pub fn object(self, cloths: usize) -> Option<usize> {
+        match self {
+            Selection::Cloth(i) => Some(i),
+            Selection::Rope(j) => Some(cloths + j),
+            _ => None,
+        }
+    }
+}
+
 /// Editor state that is not part of the scene.
 #[derive(Debug, Clone, Default)]
 pub struct EditorState {
@@ -103,10 +125,15 @@ pub fn panel_start(size: [f32; 2]) -> [f32; 4] {
     [10.0, 10.0, 400.0, 620f32.min(size[1] - 20.0).max(100.0)]
 }
 
-/// The Stats window's width (its lines wrap within it) and height before it is first drawn;
-/// it first appears at the top right of the view.
-pub const STATS_WIDTH: f32 = 330.0;
+/// The Stats window's width (its lines wrap within it) and height before it is first drawn.
+const STATS_WIDTH: f32 = 330.0;
 const STATS_HEIGHT: f32 = 280.0;
+
+/// Where the Stats window first appears in a view of `size` logical pixels: at the top right,
+/// x, y, width, height (its height until it is drawn: it takes its content's).
+fn stats_start(size: [f32; 2]) -> [f32; 4] {
+    [(size[0] - STATS_WIDTH - 10.0).max(0.0), 10.0, STATS_WIDTH, STATS_HEIGHT]
+}
 
 /// The rectangles (x, y, width, height, logical pixels) of the windows over a view of
 /// `size` logical pixels: where they were last drawn, or where they will first appear.
@@ -116,12 +143,7 @@ pub fn covered(state: &EditorState, size: [f32; 2]) -> Vec<[f32; 4]> {
     }
     let mut rects = vec![state.panel.unwrap_or(panel_start(size))];
     if !state.hide_stats {
-        rects.push(state.stats_panel.unwrap_or([
-            size[0] - STATS_WIDTH - 10.0,
-            10.0,
-            STATS_WIDTH,
-            STATS_HEIGHT,
-        ]));
+        rects.push(state.stats_panel.unwrap_or(stats_start(size)));
     }
     rects
 }
@@ -601,9 +623,8 @@ fn shader_errors(ui: &Ui, errors: &[String]) {
 fn stats_window(ui: &Ui, stats: &Stats, state: &mut EditorState, scene: &Scene) {
     // At the top right, out of the middle of the view; as tall as its content, its lines
     // wrapped at its width, so none is cut off.
-    let size = ui.io().display_size;
-    let start = [(size[0] - STATS_WIDTH - 10.0).max(0.0), 10.0];
-    ui.window("Stats").position(start, Condition::FirstUseEver).always_auto_resize(true).build(|| {
+    let [x, y, ..] = stats_start(ui.io().display_size);
+    ui.window("Stats").position([x, y], Condition::FirstUseEver).always_auto_resize(true).build(|| {
         let ([x, y], [w, h]) = (ui.window_pos(), ui.window_size());
         state.stats_panel = Some([x, y, w, h]);
         let _wrap = ui.push_text_wrap_pos_with_pos(STATS_WIDTH - 2.0 * ui.clone_style().window_padding[0]);

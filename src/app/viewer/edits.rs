@@ -9,11 +9,11 @@ impl Viewer {
     pub(super) fn apply(&mut self, edited: Scene) -> bool {
         let (Some(host), Some(renderer)) = (self.host.as_mut(), self.renderer.as_mut()) else { return false };
         let applied = host.apply(&self.ctx, renderer, &mut self.shaders, edited);
-        if matches!(applied, Ok(Applied::Rebuilt | Applied::RebuiltKeepingState)) {
+        let rebuilt = matches!(applied, Ok(Applied::Rebuilt | Applied::RebuiltKeepingState));
+        if rebuilt {
             // The new simulation's timestamp pools were never written: waiting on them would hang.
             self.frames.iter_mut().for_each(|f| f.simulated = false);
         }
-        let rebuilt = matches!(applied, Ok(Applied::Rebuilt | Applied::RebuiltKeepingState));
         match applied {
             Ok(Applied::Rebuilt) => self.message("scene rebuilt from its initial state", false),
             Ok(Applied::RebuiltKeepingState) => self.message("simulation rebuilt; state kept", false),

@@ -72,12 +72,8 @@ impl Viewer {
                         self.input.grab =
                             Some(Grab { object, index, depth, was_pinned, target: origin + dir * depth });
                         // Clicking an object also selects it (its parameters in the panel).
-                        let cloths = host.scene().cloths.len();
-                        self.editor.selected = if object < cloths {
-                            crate::ui::Selection::Cloth(object)
-                        } else {
-                            crate::ui::Selection::Rope(object - cloths)
-                        };
+                        self.editor.selected =
+                            crate::ui::Selection::of_object(object, host.scene().cloths.len());
                     }
                     None => self.input.pick_missed(),
                 },

@@ -3,7 +3,6 @@
 use super::Viewer;
 use crate::app::handles;
 use crate::render::{view, DrawItem, Shape};
-use crate::ui;
 use glam::{Mat4, Quat, Vec3};
 
 impl Viewer {
@@ -12,10 +11,8 @@ impl Viewer {
     pub(super) fn draw_items(&self) -> Vec<DrawItem> {
         let host = self.host();
         let mut items = view::scene_items(host.scene(), host.sim().time());
-        match self.editor.selected {
-            ui::Selection::Cloth(i) => view::mark_selected(&mut items, i),
-            ui::Selection::Rope(j) => view::mark_selected(&mut items, host.scene().cloths.len() + j),
-            _ => {}
+        if let Some(object) = self.editor.selected.object(host.scene().cloths.len()) {
+            view::mark_selected(&mut items, object);
         }
         items.extend(view::pin_items(&host.pin_markers(), host.model()));
         if let Some(at) = handles::position(host.scene(), self.editor.selected) {

@@ -76,11 +76,6 @@ impl FusedLimits {
         slots.map_or(self, |s| Self { slots: s, hashed_slots: s, ..self })
     }
 
-    /// These limits with at most `n` substeps a dispatch (at least 1).
-    pub fn with_substeps_per_dispatch(self, n: u32) -> Self {
-        Self { substeps_per_dispatch: n.max(1), ..self }
-    }
-
     /// These limits within the device's shared memory, its loop limit and the kernel's
     /// `FUSED_SLOTS`.
     pub fn within(self, info: &crate::vk::DeviceInfo) -> Self {
