@@ -105,6 +105,7 @@ pub fn run_point(
     model.max_strain = 0.0;
     let mut sim = GpuSim::new(ctx, &model)?;
     sim.set_stage_timing(false);
+    sim.silence_contact_warning();
     let result = (|| -> Result<Point> {
         let (x0, v0) = positions(&sim.read_states(ctx)?);
         let start_energy = energy(&model, &x0, &v0);

@@ -120,6 +120,13 @@ impl GpuSim {
         Ok(None)
     }
 
+    /// Leaves the contact-speed warning unsaid: for runs that measure a setting (the chart,
+    /// `auto`'s calibration), whose error already shows what the warning would, and whose user
+    /// did not choose the setting.
+    pub fn silence_contact_warning(&mut self) {
+        self.warned = true;
+    }
+
     /// The warning that a particle outran the contact speed (`sim::collider::contact_speed`),
     /// once per simulation, the first time it is asked for after it happened.
     pub fn take_warning(&mut self) -> Option<String> {
