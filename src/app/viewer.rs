@@ -96,6 +96,9 @@ pub struct Viewer {
     exercise_rope_x: f32,
     /// The UI's edited scene and actions, applied at the start of the next frame.
     pending_scene: Option<Scene>,
+    /// The pending edits calibrate `integrator = "auto"` and the notice saying so is drawn:
+    /// they are applied this frame (`edits::calibration_waits`).
+    calibration_announced: bool,
     /// Undo and redo of scene edits (created with the scene).
     history: Option<super::history::History>,
     pending_actions: Vec<Action>,
@@ -162,6 +165,7 @@ impl Viewer {
             screenshot: None,
             shot: None,
             pending_scene: None,
+            calibration_announced: false,
             history: None,
             pending_actions: Vec::new(),
         };
@@ -406,12 +410,15 @@ impl Viewer {
             }
         };
 
-        // Edits and actions from the previous frame's UI, then input.
-        if let Some(edited) = self.pending_scene.take() {
-            self.apply(edited);
-        }
-        for a in std::mem::take(&mut self.pending_actions) {
-            self.run_action(a);
+        // Edits and actions from the previous frame's UI (unless they wait a frame for the
+        // calibration's notice), then input.
+        if !self.calibration_waits() {
+            if let Some(edited) = self.pending_scene.take() {
+                self.apply(edited);
+            }
+            for a in std::mem::take(&mut self.pending_actions) {
+                self.run_action(a);
+            }
         }
         self.input.fly(&mut self.camera, dt as f32);
         self.update_grab();
@@ -458,10 +465,13 @@ impl Viewer {
         // `draw_data` borrows `self.imgui`, so only other fields are touched.
         self.platform.prepare_frame(self.imgui.io_mut(), &self.window).context("preparing the UI frame")?;
         let ui = self.imgui.new_frame();
-        let mut edited = self.host.as_ref().expect("host").scene().clone();
+        // (Edits that wait a frame are shown and edited further.)
+        let mut edited =
+            (self.pending_scene.clone()).unwrap_or_else(|| self.host.as_ref().expect("host").scene().clone());
         self.editor.shader_errors = self.shaders.errors().map(|(_, e)| e.clone()).collect();
         self.editor.look_at = self.camera.target.as_dvec3().to_array();
-        self.pending_actions = ui::build(ui, &mut self.editor, &mut edited, &self.stats);
+        let actions = ui::build(ui, &mut self.editor, &mut edited, &self.stats);
+        self.pending_actions.extend(actions);
         if edited != *self.host.as_ref().expect("host").scene() {
             self.pending_scene = Some(edited);
         }

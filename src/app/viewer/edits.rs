@@ -2,7 +2,8 @@
 
 use super::Viewer;
 use crate::app::sim_host::Applied;
-use crate::scene::Scene;
+use crate::scene::{self, Scene};
+use crate::ui::Action;
 
 impl Viewer {
     /// Applies an edited scene, reporting refusals in the editor; false when refused.
@@ -27,6 +28,31 @@ impl Viewer {
             self.show_auto_pick();
         }
         true
+    }
+
+    /// Whether the pending edits and actions wait a frame: they will calibrate `integrator =
+    /// "auto"`, which holds the window for seconds (minutes on a CPU driver), so the frame
+    /// before says so in a notice. True once for them; the next frame applies them.
+    pub(super) fn calibration_waits(&mut self) -> bool {
+        if std::mem::take(&mut self.calibration_announced) {
+            return false;
+        }
+        let Some(current) = self.host.as_ref().map(|h| h.scene()) else { return false };
+        let auto = |s: &Scene| s.sim.integrator.method().is_none();
+        let calibrates = self.pending_scene.as_ref().is_some_and(|s| auto(s) && s != current)
+            || self.pending_actions.iter().any(|a| match a {
+                Action::Load(path) => scene::load(path, &[]).is_ok_and(|s| auto(&s) && s != *current),
+                Action::AddClothFromPreset(_) => auto(current),
+                _ => false,
+            });
+        if calibrates {
+            self.message(
+                "calibrating integrator = \"auto\": the window waits until it has picked a method",
+                false,
+            );
+            self.calibration_announced = true;
+        }
+        calibrates
     }
 
     /// Says what `integrator = "auto"` picked (a notice, and a line under the integrator).
