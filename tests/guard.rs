@@ -129,3 +129,51 @@ fn an_overstretched_cloth_trips_the_guard() {
         assert_clean(&ctx);
     }
 }
+
+/// Energy made without a source is an error too (sim.max_energy_gain, default 0.5 of the
+/// scene's scale): two free 8 x 8 cloths started 5 mm apart, inside each other's contact reach
+/// (2 cm), nothing else acting, fly apart (contact gives the overlap it resolves as speed) and
+/// trip the guard; with the check off they run on. The same cloths 10 cm apart, falling under
+/// gravity for 45 frames (energy conserved but for rounding), do not trip it.
+#[test]
+fn energy_made_without_a_source_trips_the_guard() {
+    let pair = |gap: f64| {
+        let mut back = cloth(8, 8, 0.04);
+        back.margin = 0.01;
+        back.stiffness = [50.0, 10.0, 1.0];
+        let mut front = back.clone();
+        front.name = "front".into();
+        front.positions.iter_mut().for_each(|p| p.z += gap);
+        let mut model = scene(vec![back, front]);
+        model.inter_object = true;
+        model.max_energy_gain = 0.5;
+        model
+    };
+    let ctx = gpu();
+    let mut falling = pair(0.1);
+    falling.gravity = DVec3::new(0.0, -9.81, 0.0);
+    for (model, trips) in [(pair(0.005), true), (falling, false)] {
+        let mut sim = GpuSim::new(&ctx, &model).unwrap();
+        let result = (0..45).try_for_each(|_| sim.step_frame(&ctx).map(|_| ()));
+        if trips {
+            let err = result.expect_err("cloths pushed apart from rest gain energy");
+            let trip = err.downcast_ref::<GuardTrip>().expect("a GuardTrip");
+            assert_eq!(trip.cause, msdsim::sim::stability::GuardCause::EnergyGain, "{trip}");
+            assert!(
+                trip.what.contains("without a source") && trip.advice.contains("max_energy_gain = 0"),
+                "{trip}"
+            );
+        } else {
+            result.expect("a falling pair keeps its energy");
+        }
+        sim.destroy(&ctx);
+    }
+    let mut off = pair(0.005);
+    off.max_energy_gain = 0.0;
+    let mut sim = GpuSim::new(&ctx, &off).unwrap();
+    for _ in 0..45 {
+        sim.step_frame(&ctx).expect("sim.max_energy_gain = 0 turns the check off");
+    }
+    sim.destroy(&ctx);
+    assert_clean(&ctx);
+}

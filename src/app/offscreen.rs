@@ -109,7 +109,7 @@ pub fn measure(
 ) -> Result<EndToEnd> {
     // Timed whatever the scene stretches to, as `bench` does: the plausibility check is off.
     let mut model = scene::to_model(scene);
-    model.max_strain = 0.0;
+    model.plausibility_off();
     let limits = FusedLimits::for_device(ctx.info()).with_slots(options.fused_slots);
     let mut sim = GpuSim::with_fused_limits(ctx, &model, limits, shaders)?;
     sim.set_stage_timing(false);

@@ -612,7 +612,11 @@ impl Viewer {
             // The runtime guard: an unstable simulation pauses with what happened and what to
             // change. (The guard is shared by the frames in flight; a trip the other frame sets
             // while this one clears it is reported by the next frame, since the state stays bad.)
-            let trip = self.host.as_mut().expect("host").sim_mut().check_guard()?;
+            let sim = self.host.as_mut().expect("host").sim_mut();
+            let trip = match sim.check_guard()? {
+                Some(trip) => Some(trip),
+                None => sim.check_energy(&self.ctx)?,
+            };
             if let Some(trip) = trip {
                 self.editor.paused = true;
                 self.message(trip.to_string(), true);

@@ -89,7 +89,7 @@ pub fn measure(
     // The bench times scenes, whatever they stretch to (a 1024-row cloth of the bench's springs
     // hangs far past twice its rest length at the top): the guard's plausibility check is off.
     let mut model = scene::to_model(&case.scene);
-    model.max_strain = 0.0;
+    model.plausibility_off();
     let limits = FusedLimits::for_device(ctx.info()).with_slots(fused_slots);
     let mut sim = GpuSim::with_fused_limits(ctx, &model, limits, shaders)
         .with_context(|| format!("setting up {}", case.name))?;

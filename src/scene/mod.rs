@@ -61,6 +61,10 @@ pub struct SimSettings {
     /// 0: no check).
     #[serde(default = "defaults::max_strain")]
     pub max_strain: f64,
+    /// ... or when its total energy grows, with nothing supplying any (no wind, no moving
+    /// collider), by more than this fraction of its scale (weight times size; 0: no check).
+    #[serde(default = "defaults::max_energy_gain")]
+    pub max_energy_gain: f64,
     /// "symplectic_euler" (the paper's), "verlet", "xpbd", "implicit", or "auto": the cheapest
     /// method and substep count that meets `tolerance`, from a short calibration.
     #[serde(default)]
@@ -149,6 +153,7 @@ impl Default for SimSettings {
             self_collision: Default::default(),
             max_speed: defaults::max_speed(),
             max_strain: defaults::max_strain(),
+            max_energy_gain: defaults::max_energy_gain(),
             integrator: Default::default(),
             iterations: defaults::iterations(),
             relaxation: 1.0,
@@ -539,6 +544,9 @@ mod defaults {
     }
     pub fn max_strain() -> f64 {
         1.0
+    }
+    pub fn max_energy_gain() -> f64 {
+        0.5
     }
     pub fn iterations() -> u32 {
         10

@@ -127,6 +127,12 @@ pub fn check(scene: &Scene) -> Check {
     if !(s.max_strain.is_finite() && (0.0..=1e3).contains(&s.max_strain)) {
         return Err(format!("sim.max_strain = {}: must be between 0 (no check) and 1000", s.max_strain));
     }
+    if !(s.max_energy_gain.is_finite() && (0.0..=1e3).contains(&s.max_energy_gain)) {
+        return Err(format!(
+            "sim.max_energy_gain = {}: must be between 0 (no check) and 1000",
+            s.max_energy_gain
+        ));
+    }
     if !(1..=1000).contains(&s.iterations) {
         return Err(format!("sim.iterations = {}: must be between 1 and 1000", s.iterations));
     }

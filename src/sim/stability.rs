@@ -174,6 +174,8 @@ pub enum GuardCause {
     Runaway,
     /// A structural spring is stretched past `sim.max_strain`.
     Overstretched,
+    /// The energy grew without a source past `sim.max_energy_gain` (`sim::gpu::energy`).
+    EnergyGain,
 }
 
 impl GuardTrip {
@@ -192,7 +194,25 @@ impl GuardTrip {
                 1.0 + model.max_strain,
                 model.max_strain
             ),
+            GuardCause::EnergyGain => format!(
+                "gained energy without a source (past sim.max_energy_gain = {} of the scene's scale)",
+                model.max_energy_gain
+            ),
         };
+        if cause == GuardCause::EnergyGain {
+            let iterations = if model.integrator.iterative() {
+                format!("more iterations (sim.iterations, now {}) or ", model.iterations)
+            } else {
+                String::new()
+            };
+            let advice = format!(
+                "Nothing in the scene supplies energy (no wind, no moving collider), so a contact or the solve made it: \
+                 try {iterations}{}; objects that start inside each other's contact distance, or a stack of layers, \
+                 push apart; sim.max_energy_gain = 0 turns this check off.",
+                more_substeps(model)
+            );
+            return Self { name: o.name.clone(), kind: o.kind, cause, particle, what, time, advice };
+        }
         if cause == GuardCause::Overstretched {
             let advice = if model.integrator.iterative() {
                 format!(

@@ -102,7 +102,7 @@ pub fn run_point(
     model.iterations = iterations.max(1);
     // Each point records its own largest strain (and `auto` judges it), so the guard's
     // plausibility check is off here: it would stop a setting instead of measuring it.
-    model.max_strain = 0.0;
+    model.plausibility_off();
     let mut sim = GpuSim::new(ctx, &model)?;
     sim.set_stage_timing(false);
     sim.silence_contact_warning();

@@ -121,7 +121,7 @@ pub fn run(
             // The map judges strain itself, at the end of the run (`sweep.max_strain`), so the
             // guard's plausibility check is off here: it would stop a soft cell early.
             let mut model = scene::to_model(&scene);
-            model.max_strain = 0.0;
+            model.plausibility_off();
             let dt_max = predict(&model).iter().map(|p| p.dt_max).fold(f64::INFINITY, f64::min);
             let mut sim = GpuSim::new(ctx, &model)?;
             let run = (|| -> Result<Outcome> {
@@ -131,7 +131,8 @@ pub fn run(
                             Some(t) => Ok(match t.cause {
                                 GuardCause::NonFinite => Outcome::NonFinite,
                                 GuardCause::Runaway => Outcome::Runaway,
-                                GuardCause::Overstretched => Outcome::Overstretched,
+                                // (The energy check is off here, with the strain's.)
+                                GuardCause::Overstretched | GuardCause::EnergyGain => Outcome::Overstretched,
                             }),
                             None => Err(e),
                         };

@@ -106,6 +106,7 @@ pub fn scene(objects: Vec<ObjectModel>) -> SimModel {
         // Off: most scenes here are built to test other things, some violently (layers started
         // inside each other's thickness); tests/guard.rs turns it on.
         max_strain: 0.0,
+        max_energy_gain: 0.0,
         integrator: Default::default(),
         iterations: 10,
         relaxation: 1.0,

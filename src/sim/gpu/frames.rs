@@ -64,6 +64,9 @@ impl GpuSim {
         if let Some(trip) = self.check_guard()? {
             return Err(trip.into());
         }
+        if let Some(trip) = self.check_energy(ctx)? {
+            return Err(trip.into());
+        }
         self.read_timing(ctx, slot)
     }
 

@@ -23,6 +23,7 @@
 //! barrier back to compute, so frames recorded after them need no barrier of their own.
 
 mod contact;
+mod energy;
 mod frames;
 mod fused;
 mod hash;
@@ -124,6 +125,8 @@ pub struct GpuSim {
     /// Whether the contact-speed warning was given, and the warning not yet taken.
     warned: bool,
     warning: Option<String>,
+    /// The guard's energy check (`energy.rs`).
+    energy: energy::EnergyWatch,
     /// Particle writes (object, index, value) applied at the start of the next recorded frame.
     pending_writes: Vec<(usize, u32, Particle)>,
     /// The fused kernel's self-collision contact lists may not match the state or parameters
@@ -284,13 +287,19 @@ impl GpuSim {
             history_stale: true,
             warned: false,
             warning: None,
+            energy: Default::default(),
             surface_stale: false,
             dragged: Vec::new(),
             model: model.without_particles(),
         };
         // From here `sim` owns everything created; on error it is destroyed whole.
         match sim.populate(ctx, model, &plans) {
-            Ok(()) => Ok(sim),
+            Ok(()) => {
+                sim.start_energy(
+                    &model.objects.iter().map(|o| (o.positions.clone(), o.velocities.clone())).collect(),
+                );
+                Ok(sim)
+            }
             Err(e) => {
                 let _ = ctx.wait_idle();
                 sim.destroy(ctx);
@@ -300,6 +309,7 @@ impl GpuSim {
     }
 
     fn populate(&mut self, ctx: &GpuContext, model: &SimModel, plans: &[ObjectPlan]) -> Result<()> {
+        self.energy.restart();
         self.globals.write(0, &[globals(model)])?;
         self.colliders.write(0, &collider_data(model, 0.0))?;
         for (o, &plan) in model.objects.iter().zip(plans) {
@@ -506,12 +516,14 @@ impl GpuSim {
 
     /// Starts the simulated time again from zero (a reset to the initial state).
     pub fn reset_time(&mut self) {
+        self.energy.restart();
         (self.frames, self.start) = (0, 0.0);
     }
 
     /// Goes on from simulated time `t` (a rebuilt simulation carrying another's state), so that
     /// moving colliders stay where that one had them.
     pub fn continue_at(&mut self, t: f64) {
+        self.energy.restart();
         self.start = t - self.frames as f64 * self.model.frame_dt;
     }
 
@@ -584,6 +596,7 @@ impl GpuSim {
     /// Writes one particle (position, velocity, pinned flag) at the start of the next frame.
     pub fn set_particle(&mut self, object: usize, index: u32, particle: Particle) {
         if self.objects.get(object).is_some_and(|o| index < o.particles) {
+            self.energy.restart();
             self.pending_writes.retain(|w| (w.0, w.1) != (object, index));
             self.pending_writes.push((object, index, particle));
         }

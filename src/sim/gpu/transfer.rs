@@ -102,6 +102,8 @@ impl GpuSim {
         })();
         staging.destroy(ctx);
         self.surface_stale = true;
+        // The energy check starts again from what was written.
+        self.start_energy(&super::energy::states_of(states));
         result.context("uploading the simulation state")
     }
 
