@@ -24,7 +24,7 @@ use glam::DVec3;
 /// Frames between two checks, at least.
 const CHECK_FRAMES: u64 = 30;
 /// Scenes with more particles than this many a frame are checked less often.
-const PARTICLES_PER_FRAME: u64 = 4096;
+const PARTICLES_PER_FRAME: u64 = 1024;
 /// The speed every particle may have from rounding alone, in the scale [m/s].
 const FLOOR_SPEED: f64 = 0.1;
 
