@@ -380,6 +380,28 @@ fn auto_integrator_picks_a_method_within_the_tolerance() {
     assert!(stderr.contains("sim.tolerance") && !stderr.contains("panicked"), "{stderr}");
 }
 
+/// A scene so stiff that Verlet blows up at 64 substeps a frame (its predicted limit is 92)
+/// still calibrates: the reference then starts at 128 against 256 (the cheaper 64 against 128
+/// pair, tried first, used to end the calibration with the guard's report).
+#[test]
+fn auto_calibrates_a_scene_too_stiff_for_the_cheaper_reference() {
+    let out = msdsim(&[
+        "simulate",
+        "--preset",
+        "presets/rope.toml",
+        "--frames",
+        "1",
+        "--quiet",
+        "--set",
+        "rope.0.stiffness=300000",
+        "--set",
+        "sim.integrator=\"auto\"",
+    ]);
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(stdout.contains("integrator = \"auto\" picked"), "{stdout}");
+}
+
 /// Runs `args`, expecting exit code 2 from clap's own checks, in one line like every other
 /// error (clap's own message spans 3 to 6): the argument is named and it is not taken for an
 /// unknown flag.

@@ -472,9 +472,8 @@ impl Viewer {
         self.editor.look_at = self.camera.target.as_dvec3().to_array();
         let actions = ui::build(ui, &mut self.editor, &mut edited, &self.stats);
         self.pending_actions.extend(actions);
-        if edited != *self.host.as_ref().expect("host").scene() {
-            self.pending_scene = Some(edited);
-        }
+        // (An edit that waits and is then put back is dropped.)
+        self.pending_scene = (edited != *self.host.as_ref().expect("host").scene()).then_some(edited);
         self.platform.prepare_render(ui, &self.window);
         let draw_data = self.imgui.render();
 

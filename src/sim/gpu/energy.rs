@@ -34,7 +34,7 @@ pub(super) struct EnergyWatch {
     lowest: Option<(f64, Vec<f64>)>,
     scale: f64,
     /// The frame count of the last check.
-    checked_at: u64,
+    pub(super) checked_at: u64,
 }
 
 impl EnergyWatch {
@@ -101,8 +101,10 @@ impl GpuSim {
     pub fn check_energy(&mut self, ctx: &GpuContext) -> Result<Option<GuardTrip>> {
         let particles: u64 = self.objects.iter().map(|o| o.particles as u64).sum();
         let every = CHECK_FRAMES.max(particles / PARTICLES_PER_FRAME);
-        let due = self.energy.lowest.is_none() || self.frames >= self.energy.checked_at + every;
-        if !self.energy_checked() || !due || self.frames == self.energy.checked_at {
+        // After a restart too, the next reading waits a whole interval: a particle held by the
+        // app is written every frame, and reading the state each time would stall every frame.
+        let due = self.frames >= self.energy.checked_at + every;
+        if !self.energy_checked() || !due {
             return Ok(None);
         }
         self.energy.checked_at = self.frames;

@@ -294,12 +294,7 @@ impl GpuSim {
         };
         // From here `sim` owns everything created; on error it is destroyed whole.
         match sim.populate(ctx, model, &plans) {
-            Ok(()) => {
-                sim.start_energy(
-                    &model.objects.iter().map(|o| (o.positions.clone(), o.velocities.clone())).collect(),
-                );
-                Ok(sim)
-            }
+            Ok(()) => Ok(sim),
             Err(e) => {
                 let _ = ctx.wait_idle();
                 sim.destroy(ctx);
@@ -517,6 +512,7 @@ impl GpuSim {
     /// Starts the simulated time again from zero (a reset to the initial state).
     pub fn reset_time(&mut self) {
         self.energy.restart();
+        self.energy.checked_at = 0;
         (self.frames, self.start) = (0, 0.0);
     }
 

@@ -102,8 +102,10 @@ impl GpuSim {
         })();
         staging.destroy(ctx);
         self.surface_stale = true;
-        // The energy check starts again from what was written.
-        self.start_energy(&super::energy::states_of(states));
+        if result.is_ok() {
+            // The energy check starts again from what was written.
+            self.start_energy(&super::energy::states_of(states));
+        }
         result.context("uploading the simulation state")
     }
 
