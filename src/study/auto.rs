@@ -120,7 +120,6 @@ pub fn calibrate(
     let mut best_reference = f64::INFINITY;
     'times: for time in CALIBRATION_TIMES {
         // The cheaper reference first; where it cannot certify the tolerance, the finer one,
-        // checked against it.
         // checked against it. Where Verlet at the coarsest count blows up (a stiff scene), the
         // check starts at the next pair.
         let mut coarse = match gpu_reference(ctx, model, time, REFERENCE_SUBSTEPS[0] / 2) {

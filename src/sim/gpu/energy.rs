@@ -34,7 +34,7 @@ pub(super) struct EnergyWatch {
     lowest: Option<(f64, Vec<f64>)>,
     scale: f64,
     /// The frame count of the last check.
-    pub(super) checked_at: u64,
+    checked_at: u64,
 }
 
 impl EnergyWatch {
@@ -133,12 +133,11 @@ impl GpuSim {
                 GuardCause::EnergyGain,
                 self.time(),
             );
-            trip.what = format!(
-                "gained {gain:.3e} J without a source ({:.2} of the scene's energy scale, {:.3e} J; sim.max_energy_gain = {})",
+            trip.what.push_str(&format!(
+                ": {gain:.3e} J, {:.2} times the scale of {:.3e} J",
                 gain / self.energy.scale,
-                self.energy.scale,
-                self.model.max_energy_gain
-            );
+                self.energy.scale
+            ));
             self.energy.restart();
             return Ok(Some(trip));
         }

@@ -304,7 +304,6 @@ impl GpuSim {
     }
 
     fn populate(&mut self, ctx: &GpuContext, model: &SimModel, plans: &[ObjectPlan]) -> Result<()> {
-        self.energy.restart();
         self.globals.write(0, &[globals(model)])?;
         self.colliders.write(0, &collider_data(model, 0.0))?;
         for (o, &plan) in model.objects.iter().zip(plans) {
@@ -511,8 +510,8 @@ impl GpuSim {
 
     /// Starts the simulated time again from zero (a reset to the initial state).
     pub fn reset_time(&mut self) {
-        self.energy.restart();
-        self.energy.checked_at = 0;
+        // (Its interval counts from frame 0 again.)
+        self.energy = Default::default();
         (self.frames, self.start) = (0, 0.0);
     }
 
