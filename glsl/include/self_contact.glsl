@@ -180,30 +180,43 @@ void test_pair(vec3 x, uint t) {
 void self_triangles(uvec2 cell, vec3 x, uint j, float list_reach) {
     ivec2 dims = ivec2(obj.dims);
     ivec2 at = ivec2(int(j % obj.dims.x), int(j / obj.dims.x));
-    vec3 dj = x - CPOS(j);
+    vec3 xj = CPOS(j);
+    vec3 dj = x - xj;
     float d2j = dot(dj, dj);
     bool usable[6];
     uint ring[6];
+    vec3 at_ring[6];
     float d2[6];
     [[unroll]] for (int r = 0; r < 6; ++r) {
         ivec2 q = at + VERTEX_RING[r];
         ivec2 off = abs(q - ivec2(cell));
         usable[r] = all(greaterThanEqual(q, ivec2(0))) && all(lessThan(q, dims)) && max(off.x, off.y) > 1;
         ring[r] = usable[r] ? uint(q.x + q.y * dims.x) : j;
-        vec3 e = x - CPOS(ring[r]);
+        at_ring[r] = CPOS(ring[r]);
+        vec3 e = x - at_ring[r];
         d2[r] = usable[r] ? dot(e, e) : 0.0;
     }
     bool thick = obj.self_distance >= 1.99 * min(obj.spacing.x, obj.spacing.y);
+    // A triangle farther than this is neither a contact nor a list entry.
+    float farthest = max(obj.self_distance, list_reach);
     [[unroll]] for (int k = 0; k < 6; ++k) {
         int k1 = (k + 1) % 6;
         if (!usable[k] || !usable[k1] || nearer(d2[k], ring[k], d2j, j) || nearer(d2[k1], ring[k1], d2j, j)) continue;
+        // Its bounding box grown by that distance must hold x (the nearest point lies in it):
+        // most triangles fail here, before the exact test.
+        vec3 lo = min(xj, min(at_ring[k], at_ring[k1])) - farthest;
+        vec3 hi = max(xj, max(at_ring[k], at_ring[k1])) + farthest;
+        if (any(lessThan(x, lo)) || any(greaterThan(x, hi))) continue;
         ivec2 a = at + VERTEX_TRIANGLES[k].xy;
         uint t = 2u * uint(a.x + a.y * dims.x) + uint(VERTEX_TRIANGLES[k].z);
         if (thick && pair_left_out(cell, t)) continue;
-        uvec3 tv;
-        vec3 w;
-        vec3 n;
-        float d = pair_distance(x, t, tv, w, n);
+        // The exact test from the positions read above, the vertices in the triangle's own
+        // order (triangle_vertices), as pair_distance computes it.
+        uvec3 tv = triangle_vertices(t);
+        vec3 p[3];
+        [[unroll]] for (int c = 0; c < 3; ++c) p[c] = tv[c] == j ? xj : tv[c] == ring[k] ? at_ring[k] : at_ring[k1];
+        vec3 w = triangle_nearest(x, p[0], p[1], p[2]);
+        float d = length(x - (w.x * p[0] + w.y * p[1] + w.z * p[2]));
         test_contact(t, tv, d);
         if (d < list_reach) {
             if (list_len < LIST_ENTRIES) self_list[list_entry(list_len, list_particle, particle_count())] = t;
