@@ -232,16 +232,17 @@ impl Default for Wind {
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum SelfContact {
-    /// Particles from particles, closer than the self-collision distance (the paper's).
-    #[default]
+    /// Particles from particles, closer than the self-collision distance (the paper's: layers
+    /// pass through each other between particles).
     Particles,
     /// Particles from triangles, equal and opposite: the distance is a thickness.
+    #[default]
     Triangles,
 }
 
 impl SelfContact {
-    fn is_particles(&self) -> bool {
-        *self == SelfContact::Particles
+    fn is_triangles(&self) -> bool {
+        *self == SelfContact::Triangles
     }
 }
 
@@ -448,10 +449,11 @@ pub struct Cloth {
     /// Self-collision distance [m]; default half the smaller grid spacing.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub self_collision_distance: Option<f64>,
-    /// What self-collision keeps apart: "particles" (the paper's) or "triangles" (the cloth's
-    /// particles from its triangles, the distance a thickness: no layer passes through
-    /// another, at several times the cost).
-    #[serde(default, skip_serializing_if = "SelfContact::is_particles")]
+    /// What self-collision keeps apart: "triangles" (the default: the cloth's particles from
+    /// its triangles, the distance a thickness, no layer passing through another) or
+    /// "particles" (the paper's: particles from particles, at a fraction of the cost, but
+    /// layers pass between them).
+    #[serde(default, skip_serializing_if = "SelfContact::is_triangles")]
     pub self_contact: SelfContact,
     #[serde(default)]
     pub pin: ClothPins,
