@@ -46,9 +46,12 @@ pub fn position(scene: &Scene, target: Selection) -> Option<Vec3> {
 /// Moves `target` so that its position is `to`.
 pub fn set_position(scene: &mut Scene, target: Selection, to: Vec3) {
     let Some(from) = position(scene, target) else { return };
+    // Each coordinate kept as the shortest decimal of its f32 (the handle's precision), so a
+    // saved preset reads 0.35, not 0.3499999940395355.
     let shift = |p: &mut [f64; 3]| {
         let d = to - from;
-        *p = [p[0] + d.x as f64, p[1] + d.y as f64, p[2] + d.z as f64];
+        let shortest = |x: f64| (x as f32).to_string().parse().unwrap_or(x);
+        *p = [shortest(p[0] + d.x as f64), shortest(p[1] + d.y as f64), shortest(p[2] + d.z as f64)];
     };
     match target {
         Selection::Sphere(i) => shift(&mut scene.spheres[i].center),
@@ -204,5 +207,15 @@ mod tests {
         set_position(&mut scene, Selection::Capsule(0), Vec3::new(0.5, 1.0, 0.0));
         assert_eq!(scene.capsules[0].start, [0.0, 1.0, 0.0]);
         assert_eq!(scene.capsules[0].end, [1.0, 1.0, 0.0]);
+    }
+
+    /// A dragged position keeps the shortest decimal of its f32 (what the preset then saves),
+    /// not the f32's binary tail.
+    #[test]
+    fn a_drag_saves_short_decimals() {
+        let mut scene = Scene::default();
+        scene.spheres.push(crate::scene::Sphere { center: [0.0, 0.5, 0.0], radius: 0.2, motion: None });
+        set_position(&mut scene, Selection::Sphere(0), Vec3::new(0.1, 0.35, -0.7));
+        assert_eq!(scene.spheres[0].center, [0.1, 0.35, -0.7]);
     }
 }

@@ -4,7 +4,7 @@
 //! button is released); left-drag elsewhere or right-drag orbits; middle-drag or Shift+drag pans;
 //! the wheel zooms; W/A/S/D/Q/E fly; F fits the scene; Home resets the camera; Space pauses;
 //! N steps one frame; Ctrl+R resets the simulation; Ctrl+Z undoes an edit, Ctrl+Shift+Z or
-//! Ctrl+Y redoes it; Esc quits.
+//! Ctrl+Y redoes it; Esc twice within 3 s quits.
 
 use crate::render::camera::OrbitCamera;
 use crate::sim::gpu::ObjectState;
@@ -70,7 +70,16 @@ pub struct Input {
 }
 
 impl Input {
-    /// Esc pressed at `now`: quit when it follows a first press within QUIT_CONFIRM seconds,
+    /// Esc pressed at `now`: lets go of a held particle (where it is now), else `escape`.
+    pub(super) fn on_escape(&mut self, now: std::time::Instant) -> Option<KeyAction> {
+        if self.grab.is_some() {
+            self.released = self.grab.take();
+            return None;
+        }
+        Some(self.escape(now))
+    }
+
+    /// Esc pressed at `now` with nothing held: quit when it follows a first press within QUIT_CONFIRM seconds,
     /// else ask (a stray Esc, in the middle of a grab or meant for a text field, loses nothing).
     pub(super) fn escape(&mut self, now: std::time::Instant) -> KeyAction {
         match self.quit_asked.take() {
@@ -80,6 +89,11 @@ impl Input {
                 KeyAction::QuitAsk
             }
         }
+    }
+
+    /// The Esc that asked to quit closed something instead: the next press asks again.
+    pub(super) fn forget_quit(&mut self) {
+        self.quit_asked = None;
     }
 
     /// Handles a window event the UI did not capture (`ui_mouse` / `ui_keys`: ImGui wants them).
@@ -166,7 +180,7 @@ impl Input {
                     KeyCode::F12 => Some(KeyAction::Screenshot),
                     KeyCode::F1 => Some(KeyAction::Help),
                     KeyCode::F9 => Some(KeyAction::Record),
-                    KeyCode::Escape => Some(self.escape(std::time::Instant::now())),
+                    KeyCode::Escape => self.on_escape(std::time::Instant::now()),
                     _ => None,
                 };
                 self.actions.extend(action);
@@ -283,6 +297,19 @@ mod tests {
         );
         assert_eq!(input.escape(t0 + Duration::from_secs(6)), KeyAction::QuitAsk, "too late: asks again");
         assert_eq!(input.escape(t0 + Duration::from_secs(7)), KeyAction::Quit);
+    }
+
+    /// Esc in the middle of a grab lets go of the particle and does not ask to quit; the next
+    /// Esc asks.
+    #[test]
+    fn esc_lets_go_of_a_grab_first() {
+        let mut input = Input::default();
+        let grab = Grab { object: 0, index: 3, depth: 1.0, was_pinned: false, target: Vec3::ZERO };
+        input.grab = Some(grab);
+        let t0 = std::time::Instant::now();
+        assert_eq!(input.on_escape(t0), None);
+        assert!(input.grab.is_none() && input.released.is_some_and(|r| r.index == 3));
+        assert_eq!(input.on_escape(t0), Some(KeyAction::QuitAsk));
     }
 
     use super::*;

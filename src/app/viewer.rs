@@ -298,6 +298,8 @@ impl Viewer {
                         {
                             c.name = crate::ui::unique_name(&edited, &c.name);
                         }
+                        // Where the camera looks, clear of the scene, as a new cloth is.
+                        scene::place::place_cloth(&edited, &mut c, self.camera.target.as_dvec3());
                         edited.cloths.push(c);
                     }
                     self.apply(edited);
@@ -342,6 +344,7 @@ impl Viewer {
                 KeyAction::Record => {
                     self.run_action(Action::ToggleRecording(PathBuf::from(&self.editor.record_path)))
                 }
+                KeyAction::QuitAsk if self.dismiss() => self.input.forget_quit(),
                 KeyAction::QuitAsk => {
                     self.observe_edits();
                     let lost = if self.editor.unsaved { " (the unsaved edits are lost)" } else { "" };

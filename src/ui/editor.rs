@@ -295,7 +295,7 @@ fn recording_indicator(ui: &Ui, state: &EditorState) {
 }
 
 /// The app's controls (the README's table), shown with F1.
-const CONTROLS: [(&str, &str); 17] = [
+const CONTROLS: [(&str, &str); 18] = [
     ("left-drag on cloth or rope", "grab the particle (within 12 pixels) and drag it"),
     ("Ctrl + left click", "pin the particle where it is, or free it"),
     ("left-drag on empty space, right-drag", "orbit (above the ground; Alt: also below)"),
@@ -312,14 +312,17 @@ const CONTROLS: [(&str, &str); 17] = [
     ("F12", "save a screenshot (msdsim-<time>.png)"),
     ("F9", "start or stop recording (the file in the Simulation panel)"),
     ("F1", "show or hide these controls"),
+    ("Esc", "let go of a drag; close these controls, the log or Replace"),
     ("Esc, Esc", "quit (twice within 3 s; the close button too, with unsaved edits)"),
 ];
 
 fn help_window(ui: &Ui, open: &mut bool) {
     ui.window("Controls (F1)").opened(open).always_auto_resize(true).build(|| {
+        // The descriptions start past the widest key, so the columns never run together.
+        let column = CONTROLS.iter().map(|(key, _)| ui.calc_text_size(key)[0]).fold(0.0, f32::max) + 16.0;
         for (key, what) in CONTROLS {
             ui.text(key);
-            ui.same_line_with_pos(260.0);
+            ui.same_line_with_pos(column);
             ui.text_disabled(what);
         }
     });
@@ -573,7 +576,7 @@ fn new_cloth(name: String) -> Cloth {
         collision_margin: 0.01,
         self_collision: false,
         self_collision_distance: None,
-        self_contact: SelfContact::Particles,
+        self_contact: SelfContact::Triangles,
         pin: ClothPins::TopCorners,
         pinned: Vec::new(),
         color: [0.2, 0.45, 0.75],

@@ -1,6 +1,6 @@
 //! Undo and redo in the app: the history (`app::history`) sees the scene after every frame's
 //! edits, and an undone or redone scene is applied as an edit is; and what is unsaved, which
-//! makes closing the window ask first.
+//! makes closing the window ask first; what Esc closes before it asks to quit.
 
 use super::super::history::History;
 use super::super::input::KeyAction;
@@ -16,6 +16,21 @@ impl Viewer {
         history.observe(host.scene(), busy || self.pending_scene.is_some());
         self.editor.undo_depth = history.depth();
         self.editor.unsaved = history.unsaved(host.scene());
+    }
+
+    /// Esc closes what is open before it asks to quit: a handle being dragged (let go where it
+    /// is), the Save's Replace question, the controls, the log. True when it closed something.
+    pub(super) fn dismiss(&mut self) -> bool {
+        if self.handle.take().is_some() {
+            return true;
+        }
+        let editor = &mut self.editor;
+        for open in [&mut editor.show_help, &mut editor.notices.show_log] {
+            if std::mem::take(open) {
+                return true;
+            }
+        }
+        editor.replace.take().is_some()
     }
 
     /// The scene was just loaded or saved: no unsaved edits.
