@@ -474,8 +474,9 @@ fn advice_past_the_largest_substep_count_names_the_stable_integrators() {
 /// 0.5 s calibration (the flag in the wind, the towel folding onto itself), it calibrates over a
 /// shorter time the reference certifies and says so. (It used to refuse the flag and the towel
 /// with the default tolerance.) Each cloth runs at most 20 particles a side, the same size, so
-/// that lavapipe calibrates every preset in about 4 minutes, not 8 (the towel with triangle
-/// self-contact alone took 257 s at its 40 x 40).
+/// that lavapipe calibrates every preset in about 6 minutes, not 7.5 (the towel with triangle
+/// self-contact alone took 257 s at its 40 x 40). So no cloth here has two particles a thread
+/// in the fused kernel, as the shipped towel has.
 #[test]
 fn auto_picks_a_method_on_every_shipped_preset() {
     let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("presets");

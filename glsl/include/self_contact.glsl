@@ -107,18 +107,21 @@ bool pair_left_out(uvec2 cell, uint t) {
     return dot(q, q) < obj.self_distance * obj.self_distance;
 }
 
-// Particle p at x against triangle t: its weights w, the unit vector n from the triangle's
-// nearest point to x, and the distance d.
-float pair_distance(vec3 x, uint t, out uvec3 tv, out vec3 w, out vec3 n) {
-    tv = triangle_vertices(t);
-    vec3 a = CPOS(tv.x);
-    vec3 b = CPOS(tv.y);
-    vec3 c = CPOS(tv.z);
+// x against triangle (a, b, c): the weights w of its nearest point, the unit vector n from
+// there to x, and the distance. One function wherever a contact is found or applied, so that
+// every search computes the same distance.
+float triangle_distance(vec3 x, vec3 a, vec3 b, vec3 c, out vec3 w, out vec3 n) {
     w = triangle_nearest(x, a, b, c);
     vec3 off = x - (w.x * a + w.y * b + w.z * c);
     float d = length(off);
     n = off / d;
     return d;
+}
+
+// Particle p at x against triangle t: its vertices tv, then as triangle_distance.
+float pair_distance(vec3 x, uint t, out uvec3 tv, out vec3 w, out vec3 n) {
+    tv = triangle_vertices(t);
+    return triangle_distance(x, CPOS(tv.x), CPOS(tv.y), CPOS(tv.z), w, n);
 }
 
 // The particle whose contacts the search collects (at pair_x), how many it finds, and
@@ -197,13 +200,14 @@ void self_triangles(uvec2 cell, vec3 x, uint j, float list_reach) {
         d2[r] = usable[r] ? dot(e, e) : 0.0;
     }
     bool thick = obj.self_distance >= 1.99 * min(obj.spacing.x, obj.spacing.y);
-    // A triangle farther than this is neither a contact nor a list entry.
-    float farthest = max(obj.self_distance, list_reach);
+    // A triangle farther than this is neither a contact nor a list entry (with a margin for
+    // rounding, so that a search with the lists' reach and one without keep the same contacts).
+    float farthest = 1.001 * max(obj.self_distance, list_reach);
     [[unroll]] for (int k = 0; k < 6; ++k) {
         int k1 = (k + 1) % 6;
         if (!usable[k] || !usable[k1] || nearer(d2[k], ring[k], d2j, j) || nearer(d2[k1], ring[k1], d2j, j)) continue;
-        // Its bounding box grown by that distance must hold x (the nearest point lies in it):
-        // most triangles fail here, before the exact test.
+        // Its bounding box grown by that distance must hold x (the nearest point lies in it),
+        // a test cheaper than the exact one.
         vec3 lo = min(xj, min(at_ring[k], at_ring[k1])) - farthest;
         vec3 hi = max(xj, max(at_ring[k], at_ring[k1])) + farthest;
         if (any(lessThan(x, lo)) || any(greaterThan(x, hi))) continue;
@@ -215,8 +219,9 @@ void self_triangles(uvec2 cell, vec3 x, uint j, float list_reach) {
         uvec3 tv = triangle_vertices(t);
         vec3 p[3];
         [[unroll]] for (int c = 0; c < 3; ++c) p[c] = tv[c] == j ? xj : tv[c] == ring[k] ? at_ring[k] : at_ring[k1];
-        vec3 w = triangle_nearest(x, p[0], p[1], p[2]);
-        float d = length(x - (w.x * p[0] + w.y * p[1] + w.z * p[2]));
+        vec3 w;
+        vec3 n;
+        float d = triangle_distance(x, p[0], p[1], p[2], w, n);
         test_contact(t, tv, d);
         if (d < list_reach) {
             if (list_len < LIST_ENTRIES) self_list[list_entry(list_len, list_particle, particle_count())] = t;

@@ -1,10 +1,10 @@
 //! Mouse and keyboard: camera controls and grabbing particles.
 //!
 //! Left-drag on a particle grabs it (it follows the cursor at its depth, pinned, until the
-//! button is released); left-drag elsewhere or right-drag orbits; middle-drag or Shift+drag pans;
+//! button is released or Esc lets go of it); left-drag elsewhere or right-drag orbits; middle-drag or Shift+drag pans;
 //! the wheel zooms; W/A/S/D/Q/E fly; F fits the scene; Home resets the camera; Space pauses;
 //! N steps one frame; Ctrl+R resets the simulation; Ctrl+Z undoes an edit, Ctrl+Shift+Z or
-//! Ctrl+Y redoes it; Esc twice within 3 s quits.
+//! Ctrl+Y redoes it; Esc closes what is open, else twice within 3 s quits.
 
 use crate::render::camera::OrbitCamera;
 use crate::sim::gpu::ObjectState;
@@ -40,6 +40,8 @@ pub enum KeyAction {
     Record,
     Undo,
     Redo,
+    /// Esc with nothing held: the app closes what is open, else asks to quit (`escape`).
+    Escape,
     /// Esc once: the app asks for a second press (`QUIT_CONFIRM`) before quitting.
     QuitAsk,
     Quit,
@@ -70,17 +72,20 @@ pub struct Input {
 }
 
 impl Input {
-    /// Esc pressed at `now`: lets go of a held particle (where it is now), else `escape`.
-    pub(super) fn on_escape(&mut self, now: std::time::Instant) -> Option<KeyAction> {
-        if self.grab.is_some() {
-            self.released = self.grab.take();
+    /// Esc pressed: lets go of a held particle (where it is now; an earlier question to quit is
+    /// forgotten), else the app decides (`KeyAction::Escape`).
+    fn on_escape(&mut self) -> Option<KeyAction> {
+        if let Some(grab) = self.grab.take() {
+            self.released = Some(grab);
+            self.quit_asked = None;
             return None;
         }
-        Some(self.escape(now))
+        Some(KeyAction::Escape)
     }
 
-    /// Esc pressed at `now` with nothing held: quit when it follows a first press within QUIT_CONFIRM seconds,
-    /// else ask (a stray Esc, in the middle of a grab or meant for a text field, loses nothing).
+    /// Esc (or the close button) at `now` with nothing to close: quit when it follows a first
+    /// press within QUIT_CONFIRM seconds, else ask (a stray Esc, meant for a text field, loses
+    /// nothing).
     pub(super) fn escape(&mut self, now: std::time::Instant) -> KeyAction {
         match self.quit_asked.take() {
             Some(at) if now.duration_since(at).as_secs_f64() <= QUIT_CONFIRM => KeyAction::Quit,
@@ -140,7 +145,7 @@ impl Input {
                 ElementState::Released => {
                     self.buttons.remove(button);
                     if *button == MouseButton::Left {
-                        self.released = self.grab.take();
+                        self.released = self.grab.take().or(self.released.take());
                         self.left_orbits = false;
                     }
                 }
@@ -180,7 +185,7 @@ impl Input {
                     KeyCode::F12 => Some(KeyAction::Screenshot),
                     KeyCode::F1 => Some(KeyAction::Help),
                     KeyCode::F9 => Some(KeyAction::Record),
-                    KeyCode::Escape => self.on_escape(std::time::Instant::now()),
+                    KeyCode::Escape => self.on_escape(),
                     _ => None,
                 };
                 self.actions.extend(action);
@@ -206,7 +211,7 @@ impl Input {
             self.buttons.insert(MouseButton::Left);
         } else {
             self.buttons.remove(&MouseButton::Left);
-            self.released = self.grab.take();
+            self.released = self.grab.take().or(self.released.take());
         }
     }
 
@@ -307,9 +312,11 @@ mod tests {
         let grab = Grab { object: 0, index: 3, depth: 1.0, was_pinned: false, target: Vec3::ZERO };
         input.grab = Some(grab);
         let t0 = std::time::Instant::now();
-        assert_eq!(input.on_escape(t0), None);
+        assert_eq!(input.escape(t0), KeyAction::QuitAsk, "asked before the grab");
+        assert_eq!(input.on_escape(), None);
         assert!(input.grab.is_none() && input.released.is_some_and(|r| r.index == 3));
-        assert_eq!(input.on_escape(t0), Some(KeyAction::QuitAsk));
+        assert_eq!(input.on_escape(), Some(KeyAction::Escape));
+        assert_eq!(input.escape(t0), KeyAction::QuitAsk, "the question before the grab is forgotten");
     }
 
     use super::*;

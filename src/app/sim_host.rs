@@ -48,6 +48,23 @@ fn model_for(ctx: &GpuContext, scene: &Scene) -> Result<(SimModel, Option<String
 }
 
 /// The parts of a scene that fix the particles' layout and the buffers' sizes.
+/// What `integrator = "auto"` calibrates again for when it changes: the scene but for the light,
+/// the colours and where the colliders and the wind's cone are (what the view's handles drag, a
+/// frame at a time: calibrating for each frame of a drag stalled the window for seconds).
+fn calibrated_part(s: &Scene) -> Scene {
+    let mut s = s.clone();
+    s.light = Default::default();
+    s.cloths.iter_mut().for_each(|c| (c.color, c.back_color) = ([0.0; 3], [0.0; 3]));
+    s.ropes.iter_mut().for_each(|r| r.color = [0.0; 3]);
+    s.spheres.iter_mut().for_each(|c| c.center = [0.0; 3]);
+    s.boxes.iter_mut().for_each(|c| c.center = [0.0; 3]);
+    for c in &mut s.capsules {
+        (c.start, c.end) = ([0.0; 3], std::array::from_fn(|k| c.end[k] - c.start[k]));
+    }
+    s.wind.origin = [0.0; 3];
+    s
+}
+
 fn layout_key(s: &Scene) -> String {
     let cloths: Vec<_> = s
         .cloths
@@ -107,6 +124,27 @@ impl SimHost {
         &mut self.sim
     }
 
+    /// The model of `edited` as the running simulation would take it in place: its own with a
+    /// fixed method; with `integrator = "auto"`, the running pick, when the edit changed only
+    /// what the calibration does not depend on (`calibrated_part`), else none (it calibrates
+    /// again).
+    fn model_keeping_pick(&self, edited: &Scene) -> Option<SimModel> {
+        let model = scene::to_model(edited);
+        if edited.sim.integrator.method().is_some() {
+            return Some(model);
+        }
+        let mut kept = (calibrated_part(edited) == calibrated_part(&self.scene)).then_some(model)?;
+        (kept.integrator, kept.substeps, kept.iterations) =
+            (self.model.integrator, self.model.substeps, self.model.iterations);
+        Some(kept)
+    }
+
+    /// Whether applying `edited` calibrates `integrator = "auto"` (seconds; minutes on a CPU
+    /// driver).
+    pub fn calibrates_for(&self, edited: &Scene) -> bool {
+        edited.sim.integrator.method().is_none() && calibrated_part(edited) != calibrated_part(&self.scene)
+    }
+
     /// Applies an edited scene. An invalid or too large scene is refused with the reason and
     /// the running simulation is left as it was.
     pub fn apply(
@@ -124,8 +162,9 @@ impl SimHost {
         let (old, new) = (&self.scene.sim, &edited.sim);
         let same_pipelines = (old.substeps, old.integrator, old.self_collision, old.tolerance)
             == (new.substeps, new.integrator, new.self_collision, new.tolerance);
-        let in_place = (same_layout && same_pipelines && new.integrator.method().is_some())
-            .then(|| scene::to_model(&edited))
+        let in_place = (same_layout && same_pipelines)
+            .then(|| self.model_keeping_pick(&edited))
+            .flatten()
             .filter(|model| self.sim.takes_params(model));
         if let Some(model) = in_place {
             ctx.wait_idle()?;
@@ -246,4 +285,38 @@ fn set_listed<T: PartialEq>(list: &mut Vec<T>, item: T, pin: bool) -> bool {
         (true, Some(_)) => {}
     }
     true
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// `auto` keeps its pick for the light, colours and what the handles drag (a sphere, a
+    /// capsule moved whole, the wind's cone), and calibrates again for a material, a
+    /// collider's size or the simulation settings.
+    #[test]
+    fn auto_calibrates_again_only_for_what_it_measured() {
+        let mut base =
+            scene::parse(include_str!("../../presets/playground.toml"), "playground.toml", &[]).unwrap();
+        let capsule =
+            scene::Capsule { start: [0.0, 0.2, 0.0], end: [0.5, 0.2, 0.0], radius: 0.05, motion: None };
+        base.capsules.push(capsule);
+        let same = |edit: fn(&mut Scene)| {
+            let mut s = base.clone();
+            edit(&mut s);
+            calibrated_part(&s) == calibrated_part(&base)
+        };
+        assert!(same(|s| s.light.position[1] += 1.0));
+        assert!(same(|s| s.cloths[0].color = [1.0, 0.0, 0.0]));
+        assert!(same(|s| s.spheres[0].center[0] += 0.3));
+        assert!(same(|s| s.wind.origin[2] -= 0.5));
+        assert!(same(|s| s
+            .capsules
+            .iter_mut()
+            .for_each(|c| (c.start[1], c.end[1]) = (c.start[1] + 0.2, c.end[1] + 0.2))));
+        assert!(!same(|s| s.cloths[0].stiffness.structural *= 2.0));
+        assert!(!same(|s| s.spheres[0].radius *= 1.5));
+        assert!(!same(|s| s.sim.substeps += 1));
+        assert!(!same(|s| s.capsules.iter_mut().for_each(|c| c.end[0] += 0.2)), "a capsule stretched");
+    }
 }

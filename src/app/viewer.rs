@@ -221,6 +221,16 @@ impl Viewer {
             WindowEvent::Resized(size) => self.resized(*size),
             _ => {}
         }
+        // Esc closes what is open (undo.rs `dismiss`), else asks to quit or quits.
+        while let Some(k) = self.input.actions.iter().position(|a| *a == KeyAction::Escape) {
+            self.input.actions.remove(k);
+            if self.dismiss() {
+                self.input.forget_quit();
+            } else {
+                let asked = self.input.escape(Instant::now());
+                self.input.actions.push(asked);
+            }
+        }
         self.input.actions.contains(&KeyAction::Quit)
     }
 
@@ -344,7 +354,7 @@ impl Viewer {
                 KeyAction::Record => {
                     self.run_action(Action::ToggleRecording(PathBuf::from(&self.editor.record_path)))
                 }
-                KeyAction::QuitAsk if self.dismiss() => self.input.forget_quit(),
+                KeyAction::Escape => {} // resolved as it came (handle_event)
                 KeyAction::QuitAsk => {
                     self.observe_edits();
                     let lost = if self.editor.unsaved { " (the unsaved edits are lost)" } else { "" };

@@ -57,9 +57,9 @@ const HELP: &[(&str, &str)] = &[
     ("stretch limit", "Springs may not stretch more than this fraction of their rest length (ticked: enforced every substep)."),
     ("friction", "Coulomb friction coefficient mu against colliders (and, averaged with the other's, against other objects; with triangle self-contact, between its own layers): sticks on slopes flatter than atan(mu), slides on steeper ones (0: ice, 0.4: cloth on wood, 1: rubber)."),
     ("collision margin [m]", "Distance kept from colliders, and the cloth's contact radius against other objects [m]."),
-    ("self-collision", "Particles of this object closer than the self-collision distance push apart (grid neighbours excepted)."),
-    ("self-contact", "What a cloth's self-collision keeps apart. particles: its particles, the self-collision distance apart (the paper's; fast, but layers can pass between particles). triangles: its particles from its triangles, the distance a thickness, every contact equal and opposite (no layer passes through another at normal speeds; several times the cost)."),
-    ("self-collision distance [m]", "Distance below which two particles of the object push apart (ticked: set here; else from the spacing or radius) [m]."),
+    ("self-collision", "The object keeps apart from itself: a cloth's particles from its triangles (or, with self-contact particles, from each other), a rope's nodes from each other (grid neighbours excepted)."),
+    ("self-contact", "What a cloth's self-collision keeps apart. triangles (the default): its particles from its triangles, the distance a thickness, every contact equal and opposite (no layer passes through another at normal speeds; several times the cost). particles: its particles, the self-collision distance apart (the paper's; fast, but layers can pass between particles)."),
+    ("self-collision distance [m]", "With triangle self-contact the cloth's thickness: how far its particles keep from its triangles; else the distance below which two particles push apart (ticked: set here; else half the spacing, or a rope's diameter) [m]."),
     ("front colour", "Colour of the cloth's front side (linear RGB)."),
     ("back colour", "Colour of the cloth's back side (linear RGB)."),
     // Rope

@@ -37,9 +37,10 @@ impl Viewer {
         if std::mem::take(&mut self.calibration_announced) {
             return false;
         }
-        let Some(current) = self.host.as_ref().map(|h| h.scene()) else { return false };
+        let Some(host) = self.host.as_ref() else { return false };
+        let current = host.scene();
         let auto = |s: &Scene| s.sim.integrator.method().is_none();
-        let calibrates = self.pending_scene.as_ref().is_some_and(|s| auto(s) && s != current)
+        let calibrates = self.pending_scene.as_ref().is_some_and(|s| host.calibrates_for(s))
             || self.pending_actions.iter().any(|a| match a {
                 Action::Load(path) => scene::load(path, &[]).is_ok_and(|s| auto(&s) && s != *current),
                 Action::AddClothFromPreset(_) => auto(current),

@@ -18,16 +18,19 @@ impl Viewer {
         self.editor.unsaved = history.unsaved(host.scene());
     }
 
-    /// Esc closes what is open before it asks to quit: a handle being dragged (let go where it
-    /// is), the Save's Replace question, the controls, the log. True when it closed something.
+    /// Esc closes what is open before it asks to quit, in this order: a handle being dragged
+    /// (let go where it is), the controls, the log (both only where the UI is drawn), the Save's
+    /// Replace question. True when it closed something.
     pub(super) fn dismiss(&mut self) -> bool {
         if self.handle.take().is_some() {
             return true;
         }
         let editor = &mut self.editor;
-        for open in [&mut editor.show_help, &mut editor.notices.show_log] {
-            if std::mem::take(open) {
-                return true;
+        if !editor.hide_ui {
+            for open in [&mut editor.show_help, &mut editor.notices.show_log] {
+                if std::mem::take(open) {
+                    return true;
+                }
             }
         }
         editor.replace.take().is_some()
@@ -88,7 +91,11 @@ impl Viewer {
             return;
         };
         let what = if redo { "redone" } else { "undone" };
-        if self.apply(scene) {
+        if self.host.as_ref().is_some_and(|h| h.calibrates_for(&scene)) {
+            // Applied once the calibration's notice has been drawn (calibration_waits).
+            self.pending_scene = Some(scene);
+            self.message(format!("edit {what}"), false);
+        } else if self.apply(scene) {
             self.message(format!("edit {what}"), false);
         } else if let Some(history) = self.history.as_mut() {
             if redo {
