@@ -110,6 +110,10 @@ pub struct GpuSim {
     /// Objects whose layout fits the device's shared memory run their substeps fused into one
     /// dispatch (`fused.rs`).
     fused: bool,
+    /// Whether objects with triangle self-contact run fused too. Not by default on a CPU
+    /// driver, where their fused passes cost twice the per-stage path (lavapipe, a 40 x 40
+    /// cloth: 138 against 69 ms a frame; docs/PERFORMANCE.md); `set_fused(true)` asks for it.
+    fuse_triangles: bool,
     /// What the fused layouts are planned within.
     limits: FusedLimits,
     /// Whether the surface stage writes the surface buffers (else it only runs the guard).
@@ -278,6 +282,7 @@ impl GpuSim {
             timestamps,
             stage_timing: true,
             fused: true,
+            fuse_triangles: ctx.info().kind != crate::vk::DeviceKind::Cpu,
             limits,
             drawn: true,
             frames: 0,
@@ -557,12 +562,14 @@ impl GpuSim {
         self.pipelines.reload(ctx, &self.layout, shaders, changed)
     }
 
-    /// With `false`, every object takes the per-stage path (the reference for the fused one).
+    /// With `false`, every object takes the per-stage path (the reference for the fused one);
+    /// with `true`, every object whose layout fits runs fused, triangle self-contact too.
     pub fn set_fused(&mut self, on: bool) {
         // The two paths keep their lists in the same layout, but nothing makes them one
         // contract (the fused kernel's LIST_VALID is the per-stage path's first control word).
-        self.lists_stale |= on != self.fused;
+        self.lists_stale |= on != self.fused || (on && !self.fuse_triangles);
         self.fused = on;
+        self.fuse_triangles |= on;
     }
 
     /// With `false` nothing reads the surface buffers (a headless run): the surface stage only
@@ -578,7 +585,8 @@ impl GpuSim {
 
     /// Whether object `o` runs fused substeps.
     fn is_fused(&self, o: &GpuObject) -> bool {
-        self.fused && o.plan.fused.is_some()
+        let triangles = o.plan.features & crate::sim::gpu_types::FEATURE_TRIANGLES != 0;
+        self.fused && o.plan.fused.is_some() && (self.fuse_triangles || !triangles)
     }
 
     /// With `false`, frames carry only a start and an end timestamp (the per-stage timestamps
