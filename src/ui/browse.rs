@@ -27,6 +27,20 @@ pub fn folder_of(typed: &str) -> PathBuf {
     }
 }
 
+/// The preset file a path typed in a field names, to read: as typed (from the folder the app
+/// was started in) when it exists or is absolute; else the shipped preset of that file name
+/// (the source tree's `presets/`, so "presets/towel.toml" loads wherever the app was started);
+/// else as typed, for the error to name.
+pub fn resolve_preset(typed: &str) -> PathBuf {
+    let path = PathBuf::from(typed);
+    if path.exists() || path.is_absolute() {
+        return path;
+    }
+    let shipped =
+        path.file_name().map(|name| Path::new(env!("CARGO_MANIFEST_DIR")).join("presets").join(name));
+    shipped.filter(|p| p.is_file()).unwrap_or(path)
+}
+
 /// The entries of `dir`: the folder above, then its folders and its `.toml` files, each by
 /// name; hidden ones (a leading dot) left out. An unreadable folder lists only the way up.
 pub fn entries(dir: &Path) -> Vec<Entry> {
@@ -114,6 +128,24 @@ pub fn browse_button(ui: &Ui, id: &str, path: &mut String) -> bool {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// A shipped preset is found by its name from any folder; a path that exists, or is
+    /// absolute, or names no shipped preset, is taken as typed.
+    #[test]
+    fn shipped_presets_are_found_wherever_the_app_started() {
+        let shipped = Path::new(env!("CARGO_MANIFEST_DIR")).join("presets/towel.toml");
+        for typed in ["presets/towel.toml", "elsewhere/towel.toml", "towel.toml"] {
+            let found = resolve_preset(typed);
+            assert!(found.is_file(), "{typed} -> {}", found.display());
+            assert_eq!(std::fs::read(&found).unwrap(), std::fs::read(&shipped).unwrap(), "{typed}");
+        }
+        assert_eq!(resolve_preset("no/such.toml"), PathBuf::from("no/such.toml"));
+        assert_eq!(resolve_preset("/no/towel.toml"), PathBuf::from("/no/towel.toml"));
+        let dir = tempfile::tempdir().unwrap();
+        let own = dir.path().join("towel.toml");
+        std::fs::write(&own, "").unwrap();
+        assert_eq!(resolve_preset(own.to_str().unwrap()), own, "an existing file as typed");
+    }
 
     /// The browser lists the way up, folders, then `.toml` files, hidden and other files left
     /// out; picking walks down into a folder, up again, and returns a file's path.

@@ -221,9 +221,9 @@ pub fn build(ui: &Ui, state: &mut EditorState, scene: &mut Scene, stats: &Stats)
                 if ui.input_text("file##preset", &mut state.preset_path).build() {
                     state.replace = None;
                 }
-                tip(ui, "The preset file to load or save, from the folder the app was started in; type a new name to save a copy");
+                tip(ui, "The preset file to load or save, from the folder the app was started in (Load also finds a shipped preset by its name); type a new name to save a copy");
                 if ui.button("Load") {
-                    actions.push(Action::Load(PathBuf::from(&state.preset_path)));
+                    actions.push(Action::Load(super::browse::resolve_preset(&state.preset_path)));
                 }
                 ui.same_line();
                 let path = state.preset_path.clone();
@@ -248,7 +248,7 @@ pub fn build(ui: &Ui, state: &mut EditorState, scene: &mut Scene, stats: &Stats)
                 tip(ui, "Pick the file from its folder's presets");
                 ui.input_text("cloth preset##add", &mut state.cloth_preset_path).build();
                 if ui.button("Add cloths from that preset") {
-                    actions.push(Action::AddClothFromPreset(PathBuf::from(&state.cloth_preset_path)));
+                    actions.push(Action::AddClothFromPreset(super::browse::resolve_preset(&state.cloth_preset_path)));
                 }
                 ui.same_line();
                 super::browse::browse_button(ui, "cloth", &mut state.cloth_preset_path);
