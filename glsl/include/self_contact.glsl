@@ -200,9 +200,11 @@ void self_triangles(uvec2 cell, vec3 x, uint j, float list_reach) {
         d2[r] = usable[r] ? dot(e, e) : 0.0;
     }
     bool thick = obj.self_distance >= 1.99 * min(obj.spacing.x, obj.spacing.y);
-    // A triangle farther than this is neither a contact nor a list entry (with a margin for
-    // rounding, so that a search with the lists' reach and one without keep the same contacts).
-    float farthest = 1.001 * max(obj.self_distance, list_reach);
+    // A triangle farther than this is neither a contact nor a list entry. (The box test and
+    // the exact one round differently, so a contact within a rounding error of h may be kept by
+    // a search with the lists' reach and culled by one without; its weight is then about 1e-5.
+    // A margin of 0.1% here cost the 1024 x 1024 cloth 5% on the H100, so there is none.)
+    float farthest = max(obj.self_distance, list_reach);
     [[unroll]] for (int k = 0; k < 6; ++k) {
         int k1 = (k + 1) % 6;
         if (!usable[k] || !usable[k1] || nearer(d2[k], ring[k], d2j, j) || nearer(d2[k1], ring[k1], d2j, j)) continue;
