@@ -50,7 +50,7 @@ pub fn set_position(scene: &mut Scene, target: Selection, to: Vec3) {
     // saved preset reads 0.35, not 0.3499999940395355.
     let shift = |p: &mut [f64; 3]| {
         let d = to - from;
-        let shortest = |x: f64| (x as f32).to_string().parse().unwrap_or(x);
+        let shortest = |x: f64| crate::ui::shown(x as f32);
         *p = [shortest(p[0] + d.x as f64), shortest(p[1] + d.y as f64), shortest(p[2] + d.z as f64)];
     };
     match target {

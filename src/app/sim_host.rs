@@ -47,7 +47,6 @@ fn model_for(ctx: &GpuContext, scene: &Scene) -> Result<(SimModel, Option<String
     Ok((model, picked))
 }
 
-/// The parts of a scene that fix the particles' layout and the buffers' sizes.
 /// What `integrator = "auto"` calibrates again for when it changes: the scene but for the light,
 /// the colours and where the colliders and the wind's cone are (what the view's handles drag, a
 /// frame at a time: calibrating for each frame of a drag stalled the window for seconds).
@@ -65,6 +64,7 @@ fn calibrated_part(s: &Scene) -> Scene {
     s
 }
 
+/// The parts of a scene that fix the particles' layout and the buffers' sizes.
 fn layout_key(s: &Scene) -> String {
     let cloths: Vec<_> = s
         .cloths
@@ -129,14 +129,15 @@ impl SimHost {
     /// what the calibration does not depend on (`calibrated_part`), else none (it calibrates
     /// again).
     fn model_keeping_pick(&self, edited: &Scene) -> Option<SimModel> {
-        let model = scene::to_model(edited);
-        if edited.sim.integrator.method().is_some() {
-            return Some(model);
+        if self.calibrates_for(edited) {
+            return None;
         }
-        let mut kept = (calibrated_part(edited) == calibrated_part(&self.scene)).then_some(model)?;
-        (kept.integrator, kept.substeps, kept.iterations) =
-            (self.model.integrator, self.model.substeps, self.model.iterations);
-        Some(kept)
+        let mut model = scene::to_model(edited);
+        if edited.sim.integrator.method().is_none() {
+            (model.integrator, model.substeps, model.iterations) =
+                (self.model.integrator, self.model.substeps, self.model.iterations);
+        }
+        Some(model)
     }
 
     /// Whether applying `edited` calibrates `integrator = "auto"` (seconds; minutes on a CPU

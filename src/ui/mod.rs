@@ -9,3 +9,4 @@ mod notices;
 mod widgets;
 
 pub use editor::{build, covered, unique_name, Action, EditorState, Selection, Stats};
+pub use widgets::shown;

@@ -38,7 +38,7 @@ fn commit(ui: &Ui, label: &str, changed: bool, edited: [f64; 3]) -> Option<[f64;
 
 /// An f32 widget value as the f64 it shows: the shortest decimal that gives back the f32
 /// (0.2, not 0.20000000298023224), so that saved presets read as typed.
-fn shown(v: f32) -> f64 {
+pub fn shown(v: f32) -> f64 {
     v.to_string().parse().unwrap_or(v as f64)
 }
 

@@ -38,12 +38,10 @@ impl Viewer {
             return false;
         }
         let Some(host) = self.host.as_ref() else { return false };
-        let current = host.scene();
-        let auto = |s: &Scene| s.sim.integrator.method().is_none();
         let calibrates = self.pending_scene.as_ref().is_some_and(|s| host.calibrates_for(s))
             || self.pending_actions.iter().any(|a| match a {
-                Action::Load(path) => scene::load(path, &[]).is_ok_and(|s| auto(&s) && s != *current),
-                Action::AddClothFromPreset(_) => auto(current),
+                Action::Load(path) => scene::load(path, &[]).is_ok_and(|s| host.calibrates_for(&s)),
+                Action::AddClothFromPreset(_) => host.scene().sim.integrator.method().is_none(),
                 _ => false,
             });
         if calibrates {
