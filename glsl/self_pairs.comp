@@ -26,6 +26,7 @@ layout(push_constant) uniform Push {
 #define CELL_INV hash_cell_inv(LISTS)
 void listed_candidates(uvec2 cell, vec3 x, float reach, inout vec3 correction, inout uint n_active);
 #define SELF_CANDIDATES listed_candidates
+#define SELF_APPLY_FOUND APPLY
 #include "constraints_body.glsl"
 
 void main() {

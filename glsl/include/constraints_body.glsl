@@ -181,11 +181,11 @@ void self_search(uvec2 cell, vec3 x, inout vec3 correction, inout uint n_active)
 // A pass of a cloth's self-contact (self_contact.glsl) for particle i at `cell`, at x: the
 // find pass (`apply` false; the particle began the substep at `start`) searches for its
 // contacts, keeps the first PAIR_MAX and counts them all; the apply pass applies those it
-// kept and, when it found more, searches again (without recording contact lists) for each
-// further PAIR_MAX of them. Both passes find the same contacts in the same order (the same
-// positions and candidates: the contact list, or the hash's buckets in the same order). The
-// search and the application are each in one place, so the compiled kernel holds the contact
-// tests once.
+// kept and, when it found more, searches again (without recording contact lists) for the
+// rest (SELF_APPLY_FOUND: once, else for each further PAIR_MAX of them). Both passes find the
+// same contacts in the same order (the same positions and candidates: the contact list, or
+// the hash's buckets in the same order). The search is in one place, so the compiled kernel
+// holds the contact tests once.
 void self_pass(uvec2 cell, uint i, vec3 x, vec3 start, bool apply) {
     uint len = apply ? uint(self_pairs[pairs_len_word(i)]) : 0u;
     if (!apply) set_pair_start(i, start);
@@ -214,6 +214,9 @@ void self_pass(uvec2 cell, uint i, vec3 x, vec3 start, bool apply) {
         uint batch = min(len - from, PAIR_MAX);
         for (uint k = 0u; k < batch; ++k) apply_contact(i, x, uint(self_pairs[pair_word(k, i)]));
         from += PAIR_MAX;
+#ifdef SELF_APPLY_FOUND
+        if (SELF_APPLY_FOUND && from > PAIR_MAX) break;  // the search applied those past the batch
+#endif
     } while (from < len);
 }
 

@@ -37,8 +37,9 @@
 //    triangles within h plus the skin; it keeps up to PAIR_MAX contacts and counts each in its
 //    free particles;
 // 2. apply (self_pass): each particle computes its contacts again (those it kept; one that
-//    found more searches again for each further PAIR_MAX) and adds every particle's move to its
-//    sum, in fixed point (exact, order-independent integer atomics);
+//    found more searches again: once per stage, else for each further PAIR_MAX; see
+//    SELF_APPLY_FOUND) and adds every particle's move to its sum, in fixed point (exact,
+//    order-independent integer atomics);
 // 3. the constraint stage adds its particle's sum to its correction whole and clears it
 //    (self_take).
 // The CPU twin is sim::cpu::self_contact. Buffer self_pairs (binding 17), n particles: words
@@ -142,13 +143,32 @@ int count_weight(float overlap) { return int(round(65536.0 * min(1.0, overlap / 
 // A free particle's count of contacts (at least 1).
 float split_count(uint i) { return max(1.0, float(self_pairs[4u * i + 3u]) * (1.0 / 65536.0)); }
 
+// SELF_APPLY_FOUND (defined by the includer: whether this is the apply pass): the apply
+// pass's search again (a particle with more than PAIR_MAX contacts) notes the next PAIR_MAX in
+// the slots, to be applied after it together (the threads of a group in step), and applies
+// each contact past those as it finds it, so that one search more serves any number of
+// contacts. Per stage, where the apply pass is a pipeline of its own (self_pairs.comp), it
+// does; in the fused kernel, whose two passes share one search, the application compiled into
+// it would make every search heavier, so there each further PAIR_MAX contacts are noted and
+// applied after a search of their own.
+#ifdef SELF_APPLY_FOUND
+void apply_contact(uint p, vec3 x, uint t);
+#endif
+
 // Contact (pair_particle, t; overlap h - d), the pair_len-th found: noted in the particle's
-// slots when among the PAIR_MAX from pair_skip on, and in the find pass counted in its free
-// particles (the apply pass applies what the slots hold).
+// slots when among the PAIR_MAX from pair_skip on (past those applied, SELF_APPLY_FOUND), and
+// in the find pass counted in its free particles (the apply pass applies what the slots hold).
 void keep_pair(uint t, uvec3 tv, float d) {
     bool free_p = !CPINNED(pair_particle);
     bvec3 free_t = bvec3(!CPINNED(tv.x), !CPINNED(tv.y), !CPINNED(tv.z));
     if (!(free_p || any(free_t))) return;
+#ifdef SELF_APPLY_FOUND
+    if (SELF_APPLY_FOUND && apply_pass && pair_len >= pair_skip + PAIR_MAX) {
+        apply_contact(pair_particle, pair_x, t);
+        pair_len += 1u;
+        return;
+    }
+#endif
     uint slot = pair_len - pair_skip;
     if (pair_len >= pair_skip && slot < PAIR_MAX) self_pairs[pair_word(slot, pair_particle)] = int(t);
     pair_len += 1u;
