@@ -45,7 +45,7 @@ pub fn load_runnable(path: &Path, overrides: &[String]) -> Result<Scene, UserErr
 /// loads back to the identical scene; a scene too large to load back is refused.
 pub fn save(scene: &Scene, path: &Path) -> anyhow::Result<()> {
     use anyhow::Context as _;
-    let text = toml::to_string_pretty(scene).context("serialising the scene")?;
+    let text = preset_text(scene).context("serialising the scene")?;
     let header = "# Saved by msdsim. Units: metres, seconds, kilograms, newtons.\n\n";
     let text = format!("{header}{text}");
     if text.len() as u64 > MAX_PRESET_BYTES {
@@ -60,6 +60,27 @@ pub fn save(scene: &Scene, path: &Path) -> anyhow::Result<()> {
     crate::temporary::replace(path, text.as_bytes(), true)
         .map_err(|e| UserError(format!("{}: cannot write the preset: {e}", path.display())))?;
     Ok(())
+}
+
+/// The scene as preset text in the shipped presets' layout: a section for each part of the
+/// scene (`[sim]`, `[[cloth]]`, ...) and the tables inside those inline (`stiffness = {
+/// structural = 400.0, shear = 100.0, bending = 40.0 }`), not sections of their own.
+fn preset_text(scene: &Scene) -> Result<String, toml_edit::ser::Error> {
+    use toml_edit::Item;
+    // The serialiser gives the root's parts as inline values: each becomes a section, or one
+    // for each of its elements; what they hold stays inline.
+    let mut doc = toml_edit::ser::to_document(scene)?;
+    for (_, item) in doc.as_table_mut().iter_mut() {
+        let value = std::mem::take(item);
+        *item = match value.into_table() {
+            Ok(table) => Item::Table(table),
+            Err(value) => match value.into_array_of_tables() {
+                Ok(tables) => Item::ArrayOfTables(tables),
+                Err(value) => value,
+            },
+        };
+    }
+    Ok(doc.to_string())
 }
 
 /// Parses preset text; `origin` names it in error messages.
@@ -293,6 +314,31 @@ stiffness = { structural = 1.0, shear = 1.0, bending = 1.0 }
         assert!(e.contains("cloth[0].pinned[0] = [3, 0]: outside the 3 x 3 grid"), "{e}");
         let e = with(&["cloth.a.mass=nan"]).unwrap_err().0;
         assert!(e.contains("cloth[0].mass = NaN"), "{e}");
+    }
+
+    #[test]
+    fn saved_presets_keep_their_tables_inline() {
+        let mut s = with(&["cloth.a.stretch_limit=0.1", "cloth.b.pinned=[[1, 1]]"]).unwrap();
+        s.spheres.push(crate::scene::Sphere {
+            center: [0.0, 0.5, 0.0],
+            radius: 0.2,
+            motion: Some(crate::scene::Motion {
+                velocity: None,
+                keyframes: vec![[0.0, 0.0, 0.5, 0.0], [1.0, 0.2, 0.5, 0.0]],
+            }),
+        });
+        let text = preset_text(&s).unwrap();
+        assert!(
+            text.contains("[[cloth]]") && text.contains("[sim]") && text.contains("[[sphere]]"),
+            "{text}"
+        );
+        assert!(
+            !text.contains("[cloth.") && !text.contains("[sphere."),
+            "nested tables as sections:\n{text}"
+        );
+        assert!(text.contains("stiffness = { structural = "), "{text}");
+        assert!(text.contains("motion = { keyframes = ["), "{text}");
+        assert_eq!(parse(&text, "inline.toml", &[]).unwrap(), s);
     }
 
     #[test]
