@@ -71,7 +71,13 @@ pub fn stable_integrators() -> String {
 
 /// Sum of the spring stiffnesses of the best-connected particle [N/m].
 fn max_stiffness_sum(o: &ObjectModel) -> f64 {
-    let [cols, rows] = o.dims;
+    stiffness_sum(o.dims, o.stiffness)
+}
+
+/// The same for an object of `dims` particles (a rope: [nodes, 1]) with springs of `stiffness`
+/// (structural, shear, bending).
+fn stiffness_sum(dims: [u32; 2], stiffness: [f64; 3]) -> f64 {
+    let [cols, rows] = dims;
     let count = |span: u32, reach: u32| {
         if span > 2 * reach {
             2.0
@@ -83,7 +89,26 @@ fn max_stiffness_sum(o: &ObjectModel) -> f64 {
     };
     let (x1, y1, x2, y2) = (count(cols, 1), count(rows, 1), count(cols, 2), count(rows, 2));
     let shear = if cols > 1 && rows > 1 { 4.0f64.min(x1 * y1 * 2.0) } else { 0.0 };
-    o.stiffness[0] * (x1 + y1) + o.stiffness[1] * shear + o.stiffness[2] * (x2 + y2)
+    stiffness[0] * (x1 + y1) + stiffness[1] * shear + stiffness[2] * (x2 + y2)
+}
+
+/// The predicted explicit limit of an object of `dims` particles of `mass` [kg] with springs of
+/// `stiffness` [N/m] (structural, shear, bending), as `predict` gives it for the built object:
+/// the editor asks it of the scene without building the particles.
+pub fn predict_object(
+    name: &str,
+    kind: ObjectKind,
+    dims: [u32; 2],
+    stiffness: [f64; 3],
+    mass: f64,
+) -> Prediction {
+    let omega_max = (2.0 * stiffness_sum(dims, stiffness) / mass).sqrt();
+    Prediction {
+        name: name.to_string(),
+        kind,
+        omega_max,
+        dt_max: if omega_max > 0.0 { 2.0 / omega_max } else { f64::INFINITY },
+    }
 }
 
 /// Upper bound of the spectral radius of the Jacobi iteration on the implicit system
@@ -132,19 +157,7 @@ pub fn chebyshev_rho(o: &ObjectModel, dt: f64) -> f64 {
 }
 
 pub fn predict(model: &SimModel) -> Vec<Prediction> {
-    model
-        .objects
-        .iter()
-        .map(|o| {
-            let omega_max = (2.0 * max_stiffness_sum(o) / o.mass).sqrt();
-            Prediction {
-                name: o.name.clone(),
-                kind: o.kind,
-                omega_max,
-                dt_max: if omega_max > 0.0 { 2.0 / omega_max } else { f64::INFINITY },
-            }
-        })
-        .collect()
+    model.objects.iter().map(|o| predict_object(&o.name, o.kind, o.dims, o.stiffness, o.mass)).collect()
 }
 
 /// The runtime guard caught an object's state going non-finite or running away.

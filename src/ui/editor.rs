@@ -388,6 +388,11 @@ fn simulation_panel(ui: &Ui, state: &mut EditorState, scene: &mut Scene, actions
     tip(ui, "the recording's file: NAME.usda, NAME.obj for NAME_00001.obj, NAME_00002.obj, ..., NAME.glb (glTF), or NAME.pc2 for a point cache a mesh with the meshes in NAME.obj");
     check(ui, "real time", &mut state.real_time);
     int(ui, "substeps", &mut scene.sim.substeps, 1, 4096);
+    let past = past_explicit_limit(scene);
+    if let Some((_, why)) = past.first() {
+        let more = if past.len() > 1 { format!(" ({} objects are)", past.len()) } else { String::new() };
+        ui.text_wrapped_colored(WARNING, &format!("{why}{more}"));
+    }
     let mut ms = scene.sim.frame_dt * 1e3;
     if drag(ui, "frame dt [ms]", &mut ms, 0.05, 0.1, 1000.0) {
         scene.sim.frame_dt = ms * 1e-3;
@@ -470,7 +475,54 @@ pub fn unique_name(scene: &Scene, base: &str) -> String {
     (1..).map(|i| format!("{base}{i}")).find(|n| !taken(n)).unwrap_or_else(|| base.to_string())
 }
 
+/// The cloths and ropes past the predicted explicit limit (ACCURACY.md, "The predicted explicit
+/// limit") at the scene's substeps, with what to change; none for an iterative method or
+/// `auto`, which stay stable. The editor says so beside the substeps and in the object's panel,
+/// as `simulate` warns before a run.
+pub fn past_explicit_limit(scene: &Scene) -> Vec<(Selection, String)> {
+    use crate::scene::IntegratorChoice;
+    use crate::sim::model::ObjectKind;
+    use crate::sim::stability::predict_object;
+    if !matches!(scene.sim.integrator, IntegratorChoice::Method(m) if !m.iterative()) {
+        return Vec::new();
+    }
+    let (frame_dt, substeps) = (scene.sim.frame_dt, scene.sim.substeps);
+    let cloths = scene.cloths.iter().enumerate().map(|(i, c)| {
+        let p = predict_object(&c.name, ObjectKind::Cloth, c.resolution, c.stiffness.to_array(), c.mass);
+        (Selection::Cloth(i), p)
+    });
+    let ropes = scene.ropes.iter().enumerate().map(|(i, r)| {
+        let p = predict_object(
+            &r.name,
+            ObjectKind::Rope,
+            [r.nodes, 1],
+            [r.stiffness, 0.0, r.bending_stiffness],
+            r.mass,
+        );
+        (Selection::Rope(i), p)
+    });
+    cloths
+        .chain(ropes)
+        .filter(|(_, p)| p.min_substeps(frame_dt) > substeps)
+        .map(|(sel, p)| {
+            let why = format!(
+                "{} '{}' is past the stable substep predicted for this method: {}",
+                p.kind.label(),
+                p.name,
+                p.substep_advice(frame_dt)
+            );
+            (sel, why)
+        })
+        .collect()
+}
+
+/// Colour of a warning beside a field.
+const WARNING: [f32; 4] = [1.0, 0.75, 0.3, 1.0];
+
 fn selected_panel(ui: &Ui, state: &EditorState, scene: &mut Scene) {
+    for (_, why) in past_explicit_limit(scene).into_iter().filter(|(sel, _)| *sel == state.selected) {
+        ui.text_wrapped_colored(WARNING, &why);
+    }
     match state.selected {
         Selection::Cloth(i) if i < scene.cloths.len() => cloth_panel(ui, &mut scene.cloths[i]),
         Selection::Rope(i) if i < scene.ropes.len() => rope_panel(ui, &mut scene.ropes[i]),
@@ -689,6 +741,40 @@ mod tests {
 
     /// Save writes a new file at once; an existing one only on the second press (Replace), and
     /// a changed path asks again.
+    #[test]
+    fn the_editor_says_when_an_object_is_past_the_explicit_limit() {
+        use crate::scene::IntegratorChoice;
+        use crate::sim::model::Integrator;
+        // A chain's highest mode is sqrt(4 k / m) (the bound is exact there): k = 1000 N/m,
+        // m = 10 g, 632.5 rad/s, a stable substep of 3.16 ms, 6 substeps of a 1/60 s frame.
+        let mut scene = Scene::default();
+        scene.ropes.push(Rope {
+            nodes: 40,
+            stiffness: 1000.0,
+            bending_stiffness: 0.0,
+            mass: 0.01,
+            ..new_rope("r".into())
+        });
+        scene.sim.frame_dt = 1.0 / 60.0;
+        scene.sim.integrator = IntegratorChoice::Method(Integrator::SymplecticEuler);
+        scene.sim.substeps = 5;
+        let past = past_explicit_limit(&scene);
+        assert_eq!(past.len(), 1, "{past:?}");
+        assert_eq!(past[0].0, Selection::Rope(0));
+        assert!(past[0].1.contains("use at least 6 substeps"), "{}", past[0].1);
+        // The same advice as the built scene's prediction, which `simulate` prints.
+        let model = crate::scene::to_model(&scene);
+        let p = &crate::sim::stability::predict(&model)[0];
+        assert_eq!(p.min_substeps(scene.sim.frame_dt), 6);
+        scene.sim.substeps = 6;
+        assert!(past_explicit_limit(&scene).is_empty());
+        scene.sim.substeps = 1;
+        scene.sim.integrator = IntegratorChoice::Method(Integrator::Vbd);
+        assert!(past_explicit_limit(&scene).is_empty(), "an iterative method is stable at any step");
+        scene.sim.integrator = IntegratorChoice::Auto;
+        assert!(past_explicit_limit(&scene).is_empty(), "auto picks a stable setting");
+    }
+
     #[test]
     fn save_asks_before_replacing_a_file() {
         let mut state = EditorState::default();
