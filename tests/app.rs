@@ -10,9 +10,15 @@ use std::process::{Command, Output};
 
 /// Runs the app under a virtual X display. Fails loudly when xvfb-run is missing.
 fn app(args: &[&str]) -> Output {
+    app_logging(args, "warn")
+}
+
+/// `app` with the log level `RUST_LOG` gives msdsim.
+fn app_logging(args: &[&str], level: &str) -> Output {
     let out = Command::new("xvfb-run")
         .args(["-a", "-s", "-screen 0 1280x1024x24", env!("CARGO_BIN_EXE_msdsim"), "--validation", "app"])
         .args(args)
+        .env("RUST_LOG", format!("warn,msdsim={level}"))
         .output()
         .unwrap_or_else(|e| panic!("the app tests need xvfb-run (Debian: xvfb xauth): {e}"));
     if !out.status.success() {
@@ -118,6 +124,23 @@ fn resizes_and_minimize_restore_are_clean() {
 #[test]
 fn editor_edits_rebuilds_reset_save_and_load_are_clean() {
     app(&["--preset", "presets/rope.toml", "--size", "640x480", "--exercise-editor"]);
+}
+
+/// A preset with `integrator = "auto"` opens on a frame whose notice says that the window will
+/// wait for the calibration, and calibrates on the next (it calibrated before the window showed
+/// anything, which on lavapipe held a blank window for up to minutes). An 8-node rope: a
+/// calibration of seconds.
+#[test]
+fn an_auto_preset_says_it_calibrates_before_it_does() {
+    let auto = ["--set", "sim.integrator=\"auto\"", "--set", "rope.0.nodes=8"];
+    let args =
+        [&["--preset", "presets/rope.toml", "--size", "640x480", "--no-stats", "--frames", "3"][..], &auto]
+            .concat();
+    let out = app_logging(&args, "info");
+    let log = String::from_utf8_lossy(&out.stderr);
+    let said = log.find("calibrating integrator = \"auto\"").unwrap_or_else(|| panic!("no notice:\n{log}"));
+    let picked = log.find("integrator = \"auto\" picked").unwrap_or_else(|| panic!("no pick:\n{log}"));
+    assert!(said < picked, "the notice came after the calibration:\n{log}");
 }
 
 /// Without a display the app says which headless commands to use and exits with code 2, in one

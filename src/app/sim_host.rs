@@ -35,6 +35,9 @@ pub struct SimHost {
     pinned_at: std::collections::HashMap<(usize, u32), [f32; 3]>,
     /// What `integrator = "auto"` picked for the running simulation (None for a named method).
     auto_picked: Option<String>,
+    /// The scene asks for `integrator = "auto"` and has not been calibrated yet: the
+    /// simulation runs the provisional model (`scene::to_model`) until `calibrate`.
+    calibration_pending: bool,
 }
 
 /// The model of a scene, calibrated first when it asks for `integrator = "auto"`, and then
@@ -87,6 +90,9 @@ fn layout_key(s: &Scene) -> String {
 }
 
 impl SimHost {
+    /// The simulation of `scene`. One that asks for `integrator = "auto"` starts uncalibrated
+    /// (`calibration_pending`), so that the window can say that it will wait before
+    /// `calibrate` holds it (seconds; minutes on a CPU driver).
     pub fn new(
         ctx: &GpuContext,
         scene: Scene,
@@ -94,13 +100,42 @@ impl SimHost {
         shaders: &mut ShaderSet,
     ) -> Result<Self> {
         gpu::check_fits(ctx.info(), &scene::shapes(&scene))?;
-        let (model, auto_picked) = model_for(ctx, &scene)?;
+        let model = scene::to_model(&scene);
         let sim = GpuSim::with_shaders(ctx, &model, shaders)?;
         if let Err(e) = renderer.set_objects(ctx, &scene::shapes(&scene)) {
             sim.destroy(ctx);
             return Err(e);
         }
-        Ok(Self { scene, model, sim, pinned_at: Default::default(), auto_picked })
+        let calibration_pending = scene.sim.integrator.method().is_none();
+        Ok(Self { scene, model, sim, pinned_at: Default::default(), auto_picked: None, calibration_pending })
+    }
+
+    /// Whether the scene waits for `calibrate` (see `new`).
+    pub fn calibration_pending(&self) -> bool {
+        self.calibration_pending
+    }
+
+    /// Calibrates `integrator = "auto"` for a scene that waits for it (`calibration_pending`)
+    /// and rebuilds the simulation with the pick, from the state it has (the window does not
+    /// simulate while it waits). On an error the provisional model stays, and so does the
+    /// state.
+    pub fn calibrate(&mut self, ctx: &GpuContext, shaders: &mut ShaderSet) -> Result<()> {
+        if !std::mem::take(&mut self.calibration_pending) {
+            return Ok(());
+        }
+        ctx.wait_idle()?;
+        let (model, auto_picked) = model_for(ctx, &self.scene)?;
+        let states = self.sim.read_states(ctx)?;
+        let mut sim = GpuSim::with_shaders(ctx, &model, shaders)?;
+        let particles: Vec<_> = states.iter().map(|s| s.particles.clone()).collect();
+        if let Err(e) = sim.upload_states(ctx, &particles) {
+            sim.destroy(ctx);
+            return Err(e);
+        }
+        std::mem::replace(&mut self.sim, sim).destroy(ctx);
+        self.model = model;
+        self.auto_picked = auto_picked;
+        Ok(())
     }
 
     pub fn scene(&self) -> &Scene {

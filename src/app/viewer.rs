@@ -426,6 +426,7 @@ impl Viewer {
         // Edits and actions from the previous frame's UI (unless they wait a frame for the
         // calibration's notice), then input.
         if !self.calibration_waits() {
+            self.calibrate_pending();
             if let Some(edited) = self.pending_scene.take() {
                 self.apply(edited);
             }
@@ -437,7 +438,9 @@ impl Viewer {
         self.update_grab();
         self.observe_edits();
 
-        let run_sim = !self.editor.paused || std::mem::take(&mut self.step_once);
+        // (Not while a scene waits to calibrate: this frame says so, the next calibrates.)
+        let run_sim = (!self.editor.paused || std::mem::take(&mut self.step_once))
+            && !self.host().calibration_pending();
         // Simulated frames this drawn frame: one, or in real-time mode as many frame_dt as the
         // wall clock has run since the last (at most REAL_TIME_MOST; a device that cannot keep
         // up falls behind, and the stats say by how much). A recording takes one a drawn frame

@@ -38,7 +38,8 @@ impl Viewer {
             return false;
         }
         let Some(host) = self.host.as_ref() else { return false };
-        let calibrates = self.pending_scene.as_ref().is_some_and(|s| host.calibrates_for(s))
+        let calibrates = host.calibration_pending()
+            || self.pending_scene.as_ref().is_some_and(|s| host.calibrates_for(s))
             || self.pending_actions.iter().any(|a| match a {
                 Action::Load(path) => scene::load(path, &[]).is_ok_and(|s| host.calibrates_for(&s)),
                 Action::AddClothFromPreset(_) => host.scene().sim.integrator.method().is_none(),
@@ -52,6 +53,27 @@ impl Viewer {
             self.calibration_announced = true;
         }
         calibrates
+    }
+
+    /// Calibrates a scene that started with `integrator = "auto"` (`SimHost::calibration_pending`:
+    /// the frame before said that the window waits); an error is reported and the provisional
+    /// method runs on.
+    pub(super) fn calibrate_pending(&mut self) {
+        let Some(host) = self.host.as_mut().filter(|h| h.calibration_pending()) else { return };
+        match host.calibrate(&self.ctx, &mut self.shaders) {
+            Ok(()) => {
+                // The new simulation's timestamp pools were never written: waiting on them would hang.
+                self.frames.iter_mut().for_each(|f| f.simulated = false);
+                self.show_auto_pick();
+            }
+            Err(e) => {
+                let method = host.model().integrator.label();
+                self.message(
+                    format!("integrator = \"auto\" could not calibrate: {e:#}; running {method} meanwhile"),
+                    true,
+                )
+            }
+        }
     }
 
     /// Says what `integrator = "auto"` picked (a notice, and a line under the integrator).
