@@ -43,6 +43,61 @@ pub fn position(scene: &Scene, target: Selection) -> Option<Vec3> {
     }
 }
 
+/// The index of the collider a selection names among `scene::colliders` (the ground first,
+/// then the spheres, boxes and capsules), for its tint in the view.
+pub fn collider_index(scene: &Scene, target: Selection) -> Option<usize> {
+    let ground = scene.ground.is_some() as usize;
+    let (spheres, boxes) = (scene.spheres.len(), scene.boxes.len());
+    match target {
+        Selection::Ground if ground == 1 => Some(0),
+        Selection::Sphere(i) if i < spheres => Some(ground + i),
+        Selection::Box(i) if i < boxes => Some(ground + spheres + i),
+        Selection::Capsule(i) if i < scene.capsules.len() => Some(ground + spheres + boxes + i),
+        _ => None,
+    }
+}
+
+/// The sphere, box or capsule that the ray from `origin` along the unit vector `dir` meets
+/// first, where they are at `time`, and how far along the ray [m]; found by sphere tracing
+/// their signed distances (each is convex, so the march only approaches it). Not the ground,
+/// on which a click orbits the camera, nor one the eye is inside.
+pub fn pick_collider(scene: &Scene, time: f64, origin: Vec3, dir: Vec3) -> Option<(Selection, f32)> {
+    const STEPS: usize = 256;
+    const FAR: f64 = 1e4;
+    let (o, d) = (origin.as_dvec3(), dir.as_dvec3());
+    let (ground, spheres, boxes) = (scene.ground.is_some() as usize, scene.spheres.len(), scene.boxes.len());
+    let mut best: Option<(Selection, f32)> = None;
+    for (k, c) in crate::scene::colliders(scene).iter().enumerate().skip(ground) {
+        let shape = c.shape.translated(c.motion.offset(time));
+        let mut s = 0.0;
+        let mut hit = None;
+        for _ in 0..STEPS {
+            let (dist, _) = shape.distance(o + d * s);
+            if dist < 1e-5 * (1.0 + s) {
+                hit = (s > 0.0).then_some(s);
+                break;
+            }
+            s += dist;
+            if s > FAR {
+                break;
+            }
+        }
+        let Some(s) = hit else { continue };
+        let i = k - ground;
+        let target = if i < spheres {
+            Selection::Sphere(i)
+        } else if i < spheres + boxes {
+            Selection::Box(i - spheres)
+        } else {
+            Selection::Capsule(i - spheres - boxes)
+        };
+        if best.is_none_or(|(_, b)| (s as f32) < b) {
+            best = Some((target, s as f32));
+        }
+    }
+    best
+}
+
 /// Moves `target` so that its position is `to`.
 pub fn set_position(scene: &mut Scene, target: Selection, to: Vec3) {
     let Some(from) = position(scene, target) else { return };
@@ -207,6 +262,51 @@ mod tests {
         set_position(&mut scene, Selection::Capsule(0), Vec3::new(0.5, 1.0, 0.0));
         assert_eq!(scene.capsules[0].start, [0.0, 1.0, 0.0]);
         assert_eq!(scene.capsules[0].end, [1.0, 1.0, 0.0]);
+    }
+
+    /// A click picks the collider its ray meets first, where it is at that time, against the
+    /// closed form of a ray and a sphere (or a box's face); the ground never.
+    #[test]
+    fn a_click_picks_the_nearest_collider() {
+        use crate::scene::{BoxCollider, Capsule, Ground, Motion, Sphere};
+        let mut scene = Scene { ground: Some(Ground { height: 0.0, friction: None }), ..Default::default() };
+        scene.spheres.push(Sphere { center: [0.0, 0.5, 0.0], radius: 0.2, motion: None });
+        let moving = Motion { velocity: Some([1.0, 0.0, 0.0]), keyframes: Vec::new() };
+        scene.spheres.push(Sphere { center: [-3.0, 0.5, 0.0], radius: 0.1, motion: Some(moving) });
+        scene.boxes.push(BoxCollider {
+            center: [2.0, 0.5, 0.0],
+            half_extents: [0.3, 0.3, 0.3],
+            rotation: [0.0; 3],
+            motion: None,
+        });
+        scene.capsules.push(Capsule {
+            start: [4.0, 0.2, 0.0],
+            end: [4.0, 0.8, 0.0],
+            radius: 0.1,
+            motion: None,
+        });
+        let near = |a: f32, b: f32| (a - b).abs() < 1e-4;
+        let toward = |x: f32| pick_collider(&scene, 0.0, Vec3::new(x, 0.5, 5.0), Vec3::NEG_Z);
+        let (sel, t) = toward(0.0).unwrap();
+        assert!(sel == Selection::Sphere(0) && near(t, 4.8), "{sel:?} at {t}");
+        let (sel, t) = toward(2.0).unwrap();
+        assert!(sel == Selection::Box(0) && near(t, 4.7), "{sel:?} at {t}");
+        let (sel, t) = toward(4.0).unwrap();
+        assert!(sel == Selection::Capsule(0) && near(t, 4.9), "{sel:?} at {t}");
+        // Off-centre by 0.12 m: a chord of the sphere, depth 5 - sqrt(0.2^2 - 0.12^2) = 4.84.
+        let (sel, t) = toward(0.12).unwrap();
+        assert!(sel == Selection::Sphere(0) && near(t, 4.84), "{sel:?} at {t}");
+        assert_eq!(toward(1.0), None, "between them the ray meets only the ground");
+        // Along x the sphere comes before the box.
+        let (sel, t) = pick_collider(&scene, 0.0, Vec3::new(-1.0, 0.5, 0.0), Vec3::X).unwrap();
+        assert!(sel == Selection::Sphere(0) && near(t, 0.8), "{sel:?} at {t}");
+        // The moving sphere is at x = -1 after 2 s.
+        let (sel, _) = pick_collider(&scene, 2.0, Vec3::new(-1.0, 0.5, 5.0), Vec3::NEG_Z).unwrap();
+        assert_eq!(sel, Selection::Sphere(1));
+        assert_eq!(pick_collider(&scene, 0.0, Vec3::new(-1.0, 0.5, 5.0), Vec3::NEG_Z), None);
+        assert_eq!(collider_index(&scene, Selection::Box(0)), Some(3));
+        assert_eq!(collider_index(&scene, Selection::Capsule(0)), Some(4));
+        assert_eq!(collider_index(&scene, Selection::Cloth(0)), None);
     }
 
     /// A dragged position keeps the shortest decimal of its f32 (what the preset then saves),

@@ -202,7 +202,7 @@ fn run(
             ImageBarrier::discarding(target.depth.image(), Access::DepthAttachment, Access::DepthAttachment),
         ]);
         rec.begin_rendering(target.color.view(), target.depth.view(), extent, SKY);
-        let items = view::scene_items(scene, sim.time());
+        let items = view::scene_items(scene, sim.time(), None);
         renderer.record(&mut rec, slot, sim, &items, view::ground(scene));
         rec.end_rendering();
         if let Some(pool) = pool {

@@ -15,7 +15,9 @@ pub const SKY: [f32; 4] = [0.09, 0.10, 0.12, 1.0];
 
 /// The scene's draws at simulated time `time`: every object's surface, the colliders (where
 /// they have moved to), the light and the wind cone.
-pub fn scene_items(scene: &Scene, time: f64) -> Vec<DrawItem> {
+/// The scene's items where it is at `time`; the collider `tinted` (an index of
+/// `scene::colliders`: the selected one) drawn tinted as a selected surface is.
+pub fn scene_items(scene: &Scene, time: f64, tinted: Option<usize>) -> Vec<DrawItem> {
     let f = |c: [f64; 3]| c.map(|x| x as f32);
     let v = |c: [f64; 3]| Vec3::from_array(f(c));
     let placed =
@@ -33,8 +35,12 @@ pub fn scene_items(scene: &Scene, time: f64) -> Vec<DrawItem> {
     for (j, r) in scene.ropes.iter().enumerate() {
         items.push(DrawItem::solid(Shape::Surface(scene.cloths.len() + j), Mat4::IDENTITY, f(r.color), true));
     }
-    for c in scene::colliders(scene) {
-        items.extend(collider_items(&c.shape.translated(c.motion.offset(time))));
+    for (k, c) in scene::colliders(scene).iter().enumerate() {
+        let mut shapes = collider_items(&c.shape.translated(c.motion.offset(time)));
+        if tinted == Some(k) {
+            shapes.iter_mut().for_each(|item| (item.front, item.back) = (tint(item.front), tint(item.back)));
+        }
+        items.extend(shapes);
     }
     let light = placed(Vec3::splat(0.06), Quat::IDENTITY, v(scene.light.position));
     items.push(DrawItem::solid(Shape::Sphere, light, [1.0, 0.9, 0.5], false));
@@ -50,7 +56,6 @@ pub fn scene_items(scene: &Scene, time: f64) -> Vec<DrawItem> {
 /// Surface `surface` (the selected cloth or rope) drawn tinted towards `SELECTED`, so the
 /// object the panel edits is seen in the view (colliders, the wind and the light get arrows).
 pub fn mark_selected(items: &mut [DrawItem], surface: usize) {
-    let tint = |c: [f32; 3]| std::array::from_fn(|k| c[k] + (SELECTED[k] - c[k]) * 0.45);
     for item in items.iter_mut().filter(|it| it.shape == Shape::Surface(surface)) {
         item.front = tint(item.front);
         item.back = tint(item.back);
@@ -59,6 +64,11 @@ pub fn mark_selected(items: &mut [DrawItem], surface: usize) {
 
 /// The colour a selected surface is tinted towards.
 const SELECTED: [f32; 3] = [1.0, 0.9, 0.35];
+
+/// A selected item's colour: `c` taken part of the way towards `SELECTED`.
+fn tint(c: [f32; 3]) -> [f32; 3] {
+    std::array::from_fn(|k| c[k] + (SELECTED[k] - c[k]) * 0.45)
+}
 
 /// A marker (a small unlit sphere) on every pinned particle at `at`: its size a third of the
 /// finest grid spacing in the scene, between 4 mm and 2 cm.

@@ -295,9 +295,10 @@ fn recording_indicator(ui: &Ui, state: &EditorState) {
 }
 
 /// The app's controls (the README's table), shown with F1.
-const CONTROLS: [(&str, &str); 18] = [
+const CONTROLS: [(&str, &str); 19] = [
     ("left-drag on cloth or rope", "grab the particle (within 12 pixels) and drag it"),
     ("Ctrl + left click", "pin the particle where it is, or free it"),
+    ("left click on a sphere, box or capsule", "select it (its arrows in the view, its panel)"),
     ("left-drag on empty space, right-drag", "orbit (above the ground; Alt: also below)"),
     ("middle-drag, Shift + drag", "pan"),
     ("wheel", "zoom towards the cursor"),

@@ -66,16 +66,24 @@ impl Viewer {
         if std::mem::take(&mut self.input.pick_requested) {
             let Some(host) = self.host.as_mut() else { return };
             let radii = pick_radii(host.model());
+            // A sphere, box or capsule in front of the particle (or with none behind it) is
+            // selected instead, and the drag orbits.
+            let collider = handles::pick_collider(host.scene(), host.sim().time(), origin, dir);
             match host.sim_mut().read_states(&self.ctx) {
                 Ok(states) => match pick(&states, ray, &radii) {
-                    Some((object, index, depth, was_pinned)) => {
+                    Some((object, index, depth, was_pinned)) if collider.is_none_or(|(_, t)| depth < t) => {
                         self.input.grab =
                             Some(Grab { object, index, depth, was_pinned, target: origin + dir * depth });
                         // Clicking an object also selects it (its parameters in the panel).
                         self.editor.selected =
                             crate::ui::Selection::of_object(object, host.scene().cloths.len());
                     }
-                    None => self.input.pick_missed(),
+                    _ => {
+                        if let Some((target, _)) = collider {
+                            self.editor.selected = target;
+                        }
+                        self.input.pick_missed();
+                    }
                 },
                 Err(e) => self.message(format!("picking failed: {e:#}"), true),
             }

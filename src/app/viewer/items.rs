@@ -6,11 +6,12 @@ use crate::render::{view, DrawItem, Shape};
 use glam::{Mat4, Quat, Vec3};
 
 impl Viewer {
-    /// What the view draws: the scene (the selected cloth or rope tinted, markers on the pinned
+    /// What the view draws: the scene (the selected object tinted, markers on the pinned
     /// particles), the selection's arrows and the grabbed particle's target.
     pub(super) fn draw_items(&self) -> Vec<DrawItem> {
         let host = self.host();
-        let mut items = view::scene_items(host.scene(), host.sim().time());
+        let tinted = handles::collider_index(host.scene(), self.editor.selected);
+        let mut items = view::scene_items(host.scene(), host.sim().time(), tinted);
         if let Some(object) = self.editor.selected.object(host.scene().cloths.len()) {
             view::mark_selected(&mut items, object);
         }
