@@ -143,6 +143,70 @@ fn an_auto_preset_says_it_calibrates_before_it_does() {
     assert!(said < picked, "the notice came after the calibration:\n{log}");
 }
 
+/// Hue (degrees), saturation and value of an RGB colour (components 0 to 1).
+fn hsv(c: [f32; 3]) -> (f32, f32, f32) {
+    let (max, min) = (c[0].max(c[1]).max(c[2]), c[0].min(c[1]).min(c[2]));
+    let d = max - min;
+    let hue = if d <= 0.0 {
+        0.0
+    } else if max == c[0] {
+        60.0 * ((c[1] - c[2]) / d).rem_euclid(6.0)
+    } else if max == c[1] {
+        60.0 * ((c[2] - c[0]) / d + 2.0)
+    } else {
+        60.0 * ((c[0] - c[1]) / d + 4.0)
+    };
+    (hue, if max > 0.0 { d / max } else { 0.0 }, max)
+}
+
+/// Every shipped preset, a kind of scene each (a hanging cloth, a rope, cloth on a box, a flag
+/// in the wind, a towel, a rope on a cloth, all of them together), drawn without the UI at its
+/// first frame: each cloth and rope shows, as pixels of its own colour's hue (front or back,
+/// within 20 degrees, shaded: saturation over 0.2) in at least 30 pixels of the 320 x 240 (the
+/// playground's rope, 2 cm thick, has 77; the others 500 to 39,000). The floor
+/// and the sky are grey and the colliders pale, so only the objects have those hues; a
+/// missing, black or mis-coloured object fails (a golden image a preset would fail on any
+/// change of the preset's look instead).
+#[test]
+fn every_shipped_preset_draws_its_objects() {
+    let presets = Path::new(env!("CARGO_MANIFEST_DIR")).join("presets");
+    let mut paths: Vec<_> = std::fs::read_dir(&presets).unwrap().map(|e| e.unwrap().path()).collect();
+    paths.sort();
+    for path in paths {
+        let name = path.file_stem().unwrap().to_string_lossy().to_string();
+        let shot = artifacts().join(format!("preset-{name}.png"));
+        let preset = path.to_str().unwrap();
+        app(&[
+            "--preset",
+            preset,
+            "--no-ui",
+            "--paused",
+            "--size",
+            "320x240",
+            "--frames",
+            "1",
+            "--screenshot",
+            shot.to_str().unwrap(),
+        ]);
+        let (w, h, rgba) = read_png(&shot);
+        let pixels: Vec<(f32, f32, f32)> =
+            rgba.chunks(4).map(|p| hsv([p[0], p[1], p[2]].map(|c| c as f32 / 255.0))).collect();
+        let scene = msdsim::scene::load(&path, &[]).unwrap();
+        let cloths = scene.cloths.iter().map(|c| (c.name.clone(), vec![c.color, c.back_color]));
+        let ropes = scene.ropes.iter().map(|r| (r.name.clone(), vec![r.color]));
+        for (object, colours) in cloths.chain(ropes) {
+            let hues: Vec<f32> = colours.iter().map(|c| hsv(c.map(|x| x as f32)).0).collect();
+            let near = |a: f32, b: f32| (a - b).abs().min(360.0 - (a - b).abs()) <= 20.0;
+            let shown = pixels
+                .iter()
+                .filter(|(hue, sat, val)| *sat > 0.2 && *val > 0.1 && hues.iter().any(|h| near(*hue, *h)))
+                .count();
+            println!("{name}: '{object}' {shown} pixels of {}", w * h);
+            assert!(shown >= 30, "{name}: '{object}' shows in {shown} pixels ({})", shot.display());
+        }
+    }
+}
+
 /// Without a display the app says which headless commands to use and exits with code 2, in one
 /// line without winit's source path.
 #[test]
