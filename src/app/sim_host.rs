@@ -175,6 +175,25 @@ impl SimHost {
         Some(model)
     }
 
+    /// The model with which `edited` applies in place (its parameters rewritten, the state
+    /// kept), or none when it needs a new simulation: another layout of particles, other
+    /// pipelines, a calibration, or parameters the running one cannot take.
+    fn in_place_model(&self, edited: &Scene) -> Option<SimModel> {
+        let (old, new) = (&self.scene.sim, &edited.sim);
+        let same_pipelines = (old.substeps, old.integrator, old.self_collision, old.tolerance)
+            == (new.substeps, new.integrator, new.self_collision, new.tolerance);
+        (same_pipelines && layout_key(edited) == layout_key(&self.scene))
+            .then(|| self.model_keeping_pick(edited))
+            .flatten()
+            .filter(|model| self.sim.takes_params(model))
+    }
+
+    /// Whether applying `edited` builds a new simulation (its pipelines compiled: milliseconds
+    /// on a GPU, seconds on a CPU driver); not for a scene that would be refused.
+    pub fn rebuilds_for(&self, edited: &Scene) -> bool {
+        *edited != self.scene && scene::validate(edited).is_ok() && self.in_place_model(edited).is_none()
+    }
+
     /// Whether applying `edited` calibrates `integrator = "auto"` (seconds; minutes on a CPU
     /// driver).
     pub fn calibrates_for(&self, edited: &Scene) -> bool {
@@ -195,14 +214,7 @@ impl SimHost {
         }
         scene::validate(&edited).map_err(crate::error::UserError)?;
         let same_layout = layout_key(&edited) == layout_key(&self.scene);
-        let (old, new) = (&self.scene.sim, &edited.sim);
-        let same_pipelines = (old.substeps, old.integrator, old.self_collision, old.tolerance)
-            == (new.substeps, new.integrator, new.self_collision, new.tolerance);
-        let in_place = (same_layout && same_pipelines)
-            .then(|| self.model_keeping_pick(&edited))
-            .flatten()
-            .filter(|model| self.sim.takes_params(model));
-        if let Some(model) = in_place {
+        if let Some(model) = self.in_place_model(&edited) {
             ctx.wait_idle()?;
             self.sim.update_params(&model)?;
             self.model = model;

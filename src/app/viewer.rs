@@ -96,9 +96,11 @@ pub struct Viewer {
     exercise_rope_x: f32,
     /// The UI's edited scene and actions, applied at the start of the next frame.
     pending_scene: Option<Scene>,
-    /// The pending edits calibrate `integrator = "auto"` and the notice saying so is drawn:
-    /// they are applied this frame (`edits::calibration_waits`).
-    calibration_announced: bool,
+    /// The pending edits calibrate `integrator = "auto"` or rebuild slowly, and the notice saying
+    /// so is drawn: they are applied this frame (`edits::edits_wait`).
+    wait_announced: bool,
+    /// How long the last build of the simulation took (at start-up, or by an edit).
+    last_rebuild: std::time::Duration,
     /// Undo and redo of scene edits (created with the scene).
     history: Option<super::history::History>,
     pending_actions: Vec<Action>,
@@ -165,7 +167,8 @@ impl Viewer {
             screenshot: None,
             shot: None,
             pending_scene: None,
-            calibration_announced: false,
+            wait_announced: false,
+            last_rebuild: std::time::Duration::ZERO,
             history: None,
             pending_actions: Vec::new(),
         };
@@ -189,7 +192,9 @@ impl Viewer {
         self.ui_renderer = Some(UiRenderer::new(ctx, &mut self.imgui, format, Format::Depth32, FRAME_SLOTS)?);
         let renderer =
             self.renderer.insert(SceneRenderer::new(ctx, format, Format::Depth32, &mut self.shaders)?);
+        let started = std::time::Instant::now();
         self.host = Some(SimHost::new(ctx, scene, renderer, &mut self.shaders)?);
+        self.last_rebuild = started.elapsed();
         self.show_auto_pick();
         self.editor.shaders_note = self.shaders.status();
         log::info!("{}", self.editor.shaders_note);
@@ -425,7 +430,7 @@ impl Viewer {
 
         // Edits and actions from the previous frame's UI (unless they wait a frame for the
         // calibration's notice), then input.
-        if !self.calibration_waits() {
+        if !self.edits_wait() {
             self.calibrate_pending();
             if let Some(edited) = self.pending_scene.take() {
                 self.apply(edited);

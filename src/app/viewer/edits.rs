@@ -5,13 +5,19 @@ use crate::app::sim_host::Applied;
 use crate::scene::{self, Scene};
 use crate::ui::Action;
 
+/// A build of the simulation slower than this is announced a frame before the next one
+/// (`Viewer::edits_wait`): on a GPU builds take milliseconds and go unannounced.
+const SLOW_REBUILD: std::time::Duration = std::time::Duration::from_millis(300);
+
 impl Viewer {
     /// Applies an edited scene, reporting refusals in the editor; false when refused.
     pub(super) fn apply(&mut self, edited: Scene) -> bool {
         let (Some(host), Some(renderer)) = (self.host.as_mut(), self.renderer.as_mut()) else { return false };
+        let started = std::time::Instant::now();
         let applied = host.apply(&self.ctx, renderer, &mut self.shaders, edited);
         let rebuilt = matches!(applied, Ok(Applied::Rebuilt | Applied::RebuiltKeepingState));
         if rebuilt {
+            self.last_rebuild = started.elapsed();
             // The new simulation's timestamp pools were never written: waiting on them would hang.
             self.frames.iter_mut().for_each(|f| f.simulated = false);
         }
@@ -30,29 +36,55 @@ impl Viewer {
         true
     }
 
-    /// Whether the pending edits and actions wait a frame: they will calibrate `integrator =
-    /// "auto"`, which holds the window for seconds (minutes on a CPU driver), so the frame
-    /// before says so in a notice. True once for them; the next frame applies them.
-    pub(super) fn calibration_waits(&mut self) -> bool {
-        if std::mem::take(&mut self.calibration_announced) {
+    /// Whether the pending edits and actions wait a frame, so that the frame before says in a
+    /// notice that the window will wait: they calibrate `integrator = "auto"` (seconds; minutes
+    /// on a CPU driver), or build a new simulation where the last build took more than
+    /// `SLOW_REBUILD` (its pipelines compiled: seconds on a CPU driver). True once for them; the
+    /// next frame applies them.
+    pub(super) fn edits_wait(&mut self) -> bool {
+        if std::mem::take(&mut self.wait_announced) {
             return false;
         }
         let Some(host) = self.host.as_ref() else { return false };
+        let loaded = |path: &std::path::Path| scene::load(path, &[]).ok();
         let calibrates = host.calibration_pending()
             || self.pending_scene.as_ref().is_some_and(|s| host.calibrates_for(s))
             || self.pending_actions.iter().any(|a| match a {
-                Action::Load(path) => scene::load(path, &[]).is_ok_and(|s| host.calibrates_for(&s)),
+                Action::Load(path) => loaded(path).is_some_and(|s| host.calibrates_for(&s)),
                 Action::AddClothFromPreset(_) => host.scene().sim.integrator.method().is_none(),
                 _ => false,
             });
+        let rebuilds = !calibrates
+            && (self.pending_scene.as_ref().is_some_and(|s| self.rebuilds_slowly(s))
+                || self.pending_actions.iter().any(|a| match a {
+                    Action::Load(path) => loaded(path).is_some_and(|s| self.rebuilds_slowly(&s)),
+                    Action::AddClothFromPreset(_) => self.last_rebuild > SLOW_REBUILD,
+                    _ => false,
+                }));
         if calibrates {
             self.message(
                 "calibrating integrator = \"auto\": the window waits until it has picked a method",
                 false,
             );
-            self.calibration_announced = true;
+        } else if rebuilds {
+            let took = self.last_rebuild.as_secs_f64();
+            self.message(
+                format!("rebuilding the simulation: the window waits (the last build took {took:.1} s)"),
+                false,
+            );
         }
-        calibrates
+        self.wait_announced = calibrates || rebuilds;
+        calibrates || rebuilds
+    }
+
+    /// Whether applying `edited` holds the window: it calibrates `integrator = "auto"`, or
+    /// builds a new simulation where the last build took more than `SLOW_REBUILD`.
+    pub(super) fn waits_for(&self, edited: &Scene) -> bool {
+        self.host.as_ref().is_some_and(|h| h.calibrates_for(edited)) || self.rebuilds_slowly(edited)
+    }
+
+    fn rebuilds_slowly(&self, edited: &Scene) -> bool {
+        self.last_rebuild > SLOW_REBUILD && self.host.as_ref().is_some_and(|h| h.rebuilds_for(edited))
     }
 
     /// Calibrates a scene that started with `integrator = "auto"` (`SimHost::calibration_pending`:
