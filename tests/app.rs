@@ -135,7 +135,7 @@ fn editor_edits_rebuilds_reset_save_and_load_are_clean() {
     if log.contains("(Cpu,") {
         assert!(lines.iter().any(|l| l.contains("the window waits")), "no rebuild announced:\n{log}");
     }
-    for (k, l) in lines.iter().enumerate().filter(|(_, l)| l.contains("the window waits")) {
+    for (k, _) in lines.iter().enumerate().filter(|(_, l)| l.contains("the window waits")) {
         let next = lines.get(k + 1).copied().unwrap_or("");
         assert!(next.contains("rebuilt") && !next.contains("waits"), "announced, not rebuilt next:\n{log}");
     }
