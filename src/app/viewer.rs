@@ -343,6 +343,14 @@ impl Viewer {
         if !reloaded.is_empty() {
             self.reload_pending = Some((reloaded, changes.since.unwrap_or_else(Instant::now)));
         }
+        // A save that broke a shader: a notice and the log, besides the errors' overlay.
+        let broken: Vec<String> = (self.shaders.errors())
+            .filter(|(name, _)| changes.shaders.contains(*name))
+            .map(|(name, e)| format!("{name} does not compile; its last good version runs: {e}"))
+            .collect();
+        for e in broken {
+            self.message(e, true);
+        }
     }
 
     fn key_actions(&mut self) -> bool {
@@ -557,15 +565,13 @@ impl Viewer {
         frame.cmd.submit_with(&self.ctx, rec, Some(&frame.available), Some(swapchain.finished(image)))?;
         frame.used = true;
         frame.simulated = run_sim;
-        if let Some((names, since)) = self.reload_pending.take() {
-            log::info!(
-                "hot reload: {} in use {:.0} ms after the save",
-                names.join(", "),
-                since.elapsed().as_secs_f64() * 1e3
-            );
-        }
+        let reloaded = self.reload_pending.take();
         if !swapchain.present(&self.ctx, image)? {
             self.recreate = true;
+        }
+        if let Some((names, since)) = reloaded {
+            let ms = since.elapsed().as_secs_f64() * 1e3;
+            self.message(format!("hot reload: {} in use {ms:.0} ms after the save", names.join(", ")), false);
         }
         self.frame += 1;
         if run_sim && self.recorder.frames().is_some() {

@@ -28,17 +28,20 @@ pub fn folder_of(typed: &str) -> PathBuf {
 }
 
 /// The preset file a path typed in a field names, to read: as typed (from the folder the app
-/// was started in) when it exists or is absolute; else the shipped preset of that file name
-/// (the source tree's `presets/`, so "presets/towel.toml" loads wherever the app was started);
-/// else as typed, for the error to name.
-pub fn resolve_preset(typed: &str) -> PathBuf {
+/// was started in) when it exists or is absolute; else the preset of that file name in the
+/// folder of `beside` (the scene's own preset file: where the shipped presets are when the app
+/// was started with one of them); else the shipped preset of that name in the source tree's
+/// `presets/` (so "presets/towel.toml" loads wherever the app was started); else as typed,
+/// for the error to name.
+pub fn resolve_preset(typed: &str, beside: &str) -> PathBuf {
     let path = PathBuf::from(typed);
     if path.exists() || path.is_absolute() {
         return path;
     }
-    let shipped =
-        path.file_name().map(|name| Path::new(env!("CARGO_MANIFEST_DIR")).join("presets").join(name));
-    shipped.filter(|p| p.is_file()).unwrap_or(path)
+    let Some(name) = path.file_name() else { return path };
+    let own = Path::new(beside).parent().map(|dir| dir.join(name));
+    let shipped = Path::new(env!("CARGO_MANIFEST_DIR")).join("presets").join(name);
+    own.into_iter().chain([shipped]).find(|p| p.is_file()).unwrap_or(path)
 }
 
 /// The entries of `dir`: the folder above, then its folders and its `.toml` files, each by
@@ -135,16 +138,19 @@ mod tests {
     fn shipped_presets_are_found_wherever_the_app_started() {
         let shipped = Path::new(env!("CARGO_MANIFEST_DIR")).join("presets/towel.toml");
         for typed in ["presets/towel.toml", "elsewhere/towel.toml", "towel.toml"] {
-            let found = resolve_preset(typed);
+            let found = resolve_preset(typed, "nowhere/scene.toml");
             assert!(found.is_file(), "{typed} -> {}", found.display());
             assert_eq!(std::fs::read(&found).unwrap(), std::fs::read(&shipped).unwrap(), "{typed}");
         }
-        assert_eq!(resolve_preset("no/such.toml"), PathBuf::from("no/such.toml"));
-        assert_eq!(resolve_preset("/no/towel.toml"), PathBuf::from("/no/towel.toml"));
+        assert_eq!(resolve_preset("no/such.toml", ""), PathBuf::from("no/such.toml"));
+        assert_eq!(resolve_preset("/no/towel.toml", ""), PathBuf::from("/no/towel.toml"));
         let dir = tempfile::tempdir().unwrap();
         let own = dir.path().join("towel.toml");
         std::fs::write(&own, "").unwrap();
-        assert_eq!(resolve_preset(own.to_str().unwrap()), own, "an existing file as typed");
+        assert_eq!(resolve_preset(own.to_str().unwrap(), ""), own, "an existing file as typed");
+        // Presets installed elsewhere: found beside the scene's own preset first.
+        let scene = dir.path().join("curtain.toml");
+        assert_eq!(resolve_preset("elsewhere/towel.toml", scene.to_str().unwrap()), own);
     }
 
     /// The browser lists the way up, folders, then `.toml` files, hidden and other files left

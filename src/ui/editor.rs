@@ -221,9 +221,11 @@ pub fn build(ui: &Ui, state: &mut EditorState, scene: &mut Scene, stats: &Stats)
                 if ui.input_text("file##preset", &mut state.preset_path).build() {
                     state.replace = None;
                 }
-                tip(ui, "The preset file to load or save, from the folder the app was started in (Load also finds a shipped preset by its name); type a new name to save a copy");
+                let from = std::env::current_dir().map(|d| format!(" ({})", d.display())).unwrap_or_default();
+                tip(ui, &format!("The preset file to load or save, from the folder the app was started in{from} (Load also finds a shipped preset by its name); type a new name to save a copy"));
                 if ui.button("Load") {
-                    actions.push(Action::Load(super::browse::resolve_preset(&state.preset_path)));
+                    let path = super::browse::resolve_preset(&state.preset_path, "");
+                    actions.push(Action::Load(path));
                 }
                 ui.same_line();
                 let path = state.preset_path.clone();
@@ -248,7 +250,8 @@ pub fn build(ui: &Ui, state: &mut EditorState, scene: &mut Scene, stats: &Stats)
                 tip(ui, "Pick the file from its folder's presets");
                 ui.input_text("cloth preset##add", &mut state.cloth_preset_path).build();
                 if ui.button("Add cloths from that preset") {
-                    actions.push(Action::AddClothFromPreset(super::browse::resolve_preset(&state.cloth_preset_path)));
+                    let path = super::browse::resolve_preset(&state.cloth_preset_path, &state.preset_path);
+                    actions.push(Action::AddClothFromPreset(path));
                 }
                 ui.same_line();
                 super::browse::browse_button(ui, "cloth", &mut state.cloth_preset_path);
