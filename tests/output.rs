@@ -762,22 +762,10 @@ fn a_gltf_recording_reads_back_as_the_simulation() {
     let preset = preset(dir.path());
     let (glb, json) = (dir.path().join("anim.glb"), dir.path().join("state.json"));
     record(&preset, 5, &glb, &json);
-    let parse = |path: &Path| -> (serde_json::Value, Vec<u8>) {
-        let bytes = std::fs::read(path).unwrap();
-        let word = |at: usize| u32::from_le_bytes(bytes[at..at + 4].try_into().unwrap()) as usize;
-        assert_eq!((&bytes[..4], word(4), word(8)), (&b"glTF"[..], 2, bytes.len()), "the GLB header");
-        let text = word(12);
-        assert_eq!(&bytes[16..20], b"JSON");
-        assert_eq!(&bytes[24 + text..28 + text], b"BIN\0");
-        (serde_json::from_slice(&bytes[20..20 + text]).unwrap(), bytes[28 + text..].to_vec())
-    };
+    let parse = parse_glb;
     let (doc, bin) = parse(&glb);
-    let floats = |accessor: &serde_json::Value| -> Vec<f32> {
-        let view = &doc["bufferViews"][accessor["bufferView"].as_u64().unwrap() as usize];
-        let at = view["byteOffset"].as_u64().unwrap() as usize;
-        let len = view["byteLength"].as_u64().unwrap() as usize;
-        bin[at..at + len].chunks_exact(4).map(|b| f32::from_le_bytes(b.try_into().unwrap())).collect()
-    };
+    let floats =
+        |accessor: &serde_json::Value| -> Vec<f32> { glb_words(&doc, &bin, accessor, f32::from_le_bytes) };
     let mesh = doc["meshes"].as_array().unwrap().iter().find(|m| m["name"] == "c").expect("the cloth's mesh");
     let primitive = &mesh["primitives"][0];
     let accessor = |i: &serde_json::Value| &doc["accessors"][i.as_u64().unwrap() as usize];
@@ -822,6 +810,169 @@ fn a_gltf_recording_reads_back_as_the_simulation() {
     for (k, x) in x.iter().enumerate() {
         assert!((x - 0.5 * k as f32 / 60.0).abs() < 1e-6, "frame {k}: the box moved {x} m");
     }
+}
+
+/// A GLB file's JSON document and binary chunk, its header checked.
+fn parse_glb(path: &Path) -> (serde_json::Value, Vec<u8>) {
+    let bytes = std::fs::read(path).unwrap();
+    let word = |at: usize| u32::from_le_bytes(bytes[at..at + 4].try_into().unwrap()) as usize;
+    assert_eq!((&bytes[..4], word(4), word(8)), (&b"glTF"[..], 2, bytes.len()), "the GLB header");
+    let text = word(12);
+    assert_eq!(&bytes[16..20], b"JSON");
+    assert_eq!(&bytes[24 + text..28 + text], b"BIN\0");
+    (serde_json::from_slice(&bytes[20..20 + text]).unwrap(), bytes[28 + text..].to_vec())
+}
+
+/// The 4-byte words of a GLB accessor's buffer view (floats or u32 indices; tightly packed).
+fn glb_words<T>(
+    doc: &serde_json::Value,
+    bin: &[u8],
+    accessor: &serde_json::Value,
+    word: fn([u8; 4]) -> T,
+) -> Vec<T> {
+    let view = &doc["bufferViews"][accessor["bufferView"].as_u64().unwrap() as usize];
+    let at = view["byteOffset"].as_u64().unwrap_or(0) as usize;
+    let len = view["byteLength"].as_u64().unwrap() as usize;
+    bin[at..at + len].chunks_exact(4).map(|b| word(b.try_into().unwrap())).collect()
+}
+
+/// Every mesh of a glTF recording is wound counter-clockwise about its own normals, as
+/// renderers cull and shade it: each triangle's winding (b - a) x (c - a) points along the sum
+/// of its vertices' normals, for a cloth, a rope's tube and caps, the ground, spheres, a box and
+/// a capsule (the playground, the tablecloth, the flag's pole), at the recording's first frame.
+/// Triangles of zero area are skipped (none in these).
+#[test]
+fn every_gltf_mesh_is_wound_about_its_normals() {
+    let dir = tempfile::tempdir().unwrap();
+    let json = dir.path().join("state.json");
+    let mut kinds = std::collections::BTreeSet::new();
+    for preset in ["playground", "tablecloth", "flag"] {
+        let glb = dir.path().join(format!("{preset}.glb"));
+        record(&format!("presets/{preset}.toml"), 1, &glb, &json);
+        let (doc, bin) = parse_glb(&glb);
+        for mesh in doc["meshes"].as_array().unwrap() {
+            let name = mesh["name"].as_str().unwrap_or("?");
+            let primitive = &mesh["primitives"][0];
+            let accessor = |i: &serde_json::Value| &doc["accessors"][i.as_u64().unwrap() as usize];
+            let vec3 = |key: &str| -> Vec<glam::DVec3> {
+                let f = glb_words(&doc, &bin, accessor(&primitive["attributes"][key]), f32::from_le_bytes);
+                f.chunks_exact(3).map(|v| glam::DVec3::new(v[0] as f64, v[1] as f64, v[2] as f64)).collect()
+            };
+            let (points, normals) = (vec3("POSITION"), vec3("NORMAL"));
+            let indices = glb_words(&doc, &bin, accessor(&primitive["indices"]), u32::from_le_bytes);
+            let mut faces = 0;
+            for t in indices.chunks_exact(3) {
+                let [a, b, c] = [t[0], t[1], t[2]].map(|i| i as usize);
+                let winding = (points[b] - points[a]).cross(points[c] - points[a]);
+                if winding.length() < 1e-12 {
+                    continue;
+                }
+                let shading = normals[a] + normals[b] + normals[c];
+                assert!(
+                    winding.dot(shading) > 0.0,
+                    "{preset}: mesh {name}, triangle {a} {b} {c} is wound against its normals"
+                );
+                faces += 1;
+            }
+            assert!(faces > 0, "{preset}: mesh {name} has no triangles");
+            kinds.insert(name.split('_').take(2).collect::<Vec<_>>().join("_"));
+        }
+    }
+    println!("meshes checked: {kinds:?}");
+}
+
+/// The meshes of a `.usda` recording at its last time sample: name, points, normals and
+/// polygons (each a list of point indices), parsed from the layout msdsim writes.
+fn usd_meshes(text: &str) -> Vec<(String, Vec<glam::DVec3>, Vec<glam::DVec3>, Vec<Vec<usize>>)> {
+    let tuples = |line: &str| -> Vec<glam::DVec3> {
+        line.split('(')
+            .skip(1)
+            .map(|t| {
+                let v: Vec<f64> =
+                    t.split(')').next().unwrap().split(',').map(|x| x.trim().parse().unwrap()).collect();
+                glam::DVec3::new(v[0], v[1], v[2])
+            })
+            .collect()
+    };
+    let ints = |line: &str| -> Vec<usize> {
+        let inside = line.split("= [").nth(1).unwrap().split(']').next().unwrap();
+        inside.split(',').map(|x| x.trim().parse().unwrap()).collect()
+    };
+    let mut meshes = Vec::new();
+    let mut lines = text.lines().peekable();
+    while let Some(line) = lines.next() {
+        if !line.trim_start().starts_with("def Mesh \"") {
+            continue;
+        }
+        let name = line.split('"').nth(1).unwrap().to_string();
+        let (mut counts, mut indices, mut points, mut normals) =
+            (Vec::new(), Vec::new(), Vec::new(), Vec::new());
+        while let Some(line) = lines.next_if(|l| !l.trim_start().starts_with("def ")) {
+            let t = line.trim_start();
+            // A time-sampled attribute: its last sample, the line before the closing brace.
+            let last_sample = |lines: &mut std::iter::Peekable<std::str::Lines>| {
+                let mut last = "";
+                while let Some(l) = lines.next_if(|l| l.trim() != "}") {
+                    last = l;
+                }
+                last.to_string()
+            };
+            if t.starts_with("int[] faceVertexCounts") {
+                counts = ints(t);
+            } else if t.starts_with("int[] faceVertexIndices") {
+                indices = ints(t);
+            } else if t.starts_with("point3f[] points = ") {
+                points = tuples(t);
+            } else if t.starts_with("point3f[] points.timeSamples") {
+                points = tuples(&last_sample(&mut lines));
+            } else if t.starts_with("normal3f[] normals = ") {
+                normals = tuples(t);
+            } else if t.starts_with("normal3f[] normals.timeSamples") {
+                normals = tuples(&last_sample(&mut lines));
+            }
+        }
+        let mut polygons = Vec::new();
+        let mut at = 0;
+        for n in counts {
+            polygons.push(indices[at..at + n].to_vec());
+            at += n;
+        }
+        meshes.push((name, points, normals, polygons));
+    }
+    meshes
+}
+
+/// Every mesh of a USD recording is wound counter-clockwise about its own normals (USD's
+/// default orientation, rightHanded), as renderers cull and shade it: each polygon's first
+/// triangle's winding points along the sum of its vertices' normals, for a cloth, a rope's
+/// tube and caps and the ground, at the last frame of the rope on the cloth (20 frames, the
+/// rope landed) and of the playground (the spheres are USD Sphere prims, not meshes).
+#[test]
+fn every_usd_mesh_is_wound_about_its_normals() {
+    let dir = tempfile::tempdir().unwrap();
+    let json = dir.path().join("state.json");
+    let mut checked = Vec::new();
+    for preset in ["rope_on_cloth", "playground"] {
+        let usda = dir.path().join(format!("{preset}.usda"));
+        record(&format!("presets/{preset}.toml"), 20, &usda, &json);
+        let text = std::fs::read_to_string(&usda).unwrap();
+        assert!(!text.contains("orientation = \"leftHanded\""), "{preset}");
+        for (name, points, normals, polygons) in usd_meshes(&text) {
+            assert!(!polygons.is_empty() && points.len() == normals.len(), "{preset}: mesh {name}");
+            for p in &polygons {
+                let [a, b, c] = [p[0], p[1], p[2]];
+                let winding = (points[b] - points[a]).cross(points[c] - points[a]);
+                let shading = normals[a] + normals[b] + normals[c];
+                assert!(
+                    winding.dot(shading) > 0.0,
+                    "{preset}: mesh {name}, face {p:?} is wound against its normals"
+                );
+            }
+            checked.push(format!("{preset}/{name}"));
+        }
+    }
+    println!("meshes checked: {checked:?}");
+    assert!(checked.len() >= 5, "{checked:?}");
 }
 
 /// A glTF recording counts the memory it really takes (issue 30, item 11: the frames it keeps
