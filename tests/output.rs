@@ -881,9 +881,12 @@ fn every_gltf_mesh_is_wound_about_its_normals() {
     println!("meshes checked: {kinds:?}");
 }
 
-/// The meshes of a `.usda` recording at its last time sample: name, points, normals and
-/// polygons (each a list of point indices), parsed from the layout msdsim writes.
-fn usd_meshes(text: &str) -> Vec<(String, Vec<glam::DVec3>, Vec<glam::DVec3>, Vec<Vec<usize>>)> {
+/// A mesh of a USD recording: name, points, normals and polygons (point indices).
+type UsdMesh = (String, Vec<glam::DVec3>, Vec<glam::DVec3>, Vec<Vec<usize>>);
+
+/// The meshes of a `.usda` recording at its last time sample, parsed from the layout msdsim
+/// writes.
+fn usd_meshes(text: &str) -> Vec<UsdMesh> {
     let tuples = |line: &str| -> Vec<glam::DVec3> {
         line.split('(')
             .skip(1)
