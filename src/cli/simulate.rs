@@ -314,5 +314,13 @@ fn print_summary(out: &mut Stdout, sim: &GpuSim, timings: &[FrameTiming]) -> Res
     let (p, ..) = stat(|t| t.physics_ms);
     let (c, ..) = stat(|t| t.constraints_ms);
     let (s, ..) = stat(|t| t.surface_ms);
-    say!(out, "GPU stage means: physics {p:.3} ms, constraints {c:.3} ms, surface {s:.3} ms")
+    // As the app's Stats: when every object is fused its substeps run in one pass, the stages
+    // not separable.
+    match timings[0].fused {
+        Some(true) => say!(out, "GPU stage means: simulation (fused) {p:.3} ms, surface {s:.3} ms"),
+        Some(false) => {
+            say!(out, "GPU stage means: physics + fused objects {p:.3} ms, constraints {c:.3} ms, surface {s:.3} ms")
+        }
+        None => say!(out, "GPU stage means: physics {p:.3} ms, constraints {c:.3} ms, surface {s:.3} ms"),
+    }
 }

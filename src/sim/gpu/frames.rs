@@ -144,7 +144,14 @@ impl GpuSim {
         let fused = self.objects.iter().filter(|o| self.is_fused(o)).count();
         let mut timing =
             FrameTiming { fused: (fused > 0).then_some(fused == self.objects.len()), ..Default::default() };
-        if self.stage_timing {
+        if self.stage_timing && timing.fused == Some(true) {
+            // Every object fused: the pass, then the surface stage (record_frame writes these).
+            let [start, pass] = pool.read_range_ns(ctx, 0, 2)?[..] else { return Ok(None) };
+            let [surface_start, end] = pool.read_range_ns(ctx, last - 1, 2)?[..] else { return Ok(None) };
+            timing.physics_ms = ms(start, pass);
+            timing.surface_ms = ms(surface_start, end);
+            timing.total_ms = ms(start, end);
+        } else if self.stage_timing {
             let t = pool.read_ns(ctx, last + 1)?;
             for s in 0..self.model.substeps as usize {
                 timing.physics_ms += ms(t[2 * s], t[2 * s + 1]);
