@@ -142,8 +142,8 @@ fn editor_edits_rebuilds_reset_save_and_load_are_clean() {
 }
 
 /// A preset with `integrator = "auto"` opens on a frame whose notice says that the window will
-/// wait for the calibration, and calibrates on the next (it calibrated before the window showed
-/// anything, which on lavapipe held a blank window for up to minutes). An 8-node rope: a
+/// wait for the calibration, and calibrates on the next: the notice is logged before the pick.
+/// (The log does not show that a frame was presented between them.) An 8-node rope: a
 /// calibration of seconds.
 #[test]
 fn an_auto_preset_says_it_calibrates_before_it_does() {
@@ -177,11 +177,11 @@ fn hsv(c: [f32; 3]) -> (f32, f32, f32) {
 /// Every shipped preset, a kind of scene each (a hanging cloth, a rope, cloth on a box, a flag
 /// in the wind, a towel, a rope on a cloth, all of them together), drawn without the UI at its
 /// first frame: each cloth and rope shows, as pixels of its own colour's hue (front or back,
-/// within 20 degrees, shaded: saturation over 0.2) in at least 30 pixels of the 320 x 240 (the
-/// playground's rope, 2 cm thick, has 77; the others 500 to 39,000). The floor
-/// and the sky are grey and the colliders pale, so only the objects have those hues; a
-/// missing, black or mis-coloured object fails (a golden image a preset would fail on any
-/// change of the preset's look instead).
+/// within 20 degrees, shaded: saturation over 0.2), in at least 30 pixels of the 320 x 240 (the
+/// playground's rope, 2 cm thick, has 77; the others 500 to 39,000). The floor and the sky are
+/// grey and the colliders pale, so only the objects have those hues: a missing, black or
+/// mis-coloured object fails. (A golden image for each preset would fail on any change of its
+/// look.)
 #[test]
 fn every_shipped_preset_draws_its_objects() {
     let presets = Path::new(env!("CARGO_MANIFEST_DIR")).join("presets");

@@ -23,10 +23,10 @@ fn a_ray_picks_the_particle_under_it_and_misses_empty_space() {
     // 45 degrees over 800 pixels: a pick radius of 12 pixels is 2.3 cm at 2 m.
     let pixel = 2.0 * (45f32.to_radians() * 0.5).tan() / 800.0;
     let ray = |origin: Vec3, dir: Vec3| PickRay { origin, dir, pixel };
-    let hit = pick(&states, ray(origin, (target - origin).normalize()), &[0.0]);
+    let hit = pick(&states, ray(origin, (target - origin).normalize()), &[0.0], f32::INFINITY);
     assert_eq!(hit.map(|h| (h.0, h.1)), Some((0, 4 * 13 + 6)), "{hit:?}");
     assert!((hit.unwrap().2 - 2.0).abs() < 0.01, "depth along the ray");
-    assert!(pick(&states, ray(Vec3::new(5.0, 5.0, 2.0), Vec3::NEG_Z), &[0.0]).is_none());
+    assert!(pick(&states, ray(Vec3::new(5.0, 5.0, 2.0), Vec3::NEG_Z), &[0.0], f32::INFINITY).is_none());
     sim.destroy(&ctx);
     assert_clean(&ctx);
 }

@@ -307,6 +307,14 @@ mod tests {
         assert_eq!(collider_index(&scene, Selection::Box(0)), Some(3));
         assert_eq!(collider_index(&scene, Selection::Capsule(0)), Some(4));
         assert_eq!(collider_index(&scene, Selection::Cloth(0)), None);
+        // Without a ground the indices start at the spheres.
+        scene.ground = None;
+        assert_eq!(
+            pick_collider(&scene, 0.0, Vec3::new(2.0, 0.5, 5.0), Vec3::NEG_Z).map(|h| h.0),
+            Some(Selection::Box(0))
+        );
+        assert_eq!(collider_index(&scene, Selection::Sphere(0)), Some(0));
+        assert_eq!(collider_index(&scene, Selection::Ground), None);
     }
 
     /// A dragged position keeps the shortest decimal of its f32 (what the preset then saves),

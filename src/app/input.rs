@@ -264,9 +264,15 @@ pub struct PickRay {
 }
 
 /// The particle nearest to the ray within `PICK_PIXELS` on screen of it, or of its object's
-/// own radius `radii[object]` (a rope's tube) around it; (object, index, depth along the ray,
-/// pinned).
-pub fn pick(states: &[ObjectState], ray: PickRay, radii: &[f32]) -> Option<(usize, u32, f32, bool)> {
+/// own radius `radii[object]` (a rope's tube) around it, and nearer along the ray than
+/// `nearer` (a collider the ray meets: what is behind it is hidden); (object, index, depth
+/// along the ray, pinned).
+pub fn pick(
+    states: &[ObjectState],
+    ray: PickRay,
+    radii: &[f32],
+    nearer: f32,
+) -> Option<(usize, u32, f32, bool)> {
     let PickRay { origin, dir, pixel } = ray;
     let mut best: Option<(f32, (usize, u32, f32, bool))> = None;
     for (o, state) in states.iter().enumerate() {
@@ -274,7 +280,7 @@ pub fn pick(states: &[ObjectState], ray: PickRay, radii: &[f32]) -> Option<(usiz
         for (i, p) in state.particles.iter().enumerate() {
             let x = Vec3::new(p.pos[0], p.pos[1], p.pos[2]);
             let t = (x - origin).dot(dir);
-            if t <= 0.0 {
+            if t <= 0.0 || t >= nearer {
                 continue;
             }
             let miss = (x - (origin + dir * t)).length();
@@ -339,7 +345,7 @@ mod tests {
         let radii = [0.01];
         let at_pixels = |px: f32| {
             let dir = Vec3::new(0.0, px * pixel, -1.0).normalize();
-            pick(&states, PickRay { origin: Vec3::ZERO, dir, pixel }, &radii)
+            pick(&states, PickRay { origin: Vec3::ZERO, dir, pixel }, &radii, f32::INFINITY)
         };
         let tube = 0.01 / (3.0 * pixel); // the tube's radius on screen [pixels]
         assert!(at_pixels(0.0).is_some());
@@ -347,6 +353,14 @@ mod tests {
         assert!(at_pixels(tube + PICK_PIXELS + 2.0).is_none(), "farther out the click misses");
         let far = [rope(&[Vec3::new(0.0, 0.0, -30.0)])];
         let dir = Vec3::new(0.0, 8.0 * pixel, -1.0).normalize();
-        assert!(pick(&far, PickRay { origin: Vec3::ZERO, dir, pixel }, &[0.0]).is_some(), "8 pixels at 30 m");
+        assert!(
+            pick(&far, PickRay { origin: Vec3::ZERO, dir, pixel }, &[0.0], f32::INFINITY).is_some(),
+            "8 pixels at 30 m"
+        );
+        // Behind a collider the ray meets at 2.9 m, the rope at 3 m is hidden; in front of one
+        // at 3.1 m it is taken.
+        let ray = PickRay { origin: Vec3::ZERO, dir: Vec3::NEG_Z, pixel };
+        assert!(pick(&states, ray, &radii, 2.9).is_none(), "hidden behind the collider");
+        assert!(pick(&states, ray, &radii, 3.1).is_some(), "in front of the collider");
     }
 }

@@ -195,6 +195,12 @@ impl Viewer {
         let started = std::time::Instant::now();
         self.host = Some(SimHost::new(ctx, scene, renderer, &mut self.shaders)?);
         self.last_rebuild = started.elapsed();
+        if (self.args.screenshot.is_some() || self.args.record_frames.is_some()) && !self.args.paused {
+            // Pictures of a running scene: calibrated before the first frame, without a notice
+            // in them. (Paused, nothing moves: the frame after the notice calibrates, as in a
+            // window.)
+            self.calibrate_pending();
+        }
         self.show_auto_pick();
         self.editor.shaders_note = self.shaders.status();
         log::info!("{}", self.editor.shaders_note);
@@ -343,18 +349,20 @@ impl Viewer {
         if !reloaded.is_empty() {
             self.reload_pending = Some((reloaded, changes.since.unwrap_or_else(Instant::now)));
         }
-        // A save that broke a shader: a notice and the log, besides the errors' overlay.
+        // A save that broke a shader: a notice and an entry in the Log window, besides the
+        // errors' overlay (the shader set has logged it).
         let broken: Vec<String> = (self.shaders.errors())
             .filter(|(name, _)| changes.shaders.contains(*name))
             .map(|(name, e)| format!("{name} does not compile; its last good version runs: {e}"))
             .collect();
         for e in broken {
-            self.message(e, true);
+            self.editor.notices.push(&e, true);
         }
     }
 
     fn key_actions(&mut self) -> bool {
         let mut quit = false;
+        let mut deferred = Vec::new();
         for a in std::mem::take(&mut self.input.actions) {
             match a {
                 KeyAction::TogglePause => self.run_action(Action::TogglePause),
@@ -375,11 +383,14 @@ impl Viewer {
                         format!("press Esc again within {} s to quit{lost}", super::input::QUIT_CONFIRM);
                     self.message(text, false)
                 }
+                // (Not while an edit waits to be applied: the next frame, after it.)
+                KeyAction::Undo | KeyAction::Redo if self.wait_announced => deferred.push(a),
                 KeyAction::Undo => self.undo(false),
                 KeyAction::Redo => self.undo(true),
                 KeyAction::Quit => quit = true,
             }
         }
+        self.input.actions.extend(deferred);
         quit
     }
 
@@ -437,7 +448,7 @@ impl Viewer {
         };
 
         // Edits and actions from the previous frame's UI (unless they wait a frame for the
-        // calibration's notice), then input.
+        // notice that the window will wait: a calibration or a slow rebuild), then input.
         if !self.edits_wait() {
             self.calibrate_pending();
             if let Some(edited) = self.pending_scene.take() {

@@ -14,9 +14,8 @@ use glam::{Mat4, Quat, Vec3};
 pub const SKY: [f32; 4] = [0.09, 0.10, 0.12, 1.0];
 
 /// The scene's draws at simulated time `time`: every object's surface, the colliders (where
-/// they have moved to), the light and the wind cone.
-/// The scene's items where it is at `time`; the collider `tinted` (an index of
-/// `scene::colliders`: the selected one) drawn tinted as a selected surface is.
+/// they have moved to; the collider `tinted`, an index of `scene::colliders`, the selected one,
+/// tinted as a selected surface is), the light and the wind cone.
 pub fn scene_items(scene: &Scene, time: f64, tinted: Option<usize>) -> Vec<DrawItem> {
     let f = |c: [f64; 3]| c.map(|x| x as f32);
     let v = |c: [f64; 3]| Vec3::from_array(f(c));

@@ -743,8 +743,8 @@ fn stats_window(ui: &Ui, stats: &Stats, state: &mut EditorState, scene: &Scene) 
 mod tests {
     use super::*;
 
-    /// Save writes a new file at once; an existing one only on the second press (Replace), and
-    /// a changed path asks again.
+    /// With an explicit method the editor names an object past the predicted stable substep,
+    /// with the substeps it needs, and nothing for a method stable at any step.
     #[test]
     fn the_editor_says_when_an_object_is_past_the_explicit_limit() {
         use crate::scene::IntegratorChoice;
@@ -779,6 +779,8 @@ mod tests {
         assert!(past_explicit_limit(&scene).is_empty(), "auto picks a stable setting");
     }
 
+    /// Save writes a new file at once; an existing one only on the second press (Replace), and
+    /// a changed path asks again.
     #[test]
     fn save_asks_before_replacing_a_file() {
         let mut state = EditorState::default();

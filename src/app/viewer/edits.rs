@@ -13,11 +13,15 @@ impl Viewer {
     /// Applies an edited scene, reporting refusals in the editor; false when refused.
     pub(super) fn apply(&mut self, edited: Scene) -> bool {
         let (Some(host), Some(renderer)) = (self.host.as_mut(), self.renderer.as_mut()) else { return false };
+        let calibrates = host.calibrates_for(&edited);
         let started = std::time::Instant::now();
         let applied = host.apply(&self.ctx, renderer, &mut self.shaders, edited);
         let rebuilt = matches!(applied, Ok(Applied::Rebuilt | Applied::RebuiltKeepingState));
-        if rebuilt {
+        if rebuilt && !calibrates {
+            // (A build's own time: a calibration's is announced on its own.)
             self.last_rebuild = started.elapsed();
+        }
+        if rebuilt {
             // The new simulation's timestamp pools were never written: waiting on them would hang.
             self.frames.iter_mut().for_each(|f| f.simulated = false);
         }
@@ -75,12 +79,6 @@ impl Viewer {
         }
         self.wait_announced = calibrates || rebuilds;
         calibrates || rebuilds
-    }
-
-    /// Whether applying `edited` holds the window: it calibrates `integrator = "auto"`, or
-    /// builds a new simulation where the last build took more than `SLOW_REBUILD`.
-    pub(super) fn waits_for(&self, edited: &Scene) -> bool {
-        self.host.as_ref().is_some_and(|h| h.calibrates_for(edited)) || self.rebuilds_slowly(edited)
     }
 
     fn rebuilds_slowly(&self, edited: &Scene) -> bool {

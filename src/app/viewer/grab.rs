@@ -38,7 +38,9 @@ impl Viewer {
 
     /// Picks, drags and releases particles (after the UI, before recording).
     pub(super) fn update_grab(&mut self) {
-        if self.update_handles() {
+        // While an edit waits to be applied (edits_wait), clicks, pins and handle drags wait
+        // with it: applied to the running scene now, the waiting edit would undo them.
+        if self.wait_announced || self.update_handles() {
             return;
         }
         let size = self.window.inner_size();
@@ -48,7 +50,8 @@ impl Viewer {
             let Some(host) = self.host.as_mut() else { return };
             let radii = pick_radii(host.model());
             let picked = host.sim_mut().read_states(&self.ctx).map(|states| {
-                pick(&states, ray, &radii).map(|hit| (hit, states[hit.0].particles[hit.1 as usize].pos))
+                pick(&states, ray, &radii, f32::INFINITY)
+                    .map(|hit| (hit, states[hit.0].particles[hit.1 as usize].pos))
             });
             match picked {
                 Ok(Some(((object, index, _, was_pinned), p))) => {
@@ -69,16 +72,17 @@ impl Viewer {
             // A sphere, box or capsule in front of the particle (or with none behind it) is
             // selected instead, and the drag orbits.
             let collider = handles::pick_collider(host.scene(), host.sim().time(), origin, dir);
+            let nearer = collider.map_or(f32::INFINITY, |(_, t)| t);
             match host.sim_mut().read_states(&self.ctx) {
-                Ok(states) => match pick(&states, ray, &radii) {
-                    Some((object, index, depth, was_pinned)) if collider.is_none_or(|(_, t)| depth < t) => {
+                Ok(states) => match pick(&states, ray, &radii, nearer) {
+                    Some((object, index, depth, was_pinned)) => {
                         self.input.grab =
                             Some(Grab { object, index, depth, was_pinned, target: origin + dir * depth });
                         // Clicking an object also selects it (its parameters in the panel).
                         self.editor.selected =
                             crate::ui::Selection::of_object(object, host.scene().cloths.len());
                     }
-                    _ => {
+                    None => {
                         if let Some((target, _)) = collider {
                             self.editor.selected = target;
                         }

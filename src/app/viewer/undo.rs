@@ -91,8 +91,8 @@ impl Viewer {
             return;
         };
         let what = if redo { "redone" } else { "undone" };
-        if self.waits_for(&scene) {
-            // Applied once the notice that the window waits has been drawn (edits_wait).
+        if self.host.as_ref().is_some_and(|h| h.calibrates_for(&scene)) {
+            // Applied once the calibration's notice has been drawn (edits_wait).
             self.pending_scene = Some(scene);
             self.message(format!("edit {what}"), false);
         } else if self.apply(scene) {
