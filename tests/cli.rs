@@ -631,6 +631,33 @@ fn hostile_keys_values_and_names_get_one_clear_line() {
         &["simulate", "--preset", &preset, "--record", &both, "--out", &both],
         &["--out", "the same file as --record"],
     );
+    // ... or a file the recording writes: an OBJ frame, a point cache's mesh.
+    let (obj, frame) = (dir.path().join("x.obj"), dir.path().join("x_00002.obj"));
+    rejects(
+        &[
+            "simulate",
+            "--preset",
+            &preset,
+            "--record",
+            obj.to_str().unwrap(),
+            "--out",
+            frame.to_str().unwrap(),
+        ],
+        &["--out", "the same file as a file --record writes"],
+    );
+    let cache = dir.path().join("x.pc2");
+    rejects(
+        &[
+            "simulate",
+            "--preset",
+            &preset,
+            "--record",
+            cache.to_str().unwrap(),
+            "--out",
+            obj.to_str().unwrap(),
+        ],
+        &["--out", "the same file as a file --record writes"],
+    );
     assert_eq!(std::fs::read_to_string(&preset).unwrap(), GOOD);
     rejects(
         &[

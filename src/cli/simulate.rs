@@ -79,7 +79,8 @@ fn same_file(a: &std::path::Path, b: &std::path::Path) -> bool {
 }
 
 /// Refuses outputs that would destroy an input or each other: `--out` or `--record` naming the
-/// preset, or the two naming one file.
+/// preset, or `--out` naming the recording or a file it writes (an OBJ frame, a point cache's
+/// mesh or cache).
 fn check_outputs(args: &SimulateArgs) -> Result<(), crate::error::UserError> {
     let refuse = |what: &str, path: &std::path::Path, other: &str| {
         Err(crate::error::UserError(format!("{what} {}: the same file as {other}", path.display())))
@@ -94,6 +95,9 @@ fn check_outputs(args: &SimulateArgs) -> Result<(), crate::error::UserError> {
     if let (Some(out), Some(record)) = (&args.out, &args.record) {
         if same_file(out, record) {
             return refuse("--out", out, "--record");
+        }
+        if Format::of(record).is_ok_and(|f| f.writes(record, out)) {
+            return refuse("--out", out, "a file --record writes");
         }
     }
     Ok(())

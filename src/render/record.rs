@@ -58,6 +58,33 @@ impl Format {
         matches!(self, Format::Usd | Format::Gltf)
     }
 
+    /// Whether a recording of this format into `record` writes `other` besides `record`: an OBJ
+    /// sequence its frames `{stem}_NNNNN.obj` (`Recording::obj_path`), a point cache its meshes
+    /// `{stem}.obj` and caches `{stem}_{name}.pc2` (`base_path`, `cache_path`), in `record`'s
+    /// folder.
+    pub fn writes(self, record: &Path, other: &Path) -> bool {
+        let folder = |p: &Path| std::path::absolute(p).ok().and_then(|p| p.parent().map(Path::to_path_buf));
+        let (Some(stem), Some(name)) = (record.file_stem().and_then(|s| s.to_str()), other.file_name())
+        else {
+            return false;
+        };
+        if folder(record) != folder(other) {
+            return false;
+        }
+        let name = name.to_string_lossy();
+        let after = name.strip_prefix(stem);
+        match self {
+            Format::ObjSequence => after
+                .and_then(|a| a.strip_prefix('_'))
+                .and_then(|a| a.strip_suffix(".obj"))
+                .is_some_and(|n| n.len() >= 5 && n.bytes().all(|b| b.is_ascii_digit())),
+            Format::PointCache => {
+                after.is_some_and(|a| a == ".obj" || (a.starts_with('_') && a.ends_with(".pc2")))
+            }
+            Format::Usd | Format::Gltf => false,
+        }
+    }
+
     /// The format of `path`, from its extension (`usda` or `obj`), or a message naming the
     /// supported ones.
     pub fn of(path: &Path) -> Result<Self, String> {
@@ -1005,6 +1032,26 @@ fn usd_name(name: &str) -> String {
 
 #[cfg(test)]
 mod tests {
+    /// The files a recording writes besides its own name, which `--out` may not name.
+    #[test]
+    fn a_recording_knows_the_files_it_writes() {
+        use super::Format;
+        use std::path::Path;
+        let p = Path::new;
+        let obj = Format::ObjSequence;
+        assert!(obj.writes(p("out/x.obj"), p("out/x_00002.obj")));
+        assert!(obj.writes(p("out/x.obj"), p("out/x_123456.obj")), "past 99,999 frames");
+        assert!(!obj.writes(p("out/x.obj"), p("out/x_2.obj")));
+        assert!(!obj.writes(p("out/x.obj"), p("out/y_00002.obj")));
+        assert!(!obj.writes(p("out/x.obj"), p("elsewhere/x_00002.obj")));
+        assert!(!obj.writes(p("out/x.obj"), p("out/x_00002.json")));
+        let pc2 = Format::PointCache;
+        assert!(pc2.writes(p("x.pc2"), p("x.obj")));
+        assert!(pc2.writes(p("x.pc2"), p("x_curtain.pc2")));
+        assert!(!pc2.writes(p("x.pc2"), p("x.json")));
+        assert!(!Format::Usd.writes(p("x.usda"), p("x.obj")));
+    }
+
     #[test]
     fn prim_names_are_valid() {
         assert_eq!(super::usd_name("my cloth-1"), "my_cloth_1");
