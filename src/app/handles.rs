@@ -43,18 +43,19 @@ pub fn position(scene: &Scene, target: Selection) -> Option<Vec3> {
     }
 }
 
-/// The index of the collider a selection names among `scene::colliders` (the ground first,
-/// then the spheres, boxes and capsules), for its tint in the view.
+/// The selection naming each of `scene::colliders`, in its order: the ground, then the
+/// spheres, boxes and capsules.
+fn collider_selections(scene: &Scene) -> impl Iterator<Item = Selection> {
+    let ground = scene.ground.is_some().then_some(Selection::Ground).into_iter();
+    let spheres = (0..scene.spheres.len()).map(Selection::Sphere);
+    let boxes = (0..scene.boxes.len()).map(Selection::Box);
+    ground.chain(spheres).chain(boxes).chain((0..scene.capsules.len()).map(Selection::Capsule))
+}
+
+/// The index of the collider a selection names among `scene::colliders`, for its tint in the
+/// view.
 pub fn collider_index(scene: &Scene, target: Selection) -> Option<usize> {
-    let ground = scene.ground.is_some() as usize;
-    let (spheres, boxes) = (scene.spheres.len(), scene.boxes.len());
-    match target {
-        Selection::Ground if ground == 1 => Some(0),
-        Selection::Sphere(i) if i < spheres => Some(ground + i),
-        Selection::Box(i) if i < boxes => Some(ground + spheres + i),
-        Selection::Capsule(i) if i < scene.capsules.len() => Some(ground + spheres + boxes + i),
-        _ => None,
-    }
+    collider_selections(scene).position(|s| s == target)
 }
 
 /// The sphere, box or capsule that the ray from `origin` along the unit vector `dir` meets
@@ -65,9 +66,9 @@ pub fn pick_collider(scene: &Scene, time: f64, origin: Vec3, dir: Vec3) -> Optio
     const STEPS: usize = 256;
     const FAR: f64 = 1e4;
     let (o, d) = (origin.as_dvec3(), dir.as_dvec3());
-    let (ground, spheres, boxes) = (scene.ground.is_some() as usize, scene.spheres.len(), scene.boxes.len());
     let mut best: Option<(Selection, f32)> = None;
-    for (k, c) in crate::scene::colliders(scene).iter().enumerate().skip(ground) {
+    let colliders = collider_selections(scene).zip(crate::scene::colliders(scene));
+    for (target, c) in colliders.filter(|(s, _)| *s != Selection::Ground) {
         let shape = c.shape.translated(c.motion.offset(time));
         let mut s = 0.0;
         let mut hit = None;
@@ -83,14 +84,6 @@ pub fn pick_collider(scene: &Scene, time: f64, origin: Vec3, dir: Vec3) -> Optio
             }
         }
         let Some(s) = hit else { continue };
-        let i = k - ground;
-        let target = if i < spheres {
-            Selection::Sphere(i)
-        } else if i < spheres + boxes {
-            Selection::Box(i - spheres)
-        } else {
-            Selection::Capsule(i - spheres - boxes)
-        };
         if best.is_none_or(|(_, b)| (s as f32) < b) {
             best = Some((target, s as f32));
         }

@@ -125,13 +125,7 @@ impl SimHost {
         }
         ctx.wait_idle()?;
         let (model, auto_picked) = model_for(ctx, &self.scene)?;
-        let states = self.sim.read_states(ctx)?;
-        let mut sim = GpuSim::with_shaders(ctx, &model, shaders)?;
-        let particles: Vec<_> = states.iter().map(|s| s.particles.clone()).collect();
-        if let Err(e) = sim.upload_states(ctx, &particles) {
-            sim.destroy(ctx);
-            return Err(e);
-        }
+        let sim = self.new_sim(ctx, &model, shaders, true)?;
         std::mem::replace(&mut self.sim, sim).destroy(ctx);
         self.model = model;
         self.auto_picked = auto_picked;
@@ -224,19 +218,7 @@ impl SimHost {
         gpu::check_fits(ctx.info(), &scene::shapes(&edited))?;
         ctx.wait_idle()?;
         let (model, auto_picked) = model_for(ctx, &edited)?;
-        let carried = if same_layout { Some(self.sim.read_states(ctx)?) } else { None };
-        let mut sim = GpuSim::with_shaders(ctx, &model, shaders)?;
-        if carried.is_some() {
-            // The state goes on from where it was, and so do the colliders' motions.
-            sim.continue_at(self.sim.time());
-        }
-        if let Some(states) = &carried {
-            let particles: Vec<_> = states.iter().map(|s| s.particles.clone()).collect();
-            if let Err(e) = sim.upload_states(ctx, &particles) {
-                sim.destroy(ctx);
-                return Err(e);
-            }
-        }
+        let sim = self.new_sim(ctx, &model, shaders, same_layout)?;
         if let Err(e) = renderer.set_objects(ctx, &scene::shapes(&edited)) {
             sim.destroy(ctx);
             // The renderer's index buffers are gone: restore them for the old scene.
@@ -247,10 +229,32 @@ impl SimHost {
         self.model = model;
         self.scene = edited;
         self.auto_picked = auto_picked;
-        if carried.is_none() {
+        if !same_layout {
             self.pinned_at.clear();
         }
-        Ok(if carried.is_some() { Applied::RebuiltKeepingState } else { Applied::Rebuilt })
+        Ok(if same_layout { Applied::RebuiltKeepingState } else { Applied::Rebuilt })
+    }
+
+    /// A new simulation of `model`; with `carry`, it goes on from the running one's state and
+    /// time (and so do the colliders' motions). The running one is left as it is.
+    fn new_sim(
+        &mut self,
+        ctx: &GpuContext,
+        model: &SimModel,
+        shaders: &mut ShaderSet,
+        carry: bool,
+    ) -> Result<GpuSim> {
+        let carried = if carry { Some(self.sim.read_states(ctx)?) } else { None };
+        let mut sim = GpuSim::with_shaders(ctx, model, shaders)?;
+        if let Some(states) = &carried {
+            sim.continue_at(self.sim.time());
+            let particles: Vec<_> = states.iter().map(|s| s.particles.clone()).collect();
+            if let Err(e) = sim.upload_states(ctx, &particles) {
+                sim.destroy(ctx);
+                return Err(e);
+            }
+        }
+        Ok(sim)
     }
 
     /// Pins or unpins particle `index` of object `object` at `at` (where it is: Ctrl + click): in the

@@ -178,7 +178,7 @@ fn rope(r: &Rope) -> ObjectModel {
         name: r.name.clone(),
         dims: [r.nodes, 1],
         spacing: [segment, segment],
-        stiffness: [r.stiffness, 0.0, r.bending_stiffness],
+        stiffness: r.stiffness_array(),
         rest_scale: [r.rest_scale, 1.0, r.rest_scale],
         damping: r.damping,
         mass: r.mass,

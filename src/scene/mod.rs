@@ -531,6 +531,13 @@ pub struct Rope {
     pub color: [f64; 3],
 }
 
+impl Rope {
+    /// Its springs' stiffness as a model's [structural, shear, bending]: a rope has no shear.
+    pub fn stiffness_array(&self) -> [f64; 3] {
+        [self.stiffness, 0.0, self.bending_stiffness]
+    }
+}
+
 mod defaults {
     pub fn substeps() -> u32 {
         16

@@ -496,13 +496,7 @@ pub fn past_explicit_limit(scene: &Scene) -> Vec<(Selection, String)> {
         (Selection::Cloth(i), p)
     });
     let ropes = scene.ropes.iter().enumerate().map(|(i, r)| {
-        let p = predict_object(
-            &r.name,
-            ObjectKind::Rope,
-            [r.nodes, 1],
-            [r.stiffness, 0.0, r.bending_stiffness],
-            r.mass,
-        );
+        let p = predict_object(&r.name, ObjectKind::Rope, [r.nodes, 1], r.stiffness_array(), r.mass);
         (Selection::Rope(i), p)
     });
     cloths

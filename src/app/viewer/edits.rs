@@ -50,21 +50,22 @@ impl Viewer {
             return false;
         }
         let Some(host) = self.host.as_ref() else { return false };
-        let loaded = |path: &std::path::Path| scene::load(path, &[]).ok();
-        let calibrates = host.calibration_pending()
-            || self.pending_scene.as_ref().is_some_and(|s| host.calibrates_for(s))
-            || self.pending_actions.iter().any(|a| match a {
-                Action::Load(path) => loaded(path).is_some_and(|s| host.calibrates_for(&s)),
-                Action::AddClothFromPreset(_) => host.scene().sim.integrator.method().is_none(),
-                _ => false,
-            });
-        let rebuilds = !calibrates
-            && (self.pending_scene.as_ref().is_some_and(|s| self.rebuilds_slowly(s))
-                || self.pending_actions.iter().any(|a| match a {
-                    Action::Load(path) => loaded(path).is_some_and(|s| self.rebuilds_slowly(&s)),
-                    Action::AddClothFromPreset(_) => self.last_rebuild > SLOW_REBUILD,
-                    _ => false,
-                }));
+        // What applying each pending scene or action would hold the window for: (calibrates,
+        // builds a new simulation slowly). A preset to load is read once.
+        let slow = self.last_rebuild > SLOW_REBUILD;
+        let holds = |s: &Scene| (host.calibrates_for(s), slow && host.rebuilds_for(s));
+        let mut waits: Vec<(bool, bool)> = self.pending_scene.iter().map(holds).collect();
+        for a in &self.pending_actions {
+            match a {
+                Action::Load(path) => waits.extend(scene::load(path, &[]).ok().as_ref().map(holds)),
+                Action::AddClothFromPreset(_) => {
+                    waits.push((host.scene().sim.integrator.method().is_none(), slow))
+                }
+                _ => {}
+            }
+        }
+        let calibrates = host.calibration_pending() || waits.iter().any(|w| w.0);
+        let rebuilds = !calibrates && waits.iter().any(|w| w.1);
         if calibrates {
             self.message(
                 "calibrating integrator = \"auto\": the window waits until it has picked a method",
@@ -79,10 +80,6 @@ impl Viewer {
         }
         self.wait_announced = calibrates || rebuilds;
         calibrates || rebuilds
-    }
-
-    fn rebuilds_slowly(&self, edited: &Scene) -> bool {
-        self.last_rebuild > SLOW_REBUILD && self.host.as_ref().is_some_and(|h| h.rebuilds_for(edited))
     }
 
     /// Calibrates a scene that started with `integrator = "auto"` (`SimHost::calibration_pending`:
