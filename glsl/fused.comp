@@ -3,6 +3,7 @@
 #extension GL_EXT_control_flow_attributes : require
 #extension GL_KHR_shader_subgroup_basic : require
 #extension GL_KHR_shader_subgroup_vote : require
+#extension GL_KHR_shader_subgroup_arithmetic : require
 // Every substep of a frame for one object in one workgroup, with the state in registers and
 // shared memory: physics, the self-collision hash and the constraints of all substeps run
 // without a dispatch or a pipeline barrier between them (what bounds small scenes), and
@@ -26,17 +27,17 @@
 // neighbours read from shared memory.
 // Phases are separated by barrier(); those a scene does not need are left out.
 //
-// The iterative integrators (SOLVER) replace the physics step with the BDF2 start (read like
-// the physics: neighbours' velocities staged when the implicit method's dashpots read them;
-// each particle's history in registers, from and back to `history`), then their iterations:
-// the displacements p - x~ from the base x~ live in registers and, for the neighbours, in
-// scratch (px/py/pz keep the base; the implicit method, which needs no base of a neighbour,
-// keeps its iterate p itself there instead); XPBD visits the spring classes in turn
-// (the thread owning a spring's first node moves both ends), VBD the vertex colours, a barrier()
-// after each class or colour; the Jacobi sweeps (the implicit method, XPBD by Jacobi) compute
-// every new displacement, then a barrier(), the writes, and a barrier() (at one iteration
-// nothing is written back). The updates themselves are
-// solver_bodies.glsl's, as in the per-stage shaders.
+// The iterative integrators (SOLVER) replace the physics step with the BDF2 start (each
+// particle's history in registers, from and back to `history`), then their iterations: the
+// displacements p - x~ from the base x~ live in registers and, for the neighbours, in scratch
+// (px/py/pz keep the bases); XPBD visits the spring classes in turn (the thread owning a
+// spring's first node moves both ends), VBD the vertex colours, a barrier() after each class
+// or colour; XPBD by Jacobi computes every new displacement, then a barrier(), the writes, and
+// a barrier() (at one iteration nothing is written back); the implicit method's conjugate
+// gradients keep their vectors in registers and, while a Newton step's products run, the
+// iterates p in px/py/pz and the directions in scratch, with a workgroup_sum (one barrier)
+// for each dot product. The updates themselves are solver_bodies.glsl's, as in the per-stage
+// shaders.
 #define STATE_FUSED
 #define FUSED_SHARED
 #define OBJ_COPY
@@ -68,13 +69,11 @@ const bool ITERATIVE = SOLVER == METHOD_XPBD || SOLVER == METHOD_IMPLICIT || SOL
     || SOLVER == METHOD_XPBD_JACOBI;
 const bool COLOURED = SOLVER == METHOD_VBD;  // VBD sweeps vertex colours; XPBD spring classes
 // Starts its iterate adaptively (sim::integrator's row: `adaptive_start`).
-const bool ADAPTIVE_START = SOLVER == METHOD_VBD;
+const bool ADAPTIVE_START = SOLVER == METHOD_VBD || SOLVER == METHOD_IMPLICIT;
 // The springs of the particle being visited that have another end (bit s of SPRINGS), set
 // before each body call. XPBD does without (measured: its class passes ran 20% slower with the
 // masks' registers) and reads its spring constants from the buffer (4% faster than from the copy).
 uint spring_mask;
-float inv_diag;  // the implicit method: 1 / (m / dt^2 + the stiffness of the particle's springs)
-#define IMPLICIT_INV_DIAG inv_diag
 const bool SPRING_MASKS = SOLVER != METHOD_XPBD;
 
 shared float px[CAP];
@@ -147,7 +146,14 @@ void listed_candidates(uvec2 cell, vec3 x, float reach, inout vec3 correction, i
 // rounding stays out of the solve (predict.comp says why).
 #define SD(j) sdisp(uint(j))
 #define SPIN(j) spinned(uint(j))
+// The implicit method's Hessian products: px/py/pz hold the iterates p, scratch the directions.
+#define PP(j) spos(uint(j))
+#define DD(j) sdisp(uint(j))
 #include "solver_bodies.glsl"
+// The implicit method's dot products (a quarter of the threads: subgroups of 4 lanes or more).
+#define REDUCE_T float
+#define REDUCE_SLOTS (SOLVER == METHOD_IMPLICIT ? (THREADS + 3u) / 4u : 1u)
+#include "reduce.glsl"
 
 // The shared spatial hash: scratch[h] is the first particle of bucket h, scratch[BUCKETS + j]
 // the one after particle j (EMPTY ends a list).
@@ -223,7 +229,7 @@ void main() {
     float drift = physics_drift();
     // The physics (or the prediction) reads the neighbours' velocities: the dashpots, unless
     // the method treats them implicitly in its solve.
-    bool stage_velocities = has(F_DAMPING) && (!ITERATIVE || SOLVER == METHOD_IMPLICIT);
+    bool stage_velocities = has(F_DAMPING) && !ITERATIVE;
     uint colours = vertex_colours(obj.dims);
 
     vec3 x[MAX_SLOTS];
@@ -239,7 +245,6 @@ void main() {
     uint own[MAX_SLOTS];  // the particle of each slot
     uvec2 cells[MAX_SLOTS];  // ... and its grid cell
     uint masks[MAX_SLOTS];   // ... and its springs (spring_mask)
-    float inv_diags[MAX_SLOTS];
     // Each particle's contact list header (list_header), kept here from the dispatch's start
     // on (read from the buffer every substep, it cost 1.5 to 2%).
     vec4 header[MAX_SLOTS];
@@ -249,15 +254,9 @@ void main() {
         own[s] = k;
         cells[s] = uvec2(k % cols, k / cols);
         masks[s] = 0u;
-        float h = solve_dt();
-        float diag = obj.mass / (h * h);
         if (SPRING_MASKS) [[unroll]] for (int q = 0; q < 12; ++q) {
-            if (neighbour(ivec2(cells[s]), SPRINGS[q].xy, obj.dims) >= 0) {
-                masks[s] |= 1u << uint(q);
-                diag += obj.stiffness[SPRINGS[q].z];
-            }
+            if (neighbour(ivec2(cells[s]), SPRINGS[q].xy, obj.dims) >= 0) masks[s] |= 1u << uint(q);
         }
-        inv_diags[s] = 1.0 / diag;
         x[s] = vec3(0.0);
         v[s] = vec3(0.0);
         v_new[s] = vec3(0.0);
@@ -320,7 +319,7 @@ void main() {
                     spring_mask = masks[s];
                     vec3 base;
                     vec3 pull;
-                    dy[s] = predicted_displacement(cells[s], x[s], v[s], SOLVER == METHOD_IMPLICIT, hx[s], hv[s].xyz, base, pull);
+                    dy[s] = predicted_displacement(cells[s], x[s], v[s], false, hx[s], hv[s].xyz, base, pull);
                     // The solve's start (shared after the barrier below).
                     precise vec3 start;
                     precise vec3 missed;
@@ -351,11 +350,9 @@ void main() {
             // adaptive start); px/py/pz hold the bases x~.
             // XPBD: the multipliers of each particle's forward springs (by Jacobi: of its 12)
             vec4 lambda[MAX_SLOTS][3];
-            vec3 before[MAX_SLOTS];     // implicit: the iterate before (Chebyshev)
             [[unroll]] for (uint s = 0u; s < MAX_SLOTS; ++s) {
                 if (s >= SLOTS) break;
                 uint k = own[s];
-                before[s] = dx[s];
                 lambda[s] = vec4[3](vec4(0.0), vec4(0.0), vec4(0.0));
                 if (k < n) {
                     set_spos(k, x[s]);
@@ -365,9 +362,81 @@ void main() {
             barrier();
             // One iteration (a pipeline of its own): XPBD's multipliers start and stay at zero.
             uint iterations = ONE_ITERATION ? 1u : g.iterations;
-            float omega = 1.0;  // implicit: the Chebyshev weight
-            for (uint it = 0u; it < iterations; ++it) {
-                omega = chebyshev_next(it, omega, obj.cheb_rho);
+            if (SOLVER == METHOD_IMPLICIT) {
+                // Newton steps of preconditioned conjugate gradients (implicit_iterate.comp's
+                // passes, here parted by barriers, the dot products by workgroup_sum).
+                vec3 dp[MAX_SLOTS];   // the Newton step's move
+                vec3 r[MAX_SLOTS];    // the residual
+                vec3 z[MAX_SLOTS];    // P r
+                vec3 d[MAX_SLOTS];    // the direction
+                vec3 q[MAX_SLOTS];    // H d
+                vec3 pre0[MAX_SLOTS]; // P (sym3_inverse's rows)
+                vec3 pre1[MAX_SLOTS];
+                for (uint k0 = 0u; k0 < iterations; k0 += NEWTON_CG_ITERATIONS) {
+                    float mine = 0.0;
+                    [[unroll]] for (uint s = 0u; s < MAX_SLOTS; ++s) {
+                        if (s >= SLOTS) break;
+                        r[s] = vec3(0.0);
+                        pre0[s] = vec3(0.0);
+                        pre1[s] = vec3(0.0);
+                        dp[s] = vec3(0.0);
+                        if (own[s] < n && !pinned[s]) {
+                            spring_mask = masks[s];
+                            Sym3 hessian;
+                            r[s] = newton_particle(cells[s], x[s], dx[s], dy[s], hessian);
+                            sym3_inverse(hessian, pre0[s], pre1[s]);
+                        }
+                        z[s] = sym3_apply(pre0[s], pre1[s], r[s]);
+                        mine += dot(r[s], z[s]);
+                    }
+                    float rz = workgroup_sum(mine);  // (after its barrier every linearisation is done)
+                    [[unroll]] for (uint s = 0u; s < MAX_SLOTS; ++s) {
+                        if (s < SLOTS && own[s] < n) set_spos(own[s], x[s] + dx[s]);
+                    }
+                    uint count = min(NEWTON_CG_ITERATIONS, iterations - k0);
+                    float rz_before = 0.0;
+                    for (uint c = 0u; c < count; ++c) {
+                        float beta = rz_before > 0.0 ? rz / rz_before : 0.0;
+                        [[unroll]] for (uint s = 0u; s < MAX_SLOTS; ++s) {
+                            if (s >= SLOTS) break;
+                            d[s] = c == 0u ? z[s] : z[s] + beta * d[s];
+                            if (own[s] < n) set_sdisp(own[s], d[s]);
+                        }
+                        barrier();
+                        mine = 0.0;
+                        [[unroll]] for (uint s = 0u; s < MAX_SLOTS; ++s) {
+                            if (s >= SLOTS) break;
+                            q[s] = vec3(0.0);
+                            if (own[s] < n && !pinned[s]) {
+                                spring_mask = masks[s];
+                                q[s] = hessian_product(cells[s], x[s] + dx[s], d[s]);
+                            }
+                            mine += dot(d[s], q[s]);
+                        }
+                        float dq = workgroup_sum(mine);
+                        float alpha = dq > 0.0 ? rz / dq : 0.0;
+                        mine = 0.0;
+                        [[unroll]] for (uint s = 0u; s < MAX_SLOTS; ++s) {
+                            if (s >= SLOTS) break;
+                            dp[s] += alpha * d[s];
+                            r[s] -= alpha * q[s];
+                            z[s] = sym3_apply(pre0[s], pre1[s], r[s]);
+                            mine += dot(r[s], z[s]);
+                        }
+                        rz_before = rz;
+                        rz = workgroup_sum(mine);
+                    }
+                    [[unroll]] for (uint s = 0u; s < MAX_SLOTS; ++s) {
+                        if (s >= SLOTS) break;
+                        dx[s] += dp[s];
+                        if (own[s] < n) {
+                            set_spos(own[s], x[s]);
+                            set_sdisp(own[s], dx[s]);
+                        }
+                    }
+                    barrier();
+                }
+            } else for (uint it = 0u; it < iterations; ++it) {
                 if (SOLVER == METHOD_XPBD) {
                     // The spring classes (springs.glsl) in turn: the thread owning a spring's
                     // first node moves both ends (no other spring of the class touches them).
@@ -428,27 +497,6 @@ void main() {
                         }
                         barrier();  // the next colour reads this one's displacements
                     }
-                } else {
-                    vec3 next[MAX_SLOTS];
-                    [[unroll]] for (uint s = 0u; s < MAX_SLOTS; ++s) {
-                        if (s >= SLOTS) break;
-                        uint k = own[s];
-                        next[s] = dx[s];
-                        if (k < n && !pinned[s]) {
-                            spring_mask = masks[s];
-                            inv_diag = inv_diags[s];
-                            next[s] = implicit_particle(cells[s], omega, x[s], dx[s], dy[s], before[s]);
-                        }
-                    }
-                    barrier();  // every read of this iteration's displacements is done
-                    [[unroll]] for (uint s = 0u; s < MAX_SLOTS; ++s) {
-                        if (s >= SLOTS) break;
-                        uint k = own[s];
-                        before[s] = dx[s];
-                        dx[s] = next[s];
-                        if (k < n) set_sdisp(k, dx[s]);
-                    }
-                    barrier();
                 }
             }
             [[unroll]] for (uint s = 0u; s < MAX_SLOTS; ++s) {

@@ -3,34 +3,147 @@
 #extension GL_EXT_control_flow_attributes : require
 #extension GL_KHR_shader_subgroup_basic : require
 #extension GL_KHR_shader_subgroup_vote : require
-// One iteration of BDF2 by projective dynamics (implicit_particle in
-// solver_bodies.glsl), one thread per particle: the local step and one damped,
-// Chebyshev-accelerated Jacobi sweep. Iterate slices rotate: iteration k reads slice k % 3 (and
-// the one before, (k + 2) % 3), writes (k + 1) % 3. The iterates and aux[i] (the prediction y)
-// are displacements from the BDF2 base x~ (history H_BASE, see predict.comp).
+#extension GL_KHR_shader_subgroup_arithmetic : require
+// One pass of the implicit method's Newton steps with preconditioned conjugate gradients
+// (sim::cpu::integrators::implicit), one invocation per particle. The host records, for each
+// Newton step, a linearising pass and then two passes per CG iteration (sim::gpu::step):
+//   PHASE_LINEARISE  the force r = -g at the iterate p and the inverse of the particle's 3x3
+//                    diagonal block of the Hessian (the preconditioner); z = P r, dp = 0;
+//   PHASE_PRODUCT    the direction d = z + beta d (beta = rz / rz before; d = z first) and
+//                    q = H d (neighbours' d formed the same way from their z and d);
+//   PHASE_UPDATE     alpha = rz / (d.q): dp += alpha d, r -= alpha q, z = P r; the Newton
+//                    step's last moves p by dp, the substep's last finishes the particle.
+// CG's dot products are summed per workgroup into aux (PARTIAL) and each pass sums the
+// workgroups' sums itself at its start (every workgroup the same way, so all get the same
+// totals): rz in two slots by the CG iteration's parity (rz and the one before), d.q in a third.
+// The iterate and the vectors are slices of iter (S_*), displacements from the BDF2 base x~
+// (history H_BASE, see predict.comp); aux[i] holds the prediction y - x~.
 #include "bindings.glsl"
 #include "springs.glsl"
 
 layout(local_size_x_id = 0, local_size_y_id = 1, local_size_z = 1) in;
 
+const uint S_P = 0u;    // p - x~ (w: pinned)
+const uint S_DP = 1u;   // the Newton step's move so far
+const uint S_R = 2u;    // the residual -g - H dp
+const uint S_Z = 3u;    // P r
+const uint S_D = 4u;    // the direction, two slices by the CG iteration's parity
+const uint S_Q = 6u;    // H d
+const uint S_PRE = 7u;  // P: sym3_inverse's two rows, two slices
+
+const uint PHASE_LINEARISE = 0u;
+const uint PHASE_PRODUCT = 1u;
+const uint PHASE_UPDATE = 2u;
+// it.colour: the phase (bits 0-1), the CG iteration's parity (bit 2), whether it is the Newton
+// step's first (bit 3) and last (bit 4) (sim::gpu::step::cg_pass).
+uint phase_bits;
+
 #include "solver_end.glsl"
+
+uint n_all;
+float beta;
+uint parity;
+
+vec3 slice(uint s, uint j) { return iter[s * n_all + j].xyz; }
+// Particle j's direction this CG iteration (zero where pinned: its z and d are).
+vec3 direction(uint j) {
+    bool first = (phase_bits & 8u) != 0u;
+    return first ? slice(S_Z, j) : slice(S_Z, j) + beta * slice(S_D + (parity ^ 1u), j);
+}
+
 #define SX(j) history[hist(uint(j), H_BASE)].xyz
-#define SD(j) iter[(it.k % 3u) * particle_count() + uint(j)].xyz
-#define SPIN(j) false
+#define SD(j) slice(S_P, uint(j))
+#define SPIN(j) (iter[uint(j)].w > 0.5)
+#define PP(j) (SX(j) + SD(j))
+#define DD(j) direction(uint(j))
 #include "solver_bodies.glsl"
+#include "forces.glsl"
+
+#define REDUCE_T vec3
+#define REDUCE_SLOTS 64
+#include "reduce.glsl"
+
+const uint PARTIAL = 1u;  // aux[n + workgroup]: (rz parity 0, rz parity 1, d.q)
+
+// The totals of the workgroups' partial sums.
+vec3 totals() {
+    uint groups = gl_NumWorkGroups.x * gl_NumWorkGroups.y;
+    uint lanes = gl_WorkGroupSize.x * gl_WorkGroupSize.y;
+    vec3 sum = vec3(0.0);
+    for (uint w = gl_LocalInvocationIndex; w < groups; w += lanes) sum += aux[PARTIAL * n_all + w].xyz;
+    return workgroup_sum(sum);
+}
+
+// This workgroup's sum of `mine` into component `slot` of its partial.
+void add_partial(float mine, uint slot) {
+    float total = workgroup_sum(vec3(mine, 0.0, 0.0)).x;
+    uint w = gl_WorkGroupID.x + gl_WorkGroupID.y * gl_NumWorkGroups.x;
+    if (gl_LocalInvocationIndex == 0u) aux[PARTIAL * n_all + w][slot] = total;
+}
 
 void main() {
+    phase_bits = it.colour;
+    uint phase = phase_bits & 3u;
+    parity = (phase_bits >> 2u) & 1u;
+    bool last_cg = (phase_bits & 16u) != 0u;
+    n_all = particle_count();
     uvec2 cell = gl_GlobalInvocationID.xy;
-    if (cell.x >= obj.dims.x || cell.y >= obj.dims.y) return;
-    uint i = cell.x + cell.y * obj.dims.x;
-    uint n = particle_count();
-    uint cur = (it.k % 3u) * n;
-    uint prev = it.k == 0u ? cur : ((it.k + 2u) % 3u) * n;
-    uint next = ((it.k + 1u) % 3u) * n;
-    vec4 di = iter[cur + i];
-    vec3 dx = di.xyz;
-    bool pinned = di.w > 0.5;
-    if (!pinned) dx = implicit_particle(cell, chebyshev_omega(it.k, obj.cheb_rho), SX(i), dx, aux[i].xyz, iter[prev + i].xyz);
-    iter[next + i] = vec4(dx, di.w);
-    if (last_iteration()) finish_particle(i, dx, pinned, 0.0);
+    bool inside = cell.x < obj.dims.x && cell.y < obj.dims.y;  // (every invocation sums)
+    uint i = inside ? cell.x + cell.y * obj.dims.x : 0u;
+    vec4 pi = iter[i];
+    bool moves = inside && pi.w <= 0.5;
+    if (phase == PHASE_LINEARISE) {
+        vec3 r = vec3(0.0);
+        vec3 row0 = vec3(0.0);
+        vec3 rest = vec3(0.0);
+        if (moves) {
+            Sym3 hessian;
+            r = newton_particle(cell, SX(i), pi.xyz, aux[i].xyz, hessian);
+            sym3_inverse(hessian, row0, rest);
+        }
+        vec3 z = sym3_apply(row0, rest, r);
+        if (inside) {
+            iter[S_R * n_all + i] = vec4(r, 0.0);
+            iter[S_Z * n_all + i] = vec4(z, 0.0);
+            iter[S_DP * n_all + i] = vec4(0.0);
+            iter[S_PRE * n_all + i] = vec4(row0, 0.0);
+            iter[(S_PRE + 1u) * n_all + i] = vec4(rest, 0.0);
+        }
+        add_partial(dot(r, z), 0u);
+        return;
+    }
+    vec3 sums = totals();
+    float rz = parity == 0u ? sums.x : sums.y;
+    if (phase == PHASE_PRODUCT) {
+        float before = parity == 0u ? sums.y : sums.x;
+        beta = before > 0.0 ? rz / before : 0.0;
+        vec3 d = moves ? direction(i) : vec3(0.0);
+        vec3 q = moves ? hessian_product(cell, PP(i), d) : vec3(0.0);
+        if (inside) {
+            iter[(S_D + parity) * n_all + i] = vec4(d, 0.0);
+            iter[S_Q * n_all + i] = vec4(q, 0.0);
+        }
+        add_partial(dot(d, q), 2u);
+        return;
+    }
+    float alpha = sums.z > 0.0 ? rz / sums.z : 0.0;
+    float mine = 0.0;
+    if (moves) {
+        vec3 dp = slice(S_DP, i) + alpha * slice(S_D + parity, i);
+        vec3 r = slice(S_R, i) - alpha * slice(S_Q, i);
+        vec3 z = sym3_apply(slice(S_PRE, i), slice(S_PRE + 1u, i), r);
+        iter[S_DP * n_all + i] = vec4(dp, 0.0);
+        iter[S_R * n_all + i] = vec4(r, 0.0);
+        iter[S_Z * n_all + i] = vec4(z, 0.0);
+        mine = dot(r, z);
+        if (last_cg) {
+            pi.xyz += dp;
+            iter[i] = pi;
+        }
+    }
+    add_partial(mine, parity ^ 1u);
+    if (inside && last_cg && last_iteration()) {
+        bool pinned = !moves;
+        finish_particle(i, pi.xyz, pinned, pinned ? 0.0 : held_fraction(pi.xyz, aux[i].xyz));
+    }
 }

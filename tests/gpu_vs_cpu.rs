@@ -785,24 +785,19 @@ fn fused_substeps_equal_the_per_stage_path() {
 /// The iterative methods fused (prediction, colour or Jacobi passes separated by barrier(),
 /// constraints, in one workgroup) equal their per-stage path to f32 rounding, with one and two
 /// particles per thread (the 13 x 9 cloth's 117 particles on 64 threads): 1e-6 m allowed over
-/// 240 substeps, as above (measured: 0 m for XPBD and VBD). The fused implicit method
-/// multiplies by the reciprocal of each particle's diagonal, computed once, where the per-stage
-/// one divides, so they round differently: 3e-6 m allowed for it (measured 1.1e-6 m; 1.3e-6
-/// while the fused one kept its iterates as positions). Without the barrier
+/// 240 substeps, as above (measured: 0 m for XPBD, VBD and XPBD by Jacobi; 3.6e-7 m for the
+/// implicit method, whose dot products each path sums in its own order: a workgroup's
+/// subgroups fused, workgroups' sums per stage). Without the barrier
 /// between two colours a particle reads a neighbour's half-updated displacement: XPBD's paths
 /// then part by 0.25 m.
 #[test]
 fn fused_iterative_methods_equal_the_per_stage_path() {
-    let allowed = |method| if method == Integrator::Implicit { 3e-6 } else { 1e-6 };
     for method in iterative() {
         let s = integrator_scene(method);
         for slots in [1, 2] {
             let worst = fused_against_per_stage(&s, FusedLimits::new(u32::MAX, slots));
             println!("{method:?}, {slots} slots: fused vs per stage {worst:e} m");
-            assert!(
-                worst <= allowed(method),
-                "{method:?}, {slots} slots: the fused path differs by {worst} m"
-            );
+            assert!(worst <= 1e-6, "{method:?}, {slots} slots: the fused path differs by {worst} m");
         }
     }
     // Grids whose colour classes have uneven rows: fewer rows or columns than colours, a
@@ -828,7 +823,7 @@ fn fused_iterative_methods_equal_the_per_stage_path() {
         s.integrator = method;
         let worst = fused_against_per_stage(&s, FusedLimits::new(u32::MAX, 1));
         println!("{method:?} on uneven grids: fused vs per stage {worst:e} m");
-        assert!(worst <= allowed(method), "{method:?} on uneven grids: the fused path differs by {worst} m");
+        assert!(worst <= 1e-6, "{method:?} on uneven grids: the fused path differs by {worst} m");
     }
 }
 
@@ -931,9 +926,13 @@ fn iterative_methods_at_one_iteration() {
 /// Stiff springs at one substep per frame, far past the explicit limit: every iterative method
 /// stays finite and agrees with the reference. Here the iteration count, XPBD's relaxation and
 /// the damping each matter (at 16 substeps of soft springs the solvers converge within two
-/// iterations and the parameters barely show). XPBD's and VBD's damping is implicit, so they
-/// take 100 times the dashpots; the implicit method's damping is explicit (in the prediction)
-/// and takes 10 times, within its own explicit limit b dt / m * springs < 2.
+/// iterations and the parameters barely show). Every method treats the dashpots implicitly, so
+/// all take 100 times the dashpots. The implicit method is compared frame by frame
+/// (`Mode::Resync`): its conjugate gradients, cut off after 8 iterations on a system this
+/// ill-conditioned, take their step lengths from sums over the object, so f32's rounding
+/// enters each substep amplified, and the free-running GPU parts from the reference by about
+/// 1.6x a frame (measured: 1.1e-7 m after one frame, 5.5e-7 after 3, 1.7e-4 after 15; at 100
+/// iterations 1.3e-5 after 15; VBD 1.7e-6).
 #[test]
 fn iterative_methods_on_stiff_springs_at_one_substep() {
     for method in iterative() {
@@ -941,10 +940,11 @@ fn iterative_methods_on_stiff_springs_at_one_substep() {
         s.substeps = 1;
         s.objects.iter_mut().for_each(|o| {
             o.stiffness = o.stiffness.map(|k| k * 100.0);
-            o.damping *= if method == Integrator::Implicit { 10.0 } else { 100.0 };
+            o.damping *= 100.0;
         });
         let name = format!("{method:?} stiff");
-        check(&name, &s);
+        let mode = if method == Integrator::Implicit { Mode::Resync } else { Mode::FreeRunning };
+        check_mode(&name, &s, mode);
         let min = 20.0 * POSITION;
         assert_matters_over(&format!("{name} iterations"), &s, |m| m.iterations = 2, min);
         let undamped = |m: &mut SimModel| m.objects.iter_mut().for_each(|o| o.damping = 0.0);

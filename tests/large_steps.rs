@@ -229,22 +229,25 @@ fn runs(
     out
 }
 
-/// VBD at ONE 1/60 s substep and 10 iterations, the setting it exists for, on a cloth stiff
-/// enough that Verlet needs hundreds of substeps (1e4 and 1e5 N/m, 1 g particles): after 4 s
-/// the sag is within 5% of the static equilibrium (Newton's method, above) and every particle
-/// is at rest (below 1 mm/s), on the CPU reference and both GPU paths. Started from the
-/// prediction y every substep, as until 2026-11-24, it hung 21% and 167% too low (its 10
-/// iterations take back only part of each substep's pull of gravity) and at 4 iterations
-/// jittered at up to 1 m/s. Measured with the adaptive start (`held_fraction`): within 0.7%
-/// (CPU; GPU in the assertion message) and speeds below 3e-4 m/s. 4 s, not 3: at 1e5 N/m the
-/// unconverged solve settles the sag mode more slowly than the converged one (the fastest
-/// particle at 3 s: 8.9e-4 m/s, at 4 s 2.4e-4).
+/// VBD and the implicit method at ONE 1/60 s substep and 10 iterations, the setting they
+/// exist for, on a cloth stiff enough that Verlet needs hundreds of substeps (1e4 and 1e5 N/m,
+/// 1 g particles): after 4 s the sag is within 5% of the static equilibrium (Newton's method,
+/// above) and every particle is at rest (below 1 mm/s), on the CPU reference and both GPU
+/// paths. Started from the prediction y every substep, as until 2026-11-24, VBD hung 21% and
+/// 167% too low (its 10 iterations take back only part of each substep's pull of gravity) and
+/// at 4 iterations jittered at up to 1 m/s; the implicit method by projective dynamics (Jacobi
+/// sweeps, until 2026-11-26) hung 877% too low at 1e4 N/m. Measured with the adaptive start
+/// (`held_fraction`) and the implicit method's Newton steps of conjugate gradients: within
+/// 0.1% (CPU; GPU in the assertion message) and speeds below 3e-4 m/s. 4 s, not 3: at 1e5 N/m
+/// VBD's unconverged solve settles the sag mode more slowly than the converged one (the
+/// fastest particle at 3 s: 8.9e-4 m/s, at 4 s 2.4e-4).
 #[test]
-fn vbd_at_one_large_substep_settles_at_the_equilibrium_sag() {
+fn the_large_step_methods_settle_at_the_equilibrium_sag_at_one_substep() {
     let ctx = gpu();
-    for k in [1e4, 1e5] {
+    for (k, method) in [1e4, 1e5].into_iter().flat_map(|k| [(k, Integrator::Vbd), (k, Integrator::Implicit)])
+    {
         let mut m = stiff_cloth(k);
-        m.integrator = Integrator::Vbd;
+        m.integrator = method;
         m.iterations = 10;
         let results = runs(&ctx, &m, 240);
         let exact = sag(&equilibrium(&m, &results[0].1));
@@ -252,17 +255,17 @@ fn vbd_at_one_large_substep_settles_at_the_equilibrium_sag() {
             let error = sag(x) / exact - 1.0;
             let speed = fastest(v);
             println!(
-                "k = {k}: {label}: sag {:.6} m against {exact:.6} ({:+.2}%), fastest {speed:.2e} m/s",
+                "k = {k}, {method:?}: {label}: sag {:.6} m against {exact:.6} ({:+.2}%), fastest {speed:.2e} m/s",
                 sag(x),
                 100.0 * error
             );
             assert!(
                 error.abs() < 0.05,
-                "k = {k}, {label}: sag {:.6} m, {:+.1}% off the equilibrium's {exact:.6}",
+                "k = {k}, {method:?}, {label}: sag {:.6} m, {:+.1}% off the equilibrium's {exact:.6}",
                 sag(x),
                 100.0 * error
             );
-            assert!(speed < 1e-3, "k = {k}, {label}: not at rest, a particle at {speed:.2e} m/s");
+            assert!(speed < 1e-3, "k = {k}, {method:?}, {label}: not at rest, a particle at {speed:.2e} m/s");
         }
     }
     assert_clean(&ctx);
@@ -274,7 +277,8 @@ fn mean(v: &[DVec3]) -> DVec3 {
 }
 
 /// The adaptive start must not hold back a falling cloth: the same stiff cloth, unpinned,
-/// falls at one substep a frame with VBD at 4 and 10 iterations; nothing but gravity acts on
+/// falls at one substep a frame with VBD and the implicit method at 4 and 10 iterations (the
+/// methods that start adaptively); nothing but gravity acts on
 /// it from outside, so its centre of mass gains g t of speed: from 0.25 s to 0.5 s (after the
 /// start, whose first substep is taken as implicit Euler's) within 1e-5 of g x 0.25 s (measured: 1.3e-7, f32 rounding), on the
 /// CPU reference and both GPU paths. (Starting from the prediction less the whole pull, with
@@ -282,19 +286,20 @@ fn mean(v: &[DVec3]) -> DVec3 {
 #[test]
 fn a_stiff_cloth_falls_freely_at_a_large_step() {
     let ctx = gpu();
-    for k in [1e4, 1e5] {
+    for (k, method) in [1e4, 1e5].into_iter().flat_map(|k| [(k, Integrator::Vbd), (k, Integrator::Implicit)])
+    {
         let mut m = stiff_cloth(k);
         m.objects[0].pinned.iter_mut().for_each(|p| *p = false);
         m.objects[0].drag = 0.0;
-        m.integrator = Integrator::Vbd;
+        m.integrator = method;
         for iterations in [4, 10] {
             m.iterations = iterations;
             let (early, late) = (runs(&ctx, &m, 15), runs(&ctx, &m, 30));
             for ((label, _, v0), (_, _, v1)) in early.iter().zip(&late) {
                 let gained = (mean(v1) - mean(v0)).dot(DVec3::NEG_Y);
                 let error = gained / (9.81 * 0.25) - 1.0;
-                println!("k = {k}, {iterations} iterations, {label}: gained {gained:.6} m/s ({error:+.2e})");
-                assert!(error.abs() < 1e-5, "k = {k}, {iterations} iterations, {label}: the centre of mass gained {gained:.5} m/s in 0.25 s, {error:+.2e} off g t");
+                println!("k = {k}, {method:?}, {iterations} iterations, {label}: gained {gained:.6} m/s ({error:+.2e})");
+                assert!(error.abs() < 1e-5, "k = {k}, {method:?}, {iterations} iterations, {label}: the centre of mass gained {gained:.5} m/s in 0.25 s, {error:+.2e} off g t");
             }
         }
     }
@@ -349,13 +354,11 @@ const BDF2_F32_FLOOR: f64 = 1e-4;
 /// substeps (f64) falls at least 3 times per 4 times more substeps, 16 to 64 and 64 to 256,
 /// until it is below the f32 floor (`BDF2_F32_FLOOR`), and its largest strain stays within
 /// 0.01 of the f64 reference's (0.274). Fused at 4 and 30 iterations; per stage, which runs
-/// a dispatch an iteration, at 4 iterations to 64 substeps. Measured: 2.4e-4, 3.1e-5, 8.4e-5
-/// (fused, 4 and 30 iterations), 2.4e-4, 3.8e-5 (per stage). Before 2026-11-24 the fused
-/// kernel at 30 iterations and 256 substeps stretched the cloth by up to 59%: its Chebyshev
-/// weight, computed by a loop of k steps at iteration k inside the kernel's iteration loop,
-/// came out wrong past about 23 iterations at 256 substeps (100 at 16) on lavapipe while the
-/// per-stage shader computing the same function stayed right; the kernel now carries the
-/// weight from one iteration to the next.
+/// three dispatches a CG iteration, at 4 iterations to 64 substeps. Measured: 2.4e-4, 3.5e-5,
+/// 5.7e-5 (fused, 4 and 30 iterations), 2.4e-4, 3.5e-5 (per stage). Before 2026-11-24 the
+/// fused kernel's projective dynamics at 30 iterations and 256 substeps stretched the cloth by
+/// up to 59% (a Chebyshev weight computed by a loop inside the iteration loop came out wrong on
+/// lavapipe); since 2026-11-26 the method is Newton's with conjugate gradients.
 #[test]
 fn the_implicit_method_converges_as_the_substep_shrinks_on_the_gpu() {
     let ctx = gpu();

@@ -64,21 +64,32 @@ vec3 xpbd_jacobi_particle(uvec2 cell, vec3 x, vec3 dx, inout vec4 lam[3]) {
     return dx + move * (beta * w);
 }
 
-// VBD, one Gauss-Seidel visit: one Newton step on BDF2's incremental potential (step h =
-// solve_dt()) as a function of the particle's position (inertia towards the prediction dy, springs, dashpots),
-// with its 3x3 Hessian. Returns the new displacement. The Hessian is symmetric and each spring
-// adds (k + b / h) n n^T + k t (I - n n^T) = c n n^T + k t I (c = k + b / h - k t), so it is
-// kept as a multiple of the identity, a diagonal and three off-diagonal entries (6 multiply-adds
-// a spring, not 45) and solved by its adjugate.
-vec3 vbd_particle(uvec2 cell, vec3 x, vec3 dx, vec3 dy) {
+// Conjugate-gradient iterations of one Newton step of the implicit method: must equal
+// sim::integrator::NEWTON_CG_ITERATIONS (the GPU-vs-CPU tests compare).
+const uint NEWTON_CG_ITERATIONS = 5u;
+
+// A symmetric 3x3 matrix: a multiple of the identity, a diagonal and three off-diagonal entries.
+struct Sym3 {
+    float iso;
+    vec3 diag;  // xx, yy, zz (besides iso)
+    vec3 off;   // xy, xz, yz
+};
+
+// BDF2's incremental potential (step h = solve_dt()) at the particle at grid `cell` with start
+// x and displacement dx, its neighbours read through SX/SD: the force on it (inertia towards
+// the prediction dy, springs, dashpots: minus the gradient) and its 3x3 diagonal block of the
+// Hessian. Each spring adds (k + b / h) n n^T + k t (I - n n^T) = c n n^T + k t I
+// (c = k + b / h - k t, t = max(0, 1 - L / d) clamped at compression: positive definite),
+// 6 multiply-adds a spring (sim::cpu::integrators::spring_newton).
+vec3 newton_particle(uvec2 cell, vec3 x, vec3 dx, vec3 dy, out Sym3 hessian) {
     float h = solve_dt();
     float inertia = obj.mass / (h * h);
     float b = obj.stiffness.w;
     float damp = b / h;  // a dashpot's stiffness on the displacement
     vec3 force = (dy - dx) * inertia;
-    float iso = inertia;    // the Hessian's multiple of the identity
-    vec3 diag = vec3(0.0);  // its other diagonal entries (xx, yy, zz)
-    vec3 off = vec3(0.0);   // its off-diagonal entries (xy, xz, yz)
+    float iso = inertia;
+    vec3 diag = vec3(0.0);
+    vec3 off = vec3(0.0);
     [[unroll]] for (int s = 0; s < 12; ++s) {
         ivec3 spring = SPRINGS[s];
         float k = obj.stiffness[spring.z];
@@ -93,73 +104,77 @@ vec3 vbd_particle(uvec2 cell, vec3 x, vec3 dx, vec3 dy) {
         float d = dd * inv;
         vec3 n = delta * inv;
         float rest = rest_length(s);
-        float kt = k * max(1.0 - rest * inv, 0.0);  // transverse, clamped at compression: positive definite
+        float kt = k * max(1.0 - rest * inv, 0.0);
         force -= n * (k * (d - rest) + damp * dot(n, dx - dj));
         float c = k + damp - kt;
         iso += kt;
         diag += (c * n) * n;
         off += (c * n.xxy) * n.yzz;
     }
-    // The step H^-1 force, by the adjugate of the symmetric H.
-    vec3 a = diag + iso;
+    hessian = Sym3(iso, diag, off);
+    return force;
+}
+
+// The inverse of a symmetric positive definite Sym3 by its adjugate, as the rows (c00, c01,
+// c02) and (c11, c12, c22) over the determinant.
+void sym3_inverse(Sym3 m, out vec3 row0, out vec3 rest) {
+    vec3 a = m.diag + m.iso;
+    vec3 off = m.off;
     float c00 = a.y * a.z - off.z * off.z;
     float c01 = off.y * off.z - off.x * a.z;
     float c02 = off.x * off.z - off.y * a.y;
     float c11 = a.x * a.z - off.y * off.y;
     float c12 = off.x * off.y - a.x * off.z;
     float c22 = a.x * a.y - off.x * off.x;
-    float det = a.x * c00 + off.x * c01 + off.y * c02;
-    vec3 step = vec3(dot(vec3(c00, c01, c02), force), dot(vec3(c01, c11, c12), force), dot(vec3(c02, c12, c22), force));
-    return dx + step / det;
+    float inv_det = 1.0 / (a.x * c00 + off.x * c01 + off.y * c02);
+    row0 = vec3(c00, c01, c02) * inv_det;
+    rest = vec3(c11, c12, c22) * inv_det;
 }
 
-// Must equal sim::stability::CHEBYSHEV_START (the GPU-vs-CPU tests compare).
-const uint CHEBYSHEV_START = 2u;
-
-// The Chebyshev weight of iteration k (0-based) from the weight of iteration k - 1 (`before`),
-// for the Jacobi radius rho (Wang 2015): 1 before CHEBYSHEV_START, then 1, 2 / (2 - rho^2),
-// and 4 / (4 - rho^2 omega) (sim::cpu::integrators::chebyshev_omega).
-float chebyshev_next(uint k, float before, float rho) {
-    if (k <= CHEBYSHEV_START) return 1.0;
-    if (k == CHEBYSHEV_START + 1u) return 2.0 / (2.0 - rho * rho);
-    return 4.0 / (4.0 - rho * rho * before);
+// A symmetric matrix (sym3_inverse's rows) times v.
+vec3 sym3_apply(vec3 row0, vec3 rest, vec3 v) {
+    return vec3(dot(row0, v), dot(vec3(row0.y, rest.x, rest.y), v), dot(vec3(row0.z, rest.y, rest.z), v));
 }
 
-// The Chebyshev weight of iteration k, by the recurrence from the first.
-float chebyshev_omega(uint k, float rho) {
-    float omega = 1.0;
-    for (uint step = 0u; step <= k; ++step) omega = chebyshev_next(step, omega, rho);
-    return omega;
+// VBD, one Gauss-Seidel visit: one Newton step on BDF2's incremental potential as a function
+// of the particle's position (newton_particle), solved by the adjugate. Returns the new
+// displacement.
+vec3 vbd_particle(uvec2 cell, vec3 x, vec3 dx, vec3 dy) {
+    Sym3 hessian;
+    vec3 force = newton_particle(cell, x, dx, dy, hessian);
+    vec3 row0;
+    vec3 rest;
+    sym3_inverse(hessian, row0, rest);
+    return dx + sym3_apply(row0, rest, force);
 }
 
-// The implicit method (projective dynamics), one iteration: the local step (each spring's
-// rest-length projection) and the particle's damped Jacobi sweep of the global system,
-// Chebyshev-accelerated with weight `omega` (chebyshev_omega) against its displacement
-// `before` of the previous iteration. Returns the new displacement.
-vec3 implicit_particle(uvec2 cell, float omega, vec3 x, vec3 dx, vec3 dy, vec3 before) {
+// The implicit method's conjugate gradients (sim::cpu::integrators::implicit): row i of the
+// Hessian of BDF2's incremental potential, linearised at the iterate p, times the direction d.
+// The particle at `cell` is at p_i with direction d_i; PP(j) gives neighbour j's p and DD(j)
+// its direction (zero where pinned), defined by the includer. Each spring adds
+// c n (n.e) + k t e, e = d_i - d_j (newton_particle's block).
+#if defined(PP) && defined(DD)
+vec3 hessian_product(uvec2 cell, vec3 pi, vec3 di) {
     float h = solve_dt();
-    float inertia = obj.mass / (h * h);
-    vec3 rhs = dy * inertia;
-    float diag = inertia;
+    float damp = obj.stiffness.w / h;
+    vec3 q = di * (obj.mass / (h * h));
     [[unroll]] for (int s = 0; s < 12; ++s) {
         ivec3 spring = SPRINGS[s];
-        float stiffness = obj.stiffness[spring.z];
-        if (stiffness == 0.0) continue;
+        float k = obj.stiffness[spring.z];
+        if (k == 0.0 && damp == 0.0) continue;
         int j = SPRING_NEIGHBOUR(cell, s);
         if (j < 0) continue;
-        vec3 pj = (SX(j) - x) + SD(j);  // p_j - x_i
-        vec3 delta = dx - pj;           // p_i - p_j
+        vec3 delta = pi - PP(j);
         float dd = dot(delta, delta);
-        vec3 target = dd > 0.0 ? delta * (rest_length(s) * inversesqrt(dd)) : vec3(0.0);
-        rhs += stiffness * (pj + target);
-        diag += stiffness;
+        if (dd <= 0.0) continue;
+        float inv = inversesqrt(dd);
+        vec3 n = delta * inv;
+        float kt = k * max(1.0 - rest_length(s) * inv, 0.0);
+        vec3 e = di - DD(j);
+        q += n * ((k + damp - kt) * dot(n, e)) + kt * e;
     }
-#ifdef IMPLICIT_INV_DIAG
-    vec3 damped = dx + (rhs * IMPLICIT_INV_DIAG - dx) * obj.jacobi_damping;  // (the caller's 1 / diag)
-#else
-    vec3 damped = dx + (rhs / diag - dx) * obj.jacobi_damping;
-#endif
-    return before + omega * (damped - before);
+    return q;
 }
+#endif
 
 #endif

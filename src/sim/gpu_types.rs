@@ -171,8 +171,8 @@ gpu_struct!(
     ring_weights: [[f32; 2]; ROPE_RING],
     hash_mask: u32,
     cell_inv: f32,
-    cheb_rho: f32,
-    jacobi_damping: f32,
+    /// Unused (keeps `rest` at its 16-byte alignment).
+    pad: [f32; 2],
     /// Rest length of each spring, in the shaders' SPRINGS order [m].
     rest: [[f32; 4]; 3],
     /// XPBD per spring type for the substep: alpha~, gamma, relaxation over the denominator

@@ -28,8 +28,9 @@ pub enum Integrator {
     /// on BDF2 (`BDF2_STEP`). One iteration with small substeps is a consistent second-order
     /// method; many iterations converge to BDF2. Stable at any stiffness.
     Xpbd,
-    /// BDF2 (`BDF2_STEP`) by projective dynamics (Liu et al. 2013) with Chebyshev-accelerated
-    /// Jacobi (Wang 2015), damped and accelerated by the substep's own Jacobi radius.
+    /// BDF2 (`BDF2_STEP`) by Newton's method with preconditioned conjugate gradients (Baraff
+    /// and Witkin 1998): `iterations` CG iterations a substep, linearised again every
+    /// `NEWTON_CG_ITERATIONS`; dashpots implicit; starts adaptively as VBD.
     Implicit,
     /// Vertex Block Descent (Chen et al. 2024): BDF2 (`BDF2_STEP`) by a 3x3 Newton step per
     /// vertex on inertia + spring energy (dashpots implicit), vertex-coloured Gauss-Seidel.
@@ -80,6 +81,10 @@ pub enum Sweep {
     /// Gauss-Seidel over the vertex colours (`vertex_colours`): one pass per colour, each
     /// seeing the colours before it.
     VertexColours,
+    /// Newton steps of conjugate gradients (`newton_steps`): a pass that linearises, then two
+    /// passes a CG iteration (the Hessian's product with the direction; the update), each
+    /// summing the dot products the next one needs.
+    NewtonCg,
     /// Gauss-Seidel over the spring classes (`SPRING_CLASSES`): one pass per class, a spring's
     /// update moving both its ends; then, after the last iteration, a pass that finishes every
     /// particle.
@@ -99,6 +104,20 @@ pub type CpuStep = fn(&cpu::Substep<'_>, &mut [cpu::History]) -> (Vec<DVec3>, Ve
 /// on the H100, where f32 rounding is the floor (below it in f64; docs/ACCURACY.md), and at
 /// one 1/60 s substep it stretched less than before.
 pub const BDF2_STEP: f64 = 2.0 / 3.0;
+
+/// Conjugate-gradient iterations of one Newton step of the implicit method (`sim::cpu::integrators::implicit`): every
+/// `NEWTON_CG_ITERATIONS` iterations it linearises again at the iterate they reached. At one
+/// 1/60 s substep on a stiff cloth (docs/ACCURACY.md, "Large steps") two Newton steps of five
+/// settle to the static sag and come to rest, one of ten hangs 126% too low and rings, and
+/// steps of two or three converge more slowly.
+pub const NEWTON_CG_ITERATIONS: u32 = 5;
+
+/// The Newton steps of `iterations` conjugate-gradient iterations: the counts of each
+/// (`NEWTON_CG_ITERATIONS`, the last one the rest).
+pub fn newton_steps(iterations: u32) -> impl Iterator<Item = u32> {
+    (0..iterations.div_ceil(NEWTON_CG_ITERATIONS))
+        .map(move |q| (iterations - q * NEWTON_CG_ITERATIONS).min(NEWTON_CG_ITERATIONS))
+}
 
 /// One integrator's row.
 pub struct Method {
@@ -175,8 +194,10 @@ const METHODS: [Method; 6] = [
         integrator: Integrator::Implicit,
         label: "implicit",
         order: 2.0,
-        // Three rotating slices (Chebyshev reads the one before); aux: the prediction.
-        scheme: solver("implicit_iterate.comp", (true, true, false), 3, 1, Sweep::Jacobi),
+        // Slices: the iterate, CG's move, residual, preconditioned residual, two directions,
+        // the Hessian's product and the preconditioner (two); aux: the prediction, then the
+        // workgroups' partial dot products.
+        scheme: solver("implicit_iterate.comp", (false, true, true), 9, 2, Sweep::NewtonCg),
         cpu: cpu::implicit,
         colour: (214, 39, 40),
         few_iterations: 4,

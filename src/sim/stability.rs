@@ -5,7 +5,7 @@
 //! particles of 2 * sum of the stiffnesses of its springs, so w_max <= sqrt(2 sum k / m); for a
 //! chain this is the exact highest mode (sqrt(4k/m)). Drag and damping are left out.
 
-use super::model::{Integrator, ObjectKind, ObjectModel, SimModel};
+use super::model::{Integrator, ObjectKind, SimModel};
 
 /// The predicted explicit limit of one object.
 #[derive(Debug, Clone, PartialEq)]
@@ -69,12 +69,7 @@ pub fn stable_integrators() -> String {
     }
 }
 
-/// Sum of the spring stiffnesses of the best-connected particle [N/m].
-fn max_stiffness_sum(o: &ObjectModel) -> f64 {
-    stiffness_sum(o.dims, o.stiffness)
-}
-
-/// The same for an object of `dims` particles (a rope: [nodes, 1]) with springs of `stiffness`
+/// Sum of the spring stiffnesses of the best-connected particle of an object of `dims` particles (a rope: [nodes, 1]) with springs of `stiffness`
 /// (structural, shear, bending).
 fn stiffness_sum(dims: [u32; 2], stiffness: [f64; 3]) -> f64 {
     let [cols, rows] = dims;
@@ -109,51 +104,6 @@ pub fn predict_object(
         omega_max,
         dt_max: if omega_max > 0.0 { 2.0 / omega_max } else { f64::INFINITY },
     }
-}
-
-/// Upper bound of the spectral radius of the Jacobi iteration on the implicit system
-/// (M / dt^2 + L) x = b of an object, L the spring Laplacian: by Gershgorin, the largest ratio of
-/// a row's off-diagonal sum to its diagonal, S / (m / dt^2 + S) with S the largest stiffness sum.
-/// The implicit integrator's Chebyshev acceleration uses it: an estimate at or above the true
-/// radius keeps the acceleration stable.
-pub fn jacobi_rho(o: &ObjectModel, dt: f64) -> f64 {
-    let s = max_stiffness_sum(o);
-    s / (o.mass / (dt * dt) + s)
-}
-
-/// The implicit integrator's Jacobi sweeps are damped by `jacobi_damping`: they move that
-/// fraction of the way to the Jacobi point. The undamped iteration's spectrum lies in
-/// [-rho, rho] (rho = `jacobi_rho`); damped by 1 / (1 + rho) it lies in [0, 2 rho / (1 + rho)],
-/// so no mode's error flips sign. Undamped with rho near 1 (stiff springs, long substeps), the
-/// modes near -1 (neighbours moving against each other) flip every sweep, and with an odd
-/// iteration count the unconverged part of the solve enters the velocity reversed and pumps
-/// energy: a 16 x 16 cloth at one 1/60 s substep blew up at 1 and 3 iterations
-/// (tests/integrators.rs, `implicit_with_few_iterations_does_not_blow_up`). There the damping
-/// is 1/2, as it was everywhere before; as the substep shrinks rho falls to 0 and the sweeps
-/// approach plain Jacobi, so a fixed iteration count solves ever more of each substep's
-/// correction and the method converges to its implicit solve (a fixed 1/2 left a fixed fraction
-/// unsolved at every substep: the motion of a softer cloth, whatever the substep).
-pub fn jacobi_damping(o: &ObjectModel, dt: f64) -> f64 {
-    1.0 / (1.0 + jacobi_rho(o, dt))
-}
-
-/// The first iteration Chebyshev accelerates (the iterations before are plain damped Jacobi):
-/// from the first iteration on it diverged at 2 and 3 iterations on the same cloth.
-pub const CHEBYSHEV_START: u32 = 2;
-
-/// The largest radius the Chebyshev acceleration uses. The local step makes the iteration
-/// nonlinear (a compressed spring's projection turns with gain L / d > 1), and with the radius
-/// near 1 (stiff springs, long steps: the weight tends to 2) the extrapolation diverged: on a
-/// chain at one 1/60 s substep, a cap of 0.99 blew up at k = 1e4 N/m, while 0.9 and 0.95 stayed
-/// stable from 1e2 to 1e6 N/m (tests/integrators.rs). Below the true radius Chebyshev still
-/// converges, only less than optimally.
-pub const CHEBYSHEV_RHO_MAX: f64 = 0.9;
-
-/// The radius the implicit integrator's Chebyshev weights use: that of the damped Jacobi
-/// iteration, 2 rho / (1 + rho) (`jacobi_damping`), capped.
-pub fn chebyshev_rho(o: &ObjectModel, dt: f64) -> f64 {
-    let rho = jacobi_rho(o, dt);
-    (2.0 * rho / (1.0 + rho)).min(CHEBYSHEV_RHO_MAX)
 }
 
 pub fn predict(model: &SimModel) -> Vec<Prediction> {
@@ -251,7 +201,7 @@ impl GuardTrip {
         let advice = if model.integrator.iterative() {
             format!(
                 "The {} integrator is stable for any spring stiffness, so look at what it treats explicitly and at the \
-                 constraints: strong spring damping (explicit in the implicit method's prediction), drag, contacts; try \
+                 constraints: strong spring damping, drag, contacts; try \
                  {} or more iterations (sim.iterations, now {}).",
                 model.integrator.label(),
                 more_substeps(model),

@@ -1,12 +1,13 @@
 //! The integrators of the CPU reference: each advances one object by one substep, before the
 //! constraint stage. `sim::integrator`'s table names them (a method's `cpu` field); the GPU
-//! runs the same iterations (Jacobi or colour order, Chebyshev schedule), so the two agree to
-//! rounding.
+//! runs the same iterations (Jacobi, colour or spring-class order, the same Newton steps), so
+//! the two agree to rounding.
 
 use super::{air_force, rest_length, rest_lengths, springs, wind_at, Spring, SPRING_GROUPS};
-use crate::sim::integrator::{spring_class_parity, vertex_colour, vertex_colours, BDF2_STEP, SPRING_CLASSES};
+use crate::sim::integrator::{
+    newton_steps, spring_class_parity, vertex_colour, vertex_colours, BDF2_STEP, SPRING_CLASSES,
+};
 use crate::sim::model::{ObjectModel, SimModel};
-use crate::sim::stability::{chebyshev_rho, jacobi_damping, CHEBYSHEV_START};
 use glam::{DMat3, DVec3};
 
 type State = (Vec<DVec3>, Vec<DVec3>);
@@ -399,21 +400,10 @@ pub(crate) fn vbd(s: &Substep<'_>, history: &mut [History]) -> State {
                 if k == 0.0 && o.damping == 0.0 {
                     continue;
                 }
-                let delta = p[i] - p[s.other];
-                let d = delta.length();
-                if d <= 0.0 {
-                    continue;
+                if let Some((f, block)) = spring_newton(o, &s, k, dt, &p, x, i) {
+                    force += f;
+                    hessian += block;
                 }
-                let normal = delta / d;
-                let nn = DMat3::from_cols(normal * normal.x, normal * normal.y, normal * normal.z);
-                let rest = rest_length(o, &s);
-                let transverse = (1.0 - rest / d).max(0.0);
-                force -= normal * (k * (d - rest));
-                hessian += nn * k + (DMat3::IDENTITY - nn) * (k * transverse);
-                let damp = o.damping / dt;
-                let moved = normal.dot((p[i] - x[i]) - (p[s.other] - x[s.other]));
-                force -= normal * (damp * moved);
-                hessian += nn * damp;
             }
             p[i] += hessian.inverse() * force;
         }
@@ -421,51 +411,106 @@ pub(crate) fn vbd(s: &Substep<'_>, history: &mut [History]) -> State {
     finish(s, &start, p, history)
 }
 
-/// Chebyshev weight of iteration `k` (0-based) for a Jacobi radius `rho` (Wang 2015).
-pub fn chebyshev_omega(k: u32, rho: f64) -> f64 {
-    let mut omega = 1.0;
-    for step in 1..=k {
-        omega = if step == 1 { 2.0 / (2.0 - rho * rho) } else { 4.0 / (4.0 - rho * rho * omega) };
+/// One spring of particle i in BDF2's incremental potential at the iterate p (`vbd` and
+/// `implicit`): the force on i (elastic, and the dashpot on the displacements from the base x)
+/// and the spring's 3x3 block of the Hessian, (k + b / dt) n n^T + k t (I - n n^T) with the
+/// transverse factor t = max(0, 1 - L / d) clamped at compression (positive semi-definite).
+/// None for coincident ends.
+fn spring_newton(
+    o: &ObjectModel,
+    s: &Spring,
+    k: f64,
+    dt: f64,
+    p: &[DVec3],
+    x: &[DVec3],
+    i: usize,
+) -> Option<(DVec3, DMat3)> {
+    let delta = p[i] - p[s.other];
+    let d = delta.length();
+    if d <= 0.0 {
+        return None;
     }
-    omega
+    let normal = delta / d;
+    let nn = DMat3::from_cols(normal * normal.x, normal * normal.y, normal * normal.z);
+    let rest = rest_length(o, s);
+    let transverse = (1.0 - rest / d).max(0.0);
+    let damp = o.damping / dt;
+    let moved = normal.dot((p[i] - x[i]) - (p[s.other] - x[s.other]));
+    let force = -normal * (k * (d - rest) + damp * moved);
+    Some((force, nn * (k + damp) + (DMat3::IDENTITY - nn) * (k * transverse)))
 }
 
-/// Projective dynamics from the BDF2 start (`inertial`, with the dashpots in the prediction; dt
-/// below is its step h): minimise |p - y|^2_M / (2 dt^2) + sum k/2 |p_i - p_j - d_s|^2 over p,
-/// with d_s the spring's rest-length projection of the current p_i - p_j (local step). One
-/// damped Jacobi sweep of the global system per iteration (diagonal m / dt^2 + sum k,
-/// moving `jacobi_damping` of the way: 1 / (1 + rho), which tends to 1 as the substep shrinks),
-/// accelerated by Chebyshev with the radius `chebyshev_rho` from iteration `CHEBYSHEV_START` on.
+/// BDF2 by Newton's method with preconditioned conjugate gradients (Baraff and Witkin 1998, on
+/// BDF2's incremental potential; dt below is its step h, x its base x~): minimise
+/// G(p) = |p - y|^2_M / (2 dt^2) + sum k/2 (|p_i - p_j| - L)^2 + the dashpots' damping
+/// potential (b / (2 dt)) (n.(dp_i - dp_j))^2, as VBD does, from the adaptive start. Each
+/// Newton step (`newton_steps`) linearises G at the iterate: gradient g and Hessian
+/// H = M / dt^2 + the springs' blocks (`spring_newton`), then solves H dp = -g by conjugate
+/// gradients from dp = 0, preconditioned by H's 3x3 diagonal blocks, pinned particles held; the
+/// iterate moves by dp. CG's dot products span the object, so stiffness crosses it within an
+/// iteration's reach of the whole (a Jacobi sweep moves it one neighbour an iteration). Stable
+/// at any stiffness; at convergence BDF2 with implicit dashpots.
 pub(crate) fn implicit(s: &Substep<'_>, history: &mut [History]) -> State {
-    let Substep { model: m, object: o, dt, x, v } = *s;
-    let n = x.len();
-    let start = inertial(m, o, dt, x, v, history, true);
-    let (dt, y) = (start.h, &start.y);
+    let Substep { model: m, object: o, dt, x: x0, v } = *s;
+    let n = x0.len();
+    let start = inertial(m, o, dt, x0, v, history, false);
+    let (dt, x, y) = (start.h, &start.base[..], &start.y[..]);
     let inertia = o.mass / (dt * dt);
-    let rho = chebyshev_rho(o, dt);
-    let damping = jacobi_damping(o, dt);
-    let mut prev = y.clone();
-    let mut p = y.clone();
-    for k in 0..m.iterations {
-        let omega = if k < CHEBYSHEV_START { 1.0 } else { chebyshev_omega(k - CHEBYSHEV_START, rho) };
-        let mut next = p.clone();
-        for i in 0..n {
-            if o.pinned[i] {
-                continue;
+    let mut p = start.start.clone();
+    let free: Vec<usize> = (0..n).filter(|&i| !o.pinned[i]).collect();
+    for cg in newton_steps(m.iterations) {
+        // Linearise at p: r = -g, each spring's block, and the preconditioner.
+        let mut r = vec![DVec3::ZERO; n];
+        let mut pre = vec![DMat3::ZERO; n];
+        let mut blocks: Vec<Vec<(usize, DMat3)>> = vec![Vec::new(); n];
+        for &i in &free {
+            let mut force = (y[i] - p[i]) * inertia;
+            let mut diagonal = DMat3::from_diagonal(DVec3::splat(inertia));
+            let (c, row) = grid(o, i);
+            for s in springs(o, c, row) {
+                let k = o.stiffness[s.kind as usize];
+                if k == 0.0 && o.damping == 0.0 {
+                    continue;
+                }
+                let Some((f, block)) = spring_newton(o, &s, k, dt, &p, x, i) else { continue };
+                force += f;
+                diagonal += block;
+                blocks[i].push((s.other, block));
             }
-            let mut rhs = y[i] * inertia;
-            let mut diag = inertia;
-            for (s, k) in elastic_springs(o, i) {
-                let delta = p[i] - p[s.other];
-                let d = delta.length();
-                let target = if d > 0.0 { delta * (rest_length(o, &s) / d) } else { DVec3::ZERO };
-                rhs += (p[s.other] + target) * k;
-                diag += k;
-            }
-            let damped = p[i] + (rhs / diag - p[i]) * damping;
-            next[i] = prev[i] + (damped - prev[i]) * omega;
+            r[i] = force;
+            pre[i] = diagonal.inverse();
         }
-        prev = std::mem::replace(&mut p, next);
+        let product = |d: &[DVec3]| -> Vec<DVec3> {
+            let mut q = vec![DVec3::ZERO; n];
+            for &i in &free {
+                q[i] = d[i] * inertia + blocks[i].iter().map(|(j, b)| *b * (d[i] - d[*j])).sum::<DVec3>();
+            }
+            q
+        };
+        let dot = |a: &[DVec3], b: &[DVec3]| free.iter().map(|&i| a[i].dot(b[i])).sum::<f64>();
+        let mut z: Vec<DVec3> = (0..n).map(|i| pre[i] * r[i]).collect();
+        let mut d = z.clone();
+        let mut rz = dot(&r, &z);
+        let mut dp = vec![DVec3::ZERO; n];
+        for _ in 0..cg {
+            let q = product(&d);
+            let dq = dot(&d, &q);
+            let alpha = if dq > 0.0 { rz / dq } else { 0.0 };
+            for &i in &free {
+                dp[i] += d[i] * alpha;
+                r[i] -= q[i] * alpha;
+                z[i] = pre[i] * r[i];
+            }
+            let next = dot(&r, &z);
+            let beta = if rz > 0.0 { next / rz } else { 0.0 };
+            for &i in &free {
+                d[i] = z[i] + d[i] * beta;
+            }
+            rz = next;
+        }
+        for &i in &free {
+            p[i] += dp[i];
+        }
     }
     finish(s, &start, p, history)
 }

@@ -167,6 +167,9 @@ pub struct FusedShape {
     pub one_iteration: bool,
     /// Entries of each particle's self-collision contact list (with the shared hash; else 0).
     pub list: u32,
+    /// Words of the implicit method's dot products (`workgroup_sum`: two sets of a slot for
+    /// every four threads); 2 for the other methods (their placeholder).
+    pub reduce: u32,
 }
 
 impl FusedShape {
@@ -185,7 +188,8 @@ impl FusedShape {
         let threads = n.div_ceil(slots).next_multiple_of(32);
         let halo = if o.dims[1] > 1 { 2 * o.dims[0] } else { 2 };
         let budget = limits.shared_bytes.saturating_sub(SHARED_MARGIN);
-        let fixed = 12 * n + 4 * n.div_ceil(32);
+        let reduce = if model.integrator == Integrator::Implicit { 2 * threads.div_ceil(4) } else { 2 };
+        let fixed = 12 * n + 4 * n.div_ceil(32) + 4 * reduce;
         let words = budget.checked_sub(fixed)? / 4;
         // The physics or the prediction reads the neighbours' velocities (the dashpots, unless
         // the method treats them in its solve).
@@ -214,12 +218,12 @@ impl FusedShape {
         .unwrap_or(1);
         let one_iteration = solver.is_some() && model.iterations == 1;
         let list = if hashed { SELF_LIST_ENTRIES } else { 0 };
-        Some(Self { threads, particles: n, scratch, buckets, pass_slots, halo, one_iteration, list })
+        Some(Self { threads, particles: n, scratch, buckets, pass_slots, halo, one_iteration, list, reduce })
     }
 
     /// Shared memory the kernel declares [bytes].
     pub fn shared_bytes(&self) -> u32 {
-        12 * self.particles + 4 * self.particles.div_ceil(32) + 4 * self.scratch
+        12 * self.particles + 4 * self.particles.div_ceil(32) + 4 * self.scratch + 4 * self.reduce
     }
 
     /// Words of the contact list buffer (binding 15): a header and `list` entries a particle,

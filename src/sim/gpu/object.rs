@@ -10,7 +10,6 @@ use crate::sim::gpu_types::{
 };
 use crate::sim::integrator::{vertex_colours, BDF2_STEP};
 use crate::sim::model::{Integrator, ObjectKind, ObjectModel, ObjectShape, SelfCollisionMethod, SimModel};
-use crate::sim::stability::{chebyshev_rho, jacobi_damping};
 use crate::vk::{
     Access, BindingSet, BindingSetLayout, Buffer, BufferBarrier, BufferUsage, DescriptorArena, DeviceInfo,
     GpuContext, MemoryKind, VkError,
@@ -523,8 +522,7 @@ pub(super) fn object_params(o: &ObjectModel, model: &SimModel) -> ObjectParams {
         ring_weights: o.ring_weights.map(|w| w.map(|x| x as f32)),
         hash_mask: buckets - 1,
         cell_inv: (1.0 / cell) as f32,
-        cheb_rho: chebyshev_rho(o, BDF2_STEP * model.dt()) as f32,
-        jacobi_damping: jacobi_damping(o, BDF2_STEP * model.dt()) as f32,
+        pad: [0.0; 2],
         rest: crate::sim::cpu::rest_lengths(o).map(|g| g.map(|l| l as f32)),
         xpbd: std::array::from_fn(|t| xpbd_constants(o.stiffness[t], o, model).map(|c| c as f32)),
     }

@@ -3,14 +3,15 @@
 //! - explicit methods: one pass of `physics.comp`;
 //! - iterative methods: the prediction (`predict.comp`: y into the iterates and auxiliary
 //!   buffers), then `iterations` iterations of the solver, each one pass over every particle
-//!   (Jacobi) or one pass per vertex colour (Gauss-Seidel). Every pass is ordered after the one
+//!   (Jacobi), one pass per vertex colour or spring class (Gauss-Seidel), or for the implicit
+//!   method's conjugate gradients two passes and one more for each Newton step. Every pass is ordered after the one
 //!   before by a barrier on the iterates and auxiliary data, and on what the last iteration
 //!   writes: the result into B and whether the contact lists hold (`hash.rs`).
 
 use super::object::GpuObject;
 use super::pipelines::Stage;
 use super::GpuSim;
-use crate::sim::integrator::{Scheme, Sweep, SPRING_CLASSES};
+use crate::sim::integrator::{newton_steps, Scheme, Sweep, SPRING_CLASSES};
 use crate::vk::{Access, BufferBarrier, Recorder};
 
 impl GpuSim {
@@ -49,7 +50,7 @@ impl GpuSim {
         // Passes of an iteration: (pass, whether the object takes part, its workgroups).
         let classes = 2 * SPRING_CLASSES.len() as u32;
         let passes = match solver.sweep {
-            Sweep::Jacobi => 1,
+            Sweep::Jacobi | Sweep::NewtonCg => 1,
             Sweep::VertexColours => stepped.iter().map(|o| o.colours).max().unwrap_or(1),
             Sweep::SpringClasses => classes,
         };
@@ -59,12 +60,24 @@ impl GpuSim {
                 let groups = match solver.sweep {
                     Sweep::VertexColours if pass >= o.colours => continue,
                     Sweep::VertexColours => o.colour_groups,
-                    Sweep::Jacobi | Sweep::SpringClasses => o.step_groups,
+                    Sweep::Jacobi | Sweep::SpringClasses | Sweep::NewtonCg => o.step_groups,
                 };
                 let pipeline = self.pipelines.get(Stage::Iterate(o.kind, method));
                 rec.dispatch_with(pipeline, o.sets[0], groups, &[k, pass, substep, self.lists_on(o) as u32]);
             }
         };
+        if solver.sweep == Sweep::NewtonCg {
+            let mut k = 0;
+            for cg in newton_steps(self.model.iterations) {
+                iterate(rec, k, cg_pass(CG_LINEARISE, 0, cg));
+                for c in 0..cg {
+                    iterate(rec, k + c, cg_pass(CG_PRODUCT, c, cg));
+                    iterate(rec, k + c, cg_pass(CG_UPDATE, c, cg));
+                }
+                k += cg;
+            }
+            return;
+        }
         for k in 0..self.model.iterations {
             for pass in 0..passes {
                 iterate(rec, k, pass);
@@ -75,4 +88,15 @@ impl GpuSim {
             iterate(rec, self.model.iterations - 1, classes);
         }
     }
+}
+
+/// The implicit method's passes (glsl/implicit_iterate.comp's PHASE_*).
+const CG_LINEARISE: u32 = 0;
+const CG_PRODUCT: u32 = 1;
+const CG_UPDATE: u32 = 2;
+
+/// The pass word of a Newton step's pass `phase` in its CG iteration `c` of `count`: the phase,
+/// c's parity (bit 2), whether c is the first (bit 3) and the last (bit 4).
+fn cg_pass(phase: u32, c: u32, count: u32) -> u32 {
+    phase | (c & 1) << 2 | ((c == 0) as u32) << 3 | ((c + 1 == count) as u32) << 4
 }
