@@ -13,9 +13,13 @@
 //                    q = H d (neighbours' d formed the same way from their z and d);
 //   PHASE_UPDATE     alpha = rz / (d.q): dp += alpha d, r -= alpha q, z = P r; the Newton
 //                    step's last moves p by dp, the substep's last finishes the particle.
-// CG's dot products are summed per workgroup into aux (PARTIAL) and each pass sums the
-// workgroups' sums itself at its start (every workgroup the same way, so all get the same
-// totals): rz in two slots by the CG iteration's parity (rz and the one before), d.q in a third.
+//   PHASE_TOTAL      (one workgroup, on objects of many workgroups) sums the partial sums.
+// CG's dot products are summed per workgroup into aux (PARTIAL): rz in two slots by the CG
+// iteration's parity (rz and the one before), d.q in a third. Each pass reads their totals at
+// its start: on objects of few workgroups it sums the partial sums itself (every workgroup the
+// same way, so all get the same totals), on others (TOTALS) a PHASE_TOTAL pass after each of
+// the others has summed them into aux's last vec4 (every workgroup reading all 4,096 partial
+// sums of a 1024 x 1024 cloth cost 4.5 us a pass more on the H100).
 // The iterate and the vectors are slices of iter (S_*), displacements from the BDF2 base x~
 // (history H_BASE, see predict.comp); aux[i] holds the prediction y - x~.
 #include "bindings.glsl"
@@ -34,8 +38,10 @@ const uint S_PRE = 7u;  // P: sym3_inverse's two rows, two slices
 const uint PHASE_LINEARISE = 0u;
 const uint PHASE_PRODUCT = 1u;
 const uint PHASE_UPDATE = 2u;
+const uint PHASE_TOTAL = 3u;
 // it.colour: the phase (bits 0-1), the CG iteration's parity (bit 2), whether it is the Newton
-// step's first (bit 3) and last (bit 4) (sim::gpu::step::cg_pass).
+// step's first (bit 3) and last (bit 4), and whether PHASE_TOTAL passes sum the partial sums
+// (bit 5, TOTALS) (sim::gpu::step::cg_pass).
 uint phase_bits;
 
 #include "solver_end.glsl"
@@ -64,11 +70,19 @@ vec3 direction(uint j) {
 #include "reduce.glsl"
 
 const uint PARTIAL = 1u;  // aux[n + workgroup]: (rz parity 0, rz parity 1, d.q)
+const uint TOTALS = 32u;
+// Where PHASE_TOTAL leaves the totals: aux's last vec4 (a workgroup covers 64 particles or
+// more, so the partial sums end before it).
+uint total_slot() { return (PARTIAL + 1u) * n_all - 1u; }
 
-// The totals of the workgroups' partial sums.
+// The totals of the workgroups' partial sums (their count from the grid: a PHASE_TOTAL pass
+// runs one workgroup).
 vec3 totals() {
-    uint groups = gl_NumWorkGroups.x * gl_NumWorkGroups.y;
-    uint lanes = gl_WorkGroupSize.x * gl_WorkGroupSize.y;
+    if ((phase_bits & TOTALS) != 0u && (phase_bits & 3u) != PHASE_TOTAL) return aux[total_slot()].xyz;
+    uvec2 size = gl_WorkGroupSize.xy;
+    uvec2 grid = (obj.dims + size - 1u) / size;
+    uint groups = grid.x * grid.y;
+    uint lanes = size.x * size.y;
     vec3 sum = vec3(0.0);
     for (uint w = gl_LocalInvocationIndex; w < groups; w += lanes) sum += aux[PARTIAL * n_all + w].xyz;
     return workgroup_sum(sum);
@@ -90,6 +104,11 @@ void main() {
     uvec2 cell = gl_GlobalInvocationID.xy;
     bool inside = cell.x < obj.dims.x && cell.y < obj.dims.y;  // (every invocation sums)
     uint i = inside ? cell.x + cell.y * obj.dims.x : 0u;
+    if (phase == PHASE_TOTAL) {
+        vec3 sums = totals();
+        if (gl_LocalInvocationIndex == 0u) aux[total_slot()] = vec4(sums, 0.0);
+        return;
+    }
     vec4 pi = iter[i];
     bool moves = inside && pi.w <= 0.5;
     if (phase == PHASE_LINEARISE) {

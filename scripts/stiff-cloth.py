@@ -22,6 +22,7 @@ def main(folder):
         time = re.search(r"GPU frame time: mean ([0-9.]+) ms", text)
         state = log.with_suffix(".json")
         if time is None or not state.exists():
+            # (a run the runtime guard stopped, exit 3, has no final state: "stopped" below)
             rows.append((k, method, int(substeps), int(iterations), math.nan, math.nan, math.nan))
             continue
         o = json.loads(state.read_text())["objects"][0]
@@ -32,6 +33,9 @@ def main(folder):
     print("| k [N/m] | method | substeps | iterations | sag error | fastest [m/s] | GPU ms/frame |")
     print("|---|---|---:|---:|---:|---:|---:|")
     for k, method, s, it, error, fastest, time in sorted(rows, key=lambda r: (r[0], r[1], r[2], r[3])):
+        if math.isnan(error):
+            print(f"| {k[1:]} | {method} | {s} | {it} | stopped (guard) | | |")
+            continue
         print(f"| {k[1:]} | {method} | {s} | {it} | {100 * error:+.1f}% | {fastest:.1e} | {time:.3f} |")
     print()
     print("| k [N/m] | method | cheapest sag within 5% | within 1% | within 5% and at rest | within 1% and at rest |")

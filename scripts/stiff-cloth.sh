@@ -5,6 +5,8 @@
 # run, the final state (NAME.json: the settled sag and speeds) and `simulate`'s summary
 # (NAME.log: GPU time a frame) into OUT; scripts/stiff-cloth.py makes the table from them.
 # Usage: scripts/stiff-cloth.sh MSDSIM_BINARY PRESET OUT
+# METHODS (default: vbd implicit xpbd xpbd_jacobi) picks the iterative methods; VERLET=0 leaves
+# Verlet's run out.
 set -euo pipefail
 bin=$1 preset=$2 out=$3
 mkdir -p "$out"
@@ -19,8 +21,8 @@ for k in 1e4 1e5; do
          --set "cloth.stiff.stiffness.bending=$(awk "BEGIN { print $k / 10 }")")
   # Verlet's stable limit (`simulate` predicts it): 95 substeps at 1e4 N/m, 299 at 1e5.
   verlet=$([ "$k" = 1e4 ] && echo 128 || echo 384)
-  run "k$k-verlet-$verlet-1" "${stiff[@]}" --set sim.integrator=verlet --set "sim.substeps=$verlet"
-  for method in vbd implicit xpbd xpbd_jacobi; do
+  [ "${VERLET:-1}" = 0 ] || run "k$k-verlet-$verlet-1" "${stiff[@]}" --set sim.integrator=verlet --set "sim.substeps=$verlet"
+  for method in ${METHODS:-vbd implicit xpbd xpbd_jacobi}; do
     for substeps in 1 2 4; do
       for iterations in 2 4 10 30 100; do
         run "k$k-$method-$substeps-$iterations" "${stiff[@]}" --set "sim.integrator=$method" \

@@ -171,8 +171,9 @@ gpu_struct!(
     ring_weights: [[f32; 2]; ROPE_RING],
     hash_mask: u32,
     cell_inv: f32,
-    /// Unused (keeps `rest` at its 16-byte alignment).
-    pad: [f32; 2],
+    /// Unused (keep `rest` at its 16-byte alignment).
+    pad0: f32,
+    pad1: f32,
     /// Rest length of each spring, in the shaders' SPRINGS order [m].
     rest: [[f32; 4]; 3],
     /// XPBD per spring type for the substep: alpha~, gamma, relaxation over the denominator

@@ -10,6 +10,7 @@
 //! a dispatch per stage. The iterative integrators also keep their displacements there (in the
 //! scratch area, 12 bytes a particle, between the physics and the constraints).
 
+use super::object::GpuObject;
 use crate::sim::gpu_types::{
     FEATURE_BENDING, FEATURE_DAMPING, FEATURE_SELF, FEATURE_SHEAR, FEATURE_STRETCH, FEATURE_STRUCTURAL,
     FEATURE_WIND,
@@ -252,6 +253,30 @@ impl FusedShape {
             method as u32,
             self.list,
         ]
+    }
+}
+
+/// Which path each object takes.
+impl super::GpuSim {
+    /// With `false`, every object takes the per-stage path (the reference for the fused one);
+    /// with `true`, every object whose layout fits runs fused, triangle self-contact too.
+    pub fn set_fused(&mut self, on: bool) {
+        // The two paths keep their lists in the same layout, but nothing makes them one
+        // contract (the fused kernel's LIST_VALID is the per-stage path's first control word).
+        self.lists_stale |= on != self.fused || (on && !self.fuse_triangles);
+        self.fused = on;
+        self.fuse_triangles |= on;
+    }
+
+    /// Whether object `object` runs its substeps fused (its layout fits and the path is on).
+    pub fn runs_fused(&self, object: usize) -> bool {
+        self.objects.get(object).is_some_and(|o| self.is_fused(o))
+    }
+
+    /// Whether object `o` runs fused substeps.
+    pub(super) fn is_fused(&self, o: &GpuObject) -> bool {
+        let triangles = o.plan.features & crate::sim::gpu_types::FEATURE_TRIANGLES != 0;
+        self.fused && o.plan.fused.is_some() && (self.fuse_triangles || !triangles)
     }
 }
 

@@ -114,6 +114,9 @@ pub struct GpuSim {
     /// driver, where their fused passes cost twice the per-stage path (lavapipe, a 40 x 40
     /// cloth: 138 against 69 ms a frame; docs/PERFORMANCE.md); `set_fused(true)` asks for it.
     fuse_triangles: bool,
+    /// The implicit method per stage: objects of more workgroups than this have their dot
+    /// products' partial sums totalled by a pass of one workgroup (`step.rs`).
+    cg_totals_above: u32,
     /// What the fused layouts are planned within.
     limits: FusedLimits,
     /// Whether the surface stage writes the surface buffers (else it only runs the guard).
@@ -283,6 +286,7 @@ impl GpuSim {
             stage_timing: true,
             fused: true,
             fuse_triangles: ctx.info().kind != crate::vk::DeviceKind::Cpu,
+            cg_totals_above: step::CG_TOTALS_ABOVE,
             limits,
             drawn: true,
             frames: 0,
@@ -563,31 +567,10 @@ impl GpuSim {
         self.pipelines.reload(ctx, &self.layout, shaders, changed)
     }
 
-    /// With `false`, every object takes the per-stage path (the reference for the fused one);
-    /// with `true`, every object whose layout fits runs fused, triangle self-contact too.
-    pub fn set_fused(&mut self, on: bool) {
-        // The two paths keep their lists in the same layout, but nothing makes them one
-        // contract (the fused kernel's LIST_VALID is the per-stage path's first control word).
-        self.lists_stale |= on != self.fused || (on && !self.fuse_triangles);
-        self.fused = on;
-        self.fuse_triangles |= on;
-    }
-
     /// With `false` nothing reads the surface buffers (a headless run): the surface stage only
     /// runs the guard, and `read_states` returns the surface of the last drawn frame.
     pub fn set_drawn(&mut self, on: bool) {
         self.drawn = on;
-    }
-
-    /// Whether object `object` runs its substeps fused (its layout fits and the path is on).
-    pub fn runs_fused(&self, object: usize) -> bool {
-        self.objects.get(object).is_some_and(|o| self.is_fused(o))
-    }
-
-    /// Whether object `o` runs fused substeps.
-    fn is_fused(&self, o: &GpuObject) -> bool {
-        let triangles = o.plan.features & crate::sim::gpu_types::FEATURE_TRIANGLES != 0;
-        self.fused && o.plan.fused.is_some() && (self.fuse_triangles || !triangles)
     }
 
     /// With `false`, frames carry only a start and an end timestamp (the per-stage timestamps

@@ -522,7 +522,8 @@ pub(super) fn object_params(o: &ObjectModel, model: &SimModel) -> ObjectParams {
         ring_weights: o.ring_weights.map(|w| w.map(|x| x as f32)),
         hash_mask: buckets - 1,
         cell_inv: (1.0 / cell) as f32,
-        pad: [0.0; 2],
+        pad0: 0.0,
+        pad1: 0.0,
         rest: crate::sim::cpu::rest_lengths(o).map(|g| g.map(|l| l as f32)),
         xpbd: std::array::from_fn(|t| xpbd_constants(o.stiffness[t], o, model).map(|c| c as f32)),
     }

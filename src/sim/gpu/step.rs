@@ -47,46 +47,77 @@ impl GpuSim {
                 o.scratch_barriers().into_iter().chain([rw(&o.state[1])]).chain(hash)
             })
             .collect();
-        // Passes of an iteration: (pass, whether the object takes part, its workgroups).
+        // Passes of one iteration of the methods that sweep (not the implicit method).
         let classes = 2 * SPRING_CLASSES.len() as u32;
         let passes = match solver.sweep {
             Sweep::Jacobi | Sweep::NewtonCg => 1,
             Sweep::VertexColours => stepped.iter().map(|o| o.colours).max().unwrap_or(1),
             Sweep::SpringClasses => classes,
         };
-        let iterate = |rec: &mut Recorder<'_>, k: u32, pass: u32| {
+        // One pass: each object's workgroups and pass word (SKIP: it takes no part).
+        let iterate = |rec: &mut Recorder<'_>, k: u32, each: &dyn Fn(&GpuObject) -> ([u32; 3], u32)| {
             rec.barrier(&between_passes);
             for o in &stepped {
-                let groups = match solver.sweep {
-                    Sweep::VertexColours if pass >= o.colours => continue,
-                    Sweep::VertexColours => o.colour_groups,
-                    Sweep::Jacobi | Sweep::SpringClasses | Sweep::NewtonCg => o.step_groups,
-                };
+                let (groups, word) = each(o);
+                if word == SKIP {
+                    continue;
+                }
                 let pipeline = self.pipelines.get(Stage::Iterate(o.kind, method));
-                rec.dispatch_with(pipeline, o.sets[0], groups, &[k, pass, substep, self.lists_on(o) as u32]);
+                rec.dispatch_with(pipeline, o.sets[0], groups, &[k, word, substep, self.lists_on(o) as u32]);
             }
         };
         if solver.sweep == Sweep::NewtonCg {
+            // Objects of many workgroups have their partial sums totalled by a pass of one.
+            let totals = |o: &GpuObject| o.step_groups.iter().product::<u32>() > self.cg_totals_above;
+            let pass = |rec: &mut Recorder<'_>, k: u32, word: u32| {
+                iterate(rec, k, &|o| (o.step_groups, if totals(o) { word | CG_TOTALS } else { word }));
+                if stepped.iter().any(|&o| totals(o)) {
+                    let total = (word & !3) | CG_TOTAL | CG_TOTALS;
+                    iterate(rec, k, &|o| ([1, 1, 1], if totals(o) { total } else { SKIP }));
+                }
+            };
             let mut k = 0;
             for cg in newton_steps(self.model.iterations) {
-                iterate(rec, k, cg_pass(CG_LINEARISE, 0, cg));
+                pass(rec, k, cg_pass(CG_LINEARISE, 0, cg));
                 for c in 0..cg {
-                    iterate(rec, k + c, cg_pass(CG_PRODUCT, c, cg));
-                    iterate(rec, k + c, cg_pass(CG_UPDATE, c, cg));
+                    pass(rec, k + c, cg_pass(CG_PRODUCT, c, cg));
+                    pass(rec, k + c, cg_pass(CG_UPDATE, c, cg));
                 }
                 k += cg;
             }
             return;
         }
+        let swept = |pass: u32| {
+            move |o: &GpuObject| match solver.sweep {
+                Sweep::VertexColours if pass >= o.colours => ([0; 3], SKIP),
+                Sweep::VertexColours => (o.colour_groups, pass),
+                _ => (o.step_groups, pass),
+            }
+        };
         for k in 0..self.model.iterations {
             for pass in 0..passes {
-                iterate(rec, k, pass);
+                iterate(rec, k, &swept(pass));
             }
         }
         if solver.sweep == Sweep::SpringClasses {
             // Every particle finished once all classes of the last iteration are done.
-            iterate(rec, self.model.iterations - 1, classes);
+            iterate(rec, self.model.iterations - 1, &swept(classes));
         }
+    }
+}
+
+/// The implicit method per stage: objects of more workgroups than this total their partial
+/// sums in a pass of one workgroup (each pass's workgroups summing them all themselves grows
+/// with the square of the count: a 1024 x 1024 cloth's 4,096 took 12.65 against 13.33 ms a
+/// frame at 4 iterations with the passes, H100, docs/bench/h100/implicit-cg).
+pub(super) const CG_TOTALS_ABOVE: u32 = 1024;
+
+impl GpuSim {
+    /// The implicit method per stage: objects of more than `groups` workgroups total their
+    /// partial sums in a pass of their own (`CG_TOTALS_ABOVE` by default; tests lower it to
+    /// run that path on small objects).
+    pub fn set_cg_totals_above(&mut self, groups: u32) {
+        self.cg_totals_above = groups;
     }
 }
 
@@ -94,6 +125,11 @@ impl GpuSim {
 const CG_LINEARISE: u32 = 0;
 const CG_PRODUCT: u32 = 1;
 const CG_UPDATE: u32 = 2;
+const CG_TOTAL: u32 = 3;
+/// The pass word's bit saying that PHASE_TOTAL passes total the partial sums.
+const CG_TOTALS: u32 = 32;
+/// A pass word no pass has: the object takes no part in the pass.
+const SKIP: u32 = u32::MAX;
 
 /// The pass word of a Newton step's pass `phase` in its CG iteration `c` of `count`: the phase,
 /// c's parity (bit 2), whether c is the first (bit 3) and the last (bit 4).
