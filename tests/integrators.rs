@@ -145,9 +145,10 @@ fn iterative_methods_converge_at_the_iterations_users_run() {
 /// On a cloth as stiff as the presets' (500 N/m, weak dashpots), the iterative methods at the
 /// iterations users run converge to their converged solve, BDF2 itself (VBD at 30 iterations),
 /// as the substep shrinks: the distance at t = 0.5 s falls at least 3 times per 4 times more
-/// substeps (measured: XPBD 15x and 12x; implicit 6.1x and 4.0x, first order: its explicit
-/// dashpots' O(dt) difference from VBD's implicit ones; VBD at 4 iterations is already
-/// within 2e-9, then at the f64 floor).
+/// substeps (measured: XPBD 15x and 12x; implicit 17x and 16x, since 2026-11-26 when its
+/// dashpots became implicit as VBD's (6.1x and 4.0x before, first order: the explicit
+/// dashpots' O(dt) difference); VBD at 4 iterations is already within 2e-9, then at the f64
+/// floor).
 #[test]
 fn iterative_methods_converge_to_their_solve_on_a_stiff_cloth() {
     let base = swinging_cloth([500.0, 100.0, 20.0], 0.01);
@@ -165,10 +166,10 @@ fn iterative_methods_converge_to_their_solve_on_a_stiff_cloth() {
 /// Against the exact motion on the same stiff cloth (Verlet at 4096 substeps a frame, t = 1 s),
 /// at the iterations users run, the iterative methods are second order and as accurate as the
 /// explicit methods where those are stable: (a) each one's error falls at least 8 times per 4
-/// times more substeps from 16 to 64 and 64 to 256 (second order gives 16; measured XPBD 14.5
-/// and 11.2, implicit 23 and 21, VBD 29 and 16; symplectic Euler 6.5 and 4.7), and (b) at 256
-/// substeps it is within 3 times symplectic Euler's error (measured 0.62, 0.42 and 0.60 times
-/// its 6.9e-5). XPBD by Jacobi at one iteration falls 16.1 and 5.8 times (1.6 times symplectic
+/// times more substeps from 16 to 64 and 64 to 256 (second order gives 16; measured XPBD 14.3
+/// and 11.9, implicit 38 and 17 (Newton-CG; 23 and 21 by projective dynamics), VBD 39 and 17;
+/// symplectic Euler 6.5 and 4.7), and (b) at 256 substeps it is within 3 times symplectic
+/// Euler's error (measured 0.62, 0.63 and 0.61 times its 6.9e-5). XPBD by Jacobi at one iteration falls 16.1 and 5.8 times (1.6 times symplectic
 /// Euler's error at 256): each spring's dashpot sees its neighbours' prediction, not their
 /// update, a first-order term that shows once the rest is small (undamped it falls 12.0 and
 /// 17.4), so it is held to first order (4x) here. On implicit Euler, which they were built on
@@ -272,9 +273,10 @@ fn energy_drift_is_small_for_verlet_and_negative_for_implicit() {
 /// Few iterations leave the implicit solve unconverged (the cloth sags and stretches) but must
 /// not blow up: a 16 x 16 cloth hanging from two corners at one 1/60 s substep, 1 to 5
 /// iterations, 1e2 and 1e4 N/m, 2 s: every velocity stays finite and below the guard's default
-/// 100 m/s. (Undamped Jacobi sweeps blew up here at 1 and 3 iterations, Chebyshev from the first
-/// iteration at 2 and 3: see sim::stability::jacobi_damping.) Every iterative method: XPBD by
-/// Jacobi without its step bound (beta = 1, plain Jacobi) blows up here at every count.
+/// 100 m/s. (When the implicit method was projective dynamics, its undamped Jacobi sweeps blew
+/// up here at 1 and 3 iterations, and Chebyshev from the first iteration at 2 and 3.) Every
+/// iterative method: XPBD by Jacobi without its step bound (beta = 1, plain Jacobi) blows up
+/// here at every count.
 #[test]
 fn iterative_methods_with_few_iterations_do_not_blow_up() {
     use msdsim::sim::cpu::CpuSim;

@@ -394,16 +394,9 @@ pub(crate) fn vbd(s: &Substep<'_>, history: &mut [History]) -> State {
             }
             let mut force = (y[i] - p[i]) * inertia;
             let mut hessian = DMat3::from_diagonal(DVec3::splat(inertia));
-            let (c, r) = grid(o, i);
-            for s in springs(o, c, r) {
-                let k = o.stiffness[s.kind as usize];
-                if k == 0.0 && o.damping == 0.0 {
-                    continue;
-                }
-                if let Some((f, block)) = spring_newton(o, &s, k, dt, &p, x, i) {
-                    force += f;
-                    hessian += block;
-                }
+            for (_, f, block) in newton_springs(o, dt, &p, x, i) {
+                force += f;
+                hessian += block;
             }
             p[i] += hessian.inverse() * force;
         }
@@ -440,6 +433,25 @@ fn spring_newton(
     Some((force, nn * (k + damp) + (DMat3::IDENTITY - nn) * (k * transverse)))
 }
 
+/// Particle i's springs with a stiffness or a dashpot in BDF2's incremental potential at p
+/// (`spring_newton`): each one's other end, its force on i and its block of the Hessian.
+fn newton_springs<'a>(
+    o: &'a ObjectModel,
+    dt: f64,
+    p: &'a [DVec3],
+    x: &'a [DVec3],
+    i: usize,
+) -> impl Iterator<Item = (usize, DVec3, DMat3)> + 'a {
+    let (c, r) = grid(o, i);
+    springs(o, c, r).into_iter().filter_map(move |s| {
+        let k = o.stiffness[s.kind as usize];
+        if k == 0.0 && o.damping == 0.0 {
+            return None;
+        }
+        spring_newton(o, &s, k, dt, p, x, i).map(|(force, block)| (s.other, force, block))
+    })
+}
+
 /// BDF2 by Newton's method with preconditioned conjugate gradients (Baraff and Witkin 1998, on
 /// BDF2's incremental potential; dt below is its step h, x its base x~): minimise
 /// G(p) = |p - y|^2_M / (2 dt^2) + sum k/2 (|p_i - p_j| - L)^2 + the dashpots' damping
@@ -466,16 +478,10 @@ pub(crate) fn implicit(s: &Substep<'_>, history: &mut [History]) -> State {
         for &i in &free {
             let mut force = (y[i] - p[i]) * inertia;
             let mut diagonal = DMat3::from_diagonal(DVec3::splat(inertia));
-            let (c, row) = grid(o, i);
-            for s in springs(o, c, row) {
-                let k = o.stiffness[s.kind as usize];
-                if k == 0.0 && o.damping == 0.0 {
-                    continue;
-                }
-                let Some((f, block)) = spring_newton(o, &s, k, dt, &p, x, i) else { continue };
+            for (j, f, block) in newton_springs(o, dt, &p, x, i) {
                 force += f;
                 diagonal += block;
-                blocks[i].push((s.other, block));
+                blocks[i].push((j, block));
             }
             r[i] = force;
             pre[i] = diagonal.inverse();
