@@ -71,8 +71,9 @@ vec3 direction(uint j) {
 
 const uint PARTIAL = 1u;  // aux[n + workgroup]: (rz parity 0, rz parity 1, d.q)
 const uint TOTALS = 32u;
-// Where PHASE_TOTAL leaves the totals: aux's last vec4 (a workgroup covers 64 particles or
-// more, so the partial sums end before it).
+// Where PHASE_TOTAL leaves the totals: aux's last vec4. The partial sums end before it: a
+// workgroup spans 16 x 16 or 64 x 1 cells, so an object of n >= 2 particles (scene validation)
+// has fewer than n workgroups.
 uint total_slot() { return (PARTIAL + 1u) * n_all - 1u; }
 
 // The totals of the workgroups' partial sums (their count from the grid: a PHASE_TOTAL pass
@@ -88,7 +89,10 @@ vec3 totals() {
     return workgroup_sum(sum);
 }
 
-// This workgroup's sum of `mine` into component `slot` of its partial.
+// This workgroup's sum of `mine` into component `slot` of its partial. Other workgroups read
+// every partial in the same pass (totals()), but only the components no pass writes at that
+// time: PRODUCT writes d.q and reads the rz pair, UPDATE writes the next rz and reads the
+// current one and d.q. Keep it so if the slots change.
 void add_partial(float mine, uint slot) {
     float total = workgroup_sum(vec3(mine, 0.0, 0.0)).x;
     uint w = gl_WorkGroupID.x + gl_WorkGroupID.y * gl_NumWorkGroups.x;

@@ -115,7 +115,8 @@ pub(crate) fn candidates(
             continue;
         }
         // The step shaders vote across a subgroup (the contact lists' rebuild flag); the hash
-        // scan adds across one.
+        // scan and the implicit method's dot products add across one, the latter keeping a
+        // subgroup's sum for every four invocations (glsl/include/reduce.glsl).
         let vote = vk::SubgroupFeatureFlags::BASIC
             | vk::SubgroupFeatureFlags::VOTE
             | vk::SubgroupFeatureFlags::ARITHMETIC;
@@ -123,6 +124,13 @@ pub(crate) fn candidates(
             || !v11.subgroup_supported_operations.contains(vote)
         {
             skipped.push(format!("{name}: needs subgroup vote and arithmetic operations in compute shaders"));
+            continue;
+        }
+        if v11.subgroup_size < 4 {
+            skipped.push(format!(
+                "{name}: needs subgroups of at least 4 invocations (has {})",
+                v11.subgroup_size
+            ));
             continue;
         }
         let wanted = vk::QueueFlags::GRAPHICS | vk::QueueFlags::COMPUTE;

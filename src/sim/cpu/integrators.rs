@@ -117,8 +117,8 @@ fn explicit(s: &Substep<'_>, verlet: bool) -> State {
 /// minimises |p - y|^2_M / (2 h^2) + E(p) with h = 2 dt / 3 from the base x~ = x_n + (x_n -
 /// x_{n-1}) / 3, towards the prediction y = x~ + 2/3 dt v_n + 2/9 dt (v_n - v_{n-1}) + h^2 F / m,
 /// and the velocity that reaches p is (p - x~) / h. F: the external forces (and the springs'
-/// dashpots for the implicit method, which treats damping explicitly; the others handle it in
-/// their solve). A particle without history (`restart`) takes the last substep to have been
+/// dashpots with `dashpots`, for a method that treats damping explicitly: none does since the
+/// implicit method took its dashpots into its solve on 2026-11-26). A particle without history (`restart`) takes the last substep to have been
 /// one Jacobi step of implicit Euler: v_n - v_{n-1} = dt a and x_n - x_{n-1} = dt (v_n + dt a)
 /// with a = (F + F_s) / (m + dt^2 S), F_s its springs' elastic force and S their stiffness
 /// sum. A particle at rest in equilibrium (F + F_s = 0) stays there, and a free one (S = 0)
@@ -460,8 +460,10 @@ fn newton_springs<'a>(
 /// H = M / dt^2 + the springs' blocks (`spring_newton`), then solves H dp = -g by conjugate
 /// gradients from dp = 0, preconditioned by H's 3x3 diagonal blocks, pinned particles held; the
 /// iterate moves by dp. CG's dot products span the object, so stiffness crosses it within an
-/// iteration's reach of the whole (a Jacobi sweep moves it one neighbour an iteration). Stable
-/// at any stiffness; at convergence BDF2 with implicit dashpots.
+/// iteration's reach of the whole (a Jacobi sweep moves it one neighbour an iteration). At
+/// convergence BDF2 with implicit dashpots, at any stiffness; cut short it is not a descent
+/// (no line search): a stiff cloth at one 1/60 s substep gains energy at 2 and 4 iterations
+/// (the runtime guard stops it; docs/ACCURACY.md, "Large steps") and settles from 10.
 pub(crate) fn implicit(s: &Substep<'_>, history: &mut [History]) -> State {
     let Substep { model: m, object: o, dt, x: x0, v } = *s;
     let n = x0.len();

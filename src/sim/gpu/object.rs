@@ -374,10 +374,17 @@ fn object_bytes(o: &ObjectShape) -> u64 {
         + 24 * n
         + 8 * hash_table_size(n)
         + 4
-        + (5 + HISTORY_VEC4S) * 16 * n
+        + (solver_vec4s().0 + solver_vec4s().1 + HISTORY_VEC4S) * 16 * n
         + list_control_range(n).0
         + list_control_range(n).1
         + 8
+}
+
+/// The most vec4s a particle that any iterative method keeps in its iterate slices and in its
+/// auxiliary data (`sim::integrator`'s table; the implicit method's 9 and 2).
+fn solver_vec4s() -> (u64, u64) {
+    let solvers = Integrator::ALL.into_iter().filter_map(|m| m.solver());
+    solvers.fold((0, 0), |(slices, aux), s| (slices.max(s.slices), aux.max(s.aux)))
 }
 
 fn gib(bytes: u64) -> String {
@@ -398,10 +405,10 @@ pub fn check_fits(info: &DeviceInfo, shapes: &[ObjectShape]) -> Result<(), UserE
     }
     for o in shapes {
         let what = format!("{} '{}' ({} x {})", o.kind.label(), o.name, o.dims[0], o.dims[1]);
-        // The largest buffer: a state, the surface, or three iterate slices.
+        // The largest buffer: a state, the surface, or a solver's iterate slices.
         let state = o.particle_count() * std::mem::size_of::<Particle>() as u64;
         let surface = o.surface_count() * std::mem::size_of::<SurfaceVertex>() as u64;
-        let largest = state.max(surface).max(3 * 16 * o.particle_count());
+        let largest = state.max(surface).max(solver_vec4s().0 * 16 * o.particle_count());
         if largest > info.max_storage_buffer_range {
             return Err(UserError(format!(
                 "{what} is too large for the device: one buffer would be {}, {} binds at most {}",
