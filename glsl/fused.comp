@@ -227,8 +227,8 @@ void main() {
     bool self_triangles_on = self_any && triangle_contact();
     bool neighbours = stretch || self_any || has(F_EDGES);  // the constraints read other particles
     float drift = physics_drift();
-    // The physics (or the prediction) reads the neighbours' velocities: the dashpots, unless
-    // the method treats them implicitly in its solve.
+    // The physics reads the neighbours' velocities for the dashpots (the iterative methods
+    // treat them in their solve).
     bool stage_velocities = has(F_DAMPING) && !ITERATIVE;
     uint colours = vertex_colours(obj.dims);
 
@@ -319,7 +319,7 @@ void main() {
                     spring_mask = masks[s];
                     vec3 base;
                     vec3 pull;
-                    dy[s] = predicted_displacement(cells[s], x[s], v[s], false, hx[s], hv[s].xyz, base, pull);
+                    dy[s] = predicted_displacement(cells[s], x[s], v[s], hx[s], hv[s].xyz, base, pull);
                     // The solve's start (shared after the barrier below).
                     precise vec3 start;
                     precise vec3 missed;

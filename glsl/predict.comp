@@ -20,7 +20,6 @@
 #include "predict_body.glsl"
 
 layout(local_size_x_id = 0, local_size_y_id = 1, local_size_z = 1) in;
-layout(constant_id = 2) const bool EXPLICIT_DASHPOTS = false;
 layout(constant_id = 4) const bool KEEP_PREDICTION = false;
 layout(constant_id = 5) const bool ADAPTIVE_START = false;
 
@@ -40,7 +39,7 @@ void main() {
         vec3 pull;
         vec4 hx = history[hist(i, H_DX)];
         vec4 hv = history[hist(i, H_DV)];
-        dy = predicted_displacement(cell, x, v, EXPLICIT_DASHPOTS, hx, hv.xyz, base, pull);
+        dy = predicted_displacement(cell, x, v, hx, hv.xyz, base, pull);
         bdf2_start(x, base, start, lost);
         dy += lost;
         guess = ADAPTIVE_START ? adaptive_start(dy, pull, hx, hv.w) : dy;

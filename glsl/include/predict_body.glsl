@@ -11,13 +11,11 @@
 // particle at grid `cell`, at x with velocity v and history `hx` (x_n - x_{n-1}, w valid) and
 // `hv` (v_n - v_{n-1}): returns the prediction y - x~ and sets `base` to x~ - x, where x~ =
 // x + (x_n - x_{n-1}) / 3 is what the solve's displacements are measured from. F is the
-// external force and, with `dashpots` (a method that treats damping explicitly), the springs'
-// dashpots. Without history the last substep is taken to have been one Jacobi step of
+// external force (every method treats the dashpots in its solve). Without history the last substep is taken to have been one Jacobi step of
 // implicit Euler (sim::cpu::integrators::inertial and restart). `pull` is the prediction's
 // part h^2 F / m.
-vec3 predicted_displacement(uvec2 cell, vec3 x, vec3 v, bool dashpots, vec4 hx, vec3 hv, out vec3 base, out vec3 pull) {
+vec3 predicted_displacement(uvec2 cell, vec3 x, vec3 v, vec4 hx, vec3 hv, out vec3 base, out vec3 pull) {
     vec3 force = external_force(x, v) + air_force(cell, x, v, 0.0);
-    if (dashpots) add_spring_forces(cell, x, v, 0.0, false, force);
     vec3 a = force / obj.mass;
     bool known = hx.w > 0.5;
     vec3 dx = hx.xyz;

@@ -1,5 +1,5 @@
 // Adds the springs' force on the particle at grid `cell`, at position x with velocity v, to
-// `force`: Hooke's law (when `elastic`) plus a dashpot along each spring. Spring types and
+// `force`: Hooke's law plus a dashpot along each spring. Spring types and
 // dashpots the scene does not use are compiled out (features.glsl).
 // A neighbour j is read through NPOS(j) (its position advanced by `drift` times its velocity:
 // position Verlet's half drift, 0 otherwise) and NVEL(j) (its velocity). By default both come
@@ -14,11 +14,11 @@
 #define NVEL(j) IN(j).vel.xyz
 #endif
 
-void add_spring_forces(uvec2 cell, vec3 x, vec3 v, float drift, bool elastic, inout vec3 force) {
+void add_spring_forces(uvec2 cell, vec3 x, vec3 v, float drift, inout vec3 force) {
     [[unroll]] for (int s = 0; s < 12; ++s) {
         ivec3 spring = SPRINGS[s];
         if (!has(1u << spring.z)) continue;  // F_STRUCTURAL, F_SHEAR, F_BENDING
-        float k = elastic ? obj.stiffness[spring.z] : 0.0;
+        float k = obj.stiffness[spring.z];
         if (k == 0.0 && !(has(F_DAMPING) && obj.stiffness.w != 0.0)) continue;
         int j = SPRING_NEIGHBOUR(cell, s);
         if (j < 0) continue;

@@ -58,8 +58,6 @@ pub enum Scheme {
 pub struct Solver {
     /// The iteration shader.
     pub shader: &'static str,
-    /// The prediction includes the springs' dashpots (damping treated explicitly).
-    pub explicit_dashpots: bool,
     /// `predict.comp` keeps the prediction y - x in the auxiliary buffer (else it zeroes the 12
     /// multipliers a particle keeps there).
     pub keeps_prediction: bool,
@@ -141,14 +139,13 @@ pub struct Method {
 
 const fn solver(
     shader: &'static str,
-    (dashpots, keeps_y, adaptive): (bool, bool, bool),
+    (keeps_y, adaptive): (bool, bool),
     slices: u64,
     aux: u64,
     sweep: Sweep,
 ) -> Scheme {
     Scheme::Iterative(Solver {
         shader,
-        explicit_dashpots: dashpots,
         keeps_prediction: keeps_y,
         adaptive_start: adaptive,
         slices,
@@ -184,7 +181,7 @@ const METHODS: [Method; 6] = [
         label: "xpbd",
         order: 2.0,
         // In place (one slice); aux: the multipliers of the particle's 6 forward springs.
-        scheme: solver("xpbd_iterate.comp", (false, false, false), 1, 3, Sweep::SpringClasses),
+        scheme: solver("xpbd_iterate.comp", (false, false), 1, 3, Sweep::SpringClasses),
         cpu: cpu::xpbd,
         colour: (255, 127, 14),
         few_iterations: 1,
@@ -197,7 +194,7 @@ const METHODS: [Method; 6] = [
         // Slices: the iterate, CG's move, residual, preconditioned residual, two directions,
         // the Hessian's product and the preconditioner (two); aux: the prediction, then the
         // workgroups' partial dot products.
-        scheme: solver("implicit_iterate.comp", (false, true, true), 9, 2, Sweep::NewtonCg),
+        scheme: solver("implicit_iterate.comp", (true, true), 9, 2, Sweep::NewtonCg),
         cpu: cpu::implicit,
         colour: (214, 39, 40),
         few_iterations: 4,
@@ -208,7 +205,7 @@ const METHODS: [Method; 6] = [
         label: "vbd",
         order: 2.0,
         // In place (one slice); aux: the prediction.
-        scheme: solver("vbd_iterate.comp", (false, true, true), 1, 1, Sweep::VertexColours),
+        scheme: solver("vbd_iterate.comp", (true, true), 1, 1, Sweep::VertexColours),
         cpu: cpu::vbd,
         colour: (148, 103, 189),
         few_iterations: 4,
@@ -219,7 +216,7 @@ const METHODS: [Method; 6] = [
         label: "xpbd_jacobi",
         order: 2.0,
         // Two alternating slices; aux: the multipliers of the particle's 12 springs.
-        scheme: solver("xpbd_jacobi_iterate.comp", (false, false, false), 2, 3, Sweep::Jacobi),
+        scheme: solver("xpbd_jacobi_iterate.comp", (false, false), 2, 3, Sweep::Jacobi),
         cpu: cpu::xpbd_jacobi,
         colour: (140, 86, 75),
         few_iterations: 1,

@@ -74,12 +74,12 @@ fn external(m: &SimModel, o: &ObjectModel, i: usize, x: &[DVec3], v: DVec3) -> D
     m.gravity * o.mass + wind_at(&m.wind, x[i]) + air_force(m, o, i, x, v) - v * o.drag
 }
 
-/// The springs' force on particle i: elastic (with `elastic`) and dashpot parts [N].
-fn spring_force(o: &ObjectModel, i: usize, x: &[DVec3], v: &[DVec3], elastic: bool) -> DVec3 {
+/// The springs' force on particle i: elastic and dashpot parts [N].
+fn spring_force(o: &ObjectModel, i: usize, x: &[DVec3], v: &[DVec3]) -> DVec3 {
     let (c, r) = grid(o, i);
     let mut force = DVec3::ZERO;
     for s in springs(o, c, r) {
-        let k = if elastic { o.stiffness[s.kind as usize] } else { 0.0 };
+        let k = o.stiffness[s.kind as usize];
         if k == 0.0 && o.damping == 0.0 {
             continue;
         }
@@ -106,7 +106,7 @@ fn explicit(s: &Substep<'_>, verlet: bool) -> State {
         if o.pinned[i] {
             continue;
         }
-        let force = external(m, o, i, &at, v[i]) + spring_force(o, i, &at, v, true);
+        let force = external(m, o, i, &at, v[i]) + spring_force(o, i, &at, v);
         nv[i] = v[i] + force / o.mass * dt;
         nx[i] = at[i] + nv[i] * (dt - drift);
     }
@@ -116,9 +116,8 @@ fn explicit(s: &Substep<'_>, verlet: bool) -> State {
 /// Where a position-based substep starts (BDF2, `sim::integrator::BDF2_STEP`): the solve
 /// minimises |p - y|^2_M / (2 h^2) + E(p) with h = 2 dt / 3 from the base x~ = x_n + (x_n -
 /// x_{n-1}) / 3, towards the prediction y = x~ + 2/3 dt v_n + 2/9 dt (v_n - v_{n-1}) + h^2 F / m,
-/// and the velocity that reaches p is (p - x~) / h. F: the external forces (and the springs'
-/// dashpots with `dashpots`, for a method that treats damping explicitly: none does since the
-/// implicit method took its dashpots into its solve on 2026-11-26). A particle without history (`restart`) takes the last substep to have been
+/// and the velocity that reaches p is (p - x~) / h. F: the external forces (every method
+/// treats the springs' dashpots in its solve). A particle without history (`restart`) takes the last substep to have been
 /// one Jacobi step of implicit Euler: v_n - v_{n-1} = dt a and x_n - x_{n-1} = dt (v_n + dt a)
 /// with a = (F + F_s) / (m + dt^2 S), F_s its springs' elastic force and S their stiffness
 /// sum. A particle at rest in equilibrium (F + F_s = 0) stays there, and a free one (S = 0)
@@ -145,7 +144,6 @@ fn inertial(
     x: &[DVec3],
     v: &[DVec3],
     history: &[History],
-    dashpots: bool,
 ) -> Inertial {
     let h = BDF2_STEP * dt;
     let adaptive = adaptive_start(m);
@@ -156,10 +154,7 @@ fn inertial(
                 start.push(x[i]);
                 return (x[i], x[i]);
             }
-            let mut force = external(m, o, i, x, v[i]);
-            if dashpots && o.damping != 0.0 {
-                force += spring_force(o, i, x, v, false);
-            }
+            let force = external(m, o, i, x, v[i]);
             let pull = force / o.mass * (h * h);
             let past = history[i].unwrap_or_else(|| restart(o, i, x, v[i], force, dt));
             let base = x[i] + past.dx / 3.0;
@@ -260,7 +255,7 @@ fn colour_order(o: &ObjectModel) -> Vec<usize> {
 pub(crate) fn xpbd(s: &Substep<'_>, history: &mut [History]) -> State {
     let Substep { model: m, object: o, dt, x: x0, v } = *s;
     let n = x0.len();
-    let start = inertial(m, o, dt, x0, v, history, false);
+    let start = inertial(m, o, dt, x0, v, history);
     let (dt, x) = (start.h, &start.base[..]);
     let mut p = start.y.clone();
     let mut lambda = vec![[0.0f64; 6]; n];
@@ -332,7 +327,7 @@ pub(crate) fn xpbd(s: &Substep<'_>, history: &mut [History]) -> State {
 pub(crate) fn xpbd_jacobi(s: &Substep<'_>, history: &mut [History]) -> State {
     let Substep { model: m, object: o, dt, x: x0, v } = *s;
     let n = x0.len();
-    let start = inertial(m, o, dt, x0, v, history, false);
+    let start = inertial(m, o, dt, x0, v, history);
     let (dt, x) = (start.h, &start.base[..]);
     let mut p = start.y.clone();
     let mut lambda = vec![[0.0f64; 12]; n];
@@ -382,7 +377,7 @@ pub(crate) fn xpbd_jacobi(s: &Substep<'_>, history: &mut [History]) -> State {
 /// Stable at any stiffness; at convergence BDF2 with implicit dashpots.
 pub(crate) fn vbd(s: &Substep<'_>, history: &mut [History]) -> State {
     let Substep { model: m, object: o, dt, x: x0, v } = *s;
-    let start = inertial(m, o, dt, x0, v, history, false);
+    let start = inertial(m, o, dt, x0, v, history);
     let (dt, x, y) = (start.h, &start.base[..], &start.y[..]);
     let mut p = start.start.clone();
     let inertia = o.mass / (dt * dt);
@@ -467,7 +462,7 @@ fn newton_springs<'a>(
 pub(crate) fn implicit(s: &Substep<'_>, history: &mut [History]) -> State {
     let Substep { model: m, object: o, dt, x: x0, v } = *s;
     let n = x0.len();
-    let start = inertial(m, o, dt, x0, v, history, false);
+    let start = inertial(m, o, dt, x0, v, history);
     let (dt, x, y) = (start.h, &start.base[..], &start.y[..]);
     let inertia = o.mass / (dt * dt);
     let mut p = start.start.clone();

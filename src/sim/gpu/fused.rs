@@ -192,9 +192,9 @@ impl FusedShape {
         let reduce = if model.integrator == Integrator::Implicit { 2 * threads.div_ceil(4) } else { 2 };
         let fixed = 12 * n + 4 * n.div_ceil(32) + 4 * reduce;
         let words = budget.checked_sub(fixed)? / 4;
-        // The physics or the prediction reads the neighbours' velocities (the dashpots, unless
-        // the method treats them in its solve).
-        let damped = o.damping != 0.0 && solver.is_none_or(|s| s.explicit_dashpots);
+        // The physics reads the neighbours' velocities (the dashpots; the iterative methods
+        // treat them in their solve).
+        let damped = o.damping != 0.0 && solver.is_none();
         let displacements = if solver.is_some() { 3 * n } else { 0 };
         if displacements > words {
             return None;

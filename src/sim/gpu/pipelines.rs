@@ -77,16 +77,15 @@ impl Stage {
     }
 
     /// Constant `i` has id `i`: the step shaders take their workgroup shape (ids 0, 1), a
-    /// variant flag (id 2) and the features (id 3), the prediction also whether it keeps y (id 4)
-    /// and starts adaptively (id 5); the fused kernel
+    /// variant flag (id 2; the prediction has none) and the features (id 3), the prediction also
+    /// whether it keeps y (id 4) and starts adaptively (id 5); the fused kernel
     /// its layout (`FusedShape::specialization`).
     fn specialization(self) -> Vec<u32> {
         match self {
             Stage::Physics(kind, verlet, f) => [group(kind), vec![verlet as u32, f]].concat(),
             Stage::Predict(kind, method, f) => {
                 let s = solver(method);
-                let flags = [s.explicit_dashpots, s.keeps_prediction, s.adaptive_start].map(u32::from);
-                [group(kind), vec![flags[0], f, flags[1], flags[2]]].concat()
+                [group(kind), vec![0, f, s.keeps_prediction as u32, s.adaptive_start as u32]].concat()
             }
             Stage::Constraints(kind, f, lists) => [group(kind), vec![lists as u32, f]].concat(),
             Stage::SelfPairs(f, lists, apply) => {

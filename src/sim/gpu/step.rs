@@ -71,7 +71,9 @@ impl GpuSim {
             let totals = |o: &GpuObject| o.step_groups.iter().product::<u32>() > self.cg_totals_above;
             let pass = |rec: &mut Recorder<'_>, k: u32, word: u32| {
                 iterate(rec, k, &|o| (o.step_groups, if totals(o) { word | CG_TOTALS } else { word }));
-                if stepped.iter().any(|&o| totals(o)) {
+                // A Newton step's last update is followed by a linearisation, which reads none.
+                let read_next = word & 3 != CG_UPDATE || word & LAST_CG == 0;
+                if read_next && stepped.iter().any(|&o| totals(o)) {
                     let total = (word & !3) | CG_TOTAL | CG_TOTALS;
                     iterate(rec, k, &|o| ([1, 1, 1], if totals(o) { total } else { SKIP }));
                 }
@@ -128,11 +130,13 @@ const CG_UPDATE: u32 = 2;
 const CG_TOTAL: u32 = 3;
 /// The pass word's bit saying that PHASE_TOTAL passes total the partial sums.
 const CG_TOTALS: u32 = 32;
+/// The pass word's bit of a Newton step's last CG iteration (`cg_pass`).
+const LAST_CG: u32 = 16;
 /// A pass word no pass has: the object takes no part in the pass.
 const SKIP: u32 = u32::MAX;
 
 /// The pass word of a Newton step's pass `phase` in its CG iteration `c` of `count`: the phase,
 /// c's parity (bit 2), whether c is the first (bit 3) and the last (bit 4).
 fn cg_pass(phase: u32, c: u32, count: u32) -> u32 {
-    phase | (c & 1) << 2 | ((c == 0) as u32) << 3 | ((c + 1 == count) as u32) << 4
+    phase | (c & 1) << 2 | ((c == 0) as u32) << 3 | if c + 1 == count { LAST_CG } else { 0 }
 }
