@@ -688,11 +688,19 @@ fn an_obj_recording_carries_the_colliders() {
 /// samples as f32 x y z), streamed as frames come, with the meshes' first frame in `FILE.obj`
 /// (the vertices the caches animate, in the same order). The cloth's last sample is the
 /// simulated state (`--out` of the same run) exactly, its first the OBJ's vertices; the rope's
-/// cache has its tube's rings and two cap rings.
+/// cache has its tube's rings and two cap rings. A moving collider (here the sphere, at 0.5
+/// m/s along x) has its own cache (`FILE_collider_sphere_0.pc2`), whose samples are the OBJ's
+/// sphere moved by 0.5 m/s times each frame's time; a fixed one stays in the OBJ alone.
 #[test]
 fn a_point_cache_recording_reads_back_as_the_simulation() {
     let dir = tempfile::tempdir().unwrap();
-    let preset = preset(dir.path());
+    let preset = dir.path().join("moving.toml");
+    std::fs::write(
+        &preset,
+        GOOD.replace("radius = 0.2\n", "radius = 0.2\nmotion = { velocity = [0.5, 0.0, 0.0] }\n"),
+    )
+    .unwrap();
+    let preset = preset.display().to_string();
     let (pc2, json) = (dir.path().join("anim.pc2"), dir.path().join("state.json"));
     record(&preset, 5, &pc2, &json);
     let read = |name: &str| -> (usize, f32, f32, Vec<Vec<f32>>) {
@@ -717,6 +725,28 @@ fn a_point_cache_recording_reads_back_as_the_simulation() {
     let cloth_group = groups.iter().find(|g| g.0 == "c").expect("the cloth in the OBJ");
     let first: Vec<f32> = (0..points).flat_map(|i| cloth_group.1[i].to_array().map(|x| x as f32)).collect();
     assert_eq!(first, cloth[0], "the OBJ holds the first sample's vertices");
+    let mut caches: Vec<String> = (std::fs::read_dir(dir.path()).unwrap())
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .filter(|n| n.ends_with(".pc2"))
+        .collect();
+    caches.sort();
+    assert_eq!(caches, ["anim_c.pc2", "anim_collider_sphere_0.pc2", "anim_r.pc2"]);
+    let (sphere_points, _, _, sphere) = read("anim_collider_sphere_0.pc2");
+    let sphere_group = groups.iter().find(|g| g.0 == "collider_sphere_0").expect("the sphere in the OBJ");
+    let (lo, hi) =
+        (sphere_group.3.iter().flatten().min().unwrap(), sphere_group.3.iter().flatten().max().unwrap());
+    let obj_sphere = &sphere_group.1[*lo..=*hi];
+    assert_eq!((sphere_points, sphere.len()), (obj_sphere.len(), 6), "the OBJ's sphere, frames 0 to 5");
+    for (frame, sample) in sphere.iter().enumerate() {
+        let moved = 0.5 * frame as f64 / 60.0;
+        for (p, q) in sample.chunks(3).zip(obj_sphere) {
+            let expected = [q.x + moved, q.y, q.z];
+            assert!(
+                (0..3).all(|i| (p[i] as f64 - expected[i]).abs() < 1e-6),
+                "frame {frame}: {p:?} against {expected:?}"
+            );
+        }
+    }
 }
 
 /// Ctrl-C during a point-cache recording leaves caches a reader takes whole: the header counts

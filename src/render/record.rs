@@ -440,10 +440,17 @@ impl Recording {
         super::gltf::glb(&meshes, &colliders, &times)
     }
 
-    /// The file of mesh k's point cache: `{stem}_{name}.pc2`.
+    /// The names of the meshes a point cache animates: every object's, then every moving
+    /// collider's (a fixed one stays where the OBJ has it).
+    fn cached_names(&self) -> Vec<&str> {
+        let moving = self.colliders.iter().zip(&self.collider_names).filter(|(c, _)| c.motion.is_moving());
+        self.tracks.iter().map(|t| t.name.as_str()).chain(moving.map(|(_, name)| name.as_str())).collect()
+    }
+
+    /// The file of cached mesh k's point cache (`cached_names`): `{stem}_{name}.pc2`.
     pub fn cache_path(&self, k: usize) -> PathBuf {
         let mut name = self.stem.clone().into_os_string();
-        name.push(format!("_{}.pc2", self.tracks[k].name));
+        name.push(format!("_{}.pc2", self.cached_names()[k]));
         PathBuf::from(name)
     }
 
@@ -464,8 +471,9 @@ impl Recording {
                 self.obj_path(self.last_code()).display()
             ),
             Format::PointCache => {
-                let caches: Vec<String> =
-                    (0..self.tracks.len()).map(|k| self.cache_path(k).display().to_string()).collect();
+                let caches: Vec<String> = (0..self.cached_names().len())
+                    .map(|k| self.cache_path(k).display().to_string())
+                    .collect();
                 format!(
                     "recorded {n} frames to {} (the meshes in {})",
                     caches.join(", "),
@@ -475,9 +483,10 @@ impl Recording {
         }
     }
 
-    /// `.pc2`: appends a frame to each mesh's point cache (the first frame also writes the
-    /// meshes as OBJ and starts the caches), then counts it in their headers, so that a run
-    /// stopped at any point leaves caches of the whole frames so far.
+    /// `.pc2`: appends a frame to each mesh's point cache, the objects' and the moving
+    /// colliders' (the first frame also writes the meshes as OBJ and starts the caches), then
+    /// counts it in their headers, so that a run stopped at any point leaves caches of the whole
+    /// frames so far.
     fn add_to_caches(&mut self, states: &[ObjectState], time: f64) -> Result<()> {
         use std::io::{Seek, SeekFrom, Write};
         let code = self.last_code();
@@ -486,8 +495,14 @@ impl Recording {
             write_whole(&base, self.obj(states, time).as_bytes())
                 .map_err(|e| anyhow::anyhow!("recording the meshes to {}: {e}", base.display()))?;
         }
-        for (k, state) in states.iter().enumerate() {
-            let (points, _) = self.tracks[k].frame(state);
+        let moving = self.colliders.iter().filter(|c| c.motion.is_moving());
+        let collider_points =
+            moving.map(|c| collider_mesh(c, time).0.iter().map(|p| p.as_vec3().to_array()).collect());
+        let frames: Vec<Vec<[f32; 3]>> = (self.tracks.iter().zip(states))
+            .map(|(t, state)| t.frame(state).0)
+            .chain(collider_points)
+            .collect();
+        for (k, points) in frames.into_iter().enumerate() {
             if k == self.caches.len() {
                 // The first frame starts the cache: its header, with no sample counted yet.
                 let path = self.cache_path(k);
