@@ -3,6 +3,7 @@
 
     pip install usd-core trimesh
     scripts/check-recording.py out.usda          # USD: Pixar's own reader and validators
+    scripts/check-recording.py out.usdc          # the same converted to binary USD (README)
     scripts/check-recording.py out_00010.obj     # one OBJ frame, read with trimesh
     scripts/check-recording.py out.glb           # glTF binary, read with trimesh (first frame)
 
@@ -145,7 +146,7 @@ def main():
         return 2
     failures = []
     for path in sys.argv[1:]:
-        if path.endswith(".usda"):
+        if path.endswith((".usda", ".usdc", ".usd")):
             failures += check_usd(path)
         elif path.endswith(".glb"):
             failures += check_gltf(path)
