@@ -701,6 +701,7 @@ fn a_point_cache_recording_reads_back_as_the_simulation() {
     )
     .unwrap();
     let preset = preset.display().to_string();
+    let fixed_preset = self::preset(dir.path());
     let (pc2, json) = (dir.path().join("anim.pc2"), dir.path().join("state.json"));
     record(&preset, 5, &pc2, &json);
     let read = |name: &str| -> (usize, f32, f32, Vec<Vec<f32>>) {
@@ -735,6 +736,12 @@ fn a_point_cache_recording_reads_back_as_the_simulation() {
     let sphere_group = groups.iter().find(|g| g.0 == "collider_sphere_0").expect("the sphere in the OBJ");
     let (lo, hi) =
         (sphere_group.3.iter().flatten().min().unwrap(), sphere_group.3.iter().flatten().max().unwrap());
+    let used: std::collections::HashSet<usize> = sphere_group.3.iter().flatten().copied().collect();
+    assert_eq!(
+        used.len(),
+        hi - lo + 1,
+        "every vertex of the sphere's range in a face (importers drop the rest)"
+    );
     let obj_sphere = &sphere_group.1[*lo..=*hi];
     assert_eq!((sphere_points, sphere.len()), (obj_sphere.len(), 6), "the OBJ's sphere, frames 0 to 5");
     for (frame, sample) in sphere.iter().enumerate() {
@@ -747,6 +754,11 @@ fn a_point_cache_recording_reads_back_as_the_simulation() {
             );
         }
     }
+    // Recorded again under the same name with the sphere fixed: its earlier cache is removed
+    // (an importer taking each mesh's cache where it finds one would move the sphere).
+    record(&fixed_preset, 2, &pc2, &json);
+    assert!(!dir.path().join("anim_collider_sphere_0.pc2").exists(), "a fixed collider's stale cache");
+    assert!(dir.path().join("anim_c.pc2").exists());
 }
 
 /// Ctrl-C during a point-cache recording leaves caches a reader takes whole: the header counts

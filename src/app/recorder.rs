@@ -1,6 +1,7 @@
 //! The app's Record button (F9): the animated surfaces of every simulated frame into the file
-//! named in the Simulation panel, USD (`.usda`, written when the recording stops) or an OBJ
-//! sequence (`.obj`, a file a frame as they come), as `simulate --record` writes them. Each
+//! named in the Simulation panel, USD (`.usda`, written when the recording stops), an OBJ
+//! sequence (`.obj`, a file a frame as they come), glTF (`.glb`) or PC2 point caches (`.pc2`),
+//! as `simulate --record` writes them. Each
 //! recorded frame is read back from the GPU, so the app runs slower while it records.
 
 use super::sim_host::SimHost;

@@ -264,7 +264,7 @@ impl Recording {
         let collider_names = (model.colliders.iter().enumerate())
             .map(|(i, c)| unique_name(&mut taken, format!("collider_{}_{i}", c.shape.kind().label())))
             .collect();
-        Ok(Self {
+        let recording = Self {
             tracks,
             colliders: model.colliders.clone(),
             collider_names,
@@ -277,7 +277,28 @@ impl Recording {
             frames: 0,
             caches: Vec::new(),
             spool,
-        })
+        };
+        if format == Format::PointCache {
+            recording.remove_fixed_colliders_caches()?;
+        }
+        Ok(recording)
+    }
+
+    /// Removes the caches an earlier point-cache recording under the same name left for
+    /// colliders that are fixed in this one (regular files `{stem}_{name}.pc2`), so that an
+    /// importer that takes each mesh's cache where it finds one does not move them.
+    fn remove_fixed_colliders_caches(&self) -> Result<()> {
+        let fixed = self.colliders.iter().zip(&self.collider_names).filter(|(c, _)| !c.motion.is_moving());
+        for (_, name) in fixed {
+            let mut path = self.stem.clone().into_os_string();
+            path.push(format!("_{name}.pc2"));
+            let path = PathBuf::from(path);
+            if std::fs::symlink_metadata(&path).is_ok_and(|m| m.is_file()) {
+                std::fs::remove_file(&path)
+                    .map_err(|e| anyhow::anyhow!("removing the earlier cache {}: {e}", path.display()))?;
+            }
+        }
+        Ok(())
     }
 
     /// Whether `model` still has the objects and frame rate this recording began with (an
@@ -1063,6 +1084,7 @@ mod tests {
         let pc2 = Format::PointCache;
         assert!(pc2.writes(p("x.pc2"), p("x.obj")));
         assert!(pc2.writes(p("x.pc2"), p("x_curtain.pc2")));
+        assert!(pc2.writes(p("x.pc2"), p("x_collider_box_1.pc2")));
         assert!(!pc2.writes(p("x.pc2"), p("x.json")));
         assert!(!Format::Usd.writes(p("x.usda"), p("x.obj")));
     }
