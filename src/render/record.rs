@@ -290,9 +290,7 @@ impl Recording {
     fn remove_fixed_colliders_caches(&self) -> Result<()> {
         let fixed = self.colliders.iter().zip(&self.collider_names).filter(|(c, _)| !c.motion.is_moving());
         for (_, name) in fixed {
-            let mut path = self.stem.clone().into_os_string();
-            path.push(format!("_{name}.pc2"));
-            let path = PathBuf::from(path);
+            let path = self.cache_file(name);
             if std::fs::symlink_metadata(&path).is_ok_and(|m| m.is_file()) {
                 std::fs::remove_file(&path)
                     .map_err(|e| anyhow::anyhow!("removing the earlier cache {}: {e}", path.display()))?;
@@ -468,11 +466,16 @@ impl Recording {
         self.tracks.iter().map(|t| t.name.as_str()).chain(moving.map(|(_, name)| name.as_str())).collect()
     }
 
-    /// The file of cached mesh k's point cache (`cached_names`): `{stem}_{name}.pc2`.
+    /// The file of cached mesh k's point cache (`cached_names`).
     pub fn cache_path(&self, k: usize) -> PathBuf {
-        let mut name = self.stem.clone().into_os_string();
-        name.push(format!("_{}.pc2", self.cached_names()[k]));
-        PathBuf::from(name)
+        self.cache_file(self.cached_names()[k])
+    }
+
+    /// The point cache of the mesh named `name`: `{stem}_{name}.pc2`.
+    fn cache_file(&self, name: &str) -> PathBuf {
+        let mut path = self.stem.clone().into_os_string();
+        path.push(format!("_{name}.pc2"));
+        PathBuf::from(path)
     }
 
     /// The OBJ file with the meshes a point cache animates: `{stem}.obj`.
@@ -492,8 +495,10 @@ impl Recording {
                 self.obj_path(self.last_code()).display()
             ),
             Format::PointCache => {
-                let caches: Vec<String> = (0..self.cached_names().len())
-                    .map(|k| self.cache_path(k).display().to_string())
+                let caches: Vec<String> = self
+                    .cached_names()
+                    .iter()
+                    .map(|&name| self.cache_file(name).display().to_string())
                     .collect();
                 format!(
                     "recorded {n} frames to {} (the meshes in {})",

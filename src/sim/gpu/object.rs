@@ -368,13 +368,14 @@ impl GpuObject {
 /// upper bound).
 fn object_bytes(o: &ObjectShape) -> u64 {
     let n = o.particle_count();
+    let (slices, aux) = solver_vec4s();
     2 * n * std::mem::size_of::<Particle>() as u64
         + o.surface_count() * std::mem::size_of::<SurfaceVertex>() as u64
         + std::mem::size_of::<ObjectParams>() as u64
         + 24 * n
         + 8 * hash_table_size(n)
         + 4
-        + (solver_vec4s().0 + solver_vec4s().1 + HISTORY_VEC4S) * 16 * n
+        + (slices + aux + HISTORY_VEC4S) * 16 * n
         + list_control_range(n).0
         + list_control_range(n).1
         + 8
