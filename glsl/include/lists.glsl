@@ -46,7 +46,7 @@ bool self_hashed() {
 }
 
 // Entries a particle at most (sim::gpu::fused::SELF_LIST_ENTRIES).
-const uint LIST_ENTRIES = 16u;
+const uint LIST_ENTRIES = 32u;
 // How far a particle may move from where its list was built (2% less, for rounding).
 float list_half_skin() { return 0.49 * LIST_SKIN * obj.self_distance; }
 uint list_entry(uint e, uint i, uint n) { return 4u * n + e * n + i; }

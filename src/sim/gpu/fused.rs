@@ -101,7 +101,7 @@ const MIN_BUCKETS: u32 = 32;
 /// the fused kernel's `LIST_MAX`): others within
 /// twice the self-collision distance (`LIST_SKIN`) that are not rest-state neighbours. A fuller
 /// list is built again the next substep (as without lists).
-pub const SELF_LIST_ENTRIES: u32 = 16;
+pub const SELF_LIST_ENTRIES: u32 = 32;
 
 /// The features object `o` uses in `model` (the `FEATURES` specialization constant): spring
 /// types with stiffness or dashpots, dashpots, wind, the stretch limit, self-collision, each
