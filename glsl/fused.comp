@@ -82,6 +82,7 @@ shared float pz[CAP];
 shared uint pin_bits[(CAP + 31u) / 32u];
 shared uint scratch[SCRATCH];
 shared uint list_flag[2];  // substep parity: some particle moved too far from its list's build
+shared uint pairs_kept[2];  // substep parity: some particle found a triangle self-contact
 
 // The self-collision contact lists (LIST_MAX > 0, with the hash; lists.glsl): a substep builds
 // the hash when some particle has moved half the skin from where its list was built or a list
@@ -281,6 +282,7 @@ void main() {
     }
     for (uint w = t; w < (CAP + 31u) / 32u; w += THREADS) pin_bits[w] = 0u;
     if (t < 2u) list_flag[t] = 0u;
+    if (t < 2u) pairs_kept[t] = 0u;
     barrier();
     [[unroll]] for (uint s = 0u; s < MAX_SLOTS; ++s) {
         if (s >= SLOTS) break;
@@ -585,7 +587,31 @@ void main() {
                     list_particle = k;
                     list_len = LISTED && hashed && !list_rebuild ? floatBitsToUint(header[s].w) : 0u;
                     self_pass(cells[s], k, x[s], began[s], apply);
+                    if (!apply && pair_len > 0u) pairs_kept[sub & 1u] = 1u;
                     if (!apply && LISTED && hashed && list_build) header[s] = set_list_header(k, x[s], list_len);
+                }
+                memoryBarrierBuffer();
+                barrier();
+            }
+            // Further passes (obj.contact_iterations, where some particle found a contact): the
+            // positions and velocities moved by the sums, then the kept contacts applied again
+            // from there.
+            uint passes = pairs_kept[sub & 1u] != 0u ? obj.contact_iterations : 1u;
+            if (t == 0u) pairs_kept[(sub + 1u) & 1u] = 0u;  // read again after many barriers
+            [[dont_unroll]] for (uint pass = 1u; pass < passes; ++pass) {
+                [[unroll]] for (uint s = 0u; s < MAX_SLOTS; ++s) {
+                    if (s >= SLOTS) break;
+                    uint k = own[s];
+                    if (k >= n || pinned[s]) continue;
+                    self_move(k, x[s], v[s]);
+                    set_spos(k, x[s]);
+                }
+                memoryBarrierBuffer();
+                barrier();
+                [[unroll]] for (uint s = 0u; s < MAX_SLOTS; ++s) {
+                    if (s >= SLOTS) break;
+                    uint k = own[s];
+                    if (k < n) self_reapply(k, x[s]);
                 }
                 memoryBarrierBuffer();
                 barrier();

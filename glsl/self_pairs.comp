@@ -4,19 +4,28 @@
 #extension GL_KHR_shader_subgroup_basic : require
 #extension GL_KHR_shader_subgroup_vote : require
 // A cloth's contact with its own triangles on the per-stage path, one thread per particle
-// (pinned ones too), between the spatial hash's build and the constraints: APPLY false, the
-// find pass (each particle's contacts kept and counted; the contact lists walked, or searched
-// from the hash and rebuilt), APPLY true, the apply pass (each contact's moves summed into its
-// four particles). The work is in self_contact.glsl and constraints_body.glsl, shared with
-// fused.comp; the constraint stage adds the sums. Both passes read the contact lists' state
-// (LISTS: the pipelines with lists on).
+// (pinned ones too), between the spatial hash's build and the constraints, one pass a dispatch
+// (PASS): the find pass (each particle's contacts kept and counted; the contact lists walked,
+// or searched from the hash and rebuilt), the apply pass (each contact's moves summed into its
+// four particles), and with contact_iterations > 1 each further pass's move of the physics
+// output by the sums and the kept contacts' application from there. The work is in
+// self_contact.glsl and constraints_body.glsl, shared with fused.comp; the constraint stage
+// adds the last pass's sums. The find and apply passes read the contact lists' state (LISTS:
+// the pipelines with lists on).
 #define STATE_OUT_READ
+#define STATE_IN_WRITE
 #include "bindings.glsl"
 #include "springs.glsl"
 
 layout(local_size_x_id = 0, local_size_y_id = 1, local_size_z = 1) in;
 layout(constant_id = 2) const bool LISTS = false;  // contact lists on (hash_count.glsl)
-layout(constant_id = 4) const bool APPLY = false;
+// sim::gpu::pipelines::SelfPass, in its order.
+const uint PASS_FIND = 0u;
+const uint PASS_APPLY = 1u;
+const uint PASS_MOVE = 2u;
+const uint PASS_REAPPLY = 3u;
+layout(constant_id = 4) const uint PASS = PASS_FIND;
+const bool APPLY = PASS == PASS_APPLY;
 layout(push_constant) uniform Push {
     uint substep;  // of the frame, 0-based
 } pc;
@@ -34,6 +43,20 @@ void main() {
     if (!has(F_SELF) || cell.x >= obj.dims.x || cell.y >= obj.dims.y) return;
     uint i = cell.x + cell.y * obj.dims.x;
     vec3 x = p_in[i].pos.xyz;
+    if (PASS == PASS_MOVE) {
+        if (p_in[i].pos.w > 0.5) return;  // (a pinned particle's sums stay zero)
+        vec3 v = p_in[i].vel.xyz;
+        vec3 before = x;
+        self_move(i, x, v);
+        if (x == before && v == p_in[i].vel.xyz) return;  // (no contact moved it)
+        p_in[i].pos.xyz = x;
+        p_in[i].vel.xyz = v;
+        return;
+    }
+    if (PASS == PASS_REAPPLY) {
+        self_reapply(i, x);
+        return;
+    }
     list_state(i, pc.substep, self_hashed(), LISTS);
     // (p_out: the substep's start, which only the find pass notes)
     self_pass(cell, i, x, APPLY ? x : p_out[i].pos.xyz, APPLY);

@@ -20,7 +20,12 @@ layout(std430, set = 0, binding = 1) restrict readonly buffer ObjectBuf { Object
 layout(std430, set = 0, binding = 2) buffer StateIn { Particle p_in[]; };
 layout(std430, set = 0, binding = 3) buffer StateOut { Particle p_out[]; };
 #else
+#ifdef STATE_IN_WRITE
+// A cloth's self-contact passes move the physics output between passes (self_pairs.comp).
+layout(std430, set = 0, binding = 2) buffer StateIn { Particle p_in[]; };
+#else
 layout(std430, set = 0, binding = 2) readonly buffer StateIn { Particle p_in[]; };
+#endif
 #ifdef STATE_OUT_READ
 // The constraint stage also reads where its own particle began the substep (collider friction).
 layout(std430, set = 0, binding = 3) buffer StateOut { Particle p_out[]; };

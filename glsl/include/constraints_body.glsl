@@ -257,7 +257,7 @@ vec3 constraint_correction(uvec2 cell, vec3 x) {
 
     if (n_active > 1u) correction /= float(n_active);
 
-    if (self_on && triangle_contact()) correction += self_take(cell.x + cell.y * obj.dims.x, position_only);
+    if (self_on && triangle_contact()) correction += self_take(cell.x + cell.y * obj.dims.x, position_only, true);
 
     // Inter-object contact: what contact.comp summed from the other objects' particles, added
     // whole (each pair's share is already split so that the pair conserves momentum).

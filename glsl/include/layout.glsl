@@ -87,8 +87,8 @@ struct ObjectParams {
                                       // two a vec4, so the layout is also valid std140
     uint hash_mask;        // spatial hash table size - 1 (a power of two minus one)
     float cell_inv;        // 1 / hash cell edge [1/m]; the edge is twice self_distance
-    float pad0;            // unused (keeps rest at its 16-byte alignment)
-    float pad1;
+    uint contact_iterations; // passes over a cloth's self-contacts a substep (SimModel's)
+    float pad1;            // unused (keeps rest at its 16-byte alignment)
     vec4 rest[3];          // rest length of spring s (SPRINGS order) in rest[s / 4][s % 4] [m]
     vec4 xpbd[3];          // XPBD per spring type, for the substep: alpha~ = 1 / (k dt^2),
                            // gamma = b / (k dt), and the correction's scale relaxation / denominator

@@ -28,7 +28,7 @@
 // takes part in lambda by the same weight, so a particle's contacts never add up to more than
 // its largest overlap.
 //
-// Three passes a substep (per stage: self_pairs.comp twice, then the constraints; fused: phases
+// The passes of a substep (per stage: self_pairs.comp, then the constraints; fused: phases
 // between barriers):
 // 1. find (self_pass, constraints_body.glsl): each particle, pinned too, notes where it began
 //    the substep (the approach and friction read it) and finds its triangles within h through
@@ -40,6 +40,13 @@
 //    found more searches again: once per stage, else for each further PAIR_MAX; see
 //    SELF_APPLY_FOUND) and adds every particle's move to its sum, in fixed point (exact,
 //    order-independent integer atomics);
+// 2b. with obj.contact_iterations = K > 1, K - 1 times: each free particle's physics output
+//    moves by its sum, the velocity following but for the position-only part (self_move), and
+//    each particle applies the contacts it kept again from the moved positions (self_reapply;
+//    a pair separated by then takes no part; a particle that found more than PAIR_MAX, none),
+//    its counts as the find pass made them. A layer
+//    landing on several others takes a share of each contact a pass (mass splitting), so one
+//    pass stops it only over several substeps, deeper than the thickness;
 // 3. the constraint stage adds its particle's sum to its correction whole and clears it
 //    (self_take).
 // The CPU twin is sim::cpu::self_contact. Buffer self_pairs (binding 17), n particles: words
@@ -304,20 +311,41 @@ void apply_contact(uint p, vec3 x, uint t) {
     }
 }
 
-// The constraint stage's share: particle i's summed moves (and in `rest` the part of them
-// that moves the position only), cleared for the next substep.
-vec3 self_take(uint i, out vec3 rest) {
+// Another pass over particle i's (at x) contacts of the substep, from the positions the
+// passes before moved. A particle that found more than PAIR_MAX takes part in the first pass
+// only: it keeps only some of them, which ones depends on the search's order, and a search
+// from the moved positions would find others.
+void self_reapply(uint i, vec3 x) {
+    uint found = uint(self_pairs[pairs_len_word(i)]);
+    if (found > PAIR_MAX) return;
+    for (uint k = 0u; k < found; ++k) apply_contact(i, x, uint(self_pairs[pair_word(k, i)]));
+}
+
+// Particle i's summed moves of the last pass (and in `rest` the part of them that moves the
+// position only), cleared for the next; `last`: the substep's last pass, which clears the
+// particle's count of contacts too (the constraint stage's share; the passes before move
+// the physics output by theirs, see self_move).
+vec3 self_take(uint i, out vec3 rest, bool last) {
     ivec3 q = ivec3(self_pairs[4u * i], self_pairs[4u * i + 1u], self_pairs[4u * i + 2u]);
     uint w = rest_word(i);
     rest = vec3(ivec3(self_pairs[w], self_pairs[w + 1u], self_pairs[w + 2u])) * (1.0 / pair_fix());
     self_pairs[4u * i] = 0;
     self_pairs[4u * i + 1u] = 0;
     self_pairs[4u * i + 2u] = 0;
-    self_pairs[4u * i + 3u] = 0;
+    if (last) self_pairs[4u * i + 3u] = 0;
     self_pairs[w] = 0;
     self_pairs[w + 1u] = 0;
     self_pairs[w + 2u] = 0;
     return vec3(q) * (1.0 / pair_fix());
+}
+
+// Between two passes (contact_iterations > 1): free particle i's physics output (x, v) moved
+// by the last pass's sums, the velocity following but for the position-only part.
+void self_move(uint i, inout vec3 x, inout vec3 v) {
+    vec3 rest;
+    vec3 move = self_take(i, rest, false);
+    x += move;
+    v += (move - rest) / g.dt;
 }
 
 #endif

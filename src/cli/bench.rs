@@ -46,6 +46,10 @@ pub struct BenchArgs {
     /// Solver iterations per substep (the iterative integrators).
     #[arg(long, default_value_t = 4, value_parser = clap::value_parser!(u32).range(1..=1000))]
     pub iterations: u32,
+    /// Passes over a cloth's contacts with its own triangles a substep (`sim.contact_iterations`;
+    /// the cases with triangle self-contact).
+    #[arg(long, default_value_t = crate::sim::model::DEFAULT_CONTACT_ITERATIONS, value_parser = clap::value_parser!(u32).range(1..=64))]
+    pub contact_iterations: u32,
     /// Run each case as the app does instead (simulation and drawing into an offscreen target,
     /// two frames in flight), timed by the wall clock next to its GPU time and its GPU-only
     /// figure: the paper's cases unless --filter picks others. Writes end-to-end.md and .csv.
@@ -82,6 +86,7 @@ pub fn run(args: &BenchArgs, options: &ContextOptions) -> Result<()> {
         .map(|mut c| {
             c.scene.sim.integrator = crate::scene::IntegratorChoice::Method(args.integrator);
             c.scene.sim.iterations = args.iterations;
+            c.scene.sim.contact_iterations = args.contact_iterations;
             c
         })
         .collect();

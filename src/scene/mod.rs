@@ -85,6 +85,11 @@ pub struct SimSettings {
     /// scenes with more than one object pay for it.
     #[serde(default = "defaults::yes")]
     pub inter_object: bool,
+    /// Passes over a cloth's contacts with its own triangles each substep (self_contact =
+    /// "triangles"): a layer landing on several others is stopped within the substep only
+    /// with several.
+    #[serde(default = "defaults::contact_iterations")]
+    pub contact_iterations: u32,
 }
 
 /// `sim.integrator`: a method (by its label in `sim::integrator`'s table), or "auto".
@@ -159,6 +164,7 @@ impl Default for SimSettings {
             relaxation: 1.0,
             tolerance: defaults::tolerance(),
             inter_object: true,
+            contact_iterations: defaults::contact_iterations(),
         }
     }
 }
@@ -559,6 +565,9 @@ mod defaults {
     }
     pub fn iterations() -> u32 {
         10
+    }
+    pub fn contact_iterations() -> u32 {
+        crate::sim::model::DEFAULT_CONTACT_ITERATIONS
     }
     pub fn yes() -> bool {
         true

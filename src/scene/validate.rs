@@ -28,6 +28,9 @@ const MAX_ACCELERATION: f64 = 1e5;
 const MAX_SPEED: f64 = 1e8;
 /// The largest tube vertex offset, in units of the rope's radius (1e300 became inf in f32).
 const MAX_RING_WEIGHT: f64 = 100.0;
+/// The most passes over a cloth's self-contacts a substep (each costs about as much as the first's
+/// application).
+const MAX_CONTACT_ITERATIONS: u32 = 64;
 
 /// A value as the user would write it: in exponent form when very large or small.
 fn num(v: f64) -> String {
@@ -135,6 +138,12 @@ pub fn check(scene: &Scene) -> Check {
     }
     if !(1..=1000).contains(&s.iterations) {
         return Err(format!("sim.iterations = {}: must be between 1 and 1000", s.iterations));
+    }
+    if !(1..=MAX_CONTACT_ITERATIONS).contains(&s.contact_iterations) {
+        return Err(format!(
+            "sim.contact_iterations = {}: must be between 1 and {MAX_CONTACT_ITERATIONS}",
+            s.contact_iterations
+        ));
     }
     if !(s.relaxation > 0.0 && s.relaxation < 2.0) {
         return Err(format!("sim.relaxation = {}: must be between 0 and 2 (exclusive)", s.relaxation));

@@ -171,8 +171,9 @@ gpu_struct!(
     ring_weights: [[f32; 2]; ROPE_RING],
     hash_mask: u32,
     cell_inv: f32,
-    /// Unused (keep `rest` at its 16-byte alignment).
-    pad0: f32,
+    /// Passes over a cloth's contacts with its own triangles a substep.
+    contact_iterations: u32,
+    /// Unused (keeps `rest` at its 16-byte alignment).
     pad1: f32,
     /// Rest length of each spring, in the shaders' SPRINGS order [m].
     rest: [[f32; 4]; 3],

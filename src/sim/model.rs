@@ -190,6 +190,9 @@ pub enum SelfCollisionMethod {
     BruteForce,
 }
 
+/// `sim.contact_iterations` unless a scene sets it.
+pub const DEFAULT_CONTACT_ITERATIONS: u32 = 4;
+
 #[derive(Debug, Clone, PartialEq)]
 pub struct SimModel {
     pub gravity: DVec3,
@@ -216,6 +219,9 @@ pub struct SimModel {
     pub relaxation: f64,
     /// Objects touch each other (`inter_object_contact` says whether a scene uses it).
     pub inter_object: bool,
+    /// Passes over a cloth's contacts with its own triangles a substep (found once, each
+    /// pass applied from the positions the passes before moved; `sim::cpu::self_contact`).
+    pub contact_iterations: u32,
 }
 
 impl SimModel {

@@ -406,6 +406,10 @@ fn simulation_panel(ui: &Ui, state: &mut EditorState, scene: &mut Scene, actions
     if scene.cloths.len() + scene.ropes.len() > 1 {
         check(ui, "objects touch each other", &mut scene.sim.inter_object);
     }
+    if scene.cloths.iter().any(|c| c.self_collision && c.self_contact == crate::scene::SelfContact::Triangles)
+    {
+        int(ui, "contact iterations", &mut scene.sim.contact_iterations, 1, 64);
+    }
     use crate::scene::IntegratorChoice as I;
     choice(ui, "integrator", &mut scene.sim.integrator, &I::all());
     match scene.sim.integrator {

@@ -6,7 +6,9 @@ use glam::DVec3;
 use msdsim::sim::collider::ColliderModel;
 use msdsim::sim::cpu::{CpuObject, CpuSim};
 use msdsim::sim::gpu::{GpuSim, ObjectState};
-use msdsim::sim::model::{default_ring_weights, ObjectKind, ObjectModel, SimModel, WindModel};
+use msdsim::sim::model::{
+    default_ring_weights, ObjectKind, ObjectModel, SimModel, WindModel, DEFAULT_CONTACT_ITERATIONS,
+};
 use msdsim::vk::{ContextOptions, GpuContext};
 
 /// A context with validation and synchronization validation. Panics (never skips) when no
@@ -113,6 +115,7 @@ pub fn scene(objects: Vec<ObjectModel>) -> SimModel {
         // Off unless a test turns it on: the multi-object scenes here test other things, on
         // both GPU paths (inter-object contact runs per stage).
         inter_object: false,
+        contact_iterations: DEFAULT_CONTACT_ITERATIONS,
     }
 }
 

@@ -340,11 +340,15 @@ fn constraints(
     (x, v): (&[DVec3], &[DVec3]),
 ) -> (Vec<DVec3>, Vec<DVec3>) {
     let cols = o.dims[0] as usize;
-    let mut nx = x.to_vec();
     let mut nv = vec![DVec3::ZERO; x.len()];
     let share = |j: usize| if o.pinned[j] { 1.0 } else { 0.5 };
     let edges = crate::sim::collider::edges_needed(o, &m.colliders);
-    let (own, own_rest) = self_contact::self_contact(o, x, start);
+    // Every pass over the cloth's own contacts but the last moves the physics output (the
+    // velocity following but for the position-only part); the last joins the correction below.
+    let (moved, shift, own, own_rest) = self_contact::self_contact(o, x, start, m.contact_iterations);
+    let shifted: Vec<DVec3> = v.iter().zip(&shift).map(|(v, s)| *v + *s / dt).collect();
+    let (x, v) = (moved.as_slice(), shifted.as_slice());
+    let mut nx = x.to_vec();
     for i in 0..x.len() {
         if o.pinned[i] {
             continue;

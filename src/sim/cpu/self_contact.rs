@@ -15,6 +15,10 @@
 use crate::sim::model::ObjectModel;
 use glam::{DVec2, DVec3};
 
+/// Contacts the GPU keeps for a particle in a substep; a particle that finds more (as the
+/// particle of its pairs) takes part in the substep's first pass only (`self_reapply`).
+pub const PAIR_MAX: usize = 16;
+
 /// The grid's triangles as the renderer draws them, each with its number t = 2 a + k (a the
 /// cell's first corner): (a, a + cols, a + 1) for k = 0, (a + 1, a + cols, a + cols + 1) for 1.
 pub fn cloth_triangles(cols: usize, rows: usize) -> Vec<(usize, [usize; 3])> {
@@ -145,20 +149,68 @@ pub fn contacts(o: &ObjectModel, x: &[DVec3]) -> Vec<Contact> {
 /// Each particle's summed moves from cloth `o`'s contacts with its own triangles (positions
 /// `x`, the physics output; `start`, where each began the substep), and the parts of them
 /// that move the position only (undoing overlaps from earlier substeps); zero for pinned
-/// particles.
-pub(super) fn self_contact(o: &ObjectModel, x: &[DVec3], start: &[DVec3]) -> (Vec<DVec3>, Vec<DVec3>) {
-    let mut moves = vec![DVec3::ZERO; x.len()];
-    let mut rests = vec![DVec3::ZERO; x.len()];
-    let Some(h) = o.self_distance.filter(|_| o.has_triangles()) else { return (moves, rests) };
-    let free = |k: usize| if o.pinned[k] { 0.0 } else { 1.0 };
-    let contacts = contacts(o, x);
+/// particles. The contacts are those at `x`; `iterations` passes apply them, each from the
+/// positions the passes before moved (a pair separated by then takes no part; the contacts of
+/// a particle that found more than PAIR_MAX, the first pass only). Returns the
+/// positions after all passes but the last, and the last pass's moves (the constraint stage
+/// adds those, as the GPU's takes the last pass's sums).
+pub(super) fn self_contact(
+    o: &ObjectModel,
+    x: &[DVec3],
+    start: &[DVec3],
+    iterations: u32,
+) -> (Vec<DVec3>, Vec<DVec3>, Vec<DVec3>, Vec<DVec3>) {
+    let mut xk = x.to_vec();
+    let mut vk_shift = vec![DVec3::ZERO; x.len()];
+    let Some(h) = o.self_distance.filter(|_| o.has_triangles()) else {
+        let zero = vec![DVec3::ZERO; x.len()];
+        return (xk, vk_shift, zero.clone(), zero);
+    };
+    let found = contacts(o, x);
     let mut count = vec![0.0; x.len()];
-    for &(p, tv, _, _, overlap) in &contacts {
+    for &(p, tv, _, _, overlap) in &found {
         for k in std::iter::once(p).chain(tv).filter(|&k| !o.pinned[k]) {
             count[k] += count_weight(overlap, h);
         }
     }
-    for (p, tv, w, n, overlap) in contacts {
+    let mut found_by = vec![0; x.len()];
+    for c in &found {
+        found_by[c.0] += 1;
+    }
+    let again: Vec<Contact> = found.iter().filter(|c| found_by[c.0] <= PAIR_MAX).copied().collect();
+    let mut last = apply(o, h, &found, &count, x, start);
+    for _ in 1..iterations {
+        for i in 0..x.len() {
+            xk[i] += last.0[i];
+            vk_shift[i] += last.0[i] - last.1[i];
+        }
+        last = apply(o, h, &again, &count, &xk, start);
+    }
+    (xk, vk_shift, last.0, last.1)
+}
+
+/// One pass over cloth `o`'s contacts `found` (particles' counts `count`) at positions `x`:
+/// each particle's summed moves and their position-only parts.
+fn apply(
+    o: &ObjectModel,
+    h: f64,
+    found: &[Contact],
+    count: &[f64],
+    x: &[DVec3],
+    start: &[DVec3],
+) -> (Vec<DVec3>, Vec<DVec3>) {
+    let mut moves = vec![DVec3::ZERO; x.len()];
+    let mut rests = vec![DVec3::ZERO; x.len()];
+    let free = |k: usize| if o.pinned[k] { 0.0 } else { 1.0 };
+    for &(p, tv, ..) in found {
+        // The pair again at these positions (as the GPU's apply_contact computes it).
+        let w = triangle_nearest(x[p], x[tv[0]], x[tv[1]], x[tv[2]]);
+        let off = x[p] - (x[tv[0]] * w.x + x[tv[1]] * w.y + x[tv[2]] * w.z);
+        let d = off.length();
+        if d >= h || d == 0.0 {
+            continue;
+        }
+        let (n, overlap) = (off / d, h - d);
         // Each free particle's mass split among its contacts.
         let split = |k: usize| free(k) * f64::max(1.0, count[k]);
         let weights = DVec3::from_array(tv.map(free));

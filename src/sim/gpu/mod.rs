@@ -47,7 +47,7 @@ use crate::vk::{
 };
 use anyhow::{Context as _, Result};
 use object::{collider_data, globals, object_params, GpuObject};
-use pipelines::{Pipelines, Stage};
+use pipelines::{Pipelines, SelfPass, Stage};
 
 /// Workgroup shape of the cloth stages (the paper's 16 x 16) and of the rope stages (1-D).
 const CLOTH_GROUP: [u32; 2] = [16, 16];
@@ -478,9 +478,23 @@ impl GpuSim {
         barriers.extend(
             cloths.iter().map(|o| BufferBarrier::new(&o.state[0], Access::ComputeRead, Access::ComputeWrite)),
         );
-        for apply in [false, true] {
+        // The moves between passes write the physics output, which the passes, the hash's
+        // build, contact between objects and the constraints read (the passes' shader may
+        // write it in every pass, as validation sees it).
+        let outputs: Vec<BufferBarrier<'_>> = cloths
+            .iter()
+            .map(|o| BufferBarrier::new(&o.state[1], Access::ComputeReadWrite, Access::ComputeReadWrite))
+            .collect();
+        rec.barrier(&outputs);
+        barriers.extend(outputs);
+        let again = [SelfPass::Move, SelfPass::Reapply];
+        let passes = [SelfPass::Find, SelfPass::Apply]
+            .into_iter()
+            .chain((1..self.model.contact_iterations).flat_map(|_| again));
+        for pass in passes {
             for o in &cloths {
-                let stage = Stage::SelfPairs(o.plan.features, self.lists_on(o), apply);
+                let lists = self.lists_on(o) && matches!(pass, SelfPass::Find | SelfPass::Apply);
+                let stage = Stage::SelfPairs(o.plan.features, lists, pass);
                 rec.dispatch_with(self.pipelines.get(stage), o.sets[1], o.step_groups, &[substep]);
             }
             rec.barrier(&barriers);

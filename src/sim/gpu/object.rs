@@ -486,7 +486,7 @@ pub(super) fn globals(model: &SimModel) -> Globals {
 }
 
 /// Contacts a particle keeps in a substep (`PAIR_MAX` in glsl/include/self_contact.glsl).
-pub(super) const SELF_PAIR_MAX: u64 = 16;
+pub(super) const SELF_PAIR_MAX: u64 = crate::sim::cpu::self_contact::PAIR_MAX as u64;
 
 /// Whether object `o` has contact with its own triangles (a cloth with self-collision).
 pub(super) fn has_self_pairs(o: &ObjectModel) -> bool {
@@ -530,7 +530,7 @@ pub(super) fn object_params(o: &ObjectModel, model: &SimModel) -> ObjectParams {
         ring_weights: o.ring_weights.map(|w| w.map(|x| x as f32)),
         hash_mask: buckets - 1,
         cell_inv: (1.0 / cell) as f32,
-        pad0: 0.0,
+        contact_iterations: model.contact_iterations,
         pad1: 0.0,
         rest: crate::sim::cpu::rest_lengths(o).map(|g| g.map(|l| l as f32)),
         xpbd: std::array::from_fn(|t| xpbd_constants(o.stiffness[t], o, model).map(|c| c as f32)),

@@ -12,6 +12,19 @@ use crate::vk::{BindingSetLayout, ComputePipeline, GpuContext, Retired};
 use anyhow::{Context as _, Result};
 use std::collections::HashMap;
 
+/// A pass of a cloth's contact with its own triangles (`self_pairs.comp`'s PASS, in its order).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub(super) enum SelfPass {
+    /// Each particle's contacts found, kept and counted.
+    Find,
+    /// Each contact's moves summed into its particles.
+    Apply,
+    /// The physics output moved by the sums (between passes, `sim.contact_iterations` > 1).
+    Move,
+    /// The kept contacts applied again from the moved positions.
+    Reapply,
+}
+
 /// One compute pipeline: a shader with its specialization constants. `u32` fields are the
 /// `FEATURES` bits (`ObjectPlan::features`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
@@ -24,9 +37,9 @@ pub(super) enum Stage {
     Iterate(ObjectKind, Integrator),
     /// The constraints (`lists`: with the self-collision contact lists on, `hash.rs`).
     Constraints(ObjectKind, u32, bool),
-    /// A cloth's contact with its own triangles: the find pass or the apply pass (`lists`:
-    /// with the contact lists on; `self_pairs.comp`).
-    SelfPairs(u32, bool, bool),
+    /// A cloth's contact with its own triangles: one of its passes (`lists`: with the contact
+    /// lists on, which only the find and apply passes read; `self_pairs.comp`).
+    SelfPairs(u32, bool, SelfPass),
     /// Cloth normals or rope tube vertices and the runtime guard (`drawn`), or the guard alone.
     Surface(ObjectKind, bool),
     HashCount,
@@ -88,8 +101,8 @@ impl Stage {
                 [group(kind), vec![0, f, s.keeps_prediction as u32, s.adaptive_start as u32]].concat()
             }
             Stage::Constraints(kind, f, lists) => [group(kind), vec![lists as u32, f]].concat(),
-            Stage::SelfPairs(f, lists, apply) => {
-                [group(ObjectKind::Cloth), vec![lists as u32, f, apply as u32]].concat()
+            Stage::SelfPairs(f, lists, pass) => {
+                [group(ObjectKind::Cloth), vec![lists as u32, f, pass as u32]].concat()
             }
             Stage::Iterate(kind, _) => group(kind),
             Stage::Surface(_, drawn) => vec![drawn as u32],
@@ -137,9 +150,18 @@ impl Stage {
             }
             if super::object::has_self_pairs(o) {
                 let f = plan.features;
-                stages.extend([Stage::SelfPairs(f, false, false), Stage::SelfPairs(f, false, true)]);
+                stages.extend([
+                    Stage::SelfPairs(f, false, SelfPass::Find),
+                    Stage::SelfPairs(f, false, SelfPass::Apply),
+                ]);
                 if super::object::builds_hash(o, model) {
-                    stages.extend([Stage::SelfPairs(f, true, false), Stage::SelfPairs(f, true, true)]);
+                    stages.extend([
+                        Stage::SelfPairs(f, true, SelfPass::Find),
+                        Stage::SelfPairs(f, true, SelfPass::Apply),
+                    ]);
+                }
+                if model.contact_iterations > 1 {
+                    stages.extend([SelfPass::Move, SelfPass::Reapply].map(|p| Stage::SelfPairs(f, false, p)));
                 }
             }
         }
