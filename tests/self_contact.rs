@@ -96,7 +96,8 @@ fn a_cloth_folding_over_its_middle_row_never_passes_through_itself() {
 /// folds are sharper than a cell or edges cross edges, which no vertex-triangle contact sees
 /// (issue 26 is open on those): measured 10 on the reference and 6 on the GPU (fused; where it
 /// piles is chaotic: 23 to 32 in builds of the same model that differed in the order of
-/// rounding). The bound, 40, says the iterations hold; the target is 0.
+/// rounding, so the bound, 60, leaves room for another driver's rounding while staying far
+/// under one pass's count); the target is 0. The count changes in place.
 #[test]
 fn contact_iterations_stop_a_strip_piling_on_itself() {
     let mut c = soft_cloth(5, 61);
@@ -139,14 +140,20 @@ fn contact_iterations_stop_a_strip_piling_on_itself() {
         g.step_frame(&ctx).unwrap();
         gpu_worst = gpu_worst.max(crossings(&g.read_states(&ctx).unwrap()[0].positions(), 5, 61));
     }
+    // The count changes in place while more than one pass stays (as the editor applies it);
+    // one pass or more than one is a rebuild (the further passes' pipelines).
+    let with = |k: u32| SimModel { contact_iterations: k, ..s.clone() };
+    assert!(g.takes_params(&with(2)) && !g.takes_params(&with(1)));
+    g.update_params(&with(2)).unwrap();
+    g.step_frame(&ctx).unwrap();
     g.destroy(&ctx);
     assert_clean(&ctx);
     println!(
         "crossing edges at worst: reference, one pass {one}, four {four}; GPU (fused), four {gpu_worst}"
     );
-    assert!(one > 200, "one pass a substep should let the pile through (measured 283), not {one}");
+    assert!(one > 100, "one pass a substep should let the pile through (measured 283), not {one}");
     assert!(
-        four <= 40 && gpu_worst <= 40,
+        four <= 60 && gpu_worst <= 60,
         "four passes: {four} (reference), {gpu_worst} (GPU) crossing edges"
     );
 }

@@ -280,6 +280,8 @@ void apply_contact(uint p, vec3 x, uint t) {
     vec3 w;
     vec3 n;
     float d = pair_distance(x, t, tv, w, n);
+    // (A further pass: the pair may have parted, or, moved, lost its normal.)
+    if (!(d > 0.0 && d < obj.self_distance)) return;
     float w_p = CPINNED(p) ? 0.0 : 1.0;
     vec3 free_t = vec3(CPINNED(tv.x) ? 0.0 : 1.0, CPINNED(tv.y) ? 0.0 : 1.0, CPINNED(tv.z) ? 0.0 : 1.0);
     // Each free particle's mass split among its contacts: inverse mass w n, n its count.

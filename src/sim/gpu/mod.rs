@@ -462,11 +462,12 @@ impl GpuSim {
         }
     }
 
-    /// The find and apply passes of the cloths' contact with their own triangles on the
-    /// per-stage path (`self_pairs.comp`), after the spatial hash's build, each ordered after
-    /// the one before and before the constraints by a barrier on the objects' scratch buffers
-    /// and on the state the constraints write (which the passes read: where each particle
-    /// began the substep, for friction).
+    /// The passes of the cloths' contact with their own triangles on the per-stage path
+    /// (`self_pairs.comp`), after the spatial hash's build: find, apply, then for each further
+    /// contact iteration a move of the physics output and a re-application; each ordered after
+    /// the one before and before the constraints by a barrier on the objects' scratch buffers,
+    /// on the state the constraints write (which the passes read: where each particle began
+    /// the substep, for friction) and on the physics output (which the moves write).
     fn record_self_pairs(&self, rec: &mut Recorder<'_>, substep: u32) {
         let cloths: Vec<&GpuObject> =
             self.objects.iter().filter(|o| !self.is_fused(o) && o.self_pairs.is_some()).collect();
@@ -605,9 +606,11 @@ impl GpuSim {
 
     /// Whether `model` differs from the running one only in what `update_params` rewrites: the
     /// same objects, collider capacity, substep count, integrator and self-collision method, and
-    /// the same compiled-in features and fused layouts. Otherwise rebuild the simulation.
+    /// the same compiled-in features and fused layouts, more than one contact pass on both or
+    /// neither (the further passes' pipelines). Otherwise rebuild the simulation.
     pub fn takes_params(&self, model: &SimModel) -> bool {
         model.objects.len() == self.objects.len()
+            && (model.contact_iterations > 1) == (self.model.contact_iterations > 1)
             && model.colliders.len() <= self.collider_capacity()
             && model.substeps == self.model.substeps
             && model.integrator == self.model.integrator
