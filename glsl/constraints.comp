@@ -38,6 +38,13 @@ void main() {
         atomicAdd(self_list[list_counters()], 1u);
         if (self_list[list_control(pc.substep)] != 0u) atomicAdd(self_list[list_counters() + 1u], 1u);
     }
+    if (has(F_SELF) && triangle_contact() && cell == uvec2(0u)) {
+        // No further contact passes until a find pass asks for them (self_contact.glsl).
+        uint w = further_passes_word();
+        self_pairs[w] = 0;
+        self_pairs[w + 1u] = 0;
+        self_pairs[w + 2u] = 0;
+    }
     if (cell.x >= obj.dims.x || cell.y >= obj.dims.y) return;
     constraints_particle(cell, pc.substep, LISTS);
 }

@@ -44,16 +44,19 @@
 //    moves by its sum, the velocity following but for the position-only part (self_move), and
 //    each particle applies the contacts it kept again from the moved positions (self_reapply;
 //    a pair separated by then takes no part; a particle that found more than PAIR_MAX, none),
-//    its counts as the find pass made them. A layer
-//    landing on several others takes a share of each contact a pass (mass splitting), so one
-//    pass stops it only over several substeps, deeper than the thickness;
+//    its counts as the find pass made them; only in a substep where some particle found a
+//    contact (per stage an indirect dispatch, further_passes_word). A layer landing on several
+//    others takes a share of each contact a pass (mass splitting), so one pass stops it only
+//    over several substeps, deeper than the thickness;
 // 3. the constraint stage adds its particle's sum to its correction whole and clears it
 //    (self_take).
 // The CPU twin is sim::cpu::self_contact. Buffer self_pairs (binding 17), n particles: words
 // [4 i, 4 i + 4) particle i's sum (x, y, z in units of h / 2^26) and count (in units of
 // 2^-16); 4 n + i the number of contacts it keeps; (5 + k) n + i its contact k's triangle;
 // [(5 + PAIR_MAX) n + 3 i, + 3) where it began the substep; [(8 + PAIR_MAX) n + 3 i, + 3) the
-// part of its sum that moves the position only (units as the sum).
+// part of its sum that moves the position only (units as the sum); [(11 + PAIR_MAX) n, + 3)
+// the further passes' indirect dispatch per stage (workgroups; zero in a substep where no
+// particle found a contact: the find pass writes it, the constraint stage zeroes it).
 // Include in constraints_body.glsl (CPOS, CPINNED defined).
 #ifndef MSD_SELF_CONTACT_GLSL
 #define MSD_SELF_CONTACT_GLSL
@@ -67,6 +70,7 @@ uint pairs_len_word(uint i) { return 4u * particle_count() + i; }
 uint pair_word(uint k, uint i) { return (5u + k) * particle_count() + i; }
 uint start_word(uint i) { return (5u + PAIR_MAX) * particle_count() + 3u * i; }
 uint rest_word(uint i) { return (8u + PAIR_MAX) * particle_count() + 3u * i; }
+uint further_passes_word() { return (11u + PAIR_MAX) * particle_count(); }
 // Where particle i began the substep, as the find pass noted it.
 vec3 pair_start(uint i) {
     uint w = start_word(i);

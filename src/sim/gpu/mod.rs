@@ -474,7 +474,16 @@ impl GpuSim {
         if cloths.is_empty() {
             return;
         }
-        let mut barriers: Vec<BufferBarrier<'_>> = cloths.iter().flat_map(|o| o.scratch_barriers()).collect();
+        // The find pass writes the further passes' indirect dispatch into self_pairs.
+        let pairs =
+            |b: &Buffer| cloths.iter().any(|o| o.self_pairs.as_ref().is_some_and(|p| std::ptr::eq(p, b)));
+        let mut barriers: Vec<BufferBarrier<'_>> = (cloths.iter())
+            .flat_map(|o| o.scratch())
+            .map(|b| {
+                let a = if pairs(b) { Access::ComputeOrIndirect } else { Access::ComputeReadWrite };
+                BufferBarrier::new(b, a, a)
+            })
+            .collect();
         // (sets[1] reads state[1] and writes state[0], binding 3)
         barriers.extend(
             cloths.iter().map(|o| BufferBarrier::new(&o.state[0], Access::ComputeRead, Access::ComputeWrite)),
@@ -496,7 +505,15 @@ impl GpuSim {
             for o in &cloths {
                 let lists = self.lists_on(o) && matches!(pass, SelfPass::Find | SelfPass::Apply);
                 let stage = Stage::SelfPairs(o.plan.features, lists, pass);
-                rec.dispatch_with(self.pipelines.get(stage), o.sets[1], o.step_groups, &[substep]);
+                let pipeline = self.pipelines.get(stage);
+                match (pass, &o.self_pairs) {
+                    // Only in a substep where some particle found a contact.
+                    (SelfPass::Move | SelfPass::Reapply, Some(args)) => {
+                        let offset = object::further_passes_offset(o.particles as u64);
+                        rec.dispatch_indirect(pipeline, o.sets[1], args, offset, &[substep]);
+                    }
+                    _ => rec.dispatch_with(pipeline, o.sets[1], o.step_groups, &[substep]),
+                }
             }
             rec.barrier(&barriers);
         }

@@ -255,10 +255,11 @@ impl GpuObject {
                 self_list = Some(Buffer::new(ctx, &name, bytes, usage, MemoryKind::GpuOnly)?);
             }
             if has_self_pairs(o) {
-                let usage = BufferUsage::STORAGE | BufferUsage::TRANSFER_DST;
+                let usage = BufferUsage::STORAGE | BufferUsage::TRANSFER_DST | BufferUsage::INDIRECT;
                 // Sums and counts (4), lengths (1), contacts, where each began the substep (3),
-                // the sums' parts that move the position only (3).
-                let bytes = 4 * (5 + SELF_PAIR_MAX + 6) * n;
+                // the sums' parts that move the position only (3); the further passes'
+                // indirect dispatch.
+                let bytes = further_passes_offset(n) + 12;
                 let name = format!("{}.self_pairs", o.name);
                 self_pairs = Some(Buffer::new(ctx, &name, bytes, usage, MemoryKind::GpuOnly)?);
             }
@@ -483,6 +484,12 @@ pub(super) fn globals(model: &SimModel) -> Globals {
         wind_tangent: wind.and_then(|w| w.air).map(|a| a.tangent as f32).unwrap_or(0.0),
         guard_strain: model.max_strain as f32,
     }
+}
+
+/// Byte offset in an object's self_pairs buffer (`n` particles) of the indirect dispatch of
+/// the further contact passes (`further_passes_word` in glsl/include/self_contact.glsl).
+pub(super) fn further_passes_offset(n: u64) -> u64 {
+    4 * (5 + SELF_PAIR_MAX + 6) * n
 }
 
 /// Contacts a particle keeps in a substep (`PAIR_MAX` in glsl/include/self_contact.glsl).
