@@ -60,12 +60,13 @@ void main() {
     list_state(i, pc.substep, self_hashed(), LISTS);
     // (p_out: the substep's start, which only the find pass notes)
     self_pass(cell, i, x, APPLY ? x : p_out[i].pos.xyz, APPLY);
-    if (PASS == PASS_FIND && pair_len > 0u) {
-        // The further passes run (every thread that found a contact writes the same).
+    if (PASS == PASS_FIND && subgroupAny(pair_len > 0u) && subgroupElect()) {
+        // The further passes run: one thread of each subgroup where some particle found a
+        // contact writes the dispatch's size (atomically: all write the same).
         uint w = further_passes_word();
-        self_pairs[w] = int(gl_NumWorkGroups.x);
-        self_pairs[w + 1u] = int(gl_NumWorkGroups.y);
-        self_pairs[w + 2u] = int(gl_NumWorkGroups.z);
+        atomicMax(self_pairs[w], int(gl_NumWorkGroups.x));
+        atomicMax(self_pairs[w + 1u], int(gl_NumWorkGroups.y));
+        atomicMax(self_pairs[w + 2u], int(gl_NumWorkGroups.z));
     }
     if (!APPLY && list_build) set_list_header(i, x, list_len);
 }

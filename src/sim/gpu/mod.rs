@@ -474,9 +474,12 @@ impl GpuSim {
         if cloths.is_empty() {
             return;
         }
-        // The find pass writes the further passes' indirect dispatch into self_pairs.
-        let pairs =
-            |b: &Buffer| cloths.iter().any(|o| o.self_pairs.as_ref().is_some_and(|p| std::ptr::eq(p, b)));
+        // The find pass writes the further passes' indirect dispatch into self_pairs (with one
+        // pass there are none, and the barriers leave the indirect stage out).
+        let further = self.model.contact_iterations > 1;
+        let pairs = |b: &Buffer| {
+            further && cloths.iter().any(|o| o.self_pairs.as_ref().is_some_and(|p| std::ptr::eq(p, b)))
+        };
         let mut barriers: Vec<BufferBarrier<'_>> = (cloths.iter())
             .flat_map(|o| o.scratch())
             .map(|b| {

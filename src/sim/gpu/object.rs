@@ -331,8 +331,9 @@ impl GpuObject {
     }
 
     /// Barriers on `scratch()` between two stages that may read and write it. (The contact
-    /// lists also hold the hash passes' indirect dispatches; `hash.rs` orders those reads in
-    /// the two barriers that must. The indirect stage in every barrier cost about 6 us a
+    /// lists also hold the hash passes' indirect dispatches, `hash.rs` orders those reads in
+    /// the two barriers that must, and self_pairs the further contact passes', which
+    /// `record_self_pairs` orders. The indirect stage in every barrier cost about 6 us a
     /// substep on a 256 x 256 cloth on the H100.)
     pub fn scratch_barriers(&self) -> Vec<BufferBarrier<'_>> {
         let rw = Access::ComputeReadWrite;
