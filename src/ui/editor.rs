@@ -406,8 +406,7 @@ fn simulation_panel(ui: &Ui, state: &mut EditorState, scene: &mut Scene, actions
     if scene.cloths.len() + scene.ropes.len() > 1 {
         check(ui, "objects touch each other", &mut scene.sim.inter_object);
     }
-    if scene.cloths.iter().any(|c| c.self_collision && c.self_contact == crate::scene::SelfContact::Triangles)
-    {
+    if scene.cloths.iter().any(|c| c.self_collision && c.self_contact == SelfContact::Triangles) {
         int(ui, "contact iterations", &mut scene.sim.contact_iterations, 1, 64);
     }
     use crate::scene::IntegratorChoice as I;

@@ -476,17 +476,13 @@ impl GpuSim {
         }
         // The find pass writes the further passes' indirect dispatch into self_pairs (with one
         // pass there are none, and the barriers leave the indirect stage out).
-        let further = self.model.contact_iterations > 1;
-        let pairs = |b: &Buffer| {
-            further && cloths.iter().any(|o| o.self_pairs.as_ref().is_some_and(|p| std::ptr::eq(p, b)))
+        let pairs = if self.model.contact_iterations > 1 {
+            Access::ComputeOrIndirect
+        } else {
+            Access::ComputeReadWrite
         };
-        let mut barriers: Vec<BufferBarrier<'_>> = (cloths.iter())
-            .flat_map(|o| o.scratch())
-            .map(|b| {
-                let a = if pairs(b) { Access::ComputeOrIndirect } else { Access::ComputeReadWrite };
-                BufferBarrier::new(b, a, a)
-            })
-            .collect();
+        let mut barriers: Vec<BufferBarrier<'_>> =
+            cloths.iter().flat_map(|o| o.scratch_barriers_with(pairs)).collect();
         // (sets[1] reads state[1] and writes state[0], binding 3)
         barriers.extend(
             cloths.iter().map(|o| BufferBarrier::new(&o.state[0], Access::ComputeRead, Access::ComputeWrite)),

@@ -336,8 +336,20 @@ impl GpuObject {
     /// `record_self_pairs` orders. The indirect stage in every barrier cost about 6 us a
     /// substep on a 256 x 256 cloth on the H100.)
     pub fn scratch_barriers(&self) -> Vec<BufferBarrier<'_>> {
+        self.scratch_barriers_with(Access::ComputeReadWrite)
+    }
+
+    /// `scratch_barriers` with `pairs` the access to self_pairs on both sides (the indirect
+    /// stage where it holds the further contact passes' dispatch).
+    pub fn scratch_barriers_with(&self, pairs: Access) -> Vec<BufferBarrier<'_>> {
         let rw = Access::ComputeReadWrite;
-        self.scratch().into_iter().map(|b| BufferBarrier::new(b, rw, rw)).collect()
+        let is_pairs = |b: &Buffer| self.self_pairs.as_ref().is_some_and(|p| std::ptr::eq(p, b));
+        (self.scratch().into_iter())
+            .map(|b| {
+                let a = if is_pairs(b) { pairs } else { rw };
+                BufferBarrier::new(b, a, a)
+            })
+            .collect()
     }
 
     pub fn destroy(self, ctx: &GpuContext) {
