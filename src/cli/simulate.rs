@@ -133,10 +133,10 @@ pub fn run(args: &SimulateArgs, options: &ContextOptions) -> Result<()> {
     }
     say!(
         out,
-        "preset: {} ({} objects, {} colliders, {} with {} substeps of {:.3} ms per frame{})",
+        "preset: {} ({}, {}, {} with {} substeps of {:.3} ms per frame{})",
         args.preset.display(),
-        model.objects.len(),
-        model.colliders.len(),
+        counted(model.objects.len(), "object"),
+        counted(model.colliders.len(), "collider"),
         model.integrator.label(),
         model.substeps,
         model.dt() * 1e3,
@@ -326,5 +326,14 @@ fn print_summary(out: &mut Stdout, sim: &GpuSim, timings: &[FrameTiming]) -> Res
             say!(out, "GPU stage means: physics + fused objects {p:.3} ms, constraints {c:.3} ms, surface {s:.3} ms")
         }
         None => say!(out, "GPU stage means: physics {p:.3} ms, constraints {c:.3} ms, surface {s:.3} ms"),
+    }
+}
+
+/// `n` and `noun`, plural unless n is 1 ("1 object", "2 colliders").
+fn counted(n: usize, noun: &str) -> String {
+    if n == 1 {
+        format!("1 {noun}")
+    } else {
+        format!("{n} {noun}s")
     }
 }

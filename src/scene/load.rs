@@ -111,7 +111,7 @@ pub fn parse(text: &str, origin: &str, overrides: &[String]) -> Result<Scene, Us
     let origin = if overrides.is_empty() { origin.to_string() } else { format!("{origin} (with --set)") };
     let scene: Scene = serde_path_to_error::deserialize(toml::Value::Table(table)).map_err(|e| {
         let path = e.path().to_string();
-        let message = one_line(e.inner().message());
+        let message = plain_types(&one_line(e.inner().message()));
         if path == "." {
             UserError(format!("{origin}: {message}"))
         } else {
@@ -188,6 +188,35 @@ fn shortened(text: &str) -> String {
 }
 
 /// A message folded onto one line.
+/// serde's messages with Rust's type names ("expected u32") in words a preset's author reads.
+fn plain_types(message: &str) -> String {
+    const WORDS: [(&str, &str); 8] = [
+        ("expected u8", "expected a whole number from 0 to 255"),
+        ("expected u16", "expected a whole number from 0 to 65535"),
+        ("expected u32", "expected a whole number from 0 to 4294967295"),
+        ("expected u64", "expected a whole number of 0 or more"),
+        ("expected usize", "expected a whole number of 0 or more"),
+        ("expected i32", "expected a whole number"),
+        ("expected f32", "expected a number"),
+        ("expected f64", "expected a number"),
+    ];
+    let mut out = message.to_string();
+    for (rust, plain) in WORDS {
+        // Whole words only ("expected u32", not a prefix of a longer name).
+        let mut at = 0;
+        while let Some(i) = out[at..].find(rust).map(|i| i + at) {
+            let end = i + rust.len();
+            if out[end..].chars().next().is_some_and(|c| c.is_alphanumeric()) {
+                at = end;
+                continue;
+            }
+            out.replace_range(i..end, plain);
+            at = i + plain.len();
+        }
+    }
+    out
+}
+
 fn one_line(message: &str) -> String {
     message.trim().lines().map(str::trim).filter(|l| !l.is_empty()).collect::<Vec<_>>().join("; ")
 }
@@ -210,6 +239,21 @@ fn parse_value(raw: &str) -> toml::Value {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// A number of the wrong kind is named in words, not by Rust's type ("expected u32").
+    #[test]
+    fn wrong_numbers_are_named_in_words() {
+        for set in ["sim.substeps=-1", "sim.substeps=1.5", "sim.substeps=\"many\""] {
+            let err = parse(BASE, "p.toml", &[set.to_string()]).unwrap_err().0;
+            assert!(
+                err.contains("sim.substeps") && err.contains("whole number from 0 to 4294967295"),
+                "{err}"
+            );
+            assert!(!err.contains("u32"), "{err}");
+        }
+        assert_eq!(plain_types("expected u32s"), "expected u32s");
+        assert_eq!(plain_types("x, expected f64"), "x, expected a number");
+    }
 
     /// A carriage return without a line feed is named as the reason (issue 30, item 12: the
     /// error gave none); Windows line endings parse as Unix ones.
