@@ -187,8 +187,8 @@ fn shortened(text: &str) -> String {
     format!("{}{more}", cut.escape_debug())
 }
 
-/// A message folded onto one line.
-/// serde's messages with Rust's type names ("expected u32") in words a preset's author reads.
+/// serde's messages, which end with the type expected, with Rust's type names ("expected
+/// u32") in words a preset's author reads.
 fn plain_types(message: &str) -> String {
     const WORDS: [(&str, &str); 8] = [
         ("expected u8", "expected a whole number from 0 to 255"),
@@ -200,23 +200,12 @@ fn plain_types(message: &str) -> String {
         ("expected f32", "expected a number"),
         ("expected f64", "expected a number"),
     ];
-    let mut out = message.to_string();
-    for (rust, plain) in WORDS {
-        // Whole words only ("expected u32", not a prefix of a longer name).
-        let mut at = 0;
-        while let Some(i) = out[at..].find(rust).map(|i| i + at) {
-            let end = i + rust.len();
-            if out[end..].chars().next().is_some_and(|c| c.is_alphanumeric()) {
-                at = end;
-                continue;
-            }
-            out.replace_range(i..end, plain);
-            at = i + plain.len();
-        }
-    }
-    out
+    (WORDS.iter())
+        .find_map(|(rust, plain)| message.strip_suffix(rust).map(|head| format!("{head}{plain}")))
+        .unwrap_or_else(|| message.to_string())
 }
 
+/// A message folded onto one line.
 fn one_line(message: &str) -> String {
     message.trim().lines().map(str::trim).filter(|l| !l.is_empty()).collect::<Vec<_>>().join("; ")
 }
