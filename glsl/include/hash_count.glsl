@@ -10,11 +10,8 @@
 #include "lists.glsl"
 
 // The per-stage hash's 1 / cell edge: twice the search's reach (obj.cell_inv), with lists
-// twice the lists' reach.
-float hash_cell_inv(bool lists) {
-    if (!lists) return obj.cell_inv;
-    return has_triangles() ? obj.cell_inv * (self_reach() / list_reach()) : obj.cell_inv * (1.0 / (1.0 + LIST_SKIN));
-}
+// twice the lists' reach (as fused.comp scales it).
+float hash_cell_inv(bool lists) { return lists ? obj.cell_inv * (self_reach() / list_reach()) : obj.cell_inv; }
 
 // Takes a rank in the bucket of position x of particle i (counts[] were zeroed by the last
 // scan).

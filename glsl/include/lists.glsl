@@ -19,9 +19,8 @@
 // The skin, in self-collision distances: for particle contact, and for a cloth's triangles. A
 // larger skin rebuilds less often but walks longer lists. In a cloth every triangle nearer
 // than the skin's reach in the plane is listed though only a fold can bring it within the
-// contact distance, so its lists grow faster with the skin (measured on the H100,
-// docs/PERFORMANCE.md "Contact lists of triangle self-contact": the curtain with triangle
-// self-contact 0.711 ms a frame at 0.75, 0.795 at 0.5, 1.035 at 1).
+// contact distance, so its lists grow faster with the skin (docs/PERFORMANCE.md, "Contact
+// lists of triangle self-contact", has the measurements).
 const float LIST_SKIN = 1.0;
 const float TRIANGLE_LIST_SKIN = 0.75;
 
@@ -45,8 +44,10 @@ float vertex_reach(float within) {
     return has_triangles() ? within + 0.5 * TRIANGLE_STRETCH * length(obj.spacing) : within;
 }
 float self_reach() { return vertex_reach(obj.self_distance); }
-// ... while the lists are built (they hold what is within the contact distance plus the skin).
-float list_reach() { return vertex_reach((1.0 + list_skin()) * obj.self_distance); }
+// What the lists hold: what is within the contact distance plus the skin ...
+float list_within() { return (1.0 + list_skin()) * obj.self_distance; }
+// ... and how far from a particle candidates are searched while they are built.
+float list_reach() { return vertex_reach(list_within()); }
 
 // The object's self-collision searches the spatial hash (and keeps these lists).
 bool self_hashed() {
