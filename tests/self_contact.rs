@@ -91,13 +91,13 @@ fn a_cloth_folding_over_its_middle_row_never_passes_through_itself() {
 /// buckles as it lands, its top arriving at about 5 m/s, and piles in one-cell folds. A layer
 /// landing on several others takes only its share of each contact in a pass over them (mass
 /// splitting), so with one pass a substep it is stopped over several substeps, deeper than the
-/// thickness, and passes: 283 crossing edges at worst on the f64 reference (281 on the GPU).
-/// Four passes (the default `contact_iterations`) stop it within the substep but where the
-/// folds are sharper than a cell or edges cross edges, which no vertex-triangle contact sees
-/// (issue 26 is open on those): measured 10 on the reference and 6 on the GPU (fused; where it
-/// piles is chaotic: 23 to 32 in builds of the same model that differed in the order of
-/// rounding, so the bound, 60, leaves room for another driver's rounding while staying far
-/// under one pass's count); the target is 0. The count changes in place.
+/// thickness, and passes: 37 crossing edges at worst on the f64 reference. Four passes (the
+/// default `contact_iterations`), with edges kept from edges and each share over-relaxed, stop
+/// it on the GPU (fused): measured 0, the target. Where it piles is chaotic: the reference
+/// measured 3 here, and over nine tilts from 0.05 to 0.4 rad 0 in four and 2 to 24 in the
+/// others at four passes, 0 in eight and 2 in one at eight (docs/ACCURACY.md; before edge
+/// pairs, 10 to 145 and 2 to 16). So the GPU's bound is 0 and the reference's 10; one pass must
+/// stay above 30. The count changes in place.
 #[test]
 fn contact_iterations_stop_a_strip_piling_on_itself() {
     let mut c = soft_cloth(5, 61);
@@ -151,9 +151,9 @@ fn contact_iterations_stop_a_strip_piling_on_itself() {
     println!(
         "crossing edges at worst: reference, one pass {one}, four {four}; GPU (fused), four {gpu_worst}"
     );
-    assert!(one > 100, "one pass a substep should let the pile through (measured 283), not {one}");
+    assert!(one > 30, "one pass a substep should let the pile through (measured 37), not {one}");
     assert!(
-        four <= 60 && gpu_worst <= 60,
+        four <= 10 && gpu_worst == 0,
         "four passes: {four} (reference), {gpu_worst} (GPU) crossing edges"
     );
 }
@@ -235,13 +235,13 @@ fn fold_of(spacing: f64, h: f64, gap: f64, speed: f64) -> SimModel {
     scene(vec![c])
 }
 
-/// The most contacts any particle of object 0 has at the start (the reference's: triangles
-/// nearer than its self-collision distance, not left out).
+/// The most contacts any particle of object 0 keeps at the start (the reference's: triangles
+/// and edge pairs nearer than its self-collision distance, not left out, by their owners).
 fn most_contacts(s: &SimModel) -> usize {
     let o = &s.objects[0];
     let mut count = vec![0; o.positions.len()];
-    for (p, ..) in msdsim::sim::cpu::self_contact::contacts(o, &o.positions) {
-        count[p] += 1;
+    for c in msdsim::sim::cpu::self_contact::contacts(o, &o.positions) {
+        count[c.owner()] += 1;
     }
     count.into_iter().max().unwrap_or(0)
 }
@@ -310,7 +310,7 @@ fn the_gpu_finds_the_contacts_the_reference_finds() {
 /// 33 x 33 towel with triangles lost its frame at 112 substeps and ran away at 128; this dense
 /// fold loses a frame of 250 substeps or more, measured with the limit left unhandled: 12 mm
 /// from the per-stage path, the whole of the fold's motion). It now runs 8 substeps a dispatch
-/// on such a device. The dense fold (more than 16 contacts a particle: long searches), one frame
+/// on such a device, one with triangle contact. The dense fold (more than 16 contacts a particle: long searches), one frame
 /// of 600 substeps of 0.1 ms, both paths from the same state; the contacts' sums are exact
 /// integers, so within 1e-6 m (measured on lavapipe: 0).
 #[test]
@@ -345,14 +345,16 @@ fn a_fused_frame_of_many_substeps_equals_the_per_stage_path() {
 /// step: 1 (mu 0), 0.5 (mu 0.25), 0 (mu 0.8: they stick). Measured on the layers' middles
 /// (rows 2 to 4 from the far edges, columns 4 to 8, which the fold's pull has not reached)
 /// after two frames, at 8 and 32 substeps, both GPU paths (and the reference at 8), within
-/// 0.1 m/s (10% of vt). Measured: 1.076 / 1.047, 0.578 / 0.546, -0.003 / -0.004 at 8 / 32
-/// substeps: even without friction the layers gain 5-8% of sliding speed, because each
-/// triangle's thickness has rounded edges, and a particle that has just slid across the edge
-/// between two flat triangles is also pushed by the one it left, along its motion
-/// (docs/ACCURACY.md). The layers do not bounce: approaching within 0.05 m/s after (measured
-/// -0.011 to -0.003; 0.5 to 1 m/s apart before the overlap a substep's approach made was
-/// undone with its velocity and the rest in position only). Momentum, the whole drifting at
-/// 0.5 m/s, is conserved as without friction (relative 1e-5; measured up to 1.7e-6).
+/// 0.1 m/s (10% of vt). Measured: 1.023 / 1.015, 0.512 / 0.470, -0.025 / -0.099 at 8 / 32
+/// substeps: without friction the layers gain 1-2% of sliding speed, because each triangle's
+/// thickness has rounded edges, and a particle that has just slid across the edge between two
+/// flat triangles is also pushed by the one it left, along its motion (docs/ACCURACY.md; 5-8%
+/// before edges were kept from edges). The layers bounce a little: a contact's share of its
+/// correction is over-relaxed (self_contact.glsl), and where several shares add up past the
+/// approach the excess leaves with a velocity: 0.008 to 0.041 m/s apart after at 8 substeps,
+/// 0.15 at 32 (0.005 and 0.011 without the relaxation, which let piles through), so within
+/// 0.2 m/s, 10% of vn. Momentum, the whole drifting at 0.5 m/s, is conserved as without
+/// friction (relative 1e-5; measured up to 2.2e-6).
 #[test]
 fn friction_between_layers_takes_at_most_mu_times_the_normal_impulse() {
     let (cols, rows) = (13usize, 20usize);
@@ -421,7 +423,7 @@ fn friction_between_layers_takes_at_most_mu_times_the_normal_impulse() {
                     "mu {mu}, {substeps} substeps, {path}: sliding {slide:.4} m/s (closed form {expected}), \
                      approaching {approach:.4} m/s, momentum {change:e}"
                 );
-                if (slide - expected).abs() > 0.1 || approach.abs() > 0.05 || change > 1e-5 {
+                if (slide - expected).abs() > 0.1 || approach.abs() > 0.2 || change > 1e-5 {
                     failures.push(format!(
                         "mu {mu}, {substeps} substeps, {path}: {slide}, {approach}, {change:e}"
                     ));

@@ -48,10 +48,10 @@ bool triangle_contact() { return has(F_TRIANGLES); }
 
 // Whether particle j is nearer than `reach` to `cell` in the rest state (or is that particle):
 // such pairs never push, the springs keep them apart. In a cloth (whose candidates are the
-// vertices of its triangles, self_contact.glsl), whether j is in the particle's one-ring: all
-// its triangles are left out.
+// vertices of its triangles and edges, self_contact.glsl), whether j is that particle: the
+// visit of a vertex in its one-ring finds edge pairs only.
 bool rest_neighbour(uvec2 cell, uint j, float reach) {
-    if (triangle_contact()) return in_one_ring(cell, j);
+    if (triangle_contact()) return j == cell.x + cell.y * obj.dims.x;
     ivec2 other = ivec2(int(j % obj.dims.x), int(j / obj.dims.x));
     vec2 rest = vec2(other - ivec2(cell)) * obj.spacing;
     return dot(rest, rest) < reach * reach;

@@ -53,6 +53,10 @@ pub struct FusedLimits {
 /// cost (the towel preset 26.0 against 26.2 ms a frame, the rope 1.16 against 1.11 ms;
 /// a dispatch a substep cost 38% and 90%).
 const LIMITED_SUBSTEPS_PER_DISPATCH: u32 = 8;
+/// ... for an object with triangle self-contact: one. Its edge pairs' search runs two loops of
+/// six a candidate (glsl/include/self_contact.glsl): a dense fold of 13 x 10 particles searched
+/// by brute force reached the limit in its fifth substep.
+pub(super) const LIMITED_TRIANGLE_SUBSTEPS_PER_DISPATCH: u32 = 1;
 
 impl FusedLimits {
     /// `slots` particles per thread at most for every object.

@@ -389,7 +389,13 @@ impl GpuSim {
         // `substeps_per_dispatch` substeps (the kernel's push constants: the first substep and
         // how many), each ordered after the one before.
         let fused: Vec<&GpuObject> = self.objects.iter().filter(|o| self.is_fused(o)).collect();
-        let chunk = self.limits.substeps_per_dispatch.clamp(1, self.model.substeps.max(1));
+        let triangles = fused.iter().any(|o| o.plan.features & crate::sim::gpu_types::FEATURE_TRIANGLES != 0);
+        let most = match self.limits.substeps_per_dispatch {
+            u32::MAX => u32::MAX,
+            n if triangles => n.min(fused::LIMITED_TRIANGLE_SUBSTEPS_PER_DISPATCH),
+            n => n,
+        };
+        let chunk = most.clamp(1, self.model.substeps.max(1));
         let mut first = 0;
         while !fused.is_empty() && first < self.model.substeps {
             let count = chunk.min(self.model.substeps - first);
