@@ -318,6 +318,7 @@ pub fn contacts(o: &ObjectModel, x: &[DVec3]) -> Vec<Contact> {
     let mut edges: Vec<([usize; 2], DVec3, DVec3)> =
         grid_edges(o).into_iter().map(|e| (e, x[e[0]].min(x[e[1]]), x[e[0]].max(x[e[1]]))).collect();
     edges.sort_by(|a, b| a.1.x.total_cmp(&b.1.x));
+    let creased = study_creases(o, h, x);
     for (i, &(e1, lo1, hi1)) in edges.iter().enumerate() {
         for &(e2, lo2, hi2) in &edges[i + 1..] {
             if lo2.x > hi1.x + h {
@@ -327,6 +328,11 @@ pub fn contacts(o: &ObjectModel, x: &[DVec3]) -> Vec<Contact> {
                 continue;
             }
             let m = edge_pair_order(h, x, e1, e2);
+            if let Some(c) = &creased {
+                if !c.contains(&e1) && !c.contains(&e2) {
+                    continue;
+                }
+            }
             if pinned(&m) || edges_left_out(o, h, e1, e2) {
                 continue;
             }
@@ -426,4 +432,38 @@ fn apply(
         }
     }
     (moves, rests)
+}
+
+/// STUDY (not for main): with MSD_CREASE=f, the grid edges that are creased: on the border, or
+/// where a diagonal-long chord across them sags more than f h below the two triangles' planes.
+pub fn study_creases(o: &ObjectModel, h: f64, x: &[DVec3]) -> Option<std::collections::HashSet<[usize; 2]>> {
+    let f: f64 = std::env::var("MSD_CREASE").ok()?.parse().ok()?;
+    let mut opposite: std::collections::HashMap<[usize; 2], Vec<usize>> = Default::default();
+    for (_, tv) in cloth_triangles(o.dims[0] as usize, o.dims[1] as usize) {
+        for k in 0..3 {
+            let (u, w) = (tv[k], tv[(k + 1) % 3]);
+            opposite.entry([u.min(w), u.max(w)]).or_default().push(tv[(k + 2) % 3]);
+        }
+    }
+    let half_chord = 0.5 * (o.spacing[0].hypot(o.spacing[1]));
+    let mut out = std::collections::HashSet::new();
+    for e in grid_edges(o) {
+        let key = [e[0].min(e[1]), e[0].max(e[1])];
+        let ops = &opposite[&key];
+        let creased = if ops.len() < 2 {
+            true
+        } else {
+            let (u, w) = (x[key[0]], x[key[1]]);
+            let d = w - u;
+            let n1 = d.cross(x[ops[0]] - u);
+            let n2 = (x[ops[1]] - u).cross(d);
+            let cos = (n1.dot(n2) / (n1.length() * n2.length())).clamp(-1.0, 1.0);
+            let tan_half = ((1.0 - cos) / (1.0 + cos).max(1e-12)).sqrt();
+            half_chord * tan_half > f * h
+        };
+        if creased {
+            out.insert(e);
+        }
+    }
+    Some(out)
 }
