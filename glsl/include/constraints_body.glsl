@@ -72,7 +72,7 @@ void self_push(vec3 x, uint j, float reach, inout vec3 correction, inout uint n_
 // visit of j's triangles (which records the list's entries itself).
 void self_candidate(uvec2 cell, vec3 x, uint j, float d, float reach, inout vec3 correction, inout uint n_active) {
     if (triangle_contact()) {
-        self_triangles(cell, x, j, list_build ? (1.0 + LIST_SKIN) * obj.self_distance : 0.0);
+        self_triangles(cell, x, j, list_build ? (1.0 + list_skin()) * obj.self_distance : 0.0);
         return;
     }
     if (d < reach) self_push(x, j, reach, correction, n_active);
@@ -326,7 +326,7 @@ void visit_range(uint from, uint end, uvec2 cell, vec3 x, float reach, inout vec
         uint j = floatBitsToUint(e.w);
         if (d < listed && !rest_neighbour(cell, j, obj.self_distance)) {
             if (triangle_contact()) {
-                self_triangles(cell, x, j, list_build ? (1.0 + LIST_SKIN) * obj.self_distance : 0.0);
+                self_triangles(cell, x, j, list_build ? (1.0 + list_skin()) * obj.self_distance : 0.0);
                 continue;
             }
             if (d < reach) self_push(x, j, reach, correction, n_active);

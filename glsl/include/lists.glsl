@@ -1,6 +1,6 @@
 // The self-collision contact lists, shared by fused.comp and the per-stage shaders. When the
 // spatial hash is built, each particle records in self_list (binding 15) what is within the
-// contact distance plus a skin (LIST_SKIN times the self-collision distance): in a rope the
+// contact distance plus a skin (list_skin() times the self-collision distance): in a rope the
 // other particles, rest-state neighbours left out; in a cloth the triangles and the edge pairs
 // it owns not left out (self_contact.glsl); and where it was built. The substeps after walk their lists instead of
 // searching the hash, until some particle has moved more than half the skin from where its
@@ -16,7 +16,14 @@
 #define MSD_LISTS_GLSL
 #include "features.glsl"
 
+// The skin, in self-collision distances: for particle contact, and for a cloth's triangles. A
+// larger skin rebuilds less often but walks longer lists. In a cloth every triangle nearer
+// than the skin's reach in the plane is listed though only a fold can bring it within the
+// contact distance, so its lists grow faster with the skin (measured on the H100,
+// docs/PERFORMANCE.md "Contact lists of triangle self-contact": the curtain with triangle
+// self-contact 0.711 ms a frame at 0.75, 0.795 at 0.5, 1.035 at 1).
 const float LIST_SKIN = 1.0;
+const float TRIANGLE_LIST_SKIN = 0.75;
 
 // How far a cloth's diagonals may stretch with every triangle within the contact distance
 // still found through its nearest vertex (sim::model::TRIANGLE_STRETCH).
@@ -26,6 +33,8 @@ const float TRIANGLE_STRETCH = 1.5;
 // particle).
 // Compiled out where no object asks for it (F_TRIANGLES: the particle search stays as lean).
 bool has_triangles() { return has(F_TRIANGLES) && (obj.flags & OBJ_SELF_TRIANGLES) != 0u; }
+// The skin of this object's lists.
+float list_skin() { return has_triangles() ? TRIANGLE_LIST_SKIN : LIST_SKIN; }
 
 // How far from a particle self-contact candidates (particles; in a cloth the vertices through
 // which its triangles are found) are searched when a triangle or particle within `within` of
@@ -37,7 +46,7 @@ float vertex_reach(float within) {
 }
 float self_reach() { return vertex_reach(obj.self_distance); }
 // ... while the lists are built (they hold what is within the contact distance plus the skin).
-float list_reach() { return vertex_reach((1.0 + LIST_SKIN) * obj.self_distance); }
+float list_reach() { return vertex_reach((1.0 + list_skin()) * obj.self_distance); }
 
 // The object's self-collision searches the spatial hash (and keeps these lists).
 bool self_hashed() {
@@ -48,7 +57,7 @@ bool self_hashed() {
 // Entries a particle at most (sim::gpu::fused::SELF_LIST_ENTRIES).
 const uint LIST_ENTRIES = 32u;
 // How far a particle may move from where its list was built (2% less, for rounding).
-float list_half_skin() { return 0.49 * LIST_SKIN * obj.self_distance; }
+float list_half_skin() { return 0.49 * list_skin() * obj.self_distance; }
 uint list_entry(uint e, uint i, uint n) { return 4u * n + e * n + i; }
 vec3 list_built(uint i) {
     return vec3(uintBitsToFloat(self_list[4u * i]), uintBitsToFloat(self_list[4u * i + 1u]),

@@ -102,8 +102,9 @@ const SHARED_MARGIN: u32 = 256;
 /// Fewest hash buckets worth a shared hash.
 const MIN_BUCKETS: u32 = 32;
 /// Entries of a particle's self-collision contact list (`LIST_ENTRIES` in glsl/include/lists.glsl,
-/// the fused kernel's `LIST_MAX`): others within
-/// twice the self-collision distance (`LIST_SKIN`) that are not rest-state neighbours. A fuller
+/// the fused kernel's `LIST_MAX`): what is within the self-collision distance plus the skin
+/// (`list_skin()`: that distance for particles, 0.75 of it for a cloth's triangles) and not left
+/// out as a rest-state neighbour. A fuller
 /// list is built again the next substep (as without lists).
 pub const SELF_LIST_ENTRIES: u32 = 32;
 
