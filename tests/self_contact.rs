@@ -93,11 +93,12 @@ fn a_cloth_folding_over_its_middle_row_never_passes_through_itself() {
 /// splitting), so with one pass a substep it is stopped over several substeps, deeper than the
 /// thickness, and passes: 37 crossing edges at worst on the f64 reference. Four passes (the
 /// default `contact_iterations`), with edges kept from edges and each share over-relaxed, stop
-/// it on the GPU (fused): measured 0, the target. Where it piles is chaotic: the reference
-/// measured 3 here, and over nine tilts from 0.05 to 0.4 rad 0 in four and 2 to 24 in the
-/// others at four passes, 0 in eight and 2 in one at eight (docs/ACCURACY.md; before edge
-/// pairs, 10 to 145 and 2 to 16). So the GPU's bound is 0 and the reference's 10; one pass must
-/// stay above 30. The count changes in place.
+/// it: measured 2 on the reference and 4 on the GPU (fused), with edge pairs only where an edge
+/// is creased (0 and 3 with every edge pair). Where it piles is chaotic: over nine tilts from
+/// 0.05 to 0.4 rad the reference let through 0 in five and 2 to 14 in the others at four
+/// passes, 0 everywhere at eight (docs/bench/cpu/edge-edge-study/crease-gate.txt; before edge
+/// pairs, 10 to 145 and 2 to 16). So both bounds are 10; one pass must stay above 30. The
+/// count changes in place.
 #[test]
 fn contact_iterations_stop_a_strip_piling_on_itself() {
     let mut c = soft_cloth(5, 61);
@@ -153,7 +154,7 @@ fn contact_iterations_stop_a_strip_piling_on_itself() {
     );
     assert!(one > 30, "one pass a substep should let the pile through (measured 37), not {one}");
     assert!(
-        four <= 10 && gpu_worst == 0,
+        four <= 10 && gpu_worst <= 10,
         "four passes: {four} (reference), {gpu_worst} (GPU) crossing edges"
     );
 }

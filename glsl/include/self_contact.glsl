@@ -172,6 +172,70 @@ float edge_fade(vec2 st) {
     return clamp(inside * (1.0 / EDGE_FADE), 0.0, 1.0);
 }
 
+// An edge pair takes part only where one of its edges is creased. Two edges each inside a
+// flat stretch of cloth cannot come through each other without a vertex meeting a triangle
+// first (the vertex-triangle contacts hold that), but across a crease (a fold's ridge, the
+// border) an edge can: its ends held h from the faces on either side, its middle still
+// reaches the ridge. How creased an edge is: the sag, in h, of a chord half a grid diagonal
+// long laid across it at the two triangles' dihedral angle phi, (0.5 |spacing| / h) tan(phi / 2);
+// on the border, or with a degenerate triangle, infinite. Its weight rises from 0 at a sag of
+// CREASE_FROM to 1 at CREASE_TO (smooth, so that f32 and the CPU twin's f64 agree but for
+// rounding). Twin: sim::cpu::self_contact::crease_sag.
+const float CREASE_FROM = 0.1;
+const float CREASE_TO = 0.2;
+// While the lists are built, edge pairs are recorded from a sag of this (the crease may grow
+// before the next build; a pair whose edges both sag less then and creased past CREASE_FROM
+// before the next build is missed until it).
+const float CREASE_LIST = 0.05;
+float crease_sag(vec3 u, vec3 v, vec3 o1, vec3 o2) {
+    vec3 e = v - u;
+    vec3 n1 = cross(e, o1 - u);
+    vec3 n2 = cross(o2 - u, e);
+    float l = length(n1) * length(n2);
+    float flat_part = l + dot(n1, n2);
+    if (!(l > 0.0) || !(flat_part > 1e-12 * l)) return 1e30;
+    return 0.5 * length(obj.spacing) / obj.self_distance * length(cross(n1, n2)) / flat_part;
+}
+float crease_weight(float sag) { return clamp((sag - CREASE_FROM) * (1.0 / (CREASE_TO - CREASE_FROM)), 0.0, 1.0); }
+bool in_grid(ivec2 q) { return all(greaterThanEqual(q, ivec2(0))) && all(lessThan(q, ivec2(obj.dims))); }
+// The sag of grid vertex u's edge to its ring vertex k (in the grid): its triangles are those
+// of ring vertices k - 1 and k + 1.
+float edge_sag(uint u, uint k) {
+    ivec2 q = ivec2(int(u % obj.dims.x), int(u / obj.dims.x));
+    ivec2 q1 = q + VERTEX_RING[(k + 5u) % 6u];
+    ivec2 q2 = q + VERTEX_RING[(k + 1u) % 6u];
+    if (!in_grid(q1) || !in_grid(q2)) return 1e30;
+    uint cols = obj.dims.x;
+    return crease_sag(CPOS(u), CPOS(ring_vertex(u, k)), CPOS(uint(q1.x + q1.y * int(cols))), CPOS(uint(q2.x + q2.y * int(cols))));
+}
+// Edge pair `code` of particle p: the larger of its edges' crease weights.
+float pair_crease(uint p, uint code) {
+    uint e2 = code & 0x0FFFFFFFu;
+    return max(crease_weight(edge_sag(p, (code >> 28u) & 7u)), crease_weight(edge_sag(e2 / 6u, e2 % 6u)));
+}
+// Which of grid vertex u's (at x) six ring edges sag more than `from` (bit k: the edge to ring
+// vertex k; edges outside the grid, 0). The ring's positions are read once.
+uint ring_creases(uint u, vec3 x, float from) {
+    ivec2 q = ivec2(int(u % obj.dims.x), int(u / obj.dims.x));
+    bool ok[6];
+    vec3 r[6];
+    [[unroll]] for (int k = 0; k < 6; ++k) {
+        ivec2 qk = q + VERTEX_RING[k];
+        ok[k] = in_grid(qk);
+        r[k] = ok[k] ? CPOS(uint(qk.x + qk.y * int(obj.dims.x))) : x;
+    }
+    uint mask = 0u;
+    [[unroll]] for (int k = 0; k < 6; ++k) {
+        if (!ok[k]) continue;
+        int k0 = (k + 5) % 6;
+        int k2 = (k + 1) % 6;
+        if (!ok[k0] || !ok[k2] || crease_sag(x, r[k], r[k0], r[k2]) > from) mask |= 1u << uint(k);
+    }
+    return mask;
+}
+// The ring creases of the particle whose contacts the search collects (set by self_pass).
+uint own_creases;
+
 // Contact `code` of particle p at x: its particles m (p first) and signed weights c, so that
 // sum c_k x_k is the offset from side b's nearest point to side a's (a triangle: m = (p, its
 // vertices), c = (1, -w), w the weights of its point nearest p; an edge pair: m = (p, a, j,
@@ -264,7 +328,7 @@ void test_pair(vec3 x, uint code) {
     vec4 c;
     vec3 n;
     float d = pair_geometry(pair_particle, x, code, m, c, n);
-    test_contact(code, m, d, is_edge_pair(code) ? edge_fade(vec2(c.y, -c.w)) : 1.0);
+    test_contact(code, m, d, is_edge_pair(code) ? edge_fade(vec2(c.y, -c.w)) * pair_crease(pair_particle, code) : 1.0);
 }
 
 // Whether the pair of ends (a0, a1) at squared distance da comes before (b0, b1) at db: the
@@ -324,7 +388,11 @@ void self_edges(uvec2 cell, vec3 x, uint j, ivec2 at, vec3 xj, float d2j, float 
     ivec2 qp = ivec2(cell);
     ivec2 dims = ivec2(obj.dims);
     bool rest_check = edges_near_at_rest_possible();
+    uint j_creases = ring_creases(j, xj, list_reach > 0.0 ? CREASE_LIST : CREASE_FROM);
+    if ((own_creases | j_creases) == 0u) return;
     [[dont_unroll]] for (int k1 = 0; k1 < 6; ++k1) {
+        bool own_creased = ((own_creases >> uint(k1)) & 1u) != 0u;
+        if (!own_creased && j_creases == 0u) continue;
         ivec2 qa = qp + VERTEX_RING[k1];
         if (any(lessThan(qa, ivec2(0))) || any(greaterThanEqual(qa, dims))) continue;
         uint a = uint(qa.x + qa.y * dims.x);
@@ -338,7 +406,7 @@ void self_edges(uvec2 cell, vec3 x, uint j, ivec2 at, vec3 xj, float d2j, float 
             ivec2 qb = at + VERTEX_RING[k2];
             if (any(lessThan(qb, ivec2(0))) || any(greaterThanEqual(qb, dims))) continue;
             uint b = uint(qb.x + qb.y * dims.x);
-            if (b == p || b == a) continue;
+            if (b == p || b == a || !own_creased && ((j_creases >> uint(k2)) & 1u) == 0u) continue;
             vec3 xb = CPOS(b);
             vec3 epb = x - xb;
             vec3 eab = xa - xb;
@@ -348,7 +416,7 @@ void self_edges(uvec2 cell, vec3 x, uint j, ivec2 at, vec3 xj, float d2j, float 
             float d = length(edge_offset(x, xa, xj, xb, st));
             if (!(d < farthest) || rest_check && edges_near_at_rest(qp, qa, at, qb)) continue;
             uint code = edge_pair_code(uint(k1), j, uint(k2));
-            test_contact(code, uvec4(p, a, j, b), d, edge_fade(st));
+            test_contact(code, uvec4(p, a, j, b), d, edge_fade(st) * pair_crease(p, code));
             if (d < list_reach) {
                 if (list_len < LIST_ENTRIES) self_list[list_entry(list_len, list_particle, particle_count())] = code;
                 list_len += 1u;  // past LIST_ENTRIES the list is full: it is rebuilt the next substep
@@ -475,7 +543,7 @@ void apply_contact(uint p, vec3 x, uint code) {
     // A contact takes part by its weight in the counts: one that begins (overlap under h / 10)
     // moves its particles by that fraction of its share, so that the counts' smoothing never
     // lets a particle's contacts add up to more than its largest overlap.
-    float weight = contact_weight(overlap) * (is_edge_pair(code) ? edge_fade(vec2(c.y, -c.w)) : 1.0);
+    float weight = contact_weight(overlap) * (is_edge_pair(code) ? edge_fade(vec2(c.y, -c.w)) * pair_crease(p, code) : 1.0);
     // The relative motion of the two sides' nearest points over the substep: the overlap it
     // made (its approach along n) is undone with the velocity that made it; what overlap
     // remains from before is undone in position only (no bounce from an overlap resolved late).

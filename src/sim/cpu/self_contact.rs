@@ -163,6 +163,11 @@ fn count_weight(overlap: f64, h: f64) -> f64 {
 pub struct Contact {
     pub particles: [usize; 4],
     pub edges: bool,
+    /// An edge pair's edges' opposite vertices (those of the two triangles on each edge, in
+    /// the order of `particles`' edges; NONE on the border), and half a grid diagonal over h:
+    /// what its crease weight is computed from.
+    pub opposite: [usize; 4],
+    pub chord: f64,
     pub weights: DVec4,
     pub normal: DVec3,
     pub overlap: f64,
@@ -186,23 +191,48 @@ impl Contact {
         }
     }
 
-    /// How much it takes part at weights `w`: 1 against a triangle; an edge pair by
-    /// `edge_fade` of its nearest points' parameters.
-    fn fade(&self, w: DVec4) -> f64 {
-        if self.edges {
-            edge_fade(w.y, -w.w)
-        } else {
-            1.0
+    /// How much it takes part at weights `w` and positions `x`: 1 against a triangle; an edge
+    /// pair by `edge_fade` of its nearest points' parameters times the larger of its edges'
+    /// crease weights.
+    fn fade(&self, w: DVec4, x: &[DVec3]) -> f64 {
+        if !self.edges {
+            return 1.0;
         }
+        let [p, a, j, b] = self.particles;
+        let [o1, o2, o3, o4] = self.opposite;
+        let sag = |u: usize, v: usize, q1: usize, q2: usize| {
+            if q1 == NONE || q2 == NONE {
+                f64::INFINITY
+            } else {
+                crease_sag(x[u], x[v], x[q1], x[q2], self.chord)
+            }
+        };
+        edge_fade(w.y, -w.w) * crease_weight(sag(p, a, o1, o2)).max(crease_weight(sag(j, b, o3, o4)))
     }
 
-    /// The contact of `particles` (edge pair or not) at `x`, if they are nearer than h (and an
-    /// edge pair's nearest points lie inside both edges).
-    fn at(particles: [usize; 4], edges: bool, x: &[DVec3], h: f64) -> Option<Contact> {
-        let mut c = Contact { particles, edges, weights: DVec4::ZERO, normal: DVec3::ZERO, overlap: 0.0 };
+    /// The contact of `particles` (edge pair or not; `opposite` and `chord` as the fields) at
+    /// `x`, if they are nearer than h (and an edge pair's nearest points lie inside both edges
+    /// and one of them is creased).
+    fn at(
+        particles: [usize; 4],
+        edges: bool,
+        opposite: [usize; 4],
+        chord: f64,
+        x: &[DVec3],
+        h: f64,
+    ) -> Option<Contact> {
+        let mut c = Contact {
+            particles,
+            edges,
+            opposite,
+            chord,
+            weights: DVec4::ZERO,
+            normal: DVec3::ZERO,
+            overlap: 0.0,
+        };
         let (weights, off) = c.geometry(x);
         let d = off.length();
-        if d >= h || d <= 0.0 || c.fade(weights) <= 0.0 {
+        if d >= h || d <= 0.0 || c.fade(weights, x) <= 0.0 {
             return None;
         }
         c.weights = weights;
@@ -210,6 +240,52 @@ impl Contact {
         c.overlap = h - d;
         Some(c)
     }
+}
+
+/// No vertex (an edge on the border has one triangle).
+const NONE: usize = usize::MAX;
+
+/// Where an edge pair's crease weight starts and reaches 1, in sag over h (`CREASE_FROM`,
+/// `CREASE_TO` in the shaders, which say why).
+const CREASE_FROM: f64 = 0.1;
+const CREASE_TO: f64 = 0.2;
+
+/// The sag over h of a chord `chord` h long (half a grid diagonal) laid across edge (u, v)
+/// between its triangles (u, v, o1) and (u, v, o2): chord tan(phi / 2), phi their dihedral
+/// angle; infinite for a degenerate triangle (`crease_sag` in the shaders).
+pub fn crease_sag(u: DVec3, v: DVec3, o1: DVec3, o2: DVec3, chord: f64) -> f64 {
+    let e = v - u;
+    let (n1, n2) = (e.cross(o1 - u), (o2 - u).cross(e));
+    let l = n1.length() * n2.length();
+    let flat = l + n1.dot(n2);
+    // (NaN, from a degenerate triangle, counts as creased too)
+    if l.is_nan() || flat.is_nan() || l <= 0.0 || flat <= 1e-12 * l {
+        return f64::INFINITY;
+    }
+    chord * n1.cross(n2).length() / flat
+}
+
+/// An edge's crease weight at sag `sag`: 0 to CREASE_FROM, 1 from CREASE_TO.
+pub fn crease_weight(sag: f64) -> f64 {
+    ((sag - CREASE_FROM) / (CREASE_TO - CREASE_FROM)).clamp(0.0, 1.0)
+}
+
+/// The opposite vertices of grid edge (u, v) (v in u's one-ring) of cloth `o`: those of its
+/// two triangles, NONE for a missing one.
+fn edge_opposite(o: &ObjectModel, u: usize, v: usize) -> [usize; 2] {
+    let (cu, cv) = (cell_of(o, u), cell_of(o, v));
+    let Some(k) = VERTEX_RING.iter().position(|&(dc, dr)| (cu.0 + dc, cu.1 + dr) == cv) else {
+        return [NONE; 2];
+    };
+    let (cols, rows) = (o.dims[0] as i64, o.dims[1] as i64);
+    [(k + 5) % 6, (k + 1) % 6].map(|r| {
+        let (c, w) = (cu.0 + VERTEX_RING[r].0, cu.1 + VERTEX_RING[r].1);
+        if (0..cols).contains(&c) && (0..rows).contains(&w) {
+            (c + w * cols) as usize
+        } else {
+            NONE
+        }
+    })
 }
 
 /// How much an edge pair whose nearest points lie at s and u along its edges takes part: 1
@@ -310,7 +386,7 @@ pub fn contacts(o: &ObjectModel, x: &[DVec3]) -> Vec<Contact> {
             if o.pinned[p] && pinned(&tv) || left_out(o, h, p, tv) {
                 continue;
             }
-            contacts.extend(Contact::at([p, tv[0], tv[1], tv[2]], false, x, h));
+            contacts.extend(Contact::at([p, tv[0], tv[1], tv[2]], false, [NONE; 4], 0.0, x, h));
         }
     }
     // Edge pairs, swept along x: edges sorted by their boxes' low ends, each against those
@@ -318,7 +394,7 @@ pub fn contacts(o: &ObjectModel, x: &[DVec3]) -> Vec<Contact> {
     let mut edges: Vec<([usize; 2], DVec3, DVec3)> =
         grid_edges(o).into_iter().map(|e| (e, x[e[0]].min(x[e[1]]), x[e[0]].max(x[e[1]]))).collect();
     edges.sort_by(|a, b| a.1.x.total_cmp(&b.1.x));
-    let creased = study_creases(o, h, x);
+    let chord = 0.5 * o.spacing[0].hypot(o.spacing[1]) / h;
     for (i, &(e1, lo1, hi1)) in edges.iter().enumerate() {
         for &(e2, lo2, hi2) in &edges[i + 1..] {
             if lo2.x > hi1.x + h {
@@ -328,15 +404,11 @@ pub fn contacts(o: &ObjectModel, x: &[DVec3]) -> Vec<Contact> {
                 continue;
             }
             let m = edge_pair_order(h, x, e1, e2);
-            if let Some(c) = &creased {
-                if !c.contains(&e1) && !c.contains(&e2) {
-                    continue;
-                }
-            }
             if pinned(&m) || edges_left_out(o, h, e1, e2) {
                 continue;
             }
-            contacts.extend(Contact::at(m, true, x, h));
+            let ([o1, o2], [o3, o4]) = (edge_opposite(o, m[0], m[1]), edge_opposite(o, m[2], m[3]));
+            contacts.extend(Contact::at(m, true, [o1, o2, o3, o4], chord, x, h));
         }
     }
     contacts
@@ -368,7 +440,7 @@ pub(super) fn self_contact(
         for (j, &k) in c.particles.iter().enumerate() {
             // (a particle-triangle pair counts in each of its four particles once)
             if !o.pinned[k] && !c.particles[..j].contains(&k) {
-                count[k] += count_weight(c.overlap, h) * c.fade(c.weights);
+                count[k] += count_weight(c.overlap, h) * c.fade(c.weights, x);
             }
         }
     }
@@ -424,7 +496,7 @@ fn apply(
         }
         // A contact that begins takes part by its count weight (see the GPU's apply_contact);
         // its share over-relaxed, never past its whole.
-        let k = count_weight(overlap, h) * contact.fade(c) * f64::min(RELAXATION / split, 1.0 / whole);
+        let k = count_weight(overlap, h) * contact.fade(c, x) * f64::min(RELAXATION / split, 1.0 / whole);
         let (push, rest) = ((n * overlap - friction) * k, n * ((overlap - approach) * k));
         for q in 0..4 {
             moves[m[q]] += push * (c[q] * free_m[q]);
@@ -432,38 +504,4 @@ fn apply(
         }
     }
     (moves, rests)
-}
-
-/// STUDY (not for main): with MSD_CREASE=f, the grid edges that are creased: on the border, or
-/// where a diagonal-long chord across them sags more than f h below the two triangles' planes.
-pub fn study_creases(o: &ObjectModel, h: f64, x: &[DVec3]) -> Option<std::collections::HashSet<[usize; 2]>> {
-    let f: f64 = std::env::var("MSD_CREASE").ok()?.parse().ok()?;
-    let mut opposite: std::collections::HashMap<[usize; 2], Vec<usize>> = Default::default();
-    for (_, tv) in cloth_triangles(o.dims[0] as usize, o.dims[1] as usize) {
-        for k in 0..3 {
-            let (u, w) = (tv[k], tv[(k + 1) % 3]);
-            opposite.entry([u.min(w), u.max(w)]).or_default().push(tv[(k + 2) % 3]);
-        }
-    }
-    let half_chord = 0.5 * (o.spacing[0].hypot(o.spacing[1]));
-    let mut out = std::collections::HashSet::new();
-    for e in grid_edges(o) {
-        let key = [e[0].min(e[1]), e[0].max(e[1])];
-        let ops = &opposite[&key];
-        let creased = if ops.len() < 2 {
-            true
-        } else {
-            let (u, w) = (x[key[0]], x[key[1]]);
-            let d = w - u;
-            let n1 = d.cross(x[ops[0]] - u);
-            let n2 = (x[ops[1]] - u).cross(d);
-            let cos = (n1.dot(n2) / (n1.length() * n2.length())).clamp(-1.0, 1.0);
-            let tan_half = ((1.0 - cos) / (1.0 + cos).max(1e-12)).sqrt();
-            half_chord * tan_half > f * h
-        };
-        if creased {
-            out.insert(e);
-        }
-    }
-    Some(out)
 }
