@@ -49,9 +49,10 @@ bool triangle_contact() { return has(F_TRIANGLES); }
 // Whether particle j is nearer than `reach` to `cell` in the rest state (or is that particle):
 // such pairs never push, the springs keep them apart. In a cloth (whose candidates are the
 // vertices of its triangles, self_contact.glsl), whether j is in the particle's one-ring: all
-// its triangles are left out.
+// its triangles are left out; with edge contact, whether j is that particle (the visit of a
+// vertex in its one-ring finds edge pairs only).
 bool rest_neighbour(uvec2 cell, uint j, float reach) {
-    if (triangle_contact()) return in_one_ring(cell, j);
+    if (triangle_contact()) return edge_contact() ? j == cell.x + cell.y * obj.dims.x : in_one_ring(cell, j);
     ivec2 other = ivec2(int(j % obj.dims.x), int(j / obj.dims.x));
     vec2 rest = vec2(other - ivec2(cell)) * obj.spacing;
     return dot(rest, rest) < reach * reach;
@@ -199,6 +200,7 @@ void self_pass(uvec2 cell, uint i, vec3 x, vec3 start, bool apply) {
             apply_pass = apply;
             bool building = list_build;
             list_build = building && !apply;
+            if (edge_contact()) own_creases = ring_creases(i, x, list_build ? CREASE_LIST : CREASE_FROM);
             vec3 unused = vec3(0.0);
             uint unused_count = 0u;
             self_search(cell, x, unused, unused_count);

@@ -22,8 +22,9 @@
 #define F_CONTACT    2048u // inter-object contact (the contact buffer, filled by contact.comp)
 #define F_EDGES      4096u // colliders against edges and faces too (constraints_body.glsl)
 #define F_TRIANGLES  8192u // a cloth's self-contact against its triangles (self_contact.glsl)
+#define F_EDGE_PAIRS 16384u // ... and of its edges against its edges (self_contact.glsl)
 
-layout(constant_id = 3) const uint FEATURES = 0x3FFFu;
+layout(constant_id = 3) const uint FEATURES = 0x7FFFu;
 
 bool has(uint feature) { return (FEATURES & feature) != 0u; }
 

@@ -1,12 +1,13 @@
 // The self-collision contact lists, shared by fused.comp and the per-stage shaders. When the
 // spatial hash is built, each particle records in self_list (binding 15) what is within the
 // contact distance plus a skin (list_skin() times the self-collision distance): in a rope the
-// other particles, rest-state neighbours left out; in a cloth the triangles not left out
-// (self_contact.glsl); and where it was built. The substeps after walk their lists instead of
-// searching the hash, until some particle has moved more than half the skin from where its
-// list was built (then no pair missing from a list can have come within the contact distance:
-// a distance between particles, or from a particle to a triangle, changes no more than the
-// largest move of the particles involved) or a list overflowed (built at infinity: it counts
+// other particles, rest-state neighbours left out; in a cloth the triangles (and with edge
+// contact the edge pairs it owns) not left out (self_contact.glsl); and where it was built. The
+// substeps after walk their lists instead of searching the hash, until some particle has moved
+// more than half the skin from where its list was built (then no pair missing from a list can
+// have come within the contact distance: a distance between particles, from a particle to a
+// triangle or between two edges, changes no more than the largest move of the particles
+// involved) or a list overflowed (built at infinity: it counts
 // as moved). Layout for n particles:
 // particle i's header (where its list was built, xyz, and its length, as bits) in words
 // [4 i, 4 i + 4), its entry e at list_entry(e, i, n). The host makes every list invalid

@@ -1,41 +1,57 @@
-// A cloth's contact with itself: particles against triangles, each contact's impulse applied
-// equal and opposite. A cloth (a grid of at least 2 x 2) keeps each particle at least the
-// self-collision distance h (its thickness) from its triangles, two a grid cell as the
-// renderer draws them: triangle t = 2 a + k of the cell whose first corner is a is
-// (a, a + cols, a + 1) for k = 0 and (a + 1, a + cols, a + cols + 1) for k = 1.
+// A cloth's contact with itself: particles against triangles and edges against edges, each
+// contact's impulse applied equal and opposite. A cloth (a grid of at least 2 x 2) keeps each
+// particle at least the self-collision distance h (its thickness) from its triangles, two a
+// grid cell as the renderer draws them: triangle t = 2 a + k of the cell whose first corner is
+// a is (a, a + cols, a + 1) for k = 0 and (a + 1, a + cols, a + cols + 1) for k = 1; and, with
+// edge contact (F_EDGE_PAIRS: self_contact = "triangles_and_edges"; compiled out otherwise),
+// each of those triangles' edges (rows, columns, the cells' diagonals) h from the others where
+// their nearest points lie inside both (two layers crossing edge over edge, which no vertex
+// of either touches: a pile of layers slips through there otherwise).
 //
 // A pair (particle p, triangle t) is left out when a vertex of t is p or one of its 8 grid
-// neighbours (its own triangles and the next ring: folds sharper than a grid cell are left to
-// the springs), or when t is nearer than h to p in the rest state (a thickness of two grid
-// spacings or more). Any other pair nearer than h is a contact: with the barycentric weights b
-// of t's point nearest to p and n the unit vector from there to p, the projection of the
-// constraint n . (p - sum b_k x_k) >= h moves p by w_p lambda n and vertex k by
-// -w_k b_k lambda n (w: 1 free, 0 pinned; one mass in a cloth), so the pair's momentum is
-// unchanged. Of the overlap h - d, the part the substep's approach made (the relative motion
-// of p and t's nearest point along -n since the substep began) is undone with the velocity
-// that made it, and the rest, left from earlier substeps, in position only (the constraint
-// stage's velocity follows the correction but for that part: a late-resolved overlap does not
-// bounce). Coulomb friction (mu: the cloth's `friction`) adds to the normal correction the
-// relative motion along the tangent, undone whole while within mu times the approach (the
-// normal impulse), else that much of it (friction_correction, triangle.glsl), with the same
-// weights, so it is equal and opposite too. Several contacts on a particle are combined by
-// mass splitting (Tonge et al. 2012): each free particle takes part in each of its n
-// contacts with 1 / n of its mass, so lambda = c (h - d) / (n_p w_p + sum n_k w_k b_k^2), and
-// its moves are summed. Each contact is still equal and opposite, and one alone is resolved
-// whole. The count n is smooth: a contact
-// counts by its weight c, fully once its overlap reaches a tenth of h (count_weight), and n is
-// at least 1, so a contact that just begins does not halve the others' shares at once; it
-// takes part in lambda by the same weight, so a particle's contacts never add up to more than
-// its largest overlap.
+// neighbours (its own triangles and the next ring: folds sharper than a grid cell are left to the
+// springs), or when t is nearer than h to p in the rest state (a thickness of two grid spacings or
+// more); a pair of edges when they share a vertex or are nearer than 1.5 h at rest
+// (EDGE_REST_MARGIN), and also when the nearest point of either is an end (that end's contact
+// with the triangles around the other edge holds it): so edges of a fold sharper than a cell keep
+// apart too, which the measured piles needed. Any other pair nearer than h is a contact. Write its
+// offset, from side b's nearest point to side a's, as sum c_k x_k over its particles: for (p, t), c
+// = 1 for p and -b_k for t's vertex k, b the barycentric weights of t's point nearest p; for edges
+// (p, a) and (j, b) with nearest points at p + s (a - p) and j + u (b - j), c = (1 - s, s, u - 1,
+// -u). With n the unit offset, the projection of the constraint n . sum c_k x_k >= h moves particle
+// k by w_k c_k lambda n (w: 1 free, 0 pinned; one mass in a cloth), so the pair's momentum is
+// unchanged. Of the overlap h - d, the part the substep's approach made (the relative motion of the
+// two nearest points along -n since the substep began) is undone with the velocity that made it,
+// and the rest, left from earlier substeps, in position only (the constraint stage's velocity
+// follows the correction but for that part: a late-resolved overlap does not bounce). Coulomb
+// friction (mu: the cloth's `friction`) adds to the normal correction the relative motion along the
+// tangent, undone whole while within mu times the approach (the normal impulse), else that much of
+// it (friction_correction, triangle.glsl), with the same weights, so it is equal and opposite too.
+// Several contacts on a particle are combined by mass splitting (Tonge et al. 2012): each free
+// particle takes part in each of its n contacts with 1 / n of its mass, so lambda = c (h - d) / sum
+// n_k w_k c_k^2, and its moves are summed; with edge contact that share is over-relaxed by
+// pair_relaxation() but never past what the contact alone would take, c (h - d) / sum w_k c_k^2
+// (without, relaxation 1 never reaches that bound). Each contact is still equal
+// and opposite, and one alone is resolved whole. The count n is smooth: a contact counts by its
+// weight c, fully once its overlap reaches a tenth of h (contact_weight), and n is at least 1, so a
+// contact that just begins does not halve the others' shares at once; it takes part in lambda by
+// the same weight, so a particle's contacts never add up to more than its largest overlap.
+//
+// An edge pair belongs to the lower-indexed particle p of its nearest ends (p, j) (the two ends,
+// one of each edge, nearest each other; ties by index), which finds it from candidate j of its
+// search (ends_before, self_edges; the search visits the one-ring for these too): a pair whose
+// nearest points are within h has its nearest ends within the search's reach while the grid's
+// diagonals are stretched by less than about a third (sqrt((0.75 diagonal)^2 2 + h^2) against h +
+// 0.75 diagonal); past that it may be missed.
 //
 // The passes of a substep (per stage: self_pairs.comp, then the constraints; fused: phases
 // between barriers):
 // 1. find (self_pass, constraints_body.glsl): each particle, pinned too, notes where it began
-//    the substep (the approach and friction read it) and finds its triangles within h through
-//    the spatial hash (a triangle within h has its nearest vertex within self_reach(),
-//    lists.glsl; it is tested once, from that vertex) or its contact list, which holds the
-//    triangles within h plus the skin; it keeps up to PAIR_MAX contacts and counts each in its
-//    free particles;
+//    the substep (the approach and friction read it) and finds its triangles and edge pairs
+//    within h through the spatial hash (a triangle within h has its nearest vertex within
+//    self_reach(), lists.glsl; it is tested once, from that vertex) or its contact list, which
+//    holds the triangles and edge pairs within h plus the skin; it keeps up to PAIR_MAX
+//    contacts and counts each in its free particles;
 // 2. apply (self_pass): each particle computes its contacts again (those it kept; one that
 //    found more searches again: once per stage, else for each further PAIR_MAX; see
 //    SELF_APPLY_FOUND) and adds every particle's move to its sum, in fixed point (exact,
@@ -52,7 +68,7 @@
 //    (self_take).
 // The CPU twin is sim::cpu::self_contact. Buffer self_pairs (binding 17), n particles: words
 // [4 i, 4 i + 4) particle i's sum (x, y, z in units of h / 2^26) and count (in units of
-// 2^-16); 4 n + i the number of contacts it keeps; (5 + k) n + i its contact k's triangle;
+// 2^-16); 4 n + i the number of contacts it keeps; (5 + k) n + i its contact k's code;
 // [(5 + PAIR_MAX) n + 3 i, + 3) where it began the substep; [(8 + PAIR_MAX) n + 3 i, + 3) the
 // part of its sum that moves the position only (units as the sum); [(11 + PAIR_MAX) n, + 3)
 // the further passes' indirect dispatch per stage (workgroups; zero in a substep where no
@@ -62,6 +78,10 @@
 #define MSD_SELF_CONTACT_GLSL
 #include "lists.glsl"
 #include "triangle.glsl"
+
+// Whether this pipeline's cloth keeps its edges from its edges too (its own specialization:
+// without it none of the edge-pair code is compiled in).
+bool edge_contact() { return has(F_EDGE_PAIRS); }
 
 // Contacts a particle keeps in a substep (sim::gpu::object::SELF_PAIR_MAX); one with more
 // searches for them again in the apply pass.
@@ -92,7 +112,21 @@ uvec3 triangle_vertices(uint t) {
     return (t & 1u) == 0u ? uvec3(a, a + cols, a + 1u) : uvec3(a + 1u, a + cols, a + cols + 1u);
 }
 
-// Whether grid vertex j is the particle at `cell` or one of its 8 neighbours.
+// A contact's code in a particle's slots and contact list: a triangle's number t (under
+// 2^29), or for an edge pair EDGE_PAIR, the particle's own edge k1 (to its ring vertex k1,
+// VERTEX_RING) in bits 28 to 30, and the other edge, particle j's to its ring vertex k2, as
+// 6 j + k2 below (under 2^28 for any cloth whose self_pairs buffer, 108 bytes a particle, a
+// device can bind: at most 2^32 bytes, 39.8 million particles).
+const uint EDGE_PAIR = 0x80000000u;
+uint edge_pair_code(uint k1, uint j, uint k2) { return EDGE_PAIR | (k1 << 28u) | (6u * j + k2); }
+bool is_edge_pair(uint code) { return edge_contact() && (code & EDGE_PAIR) != 0u; }
+// Grid vertex v's ring vertex k (one in the grid: only such are coded).
+uint ring_vertex(uint v, uint k) {
+    ivec2 q = ivec2(int(v % obj.dims.x), int(v / obj.dims.x)) + VERTEX_RING[k];
+    return uint(q.x + q.y * int(obj.dims.x));
+}
+
+// Whether grid vertex j is `cell` or one of its 8 grid neighbours.
 bool in_one_ring(uvec2 cell, uint j) {
     ivec2 d = abs(ivec2(int(j % obj.dims.x), int(j / obj.dims.x)) - ivec2(cell));
     return max(d.x, d.y) <= 1;
@@ -130,10 +164,113 @@ float triangle_distance(vec3 x, vec3 a, vec3 b, vec3 c, out vec3 w, out vec3 n) 
     return d;
 }
 
-// Particle p at x against triangle t: its vertices tv, then as triangle_distance.
-float pair_distance(vec3 x, uint t, out uvec3 tv, out vec3 w, out vec3 n) {
-    tv = triangle_vertices(t);
-    return triangle_distance(x, CPOS(tv.x), CPOS(tv.y), CPOS(tv.z), w, n);
+// Edge (x, xa) against edge (xj, xb): the parameters st of their nearest points and the
+// offset from the second's to the first's. One function wherever an edge pair is found or
+// applied.
+vec3 edge_offset(vec3 x, vec3 xa, vec3 xj, vec3 xb, out vec2 st) {
+    st = segment_nearest(x, xa, xj, xb);
+    return mix(x, xa, st.x) - mix(xj, xb, st.y);
+}
+
+// How much an edge pair whose nearest points lie at st along its edges takes part: fully
+// where both lie inside their edges by EDGE_FADE of them or more, fading to 0 as one reaches an
+// end (where the vertex-triangle contacts of that end hold it, see the top). An edge pair that
+// stopped at an end would move its particles by its whole overlap there or not at all, and a
+// deep pile of layers turned such jumps (where f32 and the CPU twin's f64 rounded either way)
+// into centimetres a frame. Twin: sim::cpu::self_contact::edge_fade.
+const float EDGE_FADE = 0.05;
+float edge_fade(vec2 st) {
+    float inside = min(min(st.x, 1.0 - st.x), min(st.y, 1.0 - st.y));
+    return clamp(inside * (1.0 / EDGE_FADE), 0.0, 1.0);
+}
+
+// An edge pair takes part only where one of its edges is creased. Two edges each inside a
+// flat stretch of cloth cannot come through each other without a vertex meeting a triangle
+// first (the vertex-triangle contacts hold that), but across a crease (a fold's ridge, the
+// border) an edge can: its ends held h from the faces on either side, its middle still
+// reaches the ridge. How creased an edge is: the sag, in h, of a chord half a grid diagonal
+// long laid across it at the two triangles' dihedral angle phi, (0.5 |spacing| / h) tan(phi / 2);
+// on the border, or with a degenerate triangle, infinite. Its weight rises from 0 at a sag of
+// CREASE_FROM to 1 at CREASE_TO (smooth, so that f32 and the CPU twin's f64 agree but for
+// rounding). Twin: sim::cpu::self_contact::crease_sag.
+const float CREASE_FROM = 0.1;
+const float CREASE_TO = 0.2;
+// While the lists are built, edge pairs are recorded from a sag of this (the crease may grow
+// before the next build; a pair whose edges both sag less then and creased past CREASE_FROM
+// before the next build is missed until it).
+const float CREASE_LIST = 0.05;
+float crease_sag(vec3 u, vec3 v, vec3 o1, vec3 o2) {
+    vec3 e = v - u;
+    vec3 n1 = cross(e, o1 - u);
+    vec3 n2 = cross(o2 - u, e);
+    float l = length(n1) * length(n2);
+    float flat_part = l + dot(n1, n2);
+    if (!(l > 0.0) || !(flat_part > 1e-12 * l)) return 1e30;
+    return 0.5 * length(obj.spacing) / obj.self_distance * length(cross(n1, n2)) / flat_part;
+}
+float crease_weight(float sag) { return clamp((sag - CREASE_FROM) * (1.0 / (CREASE_TO - CREASE_FROM)), 0.0, 1.0); }
+bool in_grid(ivec2 q) { return all(greaterThanEqual(q, ivec2(0))) && all(lessThan(q, ivec2(obj.dims))); }
+// The sag of grid vertex u's edge to its ring vertex k (in the grid): its triangles are those
+// of ring vertices k - 1 and k + 1.
+float edge_sag(uint u, uint k) {
+    ivec2 q = ivec2(int(u % obj.dims.x), int(u / obj.dims.x));
+    ivec2 q1 = q + VERTEX_RING[(k + 5u) % 6u];
+    ivec2 q2 = q + VERTEX_RING[(k + 1u) % 6u];
+    if (!in_grid(q1) || !in_grid(q2)) return 1e30;
+    uint cols = obj.dims.x;
+    return crease_sag(CPOS(u), CPOS(ring_vertex(u, k)), CPOS(uint(q1.x + q1.y * int(cols))), CPOS(uint(q2.x + q2.y * int(cols))));
+}
+// Edge pair `code` of particle p: the larger of its edges' crease weights.
+float pair_crease(uint p, uint code) {
+    uint e2 = code & 0x0FFFFFFFu;
+    return max(crease_weight(edge_sag(p, (code >> 28u) & 7u)), crease_weight(edge_sag(e2 / 6u, e2 % 6u)));
+}
+// Which of grid vertex u's (at x) six ring edges sag more than `from` (bit k: the edge to ring
+// vertex k; edges outside the grid, 0). The ring's positions are read once.
+uint ring_creases(uint u, vec3 x, float from) {
+    ivec2 q = ivec2(int(u % obj.dims.x), int(u / obj.dims.x));
+    bool ok[6];
+    vec3 r[6];
+    [[unroll]] for (int k = 0; k < 6; ++k) {
+        ivec2 qk = q + VERTEX_RING[k];
+        ok[k] = in_grid(qk);
+        r[k] = ok[k] ? CPOS(uint(qk.x + qk.y * int(obj.dims.x))) : x;
+    }
+    uint mask = 0u;
+    [[unroll]] for (int k = 0; k < 6; ++k) {
+        if (!ok[k]) continue;
+        int k0 = (k + 5) % 6;
+        int k2 = (k + 1) % 6;
+        if (!ok[k0] || !ok[k2] || crease_sag(x, r[k], r[k0], r[k2]) > from) mask |= 1u << uint(k);
+    }
+    return mask;
+}
+// The ring creases of the particle whose contacts the search collects (set by self_pass).
+uint own_creases;
+
+// Contact `code` of particle p at x: its particles m (p first) and signed weights c, so that
+// sum c_k x_k is the offset from side b's nearest point to side a's (a triangle: m = (p, its
+// vertices), c = (1, -w), w the weights of its point nearest p; an edge pair: m = (p, a, j,
+// b), c = (1 - s, s, t - 1, -t)), the unit normal n along it; returns its length, as the find
+// pass computed it.
+float pair_geometry(uint p, vec3 x, uint code, out uvec4 m, out vec4 c, out vec3 n) {
+    if (is_edge_pair(code)) {
+        uint e2 = code & 0x0FFFFFFFu;
+        uint j = e2 / 6u;
+        m = uvec4(p, ring_vertex(p, (code >> 28u) & 7u), j, ring_vertex(j, e2 % 6u));
+        vec2 st;
+        vec3 off = edge_offset(x, CPOS(m.y), CPOS(j), CPOS(m.w), st);
+        c = vec4(1.0 - st.x, st.x, st.y - 1.0, -st.y);
+        float d = length(off);
+        n = off / d;
+        return d;
+    }
+    uvec3 tv = triangle_vertices(code);
+    m = uvec4(p, tv);
+    vec3 w;
+    float d = triangle_distance(x, CPOS(tv.x), CPOS(tv.y), CPOS(tv.z), w, n);
+    c = vec4(1.0, -w);
+    return d;
 }
 
 // The particle whose contacts the search collects (at pair_x), how many it finds, and
@@ -147,10 +284,10 @@ bool apply_pass = false;
 // PAIR_MAX are noted in the particle's slots.
 uint pair_skip = 0u;
 
-// A contact's weight in its particles' counts, in units of 2^-16 (sim::cpu::self_contact's
-// `count_weight`): 1 once the overlap reaches a tenth of h, less before, so that a contact
-// that begins changes the others' shares gradually.
-int count_weight(float overlap) { return int(round(65536.0 * min(1.0, overlap / (0.1 * obj.self_distance)))); }
+// A contact's weight in its particles' counts (sim::cpu::self_contact's `count_weight`): 1
+// once the overlap reaches a tenth of h, less before, so that a contact that begins changes
+// the others' shares gradually; an edge pair's times its edge_fade.
+float contact_weight(float overlap) { return min(1.0, overlap / (0.1 * obj.self_distance)); }
 // A free particle's count of contacts (at least 1).
 float split_count(uint i) { return max(1.0, float(self_pairs[4u * i + 3u]) * (1.0 / 65536.0)); }
 
@@ -163,60 +300,147 @@ float split_count(uint i) { return max(1.0, float(self_pairs[4u * i + 3u]) * (1.
 // it would make every search heavier, so there each further PAIR_MAX contacts are noted and
 // applied after a search of their own.
 #ifdef SELF_APPLY_FOUND
-void apply_contact(uint p, vec3 x, uint t);
+void apply_contact(uint p, vec3 x, uint code);
 #endif
 
-// Contact (pair_particle, t; overlap h - d), the pair_len-th found: noted in the particle's
-// slots when among the PAIR_MAX from pair_skip on (past those applied, SELF_APPLY_FOUND), and
-// in the find pass counted in its free particles (the apply pass applies what the slots hold).
-void keep_pair(uint t, uvec3 tv, float d) {
-    bool free_p = !CPINNED(pair_particle);
-    bvec3 free_t = bvec3(!CPINNED(tv.x), !CPINNED(tv.y), !CPINNED(tv.z));
-    if (!(free_p || any(free_t))) return;
+// Contact `code` of pair_particle (its particles m, overlap h - d), the pair_len-th found:
+// noted in the particle's slots when among the PAIR_MAX from pair_skip on (past those applied,
+// SELF_APPLY_FOUND), and in the find pass counted in its free particles (the apply pass
+// applies what the slots hold).
+void keep_pair(uint code, uvec4 m, float d, float fade) {
+    bvec4 free_m = bvec4(!CPINNED(m.x), !CPINNED(m.y), !CPINNED(m.z), !CPINNED(m.w));
+    if (!any(free_m)) return;
 #ifdef SELF_APPLY_FOUND
     if (SELF_APPLY_FOUND && apply_pass && pair_len >= pair_skip + PAIR_MAX) {
-        apply_contact(pair_particle, pair_x, t);
+        apply_contact(pair_particle, pair_x, code);
         pair_len += 1u;
         return;
     }
 #endif
     uint slot = pair_len - pair_skip;
-    if (pair_len >= pair_skip && slot < PAIR_MAX) self_pairs[pair_word(slot, pair_particle)] = int(t);
+    if (pair_len >= pair_skip && slot < PAIR_MAX) self_pairs[pair_word(slot, pair_particle)] = int(code);
     pair_len += 1u;
     if (apply_pass) return;
-    int weight = count_weight(obj.self_distance - d);
-    if (free_p) atomicAdd(self_pairs[4u * pair_particle + 3u], weight);
-    [[unroll]] for (int k = 0; k < 3; ++k) {
-        if (free_t[k]) atomicAdd(self_pairs[4u * tv[k] + 3u], weight);
+    int weight = int(round(65536.0 * contact_weight(obj.self_distance - d) * fade));
+    [[unroll]] for (int k = 0; k < 4; ++k) {
+        if (free_m[k]) atomicAdd(self_pairs[4u * m[k] + 3u], weight);
     }
 }
 
-// Keeps (pair_particle; triangle t, not left out, at distance d) when it is a contact.
-void test_contact(uint t, uvec3 tv, float d) {
-    if (d < obj.self_distance && d > 0.0) keep_pair(t, tv, d);
+// Keeps contact `code` of pair_particle (not left out; its particles m, at distance d, taking
+// part by `fade`) when it is one.
+void test_contact(uint code, uvec4 m, float d, float fade) {
+    if (d < obj.self_distance && d > 0.0 && fade > 0.0) keep_pair(code, m, d, fade);
 }
 
-// A contact list's triangle t (not left out) for the particle at x.
-void test_pair(vec3 x, uint t) {
-    uvec3 tv;
-    vec3 w;
+// A contact list's entry `code` (not left out) for the particle at x: a triangle, or an edge
+// pair whose nearest points lie inside both edges.
+void test_pair(vec3 x, uint code) {
+    uvec4 m;
+    vec4 c;
     vec3 n;
-    float d = pair_distance(x, t, tv, w, n);
-    test_contact(t, tv, d);
+    float d = pair_geometry(pair_particle, x, code, m, c, n);
+    test_contact(code, m, d, is_edge_pair(code) ? edge_fade(vec2(c.y, -c.w)) * pair_crease(pair_particle, code) : 1.0);
 }
 
-// The find pass's visit of candidate vertex j (outside the one-ring of the particle at `cell`,
-// at x): each triangle around j whose vertex nearest x is j (so each triangle is visited once)
-// and that is not left out is kept when a contact and, while the contact lists are built
-// (`list_reach`: h plus the skin, otherwise 0), recorded in the particle's list when nearer
-// than that. The ring's positions are read once, and only for vertices outside the particle's
-// one-ring (a triangle with a vertex inside is left out before anything is read).
-void self_triangles(uvec2 cell, vec3 x, uint j, float list_reach) {
+// Whether the pair of ends (a0, a1) at squared distance da comes before (b0, b1) at db: the
+// nearer, distances compared in steps of h^2 / 1000 and ties broken by the ends' indices, so
+// that of an edge pair's four pairs of ends exactly one comes first (the pair's nearest ends;
+// a total order). A regular fold has many pairs of ends equally far apart: compared exactly,
+// their rounding, which the fused and per-stage kernels and the CPU twin do differently, would
+// pick the owner (and so which contacts take part in the further passes); in steps it seldom
+// can. Twin: sim::cpu::self_contact::ends_before.
+bool ends_before(float da, uint a0, uint a1, float db, uint b0, uint b1) {
+    float step = 1000.0 / (obj.self_distance * obj.self_distance);
+    float qa = floor(da * step);
+    float qb = floor(db * step);
+    if (qa != qb) return qa < qb;
+    uvec2 ka = uvec2(min(a0, a1), max(a0, a1));
+    uvec2 kb = uvec2(min(b0, b1), max(b0, b1));
+    return ka.x < kb.x || (ka.x == kb.x && ka.y < kb.y);
+}
+
+// Edge pairs nearer than this many times h at rest are left out (sim::cpu::self_contact's
+// EDGE_REST_MARGIN): a cloth whose thickness nears the gap between a cell's diagonal and the
+// vertex next to it (0.707 spacings) would otherwise hold those apart wherever it is
+// compressed a little, every particle in contact everywhere (the towel, 0.65 spacings thick,
+// took 120 s a frame on lavapipe); 1.5 leaves them out from 0.47 spacings and keeps the
+// parallel edges a row apart, which a pile's sharp folds need.
+const float EDGE_REST_MARGIN = 1.5;
+
+// Whether two edges that share no vertex can be nearer than EDGE_REST_MARGIN h in the rest
+// state: the nearest are a cell's diagonal and the vertex next to it, sx sy / |s| >= 0.707
+// min(sx, sy) apart.
+bool edges_near_at_rest_possible() {
+    return EDGE_REST_MARGIN * obj.self_distance >= 0.7 * min(obj.spacing.x, obj.spacing.y);
+}
+
+// Whether edges (qp, qa) and (qj, qb) (grid cells) are nearer than EDGE_REST_MARGIN h in the
+// rest state.
+bool edges_near_at_rest(ivec2 qp, ivec2 qa, ivec2 qj, ivec2 qb) {
+    vec3 rp = vec3(0.0);
+    vec3 ra = vec3(vec2(qa - qp) * obj.spacing, 0.0);
+    vec3 rj = vec3(vec2(qj - qp) * obj.spacing, 0.0);
+    vec3 rb = vec3(vec2(qb - qp) * obj.spacing, 0.0);
+    vec2 st;
+    vec3 off = edge_offset(rp, ra, rj, rb, st);
+    float near = EDGE_REST_MARGIN * obj.self_distance;
+    return dot(off, off) < near * near;
+}
+
+// The find pass's edge pairs of the particle p (pair_particle, at `cell`, at x) with vertex
+// j > p (at `at`, xj, squared distance d2j): each pair of p's edge (p, a) and j's edge (j, b)
+// whose nearest ends are (p, j) (so each pair is visited once), left out when the edges share
+// a vertex or are nearer than EDGE_REST_MARGIN h at rest, is kept when a contact whose nearest
+// points lie inside both edges, and recorded in the list when nearer than list_reach. (The
+// rings are read as the loops reach them, not into arrays: lavapipe compiled the arrays'
+// dynamic indexing for seconds.)
+void self_edges(uvec2 cell, vec3 x, uint j, ivec2 at, vec3 xj, float d2j, float farthest, float list_reach) {
+    uint p = pair_particle;
+    ivec2 qp = ivec2(cell);
     ivec2 dims = ivec2(obj.dims);
-    ivec2 at = ivec2(int(j % obj.dims.x), int(j / obj.dims.x));
-    vec3 xj = CPOS(j);
-    vec3 dj = x - xj;
-    float d2j = dot(dj, dj);
+    bool rest_check = edges_near_at_rest_possible();
+    uint j_creases = ring_creases(j, xj, list_reach > 0.0 ? CREASE_LIST : CREASE_FROM);
+    if ((own_creases | j_creases) == 0u) return;
+    [[dont_unroll]] for (int k1 = 0; k1 < 6; ++k1) {
+        bool own_creased = ((own_creases >> uint(k1)) & 1u) != 0u;
+        if (!own_creased && j_creases == 0u) continue;
+        ivec2 qa = qp + VERTEX_RING[k1];
+        if (any(lessThan(qa, ivec2(0))) || any(greaterThanEqual(qa, dims))) continue;
+        uint a = uint(qa.x + qa.y * dims.x);
+        if (a == j) continue;
+        vec3 xa = CPOS(a);
+        vec3 eaj = xa - xj;
+        if (ends_before(dot(eaj, eaj), a, j, d2j, p, j)) continue;
+        vec3 lo1 = min(x, xa) - farthest;
+        vec3 hi1 = max(x, xa) + farthest;
+        [[dont_unroll]] for (int k2 = 0; k2 < 6; ++k2) {
+            ivec2 qb = at + VERTEX_RING[k2];
+            if (any(lessThan(qb, ivec2(0))) || any(greaterThanEqual(qb, dims))) continue;
+            uint b = uint(qb.x + qb.y * dims.x);
+            if (b == p || b == a || !own_creased && ((j_creases >> uint(k2)) & 1u) == 0u) continue;
+            vec3 xb = CPOS(b);
+            vec3 epb = x - xb;
+            vec3 eab = xa - xb;
+            if (ends_before(dot(epb, epb), p, b, d2j, p, j) || ends_before(dot(eab, eab), a, b, d2j, p, j)) continue;
+            if (any(greaterThan(lo1, max(xj, xb))) || any(lessThan(hi1, min(xj, xb)))) continue;
+            vec2 st;
+            float d = length(edge_offset(x, xa, xj, xb, st));
+            if (!(d < farthest) || rest_check && edges_near_at_rest(qp, qa, at, qb)) continue;
+            uint code = edge_pair_code(uint(k1), j, uint(k2));
+            test_contact(code, uvec4(p, a, j, b), d, edge_fade(st) * pair_crease(p, code));
+            if (d < list_reach) {
+                if (list_len < LIST_ENTRIES) self_list[list_entry(list_len, list_particle, particle_count())] = code;
+                list_len += 1u;  // past LIST_ENTRIES the list is full: it is rebuilt the next substep
+            }
+        }
+    }
+}
+
+// self_triangles' visit of the triangles around candidate j (at `at`, xj, squared distance
+// d2j from x) outside the particle's one-ring.
+void self_triangles_of(uvec2 cell, vec3 x, uint j, ivec2 at, vec3 xj, float d2j, float farthest, float list_reach) {
+    ivec2 dims = ivec2(obj.dims);
     bool usable[6];
     uint ring[6];
     vec3 at_ring[6];
@@ -231,11 +455,12 @@ void self_triangles(uvec2 cell, vec3 x, uint j, float list_reach) {
         d2[r] = usable[r] ? dot(e, e) : 0.0;
     }
     bool thick = obj.self_distance >= 1.99 * min(obj.spacing.x, obj.spacing.y);
-    // A triangle farther than this is neither a contact nor a list entry. (The box test and
-    // the exact one round differently, so a contact within a rounding error of h may be kept by
-    // a search with the lists' reach and culled by one without; its weight is then about 1e-5.
-    // A margin of 0.1% here cost the 1024 x 1024 cloth 5% on the H100, so there is none.)
-    float farthest = max(obj.self_distance, list_reach);
+    // Which triangles are contacts (bit k: the k-th around j), tested after the loop below
+    // in one place, so that the code keeping (and per stage applying) them is compiled once,
+    // not six times (lavapipe took 45 s to compile the apply pass so), and without an array
+    // indexed in a loop (which NVIDIA keeps in local memory: the 1024 x 1024 cloth's
+    // constraints took 20% longer so).
+    uint hits = 0u;
     [[unroll]] for (int k = 0; k < 6; ++k) {
         int k1 = (k + 1) % 6;
         if (!usable[k] || !usable[k1] || nearer(d2[k], ring[k], d2j, j) || nearer(d2[k1], ring[k1], d2j, j)) continue;
@@ -248,19 +473,48 @@ void self_triangles(uvec2 cell, vec3 x, uint j, float list_reach) {
         uint t = 2u * uint(a.x + a.y * dims.x) + uint(VERTEX_TRIANGLES[k].z);
         if (thick && pair_left_out(cell, t)) continue;
         // The exact test from the positions read above, the vertices in the triangle's own
-        // order (triangle_vertices), as pair_distance computes it.
+        // order (triangle_vertices), as pair_geometry computes it.
         uvec3 tv = triangle_vertices(t);
         vec3 p[3];
         [[unroll]] for (int c = 0; c < 3; ++c) p[c] = tv[c] == j ? xj : tv[c] == ring[k] ? at_ring[k] : at_ring[k1];
         vec3 w;
         vec3 n;
         float d = triangle_distance(x, p[0], p[1], p[2], w, n);
-        test_contact(t, tv, d);
+        if (d < obj.self_distance) hits |= 1u << uint(k);
         if (d < list_reach) {
             if (list_len < LIST_ENTRIES) self_list[list_entry(list_len, list_particle, particle_count())] = t;
             list_len += 1u;  // past LIST_ENTRIES the list is full: it is rebuilt the next substep
         }
     }
+    // (A contact's distance computed again from the same positions: the same value.)
+    [[dont_unroll]] while (hits != 0u) {
+        int k = findLSB(hits);
+        hits &= hits - 1u;
+        ivec2 a = at + VERTEX_TRIANGLES[k].xy;
+        test_pair(x, 2u * uint(a.x + a.y * dims.x) + uint(VERTEX_TRIANGLES[k].z));
+    }
+}
+
+// The find pass's visit of candidate vertex j (not the particle at `cell`, at x): when j is
+// outside the particle's one-ring, each triangle around j whose vertex nearest x is j (so each
+// triangle is visited once) and that is not left out is kept when a contact and, while the
+// contact lists are built (`list_reach`: h plus the skin, otherwise 0), recorded in the
+// particle's list when nearer than that; then, for j past the particle, their edge pairs
+// (self_edges). The ring's positions are read once.
+void self_triangles(uvec2 cell, vec3 x, uint j, float list_reach) {
+    ivec2 dims = ivec2(obj.dims);
+    ivec2 at = ivec2(int(j % obj.dims.x), int(j / obj.dims.x));
+    vec3 xj = CPOS(j);
+    vec3 dj = x - xj;
+    float d2j = dot(dj, dj);
+    // A triangle or edge pair farther than this is neither a contact nor a list entry. (The box test and
+    // the exact one round differently, so a contact within a rounding error of h may be kept by
+    // a search with the lists' reach and culled by one without; its weight is then about 1e-5.
+    // A margin of 0.1% here cost the 1024 x 1024 cloth 5% on the H100, so there is none.)
+    float farthest = max(obj.self_distance, list_reach);
+    ivec2 from_p = abs(at - ivec2(cell));
+    if (max(from_p.x, from_p.y) > 1) self_triangles_of(cell, x, j, at, xj, d2j, farthest, list_reach);
+    if (edge_contact() && j > pair_particle) self_edges(cell, x, j, at, xj, d2j, farthest, list_reach);
 }
 
 // Adds `move` to particle i's fixed-point sum, and `rest`, the part of it that moves the
@@ -277,43 +531,53 @@ void add_move(uint i, vec3 move, vec3 rest) {
     if (r.z != 0) atomicAdd(self_pairs[w + 2u], r.z);
 }
 
-// Contact (p at x, t), computed again from the same positions as when it was found: moves its
-// free particles (see the top).
-void apply_contact(uint p, vec3 x, uint t) {
-    uvec3 tv;
-    vec3 w;
+// How far each contact's correction is over-relaxed with edge contact
+// (sim::cpu::self_contact::RELAXATION): a particle's share of a contact is 1 / n of it (mass
+// splitting), which a pile of layers needs many passes to sum to what holds it; 1.5 its
+// share, but never more than the contact alone would take (then its whole overlap), so that a
+// lone contact does not overshoot. Without edge contact 1 (colliding layers bounce less: 0.04
+// against 0.15 m/s at 32 substeps, tests/self_contact.rs).
+float pair_relaxation() { return edge_contact() ? 1.5 : 1.0; }
+
+// Contact `code` of particle p at x, computed again from the same positions as when it was
+// found: moves its free particles (see the top).
+void apply_contact(uint p, vec3 x, uint code) {
+    uvec4 m;
+    vec4 c;
     vec3 n;
-    float d = pair_distance(x, t, tv, w, n);
+    float d = pair_geometry(p, x, code, m, c, n);
     // (A further pass: the pair may have parted, or, moved, lost its normal.)
     if (!(d > 0.0 && d < obj.self_distance)) return;
-    float w_p = CPINNED(p) ? 0.0 : 1.0;
-    vec3 free_t = vec3(CPINNED(tv.x) ? 0.0 : 1.0, CPINNED(tv.y) ? 0.0 : 1.0, CPINNED(tv.z) ? 0.0 : 1.0);
+    vec4 free_m = vec4(CPINNED(m.x) ? 0.0 : 1.0, CPINNED(m.y) ? 0.0 : 1.0, CPINNED(m.z) ? 0.0 : 1.0,
+                       CPINNED(m.w) ? 0.0 : 1.0);
     // Each free particle's mass split among its contacts: inverse mass w n, n its count.
-    vec3 split_t = vec3(0.0);
-    [[unroll]] for (int q = 0; q < 3; ++q) {
-        if (free_t[q] > 0.0) split_t[q] = split_count(tv[q]);
+    vec4 split_m = vec4(0.0);
+    [[unroll]] for (int q = 0; q < 4; ++q) {
+        if (free_m[q] > 0.0) split_m[q] = split_count(m[q]);
     }
-    float split_p = w_p > 0.0 ? split_count(p) : 0.0;
     float overlap = max(obj.self_distance - d, 0.0);
     // A contact takes part by its weight in the counts: one that begins (overlap under h / 10)
     // moves its particles by that fraction of its share, so that the counts' smoothing never
     // lets a particle's contacts add up to more than its largest overlap.
-    float weight = min(1.0, overlap / (0.1 * obj.self_distance));
-    // The relative motion of p and t's nearest point over the substep: the overlap it made
-    // (its approach along n) is undone with the velocity that made it; what overlap remains
-    // from before is undone in position only (no bounce from an overlap resolved late).
-    vec3 moved = (x - pair_start(p))
-               - (w.x * (CPOS(tv.x) - pair_start(tv.x)) + w.y * (CPOS(tv.y) - pair_start(tv.y))
-                  + w.z * (CPOS(tv.z) - pair_start(tv.z)));
+    float weight = contact_weight(overlap) * (is_edge_pair(code) ? edge_fade(vec2(c.y, -c.w)) * pair_crease(p, code) : 1.0);
+    // The relative motion of the two sides' nearest points over the substep: the overlap it
+    // made (its approach along n) is undone with the velocity that made it; what overlap
+    // remains from before is undone in position only (no bounce from an overlap resolved late).
+    vec3 moved = c.x * (x - pair_start(p));
+    [[unroll]] for (int q = 1; q < 4; ++q) moved += c[q] * (CPOS(m[q]) - pair_start(m[q]));
     float approach = clamp(-dot(moved, n), 0.0, overlap);
     // Coulomb: the tangential slip undone within mu times the normal impulse (the approach).
-    vec3 correction = n * overlap - friction_correction(moved, n, approach, obj.friction);
-    float k = weight / (split_p + dot(w * w, split_t));
-    vec3 push = correction * k;
+    vec3 slip = friction_correction(moved, n, approach, obj.friction);
+    vec4 c2 = c * c;
+    float split = dot(c2, split_m);
+    float whole = dot(c2, free_m);
+    // (Weights on pinned particles only: nothing to move.)
+    if (!(whole > 0.0)) return;
+    float k = weight * min(pair_relaxation() / split, 1.0 / whole);
+    vec3 push = (n * overlap - slip) * k;
     vec3 rest = n * ((overlap - approach) * k);
-    if (w_p > 0.0) add_move(p, push, rest);
-    [[unroll]] for (int q = 0; q < 3; ++q) {
-        if (free_t[q] > 0.0) add_move(tv[q], push * -w[q], rest * -w[q]);
+    [[unroll]] for (int q = 0; q < 4; ++q) {
+        if (free_m[q] > 0.0 && c[q] != 0.0) add_move(m[q], push * c[q], rest * c[q]);
     }
 }
 

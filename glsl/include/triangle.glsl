@@ -1,7 +1,7 @@
-// A cloth grid's triangles around a vertex, the point of a triangle nearest to a point, and a
-// contact's Coulomb friction: shared by a cloth's contact with itself (self_contact.glsl) and
-// contact between objects (contact.comp). CPU twin: sim::cpu::self_contact (cloth_triangles,
-// triangle_nearest, friction_correction).
+// A cloth grid's triangles around a vertex, the point of a triangle nearest to a point, the
+// nearest points of two segments, and a contact's Coulomb friction: shared by a cloth's
+// contact with itself (self_contact.glsl) and contact between objects (contact.comp). CPU twin: sim::cpu::self_contact (cloth_triangles,
+// triangle_nearest, segment_nearest, friction_correction).
 #ifndef MSD_TRIANGLE_GLSL
 #define MSD_TRIANGLE_GLSL
 
@@ -51,6 +51,34 @@ vec3 triangle_nearest(vec3 p, vec3 a, vec3 b, vec3 c) {
     float sum = va + vb + vc;
     if (!(sum > 0.0)) return vec3(1.0, 0.0, 0.0);  // a degenerate triangle: its first vertex
     return vec3(va, vb, vc) / sum;
+}
+
+// The parameters (s, t) of the nearest points p1 + s (q1 - p1) and p2 + t (q2 - p2) of two
+// segments (Ericson, Real-Time Collision Detection, 5.1.9). Segments nearer parallel than a
+// relative 1e-5 (where f32 cannot place the nearest points along them) take s = 0: an end, so
+// an edge-edge contact leaves them to the vertex-triangle contacts. Twin:
+// sim::cpu::self_contact::segment_nearest.
+vec2 segment_nearest(vec3 p1, vec3 q1, vec3 p2, vec3 q2) {
+    vec3 d1 = q1 - p1;
+    vec3 d2 = q2 - p2;
+    vec3 r = p1 - p2;
+    float a = dot(d1, d1);
+    float e = dot(d2, d2);
+    float f = dot(d2, r);
+    if (!(a > 0.0) || !(e > 0.0)) return vec2(0.0);  // (grid edges never shrink to a point)
+    float c = dot(d1, r);
+    float b = dot(d1, d2);
+    float denom = a * e - b * b;
+    float s = denom > 1e-5 * a * e ? clamp((b * f - c * e) / denom, 0.0, 1.0) : 0.0;
+    float t = (b * s + f) / e;
+    if (t < 0.0) {
+        t = 0.0;
+        s = clamp(-c / a, 0.0, 1.0);
+    } else if (t > 1.0) {
+        t = 1.0;
+        s = clamp((b - c) / a, 0.0, 1.0);
+    }
+    return vec2(s, t);
 }
 
 // How much of the relative motion `moved` over the substep friction undoes in a contact of

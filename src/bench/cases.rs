@@ -26,20 +26,29 @@ struct Features {
     /// A ground, a box and a capsule (the other collider types, against the 10 spheres).
     shapes: bool,
     self_collision: bool,
-    /// Self-collision of a cloth against its triangles (`self_contact = "triangles"`).
-    triangles: bool,
+    /// What a cloth's self-collision keeps apart (`self_contact`).
+    contact: SelfContact,
 }
 
-const NONE: Features =
-    Features { wind: false, spheres: 0, shapes: false, self_collision: false, triangles: false };
+const NONE: Features = Features {
+    wind: false,
+    spheres: 0,
+    shapes: false,
+    self_collision: false,
+    contact: SelfContact::Particles,
+};
 
-const VARIANTS: [(&str, Features); 7] = [
+const VARIANTS: [(&str, Features); 8] = [
     ("springs only", NONE),
     ("+ wind", Features { wind: true, ..NONE }),
     ("+ 10 spheres", Features { spheres: 10, ..NONE }),
     ("+ ground, box, capsule", Features { shapes: true, ..NONE }),
     ("+ self-collision", Features { self_collision: true, ..NONE }),
-    ("+ triangle self-contact", Features { self_collision: true, triangles: true, ..NONE }),
+    ("+ triangle self-contact", Features { self_collision: true, contact: SelfContact::Triangles, ..NONE }),
+    (
+        "+ triangle and edge self-contact",
+        Features { self_collision: true, contact: SelfContact::TrianglesAndEdges, ..NONE },
+    ),
     ("all features", Features { wind: true, spheres: 10, self_collision: true, ..NONE }),
 ];
 
@@ -151,7 +160,7 @@ fn with_features(mut scene: Scene, f: Features, span: f64, y: f64) -> Scene {
     }
     scene.cloths.iter_mut().for_each(|c| {
         c.self_collision = f.self_collision;
-        c.self_contact = if f.triangles { SelfContact::Triangles } else { SelfContact::Particles };
+        c.self_contact = f.contact;
     });
     scene.ropes.iter_mut().for_each(|r| r.self_collision = f.self_collision);
     scene
@@ -180,9 +189,12 @@ fn paper_cases() -> Vec<Case> {
     no_self.cloths[0].self_collision = false;
     let mut triangles = curtain();
     triangles.cloths[0].self_contact = SelfContact::Triangles;
+    let mut edges = curtain();
+    edges.cloths[0].self_contact = SelfContact::TrianglesAndEdges;
     for (name, scene) in [
         ("curtain 50x50, all features", all),
         ("curtain 50x50, all features, triangle self-contact", triangles),
+        ("curtain 50x50, all features, triangle and edge self-contact", edges),
         ("curtain 50x50, all features + 1 sphere", one),
         ("curtain 50x50, all features + 10 spheres", ten),
         ("curtain 50x50, all features + ground, box, capsule", shaped),

@@ -143,7 +143,8 @@ fn cloth(c: &Cloth) -> ObjectModel {
         self_distance: c
             .self_collision
             .then(|| c.self_collision_distance.unwrap_or_else(|| c.default_self_collision_distance())),
-        triangle_contact: c.self_contact == SelfContact::Triangles,
+        triangle_contact: c.self_contact.triangles(),
+        edge_contact: c.self_contact == SelfContact::TrianglesAndEdges,
         rope_radius: 0.0,
         ring_weights: default_ring_weights(),
         velocities: vec![DVec3::ZERO; n],
@@ -189,6 +190,7 @@ fn rope(r: &Rope) -> ObjectModel {
         stretch_limit: r.stretch_limit,
         self_distance: r.self_collision.then(|| r.self_collision_distance.unwrap_or(2.0 * r.radius)),
         triangle_contact: false,
+        edge_contact: false,
         rope_radius: r.radius,
         ring_weights,
         velocities: vec![DVec3::ZERO; n],

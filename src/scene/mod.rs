@@ -244,11 +244,24 @@ pub enum SelfContact {
     /// Particles from triangles, equal and opposite: the distance is a thickness.
     #[default]
     Triangles,
+    /// As `Triangles`, and the grid's edges from its edges (layers crossing edge over edge,
+    /// which no particle touches: a strip piling on its own sharp folds), at several times the
+    /// cost (docs/PERFORMANCE.md, "Edge-edge contact").
+    TrianglesAndEdges,
 }
 
 impl SelfContact {
     fn is_triangles(&self) -> bool {
         *self == SelfContact::Triangles
+    }
+
+    /// Every choice, in the editor's order.
+    pub const ALL: [SelfContact; 3] =
+        [SelfContact::Particles, SelfContact::Triangles, SelfContact::TrianglesAndEdges];
+
+    /// Whether it keeps particles from triangles.
+    pub fn triangles(self) -> bool {
+        self != SelfContact::Particles
     }
 }
 
@@ -456,9 +469,10 @@ pub struct Cloth {
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub self_collision_distance: Option<f64>,
     /// What self-collision keeps apart: "triangles" (the default: the cloth's particles from
-    /// its triangles, the distance a thickness, no layer passing through another) or
-    /// "particles" (the paper's: particles from particles, at a fraction of the cost, but
-    /// layers pass between them).
+    /// its triangles, the distance a thickness, no layer passing through another where a few
+    /// layers meet), "triangles_and_edges" (and its edges from its edges: piles of sharp folds
+    /// too, at several times the cost) or "particles" (the paper's: particles from particles,
+    /// at a fraction of the cost, but layers pass between them).
     #[serde(default, skip_serializing_if = "SelfContact::is_triangles")]
     pub self_contact: SelfContact,
     #[serde(default)]

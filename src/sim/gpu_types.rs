@@ -96,6 +96,7 @@ pub const FEATURE_CAPSULE: u32 = 1024;
 pub const FEATURE_CONTACT: u32 = 2048;
 pub const FEATURE_EDGES: u32 = 4096;
 pub const FEATURE_TRIANGLES: u32 = 8192;
+pub const FEATURE_EDGE_PAIRS: u32 = 16384;
 
 gpu_struct!(
     /// One simulated particle (cloth particle or rope node).

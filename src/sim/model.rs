@@ -83,6 +83,8 @@ pub struct ObjectModel {
     /// A cloth's self-collision keeps its particles from its triangles (equal and opposite
     /// impulses, `sim::cpu::self_contact`) instead of from its other particles.
     pub triangle_contact: bool,
+    /// ... and its edges from its edges too (with `triangle_contact`).
+    pub edge_contact: bool,
     /// Rope tube radius [m] (rope only).
     pub rope_radius: f64,
     /// Rope tube vertex offsets in (side, up) units of the radius (rope only).
@@ -110,6 +112,11 @@ impl ObjectModel {
     /// rope is one row).
     pub fn has_triangles(&self) -> bool {
         self.triangle_contact && self.dims[0] > 1 && self.dims[1] > 1
+    }
+
+    /// Whether self-contact keeps the grid's edges from its edges too (with triangles).
+    pub fn has_edge_pairs(&self) -> bool {
+        self.edge_contact && self.has_triangles()
     }
 
     /// How far from a particle self-contact candidates are searched (`self_reach` in
@@ -274,6 +281,7 @@ impl SimModel {
                     stretch_limit: o.stretch_limit,
                     self_distance: o.self_distance,
                     triangle_contact: o.triangle_contact,
+                    edge_contact: o.edge_contact,
                     rope_radius: o.rope_radius,
                     ring_weights: o.ring_weights,
                     positions: Vec::new(),

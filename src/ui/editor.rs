@@ -406,7 +406,7 @@ fn simulation_panel(ui: &Ui, state: &mut EditorState, scene: &mut Scene, actions
     if scene.cloths.len() + scene.ropes.len() > 1 {
         check(ui, "objects touch each other", &mut scene.sim.inter_object);
     }
-    if scene.cloths.iter().any(|c| c.self_collision && c.self_contact == SelfContact::Triangles) {
+    if scene.cloths.iter().any(|c| c.self_collision && c.self_contact.triangles()) {
         int(ui, "contact iterations", &mut scene.sim.contact_iterations, 1, 64);
     }
     use crate::scene::IntegratorChoice as I;
@@ -577,7 +577,7 @@ fn cloth_panel(ui: &Ui, c: &mut Cloth) {
     if c.self_collision {
         let default = c.default_self_collision_distance();
         optional(ui, "self-collision distance [m]", &mut c.self_collision_distance, default, 0.001, 10.0);
-        choice(ui, "self-contact", &mut c.self_contact, &[SelfContact::Particles, SelfContact::Triangles]);
+        choice(ui, "self-contact", &mut c.self_contact, &SelfContact::ALL);
     }
     color(ui, "front colour", &mut c.color);
     color(ui, "back colour", &mut c.back_color);

@@ -70,6 +70,7 @@ fn plain(kind: ObjectKind, name: String, dims: [u32; 2], spacing: f64, positions
         stretch_limit: None,
         self_distance: None,
         triangle_contact: false,
+        edge_contact: false,
         rope_radius: 0.01,
         ring_weights: default_ring_weights(),
         positions,

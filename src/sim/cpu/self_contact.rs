@@ -1,23 +1,41 @@
-//! The CPU twin of a cloth's contact with its own triangles (glsl/include/self_contact.glsl):
-//! every pair (particle p, triangle t) not left out (a vertex of t in p's one-ring, or t nearer
-//! than h to p at rest) and nearer than the self-collision distance h is a contact. With the barycentric weights b of t's point
-//! nearest p and n the unit vector from it to p, p moves by w_p lambda n and vertex k by
-//! -w_k b_k lambda n, lambda = c (h - d) / (n_p w_p + sum n_k w_k b_k^2) (w: 1 free, 0 pinned;
-//! n: each particle's count of contacts, at least 1, a contact counting by its weight c, fully
-//! once its overlap reaches h / 10; its mass split among them), so every contact conserves
-//! momentum. The part of the overlap the substep's approach made moves the velocity too, the
-//! rest the position only. Coulomb friction (mu: the cloth's `friction`) adds the relative
-//! motion over the substep of p and t's nearest point along the tangent, undone whole while
-//! within mu times the approach, else that much of it, with the same weights. Every pair is tested here;
-//! the GPU finds the same through its spatial hash or contact lists (and keeps at most 16
-//! contacts a particle in a substep).
+//! The CPU twin of a cloth's contact with itself (glsl/include/self_contact.glsl): particles
+//! against triangles and, with edge contact (`ObjectModel::edge_contact`), edges against edges.
+//! Every pair (particle p, triangle t) not left out (a vertex of t in p's one-ring, or t nearer
+//! than h to p at rest) and every pair of grid edges not left out (an end of one in the one-ring of an end of the other, or nearer than h
+//! at rest) whose nearest points lie inside both edges, nearer than the self-collision distance
+//! h, is a contact. Its offset from side b's nearest point to side a's is sum c_k x_k over its
+//! particles (p and t's vertices: 1 and minus the barycentric weights of t's point nearest p;
+//! edges (p, a) and (j, b): 1 - s, s, u - 1, -u at their nearest points' parameters s and u);
+//! with n its unit vector, particle k moves by w_k c_k lambda n,
+//! lambda = c (h - d) min(RELAXATION / sum n_k w_k c_k^2, 1 / sum w_k c_k^2) (w: 1 free, 0
+//! pinned; n: each particle's count of contacts, at least 1, a contact counting by its weight
+//! c, fully once its overlap reaches h / 10; its mass split among them, the share over-relaxed
+//! with edge contact but never past the contact's whole, RELAXATION 1 without), so every contact conserves momentum. The part of the
+//! overlap the substep's approach made moves the velocity too, the rest the position only.
+//! Coulomb friction (mu: the cloth's `friction`) adds the relative motion over the substep of
+//! the two nearest points along the tangent, undone whole while within mu times the approach,
+//! else that much of it, with the same weights. Every pair is tested here; the GPU finds the
+//! same through its spatial hash or contact lists (and keeps at most 16 contacts a particle
+//! in a substep; an edge pair belongs to the lower-indexed of its nearest ends).
 
 use crate::sim::model::ObjectModel;
-use glam::{DVec2, DVec3};
+use glam::{DVec2, DVec3, DVec4};
 
 /// Contacts the GPU keeps for a particle in a substep; a particle that finds more (as the
 /// particle of its pairs) takes part in the substep's first pass only (`self_reapply`).
 pub const PAIR_MAX: usize = 16;
+
+/// How far each contact's share of its correction is over-relaxed with edge contact, never
+/// past the contact's whole (`pair_relaxation` in the shaders, which say why); 1 without.
+pub const RELAXATION: f64 = 1.5;
+
+/// Edge pairs nearer than this many times h at rest are left out (`EDGE_REST_MARGIN` in the
+/// shaders, which say why).
+pub const EDGE_REST_MARGIN: f64 = 1.5;
+
+/// The grid's ring around a vertex, in order (`VERTEX_RING` in glsl/include/triangle.glsl):
+/// an edge pair names each edge by an end and the ring vertex of its other end.
+const VERTEX_RING: [(i64, i64); 6] = [(1, 0), (0, 1), (-1, 1), (-1, 0), (0, -1), (1, -1)];
 
 /// The grid's triangles as the renderer draws them, each with its number t = 2 a + k (a the
 /// cell's first corner): (a, a + cols, a + 1) for k = 0, (a + 1, a + cols, a + cols + 1) for 1.
@@ -74,6 +92,28 @@ pub fn triangle_nearest(p: DVec3, a: DVec3, b: DVec3, c: DVec3) -> DVec3 {
     }
 }
 
+/// The parameters (s, t) of the nearest points p1 + s (q1 - p1) and p2 + t (q2 - p2) of two
+/// segments (Ericson, Real-Time Collision Detection, 5.1.9); segments nearer parallel than a
+/// relative 1e-5 take s = 0, as the GPU does (`segment_nearest` in the shaders).
+pub fn segment_nearest(p1: DVec3, q1: DVec3, p2: DVec3, q2: DVec3) -> (f64, f64) {
+    let (d1, d2, r) = (q1 - p1, q2 - p2, p1 - p2);
+    let (a, e, f) = (d1.dot(d1), d2.dot(d2), d2.dot(r));
+    if a <= 0.0 || e <= 0.0 {
+        return (0.0, 0.0);
+    }
+    let (b, c) = (d1.dot(d2), d1.dot(r));
+    let denom = a * e - b * b;
+    let s = if denom > 1e-5 * a * e { ((b * f - c * e) / denom).clamp(0.0, 1.0) } else { 0.0 };
+    let t = (b * s + f) / e;
+    if t < 0.0 {
+        ((-c / a).clamp(0.0, 1.0), 0.0)
+    } else if t > 1.0 {
+        (((b - c) / a).clamp(0.0, 1.0), 1.0)
+    } else {
+        (s, t)
+    }
+}
+
 /// How much of the relative motion `moved` over the substep friction undoes in a contact of
 /// normal n whose normal correction is `normal`: all of its tangential part within the cone
 /// (static), else mu times the normal correction of it (kinetic: Coulomb's bound on the
@@ -115,15 +155,226 @@ fn count_weight(overlap: f64, h: f64) -> f64 {
     (overlap / (0.1 * h)).min(1.0)
 }
 
-/// One contact of a cloth with its own triangles: particle p, the triangle's vertices, the
-/// barycentric weights of its point nearest p, the unit normal from there to p, the overlap.
-pub type Contact = (usize, [usize; 3], DVec3, DVec3, f64);
+/// One contact of a cloth with itself: its particles, the owner first (the particle against a
+/// triangle's vertices, or edge (p, a) against edge (j, b) as [p, a, j, b]), the signed
+/// weights c of its offset sum c_k x_k (from side b's nearest point to side a's) at the
+/// positions it was found at, the unit normal along that offset, the overlap.
+#[derive(Clone, Copy, Debug)]
+pub struct Contact {
+    pub particles: [usize; 4],
+    pub edges: bool,
+    /// An edge pair's edges' opposite vertices (those of the two triangles on each edge, in
+    /// the order of `particles`' edges; NONE on the border), and half a grid diagonal over h:
+    /// what its crease weight is computed from.
+    pub opposite: [usize; 4],
+    pub chord: f64,
+    pub weights: DVec4,
+    pub normal: DVec3,
+    pub overlap: f64,
+}
 
-/// Cloth `o`'s contacts with its own triangles at positions `x` (none without triangle
-/// self-contact): every pair not left out, with a free particle, nearer than h.
+impl Contact {
+    /// The particle whose slots hold it on the GPU.
+    pub fn owner(&self) -> usize {
+        self.particles[0]
+    }
+
+    /// Its weights and offset at positions `x` (as the GPU's `pair_geometry` computes them).
+    fn geometry(&self, x: &[DVec3]) -> (DVec4, DVec3) {
+        let [p, a, j, b] = self.particles;
+        if self.edges {
+            let (s, u) = segment_nearest(x[p], x[a], x[j], x[b]);
+            (DVec4::new(1.0 - s, s, u - 1.0, -u), x[p].lerp(x[a], s) - x[j].lerp(x[b], u))
+        } else {
+            let w = triangle_nearest(x[p], x[a], x[j], x[b]);
+            (DVec4::new(1.0, -w.x, -w.y, -w.z), x[p] - (x[a] * w.x + x[j] * w.y + x[b] * w.z))
+        }
+    }
+
+    /// How much it takes part at weights `w` and positions `x`: 1 against a triangle; an edge
+    /// pair by `edge_fade` of its nearest points' parameters times the larger of its edges'
+    /// crease weights.
+    fn fade(&self, w: DVec4, x: &[DVec3]) -> f64 {
+        if !self.edges {
+            return 1.0;
+        }
+        let [p, a, j, b] = self.particles;
+        let [o1, o2, o3, o4] = self.opposite;
+        let sag = |u: usize, v: usize, q1: usize, q2: usize| {
+            if q1 == NONE || q2 == NONE {
+                f64::INFINITY
+            } else {
+                crease_sag(x[u], x[v], x[q1], x[q2], self.chord)
+            }
+        };
+        edge_fade(w.y, -w.w) * crease_weight(sag(p, a, o1, o2)).max(crease_weight(sag(j, b, o3, o4)))
+    }
+
+    /// The contact of `particles` (edge pair or not; `opposite` and `chord` as the fields) at
+    /// `x`, if they are nearer than h (and an edge pair's nearest points lie inside both edges
+    /// and one of them is creased).
+    fn at(
+        particles: [usize; 4],
+        edges: bool,
+        opposite: [usize; 4],
+        chord: f64,
+        x: &[DVec3],
+        h: f64,
+    ) -> Option<Contact> {
+        let mut c = Contact {
+            particles,
+            edges,
+            opposite,
+            chord,
+            weights: DVec4::ZERO,
+            normal: DVec3::ZERO,
+            overlap: 0.0,
+        };
+        let (weights, off) = c.geometry(x);
+        let d = off.length();
+        if d >= h || d <= 0.0 || c.fade(weights, x) <= 0.0 {
+            return None;
+        }
+        c.weights = weights;
+        c.normal = off / d;
+        c.overlap = h - d;
+        Some(c)
+    }
+}
+
+/// No vertex (an edge on the border has one triangle).
+const NONE: usize = usize::MAX;
+
+/// Where an edge pair's crease weight starts and reaches 1, in sag over h (`CREASE_FROM`,
+/// `CREASE_TO` in the shaders, which say why).
+const CREASE_FROM: f64 = 0.1;
+const CREASE_TO: f64 = 0.2;
+
+/// The sag over h of a chord `chord` h long (half a grid diagonal) laid across edge (u, v)
+/// between its triangles (u, v, o1) and (u, v, o2): chord tan(phi / 2), phi their dihedral
+/// angle; infinite for a degenerate triangle (`crease_sag` in the shaders).
+pub fn crease_sag(u: DVec3, v: DVec3, o1: DVec3, o2: DVec3, chord: f64) -> f64 {
+    let e = v - u;
+    let (n1, n2) = (e.cross(o1 - u), (o2 - u).cross(e));
+    let l = n1.length() * n2.length();
+    let flat = l + n1.dot(n2);
+    // (NaN, from a degenerate triangle, counts as creased too)
+    if l.is_nan() || flat.is_nan() || l <= 0.0 || flat <= 1e-12 * l {
+        return f64::INFINITY;
+    }
+    chord * n1.cross(n2).length() / flat
+}
+
+/// An edge's crease weight at sag `sag`: 0 to CREASE_FROM, 1 from CREASE_TO.
+pub fn crease_weight(sag: f64) -> f64 {
+    ((sag - CREASE_FROM) / (CREASE_TO - CREASE_FROM)).clamp(0.0, 1.0)
+}
+
+/// The opposite vertices of grid edge (u, v) (v in u's one-ring) of cloth `o`: those of its
+/// two triangles, NONE for a missing one.
+fn edge_opposite(o: &ObjectModel, u: usize, v: usize) -> [usize; 2] {
+    let (cu, cv) = (cell_of(o, u), cell_of(o, v));
+    let Some(k) = VERTEX_RING.iter().position(|&(dc, dr)| (cu.0 + dc, cu.1 + dr) == cv) else {
+        return [NONE; 2];
+    };
+    let (cols, rows) = (o.dims[0] as i64, o.dims[1] as i64);
+    [(k + 5) % 6, (k + 1) % 6].map(|r| {
+        let (c, w) = (cu.0 + VERTEX_RING[r].0, cu.1 + VERTEX_RING[r].1);
+        if (0..cols).contains(&c) && (0..rows).contains(&w) {
+            (c + w * cols) as usize
+        } else {
+            NONE
+        }
+    })
+}
+
+/// How much an edge pair whose nearest points lie at s and u along its edges takes part: 1
+/// where both lie inside by 0.05 of their edges or more, fading to 0 at an end (`edge_fade` in
+/// the shaders, which say why).
+pub fn edge_fade(s: f64, u: f64) -> f64 {
+    (s.min(1.0 - s).min(u).min(1.0 - u) / 0.05).clamp(0.0, 1.0)
+}
+
+/// Grid vertex `k`'s cell (column, row) in cloth `o`.
+fn cell_of(o: &ObjectModel, k: usize) -> (i64, i64) {
+    let cols = o.dims[0] as usize;
+    ((k % cols) as i64, (k / cols) as i64)
+}
+
+/// The grid's edges (rows, columns, the cells' diagonals; each once), as pairs of ends.
+fn grid_edges(o: &ObjectModel) -> Vec<[usize; 2]> {
+    let (cols, rows) = (o.dims[0] as i64, o.dims[1] as i64);
+    let mut out = Vec::new();
+    for r in 0..rows {
+        for c in 0..cols {
+            for (dc, dr) in &VERTEX_RING[..3] {
+                let (qc, qr) = (c + dc, r + dr);
+                if (0..cols).contains(&qc) && (0..rows).contains(&qr) {
+                    out.push([(c + r * cols) as usize, (qc + qr * cols) as usize]);
+                }
+            }
+        }
+    }
+    out
+}
+
+/// Whether edge pair (e1, e2) of cloth `o` is left out: they share a vertex, or are nearer than
+/// EDGE_REST_MARGIN h at rest (possible from that reaching 0.7 grid spacings: a cell's
+/// diagonal and the vertex next to it are sx sy / |s| apart).
+fn edges_left_out(o: &ObjectModel, h: f64, e1: [usize; 2], e2: [usize; 2]) -> bool {
+    if e1.iter().any(|k| e2.contains(k)) {
+        return true;
+    }
+    let near = EDGE_REST_MARGIN * h;
+    if near < 0.7 * o.spacing[0].min(o.spacing[1]) {
+        return false;
+    }
+    let rest = |k: usize| {
+        let (c, r) = cell_of(o, k);
+        DVec3::new(c as f64 * o.spacing[0], r as f64 * o.spacing[1], 0.0)
+    };
+    let (s, u) = segment_nearest(rest(e1[0]), rest(e1[1]), rest(e2[0]), rest(e2[1]));
+    (rest(e1[0]).lerp(rest(e1[1]), s) - rest(e2[0]).lerp(rest(e2[1]), u)).length() < near
+}
+
+/// Whether the pair of ends a at squared distance da comes before b at db: the nearer, in
+/// steps of h^2 / 1000, ties broken by the ends' indices (`ends_before` in the shaders, which
+/// say why).
+fn ends_before(h: f64, da: f64, a: (usize, usize), db: f64, b: (usize, usize)) -> bool {
+    let step = 1000.0 / (h * h);
+    let (qa, qb) = ((da * step).floor(), (db * step).floor());
+    if qa != qb {
+        return qa < qb;
+    }
+    (a.0.min(a.1), a.0.max(a.1)) < (b.0.min(b.1), b.0.max(b.1))
+}
+
+/// Edge pair (e1, e2) ordered as the GPU finds it: [p, a, j, b] with (p, j) its nearest ends
+/// (`ends_before`) and p < j.
+fn edge_pair_order(h: f64, x: &[DVec3], e1: [usize; 2], e2: [usize; 2]) -> [usize; 4] {
+    let d2 = |(k1, k2): (usize, usize)| x[e1[k1]].distance_squared(x[e2[k2]]);
+    let ends = |(k1, k2): (usize, usize)| (e1[k1], e2[k2]);
+    let mut at = (0, 0);
+    for k in [(0, 1), (1, 0), (1, 1)] {
+        if ends_before(h, d2(k), ends(k), d2(at), ends(at)) {
+            at = k;
+        }
+    }
+    let (p, a, j, b) = (e1[at.0], e1[1 - at.0], e2[at.1], e2[1 - at.1]);
+    if p < j {
+        [p, a, j, b]
+    } else {
+        [j, b, p, a]
+    }
+}
+
+/// Cloth `o`'s contacts with itself at positions `x` (none without triangle self-contact):
+/// every particle-triangle pair and edge pair not left out, with a free particle, nearer than
+/// h (an edge pair's nearest points inside both edges).
 pub fn contacts(o: &ObjectModel, x: &[DVec3]) -> Vec<Contact> {
     let mut contacts = Vec::new();
     let Some(h) = o.self_distance.filter(|_| o.has_triangles()) else { return contacts };
+    let pinned = |m: &[usize]| m.iter().all(|&k| o.pinned[k]);
     for (_, tv) in cloth_triangles(o.dims[0] as usize, o.dims[1] as usize) {
         let (lo, hi) = tv
             .iter()
@@ -132,15 +383,35 @@ pub fn contacts(o: &ObjectModel, x: &[DVec3]) -> Vec<Contact> {
             if xp.cmplt(lo - h).any() || xp.cmpgt(hi + h).any() || tv.contains(&p) {
                 continue;
             }
-            if o.pinned[p] && tv.iter().all(|&k| o.pinned[k]) || left_out(o, h, p, tv) {
+            if o.pinned[p] && pinned(&tv) || left_out(o, h, p, tv) {
                 continue;
             }
-            let w = triangle_nearest(xp, x[tv[0]], x[tv[1]], x[tv[2]]);
-            let off = xp - (x[tv[0]] * w.x + x[tv[1]] * w.y + x[tv[2]] * w.z);
-            let d = off.length();
-            if d < h && d > 0.0 {
-                contacts.push((p, tv, w, off / d, h - d));
+            contacts.extend(Contact::at([p, tv[0], tv[1], tv[2]], false, [NONE; 4], 0.0, x, h));
+        }
+    }
+    if !o.has_edge_pairs() {
+        return contacts;
+    }
+    // Edge pairs, swept along x: edges sorted by their boxes' low ends, each against those
+    // whose boxes begin before its own (grown by h) ends.
+    let mut edges: Vec<([usize; 2], DVec3, DVec3)> =
+        grid_edges(o).into_iter().map(|e| (e, x[e[0]].min(x[e[1]]), x[e[0]].max(x[e[1]]))).collect();
+    edges.sort_by(|a, b| a.1.x.total_cmp(&b.1.x));
+    let chord = 0.5 * o.spacing[0].hypot(o.spacing[1]) / h;
+    for (i, &(e1, lo1, hi1)) in edges.iter().enumerate() {
+        for &(e2, lo2, hi2) in &edges[i + 1..] {
+            if lo2.x > hi1.x + h {
+                break;
             }
+            if (lo1 - h).cmpgt(hi2).any() || (lo2 - h).cmpgt(hi1).any() {
+                continue;
+            }
+            let m = edge_pair_order(h, x, e1, e2);
+            if pinned(&m) || edges_left_out(o, h, e1, e2) {
+                continue;
+            }
+            let ([o1, o2], [o3, o4]) = (edge_opposite(o, m[0], m[1]), edge_opposite(o, m[2], m[3]));
+            contacts.extend(Contact::at(m, true, [o1, o2, o3, o4], chord, x, h));
         }
     }
     contacts
@@ -168,16 +439,19 @@ pub(super) fn self_contact(
     };
     let found = contacts(o, x);
     let mut count = vec![0.0; x.len()];
-    for &(p, tv, _, _, overlap) in &found {
-        for k in std::iter::once(p).chain(tv).filter(|&k| !o.pinned[k]) {
-            count[k] += count_weight(overlap, h);
+    for c in &found {
+        for (j, &k) in c.particles.iter().enumerate() {
+            // (a particle-triangle pair counts in each of its four particles once)
+            if !o.pinned[k] && !c.particles[..j].contains(&k) {
+                count[k] += count_weight(c.overlap, h) * c.fade(c.weights, x);
+            }
         }
     }
     let mut found_by = vec![0; x.len()];
     for c in &found {
-        found_by[c.0] += 1;
+        found_by[c.owner()] += 1;
     }
-    let again: Vec<Contact> = found.iter().filter(|c| found_by[c.0] <= PAIR_MAX).copied().collect();
+    let again: Vec<Contact> = found.iter().filter(|c| found_by[c.owner()] <= PAIR_MAX).copied().collect();
     let mut last = apply(o, h, &found, &count, x, start);
     for _ in 1..iterations {
         for i in 0..x.len() {
@@ -202,32 +476,35 @@ fn apply(
     let mut moves = vec![DVec3::ZERO; x.len()];
     let mut rests = vec![DVec3::ZERO; x.len()];
     let free = |k: usize| if o.pinned[k] { 0.0 } else { 1.0 };
-    for &(p, tv, ..) in found {
+    let relaxation = if o.has_edge_pairs() { RELAXATION } else { 1.0 };
+    for contact in found {
         // The pair again at these positions (as the GPU's apply_contact computes it).
-        let w = triangle_nearest(x[p], x[tv[0]], x[tv[1]], x[tv[2]]);
-        let off = x[p] - (x[tv[0]] * w.x + x[tv[1]] * w.y + x[tv[2]] * w.z);
+        let (c, off) = contact.geometry(x);
         let d = off.length();
         if d >= h || d == 0.0 {
             continue;
         }
         let (n, overlap) = (off / d, h - d);
+        let m = contact.particles;
+        let free_m = DVec4::from_array(m.map(free));
         // Each free particle's mass split among its contacts.
-        let split = |k: usize| free(k) * f64::max(1.0, count[k]);
-        let weights = DVec3::from_array(tv.map(free));
+        let split_m = DVec4::from_array(m.map(|k| free(k) * f64::max(1.0, count[k])));
         // The overlap this substep's approach made is undone with its velocity, the rest in
         // position only; friction within mu times the approach (the normal impulse).
-        let moved = |k: usize| x[k] - start[k];
-        let slip = moved(p) - (0..3).map(|k| moved(tv[k]) * w[k]).sum::<DVec3>();
+        let slip = (0..4).map(|q| (x[m[q]] - start[m[q]]) * c[q]).sum::<DVec3>();
         let approach = (-slip.dot(n)).clamp(0.0, overlap);
-        let correction = n * overlap - friction_correction(slip, n, approach, o.friction);
-        // A contact that begins takes part by its count weight (see the GPU's apply_contact).
-        let k = count_weight(overlap, h) / (split(p) + (w * w).dot(DVec3::from_array(tv.map(split))));
-        let (push, rest) = (correction * k, n * ((overlap - approach) * k));
-        moves[p] += push * free(p);
-        rests[p] += rest * free(p);
-        for (j, &v) in tv.iter().enumerate() {
-            moves[v] -= push * (w[j] * weights[j]);
-            rests[v] -= rest * (w[j] * weights[j]);
+        let friction = friction_correction(slip, n, approach, o.friction);
+        let (split, whole) = ((c * c).dot(split_m), (c * c).dot(free_m));
+        if whole <= 0.0 {
+            continue; // weights on pinned particles only
+        }
+        // A contact that begins takes part by its count weight (see the GPU's apply_contact);
+        // its share over-relaxed, never past its whole.
+        let k = count_weight(overlap, h) * contact.fade(c, x) * f64::min(relaxation / split, 1.0 / whole);
+        let (push, rest) = ((n * overlap - friction) * k, n * ((overlap - approach) * k));
+        for q in 0..4 {
+            moves[m[q]] += push * (c[q] * free_m[q]);
+            rests[m[q]] += rest * (c[q] * free_m[q]);
         }
     }
     (moves, rests)

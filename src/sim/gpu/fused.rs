@@ -53,6 +53,10 @@ pub struct FusedLimits {
 /// cost (the towel preset 26.0 against 26.2 ms a frame, the rope 1.16 against 1.11 ms;
 /// a dispatch a substep cost 38% and 90%).
 const LIMITED_SUBSTEPS_PER_DISPATCH: u32 = 8;
+/// ... for an object with edge-edge self-contact: one. Its edge pairs' search runs two loops of
+/// six a candidate (glsl/include/self_contact.glsl): a dense fold of 13 x 10 particles searched
+/// by brute force reached the limit in its fifth substep.
+const LIMITED_EDGE_PAIR_SUBSTEPS_PER_DISPATCH: u32 = 1;
 
 impl FusedLimits {
     /// `slots` particles per thread at most for every object.
@@ -88,6 +92,19 @@ impl FusedLimits {
             substeps_per_dispatch: self.substeps_per_dispatch.min(device_substeps).max(1),
         }
     }
+
+    /// Substeps one dispatch runs for fused objects whose `FEATURES` are `features`, in a frame
+    /// of `substeps`: `substeps_per_dispatch`, one on a device with a loop limit where an
+    /// object keeps edges from edges.
+    pub fn chunk(&self, mut features: impl Iterator<Item = u32>, substeps: u32) -> u32 {
+        let limited = self.substeps_per_dispatch != u32::MAX;
+        let most = if limited && features.any(|f| f & crate::sim::gpu_types::FEATURE_EDGE_PAIRS != 0) {
+            self.substeps_per_dispatch.min(LIMITED_EDGE_PAIR_SUBSTEPS_PER_DISPATCH)
+        } else {
+            self.substeps_per_dispatch
+        };
+        most.clamp(1, substeps.max(1))
+    }
 }
 
 /// Threads of a fused workgroup at most (the Vulkan minimum of maxComputeWorkGroupInvocations
@@ -120,6 +137,7 @@ pub fn features(o: &ObjectModel, model: &SimModel) -> u32 {
         (FEATURE_STRETCH, o.stretch_limit.is_some()),
         (FEATURE_SELF, o.self_distance.is_some()),
         (crate::sim::gpu_types::FEATURE_TRIANGLES, o.self_distance.is_some() && o.has_triangles()),
+        (crate::sim::gpu_types::FEATURE_EDGE_PAIRS, o.self_distance.is_some() && o.has_edge_pairs()),
     ];
     let f = uses.into_iter().filter(|(_, on)| *on).fold(f, |f, (bit, _)| f | bit);
     let f = if model.inter_object_contact() { f | crate::sim::gpu_types::FEATURE_CONTACT } else { f };
@@ -264,9 +282,11 @@ impl super::GpuSim {
     pub fn set_fused(&mut self, on: bool) {
         // The two paths keep their lists in the same layout, but nothing makes them one
         // contract (the fused kernel's LIST_VALID is the per-stage path's first control word).
-        self.lists_stale |= on != self.fused || (on && !self.fuse_triangles);
+        self.lists_stale |= on != self.fused || (on && self.fuse_contact != CONTACT_FEATURES);
         self.fused = on;
-        self.fuse_triangles |= on;
+        if on {
+            self.fuse_contact = CONTACT_FEATURES;
+        }
     }
 
     /// Whether object `object` runs its substeps fused (its layout fits and the path is on).
@@ -276,8 +296,25 @@ impl super::GpuSim {
 
     /// Whether object `o` runs fused substeps.
     pub(super) fn is_fused(&self, o: &GpuObject) -> bool {
-        let triangles = o.plan.features & crate::sim::gpu_types::FEATURE_TRIANGLES != 0;
-        self.fused && o.plan.fused.is_some() && (self.fuse_triangles || !triangles)
+        let held_back = o.plan.features & CONTACT_FEATURES & !self.fuse_contact;
+        self.fused && o.plan.fused.is_some() && held_back == 0
+    }
+}
+
+/// The self-contact features that decide whether an object runs fused by default.
+const CONTACT_FEATURES: u32 =
+    crate::sim::gpu_types::FEATURE_TRIANGLES | crate::sim::gpu_types::FEATURE_EDGE_PAIRS;
+
+/// Which of those an object may have and run fused by default on device `info`
+/// (`GpuSim::fuse_contact`): triangles except on a CPU driver, where their fused passes cost
+/// twice the per-stage path (lavapipe, a 40 x 40 cloth: 138 against 69 ms a frame); edge pairs
+/// on no device: a fused object's search runs in one workgroup, and a pile's edge pairs make it
+/// long (the H100: the towel with edge contact 78 ms a frame fused against 13.0 per stage; the
+/// curtain, which does not pile, 5.3 to 6.0 against 8.6; docs/PERFORMANCE.md).
+pub(super) fn default_fused_contact(info: &crate::vk::DeviceInfo) -> u32 {
+    match info.kind {
+        crate::vk::DeviceKind::Cpu => 0,
+        _ => crate::sim::gpu_types::FEATURE_TRIANGLES,
     }
 }
 

@@ -110,10 +110,9 @@ pub struct GpuSim {
     /// Objects whose layout fits the device's shared memory run their substeps fused into one
     /// dispatch (`fused.rs`).
     fused: bool,
-    /// Whether objects with triangle self-contact run fused too. Not by default on a CPU
-    /// driver, where their fused passes cost twice the per-stage path (lavapipe, a 40 x 40
-    /// cloth: 138 against 69 ms a frame; docs/PERFORMANCE.md); `set_fused(true)` asks for it.
-    fuse_triangles: bool,
+    /// The self-contact features an object may have and still run fused (by default
+    /// `fused::default_fused_contact`, which says why; `set_fused(true)`: all).
+    fuse_contact: u32,
     /// The implicit method per stage: objects of more workgroups than this have their dot
     /// products' partial sums totalled by a pass of one workgroup (`step.rs`).
     cg_totals_above: u32,
@@ -285,7 +284,7 @@ impl GpuSim {
             timestamps,
             stage_timing: true,
             fused: true,
-            fuse_triangles: ctx.info().kind != crate::vk::DeviceKind::Cpu,
+            fuse_contact: fused::default_fused_contact(ctx.info()),
             cg_totals_above: step::CG_TOTALS_ABOVE,
             limits,
             drawn: true,
@@ -389,7 +388,7 @@ impl GpuSim {
         // `substeps_per_dispatch` substeps (the kernel's push constants: the first substep and
         // how many), each ordered after the one before.
         let fused: Vec<&GpuObject> = self.objects.iter().filter(|o| self.is_fused(o)).collect();
-        let chunk = self.limits.substeps_per_dispatch.clamp(1, self.model.substeps.max(1));
+        let chunk = self.limits.chunk(fused.iter().map(|o| o.plan.features), self.model.substeps);
         let mut first = 0;
         while !fused.is_empty() && first < self.model.substeps {
             let count = chunk.min(self.model.substeps - first);
