@@ -83,6 +83,18 @@ fn preset_text(scene: &Scene) -> Result<String, toml_edit::ser::Error> {
     Ok(doc.to_string())
 }
 
+/// The key of the line holding byte `at` of `text` when that line is `key =` with no value at
+/// or after `at` (a comment may follow).
+fn key_without_value(text: &str, at: usize) -> Option<&str> {
+    let at = at.min(text.len());
+    let start = text[..at].rfind('\n').map_or(0, |i| i + 1);
+    let end = text[at..].find('\n').map_or(text.len(), |i| at + i);
+    let (before, after) = (text[start..at].trim_end(), text[at..end].trim());
+    let key = before.strip_suffix('=')?.trim();
+    let rest_empty = after.is_empty() || after.starts_with('#');
+    (rest_empty && !key.is_empty() && !key.contains('=')).then_some(key)
+}
+
 /// Parses preset text; `origin` names it in error messages.
 pub fn parse(text: &str, origin: &str, overrides: &[String]) -> Result<Scene, UserError> {
     let mut table: toml::Table = text.parse().map_err(|e: toml::de::Error| {
@@ -103,6 +115,13 @@ pub fn parse(text: &str, origin: &str, overrides: &[String]) -> Result<Scene, Us
         } else {
             ""
         };
+        // `key =` with nothing after it: the parser expects a value there and names only the
+        // string's quotes, which misleads when the key wants a number.
+        if let Some(key) = e.span().and_then(|s| key_without_value(text, s.start)) {
+            return UserError(format!(
+                "{origin}: {at}`{key} =` has no value (write a number, \"text\", true or false, or [a, list])"
+            ));
+        }
         UserError(format!("{origin}: {at}{}{why}", one_line(e.message())))
     })?;
     for spec in overrides {
@@ -325,6 +344,17 @@ stiffness = { structural = 1.0, shear = 1.0, bending = 1.0 }
         assert!(with(&["sim..x=1"]).unwrap_err().0.contains("malformed key"));
         let e = with(&["sim.substepz=1"]).unwrap_err().0;
         assert!(e.contains("t.toml (with --set): sim.substepz: unknown field"), "{e}");
+    }
+
+    #[test]
+    fn a_key_without_a_value_is_named() {
+        for text in
+            ["[sim]\nsubsteps =\n", "[sim]\nsubsteps =   # per frame\nframe_dt = 0.01\n", "[sim]\nsubsteps ="]
+        {
+            let e = parse(text, "x.toml", &[]).unwrap_err().0;
+            assert!(e.starts_with("x.toml: line 2, column"), "{e}");
+            assert!(e.contains("`substeps =` has no value"), "{e}");
+        }
     }
 
     #[test]

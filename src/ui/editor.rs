@@ -379,7 +379,7 @@ fn simulation_panel(ui: &Ui, state: &mut EditorState, scene: &mut Scene, actions
         actions.push(Action::ResetCamera);
     }
     let label = match &state.recording {
-        Some((n, _)) => format!("Stop recording (F9): {n} frames###record"),
+        Some((n, _)) => format!("Stop recording (F9): {n} frame{}###record", if *n == 1 { "" } else { "s" }),
         None => "Record (F9)###record".to_string(),
     };
     if ui.button(label) {
