@@ -100,7 +100,8 @@ fn a_cloth_folding_over_its_middle_row_never_passes_through_itself() {
 /// rounding), so the bound, 60, leaves room for another driver's rounding while staying far
 /// under one pass's count). With edges kept from edges too (`self_contact =
 /// "triangles_and_edges"`: each share of a contact over-relaxed, edge pairs where an edge is
-/// creased) four passes stop it: measured 2 on the reference and 4 on the GPU (fused). Where
+/// creased) four passes let fewer through: measured 2 on the reference and 4 on the GPU
+/// (fused). Where
 /// it piles is chaotic: over nine tilts from 0.05 to 0.4 rad the reference let through 0 in
 /// five and 2 to 14 in the others at four passes, 0 everywhere at eight
 /// (docs/bench/cpu/edge-edge-study/crease-gate.txt), so that bound is 10. The count changes in

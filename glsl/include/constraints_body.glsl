@@ -73,7 +73,12 @@ void self_push(vec3 x, uint j, float reach, inout vec3 correction, inout uint n_
 // visit of j's triangles (which records the list's entries itself).
 void self_candidate(uvec2 cell, vec3 x, uint j, float d, float reach, inout vec3 correction, inout uint n_active) {
     if (triangle_contact()) {
-        self_triangles(cell, x, j, list_build ? list_within() : 0.0);
+        // (By brute force every particle is a candidate; with edge pairs only those within the
+        // hash's reach are visited, so that both find the same pairs and the search's loops
+        // stay within lavapipe's limit.)
+        if (!edge_contact() || d < (list_build ? list_reach() : reach)) {
+            self_triangles(cell, x, j, list_build ? list_within() : 0.0);
+        }
         return;
     }
     if (d < reach) self_push(x, j, reach, correction, n_active);

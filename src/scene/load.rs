@@ -84,15 +84,16 @@ fn preset_text(scene: &Scene) -> Result<String, toml_edit::ser::Error> {
 }
 
 /// The key of the line holding byte `at` of `text` when that line is `key =` with no value at
-/// or after `at` (a comment may follow).
+/// or after `at` (a comment may follow): a bare, quoted or dotted key, nothing else before it.
 fn key_without_value(text: &str, at: usize) -> Option<&str> {
-    let at = at.min(text.len());
+    let at = (0..=at.min(text.len())).rev().find(|&i| text.is_char_boundary(i))?;
     let start = text[..at].rfind('\n').map_or(0, |i| i + 1);
     let end = text[at..].find('\n').map_or(text.len(), |i| at + i);
     let (before, after) = (text[start..at].trim_end(), text[at..end].trim());
     let key = before.strip_suffix('=')?.trim();
     let rest_empty = after.is_empty() || after.starts_with('#');
-    (rest_empty && !key.is_empty() && !key.contains('=')).then_some(key)
+    let key_chars = key.chars().all(|c| c.is_alphanumeric() || "_-.\"' ".contains(c));
+    (rest_empty && !key.is_empty() && key_chars).then_some(key)
 }
 
 /// Parses preset text; `origin` names it in error messages.
@@ -119,7 +120,8 @@ pub fn parse(text: &str, origin: &str, overrides: &[String]) -> Result<Scene, Us
         // string's quotes, which misleads when the key wants a number.
         if let Some(key) = e.span().and_then(|s| key_without_value(text, s.start)) {
             return UserError(format!(
-                "{origin}: {at}`{key} =` has no value (write a number, \"text\", true or false, or [a, list])"
+                "{origin}: {at}`{key} =` has no value on its line (write a number, \"text\", true or false, \
+                 [a, list] or {{ a = table }} after the `=`){why}"
             ));
         }
         UserError(format!("{origin}: {at}{}{why}", one_line(e.message())))
@@ -354,6 +356,11 @@ stiffness = { structural = 1.0, shear = 1.0, bending = 1.0 }
             let e = parse(text, "x.toml", &[]).unwrap_err().0;
             assert!(e.starts_with("x.toml: line 2, column"), "{e}");
             assert!(e.contains("`substeps =` has no value"), "{e}");
+        }
+        // Not a key on its own: the parser's own message.
+        for text in ["[sim]\ngravity = [\n  { y =\n", "a = b =\n"] {
+            let e = parse(text, "x.toml", &[]).unwrap_err().0;
+            assert!(!e.contains("has no value"), "{e}");
         }
     }
 

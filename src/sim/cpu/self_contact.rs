@@ -1,9 +1,9 @@
 //! The CPU twin of a cloth's contact with itself (glsl/include/self_contact.glsl): particles
 //! against triangles and, with edge contact (`ObjectModel::edge_contact`), edges against edges.
 //! Every pair (particle p, triangle t) not left out (a vertex of t in p's one-ring, or t nearer
-//! than h to p at rest) and every pair of grid edges not left out (an end of one in the one-ring of an end of the other, or nearer than h
-//! at rest) whose nearest points lie inside both edges, nearer than the self-collision distance
-//! h, is a contact. Its offset from side b's nearest point to side a's is sum c_k x_k over its
+//! than h to p at rest) and every pair of grid edges not left out (sharing a vertex, or nearer
+//! than EDGE_REST_MARGIN h at rest), one of them creased (`crease_sag`), whose nearest points
+//! lie inside both edges, nearer than the self-collision distance h, is a contact. Its offset from side b's nearest point to side a's is sum c_k x_k over its
 //! particles (p and t's vertices: 1 and minus the barycentric weights of t's point nearest p;
 //! edges (p, a) and (j, b): 1 - s, s, u - 1, -u at their nearest points' parameters s and u);
 //! with n its unit vector, particle k moves by w_k c_k lambda n,
