@@ -569,7 +569,11 @@ void main() {
                     if (k >= n) continue;
                     uint h = cell_hash(ivec3(floor(x[s] * obj.cell_inv)), BUCKETS - 1u);
                     scratch[BUCKETS + k] = atomicExchange(scratch[h], k);
+                    // (how creased its ring edges are, which the search reads for every
+                    // candidate: creases.glsl)
+                    if (edge_contact()) self_pairs[creases_word(k)] = int(ring_crease_masks(k, x[s]));
                 }
+                if (edge_contact()) memoryBarrierBuffer();
                 barrier();
             }
         }

@@ -66,31 +66,17 @@
 //    over several substeps, deeper than the thickness;
 // 3. the constraint stage adds its particle's sum to its correction whole and clears it
 //    (self_take).
-// The CPU twin is sim::cpu::self_contact. Buffer self_pairs (binding 17), n particles: words
-// [4 i, 4 i + 4) particle i's sum (x, y, z in units of h / 2^26) and count (in units of
-// 2^-16); 4 n + i the number of contacts it keeps; (5 + k) n + i its contact k's code;
-// [(5 + PAIR_MAX) n + 3 i, + 3) where it began the substep; [(8 + PAIR_MAX) n + 3 i, + 3) the
-// part of its sum that moves the position only (units as the sum); [(11 + PAIR_MAX) n, + 3)
-// the further passes' indirect dispatch per stage (workgroups; zero in a substep where no
-// particle found a contact: the find pass writes it, the constraint stage zeroes it).
+// The CPU twin is sim::cpu::self_contact; the buffer's layout is in self_pairs_layout.glsl.
 // Include in constraints_body.glsl (CPOS, CPINNED defined).
 #ifndef MSD_SELF_CONTACT_GLSL
 #define MSD_SELF_CONTACT_GLSL
 #include "lists.glsl"
-#include "triangle.glsl"
+#include "creases.glsl"
 
 // Whether this pipeline's cloth keeps its edges from its edges too (its own specialization:
 // without it none of the edge-pair code is compiled in).
 bool edge_contact() { return has(F_EDGE_PAIRS); }
 
-// Contacts a particle keeps in a substep (sim::gpu::object::SELF_PAIR_MAX); one with more
-// searches for them again in the apply pass.
-const uint PAIR_MAX = 16u;
-uint pairs_len_word(uint i) { return 4u * particle_count() + i; }
-uint pair_word(uint k, uint i) { return (5u + k) * particle_count() + i; }
-uint start_word(uint i) { return (5u + PAIR_MAX) * particle_count() + 3u * i; }
-uint rest_word(uint i) { return (8u + PAIR_MAX) * particle_count() + 3u * i; }
-uint further_passes_word() { return (11u + PAIR_MAX) * particle_count(); }
 // Where particle i began the substep, as the find pass noted it.
 vec3 pair_start(uint i) {
     uint w = start_word(i);
@@ -115,8 +101,8 @@ uvec3 triangle_vertices(uint t) {
 // A contact's code in a particle's slots and contact list: a triangle's number t (under
 // 2^29), or for an edge pair EDGE_PAIR, the particle's own edge k1 (to its ring vertex k1,
 // VERTEX_RING) in bits 28 to 30, and the other edge, particle j's to its ring vertex k2, as
-// 6 j + k2 below (under 2^28 for any cloth whose self_pairs buffer, 108 bytes a particle, a
-// device can bind: at most 2^32 bytes, 39.8 million particles).
+// 6 j + k2 below (under 2^28 for any cloth whose self_pairs buffer, 112 bytes a particle with
+// edge contact, a device can bind: at most 2^32 bytes, 38.3 million particles).
 const uint EDGE_PAIR = 0x80000000u;
 uint edge_pair_code(uint k1, uint j, uint k2) { return EDGE_PAIR | (k1 << 28u) | (6u * j + k2); }
 bool is_edge_pair(uint code) { return edge_contact() && (code & EDGE_PAIR) != 0u; }
@@ -126,8 +112,6 @@ uint ring_vertex(uint v, uint k) {
     return uint(q.x + q.y * int(obj.dims.x));
 }
 
-// Whether grid cell q is in the grid.
-bool in_grid(ivec2 q) { return all(greaterThanEqual(q, ivec2(0))) && all(lessThan(q, ivec2(obj.dims))); }
 // The number of triangle k around the grid vertex at `at` (VERTEX_TRIANGLES).
 uint vertex_triangle(ivec2 at, int k) {
     ivec2 a = at + VERTEX_TRIANGLES[k].xy;
@@ -192,31 +176,6 @@ float edge_fade(vec2 st) {
     return clamp(inside * (1.0 / EDGE_FADE), 0.0, 1.0);
 }
 
-// An edge pair takes part only where one of its edges is creased. Two edges each inside a
-// flat stretch of cloth cannot come through each other without a vertex meeting a triangle
-// first (the vertex-triangle contacts hold that), but across a crease (a fold's ridge, the
-// border) an edge can: its ends held h from the faces on either side, its middle still
-// reaches the ridge. How creased an edge is: the sag, in h, of a chord half a grid diagonal
-// long laid across it at the two triangles' dihedral angle phi, (0.5 |spacing| / h) tan(phi / 2);
-// on the border, or with a degenerate triangle, infinite. Its weight rises from 0 at a sag of
-// CREASE_FROM to 1 at CREASE_TO (smooth, so that f32 and the CPU twin's f64 agree but for
-// rounding). Twin: sim::cpu::self_contact::crease_sag.
-const float CREASE_FROM = 0.1;
-const float CREASE_TO = 0.2;
-// While the lists are built, edge pairs are recorded from a sag of this (the crease may grow
-// before the next build; a pair whose edges both sag less then and creased past CREASE_FROM
-// before the next build is missed until it).
-const float CREASE_LIST = 0.05;
-float crease_sag(vec3 u, vec3 v, vec3 o1, vec3 o2) {
-    vec3 e = v - u;
-    vec3 n1 = cross(e, o1 - u);
-    vec3 n2 = cross(o2 - u, e);
-    float l = length(n1) * length(n2);
-    float flat_part = l + dot(n1, n2);
-    if (!(l > 0.0) || !(flat_part > 1e-12 * l)) return 1e30;
-    return 0.5 * length(obj.spacing) / obj.self_distance * length(cross(n1, n2)) / flat_part;
-}
-float crease_weight(float sag) { return clamp((sag - CREASE_FROM) * (1.0 / (CREASE_TO - CREASE_FROM)), 0.0, 1.0); }
 // The sag of grid vertex u's edge to its ring vertex k (in the grid): its triangles are those
 // of ring vertices k - 1 and k + 1.
 float edge_sag(uint u, uint k) {
@@ -237,25 +196,10 @@ float pair_crease(uint p, uint code) {
 float edge_pair_part(uint p, uint code, vec2 st) { return edge_fade(st) * pair_crease(p, code); }
 // ... for contact `code` of particle p of weights c (pair_geometry): 1 for a triangle.
 float pair_part(uint p, uint code, vec4 c) { return is_edge_pair(code) ? edge_pair_part(p, code, vec2(c.y, -c.w)) : 1.0; }
-// Which of grid vertex u's (at x) six ring edges sag more than `from` (bit k: the edge to ring
-// vertex k; edges outside the grid, 0). The ring's positions are read once.
-uint ring_creases(uint u, vec3 x, float from) {
-    ivec2 q = ivec2(int(u % obj.dims.x), int(u / obj.dims.x));
-    bool ok[6];
-    vec3 r[6];
-    [[unroll]] for (int k = 0; k < 6; ++k) {
-        ivec2 qk = q + VERTEX_RING[k];
-        ok[k] = in_grid(qk);
-        r[k] = ok[k] ? CPOS(uint(qk.x + qk.y * int(obj.dims.x))) : x;
-    }
-    uint mask = 0u;
-    [[unroll]] for (int k = 0; k < 6; ++k) {
-        if (!ok[k]) continue;
-        int k0 = (k + 5) % 6;
-        int k2 = (k + 1) % 6;
-        if (!ok[k0] || !ok[k2] || crease_sag(x, r[k], r[k0], r[k2]) > from) mask |= 1u << uint(k);
-    }
-    return mask;
+// Particle j's (at xj) ring crease masks (creases.glsl): as the spatial hash's build wrote
+// them for this substep's positions, or by brute force computed here.
+uint ring_creases(uint j, vec3 xj) {
+    return self_hashed() ? uint(self_pairs[creases_word(j)]) : ring_crease_masks(j, xj);
 }
 // The ring creases of the particle whose contacts the search collects (set by self_pass).
 uint own_creases;
@@ -412,7 +356,7 @@ void self_edges(uvec2 cell, vec3 x, uint j, ivec2 at, vec3 xj, float d2j, float 
     ivec2 qp = ivec2(cell);
     ivec2 dims = ivec2(obj.dims);
     bool rest_check = edges_near_at_rest_possible();
-    uint j_creases = ring_creases(j, xj, list_reach > 0.0 ? CREASE_LIST : CREASE_FROM);
+    uint j_creases = crease_mask(ring_creases(j, xj), list_reach > 0.0);
     if ((own_creases | j_creases) == 0u) return;
     [[dont_unroll]] for (int k1 = 0; k1 < 6; ++k1) {
         bool own_creased = ((own_creases >> uint(k1)) & 1u) != 0u;

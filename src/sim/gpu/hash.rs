@@ -8,7 +8,7 @@
 //! do not last.
 
 use super::object::{list_control_range, list_dispatch_offset, GpuObject, HashBuffers, SCAN_BLOCK};
-use super::pipelines::Stage;
+use super::pipelines::{has_creases, Stage};
 use super::GpuSim;
 use crate::vk::{Access, BufferBarrier, Recorder};
 
@@ -175,7 +175,7 @@ impl GpuSim {
             ]
         }));
         for (o, _) in &hashed {
-            dispatch(rec, o, Stage::HashScatter, 0, per_particle(o));
+            dispatch(rec, o, Stage::HashScatter(has_creases(o.plan.features)), 0, per_particle(o));
         }
         // The constraints read the sorted positions, and write the lists and the next
         // substep's control block, which the passes above read as their dispatches.
@@ -184,6 +184,12 @@ impl GpuSim {
             each(&|h| vec![BufferBarrier::new(&h.sorted, Access::ComputeWrite, Access::ComputeRead)]);
         last.extend(
             lists.map(|l| BufferBarrier::new(l, Access::ComputeOrIndirect, Access::ComputeReadWrite)),
+        );
+        // (With edge-edge contact the scatter wrote the ring creases the search reads.)
+        last.extend(
+            (hashed.iter().filter(|(o, _)| has_creases(o.plan.features)))
+                .filter_map(|(o, _)| o.self_pairs.as_ref())
+                .map(|p| BufferBarrier::new(p, Access::ComputeWrite, Access::ComputeReadWrite)),
         );
         rec.barrier(&last);
     }

@@ -44,7 +44,9 @@ pub(super) enum Stage {
     Surface(ObjectKind, bool),
     HashCount,
     HashScan,
-    HashScatter,
+    /// The hash's scatter (`creases`: a cloth with edge-edge contact also notes how creased
+    /// each particle's ring edges are, glsl/include/creases.glsl).
+    HashScatter(bool),
     /// Contact between objects (`contact.rs`): the scene hash's count and scatter of one
     /// object, and its query.
     ContactCount,
@@ -60,6 +62,12 @@ fn solver(method: Integrator) -> Solver {
         Some(s) => s,
         None => unreachable!("{method:?} has no solver stages"),
     }
+}
+
+/// Whether an object of `features` has edge-edge self-contact, whose hash scatter notes each
+/// particle's ring creases in self_pairs (`Stage::HashScatter`).
+pub(super) fn has_creases(features: u32) -> bool {
+    features & crate::sim::gpu_types::FEATURE_EDGE_PAIRS != 0
 }
 
 fn group(kind: ObjectKind) -> Vec<u32> {
@@ -81,7 +89,7 @@ impl Stage {
             Stage::Surface(ObjectKind::Rope, _) => "rope_vertices.comp",
             Stage::HashCount => "hash_count.comp",
             Stage::HashScan => "hash_scan.comp",
-            Stage::HashScatter => "hash_scatter.comp",
+            Stage::HashScatter(_) => "hash_scatter.comp",
             Stage::ContactCount => "contact_count.comp",
             Stage::ContactScatter => "contact_scatter.comp",
             Stage::Contact => "contact.comp",
@@ -106,9 +114,9 @@ impl Stage {
             }
             Stage::Iterate(kind, _) => group(kind),
             Stage::Surface(_, drawn) => vec![drawn as u32],
+            Stage::HashScatter(creases) => vec![creases as u32],
             Stage::HashCount
             | Stage::HashScan
-            | Stage::HashScatter
             | Stage::ContactCount
             | Stage::ContactScatter
             | Stage::Contact => Vec::new(),
@@ -147,6 +155,7 @@ impl Stage {
         for (o, plan) in model.objects.iter().zip(plans) {
             if super::object::builds_hash(o, model) {
                 stages.push(Stage::Constraints(o.kind, plan.features, true));
+                stages.push(Stage::HashScatter(has_creases(plan.features)));
             }
             if super::object::has_self_pairs(o) {
                 let f = plan.features;
@@ -166,7 +175,7 @@ impl Stage {
             }
         }
         if model.objects.iter().any(|o| super::object::builds_hash(o, model)) {
-            stages.extend([Stage::HashCount, Stage::HashScan, Stage::HashScatter]);
+            stages.extend([Stage::HashCount, Stage::HashScan]);
         }
         if model.inter_object_contact() {
             stages.extend([Stage::HashScan, Stage::ContactCount, Stage::ContactScatter, Stage::Contact]);
