@@ -185,12 +185,13 @@ impl GpuSim {
         last.extend(
             lists.map(|l| BufferBarrier::new(l, Access::ComputeOrIndirect, Access::ComputeReadWrite)),
         );
-        // (With edge-edge contact the scatter wrote the ring creases the search reads.)
-        last.extend(
-            (hashed.iter().filter(|(o, _)| has_creases(o.plan.features)))
-                .filter_map(|(o, _)| o.self_pairs.as_ref())
-                .map(|p| BufferBarrier::new(p, Access::ComputeWrite, Access::ComputeReadWrite)),
-        );
+        // With edge-edge contact the scatter wrote the ring creases the search reads (its
+        // shader has that store whatever its specialization, so validation counts it written
+        // wherever it is bound: a placeholder without self-contact pairs).
+        last.extend(hashed.iter().map(|(o, _)| {
+            let pairs = o.self_pairs.as_ref().unwrap_or(&o.placeholder);
+            BufferBarrier::new(pairs, Access::ComputeWrite, Access::ComputeReadWrite)
+        }));
         rec.barrier(&last);
     }
 }
