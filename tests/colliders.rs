@@ -28,7 +28,7 @@ fn a_moving_sphere_drags_a_cloth_lying_on_the_ground() {
     let run = |velocity: DVec3, fused: bool| -> DVec3 {
         let s = cloth_on_ground(velocity);
         let mut gpu = GpuSim::new(&ctx, &s).unwrap();
-        gpu.set_fused(fused);
+        gpu.set_fused(&ctx, fused).unwrap();
         let start = centre(&gpu.read_states(&ctx).unwrap());
         for _ in 0..60 {
             gpu.step_frame(&ctx).unwrap();
@@ -126,7 +126,7 @@ fn contact_speed_limit_holds_on_both_sides() {
             let speed = factor * limit.speed;
             s.objects[0].velocities.fill(DVec3::new(speed, 0.0, 0.0));
             let mut gpu = GpuSim::new(&ctx, &s).unwrap();
-            gpu.set_fused(fused);
+            gpu.set_fused(&ctx, fused).unwrap();
             for _ in 0..5 {
                 gpu.step_frame(&ctx).unwrap();
             }
@@ -212,7 +212,7 @@ fn a_rod_thinner_than_the_spacing_holds_a_cloth() {
     ));
     for fused in [true, false] {
         let mut gpu = GpuSim::new(&ctx, &s).unwrap();
-        gpu.set_fused(fused);
+        gpu.set_fused(&ctx, fused).unwrap();
         let frames_x = (0..frames)
             .map(|_| {
                 gpu.step_frame(&ctx).unwrap();

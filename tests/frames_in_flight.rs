@@ -27,8 +27,8 @@ fn frames_in_flight_compute_exactly_what_one_frame_at_a_time_does() {
     for fused in [true, false] {
         let mut one = GpuSim::new(&ctx, &model).unwrap();
         let mut many = GpuSim::new(&ctx, &model).unwrap();
-        one.set_fused(fused);
-        many.set_fused(fused);
+        one.set_fused(&ctx, fused).unwrap();
+        many.set_fused(&ctx, fused).unwrap();
         let mut timed_one = 0;
         for _ in 0..FRAMES {
             timed_one += one.step_frame(&ctx).unwrap().is_some() as usize;

@@ -169,7 +169,7 @@ fn friction_sticks_below_the_friction_angle_slides_above_it_and_stops_in_v2_over
 
 fn gpu_travel(ctx: &GpuContext, s: &SimModel, frames: usize, fused: bool) -> Vec<f64> {
     let mut gpu = GpuSim::new(ctx, s).unwrap();
-    gpu.set_fused(fused);
+    gpu.set_fused(ctx, fused).unwrap();
     for _ in 0..frames {
         gpu.step_frame(ctx).unwrap();
     }
@@ -207,7 +207,7 @@ fn friction_never_launches_a_particle() {
         let mut speeds = vec![("cpu", fastest(&cpu.objects()[0].v))];
         for fused in [true, false] {
             let mut gpu = GpuSim::new(&ctx, &s).unwrap();
-            gpu.set_fused(fused);
+            gpu.set_fused(&ctx, fused).unwrap();
             gpu.step_frame(&ctx).unwrap();
             let v = gpu.read_states(&ctx).unwrap()[0].velocities();
             gpu.destroy(&ctx);

@@ -71,7 +71,7 @@ fn check_mode(name: &str, model: &SimModel, mode: Mode) {
     for &(fused, forced) in paths {
         let ctx = gpu();
         let (d, _) = compare_with(&ctx, model, FRAMES, mode, &|g| {
-            g.set_fused(fused);
+            g.set_fused(&ctx, fused).unwrap();
             g.force_contact_lists(forced);
         });
         let path = match (fused, forced) {
@@ -481,7 +481,7 @@ fn contact_lists_are_rebuilt_after_a_particle_is_set() {
     for fused in [true, false] {
         let ctx = gpu();
         let mut sim = GpuSim::new(&ctx, &s).expect("creating the GPU simulation");
-        sim.set_fused(fused);
+        sim.set_fused(&ctx, fused).unwrap();
         sim.force_contact_lists(Some(true));
         assert_eq!(sim.runs_fused(0), fused);
         for _ in 0..2 {
@@ -524,7 +524,7 @@ fn contact_lists_survive_changes_of_path_between_frames() {
     let mut cpu = CpuSim::new(&s);
     let mut worst = 0.0f64;
     for frame in 0..FRAMES {
-        sim.set_fused(frame % 3 == 2);
+        sim.set_fused(&ctx, frame % 3 == 2).unwrap();
         sim.force_contact_lists(Some(frame % 2 == 0));
         sim.step_frame(&ctx).expect("GPU frame");
         cpu.step_frame();
@@ -730,7 +730,7 @@ fn fused_against_per_stage(model: &SimModel, limits: FusedLimits) -> f64 {
     let mut fused =
         GpuSim::with_fused_limits(&ctx, model, limits, &mut msdsim::shaders::ShaderSet::embedded()).unwrap();
     let mut staged = GpuSim::new(&ctx, model).unwrap();
-    staged.set_fused(false);
+    staged.set_fused(&ctx, false).unwrap();
     // The implicit method's partial sums totalled by a pass of their own, as on objects of
     // over 1,024 workgroups (the comparisons against the reference run the other way).
     staged.set_cg_totals_above(0);
@@ -970,7 +970,7 @@ fn a_particle_set_between_frames_loses_its_history() {
         for fused in [true, false] {
             let ctx = gpu();
             let mut sim = GpuSim::new(&ctx, &s).expect("creating the GPU simulation");
-            sim.set_fused(fused);
+            sim.set_fused(&ctx, fused).unwrap();
             let mut cpu = CpuSim::new(&s);
             for _ in 0..10 {
                 sim.step_frame(&ctx).expect("GPU frame");

@@ -189,7 +189,7 @@ fn no_particle_within_the_margin_of_a_ground_box_or_capsule() {
     ];
     for fused in [true, false] {
         let mut gpu = msdsim::sim::gpu::GpuSim::new(&ctx, &s).unwrap();
-        gpu.set_fused(fused);
+        gpu.set_fused(&ctx, fused).unwrap();
         let mut contacts = [0usize; 3];
         let mut worst = f64::MAX;
         for f in 0..90 {

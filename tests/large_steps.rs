@@ -218,7 +218,7 @@ fn runs(
     let mut out = vec![("cpu", o.x.clone(), o.v.clone())];
     for (label, fused) in [("gpu fused", true), ("gpu per stage", false)] {
         let mut gpu = msdsim::sim::gpu::GpuSim::new(ctx, m).expect("creating the GPU simulation");
-        gpu.set_fused(fused);
+        gpu.set_fused(ctx, fused).unwrap();
         for _ in 0..frames {
             gpu.step_frame(ctx).expect("GPU frame");
         }
@@ -332,7 +332,7 @@ fn gpu_error(
     reference: &[Vec<DVec3>],
 ) -> (f64, f64) {
     let mut gpu = msdsim::sim::gpu::GpuSim::new(ctx, m).expect("creating the GPU simulation");
-    gpu.set_fused(fused);
+    gpu.set_fused(ctx, fused).unwrap();
     let mut strain = 0.0f64;
     let mut last = Vec::new();
     for _ in 0..30 {

@@ -31,7 +31,7 @@ fn worst_crossings(s: &SimModel, frames: u32) -> Vec<(&'static str, usize, u32, 
         [("fused", true, None), ("per stage, lists", false, Some(true)), ("per stage", false, Some(false))]
     {
         let mut gpu = GpuSim::new(&ctx, s).unwrap();
-        gpu.set_fused(fused);
+        gpu.set_fused(&ctx, fused).unwrap();
         gpu.force_contact_lists(lists);
         assert_eq!(gpu.runs_fused(0), fused, "{path}");
         let (mut worst, mut at, mut last) = (0, 0, 0);
@@ -149,7 +149,7 @@ fn contact_iterations_stop_a_strip_piling_on_itself() {
     let mut gpu_worst = [0; 2];
     for (m, worst) in [&s, &edges].into_iter().zip(&mut gpu_worst) {
         let mut g = GpuSim::new(&ctx, m).unwrap();
-        g.set_fused(true);
+        g.set_fused(&ctx, true).unwrap();
         assert!(g.runs_fused(0));
         for _ in 0..frames {
             g.step_frame(&ctx).unwrap();
@@ -213,7 +213,7 @@ fn layers_conserve_momentum(edges: bool) {
     let ctx = gpu();
     for fused in [true, false] {
         let mut g = GpuSim::new(&ctx, &s).unwrap();
-        g.set_fused(fused);
+        g.set_fused(&ctx, fused).unwrap();
         let mut worst = 0.0f64;
         for _ in 0..20 {
             g.step_frame(&ctx).unwrap();
@@ -320,7 +320,7 @@ fn the_gpu_finds_the_contacts_the_reference_finds() {
             let mut m = s.clone();
             m.self_collision = method;
             let mut g = GpuSim::new(&ctx, &m).unwrap();
-            g.set_fused(fused);
+            g.set_fused(&ctx, fused).unwrap();
             g.force_contact_lists(lists);
             let mut cpu = CpuSim::new(&m);
             let mut worst = 0.0f64;
@@ -370,7 +370,7 @@ fn a_fused_frame_of_many_substeps_equals_the_per_stage_path() {
     let mut x = Vec::new();
     for fused in [true, false] {
         let mut g = GpuSim::new(&ctx, &m).unwrap();
-        g.set_fused(fused);
+        g.set_fused(&ctx, fused).unwrap();
         assert_eq!(g.runs_fused(0), fused);
         g.step_frame(&ctx).unwrap();
         x.push(g.read_states(&ctx).unwrap()[0].positions());
@@ -457,7 +457,7 @@ fn friction_between_layers_takes_at_most_mu_times_the_normal_impulse() {
             let mut runs = Vec::new();
             for fused in [true, false].into_iter().filter(|&f| !(edges && f)) {
                 let mut g = GpuSim::new(&ctx, &s).unwrap();
-                g.set_fused(fused);
+                g.set_fused(&ctx, fused).unwrap();
                 g.step_frame(&ctx).unwrap();
                 g.step_frame(&ctx).unwrap();
                 runs.push((

@@ -48,7 +48,7 @@ fn travel(s: &SimModel) -> Vec<(&'static str, f64)> {
     let ctx = gpu();
     for fused in [true, false] {
         let mut g = GpuSim::new(&ctx, s).unwrap();
-        g.set_fused(fused);
+        g.set_fused(&ctx, fused).unwrap();
         for _ in 0..FRAMES {
             g.step_frame(&ctx).unwrap();
         }

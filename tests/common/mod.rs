@@ -206,7 +206,7 @@ pub fn compare_path(
     mode: Mode,
     fused: bool,
 ) -> (Deviation, Vec<ObjectState>) {
-    compare_with(ctx, model, frames, mode, &|gpu| gpu.set_fused(fused))
+    compare_with(ctx, model, frames, mode, &|gpu| gpu.set_fused(ctx, fused).expect("the fused kernels"))
 }
 
 /// `compare_path` with the GPU simulation set up by `setup` before the first frame.

@@ -278,15 +278,22 @@ impl FusedShape {
 /// Which path each object takes.
 impl super::GpuSim {
     /// With `false`, every object takes the per-stage path (the reference for the fused one);
-    /// with `true`, every object whose layout fits runs fused, triangle self-contact too.
-    pub fn set_fused(&mut self, on: bool) {
+    /// with `true`, every object whose layout fits runs fused, triangle self-contact too (the
+    /// fused kernels of objects that by default run per stage are created then).
+    pub fn set_fused(&mut self, ctx: &crate::vk::GpuContext, on: bool) -> anyhow::Result<()> {
+        if on {
+            self.pipelines.ensure(ctx, &self.layout)?;
+        }
         // The two paths keep their lists in the same layout, but nothing makes them one
         // contract (the fused kernel's LIST_VALID is the per-stage path's first control word).
-        self.lists_stale |= on != self.fused || (on && self.fuse_contact != CONTACT_FEATURES);
+        let more = (self.objects.iter())
+            .any(|o| o.plan.fused.is_some() && held_back(o.plan.features, self.fuse_contact) != 0);
+        self.lists_stale |= on != self.fused || (on && more);
         self.fused = on;
         if on {
             self.fuse_contact = CONTACT_FEATURES;
         }
+        Ok(())
     }
 
     /// Whether object `object` runs its substeps fused (its layout fits and the path is on).
@@ -296,9 +303,14 @@ impl super::GpuSim {
 
     /// Whether object `o` runs fused substeps.
     pub(super) fn is_fused(&self, o: &GpuObject) -> bool {
-        let held_back = o.plan.features & CONTACT_FEATURES & !self.fuse_contact;
-        self.fused && o.plan.fused.is_some() && held_back == 0
+        self.fused && o.plan.fused.is_some() && held_back(o.plan.features, self.fuse_contact) == 0
     }
+}
+
+/// The self-contact features of an object of `features` that keep it per stage while those
+/// that may run fused are `fuse_contact` (none: it may run fused).
+pub(super) fn held_back(features: u32, fuse_contact: u32) -> u32 {
+    features & CONTACT_FEATURES & !fuse_contact
 }
 
 /// The self-contact features that decide whether an object runs fused by default.

@@ -167,9 +167,13 @@ impl Parts {
         model: &SimModel,
         shaders: &mut ShaderSet,
         plans: &[ObjectPlan],
+        fuse_contact: u32,
     ) -> Result<()> {
         let layout = self.layout.insert(BindingSetLayout::new(ctx, &binding_kinds())?);
-        self.pipelines = Some(Pipelines::new(ctx, layout, shaders, &Stage::needed(model, plans))?);
+        // A fused kernel that runs only when `set_fused(true)` asks for it is created then.
+        let (later, now): (Vec<Stage>, Vec<Stage>) = (Stage::needed(model, plans).into_iter())
+            .partition(|s| matches!(*s, Stage::Fused(_, f, _) if fused::held_back(f, fuse_contact) != 0));
+        self.pipelines = Some(Pipelines::new(ctx, layout, shaders, &now, &later)?);
         let n = model.objects.len() as u32;
         self.arena = Some(DescriptorArena::new(ctx, 2 * n + contact::sets_needed(model), BINDINGS)?);
         let globals_size = std::mem::size_of::<Globals>() as u64;
@@ -255,7 +259,8 @@ impl GpuSim {
         check_fits(ctx.info(), &model.objects.iter().map(ObjectModel::shape).collect::<Vec<_>>())?;
         let plans: Vec<ObjectPlan> = model.objects.iter().map(|o| ObjectPlan::of(o, model, limits)).collect();
         let mut parts = Parts::default();
-        if let Err(e) = parts.create(ctx, model, shaders, &plans) {
+        let fuse_contact = fused::default_fused_contact(ctx.info());
+        if let Err(e) = parts.create(ctx, model, shaders, &plans, fuse_contact) {
             parts.destroy(ctx);
             return Err(e);
         }
@@ -284,7 +289,7 @@ impl GpuSim {
             timestamps,
             stage_timing: true,
             fused: true,
-            fuse_contact: fused::default_fused_contact(ctx.info()),
+            fuse_contact,
             cg_totals_above: step::CG_TOTALS_ABOVE,
             limits,
             drawn: true,

@@ -188,40 +188,64 @@ impl Stage {
 
 pub(super) struct Pipelines {
     map: HashMap<Stage, ComputePipeline>,
+    /// Stages created only when first asked for (`ensure`), with their shaders' SPIR-V as
+    /// loaded with the others (a broken shader fails at creation all the same).
+    later: Vec<Stage>,
+    later_words: HashMap<&'static str, Vec<u32>>,
 }
 
 impl Pipelines {
-    /// Creates the pipelines of `stages`, each shader compiled (or loaded) once.
+    /// Creates the pipelines of `stages`, each shader compiled (or loaded) once; those of
+    /// `later` are loaded now and created by `ensure`.
     pub(super) fn new(
         ctx: &GpuContext,
         layout: &BindingSetLayout,
         shaders: &mut ShaderSet,
         stages: &[Stage],
+        later: &[Stage],
     ) -> Result<Self> {
-        let mut map = HashMap::new();
+        let mut pipelines = Self { map: HashMap::new(), later: later.to_vec(), later_words: HashMap::new() };
         let mut compiled: HashMap<&str, Vec<u32>> = HashMap::new();
-        for &stage in stages {
+        for &stage in stages.iter().chain(later) {
             let name = stage.shader();
             let words = match compiled.get(name) {
                 Some(w) => Ok(w.clone()),
                 None => shaders.load_or_embedded(name),
             };
             let pipeline = words.and_then(|words| {
-                let p = Self::create(ctx, layout, stage, &words);
+                let p = if later.contains(&stage) {
+                    pipelines.later_words.insert(name, words.clone());
+                    Ok(None)
+                } else {
+                    Self::create(ctx, layout, stage, &words).map(Some)
+                };
                 compiled.insert(name, words);
                 p
             });
             match pipeline {
-                Ok(p) => {
-                    map.insert(stage, p);
+                Ok(Some(p)) => {
+                    pipelines.map.insert(stage, p);
                 }
+                Ok(None) => {}
                 Err(e) => {
-                    Self { map }.destroy(ctx);
+                    pipelines.destroy(ctx);
                     return Err(e);
                 }
             }
         }
-        Ok(Self { map })
+        Ok(pipelines)
+    }
+
+    /// Creates the pipelines `new` left for later.
+    pub(super) fn ensure(&mut self, ctx: &GpuContext, layout: &BindingSetLayout) -> Result<()> {
+        while let Some(&stage) = self.later.first() {
+            let words = &self.later_words[stage.shader()];
+            let p = Self::create(ctx, layout, stage, words)?;
+            self.map.insert(stage, p);
+            self.later.remove(0);
+        }
+        self.later_words.clear();
+        Ok(())
     }
 
     fn create(
@@ -248,11 +272,14 @@ impl Pipelines {
         let mut retired = Vec::new();
         for name in changed {
             let mut stages: Vec<Stage> = self.map.keys().copied().filter(|s| s.shader() == name).collect();
-            if stages.is_empty() {
+            if stages.is_empty() && !self.later_words.contains_key(name.as_str()) {
                 continue;
             }
             stages.sort_by_key(|s| format!("{s:?}"));
             let Ok(words) = shaders.load(name) else { continue }; // error recorded in `shaders`
+            if let Some(later) = self.later_words.get_mut(name.as_str()) {
+                later.clone_from(&words);
+            }
             let mut fresh = Vec::new();
             for &stage in &stages {
                 match Self::create(ctx, layout, stage, &words) {
