@@ -103,8 +103,9 @@ fn a_cloth_folding_over_its_middle_row_never_passes_through_itself() {
 /// creased) four passes let fewer through: measured 2 on the reference and 4 on the GPU
 /// (fused). Where
 /// it piles is chaotic: over nine tilts from 0.05 to 0.4 rad the reference let through 0 in
-/// five and 2 to 14 in the others at four passes, 0 everywhere at eight
-/// (docs/bench/cpu/edge-edge-study/crease-gate.txt), so that bound is 10. The count changes in
+/// five and 2 to 14 in the others at four passes (docs/bench/cpu/edge-edge-study/crease-gate.txt;
+/// at eight, 0 to 2 on every path over five tilts: docs/bench/lavapipe/strip-passes), so that
+/// bound is 10. The count changes in
 /// place.
 #[test]
 fn contact_iterations_stop_a_strip_piling_on_itself() {
