@@ -52,6 +52,35 @@ pub struct AppArgs {
     pub shaders: Option<PathBuf>,
     /// Write every drawn frame as a PNG into this folder (it exists).
     pub record_frames: Option<PathBuf>,
+    /// The object the editor opens with selected (`--select`; checked against the scene).
+    pub select: Option<Selection>,
+}
+
+pub use crate::ui::Selection;
+
+/// `--select`'s value: `cloth:N` or `rope:N`.
+pub fn parse_selection(s: &str) -> Result<Selection, String> {
+    let usage = || format!("'{s}': expected cloth:N or rope:N (N from 0), e.g. cloth:0");
+    let (kind, n) = s.split_once(':').ok_or_else(usage)?;
+    let n: usize = n.trim().parse().map_err(|_| usage())?;
+    match kind.trim() {
+        "cloth" => Ok(Selection::Cloth(n)),
+        "rope" => Ok(Selection::Rope(n)),
+        _ => Err(usage()),
+    }
+}
+
+/// Whether `scene` has the object `select` names (else a clear error).
+pub fn check_selection(select: Selection, scene: &Scene) -> Result<(), UserError> {
+    let (kind, n, count) = match select {
+        Selection::Cloth(n) => ("cloth", n, scene.cloths.len()),
+        Selection::Rope(n) => ("rope", n, scene.ropes.len()),
+        _ => return Ok(()),
+    };
+    if n < count {
+        return Ok(());
+    }
+    Err(UserError(format!("--select {kind}:{n}: the scene has {count} {kind}(s), numbered from 0")))
 }
 
 /// Loads the preset (or the built-in default scene) with overrides.
@@ -212,4 +241,23 @@ pub fn run(options: &ContextOptions, args: AppArgs, scene: Scene) -> Result<()> 
         }
     }
     handler.error.map_or(Ok(()), Err)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn select_takes_a_kind_and_an_index_the_scene_has() {
+        assert_eq!(parse_selection("cloth:0"), Ok(Selection::Cloth(0)));
+        assert_eq!(parse_selection("rope: 2"), Ok(Selection::Rope(2)));
+        for bad in ["cloth", "towel:0", "cloth:-1", "cloth:x", ""] {
+            let e = parse_selection(bad).unwrap_err();
+            assert!(e.contains("expected cloth:N or rope:N"), "{bad}: {e}");
+        }
+        let scene = load_scene(None, &[]).unwrap();
+        assert!(check_selection(Selection::Cloth(0), &scene).is_ok());
+        let e = check_selection(Selection::Rope(scene.ropes.len()), &scene).unwrap_err();
+        assert!(e.0.contains("numbered from 0"), "{}", e.0);
+    }
 }

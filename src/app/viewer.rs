@@ -147,6 +147,8 @@ impl Viewer {
                 hide_ui: args.hide_ui,
                 shaders_note: String::new(),
                 record_path: "recording.usda".into(),
+                selected: args.select.unwrap_or_default(),
+                show_selected: args.select.is_some(),
                 ..Default::default()
             },
             args,

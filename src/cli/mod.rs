@@ -138,6 +138,10 @@ pub struct AppCommand {
     /// Hide the stats window (for screenshots that must not change from run to run).
     #[arg(long)]
     pub no_stats: bool,
+    /// Open with an object selected, its editor panel shown: `cloth:N` or `rope:N` (the N-th
+    /// cloth or rope of the scene, from 0; for screenshots of a panel).
+    #[arg(long, value_name = "KIND:N", value_parser = crate::app::parse_selection)]
+    pub select: Option<crate::app::Selection>,
     /// Hide every window of the UI (pictures of the scene alone; the camera fits the whole
     /// window).
     #[arg(long)]
@@ -162,6 +166,9 @@ fn parse_size(s: &str) -> Result<[u32; 2], String> {
 impl AppCommand {
     fn run(self, options: &ContextOptions) -> Result<()> {
         let scene = crate::app::load_scene(self.preset.as_ref(), &self.overrides)?;
+        if let Some(s) = self.select {
+            crate::app::check_selection(s, &scene)?;
+        }
         if let Some(dir) = &self.record_frames {
             std::fs::create_dir_all(dir)
                 .map_err(|e| crate::error::UserError(format!("--record-frames {}: {e}", dir.display())))?;
@@ -179,6 +186,7 @@ impl AppCommand {
             exercise_editor: self.exercise_editor,
             shaders: self.shaders,
             record_frames: self.record_frames,
+            select: self.select,
         };
         crate::app::run(options, args, scene)
     }

@@ -68,6 +68,9 @@ impl Selection {
 #[derive(Debug, Clone, Default)]
 pub struct EditorState {
     pub selected: Selection,
+    /// Scroll the Scene panel to the selected object's panel when it is next drawn (the app's
+    /// `--select`).
+    pub show_selected: bool,
     pub preset_path: String,
     pub cloth_preset_path: String,
     /// Every message (the last is the status line under the Scene panel): the newest over the
@@ -215,6 +218,9 @@ pub fn build(ui: &Ui, state: &mut EditorState, scene: &mut Scene, stats: &Stats)
             if ui.collapsing_header("Objects", TreeNodeFlags::DEFAULT_OPEN) {
                 object_list(ui, state, scene);
                 ui.separator();
+                if std::mem::take(&mut state.show_selected) {
+                    ui.set_scroll_here_y_with_ratio(0.0);
+                }
                 selected_panel(ui, state, scene);
             }
             if ui.collapsing_header("Presets", TreeNodeFlags::DEFAULT_OPEN) {
