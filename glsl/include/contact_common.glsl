@@ -23,9 +23,8 @@ layout(std430, set = 0, binding = 15) readonly buffer StartIn { Particle p_start
 layout(std430, set = 0, binding = 10) buffer SceneBlocks { uint block_sums[]; };
 layout(std430, set = 0, binding = 12) restrict readonly buffer SceneHash { ObjectParams table; };  // hash_mask, cell_inv
 // Per object three rows (OBJECT_ROWS): [first scene index, particle count (float bits),
-// contact radius, mass], [grid columns, grid rows (float bits; columns 0 when it touches by
-// its segments, a rope), whether its particles look for anything (float bits), its pieces'
-// corner reach],
+// contact radius, mass], [grid columns, grid rows, whether its particles look for anything
+// (float bits; columns 0 when its triangles take no part), its triangles' corner reach],
 // [friction, 0, 0, 0].
 layout(std430, set = 0, binding = 13) restrict readonly buffer Objects { vec4 objects[]; };
 layout(std430, set = 0, binding = 14) buffer ContactBuf { vec4 contact[]; };

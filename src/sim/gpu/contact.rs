@@ -88,12 +88,11 @@ impl SceneContact {
             .zip(gpu)
             .enumerate()
             .flat_map(|(q, (o, g))| {
-                // Columns 0: the object touches by its segments (contact.comp).
                 let grid = if o.contact_triangles() { o.dims } else { [0, 0] };
-                // Whether its particles look for anything (`looks` in contact.comp): it is a
-                // rope, or another object is a cloth.
+                // Whether its particles look for anything (`looks` in contact.comp): another
+                // object's triangles, or, neither being a cloth, another object's particles.
                 let mut others = model.objects.iter().enumerate().filter(|&(k, _)| k != q).map(|(_, p)| p);
-                let looks = (!o.contact_triangles() || others.any(|p| p.contact_triangles())) as u32;
+                let looks = others.any(|p| p.contact_triangles() || !o.contact_triangles()) as u32;
                 let bits = f32::from_bits;
                 let rows = [
                     [bits(first), bits(g.particles), o.contact_radius() as f32, o.mass as f32],
