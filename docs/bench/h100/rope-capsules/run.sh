@@ -1,6 +1,6 @@
 # H100: contact between objects with ropes as capsules and mass splitting (f196e5f) against the
 # GLSL before it (39a4a55's glsl/, through --shaders, in the same binary; the Rust side's larger
-# contact-hash cells apply to both, so "before" is slightly slower than 39a4a55 itself).
+# contact-hash cells apply to both, so "before" may differ from 39a4a55 itself; not measured).
 # Run from the repository root with the stripped binary as .gl/msdsimC and 39a4a55's glsl/ as
 # .gl/glsl_main/glsl (docs/gpu-device.md's recipe).
 set -u
