@@ -2,25 +2,33 @@
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_control_flow_attributes : require
 // Inter-object contact, 3 of 3, in three passes: 0 and 1 over the scene's particles (read from
-// the hash's copies), 2 per object. Two kinds of contact, the reach
-// being the two objects' contact radii added:
-// - particle p of object A against triangle t of object B, a cloth (its triangles as the
-//   renderer draws them): p nearer than the reach to t's nearest point (weights b), and t's
-//   corner nearest to p (ties to the lower index) nearer than the reach plus B's corner reach
-//   (which holds while t's edges are within TRIANGLE_STRETCH times their rest length); p
-//   finds t through that corner. With n from
-//   the nearest point to p and inverse masses w (0 pinned),
-//   lambda = (reach - d) / (w_p + sum w_k b_k^2): p moves w_p lambda n, corner k
-//   -w_k b_k lambda n, so the contact's momentum is unchanged. p computes all four moves;
-// - particle against particle between two objects neither of which is a cloth (ropes): d the
-//   distance between them, p moves (reach - d) w_p / (w_p + w_q) away from q (all of it when q
-//   is pinned); q, finding p, the opposite.
-// Every contact's moves are divided by the largest count of contacts among its free particles, the
-// same for all of them (equal and opposite momenta; a particle in n contacts moves at most by
-// the largest overlap). Pass 0 counts each particle's contacts (touches[], with atomics: a
-// triangle's corners are counted by the particle that touches it) and notes the first
-// PAIR_MAX of its own. Pass 1 sums the moves into moves[] in fixed point (integer atomics:
-// exact and in any order), from the notes (searching again only for a particle with more).
+// the hash's copies; a rope's node in several lanes, `lanes_of`), 2 per object. Every contact
+// is a particle p of object A against a piece of object B's surface, the reach being the two
+// objects' contact radii added:
+// - a triangle t of B, a cloth (its triangles as the renderer draws them): p nearer than the
+//   reach to t's nearest point (weights b), and t's corner nearest to p (ties to the lower
+//   index) nearer than the reach plus B's corner reach (which holds while t's edges are within
+//   TRIANGLE_STRETCH times their rest length); p finds t through that corner;
+// - when A is a rope (a chain of capsules, its nodes in index order; a lone node a segment of
+//   one point), a segment of A against an edge of B (a rope's segment, or a cloth's row,
+//   column or diagonal, or a cloth's vertex as an edge of no length: the nearest points of
+//   their axes, weights 1 - s, s and 1 - t, t), found once by the lower end of A's segment
+//   through the lower end of B's edge (an index rule: no rounding decides who finds it), those
+//   two ends within the reach plus both segments' lengths stretched TRIANGLE_STRETCH times
+//   (twice the corner reaches); between two ropes only from the one of lower index. (A cloth's
+//   particles look only for other cloths' triangles.)
+// With n from the nearest point to p, inverse masses w (0 pinned) and each particle's count of
+// contacts n_k (mass splitting, Tonge et al. 2012: a particle in several contacts takes each as
+// if its mass were shared among them, so that it moves about its largest overlap, and a light
+// particle in many contacts, a rope's node under a cloth, does not hold back its partners'
+// corrections), lambda = (reach - d) / (n_p w_p + sum n_k w_k b_k^2): p moves w_p lambda n,
+// corner k -w_k b_k lambda n, so the contact's momentum is unchanged (a segment pair likewise,
+// with A's ends in p's place). The particle that finds a contact computes all its moves.
+// Pass 0 counts each particle's contacts (touches[], with atomics: a piece's corners are
+// counted by the particle that touches it) and notes the first PAIR_MAX of its own (in the
+// order its lanes find them). Pass 1 sums the moves into moves[] in fixed point (integer
+// atomics: exact and in any order), from the notes (searching again only for a particle with
+// more).
 // Pass 2 writes each particle's sum (xyz) and whether it touches anything (w) into its
 // object's contact[]; the constraint stage adds it to its own correction. touches[] and
 // moves[] are cleared by contact_count.comp. The CPU twin is sim::cpu::inter_object.
@@ -35,11 +43,9 @@ uint object_count() { return uint(objects.length()) / OBJECT_ROWS; }
 float friction_of(uint q) { return objects[OBJECT_ROWS * q + 2u].x; }
 float radius_of(uint q) { return objects[OBJECT_ROWS * q].z; }
 float mass_of(uint q) { return objects[OBJECT_ROWS * q].w; }
-// (columns, rows) of object q's grid; columns 0 when its triangles take no part.
+uint count_in(uint q) { return floatBitsToUint(objects[OBJECT_ROWS * q].y); }
+// (columns, rows) of object q's grid; columns 0 when it touches by its segments (a rope).
 uvec2 grid_of(uint q) { return floatBitsToUint(objects[OBJECT_ROWS * q + 1u].xy); }
-// Whether object q's particles have anything to look for: another object's triangles, or
-// (neither being a cloth) another object's particles.
-bool looks(uint q) { return floatBitsToUint(objects[OBJECT_ROWS * q + 1u].z) != 0u; }
 
 // The object a scene index belongs to (objects are few: a linear search).
 uint owner(uint k) {
@@ -50,19 +56,35 @@ uint owner(uint k) {
     return o;
 }
 
-// Particles in the scene (the last object's first index and count).
-uint scene_count() {
-    vec4 last = objects[OBJECT_ROWS * (object_count() - 1u)];
-    return floatBitsToUint(last.x) + floatBitsToUint(last.y);
+// Passes 0 and 1 run over work items: object q's particles from item work_first(q) on, each
+// particle's search and notes split among lanes_of(q) items (a rope's few nodes search large
+// blocks of cells: spread over lanes, their hash entries and candidates are taken side by side;
+// a cloth's particle searches alone; an object whose particles look for nothing has none).
+// The cloths' items come first, in a dispatch of this shader with SEGMENTS off, then the
+// ropes' with it on (ObjectModel::contact_lanes, SceneContact::record).
+uint work_first(uint q) { return floatBitsToUint(objects[OBJECT_ROWS * q + 2u].y); }
+uint lanes_of(uint q) { return floatBitsToUint(objects[OBJECT_ROWS * q + 2u].z); }
+// The object whose items hold item i (one of them: the caller checks), 0 if none.
+uint work_owner(uint i) {
+    uint o = 0u;
+    for (uint q = 0u; q < object_count(); ++q) {
+        if (i >= work_first(q) && i - work_first(q) < count_in(q) * lanes_of(q)) o = q;
+    }
+    return o;
 }
+
+// Whether this pipeline runs ropes' items (their segments against other objects' edges); off,
+// the segment code is compiled out of the cloths' dispatch.
+layout(constant_id = 0) const bool SEGMENTS = true;
 
 // Scene particle k's hash entry: position, and its index with PINNED_BIT.
 vec4 entry_of(uint k) { return particles[k]; }
 
 float inverse_mass(vec4 e, uint q) { return (floatBitsToUint(e.w) & PINNED_BIT) != 0u ? 0.0 : 1.0 / mass_of(q); }
 
-// How much farther than the reach a triangle's nearest corner may be from a particle touching
-// it: half its rest diagonal stretched TRIANGLE_STRETCH times (ObjectModel::corner_reach).
+// How much farther than the reach a piece's nearest corner may be from a particle touching it:
+// half a triangle's rest diagonal or a segment's rest length stretched TRIANGLE_STRETCH times
+// (ObjectModel::corner_reach).
 float corner_reach(uint q) { return objects[OBJECT_ROWS * q + 1u].w; }
 
 // Fixed-point units a metre of moves[] (2^28 a cell): a particle's sum stays within its
@@ -76,20 +98,33 @@ void add_move(uint k, vec3 v) {
     if (q.z != 0) atomicAdd(moves[4u * k + 2u], q.z);
 }
 
-// A particle's count of contacts for the split (at least 1), none when it is pinned (inverse
-// mass w 0: it takes no share of any contact's correction, so its count would only dilute
-// its partners' corrections, which friction must make whole within a substep).
+// A particle's count of contacts for the mass splitting (at least 1; a pinned particle's, of
+// inverse mass 0, takes no part).
 uint count_of(uint k, float w) { return w > 0.0 ? max(touches[k], 1u) : 1u; }
 
 // Two objects' friction coefficient with each other: the mean of theirs.
 float pair_friction(uint a, uint b) { return 0.5 * (friction_of(a) + friction_of(b)); }
 
-// Contacts a particle notes in pass 0 for pass 1 (pairs[], PAIR_MAX a particle, each the other
-// particle's scene index << 3 | the ring index r of triangle (j, ring r, ring r + 1) of j's
-// object (VERTEX_RING), or PAIR_NOTE for a particle pair); one with more searches the hash again. Its count
-// of contacts as the particle (not as a corner) is moves[4 k + 3].
+// Contacts a particle notes in pass 0 for pass 1 (pairs[], PAIR_MAX a particle, each the
+// piece's nearest corner j (scene index) << NOTE_SHIFT | the ring index r of triangle (j,
+// ring r, ring r + 1) of a cloth (VERTEX_RING), or for a pair of edges NOTE_PAIR | j's edge (a
+// rope's SEGMENT_NEXT, the ring index of a cloth's edge (j, ring r), or CLOTH_POINT)); one
+// with more searches the hash again. Its count of contacts as the particle (not as a corner)
+// is moves[4 k + 3]. (Scene indices below 2^27.)
 const uint PAIR_MAX = 8u;
-const uint PAIR_NOTE = 7u;
+const uint NOTE_SHIFT = 5u;
+const uint NOTE_PAIR = 16u;
+const uint SEGMENT_NEXT = 0u;
+const uint SEGMENT_PREVIOUS = 1u;
+
+// Pass 0: notes a contact particle k found and counts it into n. A rope node's lanes take
+// slots in turn (moves[4 k + 3] counts them); a cloth's particle, alone, writes its count at
+// the end (an atomic a contact cost the cloths' search a seventh more on the H100).
+void note_contact(uint k, uint note, inout uint n) {
+    uint slot = SEGMENTS ? uint(atomicAdd(moves[4u * k + 3u], 1)) : n;
+    if (slot < PAIR_MAX) pairs[k * PAIR_MAX + slot] = note;
+    n += 1u;
+}
 
 // The scene index of vertex j's ring neighbour r in object q (j's grid position `at`), if any.
 bool ring_vertex(uint q, ivec2 at, int r, out uint index) {
@@ -113,38 +148,101 @@ void triangle_moves(uint k, vec4 ek, uint me, uvec3 tv, vec4 ej, vec4 ea, vec4 e
     float d = length(off);
     float wp = inverse_mass(ek, me);
     vec3 wk = vec3(inverse_mass(ej, q), inverse_mass(ea, q), inverse_mass(eb, q));
-    float denom = wp + dot(wk, w * w);
+    vec3 nk = vec3(count_of(tv.x, wk.x), count_of(tv.y, wk.y), count_of(tv.z, wk.z));
+    float denom = float(count_of(k, wp)) * wp + dot(nk * wk, w * w);
     if (!(d > 0.0 && d < reach && denom > 0.0)) return;
-    uint split = max(max(count_of(k, wp), count_of(tv.x, wk.x)), max(count_of(tv.y, wk.y), count_of(tv.z, wk.z)));
     vec3 n = off / d;
     // The relative motion over the substep, along the contact's tangent: undone whole within
     // the friction cone, else by mu times the normal correction (Coulomb).
     vec3 moved = (ek.xyz - begun[k].xyz)
                - (w.x * (ej.xyz - begun[tv.x].xyz) + w.y * (ea.xyz - begun[tv.y].xyz) + w.z * (eb.xyz - begun[tv.z].xyz));
     vec3 correction = n * (reach - d) - friction_correction(moved, n, reach - d, pair_friction(me, q));
-    vec3 push = correction / (denom * float(split));
+    vec3 push = correction / denom;
     add_move(k, wp * push);
     add_move(tv.x, -wk.x * w.x * push);
     add_move(tv.y, -wk.y * w.y * push);
     add_move(tv.z, -wk.z * w.z * push);
 }
 
-// Pass 1: particle k's move (entry ek, object me) in its pair with particle j (entry ej,
-// object q) into `move`.
-void pair_move(uint k, vec4 ek, uint me, uint j, vec4 ej, uint q, inout vec3 move) {
-    float reach = radius_of(me) + radius_of(q);
-    vec3 to_j = ej.xyz - ek.xyz;
-    float d = length(to_j);
-    if (!(d > 0.0 && d < reach)) return;
-    bool j_pinned = (floatBitsToUint(ej.w) & PINNED_BIT) != 0u;
-    float w = j_pinned ? 1.0 : mass_of(q) / (mass_of(me) + mass_of(q));
-    float split = 1.0 / float(max(count_of(k, 1.0), count_of(j, j_pinned ? 0.0 : 1.0)));
-    vec3 n = -to_j / d;
-    vec3 moved = (ek.xyz - begun[k].xyz) - (ej.xyz - begun[j].xyz);
-    vec3 correction = n * (reach - d) - friction_correction(moved, n, reach - d, pair_friction(me, q));
-    move += correction * (w * split);
+// Segment r (SEGMENT_NEXT, SEGMENT_PREVIOUS) of rope q at its node j: its other end, or j for
+// a lone node; false where there is none.
+bool segment_end(uint q, uint j, uint r, out uint other) {
+    uint first = first_of(q);
+    uint count = count_in(q);
+    other = j;
+    if (r > SEGMENT_PREVIOUS) return false;
+    if (count == 1u) return r == SEGMENT_NEXT;
+    if (r == SEGMENT_NEXT) {
+        other = j + 1u;
+        return j + 1u < first + count;
+    }
+    other = j - 1u;
+    return j > first;
 }
 
+// Edge r of object q at its particle j: a rope's segment r, or a cloth's edge to ring vertex r
+// (0 to 5) or, r = CLOTH_POINT, the vertex itself (an edge of no length); its other end, false
+// where there is none.
+const uint CLOTH_POINT = 6u;
+bool edge_end(uint q, uint j, uint r, out uint other) {
+    if (grid_of(q).x == 0u) return segment_end(q, j, r, other);
+    other = j;
+    return r == CLOTH_POINT || ring_vertex(q, grid_position(q, j), int(r), other);
+}
+
+// Pass 1: the moves of the pair of rope me's segment sv.xy and object q's edge sv.zw (each in
+// index order), their ends' entries e, summed into moves[].
+void segment_pair_moves(uvec4 sv, vec4 e[4], uint me, uint q) {
+    float reach = radius_of(me) + radius_of(q);
+    vec2 st = capsule_nearest(e[0].xyz, e[1].xyz, e[2].xyz, e[3].xyz);
+    vec4 w = vec4(1.0 - st.x, st.x, -(1.0 - st.y), -st.y);  // B's ends negative
+    vec3 off = w.x * e[0].xyz + w.y * e[1].xyz + w.z * e[2].xyz + w.w * e[3].xyz;
+    float d = length(off);
+    vec4 wk = vec4(inverse_mass(e[0], me), inverse_mass(e[1], me), inverse_mass(e[2], q), inverse_mass(e[3], q));
+    vec4 nk = vec4(count_of(sv.x, wk.x), count_of(sv.y, wk.y), count_of(sv.z, wk.z), count_of(sv.w, wk.w));
+    float denom = dot(nk * wk, w * w);
+    if (!(d > 0.0 && d < reach && denom > 0.0)) return;
+    vec3 n = off / d;
+    vec3 moved = w.x * (e[0].xyz - begun[sv.x].xyz) + w.y * (e[1].xyz - begun[sv.y].xyz)
+               + w.z * (e[2].xyz - begun[sv.z].xyz) + w.w * (e[3].xyz - begun[sv.w].xyz);
+    vec3 correction = n * (reach - d) - friction_correction(moved, n, reach - d, pair_friction(me, q));
+    vec3 push = correction / denom;
+    add_move(sv.x, wk.x * w.x * push);
+    if (sv.y != sv.x) add_move(sv.y, wk.y * w.y * push);
+    add_move(sv.z, wk.z * w.z * push);
+    if (sv.w != sv.z) add_move(sv.w, wk.w * w.w * push);
+}
+
+// Rope me's node k (entry ek) against object q's particle j (entry ej): k's segment (k, k + 1)
+// (a lone node's: the node) against j's edges that lead to higher indices, each pair found
+// once by the lower ends of both (a rope's segment (j, j + 1); a cloth's edges to its ring
+// vertices 0 to 2, right, down and the cell's diagonal, and its vertex itself); pass 0 counts
+// each contact into n, notes it and counts it into its ends' touches, pass 1 sums its moves.
+void edge_pairs_around(uint k, vec4 ek, uint me, uint j, vec4 ej, uint q, bool sum, inout uint n) {
+    float reach = radius_of(me) + radius_of(q);
+    uint ko;
+    if (!segment_end(me, k, SEGMENT_NEXT, ko)) return;
+    vec4 eko = entry_of(ko);
+    bool cloth = grid_of(q).x != 0u;
+    [[dont_unroll]] for (uint rb = 0u; rb <= CLOTH_POINT; ++rb) {
+        uint jo;
+        if ((cloth ? rb > 2u && rb < CLOTH_POINT : rb != SEGMENT_NEXT) || !edge_end(q, j, rb, jo)) continue;
+        uvec4 sv = uvec4(k, ko, j, jo);
+        vec4 e[4] = vec4[4](ek, eko, ej, entry_of(jo));
+        if (sum) {
+            segment_pair_moves(sv, e, me, q);
+            continue;
+        }
+        vec2 st = capsule_nearest(e[0].xyz, e[1].xyz, e[2].xyz, e[3].xyz);
+        vec3 off = (1.0 - st.x) * e[0].xyz + st.x * e[1].xyz - (1.0 - st.y) * e[2].xyz - st.y * e[3].xyz;
+        float d = length(off);
+        if (!(d > 0.0 && d < reach)) continue;
+        note_contact(k, j << NOTE_SHIFT | NOTE_PAIR | rb, n);
+        if (ko != k) atomicAdd(touches[ko], 1u);
+        atomicAdd(touches[j], 1u);
+        if (jo != j) atomicAdd(touches[jo], 1u);
+    }
+}
 // Particle k (entry ek, object me) against the triangles of object q around its vertex j (entry
 // ej, at squared distance dj) of which j is the corner nearest to k: pass 0 counts each contact
 // into n, notes it and counts it into its corners' touches; pass 1 sums its moves.
@@ -172,71 +270,78 @@ void triangles_around(uint k, vec4 ek, uint me, uint j, vec4 ej, float dj, uint 
         vec3 w = triangle_nearest(ek.xyz, ej.xyz, ring[r].xyz, ring[s].xyz);
         float d = length(ek.xyz - (w.x * ej.xyz + w.y * ring[r].xyz + w.z * ring[s].xyz));
         if (!(d > 0.0 && d < reach)) continue;
-        if (n < PAIR_MAX) pairs[k * PAIR_MAX + n] = j << 3u | uint(r);
-        n += 1u;
+        note_contact(k, j << NOTE_SHIFT | uint(r), n);
         atomicAdd(touches[tv.x], 1u);
         atomicAdd(touches[tv.y], 1u);
         atomicAdd(touches[tv.z], 1u);
     }
 }
 
-// Hash slots of another cloth's vertices near enough to lead to a contact, gathered by the
+// Hash slots of other objects' particles near enough to lead to a contact, gathered by the
 // search and tested after it (`test_candidates`): the threads of a subgroup then test their
 // candidates side by side instead of one thread after another as each finds one.
 const uint CANDIDATE_MAX = 32u;
 
-// The hash entry at slot `at` for scene particle k (entry ek, object me): a vertex of another
-// cloth near enough is kept as a candidate (the caller tests them when `candidates` is full);
-// a particle of another object neither being a cloth is a pair: pass 0 counts it into n and
-// notes it, pass 1 adds k's move to `move`.
-void visit(uint at, vec4 ek, uint k, uint me, bool sum, inout uint n, inout vec3 move, inout uint candidates[CANDIDATE_MAX], inout uint found) {
+// Whether the hash entry at slot `at` is a candidate for scene particle k (entry ek, object
+// me): a particle of another object near enough to be the nearest corner of a piece in contact
+// (or, between two ropes, the lower end of a segment). The caller keeps it (not passed in:
+// GLSL copies an inout array in and out of every call, which cost the cloths' search a
+// quarter on the H100).
+bool visit(uint at, vec4 ek, uint me) {
     vec4 e = sorted[at];
-    uint j = floatBitsToUint(e.w) & ~PINNED_BIT;
-    uint other = owner(j);
-    if (other == me) return;
+    uint other = owner(floatBitsToUint(e.w) & ~PINNED_BIT);
+    if (other == me) return false;
     vec3 to_j = e.xyz - ek.xyz;
     float dj = dot(to_j, to_j);
+    float reach = radius_of(me) + radius_of(other);
+    bool rope = SEGMENTS && grid_of(me).x == 0u;  // (its segments against the other's edges too)
     if (grid_of(other).x != 0u) {
-        float r = radius_of(me) + radius_of(other) + corner_reach(other);
-        if (dj < r * r) candidates[found++] = at;
-    } else if (grid_of(me).x == 0u) {
-        if (sum) {
-            pair_move(k, ek, me, j, e, other, move);
-            return;
-        }
-        float reach = radius_of(me) + radius_of(other);
-        float d = sqrt(dj);
-        if (d < reach && d > 0.0) {
-            if (n < PAIR_MAX) pairs[k * PAIR_MAX + n] = j << 3u | PAIR_NOTE;
-            n += 1u;
-        }
+        // (a pair of edges is found through their lower ends: each within a stretched length)
+        float r = reach + (rope ? 2.0 * (corner_reach(me) + corner_reach(other)) : corner_reach(other));
+        return dj < r * r;
     }
+    // (between two ropes, found from the one of lower index)
+    float r = reach + 2.0 * (corner_reach(me) + corner_reach(other));
+    return rope && other > me && dj < r * r;
 }
 
-// The triangles around each candidate vertex (see `visit`).
+// Particle k against the pieces of object q at its particle j (entry ej, at squared distance
+// dj) of which j is the corner nearest to k: a cloth's triangles; and when k is a rope's node,
+// its segments against q's edges (a cloth's vertices among them).
+void pieces_around(uint k, vec4 ek, uint me, uint j, vec4 ej, float dj, uint q, bool sum, inout uint n) {
+    if (grid_of(q).x != 0u) triangles_around(k, ek, me, j, ej, dj, q, sum, n);
+    if (SEGMENTS && grid_of(me).x == 0u) edge_pairs_around(k, ek, me, j, ej, q, sum, n);
+}
+
+// The pieces around each candidate particle (see `visit`).
 void test_candidates(vec4 ek, uint k, uint me, bool sum, inout uint n, uint candidates[CANDIDATE_MAX], uint found) {
     for (uint c = 0u; c < found; ++c) {
         vec4 e = sorted[candidates[c]];
         uint j = floatBitsToUint(e.w) & ~PINNED_BIT;
         vec3 to_j = e.xyz - ek.xyz;
-        triangles_around(k, ek, me, j, e, dot(to_j, to_j), owner(j), sum, n);
+        pieces_around(k, ek, me, j, e, dot(to_j, to_j), owner(j), sum, n);
     }
 }
 
 // Pass 1: the moves of the contact particle k noted in pass 0.
-void replay(uint note, vec4 ek, uint k, uint me, inout vec3 move) {
-    uint j = note >> 3u;
+void replay(uint note, vec4 ek, uint k, uint me) {
+    uint j = note >> NOTE_SHIFT;
     uint q = owner(j);
     vec4 ej = entry_of(j);
-    if ((note & 7u) == PAIR_NOTE) {
-        pair_move(k, ek, me, j, ej, q, move);
+    uint r = note & (NOTE_PAIR - 1u);
+    if (SEGMENTS && (note & NOTE_PAIR) != 0u) {
+        uint ko, jo;
+        segment_end(me, k, SEGMENT_NEXT, ko);
+        edge_end(q, j, r, jo);
+        uvec4 sv = uvec4(k, ko, j, jo);
+        vec4 e[4] = vec4[4](entry_of(sv.x), entry_of(sv.y), entry_of(sv.z), entry_of(sv.w));
+        segment_pair_moves(sv, e, me, q);
         return;
     }
-    int r = int(note & 7u);
-    int s = r == 5 ? 0 : r + 1;
+    int s = r == 5u ? 0 : int(r) + 1;
     ivec2 at = grid_position(q, j);
     uvec3 tv = uvec3(j, 0u, 0u);
-    ring_vertex(q, at, r, tv.y);
+    ring_vertex(q, at, int(r), tv.y);
     ring_vertex(q, at, s, tv.z);
     triangle_moves(k, ek, me, tv, ej, entry_of(tv.y), entry_of(tv.z), q);
 }
@@ -250,18 +355,21 @@ void main() {
         contact[i] = vec4(sum, touches[k] > 0u ? 1.0 : 0.0);
         return;
     }
-    if (i >= scene_count()) return;
     bool sum = which.pass == 1u;
-    uint k = i;
-    uint me = owner(k);
-    if (!looks(me)) return;
+    // Work item i: lane `lane` of particle k of object me (see `lanes_of`).
+    i += which.work_first;
+    uint me = work_owner(i);
+    uint lanes = SEGMENTS ? lanes_of(me) : 1u;
+    uint local = i - work_first(me);
+    if (i >= which.work_end || local >= count_in(me) * lanes) return;
+    uint k = first_of(me) + local / lanes;
+    uint lane = local % lanes;
     uint own = sum ? uint(moves[4u * k + 3u]) : 0u;
     if (sum && own == 0u) return;
     vec4 ek = entry_of(k);
     uint n = 0u;
-    vec3 move = vec3(0.0);
     if (sum && own <= PAIR_MAX) {
-        for (uint e = 0u; e < own; ++e) replay(pairs[k * PAIR_MAX + e], ek, k, me, move);
+        for (uint e = lane; e < own; e += lanes) replay(pairs[k * PAIR_MAX + e], ek, k, me);
     } else {
         // Cells are sized so that everything a contact needs lies in the 2 x 2 x 2 block of
         // cells nearest to the particle (SimModel::contact_cell). Buckets visited once.
@@ -276,8 +384,8 @@ void main() {
             for (int q = 0; q < c; ++q) again = again || seen[q] == h;
             if (again) continue;
             uint end = BUCKET_START(h + 1u, table.hash_mask);
-            for (uint at = BUCKET_START(h, table.hash_mask); at < end; ++at) {
-                visit(at, ek, k, me, sum, n, move, candidates, found);
+            for (uint at = BUCKET_START(h, table.hash_mask) + lane; at < end; at += lanes) {
+                if (visit(at, ek, me)) candidates[found++] = at;
                 if (found == CANDIDATE_MAX) {
                     test_candidates(ek, k, me, sum, n, candidates, found);
                     found = 0u;
@@ -286,11 +394,8 @@ void main() {
         }
         test_candidates(ek, k, me, sum, n, candidates, found);
     }
-    if (sum) {
-        bool pinned = (floatBitsToUint(ek.w) & PINNED_BIT) != 0u;
-        add_move(k, pinned ? vec3(0.0) : move);
-    } else if (n > 0u) {
+    if (!sum && n > 0u) {
         atomicAdd(touches[k], n);
-        moves[4u * k + 3u] = int(n);
+        if (!SEGMENTS) moves[4u * k + 3u] = int(n);
     }
 }

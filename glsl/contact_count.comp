@@ -2,8 +2,8 @@
 #extension GL_GOOGLE_include_directive : require
 // Inter-object contact, 1 of 3: counts this object's particles (after physics) into the
 // scene's spatial hash (contact_common.glsl). counts[] is zero here: the scan of the last
-// substep (or the upload) cleared it. Clears each particle's contact count and moves for
-// contact.comp.
+// substep (or the upload) cleared it. Clears each particle's contact count, moves and count of
+// notes for contact.comp.
 #include "layout.glsl"
 #include "contact_common.glsl"
 
@@ -19,4 +19,5 @@ void main() {
     moves[4u * k] = 0;
     moves[4u * k + 1u] = 0;
     moves[4u * k + 2u] = 0;
+    moves[4u * k + 3u] = 0;
 }

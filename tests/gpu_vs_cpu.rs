@@ -374,8 +374,8 @@ fn inter_object_contact() {
 }
 
 /// Two ropes crossing (one held at its ends, one thrown across it), friction 0.8 between them:
-/// contact between two objects neither of which is a cloth is particle against particle, with
-/// Coulomb friction on both paths (the reference had none for such pairs until 2026-11-24 and
+/// contact between two ropes is capsule against capsule (segment pairs), with Coulomb friction
+/// on both paths (the reference had none for such pairs until 2026-11-24 and
 /// was 1.1 cm a frame off here).
 #[test]
 fn rope_pairs_with_friction() {

@@ -116,8 +116,23 @@ fn contact_between_objects_conserves_momentum() {
     top.damping = 0.01;
     top.margin = 0.01;
     top.friction = 0.5;
-    for (name, thrown) in [("rope", r), ("cloth", top)] {
-        let mut s = scene(vec![c.clone(), thrown]);
+    // Two free ropes crossing at the middle of a segment of each, their nodes 6 cm apart and
+    // 2 cm thick (node against node, before segments, they passed through each other).
+    let (mut below, mut across) = (coarse_rope(10, 0.5), coarse_rope(10, 0.53));
+    below.pinned.fill(false);
+    across.pinned.fill(false);
+    for p in across.positions.iter_mut() {
+        *p = DVec3::new(0.0, p.y, p.x);
+    }
+    across.velocities.fill(DVec3::new(0.3, -2.0, 0.1));
+    for rope in [&mut below, &mut across] {
+        rope.friction = 0.5;
+        rope.drag = 0.0;
+    }
+    for (name, target, thrown) in
+        [("rope", c.clone(), r), ("cloth", c, top), ("rope across a rope", below, across)]
+    {
+        let mut s = scene(vec![target, thrown]);
         s.inter_object = true;
         let rounded = |o: &msdsim::sim::model::ObjectModel| -> Vec<DVec3> {
             o.velocities.iter().map(|v| v.as_vec3().as_dvec3()).collect()
@@ -289,4 +304,149 @@ fn a_cloth_stays_on_a_cloth() {
     assert_eq!(heights.len(), 121, "the small cloth slid off");
     assert!(low > 0.0, "a particle of the small cloth is {low:.4} m below the large one");
     assert_clean(&ctx);
+}
+
+/// A rope of `nodes` nodes 6 cm apart along x at height y, centred on x = 0 (no node there:
+/// the middle of a segment), 1 cm thick (reach 2 cm against another such rope: a third of the
+/// spacing, so node against node two of them would pass each other), 10 g nodes, friction 0.5,
+/// held at its ends.
+fn coarse_rope(nodes: u32, y: f64) -> msdsim::sim::model::ObjectModel {
+    let mut r = rope(nodes, 0.06);
+    let half = 0.5 * (nodes - 1) as f64 * 0.06;
+    for (i, p) in r.positions.iter_mut().enumerate() {
+        *p = DVec3::new(i as f64 * 0.06 - half, y, 0.0);
+    }
+    r.pinned[0] = true;
+    r.pinned[nodes as usize - 1] = true;
+    r.stiffness = [2000.0, 0.0, 0.0];
+    r.damping = 0.02;
+    r.drag = 0.005;
+    r.rope_radius = 0.01;
+    r.mass = 0.01;
+    r.friction = 0.5;
+    r
+}
+
+/// How far rope `upper` is above rope `lower` where they cross seen from above (the heights of
+/// their segments at the crossing of their xz projections; the highest, since the ends of a rope
+/// draped over another may swing under it; `None` where they do not cross).
+fn height_over(upper: &[DVec3], lower: &[DVec3]) -> Option<f64> {
+    let xz = |v: DVec3| glam::DVec2::new(v.x, v.z);
+    let mut highest: Option<f64> = None;
+    for u in upper.windows(2) {
+        for l in lower.windows(2) {
+            let (p, r, q, s) = (xz(u[0]), xz(u[1] - u[0]), xz(l[0]), xz(l[1] - l[0]));
+            let det = r.perp_dot(s);
+            if det.abs() < 1e-12 {
+                continue;
+            }
+            let (t, v) = ((q - p).perp_dot(s) / det, (q - p).perp_dot(r) / det);
+            if (0.0..=1.0).contains(&t) && (0.0..=1.0).contains(&v) {
+                let over = u[0].lerp(u[1], t).y - l[0].lerp(l[1], v).y;
+                highest = Some(highest.map_or(over, |h| h.max(over)));
+            }
+        }
+    }
+    highest
+}
+
+/// A free rope dropped 3 cm across a held one, both with nodes 6 cm apart and 1 cm thick,
+/// crossing at the middle of a segment of each (node against node they passed through each
+/// other: the nearest nodes are 4.2 cm apart, the reach 2 cm). Contact between ropes is
+/// capsule against capsule: at every frame the upper rope must be above the lower where they
+/// cross, and at the end (1.5 s) rest on it, its axis the reach (2 cm) above the lower's, within
+/// 5 mm (the ropes sag and swing).
+#[test]
+fn a_rope_stays_on_a_coarse_rope() {
+    let ctx = gpu();
+    let lower = coarse_rope(10, 0.5);
+    let mut upper = coarse_rope(10, 0.53);
+    upper.pinned.fill(false);
+    for p in upper.positions.iter_mut() {
+        *p = DVec3::new(0.0, p.y, p.x);
+    }
+    let mut s = scene(vec![lower, upper]);
+    s.gravity = DVec3::new(0.0, -9.81, 0.0);
+    s.inter_object = true;
+    let mut lowest = f64::MAX;
+    let mut last = None;
+    run_gpu(&ctx, &s, 90, |f, states| {
+        let over = height_over(&states[1].positions(), &states[0].positions());
+        let over = over.unwrap_or_else(|| panic!("frame {f}: the ropes no longer cross"));
+        assert!(over > 0.0, "frame {f}: the upper rope is {over:.4} m below the lower where they cross");
+        lowest = lowest.min(over);
+        last = Some(over);
+    });
+    let last = last.unwrap();
+    eprintln!("upper rope over the lower: at least {lowest:.4} m, at the end {last:.4} m (reach 0.02)");
+    assert!((last - 0.02).abs() < 0.005, "the upper rope rests {last:.4} m over the lower, not the reach");
+    assert_clean(&ctx);
+}
+
+/// A 13 x 13 cloth (2.5 cm spacing, 5 mm margin) dropped 3 cm onto a line: a rope held at its
+/// ends, 5 mm thick, its nodes 10 cm apart (four cells; under the cloth three of them), lying
+/// along the middle of a row of cells. The cloth's particles are kept from the rope's segments,
+/// not only its nodes from the cloth's triangles: no rope segment may pass through a cloth
+/// triangle at any frame (exact test), and at the end (1 s) the cloth hangs on the line: its
+/// highest particle over it by at most 2 cm (the reach is 1 cm), two rows or more on either side.
+#[test]
+fn a_cloth_hangs_on_a_line() {
+    let ctx = gpu();
+    let n = 13u32;
+    let s = line_scene();
+    let tris = cloth_triangles(n as usize, n as usize);
+    let segments: Vec<[usize; 2]> = (0..6).map(|k| [k, k + 1]).collect();
+    let mut worst = 0;
+    let (mut top, mut sides) = (0.0, (0, 0));
+    run_gpu(&ctx, &s, 60, |_, states| {
+        let (line, cloth) = (states[0].positions(), states[1].positions());
+        worst = worst.max(segments_through(&line, &segments, &cloth, &tris, false));
+        // The line's height and depth under the cloth's highest particle.
+        let p = cloth.iter().copied().max_by(|a, b| a.y.total_cmp(&b.y)).unwrap();
+        let t = ((p.x + 0.3) / 0.1).clamp(0.0, 5.999);
+        let (k, f) = (t as usize, t.fract());
+        let under = line[k].lerp(line[k + 1], f);
+        top = p.y - under.y;
+        sides =
+            (cloth.iter().filter(|c| c.z < under.z).count(), cloth.iter().filter(|c| c.z > under.z).count());
+    });
+    eprintln!(
+        "at most {worst} rope segments through the cloth; at the end its highest particle {top:.4} m over the line, {} and {} particles on either side",
+        sides.0, sides.1
+    );
+    assert_eq!(worst, 0, "rope segments passed through the cloth");
+    assert!(top > 0.0 && top < 0.02, "the cloth does not hang on the line: its top is {top:.4} m over it");
+    assert!(
+        sides.0 >= 26 && sides.1 >= 26,
+        "the cloth slid off the line: {sides:?} particles on either side"
+    );
+    assert_clean(&ctx);
+}
+
+/// A line (a rope held at its ends, 5 mm thick, its nodes 10 cm apart) and a 13 x 13 cloth 3 cm
+/// above it (see `a_cloth_hangs_on_a_line`).
+fn line_scene() -> msdsim::sim::model::SimModel {
+    let mut line = rope(7, 0.1);
+    for (i, p) in line.positions.iter_mut().enumerate() {
+        *p = DVec3::new(i as f64 * 0.1 - 0.3, 0.5, 0.0);
+    }
+    line.pinned[0] = true;
+    line.pinned[6] = true;
+    line.stiffness = [5000.0, 0.0, 0.0];
+    line.damping = 0.02;
+    line.rope_radius = 0.005;
+    line.mass = 0.01;
+    let n = 13u32;
+    let mut c = held_cloth(n, 0.025, 0.53);
+    c.pinned.fill(false);
+    for p in &mut c.positions {
+        *p += DVec3::new(0.0125, 0.0, 0.0125);
+    }
+    c.margin = 0.005;
+    c.friction = 0.8;
+    line.friction = 0.8;
+    let mut s = scene(vec![line, c]);
+    s.gravity = DVec3::new(0.0, -9.81, 0.0);
+    s.inter_object = true;
+    s
 }

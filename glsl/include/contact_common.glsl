@@ -23,21 +23,25 @@ layout(std430, set = 0, binding = 15) readonly buffer StartIn { Particle p_start
 layout(std430, set = 0, binding = 10) buffer SceneBlocks { uint block_sums[]; };
 layout(std430, set = 0, binding = 12) restrict readonly buffer SceneHash { ObjectParams table; };  // hash_mask, cell_inv
 // Per object three rows (OBJECT_ROWS): [first scene index, particle count (float bits),
-// contact radius, mass], [grid columns, grid rows, whether its particles look for anything
-// (float bits; columns 0 when its triangles take no part), its triangles' corner reach],
-// [friction, 0, 0, 0].
+// contact radius, mass], [grid columns, grid rows (float bits; columns 0 when it touches by
+// its segments, a rope), 0, its pieces' corner reach],
+// [friction, first work item, lanes (float bits; 0 when its particles look for nothing), 0]
+// (contact.comp).
 layout(std430, set = 0, binding = 13) restrict readonly buffer Objects { vec4 objects[]; };
 layout(std430, set = 0, binding = 14) buffer ContactBuf { vec4 contact[]; };
 // Per scene particle: how many particles of other objects it touches (contact.comp's first pass),
 // and the contacts it noted in pass 0 (PAIR_MAX a particle, contact.comp).
 layout(std430, set = 0, binding = 3) buffer SceneTouches { uint touches[]; };
 layout(std430, set = 0, binding = 5) buffer ScenePairs { uint pairs[]; };
-// Per scene particle: the sum of its moves in fixed point (x, y, z, unused; contact.comp).
+// Per scene particle: the sum of its moves in fixed point (x, y, z) and the count of contacts
+// it noted in pass 0 (w; contact.comp).
 layout(std430, set = 0, binding = 17) buffer SceneMoves { int moves[]; };
 
 layout(push_constant) uniform Which {
     uint object;  // this object's index in `objects`
     uint pass;    // contact.comp: 0 counts each particle's contacts, 1 sums the moves, 2 takes them
+    uint work_first;  // contact.comp's passes 0 and 1: the work items of this dispatch
+    uint work_end;
 } which;
 
 const uint PINNED_BIT = 0x80000000u;

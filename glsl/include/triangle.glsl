@@ -1,7 +1,7 @@
-// A cloth grid's triangles around a vertex, the point of a triangle nearest to a point, the
-// nearest points of two segments, and a contact's Coulomb friction: shared by a cloth's
+// A cloth grid's triangles around a vertex, the point of a triangle or a segment nearest to a
+// point, the nearest points of two segments, and a contact's Coulomb friction: shared by a cloth's
 // contact with itself (self_contact.glsl) and contact between objects (contact.comp). CPU twin: sim::cpu::self_contact (cloth_triangles,
-// triangle_nearest, segment_nearest, friction_correction).
+// triangle_nearest, point_segment_nearest, segment_nearest, friction_correction).
 #ifndef MSD_TRIANGLE_GLSL
 #define MSD_TRIANGLE_GLSL
 
@@ -53,6 +53,14 @@ vec3 triangle_nearest(vec3 p, vec3 a, vec3 b, vec3 c) {
     return vec3(va, vb, vc) / sum;
 }
 
+// The parameter t of the point a + t (b - a) of segment (a, b) nearest to p (a segment shrunk
+// to a point: its first end). Twin: sim::cpu::self_contact::point_segment_nearest.
+float point_segment_nearest(vec3 p, vec3 a, vec3 b) {
+    vec3 ab = b - a;
+    float len2 = dot(ab, ab);
+    return len2 > 0.0 ? clamp(dot(p - a, ab) / len2, 0.0, 1.0) : 0.0;
+}
+
 // The parameters (s, t) of the nearest points p1 + s (q1 - p1) and p2 + t (q2 - p2) of two
 // segments (Ericson, Real-Time Collision Detection, 5.1.9). Segments nearer parallel than a
 // relative 1e-5 (where f32 cannot place the nearest points along them) take s = 0: an end, so
@@ -79,6 +87,25 @@ vec2 segment_nearest(vec3 p1, vec3 q1, vec3 p2, vec3 q2) {
         s = clamp((b - c) / a, 0.0, 1.0);
     }
     return vec2(s, t);
+}
+
+// The parameters (s, t) of the nearest points of two capsules' axes, segments p1 q1 and p2 q2
+// (a rope's segments; either may be a point, a lone node). Nearly parallel axes meet along
+// an interval: the middle of the part of p1 q1 that q2 p2 overlaps, so that two ropes lying
+// side by side press at the middle of their overlap. Twin: sim::cpu::self_contact::capsule_nearest.
+vec2 capsule_nearest(vec3 p1, vec3 q1, vec3 p2, vec3 q2) {
+    vec3 d1 = q1 - p1;
+    vec3 d2 = q2 - p2;
+    float a = dot(d1, d1);
+    float e = dot(d2, d2);
+    if (!(a > 0.0)) return vec2(0.0, point_segment_nearest(p1, p2, q2));
+    if (!(e > 0.0)) return vec2(point_segment_nearest(p2, p1, q1), 0.0);
+    float b = dot(d1, d2);
+    if (a * e - b * b > 1e-5 * a * e) return segment_nearest(p1, q1, p2, q2);
+    float s0 = dot(p2 - p1, d1) / a;
+    float s1 = dot(q2 - p1, d1) / a;
+    float s = 0.5 * (clamp(min(s0, s1), 0.0, 1.0) + clamp(max(s0, s1), 0.0, 1.0));
+    return vec2(s, point_segment_nearest(p1 + s * d1, p2, q2));
 }
 
 // How much of the relative motion `moved` over the substep friction undoes in a contact of

@@ -5,6 +5,9 @@
 pub use super::integrator::Integrator;
 use glam::DVec3;
 
+/// Lanes a rope's node searches with (`ObjectModel::contact_lanes`; docs/bench/h100/rope-capsules-lanes).
+pub const CONTACT_LANES: u32 = 64;
+
 /// How far a cloth's grid diagonals may stretch with every self-contact still found
 /// (`TRIANGLE_STRETCH` in glsl/include/lists.glsl).
 pub const TRIANGLE_STRETCH: f64 = 1.5;
@@ -130,20 +133,38 @@ impl ObjectModel {
     }
 
     /// Whether other objects' particles touch this object's triangles (contact between
-    /// objects): a cloth of at least 2 x 2 (else its particles, like a rope's nodes).
+    /// objects): a cloth of at least 2 x 2 (else its segments, as a rope's: a chain of
+    /// capsules in index order).
     pub fn contact_triangles(&self) -> bool {
         self.kind == ObjectKind::Cloth && self.dims[0] > 1 && self.dims[1] > 1
     }
 
-    /// How much farther than the reach a triangle's nearest corner may be from another
-    /// object's particle touching it: half the cell's rest diagonal stretched
-    /// `TRIANGLE_STRETCH` times (a triangle's farthest point from its corners, the middle of
-    /// that diagonal); 0 for an object whose triangles take no part.
+    /// How much farther than the reach the nearest corner of a piece of this object's surface
+    /// may be from another object's particle touching it: for a cloth's triangle half the cell's
+    /// rest diagonal, for a rope's segment (or a one-wide cloth's) half its rest length,
+    /// stretched `TRIANGLE_STRETCH` times (the piece's farthest point from its corners).
     pub fn corner_reach(&self) -> f64 {
-        if self.contact_triangles() {
-            0.5 * TRIANGLE_STRETCH * self.spacing[0].hypot(self.spacing[1])
+        let span = if self.contact_triangles() {
+            self.spacing[0].hypot(self.spacing[1])
+        } else if self.dims[0] > 1 {
+            self.spacing[0]
+        } else if self.dims[1] > 1 {
+            self.spacing[1]
         } else {
             0.0
+        };
+        0.5 * TRIANGLE_STRETCH * span
+    }
+
+    /// Work items (lanes) among which contact between objects splits each particle's search
+    /// for contacts (contact.comp): a rope's few nodes each search a block of cells as large as
+    /// its segments, too much for one thread a node; a cloth's particles, many and each with a
+    /// small block, one each.
+    pub fn contact_lanes(&self) -> u32 {
+        if self.contact_triangles() {
+            1
+        } else {
+            CONTACT_LANES
         }
     }
 
@@ -239,11 +260,20 @@ impl SimModel {
 
     /// The cell of the scene's contact hash (contact between objects) [m], such that a
     /// particle's block of cells reaches (`CONTACT_BLOCK_REACH` cells) the largest reach (two
-    /// contact radii) plus the largest corner reach (`ObjectModel::corner_reach`): a triangle
-    /// within reach has its nearest corner in sight.
+    /// contact radii) plus the largest corner reach (`ObjectModel::corner_reach`), or twice a
+    /// rope's and another object's added: a piece within reach has its nearest corner in sight,
+    /// a pair of edges their lower ends.
     pub fn contact_cell(&self) -> f64 {
         let widest = self.objects.iter().map(ObjectModel::contact_radius).fold(0.0, f64::max);
         let edge = self.objects.iter().map(ObjectModel::corner_reach).fold(0.0, f64::max);
+        // A rope's segment and another object's edge are found through their lower ends: twice
+        // both corner reaches.
+        let pairs =
+            self.objects.iter().enumerate().filter(|(_, o)| !o.contact_triangles()).flat_map(|(a, o)| {
+                let others = self.objects.iter().enumerate().filter(move |&(b, _)| b != a);
+                others.map(move |(_, p)| 2.0 * (o.corner_reach() + p.corner_reach()))
+            });
+        let edge = pairs.fold(edge, f64::max);
         ((2.0 * widest + edge) / CONTACT_BLOCK_REACH).max(1e-6)
     }
 

@@ -1,28 +1,40 @@
-//! The CPU twin of contact between objects (glsl/contact.comp). Two kinds of contact, the
-//! reach being the two objects' contact radii added:
-//! - particle p of one object against triangle t of another that is a cloth (its triangles as
-//!   the renderer draws them): p nearer than the reach to t's nearest point (weights b), and
-//!   t's corner nearest to p nearer than the reach plus the cloth's corner reach (the GPU
-//!   finds t through that corner). With n from that point to p and inverse masses w (0 pinned),
-//!   lambda = (reach - d) / (w_p + sum w_k b_k^2); p moves w_p lambda n, corner k
-//!   -w_k b_k lambda n, so the contact keeps its momentum;
-//! - particle against particle between two objects that are not cloths (ropes): each moves
-//!   away from the other by its share of the overlap (the other's mass over both, all of it
-//!   when the other is pinned).
+//! The CPU twin of contact between objects (glsl/contact.comp). Every contact is a particle p
+//! of one object against a piece of another's surface, the reach being the two objects'
+//! contact radii added:
+//! - a triangle t of a cloth (its triangles as the renderer draws them): p nearer than the
+//!   reach to t's nearest point (weights b), and t's corner nearest to p nearer than the reach
+//!   plus the cloth's corner reach (the GPU finds t through that corner);
+//! - a segment of a rope (a chain of capsules; a lone node a segment of one point), p being a
+//!   cloth's: the same with the segment's two ends (weights 1 - t and t at its point nearest
+//!   to p), its end nearest to p within the reach plus the rope's corner reach;
+//! - a rope's segment against an edge of another object (a rope's segment, or a cloth's row,
+//!   column or diagonal: the nearest points of their axes, weights 1 - s, s and 1 - t, t), the
+//!   ends nearest to those points within the reach plus both corner reaches; between two ropes
+//!   once.
 //!
-//! Both kinds have Coulomb friction (mu the mean of the two objects' `friction`): the
-//! contact's relative motion over the substep along its tangent is undone whole when it is
-//! within mu times the normal correction (static), else by that much (kinetic), with the same
-//! weights as the normal correction. Every contact's moves are divided by the largest count of
-//! contacts among its free particles (the same for all: equal and opposite momenta). Every pair is tested here; the GPU finds
-//! the same through the scene's spatial hash.
+//! With n from the nearest point to p, inverse masses w (0 pinned) and each particle's count
+//! of contacts n_k (mass splitting, Tonge et al. 2012: a particle in several contacts takes
+//! each as if its mass were shared among them), lambda = (reach - d) / (n_p w_p + sum n_k w_k
+//! b_k^2); p moves w_p lambda n, corner k -w_k b_k lambda n, so the contact keeps its momentum
+//! (a segment pair likewise, with one segment's ends in p's place). Coulomb friction (mu the
+//! mean of the two objects' `friction`): the contact's relative motion over the substep along
+//! its tangent is undone whole when it is within mu times the normal correction (static), else
+//! by that much (kinetic), with the same weights as the normal correction. Every pair is tested
+//! here; the GPU finds the same through the scene's spatial hash.
 
-use super::self_contact::{cloth_triangles, friction_correction, triangle_nearest};
+use super::self_contact::{
+    capsule_nearest, cloth_triangles, friction_correction, grid_edges, triangle_nearest,
+};
 use crate::sim::model::SimModel;
 use glam::DVec3;
 
-/// The particles of one contact, each as (object, particle, its move before the split).
-type Contact = Vec<(usize, usize, DVec3)>;
+/// One contact: its particles (object, particle, weight: the nearest points' difference is the
+/// sum of weight x, positive on the side pushed along it) and its correction of that difference
+/// (normal and friction).
+struct Contact {
+    corners: Vec<(usize, usize, f64)>,
+    correction: DVec3,
+}
 
 /// Whether objects a and b (positions x) are near enough to touch: their bounding boxes
 /// within `gap` of each other.
@@ -32,72 +44,103 @@ fn near(x: &[&[DVec3]], a: usize, b: usize, gap: f64) -> bool {
     (la - hb).max(lb - ha).max_element() < gap
 }
 
+/// The pieces of object `o`'s surface that other objects' particles touch, by their corners:
+/// a cloth's triangles, else its segments in index order (a rope; a lone particle is one
+/// segment of one point, listed once).
+fn pieces(o: &crate::sim::model::ObjectModel) -> Vec<Vec<usize>> {
+    if o.contact_triangles() {
+        return cloth_triangles(o.dims[0] as usize, o.dims[1] as usize)
+            .into_iter()
+            .map(|(_, t)| t.to_vec())
+            .collect();
+    }
+    let n = o.particle_count();
+    if n == 1 {
+        return vec![vec![0]];
+    }
+    (0..n - 1).map(|k| vec![k, k + 1]).collect()
+}
+
+/// The weights of the point of a triangle (corners `c`) nearest to p.
+fn nearest_weights(p: DVec3, c: &[DVec3]) -> Vec<f64> {
+    match c {
+        [a, b, c] => triangle_nearest(p, *a, *b, *c).to_array().to_vec(),
+        _ => vec![1.0],
+    }
+}
+
+/// A segment's ends (a lone node's twice).
+fn ends(x: &[DVec3], piece: &[usize]) -> (DVec3, DVec3) {
+    (x[piece[0]], x[piece[piece.len() - 1]])
+}
+
 /// Every contact between the objects at positions `x` (`x0` where they began the substep).
 fn contacts(m: &SimModel, x: &[&[DVec3]], x0: &[&[DVec3]]) -> Vec<Contact> {
-    let inverse_mass =
-        |o: usize, i: usize| if m.objects[o].pinned[i] { 0.0 } else { 1.0 / m.objects[o].mass };
+    // The contact of `corners` (see `Contact`), if within `reach`.
+    let contact = |corners: Vec<(usize, usize, f64)>, reach: f64, mu: f64| -> Option<Contact> {
+        let off = corners.iter().map(|&(o, i, w)| w * x[o][i]).sum::<DVec3>();
+        let d = off.length();
+        if !(d > 0.0 && d < reach) {
+            return None;
+        }
+        let n = off / d;
+        let moved = corners.iter().map(|&(o, i, w)| w * (x[o][i] - x0[o][i])).sum::<DVec3>();
+        let correction = n * (reach - d) - friction_correction(moved, n, reach - d, mu);
+        Some(Contact { corners, correction })
+    };
     let mut found = Vec::new();
     for (a, o) in m.objects.iter().enumerate() {
         for (b, other) in m.objects.iter().enumerate().filter(|&(b, _)| b != a) {
             let reach = o.contact_radius() + other.contact_radius();
             let mu = 0.5 * (o.friction + other.friction);
-            if !near(x, a, b, reach + other.corner_reach().max(o.corner_reach())) {
+            let (rope, cloth) = (!o.contact_triangles(), other.contact_triangles());
+            let sight = reach + other.corner_reach();
+            let edge_sight = reach + 2.0 * (o.corner_reach() + other.corner_reach());
+            // A cloth's particles look only for triangles; two ropes meet once.
+            if (!cloth && (!rope || b < a)) || !near(x, a, b, edge_sight) {
                 continue;
             }
-            if other.contact_triangles() {
-                let triangles = cloth_triangles(other.dims[0] as usize, other.dims[1] as usize);
-                let sight = reach + other.corner_reach();
-                for (i, &p) in x[a].iter().enumerate() {
-                    for &(_, tv) in &triangles {
-                        let corners = tv.map(|k| x[b][k]);
-                        let nearest =
-                            corners.iter().map(|c| (*c - p).length_squared()).fold(f64::MAX, f64::min);
-                        if nearest >= sight * sight {
+            let theirs = pieces(other);
+            if rope {
+                let edges: Vec<Vec<usize>> = if cloth {
+                    let vertices = (0..other.particle_count()).map(|k| vec![k]);
+                    grid_edges(other).iter().map(|e| e.to_vec()).chain(vertices).collect()
+                } else {
+                    theirs.clone()
+                };
+                for sa in pieces(o) {
+                    let (a0, a1) = ends(x[a], &sa);
+                    for sb in &edges {
+                        let (b0, b1) = ends(x[b], sb);
+                        if (a0 - b0).length_squared() >= edge_sight * edge_sight {
                             continue;
                         }
-                        let w = triangle_nearest(p, corners[0], corners[1], corners[2]);
-                        let off = p - (w.x * corners[0] + w.y * corners[1] + w.z * corners[2]);
-                        let d = off.length();
-                        if !(d > 0.0 && d < reach) {
-                            continue;
+                        let (s, t) = capsule_nearest(a0, a1, b0, b1);
+                        let mut corners = vec![(a, sa[0], 1.0 - s), (b, sb[0], t - 1.0)];
+                        if sa.len() > 1 {
+                            corners.push((a, sa[1], s));
                         }
-                        let n = off / d;
-                        let (wp, wk) = (inverse_mass(a, i), tv.map(|k| inverse_mass(b, k)));
-                        let denom = wp + (0..3).map(|k| wk[k] * w[k] * w[k]).sum::<f64>();
-                        let began = |o: usize, k: usize| x[o][k] - x0[o][k];
-                        let moved = began(a, i) - (0..3).map(|k| w[k] * began(b, tv[k])).sum::<DVec3>();
-                        let correction = n * (reach - d) - friction_correction(moved, n, reach - d, mu);
-                        let push = if denom > 0.0 { correction / denom } else { DVec3::ZERO };
-                        let mut contact = vec![(a, i, wp * push)];
-                        contact.extend((0..3).map(|k| (b, tv[k], -wk[k] * w[k] * push)));
-                        found.push(contact);
+                        if sb.len() > 1 {
+                            corners.push((b, sb[1], -t));
+                        }
+                        found.extend(contact(corners, reach, mu));
                     }
                 }
-            } else if !o.contact_triangles() && a < b {
-                for (i, &p) in x[a].iter().enumerate() {
-                    for (j, &q) in x[b].iter().enumerate() {
-                        let d = (q - p).length();
-                        if !(d > 0.0 && d < reach) {
-                            continue;
-                        }
-                        let n = (p - q) / d;
-                        let share = |pinned_other: bool, mine: f64, theirs: f64| {
-                            if pinned_other {
-                                1.0
-                            } else {
-                                theirs / (mine + theirs)
-                            }
-                        };
-                        let moved = (p - x0[a][i]) - (q - x0[b][j]);
-                        let correction = n * (reach - d) - friction_correction(moved, n, reach - d, mu);
-                        let move_p = correction * share(other.pinned[j], o.mass, other.mass);
-                        let move_q = -correction * share(o.pinned[i], other.mass, o.mass);
-                        let keep = |pinned: bool, v: DVec3| if pinned { DVec3::ZERO } else { v };
-                        found.push(vec![
-                            (a, i, keep(o.pinned[i], move_p)),
-                            (b, j, keep(other.pinned[j], move_q)),
-                        ]);
+                if !cloth {
+                    continue;
+                }
+            }
+            for (i, &p) in x[a].iter().enumerate() {
+                for piece in &theirs {
+                    let c: Vec<DVec3> = piece.iter().map(|&k| x[b][k]).collect();
+                    let nearest = c.iter().map(|c| (*c - p).length_squared()).fold(f64::MAX, f64::min);
+                    if nearest >= sight * sight {
+                        continue;
                     }
+                    let w = nearest_weights(p, &c);
+                    let corners =
+                        std::iter::once((a, i, 1.0)).chain(piece.iter().zip(&w).map(|(&k, w)| (b, k, -w)));
+                    found.extend(contact(corners.collect(), reach, mu));
                 }
             }
         }
@@ -110,16 +153,23 @@ fn contacts(m: &SimModel, x: &[&[DVec3]], x0: &[&[DVec3]]) -> Vec<Contact> {
 pub(super) fn inter_object(m: &SimModel, x: &[&[DVec3]], x0: &[&[DVec3]]) -> Vec<Vec<DVec3>> {
     let found = contacts(m, x, x0);
     let mut touches: Vec<Vec<u32>> = x.iter().map(|x| vec![0; x.len()]).collect();
-    for &(o, i, _) in found.iter().flatten() {
+    for &(o, i, _) in found.iter().flat_map(|c| &c.corners) {
         touches[o][i] += 1;
     }
+    let inverse_mass =
+        |o: usize, i: usize| if m.objects[o].pinned[i] { 0.0 } else { 1.0 / m.objects[o].mass };
     let mut moves: Vec<Vec<DVec3>> = x.iter().map(|x| vec![DVec3::ZERO; x.len()]).collect();
     for contact in &found {
-        // Pinned particles take no share, so their counts do not dilute the others'.
-        let free = contact.iter().filter(|&&(o, i, _)| !m.objects[o].pinned[i]);
-        let split = free.map(|&(o, i, _)| touches[o][i]).max().unwrap_or(1).max(1) as f64;
-        for &(o, i, v) in contact {
-            moves[o][i] += v / split;
+        // Mass splitting: each particle as if its mass were shared among its contacts.
+        let denom = contact
+            .corners
+            .iter()
+            .map(|&(o, i, w)| touches[o][i] as f64 * inverse_mass(o, i) * w * w)
+            .sum::<f64>();
+        if denom > 0.0 {
+            for &(o, i, w) in &contact.corners {
+                moves[o][i] += contact.correction * (inverse_mass(o, i) * w / denom);
+            }
         }
     }
     moves

@@ -92,6 +92,18 @@ pub fn triangle_nearest(p: DVec3, a: DVec3, b: DVec3, c: DVec3) -> DVec3 {
     }
 }
 
+/// The parameter t of the point a + t (b - a) of segment (a, b) nearest to p (a segment shrunk
+/// to a point: its first end); `point_segment_nearest` in glsl/include/triangle.glsl.
+pub fn point_segment_nearest(p: DVec3, a: DVec3, b: DVec3) -> f64 {
+    let ab = b - a;
+    let len2 = ab.dot(ab);
+    if len2 > 0.0 {
+        ((p - a).dot(ab) / len2).clamp(0.0, 1.0)
+    } else {
+        0.0
+    }
+}
+
 /// The parameters (s, t) of the nearest points p1 + s (q1 - p1) and p2 + t (q2 - p2) of two
 /// segments (Ericson, Real-Time Collision Detection, 5.1.9); segments nearer parallel than a
 /// relative 1e-5 take s = 0, as the GPU does (`segment_nearest` in the shaders).
@@ -112,6 +124,27 @@ pub fn segment_nearest(p1: DVec3, q1: DVec3, p2: DVec3, q2: DVec3) -> (f64, f64)
     } else {
         (s, t)
     }
+}
+
+/// The parameters (s, t) of the nearest points of two capsules' axes, segments p1 q1 and p2
+/// q2 (either may be a point); nearly parallel axes take the middle of the part of p1 q1 that
+/// p2 q2 overlaps (`capsule_nearest` in glsl/include/triangle.glsl).
+pub fn capsule_nearest(p1: DVec3, q1: DVec3, p2: DVec3, q2: DVec3) -> (f64, f64) {
+    let (d1, d2) = (q1 - p1, q2 - p2);
+    let (a, e) = (d1.dot(d1), d2.dot(d2));
+    if a <= 0.0 {
+        return (0.0, point_segment_nearest(p1, p2, q2));
+    }
+    if e <= 0.0 {
+        return (point_segment_nearest(p2, p1, q1), 0.0);
+    }
+    let b = d1.dot(d2);
+    if a * e - b * b > 1e-5 * a * e {
+        return segment_nearest(p1, q1, p2, q2);
+    }
+    let (s0, s1) = ((p2 - p1).dot(d1) / a, (q2 - p1).dot(d1) / a);
+    let s = 0.5 * (s0.min(s1).clamp(0.0, 1.0) + s0.max(s1).clamp(0.0, 1.0));
+    (s, point_segment_nearest(p1 + s * d1, p2, q2))
 }
 
 /// How much of the relative motion `moved` over the substep friction undoes in a contact of
@@ -302,7 +335,7 @@ fn cell_of(o: &ObjectModel, k: usize) -> (i64, i64) {
 }
 
 /// The grid's edges (rows, columns, the cells' diagonals; each once), as pairs of ends.
-fn grid_edges(o: &ObjectModel) -> Vec<[usize; 2]> {
+pub(super) fn grid_edges(o: &ObjectModel) -> Vec<[usize; 2]> {
     let (cols, rows) = (o.dims[0] as i64, o.dims[1] as i64);
     let mut out = Vec::new();
     for r in 0..rows {

@@ -8,8 +8,9 @@
 use super::object::{GpuObject, SCAN_BLOCK};
 use super::pipelines::{Pipelines, Stage};
 use super::BINDINGS;
+use crate::error::UserError;
 use crate::sim::gpu_types::ObjectParams;
-use crate::sim::model::SimModel;
+use crate::sim::model::{ObjectModel, SimModel};
 use crate::vk::{
     Access, BindingSet, BindingSetLayout, Buffer, BufferBarrier, BufferUsage, DescriptorArena, GpuContext,
     MemoryKind, Recorder, VkError,
@@ -39,8 +40,9 @@ pub(super) struct SceneContact {
     /// and the first `PAIR_MAX` contacts it found itself (binding 5).
     touches: Buffer,
     pairs: Buffer,
-    /// Particles in the scene.
-    total: u32,
+    /// Work items of contact.comp's passes over the scene: the cloths' from `work[0]` to
+    /// `work[1]`, the ropes' from there to `work[2]`.
+    work: [u32; 3],
     buckets: u32,
     /// The scan's set, and each object's set (the object's own buffers at 1, 2, 14 and its
     /// state at the substep's start at 15).
@@ -51,12 +53,81 @@ pub(super) struct SceneContact {
 /// Partners a particle keeps from the count pass (`PAIR_MAX` in contact.comp).
 const PAIR_MAX: u64 = 8;
 
+/// Particles a scene with contact between objects may hold: contact.comp notes a particle's
+/// scene index in 27 bits (NOTE_SHIFT).
+const MAX_SCENE_PARTICLES: u64 = 1 << 27;
+
+/// Refuses a scene whose objects touch each other and hold more particles than contact.comp
+/// can index.
+pub(super) fn check_scene(model: &SimModel) -> Result<(), UserError> {
+    let total: u64 = model.objects.iter().map(|o| o.particle_count() as u64).sum();
+    if model.inter_object_contact() && total > MAX_SCENE_PARTICLES {
+        return Err(UserError(format!(
+            "the scene has {total} particles: contact between objects handles at most {MAX_SCENE_PARTICLES} (set sim.inter_object = false, or use fewer particles)"
+        )));
+    }
+    Ok(())
+}
+
 /// Binding sets `SceneContact::new` allocates for `objects` objects (one each and the scan's).
 pub(super) fn sets_needed(model: &SimModel) -> u32 {
     if model.inter_object_contact() {
         model.objects.len() as u32 + 1
     } else {
         0
+    }
+}
+
+/// The work items of contact.comp's passes 0 and 1 (`work_first` and `lanes_of` there): each
+/// object's particles in `ObjectModel::contact_lanes` items, the cloths' first and then the
+/// ropes' (a second dispatch, with the segment tests compiled in), each object's from a
+/// multiple of its lanes (a node's lanes in whole subgroups). An object whose particles look
+/// for nothing (a cloth with only ropes around: their segments find its vertices) has none.
+/// One lane each where lanes would need more workgroups than one dispatch allows.
+struct WorkLayout {
+    first: Vec<u32>,
+    lanes: Vec<u32>,
+    /// The cloths' items from `bounds[0]` (0), the ropes' from `bounds[1]` to `bounds[2]`.
+    bounds: [u32; 3],
+}
+
+impl WorkLayout {
+    fn new(model: &SimModel, particles: &[u32], max_groups: u64) -> Self {
+        let layout = |lanes: &dyn Fn(&ObjectModel) -> u32| {
+            let mut first = vec![0u32; particles.len()];
+            let mut lane_counts = vec![0u32; particles.len()];
+            let mut bounds = [0u64; 3];
+            let mut work = 0u64;
+            for (side, ropes) in [false, true].into_iter().enumerate() {
+                for (q, o) in model.objects.iter().enumerate() {
+                    if o.contact_triangles() == ropes {
+                        continue;
+                    }
+                    // Its particles look for another cloth's triangles, or it is a rope.
+                    let looks = ropes
+                        || model
+                            .objects
+                            .iter()
+                            .enumerate()
+                            .any(|(p, other)| p != q && other.contact_triangles());
+                    let l = if looks { lanes(o) } else { 0 };
+                    if l > 0 {
+                        work = work.div_ceil(l as u64) * l as u64;
+                    }
+                    first[q] = work as u32;
+                    lane_counts[q] = l;
+                    work += particles[q] as u64 * l as u64;
+                }
+                bounds[side + 1] = work;
+            }
+            (first, lane_counts, bounds)
+        };
+        let fits = |b: [u64; 3]| (b[1] - b[0]).div_ceil(256).max((b[2] - b[1]).div_ceil(256)) <= max_groups;
+        let (mut first, mut lanes, mut bounds) = layout(&ObjectModel::contact_lanes);
+        if !fits(bounds) {
+            (first, lanes, bounds) = layout(&|_| 1);
+        }
+        Self { first, lanes, bounds: bounds.map(|b| b as u32) }
     }
 }
 
@@ -81,6 +152,9 @@ impl SceneContact {
         let mut table_params: ObjectParams = bytemuck::Zeroable::zeroed();
         table_params.hash_mask = buckets as u32 - 1;
         table_params.cell_inv = (1.0 / cell) as f32;
+        let particles: Vec<u32> = gpu.iter().map(|g| g.particles).collect();
+        let max_groups = ctx.info().max_workgroup_count[0] as u64;
+        let work = WorkLayout::new(model, &particles, max_groups);
         let mut first = 0u32;
         let rows: Vec<[f32; 4]> = model
             .objects
@@ -88,16 +162,13 @@ impl SceneContact {
             .zip(gpu)
             .enumerate()
             .flat_map(|(q, (o, g))| {
+                // Columns 0: the object touches by its segments (contact.comp).
                 let grid = if o.contact_triangles() { o.dims } else { [0, 0] };
-                // Whether its particles look for anything (`looks` in contact.comp): another
-                // object's triangles, or, neither being a cloth, another object's particles.
-                let mut others = model.objects.iter().enumerate().filter(|&(k, _)| k != q).map(|(_, p)| p);
-                let looks = others.any(|p| p.contact_triangles() || !o.contact_triangles()) as u32;
                 let bits = f32::from_bits;
                 let rows = [
                     [bits(first), bits(g.particles), o.contact_radius() as f32, o.mass as f32],
-                    [bits(grid[0]), bits(grid[1]), bits(looks), o.corner_reach() as f32],
-                    [o.friction as f32, 0.0, 0.0, 0.0],
+                    [bits(grid[0]), bits(grid[1]), 0.0, o.corner_reach() as f32],
+                    [o.friction as f32, bits(work.first[q]), bits(work.lanes[q]), 0.0],
                 ];
                 first += g.particles;
                 rows
@@ -133,7 +204,7 @@ impl SceneContact {
             block_sums,
             touches,
             pairs,
-            total: total as u32,
+            work: work.bounds,
             buckets: buckets as u32,
             scan_set: BindingSet::default(),
             sets: Vec::new(),
@@ -217,13 +288,20 @@ impl SceneContact {
         let each_object = |rec: &mut Recorder<'_>, stage: Stage, pass: u32| {
             for (k, (o, &set)) in objects.iter().zip(&self.sets).enumerate() {
                 let groups = [o.particles.div_ceil(256), 1, 1];
-                rec.dispatch_with(pipelines.get(stage), set, groups, &[k as u32, pass]);
+                rec.dispatch_with(pipelines.get(stage), set, groups, &[k as u32, pass, 0, 0]);
             }
         };
-        // Over the scene's particles (any object's set holds the scene's buffers).
+        // Over the scene's work items, the cloths' then the ropes' (any object's set holds the
+        // scene's buffers).
         let scene = |rec: &mut Recorder<'_>, pass: u32| {
-            let groups = [self.total.div_ceil(256), 1, 1];
-            rec.dispatch_with(pipelines.get(Stage::Contact), self.sets[0], groups, &[0, pass]);
+            for (segments, range) in [(false, &self.work[0..2]), (true, &self.work[1..3])] {
+                let items = range[1] - range[0];
+                if items > 0 {
+                    let groups = [items.div_ceil(256), 1, 1];
+                    let push = [0, pass, range[0], range[1]];
+                    rec.dispatch_with(pipelines.get(Stage::Contact(segments)), self.sets[0], groups, &push);
+                }
+            }
         };
         // The last scan zeroed the counts; the last substep's passes used the ranks, contact
         // counts and moves that the count pass rewrites.
@@ -274,7 +352,7 @@ impl SceneContact {
             sums.iter().map(|c| b(c, Access::ComputeRead, Access::ComputeWrite)).collect();
         before.extend(between);
         rec.barrier(&before);
-        each_object(rec, Stage::Contact, 2);
+        each_object(rec, Stage::Contact(false), 2);
         // The constraint stage reads the sums and writes the states the scatter read.
         let mut after: Vec<_> =
             sums.iter().map(|c| b(c, Access::ComputeWrite, Access::ComputeRead)).collect();
@@ -299,5 +377,56 @@ impl SceneContact {
         ] {
             buffer.destroy(ctx);
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{check_scene, WorkLayout};
+    use crate::sim::model::{SimModel, CONTACT_LANES};
+
+    fn rope_on_cloth() -> SimModel {
+        let path = std::path::Path::new("presets/rope_on_cloth.toml");
+        crate::scene::to_model(&crate::scene::load(path, &[]).expect("the preset loads"))
+    }
+
+    /// The cloths' items first (one each), then a rope node's lanes from a multiple of the
+    /// lanes; a cloth with only ropes around has none; one lane each when the lanes would need
+    /// more workgroups than one dispatch allows.
+    #[test]
+    fn work_items_put_the_cloths_first_and_a_rope_node_in_lanes() {
+        let model = rope_on_cloth();
+        let w = WorkLayout::new(&model, &[900, 21], u64::MAX);
+        assert_eq!(
+            (w.lanes.as_slice(), w.bounds),
+            ([0, CONTACT_LANES].as_slice(), [0, 0, 21 * CONTACT_LANES])
+        );
+
+        // The rope first, then two cloths (which now look for each other's triangles).
+        let mut model = rope_on_cloth();
+        let (cloth, rope) = (model.objects[0].clone(), model.objects[1].clone());
+        model.objects = vec![rope, cloth.clone(), cloth];
+        let w = WorkLayout::new(&model, &[21, 900, 900], u64::MAX);
+        let rope_first = 1800u32.div_ceil(CONTACT_LANES) * CONTACT_LANES;
+        assert_eq!(w.first, [rope_first, 0, 900]);
+        assert_eq!(w.lanes, [CONTACT_LANES, 1, 1]);
+        assert_eq!(w.bounds, [0, 1800, rope_first + 21 * CONTACT_LANES]);
+
+        // The rope's 21 x 64 items need 6 groups of 256: with at most 2, one lane each.
+        let w = WorkLayout::new(&rope_on_cloth(), &[900, 21], 2);
+        assert_eq!((w.lanes.as_slice(), w.bounds), ([0, 1].as_slice(), [0, 0, 21]));
+    }
+
+    /// A scene larger than contact.comp's notes can index is refused with a clear line; the
+    /// same scene with its objects kept apart is not.
+    #[test]
+    fn a_scene_too_large_for_contact_between_objects_is_refused() {
+        let mut model = rope_on_cloth();
+        assert!(check_scene(&model).is_ok());
+        model.objects[0].dims = [16384, 16384];
+        let error = check_scene(&model).expect_err("2^28 particles are refused").0;
+        assert!(error.contains("contact between objects handles at most 134217728"), "{error}");
+        model.inter_object = false;
+        assert!(check_scene(&model).is_ok());
     }
 }

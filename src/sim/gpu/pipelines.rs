@@ -51,7 +51,9 @@ pub(super) enum Stage {
     /// object, and its query.
     ContactCount,
     ContactScatter,
-    Contact,
+    /// `segments`: the ropes' work items, with their segments' tests compiled in (contact.comp's
+    /// SEGMENTS); without, the cloths' items and each object's sums.
+    Contact(bool),
     /// Every substep of an object in one workgroup, with the model's integrator.
     Fused(Integrator, u32, FusedShape),
 }
@@ -92,7 +94,7 @@ impl Stage {
             Stage::HashScatter(_) => "hash_scatter.comp",
             Stage::ContactCount => "contact_count.comp",
             Stage::ContactScatter => "contact_scatter.comp",
-            Stage::Contact => "contact.comp",
+            Stage::Contact(_) => "contact.comp",
             Stage::Fused(..) => "fused.comp",
         }
     }
@@ -115,11 +117,8 @@ impl Stage {
             Stage::Iterate(kind, _) => group(kind),
             Stage::Surface(_, drawn) => vec![drawn as u32],
             Stage::HashScatter(creases) => vec![creases as u32],
-            Stage::HashCount
-            | Stage::HashScan
-            | Stage::ContactCount
-            | Stage::ContactScatter
-            | Stage::Contact => Vec::new(),
+            Stage::Contact(segments) => vec![segments as u32],
+            Stage::HashCount | Stage::HashScan | Stage::ContactCount | Stage::ContactScatter => Vec::new(),
             Stage::Fused(method, f, shape) => shape.specialization(method, f),
         }
     }
@@ -178,7 +177,15 @@ impl Stage {
             stages.extend([Stage::HashCount, Stage::HashScan]);
         }
         if model.inter_object_contact() {
-            stages.extend([Stage::HashScan, Stage::ContactCount, Stage::ContactScatter, Stage::Contact]);
+            stages.extend([
+                Stage::HashScan,
+                Stage::ContactCount,
+                Stage::ContactScatter,
+                Stage::Contact(false),
+            ]);
+            if model.objects.iter().any(|o| !o.contact_triangles()) {
+                stages.push(Stage::Contact(true));
+            }
         }
         let mut seen = std::collections::HashSet::new();
         stages.retain(|s| seen.insert(*s));
