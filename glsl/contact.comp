@@ -282,8 +282,8 @@ void triangles_around(uint k, vec4 ek, uint me, uint j, vec4 ej, float dj, uint 
 // candidates side by side instead of one thread after another as each finds one.
 const uint CANDIDATE_MAX = 32u;
 
-// Whether the hash entry at slot `at` is a candidate for scene particle k (entry ek, object
-// me): a particle of another object near enough to be the nearest corner of a piece in contact
+// Whether the hash entry at slot `at` is a candidate for the particle at ek (its object me): a
+// particle of another object near enough to be the nearest corner of a piece in contact
 // (or, between two ropes, the lower end of a segment). The caller keeps it (not passed in:
 // GLSL copies an inout array in and out of every call, which cost the cloths' search a
 // quarter on the H100).
