@@ -562,6 +562,7 @@ void main() {
                 }
             }
             list_rebuild = rebuild;
+            bool creases = edge_contact() && !has(F_SEGMENT_PAIRS);  // (a rope's are all creased)
             if (rebuild) {
                 [[unroll]] for (uint s = 0u; s < MAX_SLOTS; ++s) {
                     if (s >= SLOTS) break;
@@ -571,9 +572,9 @@ void main() {
                     scratch[BUCKETS + k] = atomicExchange(scratch[h], k);
                     // (how creased its ring edges are, which the search reads for every
                     // candidate: creases.glsl)
-                    if (edge_contact()) self_pairs[creases_word(k)] = int(ring_crease_masks(k, x[s]));
+                    if (creases) self_pairs[creases_word(k)] = int(ring_crease_masks(k, x[s]));
                 }
-                if (edge_contact()) memoryBarrierBuffer();
+                if (creases) memoryBarrierBuffer();
                 barrier();
             }
         }

@@ -586,11 +586,13 @@ fn rope_on_sphere_with_friction() {
 #[test]
 fn rope_self_collision() {
     // A rope folded in a hairpin: its two halves run 1.2 cm apart, inside the 2 cm contact
-    // distance (twice the radius).
+    // distance (twice the radius), thrown at each other at 0.3 m/s each (without contact they
+    // pass through each other).
     let mut r = rope(40, 0.025);
-    for (i, p) in r.positions.iter_mut().enumerate() {
+    for (i, (p, v)) in r.positions.iter_mut().zip(&mut r.velocities).enumerate() {
         let (x, z) = if i < 20 { (i as f64 * 0.025, 0.0) } else { ((39 - i) as f64 * 0.025, 0.012) };
         *p = DVec3::new(x, 1.0, z);
+        v.z = if i < 20 { 0.3 } else { -0.3 };
     }
     r.stiffness = [200.0, 0.0, 2.0];
     r.rope_radius = 0.01;

@@ -2,7 +2,8 @@
 // per object from its model (src/sim/gpu/pipelines.rs, `features`). A feature the scene does
 // not use is removed from the pipeline, not skipped at run time. The runtime flags (wind on,
 // collider count, ObjectParams.flags) still apply inside a compiled-in feature. Shaders created
-// without the constant (default: everything) behave as before.
+// without the constant (default: everything but F_SEGMENT_PAIRS, which marks a rope) behave as
+// before.
 // The bits are mirrored in src/sim/gpu_types.rs (FEATURE_*).
 #ifndef MSD_FEATURES_GLSL
 #define MSD_FEATURES_GLSL
@@ -23,6 +24,7 @@
 #define F_EDGES      4096u // colliders against edges and faces too (constraints_body.glsl)
 #define F_TRIANGLES  8192u // a cloth's self-contact against its triangles (self_contact.glsl)
 #define F_EDGE_PAIRS 16384u // ... and of its edges against its edges (self_contact.glsl)
+#define F_SEGMENT_PAIRS 32768u // ... a rope's: its segments against its segments, no triangles
 
 layout(constant_id = 3) const uint FEATURES = 0x7FFFu;
 

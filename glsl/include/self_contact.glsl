@@ -6,7 +6,11 @@
 // edge contact (F_EDGE_PAIRS: self_contact = "triangles_and_edges"; compiled out otherwise),
 // each of those triangles' edges (rows, columns, the cells' diagonals) h from the others where
 // their nearest points lie inside both (two layers crossing edge over edge, which no vertex
-// of either touches: a pile of layers slips through there otherwise).
+// of either touches: a pile of layers slips through there otherwise). A rope with
+// self-collision (F_SEGMENT_PAIRS, with F_TRIANGLES and F_EDGE_PAIRS) is one row of edges and
+// no triangles: its segments, capsules of thickness h, are kept apart by the edge pairs alone
+// (rope_segments), which count there wherever their nearest points lie (edge_pair_part; a
+// node's two segments against one segment are two contacts, which the mass splitting shares).
 //
 // A pair (particle p, triangle t) is left out when a vertex of t is p or one of its 8 grid
 // neighbours (its own triangles and the next ring: folds sharper than a grid cell are left to the
@@ -170,6 +174,7 @@ vec3 edge_offset(vec3 x, vec3 xa, vec3 xj, vec3 xb, out vec2 st) {
 // stopped at an end would move its particles by its whole overlap there or not at all, and a
 // deep pile of layers turned such jumps (where f32 and the CPU twin's f64 rounded either way)
 // into centimetres a frame. Twin: sim::cpu::self_contact::edge_fade.
+// (A rope's segment pairs do not fade, edge_pair_part.)
 const float EDGE_FADE = 0.05;
 float edge_fade(vec2 st) {
     float inside = min(min(st.x, 1.0 - st.x), min(st.y, 1.0 - st.y));
@@ -193,7 +198,9 @@ float pair_crease(uint p, uint code) {
 }
 // How much edge pair `code` of particle p, its nearest points at st along its edges, takes
 // part: its fade times its crease weight.
-float edge_pair_part(uint p, uint code, vec2 st) { return edge_fade(st) * pair_crease(p, code); }
+float edge_pair_part(uint p, uint code, vec2 st) {
+    return has(F_SEGMENT_PAIRS) ? 1.0 : edge_fade(st) * pair_crease(p, code);
+}
 // ... for contact `code` of particle p of weights c (pair_geometry): 1 for a triangle.
 float pair_part(uint p, uint code, vec4 c) { return is_edge_pair(code) ? edge_pair_part(p, code, vec2(c.y, -c.w)) : 1.0; }
 // Particle j's (at xj) ring crease masks (creases.glsl): as the spatial hash's build wrote
@@ -344,6 +351,29 @@ bool edges_near_at_rest(ivec2 qp, ivec2 qa, ivec2 qj, ivec2 qb) {
     return dot(off, off) < near * near;
 }
 
+// Whether edge pair (p, a) against (j, b) (positions x, xa, xj, xb; d2j the squared distance
+// of its ends p and j, lo1 and hi1 the first edge's box grown by the farthest reach) is not
+// p's to find or is too far: (p, j) are not its nearest ends, or the boxes are apart.
+bool edge_pair_culled(uvec4 m, vec3 x, vec3 xa, vec3 xj, vec3 xb, float d2j, vec3 lo1, vec3 hi1) {
+    vec3 epb = x - xb;
+    vec3 eab = xa - xb;
+    if (ends_before(dot(epb, epb), m.x, m.w, d2j, m.x, m.z) || ends_before(dot(eab, eab), m.y, m.w, d2j, m.x, m.z)) {
+        return true;
+    }
+    return any(greaterThan(lo1, max(xj, xb))) || any(lessThan(hi1, min(xj, xb)));
+}
+
+// The find pass's edge pair `code` (its particles m, at distance d, taking part by `part`):
+// kept when a contact, and recorded in the particle's contact list when nearer than
+// list_reach.
+void keep_edge_pair(uint code, uvec4 m, float d, float part, float list_reach) {
+    test_contact(code, m, d, part);
+    if (d < list_reach) {
+        if (list_len < LIST_ENTRIES) self_list[list_entry(list_len, list_particle, particle_count())] = code;
+        list_len += 1u;  // past LIST_ENTRIES the list is full: it is rebuilt the next substep
+    }
+}
+
 // The find pass's edge pairs of the particle p (pair_particle, at `cell`, at x) with vertex
 // j > p (at `at`, xj, squared distance d2j): each pair of p's edge (p, a) and j's edge (j, b)
 // whose nearest ends are (p, j) (so each pair is visited once), left out when the edges share
@@ -376,19 +406,49 @@ void self_edges(uvec2 cell, vec3 x, uint j, ivec2 at, vec3 xj, float d2j, float 
             uint b = uint(qb.x + qb.y * dims.x);
             if (b == p || b == a || !own_creased && ((j_creases >> uint(k2)) & 1u) == 0u) continue;
             vec3 xb = CPOS(b);
-            vec3 epb = x - xb;
-            vec3 eab = xa - xb;
-            if (ends_before(dot(epb, epb), p, b, d2j, p, j) || ends_before(dot(eab, eab), a, b, d2j, p, j)) continue;
-            if (any(greaterThan(lo1, max(xj, xb))) || any(lessThan(hi1, min(xj, xb)))) continue;
+            if (edge_pair_culled(uvec4(p, a, j, b), x, xa, xj, xb, d2j, lo1, hi1)) continue;
             vec2 st;
             float d = length(edge_offset(x, xa, xj, xb, st));
             if (!(d < farthest) || rest_check && edges_near_at_rest(qp, qa, at, qb)) continue;
             uint code = edge_pair_code(uint(k1), j, uint(k2));
-            test_contact(code, uvec4(p, a, j, b), d, edge_pair_part(p, code, st));
-            if (d < list_reach) {
-                if (list_len < LIST_ENTRIES) self_list[list_entry(list_len, list_particle, particle_count())] = code;
-                list_len += 1u;  // past LIST_ENTRIES the list is full: it is rebuilt the next substep
-            }
+            keep_edge_pair(code, uvec4(p, a, j, b), d, edge_pair_part(p, code, st), list_reach);
+        }
+    }
+}
+
+// self_edges for a rope (F_SEGMENT_PAIRS): the particle p's (pair_particle, at x) segments to
+// its neighbours p + 1 and p - 1 (ring vertices 0 and 3) against node j's (j > p, at xj,
+// squared distance d2j), by index instead of the grid's ring and with no crease (a rope's
+// edges are all on its border): the same pairs, owners and codes. Two segments are nearer
+// than EDGE_REST_MARGIN h at rest when the nodes between them span less: their gap along the
+// straight rope.
+void rope_segments(vec3 x, uint j, vec3 xj, float d2j, float farthest, float list_reach) {
+    uint p = pair_particle;
+    int nodes = int(obj.dims.x);
+    float margin = EDGE_REST_MARGIN * obj.self_distance;
+    [[unroll]] for (int e1 = 0; e1 < 2; ++e1) {
+        int ia = int(p) + (e1 == 0 ? 1 : -1);
+        if (ia < 0 || ia >= nodes || uint(ia) == j) continue;
+        uint a = uint(ia);
+        vec3 xa = CPOS(a);
+        vec3 eaj = xa - xj;
+        if (ends_before(dot(eaj, eaj), a, j, d2j, p, j)) continue;
+        vec3 lo1 = min(x, xa) - farthest;
+        vec3 hi1 = max(x, xa) + farthest;
+        [[unroll]] for (int e2 = 0; e2 < 2; ++e2) {
+            int ib = int(j) + (e2 == 0 ? 1 : -1);
+            if (ib < 0 || ib >= nodes || uint(ib) == p || uint(ib) == a) continue;
+            uint b = uint(ib);
+            uvec2 one = uvec2(min(p, a), max(p, a));
+            uvec2 two = uvec2(min(j, b), max(j, b));
+            uint gap = two.x > one.y ? two.x - one.y : one.x - two.y;
+            if (float(gap) * obj.spacing.x < margin) continue;
+            vec3 xb = CPOS(b);
+            if (edge_pair_culled(uvec4(p, a, j, b), x, xa, xj, xb, d2j, lo1, hi1)) continue;
+            vec2 st;
+            float d = length(edge_offset(x, xa, xj, xb, st));
+            if (!(d < farthest)) continue;
+            keep_edge_pair(edge_pair_code(e1 == 0 ? 0u : 3u, j, e2 == 0 ? 0u : 3u), uvec4(p, a, j, b), d, 1.0, list_reach);
         }
     }
 }
@@ -466,6 +526,10 @@ void self_triangles(uvec2 cell, vec3 x, uint j, float list_reach) {
     // A margin of 0.1% here cost the 1024 x 1024 cloth 5% on the H100, so there is none.)
     float farthest = max(obj.self_distance, list_reach);
     ivec2 from_p = abs(at - ivec2(cell));
+    if (has(F_SEGMENT_PAIRS)) {
+        if (j > pair_particle) rope_segments(x, j, xj, d2j, farthest, list_reach);
+        return;
+    }
     if (max(from_p.x, from_p.y) > 1) self_triangles_of(cell, x, j, at, xj, d2j, farthest, list_reach);
     if (edge_contact() && j > pair_particle) self_edges(cell, x, j, at, xj, d2j, farthest, list_reach);
 }

@@ -189,8 +189,9 @@ fn rope(r: &Rope) -> ObjectModel {
         margin: r.radius,
         stretch_limit: r.stretch_limit,
         self_distance: r.self_collision.then(|| r.self_collision_distance.unwrap_or(2.0 * r.radius)),
-        triangle_contact: false,
-        edge_contact: false,
+        // (its segments against its segments, as capsules: ObjectModel::has_segment_pairs)
+        triangle_contact: true,
+        edge_contact: true,
         rope_radius: r.radius,
         ring_weights,
         velocities: vec![DVec3::ZERO; n],

@@ -97,6 +97,7 @@ pub const FEATURE_CONTACT: u32 = 2048;
 pub const FEATURE_EDGES: u32 = 4096;
 pub const FEATURE_TRIANGLES: u32 = 8192;
 pub const FEATURE_EDGE_PAIRS: u32 = 16384;
+pub const FEATURE_SEGMENT_PAIRS: u32 = 32768;
 
 gpu_struct!(
     /// One simulated particle (cloth particle or rope node).

@@ -84,9 +84,10 @@ pub struct ObjectModel {
     /// Self-collision distance [m].
     pub self_distance: Option<f64>,
     /// A cloth's self-collision keeps its particles from its triangles (equal and opposite
-    /// impulses, `sim::cpu::self_contact`) instead of from its other particles.
+    /// impulses, `sim::cpu::self_contact`) instead of from its other particles; a rope's
+    /// keeps its segments from its segments (`has_segment_pairs`) instead of its nodes.
     pub triangle_contact: bool,
-    /// ... and its edges from its edges too (with `triangle_contact`).
+    /// ... and its edges from its edges too (with `triangle_contact`; a rope's always).
     pub edge_contact: bool,
     /// Rope tube radius [m] (rope only).
     pub rope_radius: f64,
@@ -111,15 +112,26 @@ impl ObjectModel {
         self.shape().surface_count() as usize
     }
 
-    /// Whether self-contact is against triangles: asked for, on a grid of at least 2 x 2 (a
-    /// rope is one row).
+    /// Whether self-contact is between the pieces of the surface, equal and opposite
+    /// (`sim::cpu::self_contact`; the GPU's F_TRIANGLES): a cloth's particles against its
+    /// triangles, asked for, on a grid of at least 2 x 2; a rope's segments against its
+    /// segments, as capsules (`has_segment_pairs`). Else particle against particle.
     pub fn has_triangles(&self) -> bool {
-        self.triangle_contact && self.dims[0] > 1 && self.dims[1] > 1
+        self.triangle_contact && self.dims[0] > 1 && (self.dims[1] > 1 || self.kind == ObjectKind::Rope)
     }
 
-    /// Whether self-contact keeps the grid's edges from its edges too (with triangles).
+    /// Whether self-contact keeps the grid's edges from its edges too: with triangles, or a
+    /// rope's segments (its only edges).
     pub fn has_edge_pairs(&self) -> bool {
-        self.edge_contact && self.has_triangles()
+        (self.edge_contact || self.kind == ObjectKind::Rope) && self.has_triangles()
+    }
+
+    /// Whether self-contact is a rope's segments against its segments (capsules of the
+    /// self-collision distance's thickness, one row of edges with no triangles; the GPU's
+    /// F_SEGMENT_PAIRS): an edge pair then counts wherever its nearest points lie, at an end
+    /// too, since no triangle holds a node against a segment.
+    pub fn has_segment_pairs(&self) -> bool {
+        self.kind == ObjectKind::Rope && self.has_triangles()
     }
 
     /// How far from a particle self-contact candidates are searched (`self_reach` in

@@ -92,7 +92,10 @@ pub fn cloth(cols: u32, rows: u32, spacing: f64) -> ObjectModel {
 /// A straight rope along +x with every feature off.
 pub fn rope(nodes: u32, spacing: f64) -> ObjectModel {
     let positions = (0..nodes).map(|i| DVec3::new(i as f64 * spacing - 0.5, 1.0, 0.0)).collect();
-    plain(ObjectKind::Rope, format!("rope{nodes}"), [nodes, 1], spacing, positions)
+    let mut r = plain(ObjectKind::Rope, format!("rope{nodes}"), [nodes, 1], spacing, positions);
+    // (as scene::build makes every rope: self-collision, when on, between its segments)
+    r.triangle_contact = true;
+    r
 }
 
 /// A scene with the given objects, no gravity, no wind, no spheres, 16 substeps per 1/60 s.

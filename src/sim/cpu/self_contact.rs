@@ -1,5 +1,7 @@
 //! The CPU twin of a cloth's contact with itself (glsl/include/self_contact.glsl): particles
-//! against triangles and, with edge contact (`ObjectModel::edge_contact`), edges against edges.
+//! against triangles and, with edge contact (`ObjectModel::edge_contact`), edges against edges;
+//! and of a rope's, its segments against its segments as edge pairs that count wherever their
+//! nearest points lie (`ObjectModel::has_segment_pairs`).
 //! Every pair (particle p, triangle t) not left out (a vertex of t in p's one-ring, or t nearer
 //! than h to p at rest) and every pair of grid edges not left out (sharing a vertex, or nearer
 //! than EDGE_REST_MARGIN h at rest), one of them creased (`crease_sag`), whose nearest points
@@ -196,6 +198,9 @@ fn count_weight(overlap: f64, h: f64) -> f64 {
 pub struct Contact {
     pub particles: [usize; 4],
     pub edges: bool,
+    /// A rope's segment pair (`ObjectModel::has_segment_pairs`): it counts wherever its
+    /// nearest points lie (no `edge_fade`; a rope's edges are all on its border, creased).
+    pub segments: bool,
     /// An edge pair's edges' opposite vertices (those of the two triangles on each edge, in
     /// the order of `particles`' edges; NONE on the border), and half a grid diagonal over h:
     /// what its crease weight is computed from.
@@ -224,11 +229,11 @@ impl Contact {
         }
     }
 
-    /// How much it takes part at weights `w` and positions `x`: 1 against a triangle; an edge
-    /// pair by `edge_fade` of its nearest points' parameters times the larger of its edges'
-    /// crease weights.
+    /// How much it takes part at weights `w` and positions `x`: 1 against a triangle or as a
+    /// rope's segment pair; an edge pair by `edge_fade` of its nearest points' parameters
+    /// times the larger of its edges' crease weights.
     fn fade(&self, w: DVec4, x: &[DVec3]) -> f64 {
-        if !self.edges {
+        if !self.edges || self.segments {
             return 1.0;
         }
         let [p, a, j, b] = self.particles;
@@ -243,12 +248,12 @@ impl Contact {
         edge_fade(w.y, -w.w) * crease_weight(sag(p, a, o1, o2)).max(crease_weight(sag(j, b, o3, o4)))
     }
 
-    /// The contact of `particles` (edge pair or not; `opposite` and `chord` as the fields) at
-    /// `x`, if they are nearer than h (and an edge pair's nearest points lie inside both edges
-    /// and one of them is creased).
+    /// The contact of `particles` (edge pair or not, a rope's segment pair or not; `opposite`
+    /// and `chord` as the fields) at `x`, if they are nearer than h (and a cloth's edge pair's
+    /// nearest points lie inside both edges and one of them is creased).
     fn at(
         particles: [usize; 4],
-        edges: bool,
+        (edges, segments): (bool, bool),
         opposite: [usize; 4],
         chord: f64,
         x: &[DVec3],
@@ -257,6 +262,7 @@ impl Contact {
         let mut c = Contact {
             particles,
             edges,
+            segments,
             opposite,
             chord,
             weights: DVec4::ZERO,
@@ -419,7 +425,7 @@ pub fn contacts(o: &ObjectModel, x: &[DVec3]) -> Vec<Contact> {
             if o.pinned[p] && pinned(&tv) || left_out(o, h, p, tv) {
                 continue;
             }
-            contacts.extend(Contact::at([p, tv[0], tv[1], tv[2]], false, [NONE; 4], 0.0, x, h));
+            contacts.extend(Contact::at([p, tv[0], tv[1], tv[2]], (false, false), [NONE; 4], 0.0, x, h));
         }
     }
     if !o.has_edge_pairs() {
@@ -444,7 +450,7 @@ pub fn contacts(o: &ObjectModel, x: &[DVec3]) -> Vec<Contact> {
                 continue;
             }
             let ([o1, o2], [o3, o4]) = (edge_opposite(o, m[0], m[1]), edge_opposite(o, m[2], m[3]));
-            contacts.extend(Contact::at(m, true, [o1, o2, o3, o4], chord, x, h));
+            contacts.extend(Contact::at(m, (true, o.has_segment_pairs()), [o1, o2, o3, o4], chord, x, h));
         }
     }
     contacts

@@ -94,11 +94,15 @@ impl FusedLimits {
     }
 
     /// Substeps one dispatch runs for fused objects whose `FEATURES` are `features`, in a frame
-    /// of `substeps`: `substeps_per_dispatch`, one on a device with a loop limit where an
-    /// object keeps edges from edges.
+    /// of `substeps`: `substeps_per_dispatch`, one on a device with a loop limit where a
+    /// cloth keeps edges from edges (a rope's segment pairs search two edges a candidate, not
+    /// six).
     pub fn chunk(&self, mut features: impl Iterator<Item = u32>, substeps: u32) -> u32 {
+        use crate::sim::gpu_types::{FEATURE_EDGE_PAIRS, FEATURE_SEGMENT_PAIRS};
         let limited = self.substeps_per_dispatch != u32::MAX;
-        let most = if limited && features.any(|f| f & crate::sim::gpu_types::FEATURE_EDGE_PAIRS != 0) {
+        let most = if limited
+            && features.any(|f| f & (FEATURE_EDGE_PAIRS | FEATURE_SEGMENT_PAIRS) == FEATURE_EDGE_PAIRS)
+        {
             self.substeps_per_dispatch.min(LIMITED_EDGE_PAIR_SUBSTEPS_PER_DISPATCH)
         } else {
             self.substeps_per_dispatch
@@ -138,6 +142,7 @@ pub fn features(o: &ObjectModel, model: &SimModel) -> u32 {
         (FEATURE_SELF, o.self_distance.is_some()),
         (crate::sim::gpu_types::FEATURE_TRIANGLES, o.self_distance.is_some() && o.has_triangles()),
         (crate::sim::gpu_types::FEATURE_EDGE_PAIRS, o.self_distance.is_some() && o.has_edge_pairs()),
+        (crate::sim::gpu_types::FEATURE_SEGMENT_PAIRS, o.self_distance.is_some() && o.has_segment_pairs()),
     ];
     let f = uses.into_iter().filter(|(_, on)| *on).fold(f, |f, (bit, _)| f | bit);
     let f = if model.inter_object_contact() { f | crate::sim::gpu_types::FEATURE_CONTACT } else { f };
@@ -308,8 +313,13 @@ impl super::GpuSim {
 }
 
 /// The self-contact features of an object of `features` that keep it per stage while those
-/// that may run fused are `fuse_contact` (none: it may run fused).
+/// that may run fused are `fuse_contact` (none: it may run fused). A rope's segment pairs
+/// never do: a node tests two edges of a candidate, not a cloth's six, and a rope runs fused
+/// wherever it fits (docs/PERFORMANCE.md, "A rope's self-collision as capsules").
 pub(super) fn held_back(features: u32, fuse_contact: u32) -> u32 {
+    if features & crate::sim::gpu_types::FEATURE_SEGMENT_PAIRS != 0 {
+        return 0;
+    }
     features & CONTACT_FEATURES & !fuse_contact
 }
 

@@ -467,7 +467,8 @@ impl GpuSim {
         }
     }
 
-    /// The passes of the cloths' contact with their own triangles on the per-stage path
+    /// The passes of the objects' contact with their own surface (a cloth's triangles, a
+    /// rope's segments) on the per-stage path
     /// (`self_pairs.comp`), after the spatial hash's build: find, apply, then for each further
     /// contact iteration a move of the physics output and a re-application; each ordered after
     /// the one before and before the constraints by a barrier on the objects' scratch buffers,

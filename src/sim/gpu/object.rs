@@ -259,7 +259,7 @@ impl GpuObject {
                 // Sums and counts (4), lengths (1), contacts, where each began the substep (3),
                 // the sums' parts that move the position only (3); the further passes'
                 // indirect dispatch; with edge-edge contact, the ring creases (1).
-                let creases = if o.has_edge_pairs() { 4 * n } else { 0 };
+                let creases = if o.has_edge_pairs() && !o.has_segment_pairs() { 4 * n } else { 0 };
                 let bytes = further_passes_offset(n) + 12 + creases;
                 let name = format!("{}.self_pairs", o.name);
                 self_pairs = Some(Buffer::new(ctx, &name, bytes, usage, MemoryKind::GpuOnly)?);
@@ -509,7 +509,8 @@ pub(super) fn further_passes_offset(n: u64) -> u64 {
 /// Contacts a particle keeps in a substep (`PAIR_MAX` in glsl/include/self_contact.glsl).
 pub(super) const SELF_PAIR_MAX: u64 = crate::sim::cpu::self_contact::PAIR_MAX as u64;
 
-/// Whether object `o` has contact with its own triangles (a cloth with self-collision).
+/// Whether object `o` has contact with its own surface through the self-contact passes (a
+/// cloth's triangles, a rope's segments: `ObjectModel::has_triangles`).
 pub(super) fn has_self_pairs(o: &ObjectModel) -> bool {
     o.self_distance.is_some() && o.has_triangles()
 }

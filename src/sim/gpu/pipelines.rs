@@ -66,10 +66,11 @@ fn solver(method: Integrator) -> Solver {
     }
 }
 
-/// Whether an object of `features` has edge-edge self-contact, whose hash scatter notes each
-/// particle's ring creases in self_pairs (`Stage::HashScatter`).
+/// Whether an object of `features` has a cloth's edge-edge self-contact, whose hash scatter
+/// notes each particle's ring creases in self_pairs (`Stage::HashScatter`).
 pub(super) fn has_creases(features: u32) -> bool {
-    features & crate::sim::gpu_types::FEATURE_EDGE_PAIRS != 0
+    use crate::sim::gpu_types::{FEATURE_EDGE_PAIRS, FEATURE_SEGMENT_PAIRS};
+    features & (FEATURE_EDGE_PAIRS | FEATURE_SEGMENT_PAIRS) == FEATURE_EDGE_PAIRS
 }
 
 fn group(kind: ObjectKind) -> Vec<u32> {
@@ -112,7 +113,10 @@ impl Stage {
             }
             Stage::Constraints(kind, f, lists) => [group(kind), vec![lists as u32, f]].concat(),
             Stage::SelfPairs(f, lists, pass) => {
-                [group(ObjectKind::Cloth), vec![lists as u32, f, pass as u32]].concat()
+                // (dispatched over the object's step groups: a rope's when its segments pair)
+                let rope = f & crate::sim::gpu_types::FEATURE_SEGMENT_PAIRS != 0;
+                let kind = if rope { ObjectKind::Rope } else { ObjectKind::Cloth };
+                [group(kind), vec![lists as u32, f, pass as u32]].concat()
             }
             Stage::Iterate(kind, _) => group(kind),
             Stage::Surface(_, drawn) => vec![drawn as u32],
