@@ -525,11 +525,11 @@ void self_triangles(uvec2 cell, vec3 x, uint j, float list_reach) {
     // a search with the lists' reach and culled by one without; its weight is then about 1e-5.
     // A margin of 0.1% here cost the 1024 x 1024 cloth 5% on the H100, so there is none.)
     float farthest = max(obj.self_distance, list_reach);
-    ivec2 from_p = abs(at - ivec2(cell));
     if (has(F_SEGMENT_PAIRS)) {
         if (j > pair_particle) rope_segments(x, j, xj, d2j, farthest, list_reach);
         return;
     }
+    ivec2 from_p = abs(at - ivec2(cell));
     if (max(from_p.x, from_p.y) > 1) self_triangles_of(cell, x, j, at, xj, d2j, farthest, list_reach);
     if (edge_contact() && j > pair_particle) self_edges(cell, x, j, at, xj, d2j, farthest, list_reach);
 }

@@ -189,9 +189,10 @@ fn rope(r: &Rope) -> ObjectModel {
         margin: r.radius,
         stretch_limit: r.stretch_limit,
         self_distance: r.self_collision.then(|| r.self_collision_distance.unwrap_or(2.0 * r.radius)),
-        // (its segments against its segments, as capsules: ObjectModel::has_segment_pairs)
+        // (its segments against its segments, as capsules: ObjectModel::has_segment_pairs; its
+        // edge pairs follow from that, has_edge_pairs)
         triangle_contact: true,
-        edge_contact: true,
+        edge_contact: false,
         rope_radius: r.radius,
         ring_weights,
         velocities: vec![DVec3::ZERO; n],

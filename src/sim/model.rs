@@ -87,7 +87,8 @@ pub struct ObjectModel {
     /// impulses, `sim::cpu::self_contact`) instead of from its other particles; a rope's
     /// keeps its segments from its segments (`has_segment_pairs`) instead of its nodes.
     pub triangle_contact: bool,
-    /// ... and its edges from its edges too (with `triangle_contact`; a rope's always).
+    /// ... and a cloth's edges from its edges too (with `triangle_contact`; a rope's segment
+    /// pairs follow from `triangle_contact` alone, `has_edge_pairs`).
     pub edge_contact: bool,
     /// Rope tube radius [m] (rope only).
     pub rope_radius: f64,
