@@ -5,6 +5,7 @@
 use super::debug::{messenger_callback, ValidationCanary};
 use super::device::{self, DeviceInfo};
 use super::error::{Check, VkError};
+use super::pipeline_cache::PipelineCache;
 use ash::vk;
 use gpu_allocator::vulkan::{Allocator, AllocatorCreateDesc};
 use raw_window_handle::{RawDisplayHandle, RawWindowHandle};
@@ -62,6 +63,8 @@ pub struct GpuContext {
     /// A submission outlived `timeout`: the GPU may still be running it, so nothing it could
     /// use is freed or waited for again (see `stuck`).
     stuck: AtomicBool,
+    /// The compute pipelines created on the device, for reuse (`vk::pipeline_cache`).
+    pipelines: Mutex<PipelineCache>,
 }
 
 impl GpuContext {
@@ -169,6 +172,7 @@ impl GpuContext {
                     info: candidate.info,
                     timeout: options.gpu_timeout.unwrap_or(DEFAULT_GPU_TIMEOUT),
                     stuck: AtomicBool::new(false),
+                    pipelines: Mutex::new(PipelineCache::default()),
                 })
             }
             Err(e) => {
@@ -328,6 +332,11 @@ impl GpuContext {
         self.stuck.load(Ordering::Acquire)
     }
 
+    /// The compute pipelines this context keeps for reuse.
+    pub(crate) fn pipeline_cache(&self) -> MutexGuard<'_, PipelineCache> {
+        self.pipelines.lock().unwrap_or_else(|e| e.into_inner())
+    }
+
     fn fence_timeout_ns(&self) -> u64 {
         self.timeout.as_nanos().min(u64::MAX as u128) as u64
     }
@@ -391,6 +400,9 @@ impl Drop for GpuContext {
         // destroyed by its owner's `destroy` (leaks are reported by the allocator below).
         unsafe {
             let _ = self.device.device_wait_idle();
+            for p in self.pipeline_cache().drain() {
+                super::pipeline::destroy_cached(self, p);
+            }
             self.device.destroy_command_pool(self.command_pool, None);
             let allocator = ManuallyDrop::take(&mut self.allocator);
             if Arc::strong_count(&allocator) > 1 {

@@ -24,6 +24,7 @@ mod error;
 mod graphics;
 mod image;
 mod pipeline;
+mod pipeline_cache;
 mod query;
 mod retire;
 mod swapchain;

@@ -3,10 +3,11 @@
 use super::buffer::Buffer;
 use super::context::GpuContext;
 use super::error::{Check, VkError};
+use super::pipeline_cache::{CachedPipeline, PipelineKey};
 use ash::vk;
 
 /// What a binding holds.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum BindingKind {
     /// A storage buffer read or written by compute shaders.
     ComputeStorage,
@@ -156,7 +157,9 @@ pub struct ComputePipeline {
 }
 
 impl ComputePipeline {
-    /// Builds a pipeline from SPIR-V; `specialization[i]` is the u32 constant with id `i`.
+    /// Builds a pipeline from SPIR-V; `specialization[i]` is the u32 constant with id `i`. One
+    /// this context created before from the same SPIR-V, constants and binding kinds is taken
+    /// from its cache instead (`pipeline_cache`).
     pub fn new(
         ctx: &GpuContext,
         name: &str,
@@ -164,10 +167,39 @@ impl ComputePipeline {
         set_layout: &BindingSetLayout,
         specialization: &[u32],
     ) -> Result<Self, VkError> {
+        let key = PipelineKey {
+            spirv: spirv.into(),
+            specialization: specialization.to_vec(),
+            kinds: set_layout.kinds.clone(),
+        };
+        if let Some((raw, layout)) = ctx.pipeline_cache().take(&key) {
+            return Ok(Self { raw, layout });
+        }
+        let entry = Self::create(ctx, name, spirv, &set_layout.kinds, specialization)?;
+        let created = Self { raw: entry.raw, layout: entry.layout };
+        ctx.pipeline_cache().insert(key, entry);
+        Ok(created)
+    }
+
+    /// Compiles the pipeline, with a binding set layout of its own of `kinds` (the cache may
+    /// keep it after the caller's layout is gone).
+    fn create(
+        ctx: &GpuContext,
+        name: &str,
+        spirv: &[u32],
+        kinds: &[BindingKind],
+        specialization: &[u32],
+    ) -> Result<CachedPipeline, VkError> {
+        let set_layout = BindingSetLayout::new(ctx, kinds)?;
         let module_info = vk::ShaderModuleCreateInfo::default().code(spirv);
         // SAFETY: valid device; the module is destroyed below, after pipeline creation.
-        let module =
-            unsafe { ctx.device.create_shader_module(&module_info, None) }.check("vkCreateShaderModule")?;
+        let module = match unsafe { ctx.device.create_shader_module(&module_info, None) } {
+            Ok(m) => m,
+            Err(e) => {
+                set_layout.destroy(ctx);
+                return Err(VkError::from_call("vkCreateShaderModule", e));
+            }
+        };
         let set_layouts = [set_layout.raw];
         let ranges = [vk::PushConstantRange {
             stage_flags: vk::ShaderStageFlags::COMPUTE,
@@ -180,8 +212,9 @@ impl ComputePipeline {
         let layout = match unsafe { ctx.device.create_pipeline_layout(&layout_info, None) } {
             Ok(l) => l,
             Err(e) => {
-                // SAFETY: the module is unused.
+                // SAFETY: the module and set layout are unused.
                 unsafe { ctx.device.destroy_shader_module(module, None) };
+                set_layout.destroy(ctx);
                 return Err(VkError::from_call("vkCreatePipelineLayout", e));
             }
         };
@@ -203,24 +236,35 @@ impl ComputePipeline {
         match created {
             Ok(p) => {
                 ctx.set_name(p[0], name);
-                Ok(Self { raw: p[0], layout })
+                Ok(CachedPipeline::new(p[0], layout, set_layout.raw))
             }
             Err((_, e)) => {
-                // SAFETY: the layout is unused.
+                // SAFETY: the layouts are unused.
                 unsafe { ctx.device.destroy_pipeline_layout(layout, None) };
+                set_layout.destroy(ctx);
                 Err(VkError::from_call("vkCreateComputePipelines", e))
             }
         }
     }
 
+    /// Lets the pipeline go: the context's cache keeps it for another user, or destroys it
+    /// when it keeps too many unused.
     pub fn destroy(self, ctx: &GpuContext) {
         if ctx.stuck() {
             return; // kept: the GPU may still use it
         }
-        // SAFETY: no pending submission uses the pipeline (callers wait or defer the release).
-        unsafe {
-            ctx.device.destroy_pipeline(self.raw, None);
-            ctx.device.destroy_pipeline_layout(self.layout, None);
-        }
+        let dropped = ctx.pipeline_cache().release(self.raw);
+        dropped.into_iter().for_each(|p| destroy_cached(ctx, p));
+    }
+}
+
+/// Destroys a pipeline the cache let go (no pending submission uses it: its last holder
+/// released it after its work, as `ComputePipeline::destroy` requires).
+pub(crate) fn destroy_cached(ctx: &GpuContext, p: CachedPipeline) {
+    // SAFETY: no pending submission uses the pipeline or its layouts.
+    unsafe {
+        ctx.device.destroy_pipeline(p.raw, None);
+        ctx.device.destroy_pipeline_layout(p.layout, None);
+        ctx.device.destroy_descriptor_set_layout(p.set_layout, None);
     }
 }
