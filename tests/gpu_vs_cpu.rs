@@ -68,11 +68,20 @@ fn check_mode(name: &str, model: &SimModel, mode: Mode) {
     } else {
         &[(true, None), (false, None)]
     };
-    for &(fused, forced) in paths {
+    // Contact between objects (per stage on every path) also with its rope nodes' searches
+    // split among lanes as on a GPU (lavapipe gives each one lane), on the default path.
+    let lanes: &[bool] = if model.inter_object_contact() { &[false, true] } else { &[false] };
+    for (&(fused, forced), &lanes) in paths.iter().flat_map(|p| lanes.iter().map(move |l| (p, l))) {
+        if lanes && (fused || forced.is_some()) {
+            continue;
+        }
         let ctx = gpu();
         let (d, _) = compare_with(&ctx, model, FRAMES, mode, &|g| {
             g.set_fused(&ctx, fused).unwrap();
             g.force_contact_lists(forced);
+            if lanes {
+                g.set_contact_lanes(&ctx, true).unwrap();
+            }
         });
         let path = match (fused, forced) {
             (true, _) => "",
@@ -80,6 +89,7 @@ fn check_mode(name: &str, model: &SimModel, mode: Mode) {
             (false, Some(true)) => " (per stage, lists on)",
             (false, Some(false)) => " (per stage, lists off)",
         };
+        let path = if lanes { format!("{path} (in lanes)") } else { path.to_string() };
         let name = format!("{name}{path}");
         println!("{name}: {d:?}");
         assert!(d.position <= POSITION, "{name}: position deviation {} m > {POSITION}", d.position);

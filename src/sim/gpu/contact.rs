@@ -83,7 +83,10 @@ pub(super) fn sets_needed(model: &SimModel) -> u32 {
 /// ropes' (a second dispatch, with the segment tests compiled in), each object's from a
 /// multiple of its lanes (a node's lanes in whole subgroups). An object whose particles look
 /// for nothing (a cloth with only ropes around: their segments find its vertices) has none.
-/// One lane each where lanes would need more workgroups than one dispatch allows.
+/// One lane each where lanes would need more workgroups than one dispatch allows, and on a CPU
+/// driver, whose lanes run one after another: there each lane's walk of the node's 8 buckets
+/// costs what the node's whole search costs alone (lavapipe, the playground's rope: 64 lanes
+/// 716 ms a frame at 32 substeps, 8 lanes 250, one 190; docs/PERFORMANCE.md).
 struct WorkLayout {
     first: Vec<u32>,
     lanes: Vec<u32>,
@@ -92,7 +95,7 @@ struct WorkLayout {
 }
 
 impl WorkLayout {
-    fn new(model: &SimModel, particles: &[u32], max_groups: u64) -> Self {
+    fn new(model: &SimModel, particles: &[u32], max_groups: u64, in_lanes: bool) -> Self {
         let layout = |lanes: &dyn Fn(&ObjectModel) -> u32| {
             let mut first = vec![0u32; particles.len()];
             let mut lane_counts = vec![0u32; particles.len()];
@@ -124,10 +127,27 @@ impl WorkLayout {
         };
         let fits = |b: [u64; 3]| (b[1] - b[0]).div_ceil(256).max((b[2] - b[1]).div_ceil(256)) <= max_groups;
         let (mut first, mut lanes, mut bounds) = layout(&ObjectModel::contact_lanes);
-        if !fits(bounds) {
+        if !in_lanes || !fits(bounds) {
             (first, lanes, bounds) = layout(&|_| 1);
         }
         Self { first, lanes, bounds: bounds.map(|b| b as u32) }
+    }
+}
+
+/// Whether a rope node's search is split among lanes by default on the device of `ctx`: on a
+/// GPU, not on a CPU driver (`WorkLayout`).
+fn in_lanes(ctx: &GpuContext) -> bool {
+    ctx.info().kind != crate::vk::DeviceKind::Cpu
+}
+
+impl super::GpuSim {
+    /// Splits each rope node's search for contacts between objects among lanes, as on a GPU
+    /// (`true`), or gives it one lane (as on a CPU driver), whatever the device's default; for
+    /// tests, so that a CPU driver runs the GPUs' layout too. Waits for the frames in flight.
+    pub fn set_contact_lanes(&mut self, ctx: &GpuContext, lanes: bool) -> anyhow::Result<()> {
+        let Some(contact) = self.contact.as_mut() else { return Ok(()) };
+        ctx.wait_idle()?;
+        Ok(contact.set_lanes(ctx, &self.model, &self.objects, lanes)?)
     }
 }
 
@@ -153,27 +173,9 @@ impl SceneContact {
         table_params.hash_mask = buckets as u32 - 1;
         table_params.cell_inv = (1.0 / cell) as f32;
         let particles: Vec<u32> = gpu.iter().map(|g| g.particles).collect();
-        let max_groups = ctx.info().max_workgroup_count[0] as u64;
-        let work = WorkLayout::new(model, &particles, max_groups);
-        let mut first = 0u32;
-        let rows: Vec<[f32; 4]> = model
-            .objects
-            .iter()
-            .zip(gpu)
-            .enumerate()
-            .flat_map(|(q, (o, g))| {
-                // Columns 0: the object touches by its segments (contact.comp).
-                let grid = if o.contact_triangles() { o.dims } else { [0, 0] };
-                let bits = f32::from_bits;
-                let rows = [
-                    [bits(first), bits(g.particles), o.contact_radius() as f32, o.mass as f32],
-                    [bits(grid[0]), bits(grid[1]), 0.0, o.corner_reach() as f32],
-                    [o.friction as f32, bits(work.first[q]), bits(work.lanes[q]), 0.0],
-                ];
-                first += g.particles;
-                rows
-            })
-            .collect();
+        let work =
+            WorkLayout::new(model, &particles, ctx.info().max_workgroup_count[0] as u64, in_lanes(ctx));
+        let rows = Self::rows(model, gpu, &work);
         let (storage, gpu_only) = (BufferUsage::STORAGE, MemoryKind::GpuOnly);
         let specs = [
             ("table", std::mem::size_of::<ObjectParams>() as u64, storage, MemoryKind::Upload),
@@ -275,6 +277,42 @@ impl SceneContact {
                 Err(e)
             }
         }
+    }
+
+    /// contact.comp's rows of each object: where its particles begin in the scene, its grid
+    /// (columns 0: it touches by its segments), radius, mass, corner reach, friction and work
+    /// items.
+    fn rows(model: &SimModel, gpu: &[GpuObject], work: &WorkLayout) -> Vec<[f32; 4]> {
+        let mut first = 0u32;
+        let bits = f32::from_bits;
+        (model.objects.iter().zip(gpu).enumerate())
+            .flat_map(|(q, (o, g))| {
+                let grid = if o.contact_triangles() { o.dims } else { [0, 0] };
+                let rows = [
+                    [bits(first), bits(g.particles), o.contact_radius() as f32, o.mass as f32],
+                    [bits(grid[0]), bits(grid[1]), 0.0, o.corner_reach() as f32],
+                    [o.friction as f32, bits(work.first[q]), bits(work.lanes[q]), 0.0],
+                ];
+                first += g.particles;
+                rows
+            })
+            .collect()
+    }
+
+    /// Splits a rope node's search among lanes (`ObjectModel::contact_lanes`) or not, whatever
+    /// the device's default (`in_lanes`); no frame may be in flight.
+    fn set_lanes(
+        &mut self,
+        ctx: &GpuContext,
+        model: &SimModel,
+        gpu: &[GpuObject],
+        lanes: bool,
+    ) -> Result<(), VkError> {
+        let particles: Vec<u32> = gpu.iter().map(|g| g.particles).collect();
+        let work = WorkLayout::new(model, &particles, ctx.info().max_workgroup_count[0] as u64, lanes);
+        self.objects.write(0, &Self::rows(model, gpu, &work))?;
+        self.work = work.bounds;
+        Ok(())
     }
 
     /// Records the substep's contacts after every object's physics (its output ordered for
@@ -392,11 +430,11 @@ mod tests {
 
     /// The cloths' items first (one each), then a rope node's lanes from a multiple of the
     /// lanes; a cloth with only ropes around has none; one lane each when the lanes would need
-    /// more workgroups than one dispatch allows.
+    /// more workgroups than one dispatch allows or on a CPU driver.
     #[test]
     fn work_items_put_the_cloths_first_and_a_rope_node_in_lanes() {
         let model = rope_on_cloth();
-        let w = WorkLayout::new(&model, &[900, 21], u64::MAX);
+        let w = WorkLayout::new(&model, &[900, 21], u64::MAX, true);
         assert_eq!(
             (w.lanes.as_slice(), w.bounds),
             ([0, CONTACT_LANES].as_slice(), [0, 0, 21 * CONTACT_LANES])
@@ -406,14 +444,17 @@ mod tests {
         let mut model = rope_on_cloth();
         let (cloth, rope) = (model.objects[0].clone(), model.objects[1].clone());
         model.objects = vec![rope, cloth.clone(), cloth];
-        let w = WorkLayout::new(&model, &[21, 900, 900], u64::MAX);
+        let w = WorkLayout::new(&model, &[21, 900, 900], u64::MAX, true);
         let rope_first = 1800u32.div_ceil(CONTACT_LANES) * CONTACT_LANES;
         assert_eq!(w.first, [rope_first, 0, 900]);
         assert_eq!(w.lanes, [CONTACT_LANES, 1, 1]);
         assert_eq!(w.bounds, [0, 1800, rope_first + 21 * CONTACT_LANES]);
 
         // The rope's 21 x 64 items need 6 groups of 256: with at most 2, one lane each.
-        let w = WorkLayout::new(&rope_on_cloth(), &[900, 21], 2);
+        let w = WorkLayout::new(&rope_on_cloth(), &[900, 21], 2, true);
+        assert_eq!((w.lanes.as_slice(), w.bounds), ([0, 1].as_slice(), [0, 0, 21]));
+        // ... and where lanes are not asked for (a CPU driver).
+        let w = WorkLayout::new(&rope_on_cloth(), &[900, 21], u64::MAX, false);
         assert_eq!((w.lanes.as_slice(), w.bounds), ([0, 1].as_slice(), [0, 0, 21]));
     }
 
