@@ -89,3 +89,49 @@ impl PipelineCache {
         self.entries.drain().map(|(_, e)| e).collect()
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use ash::vk::Handle;
+
+    fn key(n: u32) -> PipelineKey {
+        PipelineKey {
+            spirv: vec![0x0723_0203, n].into(),
+            specialization: vec![n],
+            kinds: vec![BindingKind::ComputeStorage],
+        }
+    }
+
+    fn entry(n: u64) -> CachedPipeline {
+        CachedPipeline::new(
+            vk::Pipeline::from_raw(n),
+            vk::PipelineLayout::from_raw(n),
+            vk::DescriptorSetLayout::from_raw(n),
+        )
+    }
+
+    /// A pipeline is shared while held, kept once unused, and only the longest unused past
+    /// `KEPT_UNUSED` are given back for destruction, never one still held.
+    #[test]
+    fn held_pipelines_are_shared_and_only_the_longest_unused_are_dropped() {
+        let mut cache = PipelineCache::default();
+        cache.insert(key(0), entry(1));
+        assert_eq!(cache.take(&key(0)).map(|(p, _)| p.as_raw()), Some(1));
+        assert!(cache.take(&key(1)).is_none());
+        assert!(cache.release(vk::Pipeline::from_raw(1)).is_empty());
+        assert!(cache.release(vk::Pipeline::from_raw(1)).is_empty(), "kept unused");
+        for n in 1..=KEPT_UNUSED as u32 {
+            cache.insert(key(n), entry(n as u64 + 1));
+        }
+        // All held but pipeline 1; releasing them one by one leaves KEPT_UNUSED + 1 unused at
+        // the end, and the longest unused, pipeline 1, goes.
+        let mut dropped = Vec::new();
+        for n in 1..=KEPT_UNUSED as u64 {
+            dropped.extend(cache.release(vk::Pipeline::from_raw(n + 1)).into_iter().map(|e| e.raw.as_raw()));
+        }
+        assert_eq!(dropped, [1]);
+        assert!(cache.take(&key(0)).is_none() && cache.take(&key(1)).is_some());
+        assert_eq!(cache.drain().len(), KEPT_UNUSED);
+    }
+}
