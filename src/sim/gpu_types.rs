@@ -99,6 +99,13 @@ pub const FEATURE_TRIANGLES: u32 = 8192;
 pub const FEATURE_EDGE_PAIRS: u32 = 16384;
 pub const FEATURE_SEGMENT_PAIRS: u32 = 32768;
 
+/// Whether an object of `FEATURES` `f` keeps a cloth's edges from its edges (edge pairs that
+/// are not a rope's segment pairs): its search loops over six ring edges a candidate and reads
+/// crease words.
+pub fn has_cloth_edge_pairs(f: u32) -> bool {
+    f & (FEATURE_EDGE_PAIRS | FEATURE_SEGMENT_PAIRS) == FEATURE_EDGE_PAIRS
+}
+
 gpu_struct!(
     /// One simulated particle (cloth particle or rope node).
     Particle, size 32, {

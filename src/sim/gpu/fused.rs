@@ -98,11 +98,8 @@ impl FusedLimits {
     /// cloth keeps edges from edges (a rope's segment pairs search two edges a candidate, not
     /// six).
     pub fn chunk(&self, mut features: impl Iterator<Item = u32>, substeps: u32) -> u32 {
-        use crate::sim::gpu_types::{FEATURE_EDGE_PAIRS, FEATURE_SEGMENT_PAIRS};
         let limited = self.substeps_per_dispatch != u32::MAX;
-        let most = if limited
-            && features.any(|f| f & (FEATURE_EDGE_PAIRS | FEATURE_SEGMENT_PAIRS) == FEATURE_EDGE_PAIRS)
-        {
+        let most = if limited && features.any(crate::sim::gpu_types::has_cloth_edge_pairs) {
             self.substeps_per_dispatch.min(LIMITED_EDGE_PAIR_SUBSTEPS_PER_DISPATCH)
         } else {
             self.substeps_per_dispatch

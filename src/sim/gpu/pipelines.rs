@@ -69,8 +69,7 @@ fn solver(method: Integrator) -> Solver {
 /// Whether an object of `features` has a cloth's edge-edge self-contact, whose hash scatter
 /// notes each particle's ring creases in self_pairs (`Stage::HashScatter`).
 pub(super) fn has_creases(features: u32) -> bool {
-    use crate::sim::gpu_types::{FEATURE_EDGE_PAIRS, FEATURE_SEGMENT_PAIRS};
-    features & (FEATURE_EDGE_PAIRS | FEATURE_SEGMENT_PAIRS) == FEATURE_EDGE_PAIRS
+    crate::sim::gpu_types::has_cloth_edge_pairs(features)
 }
 
 fn group(kind: ObjectKind) -> Vec<u32> {
