@@ -669,9 +669,8 @@ fn a_rope_colliding_with_itself_conserves_momentum() {
 /// whole slip). `tilt`: the rail tilted by that angle about z, the free part on it alike.
 fn sliding_rope(mu: f64, v: f64, substeps: u32, tilt: f64) -> SimModel {
     let (s, h) = (0.025, 0.01);
-    let (rail, up, free) = (30usize, 2usize, 12usize);
-    let away = 8usize;
-    let nodes = rail + away + up + free;
+    let (rail, away, up) = (30usize, 8usize, 2usize);
+    let nodes = rail + away + up + FREE_NODES;
     let mut r = rope(nodes as u32, s);
     let start = 0.1;
     // along the rail, and across it (up): the rail tilted by `tilt` about z
@@ -708,11 +707,12 @@ fn sliding_rope(mu: f64, v: f64, substeps: u32, tilt: f64) -> SimModel {
     sc
 }
 
-/// Where the free part of `sliding_rope` is along x, on average, and how fast it moves.
-fn free_part(x: &[DVec3], v: &[DVec3]) -> (f64, f64) {
-    let free = &x[x.len() - 12..];
-    let speed = &v[v.len() - 12..];
-    (free.iter().map(|p| p.x).sum::<f64>() / 12.0, speed.iter().map(|u| u.x).sum::<f64>() / 12.0)
+/// The free nodes of `sliding_rope`, its last.
+const FREE_NODES: usize = 12;
+
+/// The mean of the free part of `sliding_rope` in `a` (its positions or velocities).
+fn free_part(a: &[DVec3]) -> DVec3 {
+    a[a.len() - FREE_NODES..].iter().sum::<DVec3>() / FREE_NODES as f64
 }
 
 #[test]
@@ -723,13 +723,12 @@ fn a_rope_sliding_along_itself_stops_where_coulomb_says() {
     let ctx = gpu();
     for substeps in [8, 16, 64] {
         let s = sliding_rope(mu, v, substeps, 0.0);
-        let o = &s.objects[0];
-        let (x0, _) = free_part(&o.positions, &o.velocities);
+        let x0 = free_part(&s.objects[0].positions).x;
         let mut cpu = CpuSim::new(&s);
         for _ in 0..frames {
             cpu.step_frame();
         }
-        let (x, speed) = free_part(&cpu.objects()[0].x, &cpu.objects()[0].v);
+        let (x, speed) = (free_part(&cpu.objects()[0].x).x, free_part(&cpu.objects()[0].v).x);
         let mut stops = vec![("reference", x - x0, speed)];
         for fused in [true, false] {
             let mut g = GpuSim::new(&ctx, &s).unwrap();
@@ -739,7 +738,7 @@ fn a_rope_sliding_along_itself_stops_where_coulomb_says() {
                 g.step_frame(&ctx).unwrap();
             }
             let state = &g.read_states(&ctx).unwrap()[0];
-            let (x, speed) = free_part(&state.positions(), &state.velocities());
+            let (x, speed) = (free_part(&state.positions()).x, free_part(&state.velocities()).x);
             g.destroy(&ctx);
             stops.push((if fused { "GPU fused" } else { "GPU per stage" }, x - x0, speed));
         }
@@ -776,7 +775,7 @@ fn a_rope_on_itself_sticks_below_the_friction_angle_and_slides_above() {
         // the mean speed down the rail after 3 and after 9 frames
         let mut speeds = Vec::new();
         let along = DVec3::new(a.cos(), a.sin(), 0.0);
-        let down = |v: &[DVec3]| -v[v.len() - 12..].iter().map(|u| u.dot(along)).sum::<f64>() / 12.0;
+        let down = |v: &[DVec3]| -free_part(v).dot(along);
         let mut cpu = CpuSim::new(&s);
         let mut at = Vec::new();
         for f in 1..=9 {

@@ -172,10 +172,7 @@ impl SceneContact {
         let mut table_params: ObjectParams = bytemuck::Zeroable::zeroed();
         table_params.hash_mask = buckets as u32 - 1;
         table_params.cell_inv = (1.0 / cell) as f32;
-        let particles: Vec<u32> = gpu.iter().map(|g| g.particles).collect();
-        let work =
-            WorkLayout::new(model, &particles, ctx.info().max_workgroup_count[0] as u64, in_lanes(ctx));
-        let rows = Self::rows(model, gpu, &work);
+        let (work, rows) = Self::rows(ctx, model, gpu, in_lanes(ctx));
         let (storage, gpu_only) = (BufferUsage::STORAGE, MemoryKind::GpuOnly);
         let specs = [
             ("table", std::mem::size_of::<ObjectParams>() as u64, storage, MemoryKind::Upload),
@@ -206,7 +203,7 @@ impl SceneContact {
             block_sums,
             touches,
             pairs,
-            work: work.bounds,
+            work,
             buckets: buckets as u32,
             scan_set: BindingSet::default(),
             sets: Vec::new(),
@@ -279,13 +276,16 @@ impl SceneContact {
         }
     }
 
-    /// contact.comp's rows of each object: where its particles begin in the scene, its grid
-    /// (columns 0: it touches by its segments), radius, mass, corner reach, friction and work
-    /// items.
-    fn rows(model: &SimModel, gpu: &[GpuObject], work: &WorkLayout) -> Vec<[f32; 4]> {
+    /// contact.comp's rows of each object (where its particles begin in the scene, its grid,
+    /// columns 0 when it touches by its segments, radius, mass, corner reach, friction and work
+    /// items) and the bounds of its passes' work items, each rope node's search split among
+    /// lanes or not (`lanes`, `WorkLayout`).
+    fn rows(ctx: &GpuContext, model: &SimModel, gpu: &[GpuObject], lanes: bool) -> ([u32; 3], Vec<[f32; 4]>) {
+        let particles: Vec<u32> = gpu.iter().map(|g| g.particles).collect();
+        let work = WorkLayout::new(model, &particles, ctx.info().max_workgroup_count[0] as u64, lanes);
         let mut first = 0u32;
         let bits = f32::from_bits;
-        (model.objects.iter().zip(gpu).enumerate())
+        let rows = (model.objects.iter().zip(gpu).enumerate())
             .flat_map(|(q, (o, g))| {
                 let grid = if o.contact_triangles() { o.dims } else { [0, 0] };
                 let rows = [
@@ -296,7 +296,8 @@ impl SceneContact {
                 first += g.particles;
                 rows
             })
-            .collect()
+            .collect();
+        (work.bounds, rows)
     }
 
     /// Splits a rope node's search among lanes (`ObjectModel::contact_lanes`) or not, whatever
@@ -308,10 +309,9 @@ impl SceneContact {
         gpu: &[GpuObject],
         lanes: bool,
     ) -> Result<(), VkError> {
-        let particles: Vec<u32> = gpu.iter().map(|g| g.particles).collect();
-        let work = WorkLayout::new(model, &particles, ctx.info().max_workgroup_count[0] as u64, lanes);
-        self.objects.write(0, &Self::rows(model, gpu, &work))?;
-        self.work = work.bounds;
+        let (work, rows) = Self::rows(ctx, model, gpu, lanes);
+        self.objects.write(0, &rows)?;
+        self.work = work;
         Ok(())
     }
 
