@@ -97,16 +97,15 @@ fn a_cloth_folding_over_its_middle_row_never_passes_through_itself() {
 /// (issue 26 is open on those): measured 10 on the reference and 6 on the GPU (fused), 14 and
 /// 25 once the contact code was shared with edge pairs (the same sums in another order; where
 /// it piles is chaotic: 23 to 32 in builds of the same model that differed in the order of
-/// rounding), so the bound, 60, leaves room for another driver's rounding while staying far
-/// under one pass's count). With edges kept from edges too (`self_contact =
-/// "triangles_and_edges"`: each share of a contact over-relaxed, edge pairs where an edge is
-/// creased) four passes let fewer through: measured 2 on the reference and 4 on the GPU
-/// (fused). Where
-/// it piles is chaotic: over nine tilts from 0.05 to 0.4 rad the reference let through 0 in
-/// five and 2 to 14 in the others at four passes (docs/bench/cpu/edge-edge-study/crease-gate.txt;
-/// at eight, 0 to 2 on every path over five tilts: docs/bench/lavapipe/strip-passes), so that
-/// bound is 10. The count changes in
-/// place.
+/// rounding; 38 and 26 since a resting contact's friction holds), so the bound, 60, leaves room
+/// for another driver's rounding while staying far under one pass's count). With edges kept
+/// from edges too (`self_contact = "triangles_and_edges"`: each share of a contact
+/// over-relaxed, edge pairs where an edge is creased) four passes let fewer through: measured
+/// 0 on the reference and 11 on the GPU (fused; 2 and 4 before the friction change). Where
+/// it piles is chaotic: over 24 tilts from 0.02 to 0.48 rad at friction 0.3, 0.5 and 0.7 the
+/// reference let through at most 6 in 69 of the 72 runs and 20 to 46 in three (before the
+/// friction change 67 of 72, up to 121), the GPU 0 to 8 at five other tilts
+/// (docs/bench/cpu/resting-friction/), so that bound is 15. The count changes in place.
 #[test]
 fn contact_iterations_stop_a_strip_piling_on_itself() {
     let mut c = soft_cloth(5, 61);
@@ -173,7 +172,7 @@ fn contact_iterations_stop_a_strip_piling_on_itself() {
     assert!(one > 100, "one pass a substep should let the pile through (measured 283), not {one}");
     assert!(four <= 60 && gpu_four <= 60, "four passes: {four} (reference), {gpu_four} (GPU) crossing edges");
     assert!(
-        four_edges <= 10 && gpu_edges <= 10,
+        four_edges <= 15 && gpu_edges <= 15,
         "four passes with edges: {four_edges} (reference), {gpu_edges} (GPU) crossing edges"
     );
 }
@@ -757,11 +756,12 @@ fn a_rope_sliding_along_itself_stops_where_coulomb_says() {
 /// friction 0.5 (the friction angle 26.6 degrees): at 35 it slides down with g (sin a - mu cos
 /// a) within 10% (measured 1.6 to 2.2% under), from its mean speed along the rail at 0.05 and
 /// 0.15 s (after its first contacts settle, and before the soft spring it hangs from pulls
-/// with more than a few percent of the net force); at 20 it should stay, and it creeps
-/// instead at a steady 5.5 to 6.5 mm/s (the same at 8 and 64 substeps, and started inside the
-/// thickness: not the first substep's fall; not decelerating: a known limit, ACCURACY.md), so
-/// the bound here is 2% of the frictionless speed at 0.15 s (0.50 m/s): without friction it
-/// would be 100%. Reference and both GPU paths, 16 substeps.
+/// with more than a few percent of the net force); at 20 it stays: measured 0.1 to 0.2 mm/s at
+/// 0.15 s (0.3 to 0.4 at 8 substeps, under 0.1 at 64: the residue of four Jacobi passes, first
+/// order in the step), so the bound is 0.2% of the frictionless speed there (0.50 m/s), 1 mm/s;
+/// when a resting contact's friction was scaled by its small count weight it crept at a steady
+/// 5.5 to 6.5 mm/s at any substep count (ACCURACY.md). Reference and both GPU paths, 16
+/// substeps.
 #[test]
 fn a_rope_on_itself_sticks_below_the_friction_angle_and_slides_above() {
     let mu = 0.5;
@@ -802,7 +802,7 @@ fn a_rope_on_itself_sticks_below_the_friction_angle_and_slides_above() {
             let accel = (at[1] - at[0]) / 0.1;
             println!("{degrees} degrees, {path}: {:.4} and {:.4} m/s down: {accel:.3} m/s^2 (Coulomb {coulomb:.3}, frictionless {frictionless:.3})", at[0], at[1]);
             let ok = if coulomb == 0.0 {
-                at[1].abs() < 0.02 * frictionless * 0.15
+                at[1].abs() < 0.002 * frictionless * 0.15
             } else {
                 (accel / coulomb - 1.0).abs() <= 0.1
             };

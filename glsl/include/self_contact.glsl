@@ -29,8 +29,9 @@
 // and the rest, left from earlier substeps, in position only (the constraint stage's velocity
 // follows the correction but for that part: a late-resolved overlap does not bounce). Coulomb
 // friction (mu: the cloth's `friction`) adds to the normal correction the relative motion along the
-// tangent, undone whole while within mu times the approach (the normal impulse), else that much of
-// it (friction_correction, triangle.glsl), with the same weights, so it is equal and opposite too.
+// tangent, undone whole while within mu times the normal impulse the contact applies (its share
+// of the approach), else that much of it (friction_correction, triangle.glsl), with the same
+// weights, so it is equal and opposite too (its share: apply_contact).
 // Several contacts on a particle are combined by mass splitting (Tonge et al. 2012): each free
 // particle takes part in each of its n contacts with 1 / n of its mass, so lambda = c (h - d) / sum
 // n_k w_k c_k^2, and its moves are summed; with edge contact that share is over-relaxed by
@@ -251,8 +252,8 @@ uint pair_skip = 0u;
 // once the overlap reaches a tenth of h, less before, so that a contact that begins changes
 // the others' shares gradually; an edge pair's times its edge_fade.
 float contact_weight(float overlap) { return min(1.0, overlap / (0.1 * obj.self_distance)); }
-// A free particle's count of contacts (at least 1).
-float split_count(uint i) { return max(1.0, float(self_pairs[4u * i + 3u]) * (1.0 / 65536.0)); }
+// A free particle's count of contacts, each by its weight (the mass splitting takes at least 1).
+float pair_count(uint i) { return float(self_pairs[4u * i + 3u]) * (1.0 / 65536.0); }
 
 // SELF_APPLY_FOUND (defined by the includer: whether this is the apply pass): the apply
 // pass's search again (a particle with more than PAIR_MAX contacts) notes the next PAIR_MAX in
@@ -567,31 +568,42 @@ void apply_contact(uint p, vec3 x, uint code) {
     if (!(d > 0.0 && d < obj.self_distance)) return;
     vec4 free_m = vec4(CPINNED(m.x) ? 0.0 : 1.0, CPINNED(m.y) ? 0.0 : 1.0, CPINNED(m.z) ? 0.0 : 1.0,
                        CPINNED(m.w) ? 0.0 : 1.0);
-    // Each free particle's mass split among its contacts: inverse mass w n, n its count.
-    vec4 split_m = vec4(0.0);
+    // Each free particle's count of contacts.
+    vec4 counts = vec4(0.0);
     [[unroll]] for (int q = 0; q < 4; ++q) {
-        if (free_m[q] > 0.0) split_m[q] = split_count(m[q]);
+        if (free_m[q] > 0.0) counts[q] = pair_count(m[q]);
     }
     float overlap = max(obj.self_distance - d, 0.0);
     // A contact takes part by its weight in the counts: one that begins (overlap under h / 10)
     // moves its particles by that fraction of its share, so that the counts' smoothing never
     // lets a particle's contacts add up to more than its largest overlap.
     float weight = contact_weight(overlap) * pair_part(p, code, c);
+    // Each free particle's mass split among its contacts: inverse mass w n, n its count (at
+    // least 1).
+    vec4 split_m = max(counts, free_m);
     // The relative motion of the two sides' nearest points over the substep: the overlap it
     // made (its approach along n) is undone with the velocity that made it; what overlap
     // remains from before is undone in position only (no bounce from an overlap resolved late).
     vec3 moved = c.x * (x - pair_start(p));
     [[unroll]] for (int q = 1; q < 4; ++q) moved += c[q] * (CPOS(m[q]) - pair_start(m[q]));
     float approach = clamp(-dot(moved, n), 0.0, overlap);
-    // Coulomb: the tangential slip undone within mu times the normal impulse (the approach).
-    vec3 slip = friction_correction(moved, n, approach, obj.friction);
     vec4 c2 = c * c;
     float split = dot(c2, split_m);
     float whole = dot(c2, free_m);
     // (Weights on pinned particles only: nothing to move.)
     if (!(whole > 0.0)) return;
     float k = weight * min(pair_relaxation() / split, 1.0 / whole);
-    vec3 push = (n * overlap - slip) * k;
+    // Coulomb: the tangential slip undone at the contact's weight over its particles' counts,
+    // over-relaxed as the normal share and never past the contact's whole, within mu times the
+    // normal impulse it applies (k times the approach). The counts are not floored at one
+    // contact here: a lone resting contact, whose overlap (so its weight) is small, still
+    // undoes all of its slip (floored, it undid its weight's fraction a pass and the rest crept
+    // on as velocity: a rope resting on itself below the friction angle slid at a steady 5 mm/s),
+    // while a particle's weak contacts together undo no more than one would.
+    float counted = dot(c2, max(counts, weight * free_m));
+    float share = weight > 0.0 ? min(pair_relaxation() * weight / counted, 1.0 / whole) : 0.0;
+    vec3 slip = share > 0.0 ? friction_correction(moved, n, k * approach / share, obj.friction) * share : vec3(0.0);
+    vec3 push = n * (overlap * k) - slip;
     vec3 rest = n * ((overlap - approach) * k);
     [[unroll]] for (int q = 0; q < 4; ++q) {
         if (free_m[q] > 0.0 && c[q] != 0.0) add_move(m[q], push * c[q], rest * c[q]);

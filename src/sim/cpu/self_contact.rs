@@ -14,9 +14,11 @@
 //! c, fully once its overlap reaches h / 10; its mass split among them, the share over-relaxed
 //! with edge contact but never past the contact's whole, RELAXATION 1 without), so every contact conserves momentum. The part of the
 //! overlap the substep's approach made moves the velocity too, the rest the position only.
-//! Coulomb friction (mu: the cloth's `friction`) adds the relative motion over the substep of
-//! the two nearest points along the tangent, undone whole while within mu times the approach,
-//! else that much of it, with the same weights. Every pair is tested here; the GPU finds the
+//! Coulomb friction (mu: the cloth's `friction`) undoes the relative motion over the substep of
+//! the two nearest points along the tangent at the contact's share c / sum n_k w_k c_k^2 (its
+//! counts n not floored at 1 here, so that a lone resting contact of small overlap still holds),
+//! over-relaxed and bounded as lambda's, while within mu times the normal impulse the contact
+//! applies (lambda's factor times the approach), else that much of it, with the same weights. Every pair is tested here; the GPU finds the
 //! same through its spatial hash or contact lists (and keeps at most 16 contacts a particle
 //! in a substep; an edge pair belongs to the lower-indexed of its nearest ends).
 
@@ -529,18 +531,31 @@ fn apply(
         // Each free particle's mass split among its contacts.
         let split_m = DVec4::from_array(m.map(|k| free(k) * f64::max(1.0, count[k])));
         // The overlap this substep's approach made is undone with its velocity, the rest in
-        // position only; friction within mu times the approach (the normal impulse).
+        // position only.
         let slip = (0..4).map(|q| (x[m[q]] - start[m[q]]) * c[q]).sum::<DVec3>();
         let approach = (-slip.dot(n)).clamp(0.0, overlap);
-        let friction = friction_correction(slip, n, approach, o.friction);
         let (split, whole) = ((c * c).dot(split_m), (c * c).dot(free_m));
         if whole <= 0.0 {
             continue; // weights on pinned particles only
         }
         // A contact that begins takes part by its count weight (see the GPU's apply_contact);
         // its share over-relaxed, never past its whole.
-        let k = count_weight(overlap, h) * contact.fade(c, x) * f64::min(relaxation / split, 1.0 / whole);
-        let (push, rest) = ((n * overlap - friction) * k, n * ((overlap - approach) * k));
+        let weight = count_weight(overlap, h) * contact.fade(c, x);
+        let k = weight * f64::min(relaxation / split, 1.0 / whole);
+        // Friction at the contact's weight in its particles' counts (see the GPU's
+        // apply_contact), within mu times its normal impulse (k times the approach).
+        let counted = DVec4::from_array(m.map(|k| free(k) * count[k].max(weight)));
+        let share = if weight > 0.0 {
+            f64::min(relaxation * weight / (c * c).dot(counted), 1.0 / whole)
+        } else {
+            0.0
+        };
+        let friction = if share > 0.0 {
+            friction_correction(slip, n, k * approach / share, o.friction) * share
+        } else {
+            DVec3::ZERO
+        };
+        let (push, rest) = (n * (overlap * k) - friction, n * ((overlap - approach) * k));
         for q in 0..4 {
             moves[m[q]] += push * (c[q] * free_m[q]);
             rests[m[q]] += rest * (c[q] * free_m[q]);
