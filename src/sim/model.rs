@@ -135,6 +135,13 @@ impl ObjectModel {
         self.kind == ObjectKind::Rope && self.has_triangles()
     }
 
+    /// Whether self-contact keeps a cloth's edges from its edges (`has_edge_pairs` but not a
+    /// rope's segments): its pairs need an edge creased, judged from each particle's ring (the
+    /// twin from feature bits: `gpu_types::has_cloth_edge_pairs`).
+    pub fn has_cloth_edge_pairs(&self) -> bool {
+        self.has_edge_pairs() && !self.has_segment_pairs()
+    }
+
     /// How far from a particle self-contact candidates are searched (`self_reach` in
     /// glsl/include/lists.glsl): the self-collision distance h, plus for a cloth half a grid
     /// cell's diagonal stretched by `TRIANGLE_STRETCH` (a triangle within h has its nearest

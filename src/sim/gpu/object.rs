@@ -259,7 +259,7 @@ impl GpuObject {
                 // Sums and counts (4), lengths (1), contacts, where each began the substep (3),
                 // the sums' parts that move the position only (3); the further passes'
                 // indirect dispatch; with edge-edge contact, the ring creases (1).
-                let creases = if o.has_edge_pairs() && !o.has_segment_pairs() { 4 * n } else { 0 };
+                let creases = if o.has_cloth_edge_pairs() { 4 * n } else { 0 };
                 let bytes = further_passes_offset(n) + 12 + creases;
                 let name = format!("{}.self_pairs", o.name);
                 self_pairs = Some(Buffer::new(ctx, &name, bytes, usage, MemoryKind::GpuOnly)?);
