@@ -15,10 +15,11 @@
 //! with edge contact but never past the contact's whole, RELAXATION 1 without), so every contact conserves momentum. The part of the
 //! overlap the substep's approach made moves the velocity too, the rest the position only.
 //! Coulomb friction (mu: the cloth's `friction`) undoes the relative motion over the substep of
-//! the two nearest points along the tangent at the contact's share c / sum n_k w_k c_k^2 (its
-//! counts n not floored at 1 here, so that a lone resting contact of small overlap still holds),
-//! over-relaxed and bounded as lambda's, while within mu times the normal impulse the contact
-//! applies (lambda's factor times the approach), else that much of it, with the same weights. Every pair is tested here; the GPU finds the
+//! the two nearest points along the tangent at the contact's share, its weight c over
+//! sum w_k c_k^2 max(n_k, c) (its counts n floored at c, not at 1, so that a lone resting
+//! contact of small overlap still holds), over-relaxed like lambda's and at most
+//! 1 / sum w_k c_k^2, while within mu times the normal impulse the contact applies (lambda's
+//! factor times the approach), else that much of it, with the same weights. Every pair is tested here; the GPU finds the
 //! same through its spatial hash or contact lists (and keeps at most 16 contacts a particle
 //! in a substep; an edge pair belongs to the lower-indexed of its nearest ends).
 
