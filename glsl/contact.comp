@@ -15,8 +15,14 @@
 //   their axes, weights 1 - s, s and 1 - t, t), found once by the lower end of A's segment
 //   through the lower end of B's edge (an index rule: no rounding decides who finds it), those
 //   two ends within the reach plus both segments' lengths stretched TRIANGLE_STRETCH times
-//   (twice the corner reaches); between two ropes only from the one of lower index. (A cloth's
-//   particles look only for other cloths' triangles.)
+//   (twice the corner reaches); between two ropes only from the one of lower index;
+// - when A and B are cloths and either keeps its edges from edges (`edge_contact`, its
+//   self_contact "triangles_and_edges"), an edge of A against an edge of B (rows, columns and
+//   diagonals: their nearest points, weights as above), taking part by edge_fade (fully where
+//   the nearest points lie inside both edges, fading to nothing at an end, where the
+//   vertex-triangle contacts hold), found from the cloth of lower index by the end of A's edge
+//   of the two edges' nearest ends (of the four pairs of ends, one of each edge, the nearest;
+//   as a cloth's self-contact does), those within the reach plus both corner reaches.
 // With n from the nearest point to p, inverse masses w (0 pinned) and each particle's count of
 // contacts n_k (mass splitting, Tonge et al. 2012: a particle in several contacts takes each as
 // if its mass were shared among them, so that it moves about its largest overlap, and a light
@@ -46,6 +52,7 @@ float mass_of(uint q) { return objects[OBJECT_ROWS * q].w; }
 uint count_in(uint q) { return floatBitsToUint(objects[OBJECT_ROWS * q].y); }
 // (columns, rows) of object q's grid; columns 0 when it touches by its segments (a rope).
 uvec2 grid_of(uint q) { return floatBitsToUint(objects[OBJECT_ROWS * q + 1u].xy); }
+bool is_cloth(uint q) { return grid_of(q).x != 0u; }
 
 // The object a scene index belongs to (objects are few: a linear search).
 uint owner(uint k) {
@@ -76,6 +83,14 @@ uint work_owner(uint i) {
 // Whether this pipeline runs ropes' items (their segments against other objects' edges); off,
 // the segment code is compiled out of the cloths' dispatch.
 layout(constant_id = 0) const bool SEGMENTS = true;
+// Whether the cloths' dispatch keeps cloths' edges from each other's (some cloth keeps its
+// edges from edges); off, that code is compiled out.
+layout(constant_id = 1) const bool CLOTH_EDGES = false;
+
+// Whether cloths a and b keep their edges from each other's: either keeps its edges from edges.
+bool cloth_edges(uint a, uint b) {
+    return CLOTH_EDGES && is_cloth(a) && is_cloth(b) && (objects[OBJECT_ROWS * a + 1u].z != 0.0 || objects[OBJECT_ROWS * b + 1u].z != 0.0);
+}
 
 // Scene particle k's hash entry: position, and its index with PINNED_BIT.
 vec4 entry_of(uint k) { return particles[k]; }
@@ -108,12 +123,13 @@ float pair_friction(uint a, uint b) { return 0.5 * (friction_of(a) + friction_of
 // Contacts a particle notes in pass 0 for pass 1 (pairs[], PAIR_MAX a particle, each the
 // piece's nearest corner j (scene index) << NOTE_SHIFT | the ring index r of triangle (j,
 // ring r, ring r + 1) of a cloth (VERTEX_RING), or for a pair of edges NOTE_PAIR | j's edge (a
-// rope's SEGMENT_NEXT, the ring index of a cloth's edge (j, ring r), or CLOTH_POINT)); one
+// rope's SEGMENT_NEXT, the ring index of a cloth's edge (j, ring r), or CLOTH_POINT), or
+// between two cloths NOTE_PAIR | 6 ra + rb (k's edge to its ring vertex ra, j's to rb)); one
 // with more searches the hash again. Its count of contacts as the particle (not as a corner)
-// is moves[4 k + 3]. (Scene indices below 2^27.)
+// is moves[4 k + 3]. (Scene indices below 2^25.)
 const uint PAIR_MAX = 8u;
-const uint NOTE_SHIFT = 5u;
-const uint NOTE_PAIR = 16u;
+const uint NOTE_SHIFT = 7u;
+const uint NOTE_PAIR = 64u;
 const uint SEGMENT_NEXT = 0u;
 const uint SEGMENT_PREVIOUS = 1u;
 
@@ -190,23 +206,35 @@ bool edge_end(uint q, uint j, uint r, out uint other) {
     return r == CLOTH_POINT || ring_vertex(q, grid_position(q, j), int(r), other);
 }
 
-// Pass 1: the moves of the pair of rope me's segment sv.xy and object q's edge sv.zw (each in
-// index order), their ends' entries e, summed into moves[].
+// The nearest points of the pair of object me's edge (ends e[0], e[1]) and object q's (e[2],
+// e[3]), and how much it takes part: a rope's segment against an edge as capsules, in full; two
+// cloths' edges as segments, by edge_fade.
+vec2 pair_nearest(vec4 e[4], uint me, out float part) {
+    part = 1.0;
+    if (!is_cloth(me)) return capsule_nearest(e[0].xyz, e[1].xyz, e[2].xyz, e[3].xyz);
+    vec2 st = segment_nearest(e[0].xyz, e[1].xyz, e[2].xyz, e[3].xyz);
+    part = edge_fade(st);
+    return st;
+}
+
+// Pass 1: the moves of the pair of object me's edge sv.xy (a rope's segment, or a cloth's edge)
+// and object q's edge sv.zw, their ends' entries e, summed into moves[].
 void segment_pair_moves(uvec4 sv, vec4 e[4], uint me, uint q) {
     float reach = radius_of(me) + radius_of(q);
-    vec2 st = capsule_nearest(e[0].xyz, e[1].xyz, e[2].xyz, e[3].xyz);
+    float part;
+    vec2 st = pair_nearest(e, me, part);
     vec4 w = vec4(1.0 - st.x, st.x, -(1.0 - st.y), -st.y);  // B's ends negative
     vec3 off = w.x * e[0].xyz + w.y * e[1].xyz + w.z * e[2].xyz + w.w * e[3].xyz;
     float d = length(off);
     vec4 wk = vec4(inverse_mass(e[0], me), inverse_mass(e[1], me), inverse_mass(e[2], q), inverse_mass(e[3], q));
     vec4 nk = vec4(count_of(sv.x, wk.x), count_of(sv.y, wk.y), count_of(sv.z, wk.z), count_of(sv.w, wk.w));
     float denom = dot(nk * wk, w * w);
-    if (!(d > 0.0 && d < reach && denom > 0.0)) return;
+    if (!(d > 0.0 && d < reach && denom > 0.0 && part > 0.0)) return;
     vec3 n = off / d;
     vec3 moved = w.x * (e[0].xyz - begun[sv.x].xyz) + w.y * (e[1].xyz - begun[sv.y].xyz)
                + w.z * (e[2].xyz - begun[sv.z].xyz) + w.w * (e[3].xyz - begun[sv.w].xyz);
     vec3 correction = n * (reach - d) - friction_correction(moved, n, reach - d, pair_friction(me, q));
-    vec3 push = correction / denom;
+    vec3 push = part * correction / denom;
     add_move(sv.x, wk.x * w.x * push);
     if (sv.y != sv.x) add_move(sv.y, wk.y * w.y * push);
     add_move(sv.z, wk.z * w.z * push);
@@ -241,6 +269,63 @@ void edge_pairs_around(uint k, vec4 ek, uint me, uint j, vec4 ej, uint q, bool s
         if (ko != k) atomicAdd(touches[ko], 1u);
         atomicAdd(touches[j], 1u);
         if (jo != j) atomicAdd(touches[jo], 1u);
+    }
+}
+// Whether the pair of ends (a0 of one edge, a1 of the other) at squared distance da comes before
+// (b0, b1) at db: nearer, compared in steps of 1/1000 of the squared reach (`step` its
+// inverse: where a regular grid has pairs of ends equally far apart, their rounding would pick
+// the finder), ties by their indices. As self_contact.glsl's ends_before.
+bool ends_before(float da, uint a0, uint a1, float db, uint b0, uint b1, float step) {
+    float qa = floor(da * step);
+    float qb = floor(db * step);
+    if (qa != qb) return qa < qb;
+    return a0 < b0 || (a0 == b0 && a1 < b1);
+}
+
+// Cloth me's particle k (entry ek) against cloth q's particle j (entry ej, at squared
+// distance dj): each pair of k's edge (k, ko) and j's edge (j, jo) whose nearest ends are (k,
+// j) (of the four pairs of ends, one of each edge, the nearest, `ends_before`), so that each
+// pair of edges is found once; pass 0 counts each contact into n, notes it and counts it into
+// its ends' touches, pass 1 sums its moves. Nearest ends (k, j) of edges whose nearest points
+// are within the reach are within the reach plus half of each edge's length (the candidate's
+// bound in `visit`: each half within the object's corner reach).
+void cloth_edge_pairs_around(uint k, vec4 ek, uint me, uint j, vec4 ej, float dj, uint q, bool sum, inout uint n) {
+    float reach = radius_of(me) + radius_of(q);
+    float step = 1000.0 / (reach * reach);
+    ivec2 at_k = grid_position(me, k);
+    ivec2 at_j = grid_position(q, j);
+    [[dont_unroll]] for (uint ra = 0u; ra < 6u; ++ra) {
+        uint ko;
+        if (!ring_vertex(me, at_k, int(ra), ko)) continue;
+        vec4 eko = entry_of(ko);
+        vec3 okj = eko.xyz - ej.xyz;
+        if (ends_before(dot(okj, okj), ko, j, dj, k, j, step)) continue;
+        float half_a = 0.5 * distance(ek.xyz, eko.xyz);
+        [[dont_unroll]] for (uint rb = 0u; rb < 6u; ++rb) {
+            uint jo;
+            if (!ring_vertex(q, at_j, int(rb), jo)) continue;
+            vec4 ejo = entry_of(jo);
+            float bound = reach + half_a + 0.5 * distance(ej.xyz, ejo.xyz);
+            vec3 kjo = ek.xyz - ejo.xyz;
+            vec3 kojo = eko.xyz - ejo.xyz;
+            if (dj >= bound * bound || ends_before(dot(kjo, kjo), k, jo, dj, k, j, step)
+                || ends_before(dot(kojo, kojo), ko, jo, dj, k, j, step)) continue;
+            uvec4 sv = uvec4(k, ko, j, jo);
+            vec4 e[4] = vec4[4](ek, eko, ej, ejo);
+            if (sum) {
+                segment_pair_moves(sv, e, me, q);
+                continue;
+            }
+            float part;
+            vec2 st = pair_nearest(e, me, part);
+            vec3 off = (1.0 - st.x) * ek.xyz + st.x * eko.xyz - (1.0 - st.y) * ej.xyz - st.y * ejo.xyz;
+            float d = length(off);
+            if (!(d > 0.0 && d < reach && part > 0.0)) continue;
+            note_contact(k, j << NOTE_SHIFT | NOTE_PAIR | (6u * ra + rb), n);
+            atomicAdd(touches[ko], 1u);
+            atomicAdd(touches[j], 1u);
+            atomicAdd(touches[jo], 1u);
+        }
     }
 }
 // Particle k (entry ek, object me) against the triangles of object q around its vertex j (entry
@@ -294,10 +379,12 @@ bool visit(uint at, vec4 ek, uint me) {
     vec3 to_j = e.xyz - ek.xyz;
     float dj = dot(to_j, to_j);
     float reach = radius_of(me) + radius_of(other);
-    bool rope = SEGMENTS && grid_of(me).x == 0u;  // (its segments against the other's edges too)
-    if (grid_of(other).x != 0u) {
+    bool rope = SEGMENTS && !is_cloth(me);  // (its segments against the other's edges too)
+    if (is_cloth(other)) {
         // (a pair of edges is found through their lower ends: each within a stretched length)
+        // (between cloths, through their nearest ends: each within half a stretched length)
         float r = reach + (rope ? 2.0 * (corner_reach(me) + corner_reach(other)) : corner_reach(other));
+        if (cloth_edges(me, other) && me < other) r += corner_reach(me);
         return dj < r * r;
     }
     // (between two ropes, found from the one of lower index)
@@ -306,11 +393,15 @@ bool visit(uint at, vec4 ek, uint me) {
 }
 
 // Particle k against the pieces of object q at its particle j (entry ej, at squared distance
-// dj) of which j is the corner nearest to k: a cloth's triangles; and when k is a rope's node,
-// its segments against q's edges (a cloth's vertices among them).
+// dj) of which j is the corner nearest to k: a cloth's triangles (j within the reach plus q's
+// corner reach); and when k is a rope's node, its segments against q's edges (a cloth's
+// vertices among them), or between cloths that keep their edges apart, from the one of lower
+// index, k's edges against j's whose nearest ends are k and j.
 void pieces_around(uint k, vec4 ek, uint me, uint j, vec4 ej, float dj, uint q, bool sum, inout uint n) {
-    if (grid_of(q).x != 0u) triangles_around(k, ek, me, j, ej, dj, q, sum, n);
-    if (SEGMENTS && grid_of(me).x == 0u) edge_pairs_around(k, ek, me, j, ej, q, sum, n);
+    float sight = radius_of(me) + radius_of(q) + corner_reach(q);
+    if (is_cloth(q) && dj < sight * sight) triangles_around(k, ek, me, j, ej, dj, q, sum, n);
+    if (SEGMENTS && !is_cloth(me)) edge_pairs_around(k, ek, me, j, ej, q, sum, n);
+    if (cloth_edges(me, q) && me < q) cloth_edge_pairs_around(k, ek, me, j, ej, dj, q, sum, n);
 }
 
 // The pieces around each candidate particle (see `visit`).
@@ -329,10 +420,11 @@ void replay(uint note, vec4 ek, uint k, uint me) {
     uint q = owner(j);
     vec4 ej = entry_of(j);
     uint r = note & (NOTE_PAIR - 1u);
-    if (SEGMENTS && (note & NOTE_PAIR) != 0u) {
+    if ((SEGMENTS || CLOTH_EDGES) && (note & NOTE_PAIR) != 0u) {
+        bool cloths = is_cloth(me);
         uint ko, jo;
-        segment_end(me, k, SEGMENT_NEXT, ko);
-        edge_end(q, j, r, jo);
+        edge_end(me, k, cloths ? r / 6u : SEGMENT_NEXT, ko);
+        edge_end(q, j, cloths ? r % 6u : r, jo);
         uvec4 sv = uvec4(k, ko, j, jo);
         vec4 e[4] = vec4[4](entry_of(sv.x), entry_of(sv.y), entry_of(sv.z), entry_of(sv.w));
         segment_pair_moves(sv, e, me, q);

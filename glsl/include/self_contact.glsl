@@ -169,18 +169,8 @@ vec3 edge_offset(vec3 x, vec3 xa, vec3 xj, vec3 xb, out vec2 st) {
     return mix(x, xa, st.x) - mix(xj, xb, st.y);
 }
 
-// How much an edge pair whose nearest points lie at st along its edges takes part: fully
-// where both lie inside their edges by EDGE_FADE of them or more, fading to 0 as one reaches an
-// end (where the vertex-triangle contacts of that end hold it, see the top). An edge pair that
-// stopped at an end would move its particles by its whole overlap there or not at all, and a
-// deep pile of layers turned such jumps (where f32 and the CPU twin's f64 rounded either way)
-// into centimetres a frame. Twin: sim::cpu::self_contact::edge_fade.
-// (A rope's segment pairs do not fade, edge_pair_part.)
-const float EDGE_FADE = 0.05;
-float edge_fade(vec2 st) {
-    float inside = min(min(st.x, 1.0 - st.x), min(st.y, 1.0 - st.y));
-    return clamp(inside * (1.0 / EDGE_FADE), 0.0, 1.0);
-}
+// (An edge pair fades near its edges' ends, edge_fade in triangle.glsl; a rope's segment
+// pairs do not, edge_pair_part.)
 
 // The sag of grid vertex u's edge to its ring vertex k (in the grid): its triangles are those
 // of ring vertices k - 1 and k + 1.

@@ -1,7 +1,8 @@
 // A cloth grid's triangles around a vertex, the point of a triangle or a segment nearest to a
-// point, the nearest points of two segments, and a contact's Coulomb friction: shared by a cloth's
-// contact with itself (self_contact.glsl) and contact between objects (contact.comp). CPU twin: sim::cpu::self_contact (cloth_triangles,
-// triangle_nearest, point_segment_nearest, segment_nearest, friction_correction).
+// point, the nearest points of two segments and how much an edge pair takes part, and a
+// contact's Coulomb friction: shared by a cloth's contact with itself (self_contact.glsl) and
+// contact between objects (contact.comp). CPU twin: sim::cpu::self_contact (cloth_triangles,
+// triangle_nearest, point_segment_nearest, segment_nearest, edge_fade, friction_correction).
 #ifndef MSD_TRIANGLE_GLSL
 #define MSD_TRIANGLE_GLSL
 
@@ -87,6 +88,19 @@ vec2 segment_nearest(vec3 p1, vec3 q1, vec3 p2, vec3 q2) {
         s = clamp((b - c) / a, 0.0, 1.0);
     }
     return vec2(s, t);
+}
+
+// How much a pair of a cloth's edges whose nearest points lie at st along them takes part (in
+// self-contact and between cloths): fully where both lie inside their edges by EDGE_FADE of
+// them or more, fading to 0 as one reaches an end (where the vertex-triangle contacts of that
+// end hold it). An edge pair that stopped at an end would move its particles by its whole
+// overlap there or not at all, and a deep pile of layers turned such jumps (where f32 and the
+// CPU twin's f64 rounded either way) into centimetres a frame. Twin:
+// sim::cpu::self_contact::edge_fade.
+const float EDGE_FADE = 0.05;
+float edge_fade(vec2 st) {
+    float inside = min(min(st.x, 1.0 - st.x), min(st.y, 1.0 - st.y));
+    return clamp(inside * (1.0 / EDGE_FADE), 0.0, 1.0);
 }
 
 // The parameters (s, t) of the nearest points of two capsules' axes, segments p1 q1 and p2 q2

@@ -188,6 +188,13 @@ impl ObjectModel {
         }
     }
 
+    /// Whether contact between objects keeps this object's edges from `other`'s edges (rows,
+    /// columns and diagonals; `sim::cpu::inter_object`): both cloths, either keeping its own
+    /// edges from its edges (`edge_contact`). A rope's segments always keep from edges.
+    pub fn keeps_cloth_edges_from(&self, other: &ObjectModel) -> bool {
+        self.contact_triangles() && other.contact_triangles() && (self.edge_contact || other.edge_contact)
+    }
+
     /// Half the distance kept from another object's particles (inter-object contact): a
     /// rope's tube radius, a cloth's collision margin.
     pub fn contact_radius(&self) -> f64 {
@@ -278,21 +285,32 @@ impl SimModel {
         self.inter_object && self.objects.len() > 1
     }
 
+    /// Whether contact between objects keeps some two cloths' edges apart
+    /// (`ObjectModel::keeps_cloth_edges_from`).
+    pub fn has_cloth_edges_between(&self) -> bool {
+        let o = &self.objects;
+        o.iter().enumerate().any(|(a, x)| o[a + 1..].iter().any(|y| x.keeps_cloth_edges_from(y)))
+    }
+
     /// The cell of the scene's contact hash (contact between objects) [m], such that a
     /// particle's block of cells reaches (`CONTACT_BLOCK_REACH` cells) the largest reach (two
     /// contact radii) plus the largest corner reach (`ObjectModel::corner_reach`), or twice a
-    /// rope's and another object's added: a piece within reach has its nearest corner in sight,
-    /// a pair of edges their lower ends.
+    /// rope's and another object's added, or two cloths' added where they keep their edges
+    /// apart: a piece within reach has its nearest corner in sight, a rope's pair of edges their
+    /// lower ends, two cloths' their nearest ends.
     pub fn contact_cell(&self) -> f64 {
         let widest = self.objects.iter().map(ObjectModel::contact_radius).fold(0.0, f64::max);
         let edge = self.objects.iter().map(ObjectModel::corner_reach).fold(0.0, f64::max);
         // A rope's segment and another object's edge are found through their lower ends: twice
-        // both corner reaches.
-        let pairs =
-            self.objects.iter().enumerate().filter(|(_, o)| !o.contact_triangles()).flat_map(|(a, o)| {
-                let others = self.objects.iter().enumerate().filter(move |&(b, _)| b != a);
-                others.map(move |(_, p)| 2.0 * (o.corner_reach() + p.corner_reach()))
-            });
+        // both corner reaches; two cloths' edges through their nearest ends: both once.
+        let pairs = self.objects.iter().enumerate().flat_map(|(a, o)| {
+            let others = self.objects.iter().enumerate().filter(move |&(b, _)| b != a);
+            others.filter_map(move |(_, p)| match (o.contact_triangles(), o.keeps_cloth_edges_from(p)) {
+                (false, _) => Some(2.0 * (o.corner_reach() + p.corner_reach())),
+                (true, true) => Some(o.corner_reach() + p.corner_reach()),
+                (true, false) => None,
+            })
+        });
         let edge = pairs.fold(edge, f64::max);
         ((2.0 * widest + edge) / CONTACT_BLOCK_REACH).max(1e-6)
     }

@@ -10,7 +10,12 @@
 //! - a rope's segment against an edge of another object (a rope's segment, or a cloth's row,
 //!   column or diagonal: the nearest points of their axes, weights 1 - s, s and 1 - t, t), the
 //!   ends nearest to those points within the reach plus both corner reaches; between two ropes
-//!   once.
+//!   once;
+//! - two cloths' edges (rows, columns and diagonals), when either keeps its edges from edges
+//!   (`ObjectModel::keeps_cloth_edges_from`): the nearest points of the segments, taking part
+//!   by `edge_fade` (near an end the vertex-triangle contacts hold), their nearest ends (of the
+//!   four pairs of ends, one of each edge) within the reach plus both corner reaches and plus
+//!   half of each edge's length (the GPU finds the pair through those ends); once.
 //!
 //! With n from the nearest point to p, inverse masses w (0 pinned) and each particle's count
 //! of contacts n_k (mass splitting, Tonge et al. 2012: a particle in several contacts takes
@@ -23,7 +28,8 @@
 //! here; the GPU finds the same through the scene's spatial hash.
 
 use super::self_contact::{
-    capsule_nearest, cloth_triangles, friction_correction, grid_edges, triangle_nearest,
+    capsule_nearest, cloth_triangles, edge_fade, friction_correction, grid_edges, segment_nearest,
+    triangle_nearest,
 };
 use crate::sim::model::SimModel;
 use glam::DVec3;
@@ -76,16 +82,17 @@ fn ends(x: &[DVec3], piece: &[usize]) -> (DVec3, DVec3) {
 
 /// Every contact between the objects at positions `x` (`x0` where they began the substep).
 fn contacts(m: &SimModel, x: &[&[DVec3]], x0: &[&[DVec3]]) -> Vec<Contact> {
-    // The contact of `corners` (see `Contact`), if within `reach`.
-    let contact = |corners: Vec<(usize, usize, f64)>, reach: f64, mu: f64| -> Option<Contact> {
+    // The contact of `corners` (see `Contact`), if within `reach`, its correction taken by
+    // `part`.
+    let contact = |corners: Vec<(usize, usize, f64)>, reach: f64, mu: f64, part: f64| -> Option<Contact> {
         let off = corners.iter().map(|&(o, i, w)| w * x[o][i]).sum::<DVec3>();
         let d = off.length();
-        if !(d > 0.0 && d < reach) {
+        if !(d > 0.0 && d < reach && part > 0.0) {
             return None;
         }
         let n = off / d;
         let moved = corners.iter().map(|&(o, i, w)| w * (x[o][i] - x0[o][i])).sum::<DVec3>();
-        let correction = n * (reach - d) - friction_correction(moved, n, reach - d, mu);
+        let correction = (n * (reach - d) - friction_correction(moved, n, reach - d, mu)) * part;
         Some(Contact { corners, correction })
     };
     let mut found = Vec::new();
@@ -123,11 +130,29 @@ fn contacts(m: &SimModel, x: &[&[DVec3]], x0: &[&[DVec3]]) -> Vec<Contact> {
                         if sb.len() > 1 {
                             corners.push((b, sb[1], -t));
                         }
-                        found.extend(contact(corners, reach, mu));
+                        found.extend(contact(corners, reach, mu, 1.0));
                     }
                 }
                 if !cloth {
                     continue;
+                }
+            }
+            if a < b && o.keeps_cloth_edges_from(other) {
+                let theirs = grid_edges(other);
+                let ends_sight = reach + o.corner_reach() + other.corner_reach();
+                for e in grid_edges(o) {
+                    for f in &theirs {
+                        let ends = e.iter().flat_map(|&i| f.iter().map(move |&j| x[a][i].distance(x[b][j])));
+                        let nearest = ends.fold(f64::MAX, f64::min);
+                        let half = 0.5 * (x[a][e[0]].distance(x[a][e[1]]) + x[b][f[0]].distance(x[b][f[1]]));
+                        if nearest >= ends_sight.min(reach + half) {
+                            continue;
+                        }
+                        let (s, t) = segment_nearest(x[a][e[0]], x[a][e[1]], x[b][f[0]], x[b][f[1]]);
+                        let corners =
+                            vec![(a, e[0], 1.0 - s), (a, e[1], s), (b, f[0], t - 1.0), (b, f[1], -t)];
+                        found.extend(contact(corners, reach, mu, edge_fade(s, t)));
+                    }
                 }
             }
             for (i, &p) in x[a].iter().enumerate() {
@@ -140,7 +165,7 @@ fn contacts(m: &SimModel, x: &[&[DVec3]], x0: &[&[DVec3]]) -> Vec<Contact> {
                     let w = nearest_weights(p, &c);
                     let corners =
                         std::iter::once((a, i, 1.0)).chain(piece.iter().zip(&w).map(|(&k, w)| (b, k, -w)));
-                    found.extend(contact(corners.collect(), reach, mu));
+                    found.extend(contact(corners.collect(), reach, mu, 1.0));
                 }
             }
         }

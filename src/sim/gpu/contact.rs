@@ -22,8 +22,8 @@ pub(super) struct SceneContact {
     /// the scan's set).
     table: Buffer,
     /// Per object three rows (contact_common.glsl): first scene index, particle count, contact
-    /// radius, mass; grid columns and rows where its triangles take part, whether it looks for
-    /// anything, its corner reach; its friction.
+    /// radius, mass; grid columns and rows where its triangles take part, whether it keeps its
+    /// edges from edges, its corner reach; its friction, first work item and lanes.
     objects: Buffer,
     /// Per scene particle: its contacts' summed moves, in fixed point (binding 17).
     moves: Buffer,
@@ -43,6 +43,8 @@ pub(super) struct SceneContact {
     /// Work items of contact.comp's passes over the scene: the cloths' from `work[0]` to
     /// `work[1]`, the ropes' from there to `work[2]`.
     work: [u32; 3],
+    /// Whether some two cloths keep their edges apart (contact.comp's CLOTH_EDGES).
+    cloth_edges: bool,
     buckets: u32,
     /// The scan's set, and each object's set (the object's own buffers at 1, 2, 14 and its
     /// state at the substep's start at 15).
@@ -54,8 +56,8 @@ pub(super) struct SceneContact {
 const PAIR_MAX: u64 = 8;
 
 /// Particles a scene with contact between objects may hold: contact.comp notes a particle's
-/// scene index in 27 bits (NOTE_SHIFT).
-const MAX_SCENE_PARTICLES: u64 = 1 << 27;
+/// scene index in 25 bits (NOTE_SHIFT).
+const MAX_SCENE_PARTICLES: u64 = 1 << 25;
 
 /// Refuses a scene whose objects touch each other and hold more particles than contact.comp
 /// can index.
@@ -204,6 +206,7 @@ impl SceneContact {
             touches,
             pairs,
             work,
+            cloth_edges: model.has_cloth_edges_between(),
             buckets: buckets as u32,
             scan_set: BindingSet::default(),
             sets: Vec::new(),
@@ -277,8 +280,8 @@ impl SceneContact {
     }
 
     /// contact.comp's rows of each object (where its particles begin in the scene, its grid,
-    /// columns 0 when it touches by its segments, radius, mass, corner reach, friction and work
-    /// items) and the bounds of its passes' work items, each rope node's search split among
+    /// columns 0 when it touches by its segments, radius, mass, whether it keeps its edges from
+    /// edges, corner reach, friction and work items) and the bounds of its passes' work items, each rope node's search split among
     /// lanes or not (`lanes`, `WorkLayout`).
     fn rows(ctx: &GpuContext, model: &SimModel, gpu: &[GpuObject], lanes: bool) -> ([u32; 3], Vec<[f32; 4]>) {
         let particles: Vec<u32> = gpu.iter().map(|g| g.particles).collect();
@@ -290,7 +293,7 @@ impl SceneContact {
                 let grid = if o.contact_triangles() { o.dims } else { [0, 0] };
                 let rows = [
                     [bits(first), bits(g.particles), o.contact_radius() as f32, o.mass as f32],
-                    [bits(grid[0]), bits(grid[1]), 0.0, o.corner_reach() as f32],
+                    [bits(grid[0]), bits(grid[1]), o.edge_contact as u32 as f32, o.corner_reach() as f32],
                     [o.friction as f32, bits(work.first[q]), bits(work.lanes[q]), 0.0],
                 ];
                 first += g.particles;
@@ -337,7 +340,8 @@ impl SceneContact {
                 if items > 0 {
                     let groups = [items.div_ceil(256), 1, 1];
                     let push = [0, pass, range[0], range[1]];
-                    rec.dispatch_with(pipelines.get(Stage::Contact(segments)), self.sets[0], groups, &push);
+                    let stage = Stage::Contact { segments, cloth_edges: self.cloth_edges && !segments };
+                    rec.dispatch_with(pipelines.get(stage), self.sets[0], groups, &push);
                 }
             }
         };
@@ -390,7 +394,7 @@ impl SceneContact {
             sums.iter().map(|c| b(c, Access::ComputeRead, Access::ComputeWrite)).collect();
         before.extend(between);
         rec.barrier(&before);
-        each_object(rec, Stage::Contact(false), 2);
+        each_object(rec, Stage::Contact { segments: false, cloth_edges: self.cloth_edges }, 2);
         // The constraint stage reads the sums and writes the states the scatter read.
         let mut after: Vec<_> =
             sums.iter().map(|c| b(c, Access::ComputeWrite, Access::ComputeRead)).collect();
@@ -466,7 +470,7 @@ mod tests {
         assert!(check_scene(&model).is_ok());
         model.objects[0].dims = [16384, 16384];
         let error = check_scene(&model).expect_err("2^28 particles are refused").0;
-        assert!(error.contains("contact between objects handles at most 134217728"), "{error}");
+        assert!(error.contains("contact between objects handles at most 33554432"), "{error}");
         model.inter_object = false;
         assert!(check_scene(&model).is_ok());
     }

@@ -53,7 +53,12 @@ pub(super) enum Stage {
     ContactScatter,
     /// `segments`: the ropes' work items, with their segments' tests compiled in (contact.comp's
     /// SEGMENTS); without, the cloths' items and each object's sums.
-    Contact(bool),
+    /// `cloth_edges`: cloths' edges kept from each other's compiled in (CLOTH_EDGES,
+    /// `SimModel::has_cloth_edges_between`).
+    Contact {
+        segments: bool,
+        cloth_edges: bool,
+    },
     /// Every substep of an object in one workgroup, with the model's integrator.
     Fused(Integrator, u32, FusedShape),
 }
@@ -94,7 +99,7 @@ impl Stage {
             Stage::HashScatter(_) => "hash_scatter.comp",
             Stage::ContactCount => "contact_count.comp",
             Stage::ContactScatter => "contact_scatter.comp",
-            Stage::Contact(_) => "contact.comp",
+            Stage::Contact { .. } => "contact.comp",
             Stage::Fused(..) => "fused.comp",
         }
     }
@@ -120,7 +125,7 @@ impl Stage {
             Stage::Iterate(kind, _) => group(kind),
             Stage::Surface(_, drawn) => vec![drawn as u32],
             Stage::HashScatter(creases) => vec![creases as u32],
-            Stage::Contact(segments) => vec![segments as u32],
+            Stage::Contact { segments, cloth_edges } => vec![segments as u32, cloth_edges as u32],
             Stage::HashCount | Stage::HashScan | Stage::ContactCount | Stage::ContactScatter => Vec::new(),
             Stage::Fused(method, f, shape) => shape.specialization(method, f),
         }
@@ -184,10 +189,10 @@ impl Stage {
                 Stage::HashScan,
                 Stage::ContactCount,
                 Stage::ContactScatter,
-                Stage::Contact(false),
+                Stage::Contact { segments: false, cloth_edges: model.has_cloth_edges_between() },
             ]);
             if model.objects.iter().any(|o| !o.contact_triangles()) {
-                stages.push(Stage::Contact(true));
+                stages.push(Stage::Contact { segments: true, cloth_edges: false });
             }
         }
         let mut seen = std::collections::HashSet::new();
