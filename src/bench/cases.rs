@@ -219,9 +219,11 @@ fn paper_cases() -> Vec<Case> {
 }
 
 /// Eight 32 x 32 cloths lying flat 3 cm apart over a ground, falling onto it and onto each
-/// other: with inter-object contact (every object per stage) and without (each fused).
+/// other: with inter-object contact (every object per stage), also keeping their edges from
+/// each other's (`self_contact = "triangles_and_edges"`, no self-collision), and without (each
+/// fused).
 fn stacked_cases() -> Vec<Case> {
-    let stack = |contact: bool| {
+    let stack = |contact: bool, edges: bool| {
         let mut s = base_scene();
         s.sim.inter_object = contact;
         s.ground = Some(Ground { height: 0.0, friction: None });
@@ -233,13 +235,25 @@ fn stacked_cases() -> Vec<Case> {
             c.origin = [-size / 2.0 + 0.01 * k as f64, 0.1 + 0.03 * k as f64, -size / 2.0];
             c.pin = ClothPins::None;
             c.stretch_limit = None;
+            if edges {
+                c.self_contact = SelfContact::TrianglesAndEdges;
+            }
             s.cloths.push(c);
         }
         s
     };
     vec![
-        Case { group: "contact", name: "8 cloths 32x32, inter-object contact".into(), scene: stack(true) },
-        Case { group: "contact", name: "8 cloths 32x32, no contact".into(), scene: stack(false) },
+        Case {
+            group: "contact",
+            name: "8 cloths 32x32, inter-object contact".into(),
+            scene: stack(true, false),
+        },
+        Case {
+            group: "contact",
+            name: "8 cloths 32x32, inter-object contact, edges".into(),
+            scene: stack(true, true),
+        },
+        Case { group: "contact", name: "8 cloths 32x32, no contact".into(), scene: stack(false, false) },
     ]
 }
 
