@@ -369,7 +369,8 @@ const uint CANDIDATE_MAX = 32u;
 
 // Whether the hash entry at slot `at` is a candidate for the particle at ek (its object me): a
 // particle of another object near enough to be the nearest corner of a piece in contact
-// (or, between two ropes, the lower end of a segment). The caller keeps it (not passed in:
+// (or, between two ropes, the lower end of a segment; between two cloths that keep their edges
+// apart, the other nearest end of a pair of edges). The caller keeps it (not passed in:
 // GLSL copies an inout array in and out of every call, which cost the cloths' search a
 // quarter on the H100).
 bool visit(uint at, vec4 ek, uint me) {

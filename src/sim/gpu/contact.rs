@@ -281,8 +281,8 @@ impl SceneContact {
 
     /// contact.comp's rows of each object (where its particles begin in the scene, its grid,
     /// columns 0 when it touches by its segments, radius, mass, whether it keeps its edges from
-    /// edges, corner reach, friction and work items) and the bounds of its passes' work items, each rope node's search split among
-    /// lanes or not (`lanes`, `WorkLayout`).
+    /// edges, corner reach, friction and work items) and the bounds of its passes' work items,
+    /// each rope node's search split among lanes or not (`lanes`, `WorkLayout`).
     fn rows(ctx: &GpuContext, model: &SimModel, gpu: &[GpuObject], lanes: bool) -> ([u32; 3], Vec<[f32; 4]>) {
         let particles: Vec<u32> = gpu.iter().map(|g| g.particles).collect();
         let work = WorkLayout::new(model, &particles, ctx.info().max_workgroup_count[0] as u64, lanes);
