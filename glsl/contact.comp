@@ -271,20 +271,10 @@ void edge_pairs_around(uint k, vec4 ek, uint me, uint j, vec4 ej, uint q, bool s
         if (jo != j) atomicAdd(touches[jo], 1u);
     }
 }
-// Whether the pair of ends (a0 of one edge, a1 of the other) at squared distance da comes before
-// (b0, b1) at db: nearer, compared in steps of 1/1000 of the squared reach (`step` its
-// inverse: where a regular grid has pairs of ends equally far apart, their rounding would pick
-// the finder), ties by their indices. As self_contact.glsl's ends_before.
-bool ends_before(float da, uint a0, uint a1, float db, uint b0, uint b1, float step) {
-    float qa = floor(da * step);
-    float qb = floor(db * step);
-    if (qa != qb) return qa < qb;
-    return a0 < b0 || (a0 == b0 && a1 < b1);
-}
-
 // Cloth me's particle k (entry ek) against cloth q's particle j (entry ej, at squared
 // distance dj): each pair of k's edge (k, ko) and j's edge (j, jo) whose nearest ends are (k,
-// j) (of the four pairs of ends, one of each edge, the nearest, `ends_before`), so that each
+// j) (of the four pairs of ends, one of each edge, the nearest: `ends_in_order` in steps of
+// 1/1000 of the squared reach, keyed (me's end, q's end)), so that each
 // pair of edges is found once; pass 0 counts each contact into n, notes it and counts it into
 // its ends' touches, pass 1 sums its moves. Nearest ends (k, j) of edges whose nearest points
 // are within the reach are within the reach plus half of each edge's length (the candidate's
@@ -299,7 +289,7 @@ void cloth_edge_pairs_around(uint k, vec4 ek, uint me, uint j, vec4 ej, float dj
         if (!ring_vertex(me, at_k, int(ra), ko)) continue;
         vec4 eko = entry_of(ko);
         vec3 okj = eko.xyz - ej.xyz;
-        if (ends_before(dot(okj, okj), ko, j, dj, k, j, step)) continue;
+        if (ends_in_order(dot(okj, okj), uvec2(ko, j), dj, uvec2(k, j), step)) continue;
         float half_a = 0.5 * distance(ek.xyz, eko.xyz);
         [[dont_unroll]] for (uint rb = 0u; rb < 6u; ++rb) {
             uint jo;
@@ -308,8 +298,8 @@ void cloth_edge_pairs_around(uint k, vec4 ek, uint me, uint j, vec4 ej, float dj
             float bound = reach + half_a + 0.5 * distance(ej.xyz, ejo.xyz);
             vec3 kjo = ek.xyz - ejo.xyz;
             vec3 kojo = eko.xyz - ejo.xyz;
-            if (dj >= bound * bound || ends_before(dot(kjo, kjo), k, jo, dj, k, j, step)
-                || ends_before(dot(kojo, kojo), ko, jo, dj, k, j, step)) continue;
+            if (dj >= bound * bound || ends_in_order(dot(kjo, kjo), uvec2(k, jo), dj, uvec2(k, j), step)
+                || ends_in_order(dot(kojo, kojo), uvec2(ko, jo), dj, uvec2(k, j), step)) continue;
             uvec4 sv = uvec4(k, ko, j, jo);
             vec4 e[4] = vec4[4](ek, eko, ej, ejo);
             if (sum) {

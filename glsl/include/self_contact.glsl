@@ -306,12 +306,7 @@ void test_pair(vec3 x, uint code) {
 // can. Twin: sim::cpu::self_contact::ends_before.
 bool ends_before(float da, uint a0, uint a1, float db, uint b0, uint b1) {
     float step = 1000.0 / (obj.self_distance * obj.self_distance);
-    float qa = floor(da * step);
-    float qb = floor(db * step);
-    if (qa != qb) return qa < qb;
-    uvec2 ka = uvec2(min(a0, a1), max(a0, a1));
-    uvec2 kb = uvec2(min(b0, b1), max(b0, b1));
-    return ka.x < kb.x || (ka.x == kb.x && ka.y < kb.y);
+    return ends_in_order(da, uvec2(min(a0, a1), max(a0, a1)), db, uvec2(min(b0, b1), max(b0, b1)), step);
 }
 
 // Edge pairs nearer than this many times h at rest are left out (sim::cpu::self_contact's

@@ -103,6 +103,19 @@ float edge_fade(vec2 st) {
     return clamp(inside * (1.0 / EDGE_FADE), 0.0, 1.0);
 }
 
+// Whether a pair of ends keyed ka (their indices, in the caller's order) at squared distance da
+// comes before one keyed kb at db: nearer, the distances compared in steps of 1 / `step`, ties
+// by the keys (a total order). Compared in steps because a regular grid has many pairs of ends
+// equally far apart, whose rounding (which kernels and the CPU twin do differently) would
+// otherwise pick which pair comes first. Used to find each edge pair once, from its nearest
+// ends (self_contact.glsl's ends_before, contact.comp).
+bool ends_in_order(float da, uvec2 ka, float db, uvec2 kb, float step) {
+    float qa = floor(da * step);
+    float qb = floor(db * step);
+    if (qa != qb) return qa < qb;
+    return ka.x < kb.x || (ka.x == kb.x && ka.y < kb.y);
+}
+
 // The parameters (s, t) of the nearest points of two capsules' axes, segments p1 q1 and p2 q2
 // (a rope's segments; either may be a point, a lone node). Nearly parallel axes meet along
 // an interval: the middle of the part of p1 q1 that q2 p2 overlaps, so that two ropes lying
