@@ -100,12 +100,12 @@ fn a_cloth_folding_over_its_middle_row_never_passes_through_itself() {
 /// rounding; 38 and 26 since a resting contact's friction holds), so the bound, 60, leaves room
 /// for another driver's rounding while staying far under one pass's count). With edges kept
 /// from edges too (`self_contact = "triangles_and_edges"`: each share of a contact
-/// over-relaxed, edge pairs where an edge is creased) four passes let fewer through: measured
-/// 0 on the reference and 11 on the GPU (fused; 2 and 4 before the friction change). Where
-/// it piles is chaotic: over 24 tilts from 0.02 to 0.48 rad at friction 0.3, 0.5 and 0.7 the
-/// reference let through at most 6 in 69 of the 72 runs and 20 to 46 in three (before the
-/// friction change 67 of 72, up to 121), the GPU 0 to 8 at five other tilts
-/// (docs/bench/cpu/resting-friction/), so that bound is 15. The count changes in place.
+/// over-relaxed, edge pairs where an edge is creased, counted from 1.33 h apart at rest) four
+/// passes let fewer through: measured 0 on the reference and 0 on the GPU (fused; 0 and 11
+/// when pairs 1.41 h apart at rest were left out). Where it piles is chaotic: over 24 tilts
+/// from 0.02 to 0.48 rad at friction 0.3, 0.5 and 0.7 the reference let none through in 56 of
+/// the 72 runs and 2 to 45 in 16, the GPU per stage 0 at 9 of 11 tilts and 5 and 12 at two
+/// (docs/bench/cpu/edge-margin/), so that bound is 15. The count changes in place.
 #[test]
 fn contact_iterations_stop_a_strip_piling_on_itself() {
     let mut c = soft_cloth(5, 61);

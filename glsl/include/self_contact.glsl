@@ -15,8 +15,8 @@
 // A pair (particle p, triangle t) is left out when a vertex of t is p or one of its 8 grid
 // neighbours (its own triangles and the next ring: folds sharper than a grid cell are left to the
 // springs), or when t is nearer than h to p in the rest state (a thickness of two grid spacings or
-// more); a pair of edges when they share a vertex or are nearer than 1.5 h at rest
-// (EDGE_REST_MARGIN), and also when the nearest point of either is an end (that end's contact
+// more); a pair of edges when they share a vertex or are nearer than 1.33 h at rest
+// (EDGE_REST_MARGIN; a rope's segments 1.5 h, SEGMENT_REST_MARGIN), and also when the nearest point of either is an end (that end's contact
 // with the triangles around the other edge holds it): so edges of a fold sharper than a cell keep
 // apart too, which the measured piles needed. Any other pair nearer than h is a contact. Write its
 // offset, from side b's nearest point to side a's, as sum c_k x_k over its particles: for (p, t), c
@@ -309,13 +309,20 @@ bool ends_before(float da, uint a0, uint a1, float db, uint b0, uint b1) {
     return ends_in_order(da, uvec2(min(a0, a1), max(a0, a1)), db, uvec2(min(b0, b1), max(b0, b1)), step);
 }
 
-// Edge pairs nearer than this many times h at rest are left out (sim::cpu::self_contact's
-// EDGE_REST_MARGIN): a cloth whose thickness nears the gap between a cell's diagonal and the
-// vertex next to it (0.707 spacings) would otherwise hold those apart wherever it is
-// compressed a little, every particle in contact everywhere (the towel, 0.65 spacings thick,
-// took 120 s a frame on lavapipe); 1.5 leaves them out from 0.47 spacings and keeps the
-// parallel edges a row apart, which a pile's sharp folds need.
-const float EDGE_REST_MARGIN = 1.5;
+// A cloth's edge pairs nearer than this many times h at rest are left out (sim::cpu::
+// self_contact's EDGE_REST_MARGIN): those a compression of less than a quarter of their rest
+// gap (1 - 1 / 1.33) would bring within h. A cloth whose thickness nears the gap between a
+// cell's diagonal and the vertex next to it (0.707 spacings) would otherwise hold those apart
+// wherever it is compressed a little, every particle in contact everywhere (the towel, 0.65
+// spacings thick, took 120 s a frame on lavapipe). At the default thickness, half a spacing,
+// those pairs (1.41 h apart) are kept: a pile's folds sharper than a cell bring a diagonal
+// through the next cell's edges there (a strip piling on itself let 2 to 46 edges through its
+// triangles with them left out, at 1.5, and 0 to 25 with them kept; docs/ACCURACY.md).
+const float EDGE_REST_MARGIN = 1.33;
+
+// A rope's segment pairs nearer than this many times h at rest are left out (rope_segments;
+// sim::cpu::self_contact's SEGMENT_REST_MARGIN).
+const float SEGMENT_REST_MARGIN = 1.5;
 
 // Whether two edges that share no vertex can be nearer than EDGE_REST_MARGIN h in the rest
 // state: the nearest are a cell's diagonal and the vertex next to it, sx sy / |s| >= 0.707
@@ -406,12 +413,12 @@ void self_edges(uvec2 cell, vec3 x, uint j, ivec2 at, vec3 xj, float d2j, float 
 // its neighbours p + 1 and p - 1 (ring vertices 0 and 3) against node j's (j > p, at xj,
 // squared distance d2j), by index instead of the grid's ring and with no crease (a rope's
 // edges are all on its border): the same pairs, owners and codes. Two segments are nearer
-// than EDGE_REST_MARGIN h at rest when the nodes between them span less: their gap along the
-// straight rope.
+// than SEGMENT_REST_MARGIN h at rest when the nodes between them span less: their gap along
+// the straight rope.
 void rope_segments(vec3 x, uint j, vec3 xj, float d2j, float farthest, float list_reach) {
     uint p = pair_particle;
     int nodes = int(obj.dims.x);
-    float margin = EDGE_REST_MARGIN * obj.self_distance;
+    float margin = SEGMENT_REST_MARGIN * obj.self_distance;
     [[unroll]] for (int e1 = 0; e1 < 2; ++e1) {
         int ia = int(p) + (e1 == 0 ? 1 : -1);
         if (ia < 0 || ia >= nodes || uint(ia) == j) continue;

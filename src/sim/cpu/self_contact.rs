@@ -4,7 +4,7 @@
 //! nearest points lie (`ObjectModel::has_segment_pairs`).
 //! Every pair (particle p, triangle t) not left out (a vertex of t in p's one-ring, or t nearer
 //! than h to p at rest) and every pair of grid edges not left out (sharing a vertex, or nearer
-//! than EDGE_REST_MARGIN h at rest), one of them creased (`crease_sag`), whose nearest points
+//! than EDGE_REST_MARGIN h at rest, a rope's SEGMENT_REST_MARGIN h), one of them creased (`crease_sag`), whose nearest points
 //! lie inside both edges, nearer than the self-collision distance h, is a contact. Its offset from side b's nearest point to side a's is sum c_k x_k over its
 //! particles (p and t's vertices: 1 and minus the barycentric weights of t's point nearest p;
 //! edges (p, a) and (j, b): 1 - s, s, u - 1, -u at their nearest points' parameters s and u);
@@ -34,9 +34,13 @@ pub const PAIR_MAX: usize = 16;
 /// past the contact's whole (`pair_relaxation` in the shaders, which say why); 1 without.
 pub const RELAXATION: f64 = 1.5;
 
-/// Edge pairs nearer than this many times h at rest are left out (`EDGE_REST_MARGIN` in the
-/// shaders, which say why).
-pub const EDGE_REST_MARGIN: f64 = 1.5;
+/// A cloth's edge pairs nearer than this many times h at rest are left out (`EDGE_REST_MARGIN`
+/// in the shaders, which say why).
+pub const EDGE_REST_MARGIN: f64 = 1.33;
+
+/// A rope's segment pairs nearer than this many times h at rest are left out
+/// (`SEGMENT_REST_MARGIN` in the shaders).
+pub const SEGMENT_REST_MARGIN: f64 = 1.5;
 
 /// The grid's ring around a vertex, in order (`VERTEX_RING` in glsl/include/triangle.glsl):
 /// an edge pair names each edge by an end and the ring vertex of its other end.
@@ -360,14 +364,16 @@ pub(super) fn grid_edges(o: &ObjectModel) -> Vec<[usize; 2]> {
     out
 }
 
-/// Whether edge pair (e1, e2) of cloth `o` is left out: they share a vertex, or are nearer than
-/// EDGE_REST_MARGIN h at rest (possible from that reaching 0.7 grid spacings: a cell's
-/// diagonal and the vertex next to it are sx sy / |s| apart).
+/// Whether edge pair (e1, e2) of cloth or rope `o` is left out: they share a vertex, or are
+/// nearer than EDGE_REST_MARGIN h (a rope's SEGMENT_REST_MARGIN h) at rest (possible from that
+/// reaching 0.7 grid spacings: a cell's diagonal and the vertex next to it are sx sy / |s|
+/// apart).
 fn edges_left_out(o: &ObjectModel, h: f64, e1: [usize; 2], e2: [usize; 2]) -> bool {
     if e1.iter().any(|k| e2.contains(k)) {
         return true;
     }
-    let near = EDGE_REST_MARGIN * h;
+    let margin = if o.has_segment_pairs() { SEGMENT_REST_MARGIN } else { EDGE_REST_MARGIN };
+    let near = margin * h;
     if near < 0.7 * o.spacing[0].min(o.spacing[1]) {
         return false;
     }

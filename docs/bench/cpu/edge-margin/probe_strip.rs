@@ -1,0 +1,70 @@
+mod common;
+use common::*;
+use glam::DVec3;
+use msdsim::sim::collider::{ColliderModel, Motion, Shape};
+use msdsim::sim::cpu::CpuSim;
+
+#[test]
+fn probe() {
+    let tilts: Vec<f64> = std::env::var("TILTS").unwrap_or("0.2".into()).split(',').map(|t| t.parse().unwrap()).collect();
+    let edges = std::env::var("EDGEC").is_ok();
+    let mu: f64 = std::env::var("MU").map(|m| m.parse().unwrap()).unwrap_or(0.5);
+    for tilt in tilts {
+        let mut c = soft(5, 61);
+        for (i, p) in c.positions.iter_mut().enumerate() {
+            let row = (i / 5) as f64;
+            *p = DVec3::new((i % 5) as f64 * 0.025 - 0.05, 1.6 - row * 0.025 * tilt.cos(), row * 0.025 * tilt.sin());
+        }
+        c.margin = 0.005;
+        c.friction = mu;
+        c.edge_contact = edges;
+        let mut s = scene(vec![c]);
+        s.gravity = DVec3::new(0.0, -9.81, 0.0);
+        s.colliders = vec![ColliderModel { shape: Shape::Ground { height: 0.0 }, friction: None, motion: Motion::Fixed }];
+        if let Ok(path) = std::env::var("GPU") {
+            let ctx = gpu();
+            let mut g = msdsim::sim::gpu::GpuSim::new(&ctx, &s).unwrap();
+            g.set_fused(&ctx, path == "fused").unwrap();
+            let mut worst = 0;
+            for _ in 0..45 {
+                g.step_frame(&ctx).unwrap();
+                worst = worst.max(segments_through(&g.read_states(&ctx).unwrap()[0].positions(), &cloth_edges(5, 61), &g.read_states(&ctx).unwrap()[0].positions(), &cloth_triangles(5, 61), true));
+            }
+            g.destroy(&ctx);
+            println!("tilt {tilt:.2} GPU {path} worst {worst}");
+            continue;
+        }
+        let mut cpu = CpuSim::new(&s);
+        let (mut worst, mut last) = (0, 0);
+        for _ in 0..45 {
+            cpu.step_frame();
+            last = segments_through(&cpu.objects()[0].x, &cloth_edges(5, 61), &cpu.objects()[0].x, &cloth_triangles(5, 61), true);
+            worst = worst.max(last);
+        }
+        let top = cpu.objects()[0].x.iter().map(|p| p.y).fold(0.0, f64::max);
+        let x = &cpu.objects()[0].x;
+        let mut hist = [0usize; 6];
+        for e in cloth_edges(5, 61) {
+            for t in cloth_triangles(5, 61) {
+                if t.contains(&e[0]) || t.contains(&e[1]) { continue; }
+                if segment_through(x[e[0]], x[e[1]], t.map(|k| x[k])) {
+                    let g = e.iter().flat_map(|&a| t.iter().map(move |&b| ((a % 5) as i64 - (b % 5) as i64).abs().max(((a / 5) as i64 - (b / 5) as i64).abs()))).min().unwrap();
+                    hist[(g as usize).min(5)] += 1;
+                }
+            }
+        }
+        println!("tilt {tilt:.2} worst {worst} last {last} top {top:.3} by grid distance {hist:?}");
+    }
+}
+
+fn soft(cols: u32, rows: u32) -> msdsim::sim::model::ObjectModel {
+    let mut c = cloth(cols, rows, 0.025);
+    c.stiffness = [400.0, 100.0, 0.5];
+    c.damping = 0.01;
+    c.drag = 0.002;
+    c.mass = 0.002;
+    c.stretch_limit = Some(0.1);
+    c.self_distance = Some(0.0125);
+    c.triangle_contact = true;
+    c
+}
