@@ -9,11 +9,14 @@ fn probe() {
     let tilts: Vec<f64> = std::env::var("TILTS").unwrap_or("0.2".into()).split(',').map(|t| t.parse().unwrap()).collect();
     let edges = std::env::var("EDGEC").is_ok();
     let mu: f64 = std::env::var("MU").map(|m| m.parse().unwrap()).unwrap_or(0.5);
+    let cols: usize = std::env::var("COLS").map(|v| v.parse().unwrap()).unwrap_or(5);
+    let rows: usize = std::env::var("ROWS").map(|v| v.parse().unwrap()).unwrap_or(61);
+    let sp: f64 = std::env::var("SP").map(|v| v.parse().unwrap()).unwrap_or(0.025);
     for tilt in tilts {
-        let mut c = soft(5, 61);
+        let mut c = soft(cols as u32, rows as u32, sp);
         for (i, p) in c.positions.iter_mut().enumerate() {
-            let row = (i / 5) as f64;
-            *p = DVec3::new((i % 5) as f64 * 0.025 - 0.05, 1.6 - row * 0.025 * tilt.cos(), row * 0.025 * tilt.sin());
+            let row = (i / cols) as f64;
+            *p = DVec3::new((i % cols) as f64 * sp - 0.05, 0.1 + rows as f64 * sp - row * sp * tilt.cos(), row * sp * tilt.sin());
         }
         c.margin = 0.005;
         c.friction = mu;
@@ -28,7 +31,7 @@ fn probe() {
             let mut worst = 0;
             for _ in 0..45 {
                 g.step_frame(&ctx).unwrap();
-                worst = worst.max(segments_through(&g.read_states(&ctx).unwrap()[0].positions(), &cloth_edges(5, 61), &g.read_states(&ctx).unwrap()[0].positions(), &cloth_triangles(5, 61), true));
+                worst = worst.max(segments_through(&g.read_states(&ctx).unwrap()[0].positions(), &cloth_edges(cols, rows), &g.read_states(&ctx).unwrap()[0].positions(), &cloth_triangles(cols, rows), true));
             }
             g.destroy(&ctx);
             println!("tilt {tilt:.2} GPU {path} worst {worst}");
@@ -38,17 +41,17 @@ fn probe() {
         let (mut worst, mut last) = (0, 0);
         for _ in 0..45 {
             cpu.step_frame();
-            last = segments_through(&cpu.objects()[0].x, &cloth_edges(5, 61), &cpu.objects()[0].x, &cloth_triangles(5, 61), true);
+            last = segments_through(&cpu.objects()[0].x, &cloth_edges(cols, rows), &cpu.objects()[0].x, &cloth_triangles(cols, rows), true);
             worst = worst.max(last);
         }
         let top = cpu.objects()[0].x.iter().map(|p| p.y).fold(0.0, f64::max);
         let x = &cpu.objects()[0].x;
         let mut hist = [0usize; 6];
-        for e in cloth_edges(5, 61) {
-            for t in cloth_triangles(5, 61) {
+        for e in cloth_edges(cols, rows) {
+            for t in cloth_triangles(cols, rows) {
                 if t.contains(&e[0]) || t.contains(&e[1]) { continue; }
                 if segment_through(x[e[0]], x[e[1]], t.map(|k| x[k])) {
-                    let g = e.iter().flat_map(|&a| t.iter().map(move |&b| ((a % 5) as i64 - (b % 5) as i64).abs().max(((a / 5) as i64 - (b / 5) as i64).abs()))).min().unwrap();
+                    let g = e.iter().flat_map(|&a| t.iter().map(move |&b| ((a % cols) as i64 - (b % cols) as i64).abs().max(((a / cols) as i64 - (b / cols) as i64).abs()))).min().unwrap();
                     hist[(g as usize).min(5)] += 1;
                 }
             }
@@ -57,14 +60,14 @@ fn probe() {
     }
 }
 
-fn soft(cols: u32, rows: u32) -> msdsim::sim::model::ObjectModel {
-    let mut c = cloth(cols, rows, 0.025);
+fn soft(cols: u32, rows: u32, sp: f64) -> msdsim::sim::model::ObjectModel {
+    let mut c = cloth(cols, rows, sp);
     c.stiffness = [400.0, 100.0, 0.5];
     c.damping = 0.01;
     c.drag = 0.002;
     c.mass = 0.002;
     c.stretch_limit = Some(0.1);
-    c.self_distance = Some(0.0125);
+    c.self_distance = Some(0.5 * sp);
     c.triangle_contact = true;
     c
 }
