@@ -269,6 +269,8 @@ vec3 constraint_correction(uvec2 cell, vec3 x) {
     // Inter-object contact: what contact.comp summed from the other objects' particles, added
     // whole (each pair's share is already split so that the pair conserves momentum).
     if (has(F_CONTACT)) correction += contact[cell.x + cell.y * obj.dims.x].xyz;
+    // With a cloth's edge pairs, the move over the substep within what its contacts allow.
+    if (self_on && triangle_contact()) correction = bounded_correction(cell.x + cell.y * obj.dims.x, x, correction);
     return correction;
 }
 

@@ -549,6 +549,45 @@ void add_move(uint i, vec3 move, vec3 rest) {
 // 0.010 m/s after, against 0.011 to 0.034 with it and 1.5; tests/self_contact.rs).
 float pair_relaxation() { return edge_contact() ? 1.5 : 1.0; }
 
+// With a cloth's edge pairs, how far a particle may move in a substep, as a fraction of the
+// distance at the substep's start of the contacts it takes part in
+// (sim::cpu::self_contact::BOUND_FRACTION): two sides that each move less than half their
+// distance cannot pass through each other within the substep, so a pile's layers landing
+// faster than the contacts found once a substep can stop do not cross (Offset Geometric
+// Contact bounds each vertex's move the same way). Never below BOUND_FLOOR h, so that a pair
+// already through each other can still part.
+const float BOUND_FRACTION = 0.4;
+const float BOUND_FLOOR = 0.05;
+
+// Notes contact (particles m, weights c) in its free particles' bounds on their moves: the
+// distance at the substep's start of its two sides' points that are nearest now, times
+// BOUND_FRACTION. Kept as 0x7f800000 minus the float's bits, the largest kept (atomicMax: the
+// least distance), so that 0, as the buffer is cleared, is no bound. Twin:
+// sim::cpu::self_contact's apply.
+void note_bound(uvec4 m, vec4 c) {
+    vec3 off = c.x * pair_start(m.x) + c.y * pair_start(m.y) + c.z * pair_start(m.z) + c.w * pair_start(m.w);
+    float bound = max(BOUND_FRACTION * length(off), BOUND_FLOOR * obj.self_distance);
+    int word = 0x7f800000 - floatBitsToInt(bound);
+    [[unroll]] for (int q = 0; q < 4; ++q) {
+        if (!CPINNED(m[q])) atomicMax(self_pairs[bound_word(m[q])], word);
+    }
+}
+
+// Particle i's correction from x (its position after physics and the passes), bounded so
+// that its move over the substep, from where it began, is within the bound its contacts
+// noted (note_bound), which it clears.
+vec3 bounded_correction(uint i, vec3 x, vec3 correction) {
+    if (!edge_contact() || has(F_SEGMENT_PAIRS)) return correction;
+    uint w = bound_word(i);
+    int word = self_pairs[w];
+    if (word == 0) return correction;
+    self_pairs[w] = 0;
+    float bound = intBitsToFloat(0x7f800000 - word);
+    vec3 move = x + correction - pair_start(i);
+    float len = length(move);
+    return len > bound ? correction + move * (bound / len - 1.0) : correction;
+}
+
 // Contact `code` of particle p at x, computed again from the same positions as when it was
 // found: moves its free particles (see the top).
 void apply_contact(uint p, vec3 x, uint code) {
@@ -558,6 +597,7 @@ void apply_contact(uint p, vec3 x, uint code) {
     float d = pair_geometry(p, x, code, m, c, n);
     // (A further pass: the pair may have parted, or, moved, lost its normal.)
     if (!(d > 0.0 && d < obj.self_distance)) return;
+    if (edge_contact() && !has(F_SEGMENT_PAIRS)) note_bound(m, c);
     vec4 free_m = vec4(CPINNED(m.x) ? 0.0 : 1.0, CPINNED(m.y) ? 0.0 : 1.0, CPINNED(m.z) ? 0.0 : 1.0,
                        CPINNED(m.w) ? 0.0 : 1.0);
     // Each free particle's count of contacts.

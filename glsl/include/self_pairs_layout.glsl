@@ -6,7 +6,9 @@
 // the further passes' indirect dispatch per stage (workgroups; zero in a substep where no
 // particle found a contact: the find pass writes it, the constraint stage zeroes it); with
 // edge contact, (11 + PAIR_MAX) n + 3 + i the creases of particle i's ring edges
-// (creases.glsl), written where the spatial hash is built. sim::gpu::object mirrors the sizes.
+// (creases.glsl), written where the spatial hash is built, and (12 + PAIR_MAX) n + 3 + i the
+// bound on its move in the substep (self_contact.glsl's note_bound; 0 for none).
+// sim::gpu::object mirrors the sizes.
 // Include after bindings.glsl.
 #ifndef MSD_SELF_PAIRS_LAYOUT_GLSL
 #define MSD_SELF_PAIRS_LAYOUT_GLSL
@@ -20,5 +22,6 @@ uint start_word(uint i) { return (5u + PAIR_MAX) * particle_count() + 3u * i; }
 uint rest_word(uint i) { return (8u + PAIR_MAX) * particle_count() + 3u * i; }
 uint further_passes_word() { return (11u + PAIR_MAX) * particle_count(); }
 uint creases_word(uint i) { return further_passes_word() + 3u + i; }
+uint bound_word(uint i) { return creases_word(i) + particle_count(); }
 
 #endif

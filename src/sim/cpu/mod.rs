@@ -345,9 +345,9 @@ fn constraints(
     let edges = crate::sim::collider::edges_needed(o, &m.colliders);
     // Every pass over the cloth's own contacts but the last moves the physics output (the
     // velocity following but for the position-only part); the last joins the correction below.
-    let (moved, shift, own, own_rest) = self_contact::self_contact(o, x, start, m.contact_iterations);
-    let shifted: Vec<DVec3> = v.iter().zip(&shift).map(|(v, s)| *v + *s / dt).collect();
-    let (x, v) = (moved.as_slice(), shifted.as_slice());
+    let own = self_contact::self_contact(o, x, start, m.contact_iterations);
+    let shifted: Vec<DVec3> = v.iter().zip(&own.shift).map(|(v, s)| *v + *s / dt).collect();
+    let (x, v) = (own.moved.as_slice(), shifted.as_slice());
     let mut nx = x.to_vec();
     for i in 0..x.len() {
         if o.pinned[i] {
@@ -388,9 +388,13 @@ fn constraints(
         if active > 1 {
             correction /= active as f64;
         }
-        correction += own[i] + contact[i];
+        correction += own.last[i] + contact[i];
+        // With a cloth's edge pairs, the move over the substep within what its contacts allow.
+        if own.bounds[i].is_finite() {
+            correction = self_contact::bounded(x[i] + correction, start[i], own.bounds[i]) - x[i];
+        }
         let mut p = x[i] + correction;
-        let mut vel = v[i] + (correction - own_rest[i]) / dt;
+        let mut vel = v[i] + (correction - own.last_rest[i]) / dt;
         if edges {
             collide_edges(m, o, (i, x), motions, (start[i], dt), (&mut p, &mut vel));
         }

@@ -34,6 +34,12 @@ pub const PAIR_MAX: usize = 16;
 /// past the contact's whole (`pair_relaxation` in the shaders, which say why); 1 without.
 pub const RELAXATION: f64 = 1.5;
 
+/// With a cloth's edge pairs, how far a particle may move in a substep: this fraction of the
+/// distance at the substep's start of its contacts' nearest points, never below BOUND_FLOOR h
+/// (`BOUND_FRACTION`, `BOUND_FLOOR` in the shaders, which say why).
+pub const BOUND_FRACTION: f64 = 0.4;
+pub const BOUND_FLOOR: f64 = 0.05;
+
 /// A cloth's edge pairs nearer than this many times h at rest are left out (`EDGE_REST_MARGIN`
 /// in the shaders, which say why).
 pub const EDGE_REST_MARGIN: f64 = 1.33;
@@ -472,18 +478,15 @@ pub fn contacts(o: &ObjectModel, x: &[DVec3]) -> Vec<Contact> {
 /// positions the passes before moved (a pair separated by then takes no part; the contacts of
 /// a particle that found more than PAIR_MAX, the first pass only). Returns the
 /// positions after all passes but the last, and the last pass's moves (the constraint stage
-/// adds those, as the GPU's takes the last pass's sums).
-pub(super) fn self_contact(
-    o: &ObjectModel,
-    x: &[DVec3],
-    start: &[DVec3],
-    iterations: u32,
-) -> (Vec<DVec3>, Vec<DVec3>, Vec<DVec3>, Vec<DVec3>) {
+/// adds those, as the GPU's takes the last pass's sums), and with a cloth's edge pairs each
+/// particle's bound on its move over the substep (infinite where none: `bounded`).
+pub(super) fn self_contact(o: &ObjectModel, x: &[DVec3], start: &[DVec3], iterations: u32) -> SelfContact {
     let mut xk = x.to_vec();
     let mut vk_shift = vec![DVec3::ZERO; x.len()];
+    let mut bounds = vec![f64::INFINITY; x.len()];
     let Some(h) = o.self_distance.filter(|_| o.has_triangles()) else {
         let zero = vec![DVec3::ZERO; x.len()];
-        return (xk, vk_shift, zero.clone(), zero);
+        return SelfContact { moved: xk, shift: vk_shift, last: zero.clone(), last_rest: zero, bounds };
     };
     let found = contacts(o, x);
     let mut count = vec![0.0; x.len()];
@@ -500,27 +503,55 @@ pub(super) fn self_contact(
         found_by[c.owner()] += 1;
     }
     let again: Vec<Contact> = found.iter().filter(|c| found_by[c.owner()] <= PAIR_MAX).copied().collect();
-    let mut last = apply(o, h, &found, &count, x, start);
+    let mut last = apply(o, h, &found, &count, (x, start), &mut bounds);
     for _ in 1..iterations {
         for i in 0..x.len() {
             xk[i] += last.0[i];
             vk_shift[i] += last.0[i] - last.1[i];
         }
-        last = apply(o, h, &again, &count, &xk, start);
+        last = apply(o, h, &again, &count, (&xk, start), &mut bounds);
     }
-    (xk, vk_shift, last.0, last.1)
+    SelfContact { moved: xk, shift: vk_shift, last: last.0, last_rest: last.1, bounds }
+}
+
+/// What a cloth's contact with itself gives the constraint stage (`self_contact`).
+pub(super) struct SelfContact {
+    /// The positions after all passes but the last, and the velocity shift they made.
+    pub moved: Vec<DVec3>,
+    pub shift: Vec<DVec3>,
+    /// The last pass's moves, and their position-only parts.
+    pub last: Vec<DVec3>,
+    pub last_rest: Vec<DVec3>,
+    /// Each particle's bound on its move over the substep (infinite: none).
+    pub bounds: Vec<f64>,
+}
+
+/// Position `p` of a particle that began the substep at `start`, moved back towards it so
+/// that it moved at most `bound` (`bounded_correction` in glsl/include/self_contact.glsl).
+pub(super) fn bounded(p: DVec3, start: DVec3, bound: f64) -> DVec3 {
+    let moved = p - start;
+    let len = moved.length();
+    if len > bound {
+        p + moved * (bound / len - 1.0)
+    } else {
+        p
+    }
 }
 
 /// One pass over cloth `o`'s contacts `found` (particles' counts `count`) at positions `x`:
-/// each particle's summed moves and their position-only parts.
+/// each particle's summed moves and their position-only parts. With a cloth's edge pairs each
+/// contact also lowers its free particles' `bounds` to BOUND_FRACTION of the distance at the
+/// substep's `start` of its sides' points nearest at `x` (at least BOUND_FLOOR h; the GPU's
+/// `note_bound`).
 fn apply(
     o: &ObjectModel,
     h: f64,
     found: &[Contact],
     count: &[f64],
-    x: &[DVec3],
-    start: &[DVec3],
+    (x, start): (&[DVec3], &[DVec3]),
+    bounds: &mut [f64],
 ) -> (Vec<DVec3>, Vec<DVec3>) {
+    let bound_moves = o.has_cloth_edge_pairs();
     let mut moves = vec![DVec3::ZERO; x.len()];
     let mut rests = vec![DVec3::ZERO; x.len()];
     let free = |k: usize| if o.pinned[k] { 0.0 } else { 1.0 };
@@ -534,6 +565,13 @@ fn apply(
         }
         let (n, overlap) = (off / d, h - d);
         let m = contact.particles;
+        if bound_moves {
+            let apart = (0..4).map(|q| start[m[q]] * c[q]).sum::<DVec3>().length();
+            let bound = f64::max(BOUND_FRACTION * apart, BOUND_FLOOR * h);
+            for &k in m.iter().filter(|&&k| !o.pinned[k]) {
+                bounds[k] = bounds[k].min(bound);
+            }
+        }
         let free_m = DVec4::from_array(m.map(free));
         // Each free particle's mass split among its contacts.
         let split_m = DVec4::from_array(m.map(|k| free(k) * f64::max(1.0, count[k])));

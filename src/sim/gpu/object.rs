@@ -258,8 +258,9 @@ impl GpuObject {
                 let usage = BufferUsage::STORAGE | BufferUsage::TRANSFER_DST | BufferUsage::INDIRECT;
                 // Sums and counts (4), lengths (1), contacts, where each began the substep (3),
                 // the sums' parts that move the position only (3); the further passes'
-                // indirect dispatch; with edge-edge contact, the ring creases (1).
-                let creases = if o.has_cloth_edge_pairs() { 4 * n } else { 0 };
+                // indirect dispatch; with edge-edge contact, the ring creases (1) and the bound
+                // on each particle's move (1).
+                let creases = if o.has_cloth_edge_pairs() { 8 * n } else { 0 };
                 let bytes = further_passes_offset(n) + 12 + creases;
                 let name = format!("{}.self_pairs", o.name);
                 self_pairs = Some(Buffer::new(ctx, &name, bytes, usage, MemoryKind::GpuOnly)?);
