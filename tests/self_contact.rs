@@ -91,6 +91,25 @@ fn a_cloth_folding_over_its_middle_row_never_passes_through_itself() {
     assert!(runs.iter().all(|r| r.1 == 0), "edges through the cloth's own triangles: {runs:?}");
 }
 
+/// A `soft_cloth` strip of `dims` (columns, rows) particles `spacing` apart standing on end,
+/// its top row at height `top`, leaning by `tilt` radians, over the ground (friction 0.5, its
+/// margin 5 mm), under gravity.
+fn standing_strip(dims: [usize; 2], spacing: f64, top: f64, tilt: f64) -> SimModel {
+    let [cols, rows] = dims;
+    let mut c = soft_cloth_spaced(cols as u32, rows as u32, spacing);
+    for (i, p) in c.positions.iter_mut().enumerate() {
+        let (col, row) = ((i % cols) as f64, (i / cols) as f64);
+        *p = DVec3::new(col * spacing - 0.05, top - row * spacing * tilt.cos(), row * spacing * tilt.sin());
+    }
+    c.margin = 0.005;
+    c.friction = 0.5;
+    let mut s = scene(vec![c]);
+    s.gravity = DVec3::new(0.0, -9.81, 0.0);
+    let ground = Shape::Ground { height: 0.0 };
+    s.colliders = vec![ColliderModel { shape: ground, friction: None, motion: Motion::Fixed }];
+    s
+}
+
 /// A 5 x 61 strip (2.5 cm spacing, 1.5 m long, thickness 12.5 mm) dropped on end from 10 cm
 /// onto the ground, tilted 0.2 rad so that it folds (upright it stays in its plane): it
 /// buckles as it lands, its top arriving at about 5 m/s, and piles in one-cell folds. A layer
@@ -113,22 +132,7 @@ fn a_cloth_folding_over_its_middle_row_never_passes_through_itself() {
 /// (docs/bench/cpu/edge-margin/), so that bound is 15. The count changes in place.
 #[test]
 fn contact_iterations_stop_a_strip_piling_on_itself() {
-    let mut c = soft_cloth(5, 61);
-    let tilt: f64 = 0.2;
-    for (i, p) in c.positions.iter_mut().enumerate() {
-        let row = (i / 5) as f64;
-        *p = DVec3::new(
-            (i % 5) as f64 * 0.025 - 0.05,
-            1.6 - row * 0.025 * tilt.cos(),
-            row * 0.025 * tilt.sin(),
-        );
-    }
-    c.margin = 0.005;
-    c.friction = 0.5;
-    let mut s = scene(vec![c]);
-    s.gravity = DVec3::new(0.0, -9.81, 0.0);
-    let ground = Shape::Ground { height: 0.0 };
-    s.colliders = vec![ColliderModel { shape: ground, friction: None, motion: Motion::Fixed }];
+    let s = standing_strip([5, 61], 0.025, 1.6, 0.2);
     let frames = 45;
     let reference = |s: &SimModel, iterations: u32| {
         let mut m = s.clone();
@@ -825,22 +829,8 @@ fn a_rope_on_itself_sticks_below_the_friction_angle_and_slides_above() {
 /// of edges through its triangles over 45 frames on the f64 reference.
 fn wide_strip_crossings(tilt: f64) -> usize {
     let (cols, rows, spacing) = (8usize, 50usize, 0.02);
-    let mut c = soft_cloth_spaced(cols as u32, rows as u32, spacing);
-    for (i, p) in c.positions.iter_mut().enumerate() {
-        let (col, row) = ((i % cols) as f64, (i / cols) as f64);
-        *p = DVec3::new(
-            col * spacing - 0.05,
-            0.1 + rows as f64 * spacing - row * spacing * tilt.cos(),
-            row * spacing * tilt.sin(),
-        );
-    }
-    c.edge_contact = true;
-    c.margin = 0.005;
-    c.friction = 0.5;
-    let mut s = scene(vec![c]);
-    s.gravity = DVec3::new(0.0, -9.81, 0.0);
-    let ground = Shape::Ground { height: 0.0 };
-    s.colliders = vec![ColliderModel { shape: ground, friction: None, motion: Motion::Fixed }];
+    let mut s = standing_strip([cols, rows], spacing, 0.1 + rows as f64 * spacing, tilt);
+    s.objects[0].edge_contact = true;
     let mut cpu = CpuSim::new(&s);
     (0..45)
         .map(|_| {
