@@ -562,7 +562,7 @@ void main() {
                 }
             }
             list_rebuild = rebuild;
-            bool creases = edge_contact() && !has(F_SEGMENT_PAIRS);  // (a rope's are all creased)
+            bool creases = cloth_edge_pairs();  // (a rope's are all creased)
             if (rebuild) {
                 [[unroll]] for (uint s = 0u; s < MAX_SLOTS; ++s) {
                     if (s >= SLOTS) break;

@@ -127,8 +127,9 @@ fn standing_strip(dims: [usize; 2], spacing: f64, top: f64, tilt: f64) -> SimMod
 /// over-relaxed, edge pairs where an edge is creased, counted from 1.33 h apart at rest) four
 /// passes let fewer through: measured 0 on the reference and 0 on the GPU (fused; 0 and 11
 /// when pairs 1.41 h apart at rest were left out). Where it piles is chaotic: over 24 tilts
-/// from 0.02 to 0.48 rad at friction 0.3, 0.5 and 0.7 the reference let none through in 56 of
-/// the 72 runs and 2 to 45 in 16, the GPU per stage 0 at 9 of 11 tilts and 5 and 12 at two
+/// from 0.02 to 0.48 rad at friction 0.3, 0.5 and 0.7 the reference let none through in 64 of
+/// the 72 runs and 2 to 15 in 8 (with the bound on each particle's move; 56 and 16 runs, up to
+/// 45, without it), the GPU per stage 0 at 9 of 11 tilts and 2 and 13 at two
 /// (docs/bench/cpu/edge-margin/), so that bound is 15. The count changes in place.
 #[test]
 fn contact_iterations_stop_a_strip_piling_on_itself() {

@@ -205,7 +205,7 @@ void self_pass(uvec2 cell, uint i, vec3 x, vec3 start, bool apply) {
             apply_pass = apply;
             bool building = list_build;
             list_build = building && !apply;
-            if (edge_contact() && !has(F_SEGMENT_PAIRS)) own_creases = crease_mask(ring_creases(i, x), list_build);
+            if (cloth_edge_pairs()) own_creases = crease_mask(ring_creases(i, x), list_build);
             vec3 unused = vec3(0.0);
             uint unused_count = 0u;
             self_search(cell, x, unused, unused_count);

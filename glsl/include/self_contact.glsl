@@ -82,6 +82,10 @@
 // without it none of the edge-pair code is compiled in).
 bool edge_contact() { return has(F_EDGE_PAIRS); }
 
+// Whether those edges are a cloth's (creased, with the bound on each particle's move), not a
+// rope's segments (sim::model::ObjectModel::has_cloth_edge_pairs).
+bool cloth_edge_pairs() { return edge_contact() && !has(F_SEGMENT_PAIRS); }
+
 // Where particle i began the substep, as the find pass noted it.
 vec3 pair_start(uint i) {
     uint w = start_word(i);
@@ -577,7 +581,7 @@ void note_bound(uvec4 m, vec4 c) {
 // that its move over the substep, from where it began, is within the bound its contacts
 // noted (note_bound), which it clears.
 vec3 bounded_correction(uint i, vec3 x, vec3 correction) {
-    if (!edge_contact() || has(F_SEGMENT_PAIRS)) return correction;
+    if (!cloth_edge_pairs()) return correction;
     uint w = bound_word(i);
     int word = self_pairs[w];
     if (word == 0) return correction;
@@ -597,7 +601,7 @@ void apply_contact(uint p, vec3 x, uint code) {
     float d = pair_geometry(p, x, code, m, c, n);
     // (A further pass: the pair may have parted, or, moved, lost its normal.)
     if (!(d > 0.0 && d < obj.self_distance)) return;
-    if (edge_contact() && !has(F_SEGMENT_PAIRS)) note_bound(m, c);
+    if (cloth_edge_pairs()) note_bound(m, c);
     vec4 free_m = vec4(CPINNED(m.x) ? 0.0 : 1.0, CPINNED(m.y) ? 0.0 : 1.0, CPINNED(m.z) ? 0.0 : 1.0,
                        CPINNED(m.w) ? 0.0 : 1.0);
     // Each free particle's count of contacts.
