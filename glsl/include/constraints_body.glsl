@@ -269,8 +269,6 @@ vec3 constraint_correction(uvec2 cell, vec3 x) {
     // Inter-object contact: what contact.comp summed from the other objects' particles, added
     // whole (each pair's share is already split so that the pair conserves momentum).
     if (has(F_CONTACT)) correction += contact[cell.x + cell.y * obj.dims.x].xyz;
-    // With a cloth's edge pairs, the move over the substep within what its contacts allow.
-    if (self_on && triangle_contact()) correction = bounded_correction(cell.x + cell.y * obj.dims.x, x, correction);
     return correction;
 }
 
@@ -393,6 +391,9 @@ void constraints_particle(uvec2 cell, uint substep, bool lists) {
     v += (correction - position_only) / g.dt;  // velocity follows the position correction
     visiting = i;
     collide_all(cell, x, v, float(substep + 1u) * g.dt);
+    // With a cloth's edge pairs, its move within what its contacts allow, the colliders' part
+    // too (a pile's bottom layer pushed up by the ground must not pass the layer on it).
+    bound_move(i, x, v);
     OUT(i) = Particle(vec4(x, 0.0), vec4(v, 0.0));
 }
 #endif

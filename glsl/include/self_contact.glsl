@@ -577,19 +577,26 @@ void note_bound(uvec4 m, vec4 c) {
     }
 }
 
-// Particle i's correction from x (its position after physics and the passes), bounded so
-// that its move over the substep, from where it began, is within the bound its contacts
-// noted (note_bound), which it clears.
-vec3 bounded_correction(uint i, vec3 x, vec3 correction) {
-    if (!cloth_edge_pairs()) return correction;
+// Particle i at x with velocity v after its constraints and its colliders: moved back towards
+// where it began the substep so that its move is within the bound its contacts noted
+// (note_bound), which it clears, and its velocity scaled as its move is (moving the velocity by
+// the position's change instead would leave a particle pushed out of an old overlap, a move
+// its velocity does not follow, moving back into it). The colliders' moves are bounded too: the
+// ground pushing a pile's bottom layer up must not carry it through the layer lying on it.
+void bound_move(uint i, inout vec3 x, inout vec3 v) {
+    if (!cloth_edge_pairs()) return;
     uint w = bound_word(i);
     int word = self_pairs[w];
-    if (word == 0) return correction;
+    if (word == 0) return;
     self_pairs[w] = 0;
     float bound = intBitsToFloat(0x7f800000 - word);
-    vec3 move = x + correction - pair_start(i);
-    float len = length(move);
-    return len > bound ? correction + move * (bound / len - 1.0) : correction;
+    vec3 start = pair_start(i);
+    float len = length(x - start);
+    if (len > bound) {
+        float s = bound / len;
+        x = start + (x - start) * s;
+        v *= s;
+    }
 }
 
 // Contact `code` of particle p at x, computed again from the same positions as when it was

@@ -389,10 +389,6 @@ fn constraints(
             correction /= active as f64;
         }
         correction += own.last[i] + contact[i];
-        // With a cloth's edge pairs, the move over the substep within what its contacts allow.
-        if own.bounds[i].is_finite() {
-            correction = self_contact::bounded(x[i] + correction, start[i], own.bounds[i]) - x[i];
-        }
         let mut p = x[i] + correction;
         let mut vel = v[i] + (correction - own.last_rest[i]) / dt;
         if edges {
@@ -400,6 +396,11 @@ fn constraints(
         }
         for (c, &motion) in m.colliders.iter().zip(motions) {
             c.respond((o.margin, o.friction), motion, (start[i], dt), &mut p, &mut vel);
+        }
+        // With a cloth's edge pairs, the move over the substep within what its contacts allow,
+        // the colliders' part too (bound_move in glsl/include/self_contact.glsl).
+        if own.bounds[i].is_finite() {
+            (p, vel) = self_contact::bounded((p, vel), start[i], own.bounds[i]);
         }
         nx[i] = p;
         nv[i] = vel;

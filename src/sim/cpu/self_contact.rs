@@ -526,15 +526,16 @@ pub(super) struct SelfContact {
     pub bounds: Vec<f64>,
 }
 
-/// Position `p` of a particle that began the substep at `start`, moved back towards it so
-/// that it moved at most `bound` (`bounded_correction` in glsl/include/self_contact.glsl).
-pub(super) fn bounded(p: DVec3, start: DVec3, bound: f64) -> DVec3 {
-    let moved = p - start;
-    let len = moved.length();
+/// A particle at `p` with velocity `vel` that began the substep at `start`, moved back towards
+/// it so that it moved at most `bound`, its velocity scaled as its move is (`bound_move` in
+/// glsl/include/self_contact.glsl, which says why).
+pub(super) fn bounded((p, vel): (DVec3, DVec3), start: DVec3, bound: f64) -> (DVec3, DVec3) {
+    let len = (p - start).length();
     if len > bound {
-        p + moved * (bound / len - 1.0)
+        let s = bound / len;
+        (start + (p - start) * s, vel * s)
     } else {
-        p
+        (p, vel)
     }
 }
 
