@@ -641,7 +641,9 @@ void main() {
             }
             visiting_start = began[s];
             collide_all(cells[s], xs, vs, float(sub + 1u) * g.dt);
-            if (neighbours && self_triangles_on) bound_move(k, xs, vs);  // (see constraints_particle)
+            if (neighbours && self_triangles_on && bound_move(k, xs, vs)) {
+                collide(xs, vs, float(sub + 1u) * g.dt);  // (see constraints_particle)
+            }
             x[s] = xs;
             v[s] = vs;
         }

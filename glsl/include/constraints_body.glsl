@@ -393,7 +393,7 @@ void constraints_particle(uvec2 cell, uint substep, bool lists) {
     collide_all(cell, x, v, float(substep + 1u) * g.dt);
     // With a cloth's edge pairs, its move within what its contacts allow, the colliders' part
     // too (a pile's bottom layer pushed up by the ground must not pass the layer on it).
-    bound_move(i, x, v);
+    if (bound_move(i, x, v)) collide(x, v, float(substep + 1u) * g.dt);
     OUT(i) = Particle(vec4(x, 0.0), vec4(v, 0.0));
 }
 #endif

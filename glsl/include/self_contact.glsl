@@ -583,20 +583,23 @@ void note_bound(uvec4 m, vec4 c) {
 // the position's change instead would leave a particle pushed out of an old overlap, a move
 // its velocity does not follow, moving back into it). The colliders' moves are bounded too: the
 // ground pushing a pile's bottom layer up must not carry it through the layer lying on it.
-void bound_move(uint i, inout vec3 x, inout vec3 v) {
-    if (!cloth_edge_pairs()) return;
+// Returns whether it moved the particle (then the caller runs its colliders again, so that a
+// moving collider still wins: against a fixed convex one, which the particle began outside,
+// the clamp keeps it outside and that changes nothing).
+bool bound_move(uint i, inout vec3 x, inout vec3 v) {
+    if (!cloth_edge_pairs()) return false;
     uint w = bound_word(i);
     int word = self_pairs[w];
-    if (word == 0) return;
+    if (word == 0) return false;
     self_pairs[w] = 0;
     float bound = intBitsToFloat(0x7f800000 - word);
     vec3 start = pair_start(i);
     float len = length(x - start);
-    if (len > bound) {
-        float s = bound / len;
-        x = start + (x - start) * s;
-        v *= s;
-    }
+    if (len <= bound) return false;
+    float s = bound / len;
+    x = start + (x - start) * s;
+    v *= s;
+    return true;
 }
 
 // Contact `code` of particle p at x, computed again from the same positions as when it was

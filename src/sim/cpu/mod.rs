@@ -394,13 +394,17 @@ fn constraints(
         if edges {
             collide_edges(m, o, (i, x), motions, (start[i], dt), (&mut p, &mut vel));
         }
-        for (c, &motion) in m.colliders.iter().zip(motions) {
-            c.respond((o.margin, o.friction), motion, (start[i], dt), &mut p, &mut vel);
-        }
+        let collide = |p: &mut DVec3, vel: &mut DVec3| {
+            for (c, &motion) in m.colliders.iter().zip(motions) {
+                c.respond((o.margin, o.friction), motion, (start[i], dt), p, vel);
+            }
+        };
+        collide(&mut p, &mut vel);
         // With a cloth's edge pairs, the move over the substep within what its contacts allow,
-        // the colliders' part too (bound_move in glsl/include/self_contact.glsl).
-        if own.bounds[i].is_finite() {
-            (p, vel) = self_contact::bounded((p, vel), start[i], own.bounds[i]);
+        // the colliders' part too, and where that moved it its colliders again (bound_move in
+        // glsl/include/self_contact.glsl says why).
+        if own.bounds[i].is_finite() && self_contact::bound(&mut p, &mut vel, start[i], own.bounds[i]) {
+            collide(&mut p, &mut vel);
         }
         nx[i] = p;
         nv[i] = vel;

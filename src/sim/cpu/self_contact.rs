@@ -527,16 +527,17 @@ pub(super) struct SelfContact {
 }
 
 /// A particle at `p` with velocity `vel` that began the substep at `start`, moved back towards
-/// it so that it moved at most `bound`, its velocity scaled as its move is (`bound_move` in
-/// glsl/include/self_contact.glsl, which says why).
-pub(super) fn bounded((p, vel): (DVec3, DVec3), start: DVec3, bound: f64) -> (DVec3, DVec3) {
-    let len = (p - start).length();
-    if len > bound {
-        let s = bound / len;
-        (start + (p - start) * s, vel * s)
-    } else {
-        (p, vel)
+/// it so that it moved at most `bound`, its velocity scaled as its move is; whether it moved it
+/// (`bound_move` in glsl/include/self_contact.glsl, which says why).
+pub(super) fn bound(p: &mut DVec3, vel: &mut DVec3, start: DVec3, bound: f64) -> bool {
+    let len = (*p - start).length();
+    if len <= bound {
+        return false;
     }
+    let s = bound / len;
+    *p = start + (*p - start) * s;
+    *vel *= s;
+    true
 }
 
 /// One pass over cloth `o`'s contacts `found` (particles' counts `count`) at positions `x`:
