@@ -260,8 +260,7 @@ impl GpuObject {
                 // the sums' parts that move the position only (3); the further passes'
                 // indirect dispatch; with edge-edge contact, the ring creases (1) and the bound
                 // on each particle's move (1).
-                let creases = if o.has_cloth_edge_pairs() { 8 * n } else { 0 };
-                let bytes = further_passes_offset(n) + 12 + creases;
+                let bytes = self_pairs_bytes(n, o.has_cloth_edge_pairs());
                 let name = format!("{}.self_pairs", o.name);
                 self_pairs = Some(Buffer::new(ctx, &name, bytes, usage, MemoryKind::GpuOnly)?);
             }
@@ -380,7 +379,8 @@ impl GpuObject {
 }
 
 /// Bytes of GPU memory an object needs: two state buffers, the surface, the parameters (and
-/// the spatial hash, the largest solver and the contact lists, counted for every object: an
+/// the spatial hash, the largest solver, the contact lists, the sums of contact between
+/// objects and the self-contact passes' buffer with edge pairs, counted for every object: an
 /// upper bound).
 fn object_bytes(o: &ObjectShape) -> u64 {
     let n = o.particle_count();
@@ -395,6 +395,8 @@ fn object_bytes(o: &ObjectShape) -> u64 {
         + list_control_range(n).0
         + list_control_range(n).1
         + 8
+        + 16 * n
+        + self_pairs_bytes(n, true)
 }
 
 /// The most vec4s a particle that any iterative method keeps in its iterate slices and in its
@@ -422,10 +424,14 @@ pub fn check_fits(info: &DeviceInfo, shapes: &[ObjectShape]) -> Result<(), UserE
     }
     for o in shapes {
         let what = format!("{} '{}' ({} x {})", o.kind.label(), o.name, o.dims[0], o.dims[1]);
-        // The largest buffer: a state, the surface, or a solver's iterate slices.
-        let state = o.particle_count() * std::mem::size_of::<Particle>() as u64;
+        // The largest buffer: a state, the surface, a solver's iterate slices, the contact
+        // lists or the self-contact passes' buffer.
+        let n = o.particle_count();
+        let state = n * std::mem::size_of::<Particle>() as u64;
         let surface = o.surface_count() * std::mem::size_of::<SurfaceVertex>() as u64;
-        let largest = state.max(surface).max(solver_vec4s().0 * 16 * o.particle_count());
+        let (lists, control) = list_control_range(n);
+        let contact = (lists + control + 8).max(self_pairs_bytes(n, true));
+        let largest = state.max(surface).max(solver_vec4s().0 * 16 * n).max(contact);
         if largest > info.max_storage_buffer_range {
             return Err(UserError(format!(
                 "{what} is too large for the device: one buffer would be {}, {} binds at most {}",
@@ -505,6 +511,12 @@ pub(super) fn globals(model: &SimModel) -> Globals {
 /// the further contact passes (`further_passes_word` in glsl/include/self_contact.glsl).
 pub(super) fn further_passes_offset(n: u64) -> u64 {
     4 * (5 + SELF_PAIR_MAX + 6) * n
+}
+
+/// Bytes of an object's self_pairs buffer (n particles; `creases`: a cloth's edge pairs, with
+/// each particle's ring creases and the bound on its move).
+fn self_pairs_bytes(n: u64, creases: bool) -> u64 {
+    further_passes_offset(n) + 12 + if creases { 8 * n } else { 0 }
 }
 
 /// Contacts a particle keeps in a substep (`PAIR_MAX` in glsl/include/self_contact.glsl).
