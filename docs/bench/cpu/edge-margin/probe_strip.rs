@@ -77,28 +77,7 @@ fn probe() {
         }
         let top = cpu.objects()[0].x.iter().map(|p| p.y).fold(0.0, f64::max);
         let x = &cpu.objects()[0].x;
-        let mut hist = [0usize; 6];
-        for e in cloth_edges(cols, rows) {
-            for t in cloth_triangles(cols, rows) {
-                if t.contains(&e[0]) || t.contains(&e[1]) {
-                    continue;
-                }
-                if segment_through(x[e[0]], x[e[1]], t.map(|k| x[k])) {
-                    let g = e
-                        .iter()
-                        .flat_map(|&a| {
-                            t.iter().map(move |&b| {
-                                ((a % cols) as i64 - (b % cols) as i64)
-                                    .abs()
-                                    .max(((a / cols) as i64 - (b / cols) as i64).abs())
-                            })
-                        })
-                        .min()
-                        .unwrap();
-                    hist[(g as usize).min(5)] += 1;
-                }
-            }
-        }
+        let hist = far_crossings(x, cols, rows);
         println!("tilt {tilt:.2} worst {worst} last {last} top {top:.3} by grid distance {hist:?} worst's by grid distance {far:?} ke(last 15) {ke:.3e} vmax {vmax:.3}");
     }
 }
