@@ -640,10 +640,10 @@ void main() {
                 vs += (correction - position_only) / g.dt;  // velocity follows the position correction
             }
             visiting_start = began[s];
-            collide_all(cells[s], xs, vs, float(sub + 1u) * g.dt);
-            if (neighbours && self_triangles_on && bound_move(k, xs, vs)) {
-                collide(xs, vs, float(sub + 1u) * g.dt);  // (see constraints_particle)
-            }
+            float since = float(sub + 1u) * g.dt;
+            collide_all(cells[s], xs, vs, since);
+            // (see constraints_particle)
+            if (neighbours && self_triangles_on && bound_move(k, xs, vs)) collide(xs, vs, since);
             x[s] = xs;
             v[s] = vs;
         }

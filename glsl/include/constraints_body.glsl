@@ -390,10 +390,11 @@ void constraints_particle(uvec2 cell, uint substep, bool lists) {
     x += correction;
     v += (correction - position_only) / g.dt;  // velocity follows the position correction
     visiting = i;
-    collide_all(cell, x, v, float(substep + 1u) * g.dt);
+    float since = float(substep + 1u) * g.dt;
+    collide_all(cell, x, v, since);
     // With a cloth's edge pairs, its move within what its contacts allow, the colliders' part
     // too (a pile's bottom layer pushed up by the ground must not pass the layer on it).
-    if (bound_move(i, x, v)) collide(x, v, float(substep + 1u) * g.dt);
+    if (bound_move(i, x, v)) collide(x, v, since);
     OUT(i) = Particle(vec4(x, 0.0), vec4(v, 0.0));
 }
 #endif

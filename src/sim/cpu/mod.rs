@@ -403,7 +403,7 @@ fn constraints(
         // With a cloth's edge pairs, the move over the substep within what its contacts allow,
         // the colliders' part too, and where that moved it its colliders again (bound_move in
         // glsl/include/self_contact.glsl says why).
-        if own.bounds[i].is_finite() && self_contact::bound(&mut p, &mut vel, start[i], own.bounds[i]) {
+        if self_contact::bound(&mut p, &mut vel, start[i], own.bounds[i]) {
             collide(&mut p, &mut vel);
         }
         nx[i] = p;

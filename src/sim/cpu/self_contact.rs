@@ -479,7 +479,7 @@ pub fn contacts(o: &ObjectModel, x: &[DVec3]) -> Vec<Contact> {
 /// a particle that found more than PAIR_MAX, the first pass only). Returns the
 /// positions after all passes but the last, and the last pass's moves (the constraint stage
 /// adds those, as the GPU's takes the last pass's sums), and with a cloth's edge pairs each
-/// particle's bound on its move over the substep (infinite where none: `bounded`).
+/// particle's bound on its move over the substep (infinite where none: `bound`).
 pub(super) fn self_contact(o: &ObjectModel, x: &[DVec3], start: &[DVec3], iterations: u32) -> SelfContact {
     let mut xk = x.to_vec();
     let mut vk_shift = vec![DVec3::ZERO; x.len()];

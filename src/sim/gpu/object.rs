@@ -103,6 +103,13 @@ pub(super) fn list_control_range(particles: u64) -> (u64, u64) {
     (4 * lists, 4 * 2 * LIST_CONTROL_WORDS)
 }
 
+/// Bytes of the per-stage list buffer of an object of `n` particles: the lists, their control
+/// blocks and the two counters.
+fn self_list_bytes(n: u64) -> u64 {
+    let (control, size) = list_control_range(n);
+    control + size + 8
+}
+
 /// Byte offset in the list buffer of the indirect dispatch of a spatial hash pass in substep
 /// `substep`: `pass` 0 the count and the scatter, 1 the scan (`LIST_DISPATCHES`
 /// in glsl/include/lists.glsl).
@@ -247,11 +254,10 @@ impl GpuObject {
             }
             solver = SolverBuffers::new(ctx, &o.name, n, model.integrator)?;
             if builds_hash(o, model) {
-                let (control, size) = list_control_range(n);
                 let fused = 4 * plan.fused.map_or(0, |f| f.list_words());
                 let name = format!("{}.self_list", o.name);
                 let usage = BufferUsage::STORAGE | BufferUsage::TRANSFER_DST | BufferUsage::INDIRECT;
-                let bytes = fused.max(control + size + 8);
+                let bytes = fused.max(self_list_bytes(n));
                 self_list = Some(Buffer::new(ctx, &name, bytes, usage, MemoryKind::GpuOnly)?);
             }
             if has_self_pairs(o) {
@@ -392,9 +398,7 @@ fn object_bytes(o: &ObjectShape) -> u64 {
         + 8 * hash_table_size(n)
         + 4
         + (slices + aux + HISTORY_VEC4S) * 16 * n
-        + list_control_range(n).0
-        + list_control_range(n).1
-        + 8
+        + self_list_bytes(n)
         + 16 * n
         + self_pairs_bytes(n, true)
 }
@@ -429,8 +433,7 @@ pub fn check_fits(info: &DeviceInfo, shapes: &[ObjectShape]) -> Result<(), UserE
         let n = o.particle_count();
         let state = n * std::mem::size_of::<Particle>() as u64;
         let surface = o.surface_count() * std::mem::size_of::<SurfaceVertex>() as u64;
-        let (lists, control) = list_control_range(n);
-        let contact = (lists + control + 8).max(self_pairs_bytes(n, true));
+        let contact = self_list_bytes(n).max(self_pairs_bytes(n, true));
         let largest = state.max(surface).max(solver_vec4s().0 * 16 * n).max(contact);
         if largest > info.max_storage_buffer_range {
             return Err(UserError(format!(
