@@ -2,6 +2,8 @@
 //! builders, and GPU-vs-CPU comparison helpers.
 #![allow(dead_code)] // each test binary uses a different subset
 
+pub mod crash;
+
 use glam::DVec3;
 use msdsim::sim::collider::ColliderModel;
 use msdsim::sim::cpu::{CpuObject, CpuSim};
@@ -12,8 +14,10 @@ use msdsim::sim::model::{
 use msdsim::vk::{ContextOptions, GpuContext};
 
 /// A context with validation and synchronization validation. Panics (never skips) when no
-/// Vulkan device or validation layer is available.
+/// Vulkan device or validation layer is available. A crash by a signal from here on prints
+/// its test thread and stack (`crash`).
 pub fn gpu() -> GpuContext {
+    crash::install();
     let options = ContextOptions {
         validation: true,
         device: std::env::var("MSDSIM_DEVICE").ok(),
