@@ -542,6 +542,19 @@ void main() {
                 for (uint b = t; b < BUCKETS; b += THREADS) scratch[b] = EMPTY;
             }
             barrier();
+            if (hashed && LISTED && lists_built && cloth_edge_pairs()) {
+                // Has an edge creased that the lists hold no pairs of (creases.glsl)? Every
+                // position is shared by now.
+                bool creased = false;
+                [[unroll]] for (uint s = 0u; s < MAX_SLOTS; ++s) {
+                    if (s >= SLOTS) break;
+                    uint k = own[s];
+                    if (k >= n) continue;
+                    creased = creased || creased_past_lists(ring_crease_masks(k, x[s]), uint(self_pairs[creases_word(k)]));
+                }
+                if (creased) atomicOr(list_flag[sub & 1u], LIST_MOVED);
+                barrier();
+            }
             bool rebuild = hashed;
             list_build = false;
             if (hashed && LISTED) {
@@ -572,7 +585,10 @@ void main() {
                     scratch[BUCKETS + k] = atomicExchange(scratch[h], k);
                     // (how creased its ring edges are, which the search reads for every
                     // candidate: creases.glsl)
-                    if (creases) self_pairs[creases_word(k)] = int(ring_crease_masks(k, x[s]));
+                    if (creases) {
+                        uint word = listed_crease_word(ring_crease_masks(k, x[s]), uint(self_pairs[creases_word(k)]), list_build);
+                        self_pairs[creases_word(k)] = int(word);
+                    }
                 }
                 if (creases) memoryBarrierBuffer();
                 barrier();

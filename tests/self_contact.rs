@@ -879,6 +879,38 @@ fn a_wide_strip_piling_with_edge_contact_never_passes_through_a_layer() {
     assert!(held, "edges through the strip's triangles (all, through a layer): {worst:?}");
 }
 
+/// The fused kernel's contact lists hold a cloth's edge pairs only where an edge was creased
+/// (its sag past CREASE_LIST, creases.glsl) when they were built, and stay while every particle
+/// is within half the skin of where they were built; but an edge bends further than its ends
+/// move, so an edge that creased past CREASE_FROM meanwhile had its pairs missed until the next
+/// build. The 5 x 61 piling strip at friction 0.3, tilted 0.1 rad from 1.625 m (where the probe
+/// of docs/bench/cpu/edge-margin/ drops it), fused with edge contact, let 89 edges through its
+/// triangles so, 98 through a layer; the lists are now built again when an edge creases that
+/// they hold no pairs of (`creased_past_lists`). Measured: 2, none through a layer (per stage,
+/// whose lists are off while the strip moves: 0). Bounds as the other piling tests'.
+#[test]
+fn the_fused_lists_follow_edges_that_crease() {
+    let mut s = standing_strip([5, 61], 0.025, 0.1 + 61.0 * 0.025, 0.1);
+    s.objects[0].edge_contact = true;
+    s.objects[0].friction = 0.3;
+    let ctx = gpu();
+    let mut g = GpuSim::new(&ctx, &s).unwrap();
+    g.set_fused(&ctx, true).unwrap();
+    assert!(g.runs_fused(0));
+    let mut worst = (0, 0);
+    for _ in 0..45 {
+        g.step_frame(&ctx).unwrap();
+        worst = worst_counts(worst, &g.read_states(&ctx).unwrap()[0].positions(), 5, 61);
+    }
+    g.destroy(&ctx);
+    assert_clean(&ctx);
+    println!("crossing edges at worst (all, through a layer): {worst:?}");
+    assert!(
+        worst.0 <= 15 && worst.1 == 0,
+        "edges through the strip's triangles (all, through a layer): {worst:?}"
+    );
+}
+
 /// A 6 x 12 cloth (the piling strip's material, 2 cm spacing) folded over its middle into two
 /// layers 8 mm apart (h = 1 cm, so they touch and bound each other's moves to 0.4 of that,
 /// 3.2 mm a substep) lying on a box that rises at 8 m/s (8.3 mm a substep), with edge contact:

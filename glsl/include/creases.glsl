@@ -64,6 +64,17 @@ uint ring_crease_masks(uint u, vec3 x) {
 
 // Of those masks, the one a search uses: while it builds the contact lists (`listing`), from
 // CREASE_LIST, else from CREASE_FROM.
-uint crease_mask(uint masks, bool listing) { return listing ? masks & 0x3Fu : masks >> 8u; }
+uint crease_mask(uint masks, bool listing) { return listing ? masks & 0x3Fu : (masks >> 8u) & 0x3Fu; }
+
+// The fused kernel's word of a particle's creases (self_pairs' creases_word): the masks of this
+// build, and in bits 16 to 21 the edges the contact lists hold pairs of, from CREASE_LIST at
+// their last build (`listing`: this build's; else kept from the word before, `previous`).
+uint listed_crease_word(uint masks, uint previous, bool listing) {
+    return masks | (listing ? (masks & 0x3Fu) << 16u : previous & 0x3F0000u);
+}
+// Whether an edge of the ring creased past CREASE_FROM (`masks` now) that the lists, as their
+// word says, hold no pairs of: the lists miss that edge's pairs, so they are rebuilt. (The
+// lists' skin bounds how far a particle moves, not how far its ring edges bend.)
+bool creased_past_lists(uint masks, uint word) { return ((masks >> 8u) & ~(word >> 16u) & 0x3Fu) != 0u; }
 
 #endif

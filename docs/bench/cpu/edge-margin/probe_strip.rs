@@ -37,12 +37,24 @@ fn probe() {
             let ctx = gpu();
             let mut g = msdsim::sim::gpu::GpuSim::new(&ctx, &s).unwrap();
             g.set_fused(&ctx, path == "fused").unwrap();
+            if std::env::var("LISTS").is_ok() {
+                g.force_contact_lists(Some(true));
+            }
             let (mut worst, mut far, mut last) = (0, 0, 0);
-            for _ in 0..45 {
+            for f in 0..45 {
                 g.step_frame(&ctx).unwrap();
                 let x = g.read_states(&ctx).unwrap()[0].positions();
                 last = segments_through(&x, &cloth_edges(cols, rows), &x, &cloth_triangles(cols, rows), true);
                 worst = worst.max(last);
+                if std::env::var("TRACE").is_ok() {
+                    let st = &g.read_states(&ctx).unwrap()[0];
+                    let vmax = st.velocities().iter().map(|v| v.length()).fold(0.0, f64::max);
+                    let low = x.iter().map(|p| p.y).fold(f64::MAX, f64::min);
+                    println!(
+                        "  frame {f} crossings {last} hist {:?} vmax {vmax:.3} lowest {low:.4}",
+                        far_crossings(&x, cols, rows)
+                    );
+                }
                 if last > 0 {
                     far = far.max(far_crossings(&x, cols, rows)[2..].iter().sum::<usize>());
                 }
