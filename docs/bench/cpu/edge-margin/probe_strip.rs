@@ -43,12 +43,12 @@ fn probe() {
             let (mut worst, mut far, mut last) = (0, 0, 0);
             for f in 0..45 {
                 g.step_frame(&ctx).unwrap();
-                let x = g.read_states(&ctx).unwrap()[0].positions();
+                let states = g.read_states(&ctx).unwrap();
+                let x = states[0].positions();
                 last = segments_through(&x, &cloth_edges(cols, rows), &x, &cloth_triangles(cols, rows), true);
                 worst = worst.max(last);
                 if std::env::var("TRACE").is_ok() {
-                    let st = &g.read_states(&ctx).unwrap()[0];
-                    let vmax = st.velocities().iter().map(|v| v.length()).fold(0.0, f64::max);
+                    let vmax = states[0].velocities().iter().map(|v| v.length()).fold(0.0, f64::max);
                     let low = x.iter().map(|p| p.y).fold(f64::MAX, f64::min);
                     println!(
                         "  frame {f} crossings {last} hist {:?} vmax {vmax:.3} lowest {low:.4}",
