@@ -59,6 +59,11 @@ layout(constant_id = 7) const uint PASS_SLOTS = 1u;  // slots whose physics one 
 layout(constant_id = 8) const uint HALO = 2u;        // largest index distance to a spring neighbour
 layout(constant_id = 9) const uint SOLVER = 0u;      // the integrator (METHOD_*, layout.glsl)
 layout(constant_id = 10) const uint LIST_MAX = 0u;   // contact list entries a particle (0: none)
+// VBD on an object whose displacements do not fit beside the bases (sim::gpu::FusedShape's
+// `compact`): during the solve px/py/pz hold the iterates p = x~ + dx and scratch the
+// displacements in half precision (8 bytes a particle, not 12), which only the dashpots read;
+// each thread keeps its own particles' displacements exact in registers.
+layout(constant_id = 11) const bool COMPACT = false;
 
 const uint THREADS = gl_WorkGroupSize.x;
 const uint MAX_SLOTS = 4u;  // particles per thread at most (FUSED_SLOTS on the host)
@@ -117,11 +122,18 @@ vec3 wvel(uint j) {
                 uintBitsToFloat(scratch[2u * WINDOW + w]));
 }
 
-// The displacement of particle j during an iterative method's solve (scratch[0 .. 3 CAP)).
+// The displacement of particle j during an iterative method's solve (scratch[0 .. 3 CAP);
+// COMPACT: scratch[0 .. 2 CAP), x and y in one word, z in the other).
 vec3 sdisp(uint j) {
+    if (COMPACT) return vec3(unpackHalf2x16(scratch[j]), unpackHalf2x16(scratch[CAP + j]).x);
     return vec3(uintBitsToFloat(scratch[j]), uintBitsToFloat(scratch[CAP + j]), uintBitsToFloat(scratch[2u * CAP + j]));
 }
 void set_sdisp(uint j, vec3 d) {
+    if (COMPACT) {
+        scratch[j] = packHalf2x16(d.xy);
+        scratch[CAP + j] = packHalf2x16(vec2(d.z, 0.0));
+        return;
+    }
     scratch[j] = floatBitsToUint(d.x);
     scratch[CAP + j] = floatBitsToUint(d.y);
     scratch[2u * CAP + j] = floatBitsToUint(d.z);
@@ -146,6 +158,8 @@ void listed_candidates(uvec2 cell, vec3 x, float reach, inout vec3 correction, i
 // Every method's iterates are displacements from the bases x~ in px/py/pz, so the positions'
 // rounding stays out of the solve (predict.comp says why).
 #define SD(j) sdisp(uint(j))
+// p_i - p_j for particle i at x~ + dx and neighbour j (displacement dj): COMPACT holds p_j.
+#define SPRING_DELTA(x, dx, j, dj) (COMPACT ? ((x) + (dx)) - spos(uint(j)) : ((x) - spos(uint(j))) + ((dx) - (dj)))
 #define SPIN(j) spinned(uint(j))
 // The implicit method's Hessian products: px/py/pz hold the iterates p, scratch the directions.
 #define PP(j) spos(uint(j))
@@ -357,7 +371,7 @@ void main() {
                 uint k = own[s];
                 lambda[s] = vec4[3](vec4(0.0), vec4(0.0), vec4(0.0));
                 if (k < n) {
-                    set_spos(k, x[s]);
+                    set_spos(k, COMPACT ? x[s] + dx[s] : x[s]);
                     set_sdisp(k, dx[s]);
                 }
             }
@@ -496,6 +510,7 @@ void main() {
                             spring_mask = masks[s];
                             dx[s] = vbd_particle(cell, x[s], dx[s], dy[s]);
                             set_sdisp(k, dx[s]);
+                            if (COMPACT) set_spos(k, x[s] + dx[s]);
                         }
                         barrier();  // the next colour reads this one's displacements
                     }

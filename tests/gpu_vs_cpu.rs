@@ -881,6 +881,34 @@ fn fused_iterative_methods_equal_the_per_stage_path() {
     }
 }
 
+/// VBD's compact layout (the iterates p in shared memory, the displacements as half floats
+/// for the dashpots; planned where the displacements do not fit beside the bases: here a
+/// shared memory of 2,884 bytes, which leaves the 13 x 9 cloth 300 words of scratch for its
+/// 117 particles) against the per-stage path, which keeps the bases and f32 displacements.
+/// The two differ by rounding alone: the neighbours' positions rounded to f32 (1.2e-7 m at this
+/// cloth's 1 m) in each spring and their displacements to half floats in each dashpot, over 240
+/// substeps; measured 6.0e-7 m at one and two slots. 2e-6 m allowed (the bound the other fused
+/// comparisons keep, 1e-6 m, doubled for the two roundings); reading a neighbour's
+/// displacement as its position (the full layout's p_i - p_j in the compact one) parts the
+/// paths by 0.53 m.
+#[test]
+fn vbd_compact_layout_matches_the_per_stage_path() {
+    const TOLERANCE: f64 = 2e-6;
+    let s = integrator_scene(Integrator::Vbd);
+    for slots in [1, 2] {
+        let limit = FusedLimits::new(2884, slots);
+        let cloth_shape = FusedShape::plan(&s.objects[0], &s, limit).unwrap();
+        assert!(cloth_shape.compact, "{cloth_shape:?}");
+        assert!(!FusedShape::plan(&s.objects[1], &s, limit).unwrap().compact, "the rope's fit");
+        let worst = fused_against_per_stage(&s, limit);
+        println!("VBD compact, {slots} slots, vs per stage: {worst:e} m");
+        assert!(
+            worst <= TOLERANCE,
+            "{slots} slots: the compact layout differs from the per-stage path by {worst} m"
+        );
+    }
+}
+
 /// Objects of more particles than threads (two per thread), with the dashpots' velocity
 /// window staged in passes (the layout planned for 24 KiB of shared memory, where a 44 x 25
 /// cloth's window does not fit in one pass), and a rope of 1,100 nodes: equal to the per-stage

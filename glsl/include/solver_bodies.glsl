@@ -4,6 +4,7 @@
 // displacement dx (p - x) reads its neighbour j through SX(j) (j's start position), SD(j) (its
 // displacement) and SPIN(j) (pinned), which each includer defines. The start is the BDF2 base
 // x~ (predict_body.glsl) and the step solve_dt() (bindings.glsl).
+// SPRING_DELTA(x, dx, j, dj) may give p_i - p_j another way (the fused kernel's COMPACT layout).
 // Include after bindings.glsl and springs.glsl.
 // Each body repeats the neighbour lookup at the top of its spring loop on purpose: a shared
 // helper (returning j, its displacement and p_i - p_j through out parameters) made the fused
@@ -20,6 +21,9 @@
 // i by w_i n dlambda and j by -w_j n dlambda (sim::cpu::integrators::xpbd).
 #ifndef XPBD_OBJ
 #define XPBD_OBJ obj
+#endif
+#ifndef SPRING_DELTA
+#define SPRING_DELTA(x, dx, j, dj) (((x) - SX(j)) + ((dx) - (dj)))
 #endif
 float xpbd_spring(int slot, vec3 xi, vec3 di, vec3 xj, vec3 dj, bool pin_i, bool pin_j, float lam, out vec3 normal) {
     vec4 c = XPBD_OBJ.xpbd[slot >> 2];  // alpha~, gamma, scale (both ends free, one pinned)
@@ -97,7 +101,7 @@ vec3 newton_particle(uvec2 cell, vec3 x, vec3 dx, vec3 dy, out Sym3 hessian) {
         int j = SPRING_NEIGHBOUR(cell, s);
         if (j < 0) continue;
         vec3 dj = SD(j);
-        vec3 delta = (x - SX(j)) + (dx - dj);  // p_i - p_j
+        vec3 delta = SPRING_DELTA(x, dx, j, dj);  // p_i - p_j
         float dd = dot(delta, delta);
         if (dd <= 0.0) continue;
         float inv = inversesqrt(dd);

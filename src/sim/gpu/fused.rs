@@ -8,14 +8,16 @@
 //! object takes that path when the layout fits the device's shared memory per workgroup (48 KiB
 //! on NVIDIA: a 50 x 50 cloth with dashpots and the hash fits; 32 KiB on lavapipe); others run
 //! a dispatch per stage. The iterative integrators also keep their displacements there (in the
-//! scratch area, 12 bytes a particle, between the physics and the constraints).
+//! scratch area, 12 bytes a particle, between the physics and the constraints); VBD, where
+//! those do not fit, keeps the iterates p in place of the bases and the displacements in half
+//! precision, 8 bytes a particle (`FusedShape::compact`).
 
 use super::object::GpuObject;
 use crate::sim::gpu_types::{
     FEATURE_BENDING, FEATURE_DAMPING, FEATURE_SELF, FEATURE_SHEAR, FEATURE_STRETCH, FEATURE_STRUCTURAL,
     FEATURE_WIND,
 };
-use crate::sim::integrator::Scheme;
+use crate::sim::integrator::{Scheme, Sweep};
 use crate::sim::model::{Integrator, ObjectModel, SelfCollisionMethod, SimModel};
 
 /// Particles one thread of the fused kernel owns at most (`MAX_SLOTS` in the shader).
@@ -31,13 +33,32 @@ pub const FUSED_DEFAULT_SLOTS: u32 = 1;
 /// 0.670 ms per frame; a 45 x 45 cloth with self-collision 0.276 against 0.506).
 pub const FUSED_HASHED_SLOTS: u32 = FUSED_SLOTS;
 
+/// Particles per thread the fused path takes by default for an object that an iterative method
+/// sweeps as `sweep` (without the hash). Per stage, each pass of an iteration is a dispatch:
+/// XPBD's 12 spring classes, VBD's 5 colours and the implicit method's CG passes run fused
+/// wherever they fit (the H200, 10 substeps x 10 iterations, ms a frame per stage against fused
+/// at two particles a thread: a 40 x 40 cloth XPBD 4.41 against 1.56, VBD 3.10 against 1.41,
+/// the implicit method 1.41 against 1.20; docs/bench/h200/newton-rows/). XPBD by Jacobi makes
+/// one pass over all particles an iteration, which one SM issues more slowly than the
+/// per-stage dispatches spread over many (0.71 against 0.86): it takes the default.
+fn solver_slots(sweep: Sweep) -> u32 {
+    match sweep {
+        Sweep::SpringClasses | Sweep::VertexColours | Sweep::NewtonCg => FUSED_SLOTS,
+        Sweep::Jacobi => FUSED_DEFAULT_SLOTS,
+    }
+}
+
 /// What the fused layouts are planned for: shared memory per workgroup [bytes] and particles
-/// per thread at most (for objects that self-collide through the hash: `hashed_slots`).
+/// per thread at most (for objects that self-collide through the hash: `hashed_slots`; that an
+/// iterative method solves: `solver_slots`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct FusedLimits {
     pub shared_bytes: u32,
     pub slots: u32,
     pub hashed_slots: u32,
+    /// ... for objects an iterative method solves without the hash (`None`: the method's own,
+    /// `solver_slots`).
+    pub solver_slots: Option<u32>,
     /// Substeps one dispatch of the fused kernel runs at most; a frame takes as many
     /// dispatches as it needs (u32::MAX: one).
     pub substeps_per_dispatch: u32,
@@ -61,15 +82,26 @@ const LIMITED_EDGE_PAIR_SUBSTEPS_PER_DISPATCH: u32 = 1;
 impl FusedLimits {
     /// `slots` particles per thread at most for every object.
     pub fn new(shared_bytes: u32, slots: u32) -> Self {
-        Self { shared_bytes, slots, hashed_slots: slots, substeps_per_dispatch: u32::MAX }
+        Self {
+            shared_bytes,
+            slots,
+            hashed_slots: slots,
+            solver_slots: Some(slots),
+            substeps_per_dispatch: u32::MAX,
+        }
     }
 
-    /// The device's shared memory, `FUSED_DEFAULT_SLOTS` and `FUSED_HASHED_SLOTS`.
+    /// The device's shared memory, `FUSED_DEFAULT_SLOTS` and `FUSED_HASHED_SLOTS`; each
+    /// iterative method's `solver_slots` except on a CPU driver, where one workgroup runs on
+    /// one core (lavapipe, two cores: VBD on a 40 x 40 cloth, 10 iterations, 180 ms a frame
+    /// per stage against 218 fused at two particles a thread).
     pub fn for_device(info: &crate::vk::DeviceInfo) -> Self {
+        let cpu = info.kind == crate::vk::DeviceKind::Cpu;
         Self {
             shared_bytes: info.max_shared_memory,
             slots: FUSED_DEFAULT_SLOTS,
             hashed_slots: FUSED_HASHED_SLOTS,
+            solver_slots: cpu.then_some(FUSED_DEFAULT_SLOTS),
             substeps_per_dispatch: u32::MAX,
         }
         .within(info)
@@ -78,7 +110,7 @@ impl FusedLimits {
     /// These limits with `slots` particles per thread at most for every object (`None`: as
     /// they are).
     pub fn with_slots(self, slots: Option<u32>) -> Self {
-        slots.map_or(self, |s| Self { slots: s, hashed_slots: s, ..self })
+        slots.map_or(self, |s| Self { slots: s, hashed_slots: s, solver_slots: Some(s), ..self })
     }
 
     /// These limits within the device's shared memory, its loop limit and the kernel's
@@ -89,6 +121,7 @@ impl FusedLimits {
             shared_bytes: self.shared_bytes.min(info.max_shared_memory),
             slots: self.slots.min(FUSED_SLOTS),
             hashed_slots: self.hashed_slots.min(FUSED_SLOTS),
+            solver_slots: self.solver_slots.map(|s| s.min(FUSED_SLOTS)),
             substeps_per_dispatch: self.substeps_per_dispatch.min(device_substeps).max(1),
         }
     }
@@ -192,6 +225,16 @@ pub struct FusedShape {
     /// Words of the implicit method's dot products (`workgroup_sum`: two sets of a slot for
     /// every four threads); 2 for the other methods (their placeholder).
     pub reduce: u32,
+    /// VBD's compact solve (`COMPACT` in the kernel), taken only where the displacements do
+    /// not fit beside the bases: shared memory holds the iterates p (the neighbours' springs
+    /// read p_i - p_j from them, as the explicit methods read positions) and the displacements
+    /// as half floats (2 words a particle), which only the dashpots read (b/h n.(dx_i - dx_j):
+    /// the neighbour's displacement rounded to 2^-11 of itself); each thread's own
+    /// displacements stay f32 in registers, so a particle's velocity (dx / h) carries no
+    /// rounding of its position. The other methods move a neighbour's displacement (XPBD's
+    /// classes), read it at full precision in their springs (XPBD by Jacobi) or keep their
+    /// directions there (the implicit method): they run per stage instead.
+    pub compact: bool,
 }
 
 impl FusedShape {
@@ -201,7 +244,11 @@ impl FusedShape {
         let solver = model.integrator.solver();
         let n = o.particle_count() as u32;
         let hashed = o.self_distance.is_some() && model.self_collision == SelfCollisionMethod::Hash;
-        let most = if hashed { limits.hashed_slots } else { limits.slots };
+        let most = match solver {
+            _ if hashed => limits.hashed_slots,
+            Some(s) => limits.solver_slots.unwrap_or(solver_slots(s.sweep)),
+            None => limits.slots,
+        };
         // Objects that touch each other meet every substep: they run per stage.
         if n == 0 || n > most.min(FUSED_SLOTS) * MAX_THREADS || model.inter_object_contact() {
             return None;
@@ -216,10 +263,12 @@ impl FusedShape {
         // The physics reads the neighbours' velocities (the dashpots; the iterative methods
         // treat them in their solve).
         let damped = o.damping != 0.0 && solver.is_none();
-        let displacements = if solver.is_some() { 3 * n } else { 0 };
-        if displacements > words {
-            return None;
-        }
+        let (displacements, compact) = match solver {
+            None => (0, false),
+            Some(_) if 3 * n <= words => (3 * n, false),
+            Some(_) if model.integrator == Integrator::Vbd && 2 * n <= words => (2 * n, true),
+            Some(_) => return None,
+        };
         let window = |q: u32| 3 * (threads * q + 2 * halo);
         let pass_slots = if damped { (1..=slots).rev().find(|&q| window(q) <= words)? } else { slots };
         let buckets = if hashed {
@@ -240,7 +289,18 @@ impl FusedShape {
         .unwrap_or(1);
         let one_iteration = solver.is_some() && model.iterations == 1;
         let list = if hashed { SELF_LIST_ENTRIES } else { 0 };
-        Some(Self { threads, particles: n, scratch, buckets, pass_slots, halo, one_iteration, list, reduce })
+        Some(Self {
+            threads,
+            particles: n,
+            scratch,
+            buckets,
+            pass_slots,
+            halo,
+            one_iteration,
+            list,
+            reduce,
+            compact,
+        })
     }
 
     /// Shared memory the kernel declares [bytes].
@@ -258,7 +318,7 @@ impl FusedShape {
         }
     }
 
-    /// Specialization constants 0..=10 (index = id) for the integrator and the features.
+    /// Specialization constants 0..=11 (index = id) for the integrator and the features.
     pub fn specialization(&self, method: Integrator, features: u32) -> Vec<u32> {
         let verlet = method.method().scheme == Scheme::Explicit { verlet: true };
         vec![
@@ -273,6 +333,7 @@ impl FusedShape {
             self.halo,
             method as u32,
             self.list,
+            self.compact as u32,
         ]
     }
 }
@@ -396,6 +457,54 @@ mod tests {
         let o = &mut m.objects[0];
         o.dims = [65, 64];
         assert_eq!(FusedShape::plan(&m.objects[0], &m, FusedLimits::new(u32::MAX, FUSED_SLOTS)), None);
+    }
+
+    /// Newton's hanging cloth (65 x 33 particles, issue 31's rows) at NVIDIA's 48 KiB: the bases
+    /// and f32 displacements (24 bytes a particle) do not fit, VBD's compact solve (20) does,
+    /// with the hash too; the other iterative methods run it per stage. A 40 x 40 cloth takes
+    /// the full layout at two particles a thread by default, except under XPBD by Jacobi,
+    /// which keeps one (and so runs per stage).
+    #[test]
+    fn vbd_fits_newtons_cloth_compact_and_iterative_methods_take_more_slots() {
+        let mut m = curtain();
+        m.colliders.clear();
+        m.objects[0].dims = [65, 33];
+        m.objects[0].self_distance = None;
+        let default = FusedLimits {
+            hashed_slots: FUSED_HASHED_SLOTS,
+            solver_slots: None,
+            ..FusedLimits::new(48 * 1024, FUSED_DEFAULT_SLOTS)
+        };
+        for method in Integrator::ALL.into_iter().filter(|m| m.iterative()) {
+            m.integrator = method;
+            let shape = FusedShape::plan(&m.objects[0], &m, default);
+            if method == Integrator::Vbd {
+                let shape = shape.expect("VBD fits compact");
+                assert!(shape.compact && shape.scratch == 2 * shape.particles, "{shape:?}");
+                assert!(shape.shared_bytes() <= 48 * 1024 - SHARED_MARGIN, "{shape:?}");
+            } else {
+                assert_eq!(shape, None, "{method:?}");
+            }
+        }
+        m.integrator = Integrator::Vbd;
+        m.objects[0].self_distance = Some(0.05);
+        let hashed = FusedShape::plan(&m.objects[0], &m, default).expect("with the hash");
+        assert!(hashed.compact && hashed.buckets >= MIN_BUCKETS && hashed.list > 0, "{hashed:?}");
+        assert!(hashed.shared_bytes() <= 48 * 1024 - SHARED_MARGIN, "{hashed:?}");
+        m.objects[0].self_distance = None;
+        m.objects[0].dims = [40, 40];
+        for method in Integrator::ALL.into_iter().filter(|m| m.iterative()) {
+            m.integrator = method;
+            let shape = FusedShape::plan(&m.objects[0], &m, default);
+            if method == Integrator::XpbdJacobi {
+                assert_eq!(shape, None);
+            } else {
+                let shape = shape.expect("fits");
+                assert!(!shape.compact && shape.threads == 800, "{method:?}: {shape:?}");
+            }
+        }
+        let forced = FusedShape::plan(&m.objects[0], &m, default.with_slots(Some(2)));
+        assert!(forced.is_some(), "--fused-slots 2 fuses XPBD by Jacobi too");
     }
 
     /// One iteration of an iterative method is a layout of its own (another pipeline; the
