@@ -123,15 +123,18 @@ vec3 wvel(uint j) {
 }
 
 // The displacement of particle j during an iterative method's solve (scratch[0 .. 3 CAP);
-// COMPACT: scratch[0 .. 2 CAP), x and y in one word, z in the other).
+// COMPACT: scratch[0 .. 2 CAP), x and y in one word, z in the other, as half floats of dx / h,
+// a velocity, which keeps them in half's normal range, 6.1e-5 and up, where a displacement
+// would fall below it and may be flushed to zero).
 vec3 sdisp(uint j) {
-    if (COMPACT) return vec3(unpackHalf2x16(scratch[j]), unpackHalf2x16(scratch[CAP + j]).x);
+    if (COMPACT) return vec3(unpackHalf2x16(scratch[j]), unpackHalf2x16(scratch[CAP + j]).x) * solve_dt();
     return vec3(uintBitsToFloat(scratch[j]), uintBitsToFloat(scratch[CAP + j]), uintBitsToFloat(scratch[2u * CAP + j]));
 }
 void set_sdisp(uint j, vec3 d) {
     if (COMPACT) {
-        scratch[j] = packHalf2x16(d.xy);
-        scratch[CAP + j] = packHalf2x16(vec2(d.z, 0.0));
+        vec3 u = d * (1.0 / solve_dt());
+        scratch[j] = packHalf2x16(u.xy);
+        scratch[CAP + j] = packHalf2x16(vec2(u.z, 0.0));
         return;
     }
     scratch[j] = floatBitsToUint(d.x);

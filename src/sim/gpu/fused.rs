@@ -228,8 +228,8 @@ pub struct FusedShape {
     /// VBD's compact solve (`COMPACT` in the kernel), taken only where the displacements do
     /// not fit beside the bases: shared memory holds the iterates p (the neighbours' springs
     /// read p_i - p_j from them, as the explicit methods read positions) and the displacements
-    /// as half floats (2 words a particle), which only the dashpots read (b/h n.(dx_i - dx_j):
-    /// the neighbour's displacement rounded to 2^-11 of itself); each thread's own
+    /// as half floats of dx / h (2 words a particle), which only the dashpots read
+    /// (b/h n.(dx_i - dx_j): the neighbour's displacement rounded to 2^-11 of itself); each thread's own
     /// displacements stay f32 in registers, so a particle's velocity (dx / h) carries no
     /// rounding of its position. The other methods move a neighbour's displacement (XPBD's
     /// classes), read it at full precision in their springs (XPBD by Jacobi) or keep their
