@@ -30,7 +30,7 @@
 // The iterative integrators (SOLVER) replace the physics step with the BDF2 start (each
 // particle's history in registers, from and back to `history`), then their iterations: the
 // displacements p - x~ from the base x~ live in registers and, for the neighbours, in scratch
-// (px/py/pz keep the bases); XPBD visits the spring classes in turn (the thread owning a
+// (px/py/pz keep the bases; COMPACT: the iterates, below); XPBD visits the spring classes in turn (the thread owning a
 // spring's first node moves both ends), VBD the vertex colours, a barrier() after each class
 // or colour; XPBD by Jacobi computes every new displacement, then a barrier(), the writes, and
 // a barrier() (at one iteration nothing is written back); the implicit method's conjugate
@@ -159,7 +159,8 @@ void listed_candidates(uvec2 cell, vec3 x, float reach, inout vec3 correction, i
 #include "predict_body.glsl"
 #define SX(j) spos(uint(j))
 // Every method's iterates are displacements from the bases x~ in px/py/pz, so the positions'
-// rounding stays out of the solve (predict.comp says why).
+// rounding stays out of the solve (predict.comp says why); COMPACT holds the iterates there and
+// each thread its own displacements, so that rounding stays out of the velocities.
 #define SD(j) sdisp(uint(j))
 // p_i - p_j for particle i at x~ + dx and neighbour j (displacement dj): COMPACT holds p_j.
 #define SPRING_DELTA(x, dx, j, dj) (COMPACT ? ((x) + (dx)) - spos(uint(j)) : ((x) - spos(uint(j))) + ((dx) - (dj)))
@@ -366,7 +367,7 @@ void main() {
 
         if (ITERATIVE) {
             // The solve, from where the iterate starts (dx: the prediction dy, or VBD's
-            // adaptive start); px/py/pz hold the bases x~.
+            // adaptive start); px/py/pz hold the bases x~ (COMPACT: the iterates x~ + dx).
             // XPBD: the multipliers of each particle's forward springs (by Jacobi: of its 12)
             vec4 lambda[MAX_SLOTS][3];
             [[unroll]] for (uint s = 0u; s < MAX_SLOTS; ++s) {

@@ -201,15 +201,15 @@ impl ObjectPlan {
     }
 }
 
-/// The specialization of `fused.comp` for one object (`specialization`: ids 0, 4..=8 and 10 from
-/// the layout; 1, 2, 3 and 9 from the integrator, its iterations and the features).
+/// The specialization of `fused.comp` for one object (`specialization`: ids 0, 4..=8, 10 and 11
+/// from the layout; 1, 2, 3 and 9 from the integrator, its iterations and the features).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub struct FusedShape {
     /// Workgroup size: a multiple of 32, at most 1024.
     pub threads: u32,
     pub particles: u32,
     /// Words of scratch: the largest of the velocity window, the hash and an iterative method's
-    /// displacements (3 per particle).
+    /// displacements (3 per particle; 2 when `compact`).
     pub scratch: u32,
     /// Shared hash buckets (a power of two; 1 without the hash).
     pub buckets: u32,
