@@ -898,16 +898,29 @@ fn vbd_compact_layout_matches_the_per_stage_path() {
     let s = integrator_scene(Integrator::Vbd);
     for slots in [1, 2] {
         let limit = FusedLimits::new(2884, slots);
-        let cloth_shape = FusedShape::plan(&s.objects[0], &s, limit).unwrap();
-        assert!(cloth_shape.compact, "{cloth_shape:?}");
         assert!(!FusedShape::plan(&s.objects[1], &s, limit).unwrap().compact, "the rope's fit");
-        let worst = fused_against_per_stage(&s, limit);
-        println!("VBD compact, {slots} slots, vs per stage: {worst:e} m");
-        assert!(
-            worst <= TOLERANCE,
-            "{slots} slots: the compact layout differs from the per-stage path by {worst} m"
-        );
+        planned_against_per_stage(&s, limit, (None, true), TOLERANCE, &format!("VBD compact, {slots} slots"));
     }
+}
+
+/// Plans the first object of `model` within `limits`, asserts its layout (threads where given,
+/// compact or not), and asserts that the fused path stays within `tolerance` m of the per-stage
+/// path (fused_against_per_stage).
+fn planned_against_per_stage(
+    model: &SimModel,
+    limits: FusedLimits,
+    (threads, compact): (Option<u32>, bool),
+    tolerance: f64,
+    label: &str,
+) {
+    let shape = FusedShape::plan(&model.objects[0], model, limits).unwrap();
+    assert_eq!(shape.compact, compact, "{label}: {shape:?}");
+    if let Some(threads) = threads {
+        assert_eq!(shape.threads, threads, "{label}: {shape:?}");
+    }
+    let worst = fused_against_per_stage(model, limits);
+    println!("{label}: fused vs per stage {worst:e} m");
+    assert!(worst <= tolerance, "{label}: the fused path differs from the per-stage path by {worst} m");
 }
 
 /// The iterative methods at two particles a thread, as a GPU runs objects of 1,025 to about
@@ -932,19 +945,11 @@ fn iterative_methods_at_two_particles_a_thread_match_the_per_stage_path() {
     let two = FusedLimits::new(u32::MAX, 2);
     for method in iterative() {
         s.integrator = method;
-        let shape = FusedShape::plan(&s.objects[0], &s, two).unwrap();
-        assert_eq!((shape.threads, shape.compact), (544, false), "{method:?}: {shape:?}");
-        let worst = fused_against_per_stage(&s, two);
-        println!("{method:?}, two slots: fused vs per stage {worst:e} m");
-        assert!(worst <= 1e-6, "{method:?}, two slots: the fused path differs by {worst} m");
+        planned_against_per_stage(&s, two, (Some(544), false), 1e-6, &format!("{method:?}, two slots"));
     }
     s.integrator = Integrator::Vbd;
     let small = FusedLimits::new(24 * 1024, 2);
-    let shape = FusedShape::plan(&s.objects[0], &s, small).unwrap();
-    assert_eq!((shape.threads, shape.compact), (544, true), "{shape:?}");
-    let worst = fused_against_per_stage(&s, small);
-    println!("VBD compact, two slots: fused vs per stage {worst:e} m");
-    assert!(worst <= 1e-5, "VBD compact, two slots: the fused path differs by {worst} m");
+    planned_against_per_stage(&s, small, (Some(544), true), 1e-5, "VBD compact, two slots");
 }
 
 /// Objects of more particles than threads (two per thread), with the dashpots' velocity

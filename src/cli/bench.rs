@@ -36,9 +36,9 @@ pub struct BenchArgs {
     #[arg(long, conflicts_with = "fused_slots")]
     pub per_stage: bool,
     /// Fuse objects of up to this many particles per thread of a 1024-thread workgroup (1 to 4;
-    /// default 1, and 4 for objects that self-collide through the hash or, on a GPU, that XPBD,
-    /// VBD or the implicit method solve, see docs/PERFORMANCE.md), where they fit the shared
-    /// memory.
+    /// default 1, and 4 for objects that self-collide through the hash or, on a GPU, that `xpbd`
+    /// (spring classes), VBD or the implicit method solve; `xpbd_jacobi` keeps 1, see
+    /// docs/PERFORMANCE.md), where they fit the shared memory.
     #[arg(long, value_parser = clap::value_parser!(u32).range(1..=4))]
     pub fused_slots: Option<u32>,
     /// Integrator of every case (the paper's by default).
