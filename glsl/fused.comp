@@ -168,6 +168,7 @@ void listed_candidates(uvec2 cell, vec3 x, float reach, inout vec3 correction, i
 // The implicit method's Hessian products: px/py/pz hold the iterates p, scratch the directions.
 #define PP(j) spos(uint(j))
 #define DD(j) sdisp(uint(j))
+#define SELECT_SPRINGS true
 #include "solver_bodies.glsl"
 // The implicit method's dot products (a quarter of the threads: subgroups of 4 lanes or more).
 #define REDUCE_T float

@@ -10,8 +10,19 @@
 // helper (returning j, its displacement and p_i - p_j through out parameters) made the fused
 // methods 10-14% slower on the H100 (XPBD 0.258 -> 0.293 ms per frame on a 32 x 32 cloth,
 // measured A/B, two runs each).
+// SELECT_SPRINGS (the fused kernel defines it true): the Newton step's and the Hessian
+// product's spring loops skip a spring with no other end or with coincident ends by selects,
+// not branches: it reads the particle itself and takes no direction (inv = 0), so it adds
+// exactly zero. One workgroup then overlaps each spring's loads and square root with the
+// next's, where a branch between them made a visit's 12 springs run one after the other; per
+// stage, whose many workgroups hide that latency, the branches are faster
+// (docs/PERFORMANCE.md, "Branch-free spring loops").
 #ifndef MSD_SOLVER_BODIES_GLSL
 #define MSD_SOLVER_BODIES_GLSL
+#include "features.glsl"
+#ifndef SELECT_SPRINGS
+#define SELECT_SPRINGS false
+#endif
 
 // XPBD, one spring (slot `slot` of SPRINGS, springs.glsl) from particle i (start
 // position xi, displacement di, pinned pin_i) to particle j, with multiplier lam: returns
@@ -88,27 +99,30 @@ struct Sym3 {
 vec3 newton_particle(uvec2 cell, vec3 x, vec3 dx, vec3 dy, out Sym3 hessian) {
     float h = solve_dt();
     float inertia = obj.mass / (h * h);
-    float b = obj.stiffness.w;
+    float b = has(F_DAMPING) ? obj.stiffness.w : 0.0;
     float damp = b / h;  // a dashpot's stiffness on the displacement
     vec3 force = (dy - dx) * inertia;
     float iso = inertia;
     vec3 diag = vec3(0.0);
     vec3 off = vec3(0.0);
+    int self_index = int(cell.x + cell.y * obj.dims.x);
     [[unroll]] for (int s = 0; s < 12; ++s) {
         ivec3 spring = SPRINGS[s];
+        if (!has(1u << spring.z)) continue;  // F_STRUCTURAL, F_SHEAR, F_BENDING: no stiffness, no dashpot
         float k = obj.stiffness[spring.z];
-        if (k == 0.0 && b == 0.0) continue;
-        int j = SPRING_NEIGHBOUR(cell, s);
-        if (j < 0) continue;
+        int j0 = SPRING_NEIGHBOUR(cell, s);
+        if (!SELECT_SPRINGS && j0 < 0) continue;
+        int j = j0 < 0 ? self_index : j0;
         vec3 dj = SD(j);
         vec3 delta = SPRING_DELTA(x, dx, j, dj);  // p_i - p_j
         float dd = dot(delta, delta);
-        if (dd <= 0.0) continue;
-        float inv = inversesqrt(dd);
+        if (!SELECT_SPRINGS && dd <= 0.0) continue;
+        bool on = j0 >= 0 && dd > 0.0;
+        float inv = on ? inversesqrt(dd) : 0.0;
         float d = dd * inv;
         vec3 n = delta * inv;
         float rest = rest_length(s);
-        float kt = k * max(1.0 - rest * inv, 0.0);
+        float kt = on ? k * max(1.0 - rest * inv, 0.0) : 0.0;
         force -= n * (k * (d - rest) + damp * dot(n, dx - dj));
         float c = k + damp - kt;
         iso += kt;
@@ -160,20 +174,23 @@ vec3 vbd_particle(uvec2 cell, vec3 x, vec3 dx, vec3 dy) {
 #if defined(PP) && defined(DD)
 vec3 hessian_product(uvec2 cell, vec3 pi, vec3 di) {
     float h = solve_dt();
-    float damp = obj.stiffness.w / h;
+    float damp = has(F_DAMPING) ? obj.stiffness.w / h : 0.0;
     vec3 q = di * (obj.mass / (h * h));
+    int self_index = int(cell.x + cell.y * obj.dims.x);
     [[unroll]] for (int s = 0; s < 12; ++s) {
         ivec3 spring = SPRINGS[s];
+        if (!has(1u << spring.z)) continue;  // (as newton_particle)
         float k = obj.stiffness[spring.z];
-        if (k == 0.0 && damp == 0.0) continue;
-        int j = SPRING_NEIGHBOUR(cell, s);
-        if (j < 0) continue;
+        int j0 = SPRING_NEIGHBOUR(cell, s);
+        if (!SELECT_SPRINGS && j0 < 0) continue;
+        int j = j0 < 0 ? self_index : j0;
         vec3 delta = pi - PP(j);
         float dd = dot(delta, delta);
-        if (dd <= 0.0) continue;
-        float inv = inversesqrt(dd);
+        if (!SELECT_SPRINGS && dd <= 0.0) continue;
+        bool on = j0 >= 0 && dd > 0.0;
+        float inv = on ? inversesqrt(dd) : 0.0;
         vec3 n = delta * inv;
-        float kt = k * max(1.0 - rest_length(s) * inv, 0.0);
+        float kt = on ? k * max(1.0 - rest_length(s) * inv, 0.0) : 0.0;
         vec3 e = di - DD(j);
         q += n * ((k + damp - kt) * dot(n, e)) + kt * e;
     }
