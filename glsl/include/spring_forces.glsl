@@ -14,11 +14,21 @@
 #define NVEL(j) IN(j).vel.xyz
 #endif
 
+// Per stage (STATE_FUSED undefined) the loop skips a spring with no other end or with
+// coincident ends by selects, not branches: it reads the particle itself and takes no
+// direction, adding exactly zero. Measured faster there (the 1024 x 1024 cloth's physics
+// 0.752 -> 0.683 ms a frame), and slower fused (the curtain +2 to 4%), whose kernel keeps the
+// branches; solver_bodies.glsl's SELECT_SPRINGS is the same choice the other way round
+// (docs/PERFORMANCE.md, "Branch-free spring loops").
 void add_spring_forces(uvec2 cell, vec3 x, vec3 v, float drift, inout vec3 force) {
+#ifndef STATE_FUSED
+    int self_index = int(cell.x + cell.y * obj.dims.x);
+#endif
     [[unroll]] for (int s = 0; s < 12; ++s) {
         ivec3 spring = SPRINGS[s];
         if (!has(1u << spring.z)) continue;  // F_STRUCTURAL, F_SHEAR, F_BENDING
         float k = obj.stiffness[spring.z];
+#ifdef STATE_FUSED
         if (k == 0.0 && !(has(F_DAMPING) && obj.stiffness.w != 0.0)) continue;
         int j = SPRING_NEIGHBOUR(cell, s);
         if (j < 0) continue;
@@ -26,6 +36,14 @@ void add_spring_forces(uvec2 cell, vec3 x, vec3 v, float drift, inout vec3 force
         float d = length(to_j);
         if (d <= 0.0) continue;
         vec3 dir = to_j / d;
+#else
+        int j0 = SPRING_NEIGHBOUR(cell, s);
+        int j = j0 < 0 ? self_index : j0;
+        vec3 to_j = NPOS(j) - x;
+        float d = length(to_j);
+        bool on = j0 >= 0 && d > 0.0;
+        vec3 dir = on ? to_j / d : vec3(0.0);
+#endif
         float rest = rest_length(s);
         float f = k * (d - rest);  // Hooke's law
         if (has(F_DAMPING)) f += obj.stiffness.w * dot(NVEL(j) - v, dir);  // plus a dashpot along the spring
