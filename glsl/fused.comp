@@ -43,6 +43,7 @@
 #define OBJ_COPY
 #define XPBD_OBJ obj_buffer
 #include "bindings.glsl"
+#include "features.glsl"
 #define SPRING_NEIGHBOUR(cell, s) (!SPRING_MASKS ? neighbour(ivec2(cell), SPRINGS[s].xy, obj.dims) : \
     ((spring_mask >> uint(s)) & 1u) != 0u ? int((cell).x + (cell).y * obj.dims.x) + SPRINGS[s].x + SPRINGS[s].y * int(obj.dims.x) : -1)
 #include "springs.glsl"
@@ -125,12 +126,15 @@ vec3 wvel(uint j) {
 // The displacement of particle j during an iterative method's solve (scratch[0 .. 3 CAP);
 // COMPACT: scratch[0 .. 2 CAP), x and y in one word, z in the other, as half floats of dx / h,
 // a velocity, which keeps them in half's normal range, 6.1e-5 and up, where a displacement
-// would fall below it and may be flushed to zero).
+// would fall below it and may be flushed to zero). Only the dashpots read them there, so
+// without dashpots COMPACT keeps none (zero; FusedShape::plan gives them no scratch).
 vec3 sdisp(uint j) {
+    if (COMPACT && !has(F_DAMPING)) return vec3(0.0);
     if (COMPACT) return vec3(unpackHalf2x16(scratch[j]), unpackHalf2x16(scratch[CAP + j]).x) * solve_dt();
     return vec3(uintBitsToFloat(scratch[j]), uintBitsToFloat(scratch[CAP + j]), uintBitsToFloat(scratch[2u * CAP + j]));
 }
 void set_sdisp(uint j, vec3 d) {
+    if (COMPACT && !has(F_DAMPING)) return;
     if (COMPACT) {
         vec3 u = d * (1.0 / solve_dt());
         scratch[j] = packHalf2x16(u.xy);

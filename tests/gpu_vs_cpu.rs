@@ -901,6 +901,17 @@ fn vbd_compact_layout_matches_the_per_stage_path() {
         assert!(!FusedShape::plan(&s.objects[1], &s, limit).unwrap().compact, "the rope's fit");
         planned_against_per_stage(&s, limit, (None, true), TOLERANCE, &format!("VBD compact, {slots} slots"));
     }
+    // Without the cloth's dashpots the compact layout keeps no displacements (FEATURES has
+    // no F_DAMPING: sdisp reads zero and set_sdisp writes nothing), so it fits 1,800 bytes,
+    // where the one with dashpots (936 more) does not. The neighbours' positions are still
+    // rounded to f32 in each spring: measured 9.7e-7 m, TOLERANCE allowed as with dashpots.
+    let mut bare = s.clone();
+    bare.objects[0].damping = 0.0;
+    let limit = FusedLimits::new(1800, 1);
+    assert_eq!(FusedShape::plan(&s.objects[0], &s, limit), None, "with dashpots");
+    let shape = FusedShape::plan(&bare.objects[0], &bare, limit).unwrap();
+    assert_eq!(shape.scratch, 1, "{shape:?}");
+    planned_against_per_stage(&bare, limit, (None, true), TOLERANCE, "VBD compact without dashpots");
 }
 
 /// Plans the first object of `model` within `limits`, asserts its layout (threads where given,

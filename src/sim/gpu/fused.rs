@@ -10,7 +10,7 @@
 //! a dispatch per stage. The iterative integrators also keep their displacements there (in the
 //! scratch area, 12 bytes a particle, between the physics and the constraints); VBD, where
 //! those do not fit, keeps the iterates p in place of the bases and the displacements in half
-//! precision, 8 bytes a particle (`FusedShape::compact`).
+//! precision, 8 bytes a particle, none without dashpots (`FusedShape::compact`).
 
 use super::object::GpuObject;
 use crate::sim::gpu_types::{
@@ -209,7 +209,7 @@ pub struct FusedShape {
     pub threads: u32,
     pub particles: u32,
     /// Words of scratch: the largest of the velocity window, the hash and an iterative method's
-    /// displacements (3 per particle; 2 when `compact`).
+    /// displacements (3 per particle; 2 when `compact`, 0 without dashpots).
     pub scratch: u32,
     /// Shared hash buckets (a power of two; 1 without the hash).
     pub buckets: u32,
@@ -228,7 +228,7 @@ pub struct FusedShape {
     /// VBD's compact solve (`COMPACT` in the kernel), taken only where the displacements do
     /// not fit beside the bases: shared memory holds the iterates p (the neighbours' springs
     /// read p_i - p_j from them, as the explicit methods read positions) and the displacements
-    /// as half floats of dx / h (2 words a particle), which only the dashpots read
+    /// as half floats of dx / h (2 words a particle; none without dashpots), which only the dashpots read
     /// (b/h n.(dx_i - dx_j): the neighbour's displacement rounded to 2^-11 of itself); each thread's own
     /// displacements stay f32 in registers, so a particle's velocity (dx / h) carries no
     /// rounding of its position. The other methods move a neighbour's displacement (XPBD's
@@ -263,10 +263,13 @@ impl FusedShape {
         // The physics reads the neighbours' velocities (the dashpots; the iterative methods
         // treat them in their solve).
         let damped = o.damping != 0.0 && solver.is_none();
+        // VBD's compact layout keeps its displacements for the dashpots alone (as half floats):
+        // none without dashpots.
+        let halves = if o.damping != 0.0 { 2 * n } else { 0 };
         let (displacements, compact) = match solver {
             None => (0, false),
             Some(_) if 3 * n <= words => (3 * n, false),
-            Some(_) if model.integrator == Integrator::Vbd && 2 * n <= words => (2 * n, true),
+            Some(_) if model.integrator == Integrator::Vbd && halves <= words => (halves, true),
             Some(_) => return None,
         };
         let window = |q: u32| 3 * (threads * q + 2 * halo);
@@ -461,7 +464,7 @@ mod tests {
 
     /// Newton's hanging cloth (65 x 33 particles, issue 31's rows) at NVIDIA's 48 KiB: the bases
     /// and f32 displacements (24 bytes a particle) do not fit, VBD's compact solve (20) does,
-    /// with the hash too; the other iterative methods run it per stage. A 40 x 40 cloth takes
+    /// with the hash too (and without dashpots, 12 bytes, up to 62 x 62); the other iterative methods run it per stage. A 40 x 40 cloth takes
     /// the full layout at two particles a thread by default, except under XPBD by Jacobi,
     /// which keeps one (and so runs per stage).
     #[test]
@@ -486,7 +489,17 @@ mod tests {
                 assert_eq!(shape, None, "{method:?}");
             }
         }
+        // Without dashpots the compact layout keeps no displacements: a cloth of 3,844
+        // particles fits (the iterates, pins and nothing more), not with dashpots.
         m.integrator = Integrator::Vbd;
+        m.objects[0].dims = [62, 62];
+        m.objects[0].damping = 0.0;
+        let bare = FusedShape::plan(&m.objects[0], &m, default).expect("fits without dashpots");
+        assert!(bare.compact && bare.scratch == 1, "{bare:?}");
+        assert!(bare.shared_bytes() <= 48 * 1024 - SHARED_MARGIN, "{bare:?}");
+        m.objects[0].damping = 0.1;
+        assert_eq!(FusedShape::plan(&m.objects[0], &m, default), None);
+        m.objects[0].dims = [65, 33];
         m.objects[0].self_distance = Some(0.05);
         let hashed = FusedShape::plan(&m.objects[0], &m, default).expect("with the hash");
         assert!(hashed.compact && hashed.buckets >= MIN_BUCKETS && hashed.list > 0, "{hashed:?}");
