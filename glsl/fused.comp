@@ -27,17 +27,16 @@
 // neighbours read from shared memory.
 // Phases are separated by barrier(); those a scene does not need are left out.
 //
-// The iterative integrators (SOLVER) replace the physics step with the BDF2 start (each
-// particle's history in registers, from and back to `history`), then their iterations: the
-// displacements p - x~ from the base x~ live in registers and, for the neighbours, in scratch
-// (px/py/pz keep the bases; COMPACT: the iterates, below); XPBD visits the spring classes in turn (the thread owning a
-// spring's first node moves both ends), VBD the vertex colours, a barrier() after each class
-// or colour; XPBD by Jacobi computes every new displacement, then a barrier(), the writes, and
-// a barrier() (at one iteration nothing is written back); the implicit method's conjugate
-// gradients keep their vectors in registers and, while a Newton step's products run, the
-// iterates p in px/py/pz and the directions in scratch, with a workgroup_sum (one barrier)
-// for each dot product. The updates themselves are solver_bodies.glsl's, as in the per-stage
-// shaders.
+// The iterative integrators (SOLVER) replace the physics step with the BDF2 start (each particle's
+// history in registers, from and back to `history`), then their iterations: the displacements
+// p - x~ from the base x~ live in registers and, for the neighbours, in scratch (px/py/pz keep the
+// bases; COMPACT: the iterates, below); XPBD visits the spring classes in turn (the thread owning a
+// spring's first node moves both ends), VBD the vertex colours, a barrier() after each class or
+// colour; XPBD by Jacobi computes every new displacement, then a barrier(), the writes, and a
+// barrier() (at one iteration nothing is written back); the implicit method's conjugate gradients
+// keep their vectors in registers and, while a Newton step's products run, the iterates p in
+// px/py/pz and the directions in scratch, with a workgroup_sum (one barrier) for each dot product.
+// The updates themselves are solver_bodies.glsl's, as in the per-stage shaders.
 #define STATE_FUSED
 #define FUSED_SHARED
 #define OBJ_COPY

@@ -837,9 +837,9 @@ fn fused_substeps_equal_the_per_stage_path() {
 }
 
 /// The iterative methods fused (prediction, colour or Jacobi passes separated by barrier(),
-/// constraints, in one workgroup) equal their per-stage path to f32 rounding (the 13 x 9 cloth's
-/// 117 particles take one slot under either limit; two are tested on a 33 x 32 cloth below): 1e-6 m allowed over
-/// 240 substeps, as above (measured: 0 m for XPBD, VBD and XPBD by Jacobi; 3.6e-7 m for the
+/// constraints, in one workgroup) equal their per-stage path to f32 rounding (the 13 x 9
+/// cloth's 117 particles take one slot under either limit; two are tested on a 33 x 32 cloth
+/// below): 1e-6 m allowed over 240 substeps, as above (measured: 0 m for XPBD, VBD and XPBD by Jacobi; 3.6e-7 m for the
 /// implicit method, whose dot products each path sums in its own order: a workgroup's
 /// subgroups fused, workgroups' sums per stage). Without the barrier
 /// between two colours a particle reads a neighbour's half-updated displacement: XPBD's paths
@@ -888,8 +888,8 @@ fn fused_iterative_methods_equal_the_per_stage_path() {
 /// The two differ by rounding alone: the neighbours' positions rounded to f32 (1.2e-7 m at this
 /// cloth's 1 m) in each spring and their displacements to half floats in each dashpot, over 240
 /// substeps; measured 6.6e-7 m (at one slot: both limits plan the 117 particles on one
-/// thread each; iterative_methods_at_two_particles_a_thread_match_the_per_stage_path takes two). 2e-6 m allowed (the bound the other fused
-/// comparisons keep, 1e-6 m, doubled for the two roundings); reading a neighbour's
+/// thread each; iterative_methods_at_two_particles_a_thread_match_the_per_stage_path takes
+/// two). 2e-6 m allowed (the bound the other fused comparisons keep, 1e-6 m, doubled for the two roundings); reading a neighbour's
 /// displacement as its position (the full layout's p_i - p_j in the compact one) parts the
 /// paths by 0.53 m.
 #[test]
@@ -909,21 +909,21 @@ fn vbd_compact_layout_matches_the_per_stage_path() {
     bare.objects[0].damping = 0.0;
     let limit = FusedLimits::new(1800, 1);
     assert_eq!(FusedShape::plan(&s.objects[0], &s, limit), None, "with dashpots");
-    let shape = FusedShape::plan(&bare.objects[0], &bare, limit).unwrap();
+    let shape =
+        planned_against_per_stage(&bare, limit, (None, true), TOLERANCE, "VBD compact without dashpots");
     assert_eq!(shape.scratch, 1, "{shape:?}");
-    planned_against_per_stage(&bare, limit, (None, true), TOLERANCE, "VBD compact without dashpots");
 }
 
 /// Plans the first object of `model` within `limits`, asserts its layout (threads where given,
 /// compact or not), and asserts that the fused path stays within `tolerance` m of the per-stage
-/// path (fused_against_per_stage).
+/// path (fused_against_per_stage). Returns the layout.
 fn planned_against_per_stage(
     model: &SimModel,
     limits: FusedLimits,
     (threads, compact): (Option<u32>, bool),
     tolerance: f64,
     label: &str,
-) {
+) -> FusedShape {
     let shape = FusedShape::plan(&model.objects[0], model, limits).unwrap();
     assert_eq!(shape.compact, compact, "{label}: {shape:?}");
     if let Some(threads) = threads {
@@ -932,6 +932,7 @@ fn planned_against_per_stage(
     let worst = fused_against_per_stage(model, limits);
     println!("{label}: fused vs per stage {worst:e} m");
     assert!(worst <= tolerance, "{label}: the fused path differs from the per-stage path by {worst} m");
+    shape
 }
 
 /// The iterative methods at two particles a thread, as a GPU runs objects of 1,025 to about

@@ -228,9 +228,9 @@ pub struct FusedShape {
     /// VBD's compact solve (`COMPACT` in the kernel), taken only where the displacements do
     /// not fit beside the bases: shared memory holds the iterates p (the neighbours' springs
     /// read p_i - p_j from them, as the explicit methods read positions) and the displacements
-    /// as half floats of dx / h (2 words a particle; none without dashpots), which only the dashpots read
-    /// (b/h n.(dx_i - dx_j): the neighbour's displacement rounded to 2^-11 of itself); each thread's own
-    /// displacements stay f32 in registers, so a particle's velocity (dx / h) carries no
+    /// as half floats of dx / h (2 words a particle; none without dashpots), which only the
+    /// dashpots read (b/h n.(dx_i - dx_j): the neighbour's displacement rounded to 2^-11 of
+    /// itself); each thread's own displacements stay f32 in registers, so a particle's velocity (dx / h) carries no
     /// rounding of its position. The other methods move a neighbour's displacement (XPBD's
     /// classes), read it at full precision in their springs (XPBD by Jacobi) or keep their
     /// directions there (the implicit method): they run per stage instead.
@@ -409,6 +409,16 @@ mod tests {
         FusedLimits::new(k * 1024, FUSED_SLOTS)
     }
 
+    /// Newton's hanging cloth (issue 31's rows): the curtain's cloth at 65 x 33 particles, no
+    /// colliders, no self-collision.
+    fn newtons_cloth() -> SimModel {
+        let mut m = curtain();
+        m.colliders.clear();
+        m.objects[0].dims = [65, 33];
+        m.objects[0].self_distance = None;
+        m
+    }
+
     fn curtain() -> SimModel {
         let s = crate::scene::parse(include_str!("../../../presets/curtain.toml"), "curtain.toml", &[])
             .expect("the curtain preset is valid");
@@ -464,15 +474,12 @@ mod tests {
 
     /// Newton's hanging cloth (65 x 33 particles, issue 31's rows) at NVIDIA's 48 KiB: the bases
     /// and f32 displacements (24 bytes a particle) do not fit, VBD's compact solve (20) does,
-    /// with the hash too (and without dashpots, 12 bytes, up to 62 x 62); the other iterative methods run it per stage. A 40 x 40 cloth takes
-    /// the full layout at two particles a thread by default, except under XPBD by Jacobi,
-    /// which keeps one (and so runs per stage).
+    /// with the hash too (and without dashpots, 12 bytes, up to 62 x 62); the other iterative
+    /// methods run it per stage. A 40 x 40 cloth takes the full layout at two particles a
+    /// thread by default, except under XPBD by Jacobi, which keeps one (and so runs per stage).
     #[test]
     fn vbd_fits_newtons_cloth_compact_and_iterative_methods_take_more_slots() {
-        let mut m = curtain();
-        m.colliders.clear();
-        m.objects[0].dims = [65, 33];
-        m.objects[0].self_distance = None;
+        let mut m = newtons_cloth();
         let default = FusedLimits {
             hashed_slots: FUSED_HASHED_SLOTS,
             solver_slots: None,
@@ -552,10 +559,7 @@ mod tests {
         assert_eq!((gpu.slots, gpu.hashed_slots), (cpu.slots, cpu.hashed_slots));
         // Newton's cloth under VBD: fused (compact) with a GPU's limits, and one thread a
         // particle (so per stage) under a CPU driver's.
-        let mut m = curtain();
-        m.colliders.clear();
-        m.objects[0].dims = [65, 33];
-        m.objects[0].self_distance = None;
+        let mut m = newtons_cloth();
         m.integrator = Integrator::Vbd;
         assert!(FusedShape::plan(&m.objects[0], &m, gpu).is_some_and(|s| s.compact));
         assert_eq!(FusedShape::plan(&m.objects[0], &m, FusedLimits { shared_bytes: 48 * 1024, ..cpu }), None);

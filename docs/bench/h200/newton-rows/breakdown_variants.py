@@ -1,5 +1,6 @@
 # Makes breakdown.sh's GLSL variants: copies of glsl/ under .gl/v_NAME/glsl, one change each.
-# Run from the repository root before carrying .gl to the device.
+# Run from the repository root before carrying .gl to the device, on 3312ceb's glsl/ (the
+# measured tree): the edits name its text, which the branch-free spring loops (fa8be63) changed.
 import os
 import shutil
 
