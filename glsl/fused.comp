@@ -45,6 +45,9 @@
 #include "features.glsl"
 #define SPRING_NEIGHBOUR(cell, s) (!SPRING_MASKS ? neighbour(ivec2(cell), SPRINGS[s].xy, obj.dims) : \
     ((spring_mask >> uint(s)) & 1u) != 0u ? int((cell).x + (cell).y * obj.dims.x) + SPRINGS[s].x + SPRINGS[s].y * int(obj.dims.x) : -1)
+// (solver_bodies.glsl: the other end, or the particle itself, by one select on the mask)
+#define SPRING_OTHER(cell, s) (!SPRING_MASKS ? SPRING_NEIGHBOUR(cell, s) : \
+    int((cell).x + (cell).y * obj.dims.x) + (((spring_mask >> uint(s)) & 1u) != 0u ? SPRINGS[s].x + SPRINGS[s].y * int(obj.dims.x) : 0))
 #include "springs.glsl"
 
 layout(local_size_x_id = 0) in;

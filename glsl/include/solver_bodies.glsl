@@ -12,16 +12,22 @@
 // measured A/B, two runs each).
 // SELECT_SPRINGS (the fused kernel defines it true): the Newton step's and the Hessian
 // product's spring loops skip a spring with no other end or with coincident ends by selects,
-// not branches: it reads the particle itself and takes no direction (inv = 0), so it adds
-// exactly zero. One workgroup then overlaps each spring's loads and square root with the
-// next's, where a branch between them made a visit's 12 springs run one after the other; per
-// stage, whose many workgroups hide that latency, the branches are faster
-// (docs/PERFORMANCE.md, "Branch-free spring loops").
+// not branches: one with no other end reads the particle itself (SPRING_OTHER), whose p_i - p_j
+// is then exactly zero (the includer's SPRING_DELTA and PP give the particle's own p exactly),
+// and a spring whose ends coincide takes no direction (inv = 0), so either adds exactly zero.
+// One workgroup then overlaps each spring's loads and square root with the next's, where a
+// branch between them made a visit's 12 springs run one after the other; per stage, whose
+// many workgroups hide that latency, the branches are faster (docs/PERFORMANCE.md,
+// "Branch-free spring loops").
 #ifndef MSD_SOLVER_BODIES_GLSL
 #define MSD_SOLVER_BODIES_GLSL
 #include "features.glsl"
 #ifndef SELECT_SPRINGS
 #define SELECT_SPRINGS false
+#endif
+// Spring s's other end, or the particle itself where it has none (SELECT_SPRINGS).
+#ifndef SPRING_OTHER
+#define SPRING_OTHER(cell, s) (SPRING_NEIGHBOUR(cell, s) < 0 ? self_index : SPRING_NEIGHBOUR(cell, s))
 #endif
 
 // XPBD, one spring (slot `slot` of SPRINGS, springs.glsl) from particle i (start
@@ -110,24 +116,26 @@ vec3 newton_particle(uvec2 cell, vec3 x, vec3 dx, vec3 dy, out Sym3 hessian) {
         ivec3 spring = SPRINGS[s];
         if (!has(1u << spring.z)) continue;  // F_STRUCTURAL, F_SHEAR, F_BENDING: no stiffness, no dashpot
         float k = obj.stiffness[spring.z];
-        int j0 = SPRING_NEIGHBOUR(cell, s);
-        if (!SELECT_SPRINGS && j0 < 0) continue;
-        int j = j0 < 0 ? self_index : j0;
+        int j = SELECT_SPRINGS ? SPRING_OTHER(cell, s) : SPRING_NEIGHBOUR(cell, s);
+        if (!SELECT_SPRINGS && j < 0) continue;
         vec3 dj = SD(j);
-        vec3 delta = SPRING_DELTA(x, dx, j, dj);  // p_i - p_j
+        vec3 delta = SPRING_DELTA(x, dx, j, dj);  // p_i - p_j = d n
         float dd = dot(delta, delta);
         if (!SELECT_SPRINGS && dd <= 0.0) continue;
-        bool on = j0 >= 0 && dd > 0.0;
-        float inv = on ? inversesqrt(dd) : 0.0;
-        float d = dd * inv;
-        vec3 n = delta * inv;
-        float rest = rest_length(s);
-        float kt = on ? k * max(1.0 - rest * inv, 0.0) : 0.0;
-        force -= n * (k * (d - rest) + damp * dot(n, dx - dj));
-        float c = k + damp - kt;
+        bool on = dd > 0.0;
+        float inv = on ? inversesqrt(dd) : 0.0;  // 1 / d
+        float inv2 = inv * inv;
+        // In delta rather than n: the spring's force k (d - L) n = k (1 - L / d) delta, the
+        // dashpot's (b / h) n (n.e) = (b / h) delta (delta.e) / d^2 and the block
+        // c n n^T = (c / d^2) delta delta^T (fewer products a spring). A spring that is off
+        // reads the particle itself or has coincident ends: its delta is zero.
+        float stretch = k - (k * rest_length(s)) * inv;
+        float kt = on ? max(stretch, 0.0) : 0.0;
+        force -= delta * (stretch + (damp * inv2) * dot(delta, dx - dj));
+        vec3 cd = ((k + damp - kt) * inv2) * delta;
         iso += kt;
-        diag += (c * n) * n;
-        off += (c * n.xxy) * n.yzz;
+        diag += cd * delta;
+        off += cd.xxy * delta.yzz;
     }
     hessian = Sym3(iso, diag, off);
     return force;
@@ -181,18 +189,16 @@ vec3 hessian_product(uvec2 cell, vec3 pi, vec3 di) {
         ivec3 spring = SPRINGS[s];
         if (!has(1u << spring.z)) continue;  // (as newton_particle)
         float k = obj.stiffness[spring.z];
-        int j0 = SPRING_NEIGHBOUR(cell, s);
-        if (!SELECT_SPRINGS && j0 < 0) continue;
-        int j = j0 < 0 ? self_index : j0;
+        int j = SELECT_SPRINGS ? SPRING_OTHER(cell, s) : SPRING_NEIGHBOUR(cell, s);
+        if (!SELECT_SPRINGS && j < 0) continue;
         vec3 delta = pi - PP(j);
         float dd = dot(delta, delta);
         if (!SELECT_SPRINGS && dd <= 0.0) continue;
-        bool on = j0 >= 0 && dd > 0.0;
+        bool on = dd > 0.0;
         float inv = on ? inversesqrt(dd) : 0.0;
-        vec3 n = delta * inv;
-        float kt = on ? k * max(1.0 - rest_length(s) * inv, 0.0) : 0.0;
+        float kt = on ? max(k - (k * rest_length(s)) * inv, 0.0) : 0.0;
         vec3 e = di - DD(j);
-        q += n * ((k + damp - kt) * dot(n, e)) + kt * e;
+        q += delta * (((k + damp - kt) * (inv * inv)) * dot(delta, e)) + kt * e;
     }
     return q;
 }
