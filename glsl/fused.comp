@@ -45,8 +45,9 @@
 #include "features.glsl"
 #define SPRING_NEIGHBOUR(cell, s) (!SPRING_MASKS ? neighbour(ivec2(cell), SPRINGS[s].xy, obj.dims) : \
     ((spring_mask >> uint(s)) & 1u) != 0u ? int((cell).x + (cell).y * obj.dims.x) + SPRINGS[s].x + SPRINGS[s].y * int(obj.dims.x) : -1)
-// (solver_bodies.glsl: the other end, or the particle itself, by one select on the mask)
-#define SPRING_OTHER(cell, s) (!SPRING_MASKS ? SPRING_NEIGHBOUR(cell, s) : \
+// (solver_bodies.glsl: the other end, or the particle itself, by one select on the mask; XPBD,
+// without masks, never reads it)
+#define SPRING_OTHER(cell, s) (!SPRING_MASKS ? (SPRING_NEIGHBOUR(cell, s) < 0 ? int((cell).x + (cell).y * obj.dims.x) : SPRING_NEIGHBOUR(cell, s)) : \
     int((cell).x + (cell).y * obj.dims.x) + (((spring_mask >> uint(s)) & 1u) != 0u ? SPRINGS[s].x + SPRINGS[s].y * int(obj.dims.x) : 0))
 #include "springs.glsl"
 
@@ -73,6 +74,7 @@ const uint MAX_SLOTS = 4u;  // particles per thread at most (FUSED_SLOTS on the 
 const uint SLOTS = (CAP + THREADS - 1u) / THREADS;
 const uint WINDOW = THREADS * PASS_SLOTS + 2u * HALO;  // velocities staged per pass
 const uint EMPTY = 0xFFFFFFFFu;
+const uint NO_COLOUR = 0xFFu;
 const bool ITERATIVE = SOLVER == METHOD_XPBD || SOLVER == METHOD_IMPLICIT || SOLVER == METHOD_VBD
     || SOLVER == METHOD_XPBD_JACOBI;
 const bool COLOURED = SOLVER == METHOD_VBD;  // VBD sweeps vertex colours; XPBD spring classes
@@ -267,6 +269,8 @@ void main() {
     vec4 hx[MAX_SLOTS];  // ... the history x_n - x_{n-1} (w valid); during a solve, x~ - x_n
     vec4 hv[MAX_SLOTS];  // ... v_n - v_{n-1}, w: the fraction of gravity held (adaptive start)
     vec3 lost[MAX_SLOTS];  // ... what rounding the base left out (bdf2_start)
+    // VBD's vertex colour of each slot; NO_COLOUR (no pass visits it) for a pinned or empty one,
+    // so that a colour pass tests one word a slot.
     uint colour[MAX_SLOTS];
     uint own[MAX_SLOTS];  // the particle of each slot
     uvec2 cells[MAX_SLOTS];  // ... and its grid cell
@@ -292,7 +296,6 @@ void main() {
         hx[s] = vec4(0.0);
         hv[s] = vec4(0.0);
         lost[s] = vec3(0.0);
-        colour[s] = vertex_colour(cells[s], colours);
         header[s] = lists_built && s < SLOTS && k < n ? list_header(k) : vec4(0.0);
         if (s < SLOTS && k < n) {
             Particle p = p_in[k];
@@ -304,6 +307,7 @@ void main() {
                 hv[s] = history[hist(k, H_DV)];
             }
         }
+        colour[s] = pinned[s] ? NO_COLOUR : vertex_colour(cells[s], colours);
     }
     for (uint w = t; w < (CAP + 31u) / 32u; w += THREADS) pin_bits[w] = 0u;
     if (t < 2u) list_flag[t] = 0u;
@@ -516,7 +520,7 @@ void main() {
                         [[unroll]] for (uint s = 0u; s < MAX_SLOTS; ++s) {
                             if (s >= SLOTS) break;
                             uint k = own[s];
-                            if (k >= n || pinned[s] || colour[s] != c) continue;
+                            if (colour[s] != c) continue;
                             uvec2 cell = cells[s];
                             spring_mask = masks[s];
                             dx[s] = vbd_particle(cell, x[s], dx[s], dy[s]);

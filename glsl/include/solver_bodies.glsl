@@ -14,7 +14,8 @@
 // product's spring loops skip a spring with no other end or with coincident ends by selects,
 // not branches: one with no other end reads the particle itself (SPRING_OTHER), whose p_i - p_j
 // is then exactly zero (the includer's SPRING_DELTA and PP give the particle's own p exactly),
-// and a spring whose ends coincide takes no direction (inv = 0), so either adds exactly zero.
+// and a spring whose ends coincide takes no direction (inv = 0), so either adds zero (exactly,
+// but for ends so close, under 1e-19 m, that dot(delta, delta) underflows: k delta, negligible).
 // One workgroup then overlaps each spring's loads and square root with the next's, where a
 // branch between them made a visit's 12 springs run one after the other; per stage, whose
 // many workgroups hide that latency, the branches are faster (docs/PERFORMANCE.md,
@@ -101,7 +102,7 @@ struct Sym3 {
 // the prediction dy, springs, dashpots: minus the gradient) and its 3x3 diagonal block of the
 // Hessian. Each spring adds (k + b / h) n n^T + k t (I - n n^T) = c n n^T + k t I
 // (c = k + b / h - k t, t = max(0, 1 - L / d) clamped at compression: positive definite),
-// 6 multiply-adds a spring (sim::cpu::integrators::spring_newton).
+// written in delta = d n below (sim::cpu::integrators::spring_newton).
 vec3 newton_particle(uvec2 cell, vec3 x, vec3 dx, vec3 dy, out Sym3 hessian) {
     float h = solve_dt();
     float inertia = obj.mass / (h * h);
@@ -128,7 +129,7 @@ vec3 newton_particle(uvec2 cell, vec3 x, vec3 dx, vec3 dy, out Sym3 hessian) {
         // In delta rather than n: the spring's force k (d - L) n = k (1 - L / d) delta, the
         // dashpot's (b / h) n (n.e) = (b / h) delta (delta.e) / d^2 and the block
         // c n n^T = (c / d^2) delta delta^T (fewer products a spring). A spring that is off
-        // reads the particle itself or has coincident ends: its delta is zero.
+        // reads the particle itself or has coincident ends: its delta is zero (SELECT_SPRINGS).
         float stretch = k - (k * rest_length(s)) * inv;
         float kt = on ? max(stretch, 0.0) : 0.0;
         force -= delta * (stretch + (damp * inv2) * dot(delta, dx - dj));
@@ -141,9 +142,9 @@ vec3 newton_particle(uvec2 cell, vec3 x, vec3 dx, vec3 dy, out Sym3 hessian) {
     return force;
 }
 
-// The inverse of a symmetric positive definite Sym3 by its adjugate, as the rows (c00, c01,
-// c02) and (c11, c12, c22) over the determinant.
-void sym3_inverse(Sym3 m, out vec3 row0, out vec3 rest) {
+// The adjugate of a symmetric Sym3, as the rows (c00, c01, c02) and (c11, c12, c22); returns
+// the determinant.
+float sym3_adjugate(Sym3 m, out vec3 row0, out vec3 rest) {
     vec3 a = m.diag + m.iso;
     vec3 off = m.off;
     float c00 = a.y * a.z - off.z * off.z;
@@ -152,9 +153,17 @@ void sym3_inverse(Sym3 m, out vec3 row0, out vec3 rest) {
     float c11 = a.x * a.z - off.y * off.y;
     float c12 = off.x * off.y - a.x * off.z;
     float c22 = a.x * a.y - off.x * off.x;
-    float inv_det = 1.0 / (a.x * c00 + off.x * c01 + off.y * c02);
-    row0 = vec3(c00, c01, c02) * inv_det;
-    rest = vec3(c11, c12, c22) * inv_det;
+    row0 = vec3(c00, c01, c02);
+    rest = vec3(c11, c12, c22);
+    return a.x * c00 + off.x * c01 + off.y * c02;
+}
+
+// The inverse of a symmetric positive definite Sym3 by its adjugate, as the rows (c00, c01,
+// c02) and (c11, c12, c22) over the determinant.
+void sym3_inverse(Sym3 m, out vec3 row0, out vec3 rest) {
+    float inv_det = 1.0 / sym3_adjugate(m, row0, rest);
+    row0 *= inv_det;
+    rest *= inv_det;
 }
 
 // A symmetric matrix (sym3_inverse's rows) times v.
@@ -170,8 +179,8 @@ vec3 vbd_particle(uvec2 cell, vec3 x, vec3 dx, vec3 dy) {
     vec3 force = newton_particle(cell, x, dx, dy, hessian);
     vec3 row0;
     vec3 rest;
-    sym3_inverse(hessian, row0, rest);
-    return dx + sym3_apply(row0, rest, force);
+    float det = sym3_adjugate(hessian, row0, rest);
+    return dx + sym3_apply(row0, rest, force) * (1.0 / det);  // (the adjugate's product, scaled once)
 }
 
 // The implicit method's conjugate gradients (sim::cpu::integrators::implicit): row i of the
