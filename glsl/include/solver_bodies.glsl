@@ -166,7 +166,7 @@ void sym3_inverse(Sym3 m, out vec3 row0, out vec3 rest) {
     rest *= inv_det;
 }
 
-// A symmetric matrix (sym3_inverse's rows) times v.
+// A symmetric matrix (the rows of sym3_inverse or sym3_adjugate) times v.
 vec3 sym3_apply(vec3 row0, vec3 rest, vec3 v) {
     return vec3(dot(row0, v), dot(vec3(row0.y, rest.x, rest.y), v), dot(vec3(row0.z, rest.y, rest.z), v));
 }
