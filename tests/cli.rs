@@ -703,6 +703,42 @@ fn hostile_keys_values_and_names_get_one_clear_line() {
         &["--out", "the same file as a file --record writes"],
     );
     assert_eq!(std::fs::read_to_string(&preset).unwrap(), GOOD);
+    // A recording that would replace or remove the preset (exit 0 before, the preset lost): a
+    // frame it writes, an earlier frame it cleans up, a point cache's mesh or cache. Nothing is
+    // written or removed.
+    for (preset_name, record_name) in
+        [("r_00001.obj", "r.obj"), ("r_00007.obj", "r.obj"), ("r.obj", "r.pc2"), ("r_flag.pc2", "r.pc2")]
+    {
+        let dir = tempfile::tempdir().unwrap();
+        let preset = write(dir.path(), preset_name, GOOD);
+        let record = dir.path().join(record_name);
+        let record = record.to_str().unwrap();
+        let args = ["simulate", "--preset", &preset, "--frames", "2", "--record", record];
+        rejects(&args, &["--record", "would replace or remove the preset", preset_name]);
+        assert_eq!(std::fs::read_to_string(&preset).unwrap(), GOOD, "{preset_name}");
+        assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 1, "{preset_name}: a file was written");
+        // ... also through a link to the folder.
+        let link = dir.path().join("link");
+        std::os::unix::fs::symlink(dir.path(), &link).unwrap();
+        let through = link.join(record_name);
+        let args = ["simulate", "--preset", &preset, "--frames", "2", "--record", through.to_str().unwrap()];
+        rejects(&args, &["--record", "would replace or remove the preset"]);
+        assert_eq!(std::fs::read_to_string(&preset).unwrap(), GOOD, "{preset_name}");
+    }
+    // --out naming a shader source of --shaders would replace the edited shader.
+    let shaders = tempfile::tempdir().unwrap();
+    let source = write(shaders.path(), "physics.comp", "#version 460\n");
+    let args = [
+        "simulate",
+        "--preset",
+        "presets/flag.toml",
+        "--shaders",
+        shaders.path().to_str().unwrap(),
+        "--out",
+        &source,
+    ];
+    rejects(&args, &["--out", "a shader source of --shaders"]);
+    assert_eq!(std::fs::read_to_string(&source).unwrap(), "#version 460\n");
     rejects(
         &[
             "simulate",

@@ -28,9 +28,17 @@ impl AppRecorder {
         self.active.as_ref().map(|(r, path)| (r.frames(), name(path)))
     }
 
-    /// Starts recording the scene of `host` into `path`; refused for an unknown extension or a
-    /// missing folder.
-    pub fn start(&mut self, host: &SimHost, path: &Path) -> Result<String> {
+    /// Starts recording the scene of `host` into `path`; refused for an unknown extension, a
+    /// missing folder, or a recording that would replace or remove the preset file `preset`
+    /// (the file the editor opens and saves).
+    pub fn start(&mut self, host: &SimHost, path: &Path, preset: &Path) -> Result<String> {
+        if Format::of(path).is_ok_and(|f| f.endangers(path, preset)) {
+            anyhow::bail!(
+                "not recording: {} would replace or remove the preset {} (a file it writes or cleans up beside it); record under another name",
+                path.display(),
+                preset.display()
+            );
+        }
         let recording = Recording::new(host.model(), &record::colors(host.scene()), path, None)?;
         let what = match recording.format() {
             f if f.keeps_frames() => format!("recording to {} (written when you stop)", path.display()),

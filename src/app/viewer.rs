@@ -283,7 +283,10 @@ impl Viewer {
             Action::ToggleRecording(path) => {
                 let said = match (self.recorder.frames(), self.host.as_ref()) {
                     (Some(_), _) => self.recorder.stop(),
-                    (None, Some(host)) => self.recorder.start(host, &path),
+                    (None, Some(host)) => {
+                        let preset = crate::ui::resolve_preset(&self.editor.preset_path, "");
+                        self.recorder.start(host, &path, &preset)
+                    }
                     (None, None) => Ok("nothing to record".into()),
                 };
                 match said {

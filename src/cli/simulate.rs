@@ -2,7 +2,7 @@
 
 use super::out_file::OutFile;
 use super::stdout::{say, Stdout};
-use crate::render::record::{Format, Recording};
+use crate::render::record::{same_file, Format, Recording};
 use crate::scene;
 use crate::shaders::ShaderSet;
 use crate::sim::gpu::{self, FrameTiming, GpuSim};
@@ -11,7 +11,7 @@ use crate::sim::stability;
 use crate::vk::{ContextOptions, GpuContext};
 use anyhow::{Context as _, Result};
 use clap::Args;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 #[derive(Debug, Args)]
 #[command(allow_negative_numbers = true)]
@@ -69,27 +69,45 @@ struct ObjectOut<'a> {
     velocities: Vec<[f32; 3]>,
 }
 
-/// Whether `a` and `b` name the same file: the same file when both exist, else the same
-/// absolute path.
-fn same_file(a: &std::path::Path, b: &std::path::Path) -> bool {
-    match (a.canonicalize(), b.canonicalize()) {
-        (Ok(a), Ok(b)) => a == b,
-        _ => std::path::absolute(a).ok().zip(std::path::absolute(b).ok()).is_some_and(|(a, b)| a == b),
-    }
+/// Whether `path` is a shader source the `--shaders` folder `dir` holds or may hold (a GLSL
+/// file in it or in its include folder): an output there would replace an edited shader.
+fn shader_source(dir: &Path, path: &Path) -> bool {
+    let glsl = path.extension().and_then(|e| e.to_str()).is_some_and(|e| SHADER_EXTENSIONS.contains(&e));
+    let folder = std::path::absolute(path).ok().and_then(|p| p.parent().map(Path::to_path_buf));
+    glsl && folder.is_some_and(|f| same_file(&f, dir) || same_file(&f, &dir.join("include")))
 }
 
-/// Refuses outputs that would destroy an input or each other: `--out` or `--record` naming the
-/// preset, or `--out` naming the recording or a file it writes (an OBJ frame, a point cache's
-/// mesh or cache).
+/// The extensions of the files a shader folder compiles or includes.
+const SHADER_EXTENSIONS: [&str; 4] = ["comp", "vert", "frag", "glsl"];
+
+/// Refuses outputs that would destroy an input or each other, before any work: `--out` naming
+/// the preset or a shader source of `--shaders`; `--record` replacing or removing the preset
+/// (the recording itself, a frame, mesh or point cache it writes, or an earlier frame it
+/// cleans up); `--out` naming the recording or a file it writes. (A recording's files end in
+/// .usda, .obj, .glb or .pc2, never a shader's extension.)
 fn check_outputs(args: &SimulateArgs) -> Result<(), crate::error::UserError> {
-    let refuse = |what: &str, path: &std::path::Path, other: &str| {
+    let refuse = |what: &str, path: &Path, other: &str| {
         Err(crate::error::UserError(format!("{what} {}: the same file as {other}", path.display())))
     };
-    for (what, path) in [("--out", &args.out), ("--record", &args.record)] {
-        if let Some(path) = path {
-            if same_file(path, &args.preset) {
-                return refuse(what, path, "the preset (it would be replaced)");
-            }
+    if let Some(out) = &args.out {
+        if same_file(out, &args.preset) {
+            return refuse("--out", out, "the preset (it would be replaced)");
+        }
+        if args.shaders.as_deref().is_some_and(|dir| shader_source(dir, out)) {
+            return refuse("--out", out, "a shader source of --shaders (it would be replaced)");
+        }
+    }
+    if let Some(record) = &args.record {
+        let format = Format::of(record).ok();
+        if same_file(record, &args.preset) {
+            return refuse("--record", record, "the preset (it would be replaced)");
+        }
+        if format.is_some_and(|f| f.endangers(record, &args.preset)) {
+            return Err(crate::error::UserError(format!(
+                "--record {}: the recording would replace or remove the preset {} (a file it writes or cleans up beside it); record under another name",
+                record.display(),
+                args.preset.display()
+            )));
         }
     }
     if let (Some(out), Some(record)) = (&args.out, &args.record) {

@@ -63,7 +63,11 @@ impl Format {
     /// `{stem}.obj` and caches `{stem}_{name}.pc2` (`base_path`, `cache_path`), in `record`'s
     /// folder.
     pub fn writes(self, record: &Path, other: &Path) -> bool {
-        let folder = |p: &Path| std::path::absolute(p).ok().and_then(|p| p.parent().map(Path::to_path_buf));
+        // (folders compared as the file system resolves them: a link or `..` is the same folder)
+        let folder = |p: &Path| {
+            let parent = std::path::absolute(p).ok()?.parent()?.to_path_buf();
+            Some(parent.canonicalize().unwrap_or(parent))
+        };
         let (Some(stem), Some(name)) = (record.file_stem().and_then(|s| s.to_str()), other.file_name())
         else {
             return false;
@@ -85,6 +89,12 @@ impl Format {
         }
     }
 
+    /// Whether a recording of this format into `record` would replace or remove `file`: the
+    /// recording itself, a file it writes beside it, or an earlier frame it cleans up.
+    pub fn endangers(self, record: &Path, file: &Path) -> bool {
+        same_file(record, file) || self.writes(record, file)
+    }
+
     /// The format of `path`, from its extension (`usda` or `obj`), or a message naming the
     /// supported ones.
     pub fn of(path: &Path) -> Result<Self, String> {
@@ -98,6 +108,15 @@ impl Format {
                 path.display()
             )),
         }
+    }
+}
+
+/// Whether `a` and `b` name the same file: the same file when both exist, else the same
+/// absolute path.
+pub fn same_file(a: &Path, b: &Path) -> bool {
+    match (a.canonicalize(), b.canonicalize()) {
+        (Ok(a), Ok(b)) => a == b,
+        _ => std::path::absolute(a).ok().zip(std::path::absolute(b).ok()).is_some_and(|(a, b)| a == b),
     }
 }
 

@@ -8,5 +8,6 @@ mod help;
 mod notices;
 mod widgets;
 
+pub use browse::resolve_preset;
 pub use editor::{build, covered, unique_name, Action, EditorState, Selection, Stats};
 pub use widgets::shown;
