@@ -525,6 +525,32 @@ fn a_usd_recording_carries_the_colliders() {
     }
 }
 
+/// Objects named like the scopes beside them (`colliders`, `materials`) are renamed apart: a
+/// prim path under /scene holds one prim (Pixar's reader refuses a duplicate), and the rename
+/// is the one every format uses.
+#[test]
+fn objects_named_like_the_usd_scopes_are_renamed_apart() {
+    let dir = tempfile::tempdir().unwrap();
+    let usda = dir.path().join("s.usda");
+    let out = binary()
+        .args(["simulate", "--preset", "presets/tablecloth.toml", "--frames", "1", "--quiet"])
+        .args(["--set", "cloth.0.name=colliders", "--record", usda.to_str().unwrap()])
+        .output()
+        .unwrap();
+    assert!(out.status.success(), "{}", stderr(&out));
+    let text = std::fs::read_to_string(&usda).unwrap();
+    // The children of /scene: the lines `    def Type "name"` at its depth.
+    let children: Vec<&str> = (text.lines())
+        .filter(|l| l.starts_with("    def ") && !l.starts_with("     "))
+        .filter_map(|l| l.split('"').nth(1))
+        .collect();
+    let mut unique = children.clone();
+    unique.sort();
+    unique.dedup();
+    assert_eq!(unique.len(), children.len(), "a prim path twice under /scene: {children:?}");
+    assert!(children.contains(&"colliders_2") && children.contains(&"colliders"), "{children:?}");
+}
+
 /// What an artist needs beyond the shapes: texture coordinates (a cloth's grid over the unit
 /// square; a rope's tube unrolled with both sides of its seam, and discs on its caps) as USD's
 /// face-varying `primvars:st` with an index per triangle corner, and as OBJ `vt` with every

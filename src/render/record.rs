@@ -36,6 +36,10 @@ pub fn colors(scene: &crate::scene::Scene) -> Vec<[[f32; 3]; 2]> {
     cloths.chain(ropes).map(|c| c.map(|c| c.map(|x| x as f32))).collect()
 }
 
+/// The scopes a USD recording keeps under /scene beside the objects' meshes: the colliders'
+/// shapes and the materials.
+const USD_SCOPES: [&str; 2] = ["colliders", "materials"];
+
 /// The colour colliders are recorded in (linear).
 const COLLIDER_GREY: f32 = 0.5;
 
@@ -232,7 +236,9 @@ impl Recording {
         if format == Format::ObjSequence {
             remove_old_frames(path)?;
         }
-        let mut taken = std::collections::HashSet::new();
+        // Objects are named apart from the scopes beside them under /scene in USD (a prim
+        // path holds one prim), in every format so that the names agree.
+        let mut taken: std::collections::HashSet<String> = USD_SCOPES.iter().map(|s| s.to_string()).collect();
         let mut tracks: Vec<Track> = model
             .objects
             .iter()
