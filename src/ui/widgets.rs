@@ -18,6 +18,12 @@ thread_local! {
 /// click elsewhere, Tab), then applied; any other change (a drag, a step button, Enter's own
 /// frame) applies at once. Esc in the field reverts it and applies nothing new.
 fn commit(ui: &Ui, label: &str, changed: bool, edited: [f64; 3]) -> Option<[f64; 3]> {
+    // ImGui reports a field left by Esc as deactivated after an edit, like Enter: the key
+    // tells the two apart, and what was typed is dropped.
+    if ui.is_key_pressed(imgui::Key::Escape) && (ui.is_item_active() || ui.is_item_deactivated()) {
+        TYPED.with(|t| t.borrow_mut().take());
+        return None;
+    }
     let typing = ui.is_item_active() && ui.io().want_text_input;
     if changed && typing {
         TYPED.with(|t| *t.borrow_mut() = Some((label.to_string(), edited)));
@@ -262,5 +268,43 @@ mod tests {
         }
         assert!(value > before, "a drag applies live ({before} -> {value})");
         frame(&mut ctx, &mut value, &mut count, |io| io.add_mouse_button_event(MouseButton::Left, false));
+    }
+
+    fn key(ctx: &mut Context, value: &mut f64, count: &mut u32, key: Key) -> (bool, bool) {
+        let down = frame(ctx, value, count, |io| io.add_key_event(key, true));
+        let up = frame(ctx, value, count, |io| io.add_key_event(key, false));
+        (down.0 || up.0, down.1 || up.1)
+    }
+
+    /// Esc in a typed field reverts it: nothing is applied and no change is reported (an
+    /// applied edit would rebuild the simulation and take an undo step), in the int field and
+    /// in a drag field turned into a text field; the next typed value still applies on Enter.
+    #[test]
+    fn esc_in_a_typed_field_applies_nothing() {
+        let mut ctx = context();
+        let (mut value, mut count) = (400.0, 16u32);
+        for _ in 0..3 {
+            frame(&mut ctx, &mut value, &mut count, |_| {});
+        }
+        click(&mut ctx, &mut value, &mut count, INT_AT, false);
+        frame(&mut ctx, &mut value, &mut count, |io| io.add_key_event(Key::ModCtrl, true));
+        key(&mut ctx, &mut value, &mut count, Key::A);
+        frame(&mut ctx, &mut value, &mut count, |io| io.add_key_event(Key::ModCtrl, false));
+        type_text(&mut ctx, &mut value, &mut count, "8");
+        let reported = key(&mut ctx, &mut value, &mut count, Key::Escape);
+        for _ in 0..3 {
+            frame(&mut ctx, &mut value, &mut count, |_| {});
+        }
+        assert_eq!((count, reported.1), (16, false), "Esc applied the typed 8");
+        click(&mut ctx, &mut value, &mut count, DRAG_AT, true);
+        type_text(&mut ctx, &mut value, &mut count, "5");
+        let reported = key(&mut ctx, &mut value, &mut count, Key::Escape);
+        assert_eq!((value, reported.0), (400.0, false), "Esc applied the typed drag value");
+        click(&mut ctx, &mut value, &mut count, ELSEWHERE, false);
+        assert_eq!(value, 400.0, "leaving after Esc applied what was typed before it");
+        click(&mut ctx, &mut value, &mut count, DRAG_AT, true);
+        type_text(&mut ctx, &mut value, &mut count, "7");
+        enter(&mut ctx, &mut value, &mut count);
+        assert_eq!(value, 7.0, "Enter after an Esc applies");
     }
 }
