@@ -94,6 +94,8 @@ pub struct Viewer {
     /// `--exercise-editor`: where the dragged sphere started, and the rope's mean x then.
     exercise_start: Option<Vec3>,
     exercise_rope_x: f32,
+    /// Where the unsaved scene was saved when the app quit or failed with it (`rescue_unsaved`).
+    rescued: Option<PathBuf>,
     /// The UI's edited scene and actions, applied at the start of the next frame.
     pending_scene: Option<Scene>,
     /// The pending edits calibrate `integrator = "auto"` or rebuild slowly, and the notice saying
@@ -165,6 +167,7 @@ impl Viewer {
             handle: None,
             exercise_start: None,
             exercise_rope_x: 0.0,
+            rescued: None,
             owed: 0.0,
             screenshot: None,
             shot: None,
@@ -383,7 +386,11 @@ impl Viewer {
                 KeyAction::Escape => {} // resolved as it came (handle_event)
                 KeyAction::QuitAsk => {
                     self.observe_edits();
-                    let lost = if self.editor.unsaved { " (the unsaved edits are lost)" } else { "" };
+                    let lost = if self.editor.unsaved {
+                        " (the unsaved edits are saved to msdsim-rescued-*.toml in the current folder)"
+                    } else {
+                        ""
+                    };
                     let text =
                         format!("press Esc again within {} s to quit{lost}", super::input::QUIT_CONFIRM);
                     self.message(text, false)
@@ -417,6 +424,7 @@ impl Viewer {
             return Ok(Outcome::Exit);
         }
         if self.key_actions() {
+            self.keep_unsaved_on_quit();
             return Ok(Outcome::Exit);
         }
         if self.minimized {

@@ -42,7 +42,8 @@ impl Viewer {
     /// edit, a substep change, a layout change, an F12 screenshot, reset, pinning by click, save
     /// and load, the Record button, dragging a sphere by its translate handle with the rope on it,
     /// closing the window with that edit unsaved (it asks), undoing the drag with Ctrl+Z and
-    /// redoing it) with frames in flight, then exit. Any refusal is an error.
+    /// redoing it, closing twice: it quits and keeps the edit in a rescue file) with frames in
+    /// flight, then exit. Any refusal is an error.
     pub(super) fn exercise_editor(&mut self) -> Result<Outcome> {
         let mut scene = self.host().scene().clone();
         let saved = std::env::temp_dir().join(format!("msdsim-exercise-{}.toml", std::process::id()));
@@ -169,6 +170,22 @@ impl Viewer {
                 } else {
                     let redone = at.x - start.x > 0.01;
                     expect(self.host(), &format!("Ctrl+Shift+Z redoing the drag (sphere at {at})"), redone)?;
+                    // Closing twice quits with the edit kept in a rescue file.
+                    let close = winit::event::WindowEvent::CloseRequested;
+                    let quit = self.handle_event(&close) || self.handle_event(&close);
+                    let rescued = self.rescued.take();
+                    let kept = rescued.as_ref().and_then(|p| scene::load(p, &[]).ok());
+                    if let Some(path) = &rescued {
+                        let _ = std::fs::remove_file(path);
+                    }
+                    let moved = kept.is_some_and(|s| {
+                        s.spheres.first().is_some_and(|s| s.center[0] - start.x as f64 > 0.01)
+                    });
+                    expect(
+                        self.host(),
+                        "quitting with unsaved edits keeping them in a rescue file",
+                        quit && moved,
+                    )?;
                     return Ok(Outcome::Exit);
                 }
             }

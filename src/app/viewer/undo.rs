@@ -56,24 +56,37 @@ impl Viewer {
         let path = std::path::PathBuf::from(format!("msdsim-rescued-{}.toml", now.as_secs()));
         let saved = crate::scene::save(self.host.as_ref()?.scene(), &path);
         Some(match saved {
-            Ok(()) => format!("the unsaved scene was saved to {}", path.display()),
+            Ok(()) => {
+                let said = format!("the unsaved scene was saved to {}", path.display());
+                self.rescued = Some(path);
+                said
+            }
             Err(e) => format!("the unsaved scene could not be saved ({e:#})"),
         })
     }
 
+    /// When the user quits (Esc twice, or the close button) with unsaved edits: they are not
+    /// lost, but saved as a failure's are (`rescue_unsaved`), and the terminal says where.
+    pub(super) fn keep_unsaved_on_quit(&mut self) {
+        if let Some(said) = self.rescue_unsaved() {
+            eprintln!("msdsim: {said}");
+        }
+    }
+
     /// The window's close button: quits at once without unsaved edits; with them, only when
-    /// pressed again within QUIT_CONFIRM seconds (as Esc), saying so.
+    /// pressed again within QUIT_CONFIRM seconds (as Esc), saying so, and keeping them.
     pub(super) fn close_requested(&mut self) -> bool {
         self.observe_edits();
         if !self.editor.unsaved {
             return true;
         }
         if self.input.escape(std::time::Instant::now()) == KeyAction::Quit {
+            self.keep_unsaved_on_quit();
             return true;
         }
         self.message(
             format!(
-                "the scene has unsaved edits: close again within {} s to quit without saving them",
+                "the scene has unsaved edits: close again within {} s to quit (they are saved to msdsim-rescued-*.toml in the current folder)",
                 super::super::input::QUIT_CONFIRM
             ),
             false,
