@@ -5,8 +5,10 @@
 //! `sim.max_energy_gain` times its scale is implausible, even while every particle stays slower
 //! than `sim.max_speed`: a contact or a solve is making energy (a jittering stack, an
 //! unconverged solve that rings). The scale is what the objects would gain falling their own
-//! size, plus their kinetic energy when the watch starts, plus a floor of 0.1 m/s for every
-//! particle, so that a scene at rest without gravity is not stopped by rounding.
+//! size, plus their kinetic and elastic energy when the watch starts (what sloshes between
+//! the two: a method that conserves a modified energy, as symplectic Euler does, shows the
+//! true one rising and falling by a share of it), plus a floor of 0.1 m/s for every particle,
+//! so that a scene at rest without gravity is not stopped by rounding.
 //!
 //! The energy is summed on the host, in f64, from a read of the state (`sim::cpu::energy`, the
 //! reference's own): every `CHECK_FRAMES` frames, and less often for large scenes (one check
@@ -57,19 +59,30 @@ pub(super) fn states_of(particles: &[Vec<Particle>]) -> States {
 }
 
 /// The energy scale of objects of `masses` [kg per particle] at `states` (positions,
-/// velocities) under `gravity` [J].
-fn scale(masses: &[f64], states: &States, gravity: DVec3) -> f64 {
-    masses
-        .iter()
-        .zip(states)
-        .map(|(&m, (x, v))| {
+/// velocities) holding `elastic` energy in their springs [J each] under `gravity` [J].
+fn scale(masses: &[f64], states: &States, elastic: &[f64], gravity: DVec3) -> f64 {
+    (masses.iter().zip(states).zip(elastic))
+        .map(|((&m, (x, v)), &elastic)| {
             let (lo, hi) =
                 x.iter().fold((DVec3::INFINITY, DVec3::NEG_INFINITY), |(lo, hi), p| (lo.min(*p), hi.max(*p)));
             let size = if x.is_empty() { 0.0 } else { (hi - lo).length() };
             let kinetic: f64 = v.iter().map(|v| 0.5 * v.length_squared()).sum();
             m * (x.len() as f64 * (gravity.length() * size + 0.5 * FLOOR_SPEED * FLOOR_SPEED) + kinetic)
+                + elastic.max(0.0)
         })
         .sum()
+}
+
+/// Each object's elastic energy at `states`: its total (`total_energy`) less the kinetic and
+/// gravity's [J].
+fn elastic_energy(model: &SimModel, states: &States, totals: &[f64]) -> Vec<f64> {
+    (model.objects.iter().zip(states).zip(totals))
+        .map(|((o, (x, v)), total)| {
+            let kinetic: f64 = v.iter().map(|v| 0.5 * o.mass * v.length_squared()).sum();
+            let gravity: f64 = x.iter().map(|x| -o.mass * model.gravity.dot(*x)).sum();
+            total - kinetic - gravity
+        })
+        .collect()
 }
 
 /// Each object's energy at `states` (`sim::cpu::energy`) [J].
@@ -91,8 +104,9 @@ impl GpuSim {
             return;
         }
         let masses: Vec<f64> = self.model.objects.iter().map(|o| o.mass).collect();
-        self.energy.scale = scale(&masses, states, self.model.gravity);
         let energies = total_energy(&self.model, states);
+        let elastic = elastic_energy(&self.model, states, &energies);
+        self.energy.scale = scale(&masses, states, &elastic, self.model.gravity);
         self.energy.lowest = Some((energies.iter().sum(), energies));
     }
 
@@ -152,13 +166,14 @@ impl GpuSim {
 mod tests {
     use super::*;
 
-    /// The scale is each object's weight times its size, plus its kinetic energy, plus the floor.
+    /// The scale is each object's weight times its size, plus its kinetic and elastic energy,
+    /// plus the floor.
     #[test]
-    fn scale_is_weight_times_size_plus_kinetic_energy() {
+    fn scale_is_weight_times_size_plus_kinetic_and_elastic_energy() {
         let x = vec![DVec3::ZERO, DVec3::new(3.0, 4.0, 0.0)];
         let v = vec![DVec3::new(2.0, 0.0, 0.0), DVec3::ZERO];
-        let s = scale(&[0.5], &vec![(x, v)], DVec3::new(0.0, -10.0, 0.0));
-        let expected = 0.5 * (2.0 * (10.0 * 5.0 + 0.5 * FLOOR_SPEED * FLOOR_SPEED) + 2.0);
+        let s = scale(&[0.5], &vec![(x, v)], &[0.25], DVec3::new(0.0, -10.0, 0.0));
+        let expected = 0.5 * (2.0 * (10.0 * 5.0 + 0.5 * FLOOR_SPEED * FLOOR_SPEED) + 2.0) + 0.25;
         assert!((s - expected).abs() < 1e-12, "{s} against {expected}");
     }
 }
