@@ -749,6 +749,24 @@ fn hostile_keys_values_and_names_get_one_clear_line() {
         ],
         &["ring_weights", "between -100 and 100"],
     );
+    // Messages stay short and name what is wrong: a tiny number in exponent form (it was 401
+    // characters), an entry of an array the preset lacks (it was serde's "invalid type: map").
+    let tiny = msdsim(&["simulate", "--preset", "presets/flag.toml", "--set", "sim.frame_dt=1e-300"]);
+    let said = String::from_utf8_lossy(&tiny.stderr);
+    assert!(said.contains("sim.frame_dt = 1e-300") && said.len() < 200, "{said}");
+    rejects(
+        &["simulate", "--preset", "presets/flag.toml", "--set", "box.0.center=[0,1,0]"],
+        &["the preset has no box entries, so no box.0", "[[box]]"],
+    );
+    // A results folder that is a file, and an empty device name.
+    let file = write(dir.path(), "results", "kept");
+    for command in [&["bench", "--frames", "100", "--out", &file][..], &["chart", "--out", &file][..]] {
+        rejects(command, &["--out", "a file, not a folder"]);
+    }
+    assert_eq!(std::fs::read_to_string(&file).unwrap(), "kept");
+    let empty = msdsim(&["--device", "", "devices"]);
+    assert_eq!(empty.status.code(), Some(2), "an empty --device is refused");
+    assert!(String::from_utf8_lossy(&empty.stderr).contains("--device"));
     rejects(
         &["simulate", "--preset", "presets/flag.toml", "--set", "cloth.0.name=\"1\""],
         &["must not be a number"],

@@ -514,6 +514,9 @@ fn a_usd_recording_carries_the_colliders() {
     let text = std::fs::read_to_string(&usda).unwrap();
     let colliders = &text[text.find("def Scope \"colliders\"").expect("a colliders scope")..];
     assert!(colliders.contains("def Mesh \"ground_0\""), "{colliders}");
+    let ground = &colliders[colliders.find("def Mesh \"ground_0\"").unwrap()..];
+    let ground = &ground[..ground.find("def Cube").unwrap_or(ground.len())];
+    assert!(ground.contains("uniform token subdivisionScheme = \"none\""), "a flat quad: {ground}");
     let cube = &colliders[colliders.find("def Cube \"box_1\"").expect("the box")..];
     assert!(cube.contains("xformOp:scale = (0.5, 0.375, 0.35)"), "{cube}");
     assert!(cube.contains("xformOpOrder = [\"xformOp:translate\", \"xformOp:orient\", \"xformOp:scale\"]"));

@@ -99,8 +99,7 @@ pub fn run(args: &BenchArgs, options: &ContextOptions) -> Result<()> {
         .into());
     }
     // The folder only once the cases are known (a filter that matches none leaves nothing).
-    std::fs::create_dir_all(&args.out)
-        .map_err(|e| crate::error::UserError(format!("--out {}: {e}", args.out.display())))?;
+    super::out_file::out_folder("--out", &args.out)?;
     let ctx = GpuContext::new(options)?;
     let info = ctx.info().clone();
     eprintln!("device: {info}");

@@ -143,8 +143,7 @@ pub fn run(args: &ChartArgs, options: &ContextOptions) -> Result<()> {
         iterations: args.iterations.clone(),
         reference_substeps: args.reference_substeps,
     };
-    std::fs::create_dir_all(&args.out)
-        .map_err(|e| UserError(format!("--out {}: {e}", args.out.display())))?;
+    super::out_file::out_folder("--out", &args.out)?;
     let ctx = GpuContext::new(options)?;
     let mut all = Vec::new();
     let mut notes = Vec::new();

@@ -26,7 +26,7 @@ pub struct Cli {
     pub validation: bool,
     /// GPU to use: an index from `msdsim devices` or part of its name (default: discrete >
     /// integrated > CPU).
-    #[arg(long, global = true, env = "MSDSIM_DEVICE")]
+    #[arg(long, global = true, env = "MSDSIM_DEVICE", value_parser = clap::builder::NonEmptyStringValueParser::new())]
     pub device: Option<String>,
     /// Seconds to wait for the GPU to finish a submission before taking it to be stuck (a
     /// shader that never ends): the command then stops with exit code 1 and says so.
@@ -170,8 +170,7 @@ impl AppCommand {
             crate::app::check_selection(s, &scene)?;
         }
         if let Some(dir) = &self.record_frames {
-            std::fs::create_dir_all(dir)
-                .map_err(|e| crate::error::UserError(format!("--record-frames {}: {e}", dir.display())))?;
+            out_file::out_folder("--record-frames", dir)?;
         }
         let args = crate::app::AppArgs {
             preset_label: crate::app::preset_label(self.preset.as_ref()),

@@ -160,3 +160,16 @@ impl OutFile {
         crate::temporary::replace_with(&self.target, true, write)
     }
 }
+
+/// Makes the folder `dir` given to `option` (`bench`, `chart` and `stability --out`,
+/// `app --record-frames`) with its parents; an existing file there is refused by name (the
+/// results are several files), not with the system's "File exists".
+pub fn out_folder(option: &str, dir: &Path) -> Result<(), UserError> {
+    if std::fs::metadata(dir).is_ok_and(|m| !m.is_dir()) {
+        return Err(UserError(format!(
+            "{option} {}: a file, not a folder (the results are several files: name a folder, new or existing)",
+            dir.display()
+        )));
+    }
+    std::fs::create_dir_all(dir).map_err(|e| UserError(format!("{option} {}: {e}", dir.display())))
+}

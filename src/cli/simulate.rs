@@ -121,6 +121,29 @@ fn check_outputs(args: &SimulateArgs) -> Result<(), crate::error::UserError> {
     Ok(())
 }
 
+/// `seconds` in milliseconds, readable at any size (a substep of microseconds is not
+/// `0.000 ms`).
+fn milliseconds(seconds: f64) -> String {
+    significant(seconds * 1e3)
+}
+
+/// `x` as the stability line prints it: fixed with 0 to 4 decimals from 0.01 to 1e6 (as
+/// before: 657, 3.043), else in exponent form with three digits.
+fn significant(x: f64) -> String {
+    if x == 0.0 || (x.abs() >= 0.01 && x.abs() < 1e6) {
+        let decimals = if x.abs() >= 100.0 {
+            0
+        } else if x.abs() >= 1.0 {
+            3
+        } else {
+            4
+        };
+        format!("{x:.decimals$}")
+    } else {
+        format!("{x:.2e}")
+    }
+}
+
 pub fn run(args: &SimulateArgs, options: &ContextOptions) -> Result<()> {
     check_outputs(args)?;
     let scene = scene::load_runnable(&args.preset, &args.overrides)?;
@@ -151,13 +174,13 @@ pub fn run(args: &SimulateArgs, options: &ContextOptions) -> Result<()> {
     }
     say!(
         out,
-        "preset: {} ({}, {}, {} with {} substeps of {:.3} ms per frame{})",
+        "preset: {} ({}, {}, {} with {} substeps of {} ms per frame{})",
         args.preset.display(),
         counted(model.objects.len(), "object"),
         counted(model.colliders.len(), "collider"),
         model.integrator.label(),
         model.substeps,
-        model.dt() * 1e3,
+        milliseconds(model.dt()),
         if model.integrator.iterative() {
             format!(", {} iterations", model.iterations)
         } else {
@@ -171,14 +194,18 @@ pub fn run(args: &SimulateArgs, options: &ContextOptions) -> Result<()> {
         } else {
             format!("PAST IT: expect a blow-up; {}", p.substep_advice(model.frame_dt))
         };
+        let limit = if p.dt_max.is_finite() {
+            format!("explicit limit dt <= {} ms", milliseconds(p.dt_max))
+        } else {
+            "no explicit limit (no spring acts)".to_string()
+        };
         say!(
             out,
-            "stability: {} '{}': w_max <= {:.0} rad/s, explicit limit dt <= {:.3} ms; substep {:.3} ms is {verdict}",
+            "stability: {} '{}': w_max <= {} rad/s, {limit}; substep {} ms is {verdict}",
             p.kind.label(),
             p.name,
-            p.omega_max,
-            p.dt_max * 1e3,
-            dt * 1e3
+            significant(p.omega_max),
+            milliseconds(dt)
         )?;
     }
     if let Some(limit) = crate::sim::collider::contact_speed(&model) {

@@ -61,8 +61,7 @@ pub fn run(args: &StabilityArgs, options: &ContextOptions) -> Result<()> {
             scene::parse(DEFAULT_SCENE, "presets/curtain.toml", &overrides)?
         }
     };
-    std::fs::create_dir_all(&args.out)
-        .map_err(|e| crate::error::UserError(format!("--out {}: {e}", args.out.display())))?;
+    super::out_file::out_folder("--out", &args.out)?;
     let ctx = GpuContext::new(options)?;
     let sweep = Sweep::new(args.points as usize, args.decades, args.frames as usize, args.max_strain);
     let total = sweep.scales.len() * sweep.substeps.len();

@@ -780,6 +780,8 @@ impl Recording {
                 }
                 Shape::Ground { .. } => {
                     let h = GROUND_HALF_SIZE;
+                    // (a flat quad, not a subdivision cage: as the objects' meshes say)
+                    let _ = writeln!(out, "            uniform token subdivisionScheme = \"none\"");
                     let _ = writeln!(out, "            int[] faceVertexCounts = [4]\n            int[] faceVertexIndices = [0, 1, 2, 3]");
                     let _ = writeln!(out, "            point3f[] points = [(-{h}, 0, -{h}), (-{h}, 0, {h}), ({h}, 0, {h}), ({h}, 0, -{h})]");
                     let _ = writeln!(

@@ -176,6 +176,14 @@ fn set_path(table: &mut toml::Table, path: &[&str], value: toml::Value, walked: 
         table.insert(head.to_string(), value);
         return Ok(());
     }
+    // An index into an array the preset lacks (`box.0.center` without boxes) names what is
+    // missing, rather than making a table that the preset's types then refuse.
+    if !table.contains_key(*head) && rest.first().is_some_and(|s| s.parse::<usize>().is_ok()) {
+        return Err(format!(
+            "the preset has no {here} entries, so no {here}.{}: add one to the preset ([[{head}]])",
+            rest[0]
+        ));
+    }
     let entry = table.entry(head.to_string()).or_insert_with(|| toml::Value::Table(toml::Table::new()));
     match entry {
         toml::Value::Table(t) => set_path(t, rest, value, &here),
@@ -228,7 +236,45 @@ fn plain_types(message: &str) -> String {
 
 /// A message folded onto one line.
 fn one_line(message: &str) -> String {
-    message.trim().lines().map(str::trim).filter(|l| !l.is_empty()).collect::<Vec<_>>().join("; ")
+    let joined =
+        message.trim().lines().map(str::trim).filter(|l| !l.is_empty()).collect::<Vec<_>>().join("; ");
+    short_quotes(&joined)
+}
+
+/// The longest a value quoted in a message may run (in characters) before it is cut with "...".
+const MOST_QUOTED: usize = 80;
+
+/// `message` with every part quoted in "..." or `...` (serde quotes the value it refused: a
+/// 5,000-character one was echoed whole) cut to MOST_QUOTED characters.
+fn short_quotes(message: &str) -> String {
+    let mut out = String::with_capacity(message.len().min(4 * MOST_QUOTED));
+    let mut open: Option<char> = None;
+    let mut run = 0;
+    for c in message.chars() {
+        match open {
+            Some(q) if c == q => {
+                if run > MOST_QUOTED {
+                    out.push_str("...");
+                }
+                out.push(c);
+                open = None;
+            }
+            Some(_) => {
+                run += 1;
+                if run <= MOST_QUOTED {
+                    out.push(c);
+                }
+            }
+            None => {
+                if c == '"' || c == '`' {
+                    open = Some(c);
+                    run = 0;
+                }
+                out.push(c);
+            }
+        }
+    }
+    out
 }
 
 fn select<'a>(items: &'a mut [toml::Value], selector: &str) -> Option<&'a mut toml::Value> {
@@ -336,6 +382,14 @@ stiffness = { structural = 1.0, shear = 1.0, bending = 1.0 }
         assert_eq!(s.cloths[1].origin, [1.0, 2.0, 3.0]);
         assert_eq!(s.sim.gravity, [0.0, -1.0, 0.0]);
         assert_eq!(s.cloths[0].pin, super::super::ClothPins::TopRow);
+    }
+
+    #[test]
+    fn long_quoted_values_are_cut() {
+        let long = "9".repeat(5000);
+        let cut = short_quotes(&format!("invalid type: string \"{long}\", expected u32; `{long}`"));
+        assert!(cut.len() < 250 && cut.contains(&format!("\"{}...\"", "9".repeat(80))), "{cut}");
+        assert_eq!(short_quotes("unknown field `x`, expected \"y\""), "unknown field `x`, expected \"y\"");
     }
 
     #[test]

@@ -86,7 +86,7 @@ fn unit_interval(key: &str, v: f64) -> Check {
     if (0.0..=1.0).contains(&v) {
         Ok(())
     } else {
-        Err(format!("{key} = {v}: must be between 0 and 1"))
+        Err(format!("{key} = {}: must be between 0 and 1", num(v)))
     }
 }
 
@@ -123,17 +123,20 @@ pub fn check(scene: &Scene) -> Check {
         return Err(format!("sim.substeps = {}: must be between 1 and {MAX_SUBSTEPS}", s.substeps));
     }
     if !(s.frame_dt.is_finite() && (MIN_FRAME_DT..=1.0).contains(&s.frame_dt)) {
-        return Err(format!("sim.frame_dt = {}: must be between {MIN_FRAME_DT:e} and 1 (s)", s.frame_dt));
+        return Err(format!(
+            "sim.frame_dt = {}: must be between {MIN_FRAME_DT:e} and 1 (s)",
+            num(s.frame_dt)
+        ));
     }
     vector("sim.gravity", s.gravity, MAX_ACCELERATION, "m/s^2")?;
     positive("sim.max_speed", s.max_speed, (1e-6, MAX_SPEED), "m/s")?;
     if !(s.max_strain.is_finite() && (0.0..=1e3).contains(&s.max_strain)) {
-        return Err(format!("sim.max_strain = {}: must be between 0 (no check) and 1000", s.max_strain));
+        return Err(format!("sim.max_strain = {}: must be between 0 (no check) and 1000", num(s.max_strain)));
     }
     if !(s.max_energy_gain.is_finite() && (0.0..=1e3).contains(&s.max_energy_gain)) {
         return Err(format!(
             "sim.max_energy_gain = {}: must be between 0 (no check) and 1000",
-            s.max_energy_gain
+            num(s.max_energy_gain)
         ));
     }
     if !(1..=1000).contains(&s.iterations) {
@@ -146,12 +149,12 @@ pub fn check(scene: &Scene) -> Check {
         ));
     }
     if !(s.relaxation > 0.0 && s.relaxation < 2.0) {
-        return Err(format!("sim.relaxation = {}: must be between 0 and 2 (exclusive)", s.relaxation));
+        return Err(format!("sim.relaxation = {}: must be between 0 and 2 (exclusive)", num(s.relaxation)));
     }
     if !(s.tolerance.is_finite() && s.tolerance > 0.0 && s.tolerance < 1.0) {
         return Err(format!(
             "sim.tolerance = {}: must be greater than 0 and less than 1 (a fraction of the object's size)",
-            s.tolerance
+            num(s.tolerance)
         ));
     }
 
@@ -161,7 +164,10 @@ pub fn check(scene: &Scene) -> Check {
     finite("wind.force", w.force, MAX_FORCE, "N")?;
     non_negative("wind.speed", w.speed, 1e3, "m/s")?;
     if w.enabled && w.model == super::WindKind::Aerodynamic && w.speed <= 0.0 {
-        return Err(format!("wind.speed = {}: the aerodynamic wind needs an air speed > 0 (m/s)", w.speed));
+        return Err(format!(
+            "wind.speed = {}: the aerodynamic wind needs an air speed > 0 (m/s)",
+            num(w.speed)
+        ));
     }
     positive("wind.density", w.density, (1e-6, 1e5), "kg/m^3")?;
     non_negative("wind.normal_drag", w.normal_drag, 100.0, "a drag coefficient")?;
