@@ -29,10 +29,10 @@ pub struct Cli {
     #[arg(long, global = true, env = "MSDSIM_DEVICE", value_parser = clap::builder::NonEmptyStringValueParser::new())]
     pub device: Option<String>,
     /// Seconds to wait for the GPU to finish a submission before taking it to be stuck (a
-    /// shader that never ends): the command then stops with exit code 1 and says so.
-    #[arg(long, global = true, env = "MSDSIM_GPU_TIMEOUT", value_name = "SECONDS", default_value_t = 60.0,
-          value_parser = parse_gpu_timeout)]
-    pub gpu_timeout: f64,
+    /// shader that never ends, a hung device): the command then stops with exit code 1 and
+    /// says so [default: 60, or 600 on a CPU device such as lavapipe].
+    #[arg(long, global = true, env = "MSDSIM_GPU_TIMEOUT", value_name = "SECONDS", value_parser = parse_gpu_timeout)]
+    pub gpu_timeout: Option<f64>,
     #[command(subcommand)]
     pub command: Option<Command>,
 }
@@ -58,7 +58,7 @@ impl Cli {
         ContextOptions {
             validation: self.validation,
             device: self.device.clone(),
-            gpu_timeout: Some(std::time::Duration::from_secs_f64(self.gpu_timeout)),
+            gpu_timeout: self.gpu_timeout.map(std::time::Duration::from_secs_f64),
         }
     }
 }

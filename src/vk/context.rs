@@ -3,7 +3,7 @@
 //! module docs of `vk`).
 
 use super::debug::{messenger_callback, ValidationCanary};
-use super::device::{self, DeviceInfo};
+use super::device::{self, DeviceInfo, DeviceKind};
 use super::error::{Check, VkError};
 use super::pipeline_cache::PipelineCache;
 use ash::vk;
@@ -24,13 +24,17 @@ pub struct ContextOptions {
     /// Device index or part of its name; `None` picks the most capable kind.
     pub device: Option<String>,
     /// How long to wait for a submission before the device is taken to be stuck (a shader
-    /// that never ends); `None`: `DEFAULT_GPU_TIMEOUT`.
+    /// that never ends); `None`: `DEFAULT_GPU_TIMEOUT`, times `CPU_TIMEOUT_SCALE` on a CPU
+    /// device.
     pub gpu_timeout: Option<std::time::Duration>,
 }
 
 /// The default of `ContextOptions::gpu_timeout`: far above any one submission msdsim makes
 /// (a frame's substeps), also on lavapipe.
 pub const DEFAULT_GPU_TIMEOUT: std::time::Duration = std::time::Duration::from_secs(60);
+/// A CPU device (lavapipe) runs the same work one to two orders of magnitude slower: legitimate
+/// frames of a heavy scene (a settling stack of cloths) took over a minute there.
+pub const CPU_TIMEOUT_SCALE: u32 = 10;
 
 /// A window to present to: its platform handles.
 #[derive(Debug, Clone, Copy)]
@@ -157,6 +161,10 @@ impl GpuContext {
                     swapchain_loader: ash::khr::swapchain::Device::new(&instance, &device),
                 });
                 log::info!("GPU device: {}", candidate.info);
+                let timeout = options.gpu_timeout.unwrap_or(match candidate.info.kind {
+                    DeviceKind::Cpu => DEFAULT_GPU_TIMEOUT * CPU_TIMEOUT_SCALE,
+                    _ => DEFAULT_GPU_TIMEOUT,
+                });
                 Ok(Self {
                     _entry: entry,
                     instance,
@@ -170,7 +178,7 @@ impl GpuContext {
                     surface,
                     allocator: ManuallyDrop::new(Arc::new(Mutex::new(allocator))),
                     info: candidate.info,
-                    timeout: options.gpu_timeout.unwrap_or(DEFAULT_GPU_TIMEOUT),
+                    timeout,
                     stuck: AtomicBool::new(false),
                     pipelines: Mutex::new(PipelineCache::default()),
                 })

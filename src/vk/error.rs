@@ -14,7 +14,7 @@ pub enum VkError {
     NoValidationLayer,
     #[error("the GPU device was lost (driver reset or crash); the simulation state on it is gone")]
     DeviceLost,
-    #[error("the GPU did not finish its work within {seconds} s: a shader that never ends (a loop in an edited shader?) or a hung device; nothing more can run on it. Fix the shader, or give slow work longer with --gpu-timeout SECONDS")]
+    #[error("the GPU did not finish its work within {seconds} s, so it is taken to be stuck and nothing more can run on it: the work may be too slow for this device (give it longer with --gpu-timeout SECONDS), the device may have hung, or a shader you edited (--shaders, or the app's hot reload) may loop forever")]
     Stuck { seconds: f64 },
     #[error("GPU memory exhausted while allocating {what}")]
     OutOfMemory { what: String },
