@@ -302,6 +302,9 @@ impl Viewer {
                 Ok(loaded) => {
                     if self.apply(loaded) {
                         self.mark_saved();
+                        // The field shows the file loaded (a shipped preset found by its bare
+                        // name included), so that Save writes back to it.
+                        self.editor.preset_path = path.display().to_string();
                     }
                     self.fit_camera();
                     self.message(format!("loaded {}", path.display()), false);

@@ -40,7 +40,8 @@ impl Viewer {
 
     /// The scripted editor exercise of `--exercise-editor`: the editor's code paths (a parameter
     /// edit, a substep change, a layout change, an F12 screenshot, reset, pinning by click, save
-    /// and load, the Record button, dragging a sphere by its translate handle with the rope on it,
+    /// and load, the Record button, loading a shipped preset by its bare name, dragging a
+    /// sphere by its translate handle with the rope on it,
     /// closing the window with that edit unsaved (it asks), undoing the drag with Ctrl+Z and
     /// redoing it, closing twice: it quits and keeps the edit in a rescue file) with frames in
     /// flight, then exit. Any refusal is an error.
@@ -112,7 +113,24 @@ impl Viewer {
                     anyhow::bail!("exercise: the editor reported an error: {text}");
                 }
             }
-            // A translate handle, once the rope (reloaded at 16) lies on sphere 0: select the
+            // Load by a shipped preset's bare name: the field then shows the file loaded, so
+            // that Save writes there (not a new ./rope.toml).
+            21 => {
+                self.editor.preset_path = "rope.toml".into();
+                let path = crate::ui::resolve_preset(&self.editor.preset_path, "");
+                self.pending_actions.push(Action::Load(path));
+            }
+            // (applied over the next frames: on a CPU device a rebuild is announced first)
+            30 => {
+                let shown = std::path::PathBuf::from(&self.editor.preset_path);
+                let shipped = shown.ends_with("presets/rope.toml") && shown.is_file();
+                expect(
+                    self.host(),
+                    &format!("the loaded file in the preset field ({})", shown.display()),
+                    shipped,
+                )?;
+            }
+            // A translate handle, once the rope (reloaded at 21) lies on sphere 0: select the
             // sphere, press on its x arrow, drag 40 pixels right over two frames and let go.
             60 => self.editor.selected = Selection::Sphere(0),
             61..=63 => {
