@@ -57,6 +57,15 @@ vec3 forward_at(uint node, uint nodes) {
     return safe_normalize(to_next + from_prev, safe_normalize(to_next, vec3(1.0, 0.0, 0.0)));
 }
 
+// How much of a ring vertex's offset `o` a node keeps so that it stays RING_KEEP of the way
+// short of the plane halfway to the neighbour at `to` (zero: none): 1 when it points away.
+const float RING_KEEP = 0.9;
+float ring_reach(vec3 o, vec3 to) {
+    float toward = dot(o, to);
+    float half_way = 0.5 * dot(to, to);
+    return toward > RING_KEEP * half_way ? RING_KEEP * half_way / toward : 1.0;
+}
+
 void main() {
     uint nodes = obj.dims.x;
     if (gl_GlobalInvocationID.x == 0u) report_lists();
@@ -103,12 +112,18 @@ void main() {
         side = safe_normalize(side - dot(side, forward) * forward, side0);
         vec3 up = normalize(cross(forward, side));
         vec3 x = p_in[i].pos.xyz;
+        // The segments on either side: a ring vertex stays short of the planes halfway along
+        // them (on the inside of a sharp bend the rings would cross and turn faces inside out).
+        vec3 to_prev = i > 0u ? p_in[i - 1u].pos.xyz - x : vec3(0.0);
+        vec3 to_next = i + 1u < nodes ? p_in[i + 1u].pos.xyz - x : vec3(0.0);
         for (uint k = 0u; k < ROPE_RING; ++k) {
             vec4 pair = obj.ring_weights[k / 2u];
             vec2 w = (k & 1u) != 0u ? pair.zw : pair.xy;
             vec3 offset = side * w.x + up * w.y;
+            float reach = obj.rope_radius * min(ring_reach(offset * obj.rope_radius, to_prev),
+                                                ring_reach(offset * obj.rope_radius, to_next));
             surface[i * ROPE_RING + k] =
-                SurfaceVertex(vec4(x + offset * obj.rope_radius, 1.0), vec4(safe_normalize(offset, up), 0.0));
+                SurfaceVertex(vec4(x + offset * reach, 1.0), vec4(safe_normalize(offset, up), 0.0));
         }
     }
 }
