@@ -528,6 +528,22 @@ fn a_usd_recording_carries_the_colliders() {
     }
 }
 
+/// A recording written as the frames come (OBJ, PC2) into a folder it cannot write in is
+/// refused before the first frame, as USD and glTF are (it failed at frame 0, after the run
+/// began). /proc stands for such a folder: it is one even for root.
+#[test]
+fn a_folder_the_recording_cannot_write_in_is_refused_before_the_run() {
+    for name in ["/proc/msdsim-x.obj", "/proc/msdsim-x.pc2"] {
+        let out = binary()
+            .args(["simulate", "--preset", "presets/flag.toml", "--frames", "3", "--record", name])
+            .output()
+            .unwrap();
+        assert_eq!(out.status.code(), Some(2), "{name}: {}", stderr(&out));
+        assert!(stderr(&out).contains("cannot write in the folder /proc"), "{name}: {}", stderr(&out));
+        assert!(!String::from_utf8_lossy(&out.stdout).contains("simulated"), "{name}: the run began");
+    }
+}
+
 /// Objects named like the scopes beside them (`colliders`, `materials`) are renamed apart: a
 /// prim path under /scene holds one prim (Pixar's reader refuses a duplicate), and the rename
 /// is the one every format uses.

@@ -233,6 +233,17 @@ impl Recording {
             ))
             .into());
         }
+        // The formats written as the frames come find a folder they cannot write in now, not at
+        // the first frame after the run has begun (USD and glTF claim their file before).
+        if !format.keeps_frames() {
+            crate::temporary::probe_beside(path).map_err(|e| {
+                crate::error::UserError(format!(
+                    "{}: cannot write in the folder {} for the recording: {e}",
+                    path.display(),
+                    folder.display()
+                ))
+            })?;
+        }
         if format == Format::ObjSequence {
             remove_old_frames(path)?;
         }
