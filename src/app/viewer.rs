@@ -247,7 +247,11 @@ impl Viewer {
                 self.input.actions.push(asked);
             }
         }
-        self.input.actions.contains(&KeyAction::Quit)
+        let quit = self.input.actions.contains(&KeyAction::Quit);
+        if quit {
+            self.keep_unsaved_on_quit();
+        }
+        quit
     }
 
     fn resized(&mut self, size: PhysicalSize<u32>) {
@@ -427,7 +431,6 @@ impl Viewer {
             return Ok(Outcome::Exit);
         }
         if self.key_actions() {
-            self.keep_unsaved_on_quit();
             return Ok(Outcome::Exit);
         }
         if self.minimized {

@@ -9,6 +9,7 @@ use crate::app::SimHost;
 use crate::scene;
 use crate::ui::{Action, Selection};
 use anyhow::{Context as _, Result};
+use glam::Vec3;
 use winit::dpi::PhysicalSize;
 
 impl Viewer {
@@ -188,28 +189,40 @@ impl Viewer {
                 } else {
                     let redone = at.x - start.x > 0.01;
                     expect(self.host(), &format!("Ctrl+Shift+Z redoing the drag (sphere at {at})"), redone)?;
-                    // Closing twice quits with the edit kept in a rescue file.
+                    // Closing twice, and Esc (as the keys queue it) until it quits, each quit
+                    // with the edit kept in a rescue file.
                     let close = winit::event::WindowEvent::CloseRequested;
-                    let quit = self.handle_event(&close) || self.handle_event(&close);
-                    let rescued = self.rescued.take();
-                    let kept = rescued.as_ref().and_then(|p| scene::load(p, &[]).ok());
-                    if let Some(path) = &rescued {
-                        let _ = std::fs::remove_file(path);
-                    }
-                    let moved = kept.is_some_and(|s| {
-                        s.spheres.first().is_some_and(|s| s.center[0] - start.x as f64 > 0.01)
-                    });
-                    expect(
-                        self.host(),
-                        "quitting with unsaved edits keeping them in a rescue file",
-                        quit && moved,
-                    )?;
+                    let by_close = self.handle_event(&close) || self.handle_event(&close);
+                    self.expect_rescued(by_close, start, "closing twice")?;
+                    let escape = |v: &mut Self| {
+                        v.input.actions.push(KeyAction::Escape);
+                        v.handle_event(&winit::event::WindowEvent::Focused(true))
+                    };
+                    let by_escape = (0..4).any(|_| escape(self));
+                    self.expect_rescued(by_escape, start, "Esc until it quits")?;
                     return Ok(Outcome::Exit);
                 }
             }
             _ => {}
         }
         Ok(Outcome::Continue)
+    }
+
+    /// Checks that `quit` is true and that the rescue file it wrote holds sphere 0 dragged along
+    /// x from `start` (then removes the file).
+    fn expect_rescued(&mut self, quit: bool, start: Vec3, how: &str) -> Result<()> {
+        let rescued = self.rescued.take();
+        let kept = rescued.as_ref().and_then(|p| scene::load(p, &[]).ok());
+        if let Some(path) = &rescued {
+            let _ = std::fs::remove_file(path);
+        }
+        let moved =
+            kept.is_some_and(|s| s.spheres.first().is_some_and(|s| s.center[0] - start.x as f64 > 0.01));
+        if quit && moved {
+            Ok(())
+        } else {
+            Err(anyhow::anyhow!("exercise: {how} did not quit keeping the unsaved edits in a rescue file"))
+        }
     }
 
     /// The mean x of object 0's particles now (the rope of the exercise's preset) [m].
