@@ -121,8 +121,8 @@ fn check_outputs(args: &SimulateArgs) -> Result<(), crate::error::UserError> {
     Ok(())
 }
 
-/// `seconds` in milliseconds, readable at any size (a substep of microseconds is not
-/// `0.000 ms`).
+/// `seconds` in milliseconds, readable at any size (a substep of microseconds does not print
+/// as zero).
 fn milliseconds(seconds: f64) -> String {
     significant(seconds * 1e3)
 }

@@ -244,8 +244,8 @@ fn one_line(message: &str) -> String {
 /// The longest a value quoted in a message may run (in characters) before it is cut with "...".
 const MOST_QUOTED: usize = 80;
 
-/// `message` with every part quoted in "..." or `...` (serde quotes the value it refused: a
-/// 5,000-character one was echoed whole) cut to MOST_QUOTED characters.
+/// `message` with every part quoted in "..." or `...` (serde quotes the value it refused,
+/// however long) cut to MOST_QUOTED characters.
 fn short_quotes(message: &str) -> String {
     let mut out = String::with_capacity(message.len().min(4 * MOST_QUOTED));
     let mut open: Option<char> = None;

@@ -32,8 +32,8 @@ pub struct ContextOptions {
 /// The default of `ContextOptions::gpu_timeout`: far above any one submission msdsim makes
 /// (a frame's substeps), also on lavapipe.
 pub const DEFAULT_GPU_TIMEOUT: std::time::Duration = std::time::Duration::from_secs(60);
-/// A CPU device (lavapipe) runs the same work one to two orders of magnitude slower: legitimate
-/// frames of a heavy scene (a settling stack of cloths) took over a minute there.
+/// A CPU device (lavapipe) runs the same work one to two orders of magnitude slower, so a
+/// legitimate heavy frame there outlasts the GPU's default.
 pub const CPU_TIMEOUT_SCALE: u32 = 10;
 
 /// A window to present to: its platform handles.

@@ -583,10 +583,8 @@ mod tests {
     }
 
     /// A rope's tube keeps every face facing out at sharp bends: with 2.5 cm segments and a 2 cm
-    /// radius, turns of up to 130 degrees at every node (rope_on_cloth had 5 faces inside out at
-    /// 92 to 123; without the rings kept short of the halfway planes 8 of these 176 are at 92).
-    /// Past about 135 degrees the centre line bends tighter than the tube is thick and some
-    /// faces still turn (4 at 135): not covered.
+    /// radius, turns of up to 130 degrees at every node. Sharper turns bend the centre line
+    /// tighter than the tube is thick, where some faces still turn: not covered.
     #[test]
     fn the_rope_tube_turns_no_face_inside_out_at_sharp_bends() {
         let nodes = 12;
