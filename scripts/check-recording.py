@@ -3,7 +3,7 @@
 
     pip install usd-core trimesh
     scripts/check-recording.py out.usda          # USD: Pixar's own reader and validators
-    scripts/check-recording.py out.usdc          # the same converted to binary USD (README)
+    scripts/check-recording.py out.usdc          # the same converted to binary USD (docs/guide/recording.md)
     scripts/check-recording.py out_00010.obj     # one OBJ frame, read with trimesh
     scripts/check-recording.py out.glb           # glTF binary, read with trimesh (first frame)
 

@@ -128,7 +128,7 @@ pub struct AppCommand {
     #[arg(long, value_name = "FILE.png")]
     pub screenshot: Option<std::path::PathBuf>,
     /// Write every drawn frame as DIR/frame_00000.png, DIR/frame_00001.png, ... (the folder is
-    /// created; README: turning them into a video).
+    /// created; docs/guide/app.md: turning them into a video).
     #[arg(long, value_name = "DIR")]
     pub record_frames: Option<std::path::PathBuf>,
     /// Shader folder to compile and watch for hot reload (default: the source tree's glsl/

@@ -303,7 +303,7 @@ fn recording_indicator(ui: &Ui, state: &EditorState) {
     draw.add_text([x + 20.0, y], [1.0, 1.0, 1.0, 1.0], &text);
 }
 
-/// The app's controls (the README's table), shown with F1.
+/// The app's controls (the table in docs/guide/app.md), shown with F1.
 const CONTROLS: [(&str, &str); 19] = [
     ("left-drag on cloth or rope", "grab the particle (within 12 pixels) and drag it"),
     ("Ctrl + left click", "pin the particle where it is, or free it"),
