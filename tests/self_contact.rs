@@ -792,7 +792,7 @@ fn a_rope_sliding_along_itself_stops_where_coulomb_says() {
 /// 0.15 s (0.3 to 0.4 at 8 substeps, under 0.1 at 64: the residue of four Jacobi passes, first
 /// order in the step), so the bound is 0.2% of the frictionless speed there (0.50 m/s), 1 mm/s;
 /// when a resting contact's friction was scaled by its small count weight it crept at a steady
-/// 5.5 to 6.5 mm/s at any substep count (ACCURACY.md). Reference and both GPU paths, 16
+/// 5.5 to 6.5 mm/s at any substep count (docs/log.md). Reference and both GPU paths, 16
 /// substeps.
 #[test]
 fn a_rope_on_itself_sticks_below_the_friction_angle_and_slides_above() {

@@ -246,7 +246,7 @@ pub enum SelfContact {
     Triangles,
     /// As `Triangles`, and the grid's edges from its edges (layers crossing edge over edge,
     /// which no particle touches: a strip piling on its own sharp folds), at several times the
-    /// cost (docs/PERFORMANCE.md, "Edge-edge contact").
+    /// cost (docs/PERFORMANCE.md, "Edge-edge self-contact").
     TrianglesAndEdges,
 }
 

@@ -105,9 +105,9 @@ pub const BDF2_STEP: f64 = 2.0 / 3.0;
 
 /// Conjugate-gradient iterations of one Newton step of the implicit method (`sim::cpu::integrators::implicit`): every
 /// `NEWTON_CG_ITERATIONS` iterations it linearises again at the iterate they reached. At one
-/// 1/60 s substep on a stiff cloth (docs/ACCURACY.md, "Large steps") two Newton steps of five
-/// settle to the static sag and come to rest, one of ten hangs 126% too low and rings, and
-/// steps of two or three converge more slowly.
+/// 1/60 s substep on a stiff cloth (docs/log.md, "The implicit method by Newton's method and
+/// conjugate gradients") two Newton steps of five settle to the static sag and come to rest,
+/// one of ten hangs 126% too low and rings, and steps of two or three converge more slowly.
 pub const NEWTON_CG_ITERATIONS: u32 = 5;
 
 /// The Newton steps of `iterations` conjugate-gradient iterations: the counts of each
@@ -131,7 +131,7 @@ pub struct Method {
     /// Colour of its curves in the accuracy chart (RGB).
     pub colour: (u8, u8, u8),
     /// The iterations a substep it is meant to run at (iterative methods; 1 for the others):
-    /// the count the tests' convergence rates and the cost targets (docs/ACCURACY.md) use.
+    /// the count the tests' convergence rates and the cost targets (docs/PERFORMANCE.md) use.
     pub few_iterations: u32,
     /// `sim.relaxation` applies (scales each constraint update).
     pub relaxed: bool,

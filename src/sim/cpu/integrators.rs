@@ -177,7 +177,7 @@ fn adaptive_start(m: &SimModel) -> bool {
 /// acceleration, which near rest is mostly noise. The next substep starts its iterate at y less
 /// that fraction of the external pull, so a cloth at rest starts at rest and a falling one
 /// starts falling: at few iterations and large steps a method from y hangs too low, since its
-/// springs take back only part of each substep's pull (measured in docs/ACCURACY.md).
+/// springs take back only part of each substep's pull (measured in docs/log.md).
 pub fn held_fraction(m: &SimModel, h: f64, correction: DVec3) -> f64 {
     let g2 = m.gravity.length_squared();
     if g2 == 0.0 {

@@ -88,7 +88,7 @@ pub(super) fn sets_needed(model: &SimModel) -> u32 {
 /// One lane each where lanes would need more workgroups than one dispatch allows, and on a CPU
 /// driver, whose lanes run one after another: there each lane's walk of the node's 8 buckets
 /// costs what the node's whole search costs alone (lavapipe, the playground's rope: 64 lanes
-/// 716 ms a frame at 32 substeps, 8 lanes 250, one 190; docs/PERFORMANCE.md).
+/// 716 ms a frame at 32 substeps, 8 lanes 250, one 190; docs/log.md).
 struct WorkLayout {
     first: Vec<u32>,
     lanes: Vec<u32>,

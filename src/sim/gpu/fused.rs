@@ -393,7 +393,7 @@ const CONTACT_FEATURES: u32 =
 /// twice the per-stage path (lavapipe, a 40 x 40 cloth: 138 against 69 ms a frame); edge pairs
 /// on no device: a fused object's search runs in one workgroup, and a pile's edge pairs make it
 /// long (the H100: the towel with edge contact 78 ms a frame fused against 13.0 per stage; the
-/// curtain, which does not pile, 5.3 to 6.0 against 8.6; docs/PERFORMANCE.md).
+/// curtain, which does not pile, 5.3 to 6.0 against 8.6; docs/log.md).
 pub(super) fn default_fused_contact(info: &crate::vk::DeviceInfo) -> u32 {
     match info.kind {
         crate::vk::DeviceKind::Cpu => 0,

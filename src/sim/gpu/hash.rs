@@ -17,7 +17,7 @@ const LISTS_OFF_FRAMES: u32 = 64;
 
 /// Whether an object's per-stage contact lists are on. A substep that rebuilds them costs more
 /// than one without lists (the hash's cells are twice as wide and the lists are written), one
-/// that walks them a fraction (measured on the H100, docs/PERFORMANCE.md), so they pay only
+/// that walks them a fraction (measured on the H100, docs/log.md), so they pay only
 /// while they last: when more than a quarter of a frame's substeps rebuilt them (a cloth in
 /// motion), they are turned off for `LISTS_OFF_FRAMES` frames, then tried again. Either way the
 /// contacts found are the same (exact). Driven by the counters the constraints keep, read with

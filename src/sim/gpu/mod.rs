@@ -58,7 +58,7 @@ const BINDINGS: u32 = 18;
 /// What each binding holds: the globals (0) are a uniform buffer, read by every invocation
 /// alike (the driver folds its members into the instructions), the rest storage buffers. The
 /// object's parameters (1) as a uniform buffer measured faster still on the H100 (a further
-/// 13-23% on small scenes, docs/PERFORMANCE.md) but made lavapipe's memory grow by about 100 MB
+/// 13-23% on small scenes, docs/log.md) but made lavapipe's memory grow by about 100 MB
 /// a second on the playground preset (not on simpler scenes), so they stay a storage buffer.
 fn binding_kinds() -> Vec<BindingKind> {
     (0..BINDINGS)
