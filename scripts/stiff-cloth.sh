@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # The stiff cloth at large steps (docs/ACCURACY.md, "Large steps"): every iterative method at 1,
 # 2 and 4 substeps a frame and 2 to 100 iterations, and Verlet at a stable substep count, on
-# docs/accuracy/stiff/stiff-cloth.toml at 1e4 and 1e5 N/m, 240 frames (4 s) each. Writes, per
+# docs/records/accuracy/stiff/stiff-cloth.toml at 1e4 and 1e5 N/m, 240 frames (4 s) each. Writes, per
 # run, the final state (NAME.json: the settled sag and speeds) and `simulate`'s summary
 # (NAME.log: GPU time a frame) into OUT; scripts/stiff-cloth.py makes the table from them.
 # Usage: scripts/stiff-cloth.sh MSDSIM_BINARY PRESET OUT

@@ -463,7 +463,7 @@ fn line_scene() -> msdsim::sim::model::SimModel {
 /// above that one's (measured 95% to 98%: one pass of contact between objects a substep leaves
 /// a layer under several others its share of each contact, so a stack settles a little inside
 /// its thickness). Without the edge pairs 4 edges pass (particles kept from triangles only:
-/// two layers crossing edge over edge between their vertices; docs/bench/cpu/cloth-stack).
+/// two layers crossing edge over edge between their vertices; docs/records/bench/cpu/cloth-stack).
 #[test]
 fn a_stack_of_thin_cloths_rests_without_passing() {
     use msdsim::sim::collider::{ColliderModel, Motion, Shape};

@@ -149,7 +149,7 @@ fn standing_strip(dims: [usize; 2], spacing: f64, top: f64, tilt: f64) -> SimMod
 /// reference let none through in 68 of the 72 runs and 4 to 6 in four, each next to a fold
 /// sharper than a cell, none through a layer (with the bound on each particle's move, its
 /// colliders' part too; 185 edges in 16 runs without the bound, through layers in some), the
-/// GPU per stage none at 11 tilts (docs/bench/cpu/edge-margin/, 6), so that bound is 15 and
+/// GPU per stage none at 11 tilts (docs/records/bench/cpu/edge-margin/, 6), so that bound is 15 and
 /// none through a layer. The count changes in place.
 #[test]
 fn contact_iterations_stop_a_strip_piling_on_itself() {
@@ -870,7 +870,7 @@ fn wide_strip_crossings(tilt: f64) -> (usize, usize) {
 /// the triangles next to it where a fold is sharper than a cell (pairs the rest-state filter
 /// leaves out). Measured here: 2, 0 and 2 edges, none through a layer (without the bound 23, 4
 /// and 27, of which 11, 0 and 6 through a layer); over the eight tilts from 0.05 to 0.4 rad
-/// none through a layer, 2 to 10 next to a fold at three (docs/bench/cpu/edge-margin/, 6).
+/// none through a layer, 2 to 10 next to a fold at three (docs/records/bench/cpu/edge-margin/, 6).
 #[test]
 fn a_wide_strip_piling_with_edge_contact_never_passes_through_a_layer() {
     let worst: Vec<(usize, usize)> = [0.1, 0.15, 0.25].into_iter().map(wide_strip_crossings).collect();
@@ -884,7 +884,7 @@ fn a_wide_strip_piling_with_edge_contact_never_passes_through_a_layer() {
 /// is within half the skin of where they were built; but an edge bends further than its ends
 /// move, so an edge that creased past CREASE_FROM meanwhile had its pairs missed until the next
 /// build. The 5 x 61 piling strip at friction 0.3, tilted 0.1 rad from 1.625 m (where the probe
-/// of docs/bench/cpu/edge-margin/ drops it), fused with edge contact, let 89 edges through its
+/// of docs/records/bench/cpu/edge-margin/ drops it), fused with edge contact, let 89 edges through its
 /// triangles so, 98 through a layer; the lists are now built again when an edge creases that
 /// they hold no pairs of (`creased_past_lists`). Measured: 2, none through a layer (per stage,
 /// whose lists are off while the strip moves: 0). Bounds as the other piling tests'.

@@ -85,7 +85,7 @@ fn builtin(names: &[String], overrides: &[String]) -> Result<Vec<(String, Scene)
         r.pin = RopePins::Both;
         r.friction = 0.0;
     }
-    // The stiff cloth of docs/ACCURACY.md's "Large steps" (docs/accuracy/stiff/stiff-cloth.toml),
+    // The stiff cloth of docs/ACCURACY.md's "Large steps" (docs/records/accuracy/stiff/stiff-cloth.toml),
     // settling from flat.
     let mut stiff = scene::parse(CURTAIN, "presets/curtain.toml", &[])?;
     stiff.clear_colliders();

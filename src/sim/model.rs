@@ -5,7 +5,7 @@
 pub use super::integrator::Integrator;
 use glam::DVec3;
 
-/// Lanes a rope's node searches with (`ObjectModel::contact_lanes`; docs/bench/h100/rope-capsules-lanes).
+/// Lanes a rope's node searches with (`ObjectModel::contact_lanes`; docs/records/bench/h100/rope-capsules-lanes).
 pub const CONTACT_LANES: u32 = 64;
 
 /// How far a cloth's grid diagonals may stretch with every self-contact still found

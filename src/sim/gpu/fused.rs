@@ -38,7 +38,7 @@ pub const FUSED_HASHED_SLOTS: u32 = FUSED_SLOTS;
 /// XPBD's 12 spring classes, VBD's 5 colours and the implicit method's CG passes run fused
 /// wherever they fit (the H200, 10 substeps x 10 iterations, ms a frame per stage against fused
 /// at two particles a thread: a 40 x 40 cloth XPBD 4.41 against 1.56, VBD 3.10 against 1.41,
-/// the implicit method 1.41 against 1.20; docs/bench/h200/newton-rows/). XPBD by Jacobi makes
+/// the implicit method 1.41 against 1.20; docs/records/bench/h200/newton-rows/). XPBD by Jacobi makes
 /// one pass over all particles an iteration, which one SM issues more slowly than the
 /// per-stage dispatches spread over many (0.71 against 0.86): it takes the default.
 fn solver_slots(sweep: Sweep) -> u32 {

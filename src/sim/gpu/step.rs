@@ -111,7 +111,7 @@ impl GpuSim {
 /// The implicit method per stage: objects of more workgroups than this total their partial
 /// sums in a pass of one workgroup (each pass's workgroups summing them all themselves grows
 /// with the square of the count: a 1024 x 1024 cloth's 4,096 took 12.65 against 13.33 ms a
-/// frame at 4 iterations with the passes, H100, docs/bench/h100/implicit-cg).
+/// frame at 4 iterations with the passes, H100, docs/records/bench/h100/implicit-cg).
 pub(super) const CG_TOTALS_ABOVE: u32 = 1024;
 
 impl GpuSim {
