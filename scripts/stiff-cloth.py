@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """The table of scripts/stiff-cloth.sh's runs: per stiffness and method, the settled sag's error
-against the static equilibrium (Newton's method on the total energy, tests/large_steps.rs:
+against the static equilibrium (Newton's method on the total energy, tests/suite/large_steps.rs:
 7.568 mm at 1e4 N/m, 3.510 mm at 1e5), the fastest particle after 4 s, and the GPU time a
 frame; then each method's cheapest setting (substeps x iterations: GPU time a frame) within 5%
 and 1%, and within them at rest (every particle under 1 mm/s).

@@ -1,14 +1,101 @@
 #!/usr/bin/env bash
-# The test suite: installs missing system packages, then runs every test on the Vulkan device
+# The test suite: installs missing system packages, then runs the tests on the Vulkan device
 # (on a machine without a GPU: Mesa's lavapipe) with validation and synchronization validation.
-# Extra arguments go to `cargo test`. Ends with one line of totals.
+#
+#   scripts/test.sh            the default tier: every behaviour (about 10 minutes on a fresh
+#                              2-core machine, building included)
+#   scripts/test.sh --all      the default tier, then the exhaustive one: the tests `#[ignore]`d
+#                              as repeating a behaviour at a larger size or over more cases (CI)
+#   scripts/test.sh FILTER     only the integration tests whose names contain FILTER
+#                              (`scripts/test.sh self_contact::`)
+#
+# The unit tests run as `cargo test` runs them; each integration test (tests/suite/) runs in a
+# process of its own, as many at once as there are cores: the validation layer serialises the
+# GPU work of threads of one process. Options starting with `-` go to `cargo test --no-run`.
+# Prints each test's result and time, the time of the build and of each tier, and ends with
+# one line of totals.
 set -euo pipefail
 cd "$(dirname "$0")/.."
+all=0
+cargo_args=()
+filters=()
+for a in "$@"; do
+    case "$a" in
+        --all) all=1 ;;
+        -*) cargo_args+=("$a") ;;
+        *) filters+=("$a") ;;
+    esac
+done
 scripts/deps.sh test
-log=$(mktemp)
-trap 'rm -f "$log"' EXIT
-status=0
-cargo test --locked "$@" 2>&1 | tee "$log" || status=$?
-awk '/^test result:/ { for (i = 1; i <= NF; i++) { if ($(i+1) ~ /^passed/) p += $i; if ($(i+1) ~ /^failed/) f += $i } }
-     END { printf "%d passed, %d failed\n", p, f }' "$log"
-exit "$status"
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+seconds() { echo $(( $(date +%s) - $1 )); }
+
+start=$(date +%s)
+cargo test --locked --no-run --message-format=json-render-diagnostics "${cargo_args[@]}" > "$work/build.json"
+times="build $(seconds "$start") s"
+# (the test harnesses: artifacts of the test profile, not the msdsim binary the tests run)
+executables=$(grep -E '"profile":\{[^}]*"test":true' "$work/build.json" | grep -o '"executable":"[^"]*"' \
+    | sed 's/"executable":"\(.*\)"/\1/' | sort -u)
+suite=$(grep '/suite-[0-9a-f]*$' <<< "$executables" || true)
+[ -n "$suite" ] || { echo "test.sh: cargo built no tests/suite binary" >&2; exit 1; }
+
+passed=0
+failed=0
+failures=()
+# Unit tests (src/), all in their own binaries' threads: quick, and most need no GPU.
+if [ "${#filters[@]}" = 0 ]; then
+    start=$(date +%s)
+    for exe in $(grep -v '/suite-[0-9a-f]*$' <<< "$executables"); do
+        if "$exe" > "$work/unit.log" 2>&1; then :; else failures+=("unit tests of $exe"); cat "$work/unit.log"; fi
+        read -r p f < <(awk '/^test result:/ { for (i = 1; i <= NF; i++) { if ($(i+1) ~ /^passed/) p += $i; if ($(i+1) ~ /^failed/) f += $i } } END { print p + 0, f + 0 }' "$work/unit.log")
+        passed=$((passed + p))
+        failed=$((failed + f))
+    done
+    times="$times, unit tests $(seconds "$start") s"
+fi
+
+# One integration test: its output kept, a line with its result and time.
+run_one() {
+    local name=$1 log
+    log="$work/$(printf '%s' "$name" | tr -c 'A-Za-z0-9_.-' '_').log"
+    local t0=$SECONDS
+    if "$suite" --exact "$name" --include-ignored --test-threads 1 > "$log" 2>&1; then
+        printf 'PASS %4ds %s\n' $((SECONDS - t0)) "$name"
+    else
+        printf 'FAIL %4ds %s\n' $((SECONDS - t0)) "$name"
+    fi
+}
+export -f run_one
+export suite work
+
+# The integration tests of a tier (`--ignored`: the exhaustive one), listed by the binary.
+run_tier() {
+    local tier=$1 listed
+    listed=$("$suite" --list --format terse ${filters[@]+"${filters[@]}"} $([ "$tier" = exhaustive ] && echo --ignored) 2>/dev/null | sed -n 's/: test$//p')
+    if [ "$tier" = default ]; then
+        local ignored
+        ignored=$("$suite" --list --format terse --ignored ${filters[@]+"${filters[@]}"} 2>/dev/null | sed -n 's/: test$//p')
+        listed=$(comm -23 <(sort <<< "$listed") <(sort <<< "$ignored"))
+    fi
+    [ -n "$listed" ] || return 0
+    local start
+    start=$(date +%s)
+    tr '\n' '\0' <<< "$listed" | xargs -0 -P "$(nproc)" -I{} bash -c 'run_one "$1"' _ {} | tee "$work/$tier.results"
+    times="$times, $tier tier $(seconds "$start") s"
+    passed=$((passed + $(grep -c '^PASS' "$work/$tier.results" || true)))
+    while read -r name; do
+        failed=$((failed + 1))
+        failures+=("$name")
+        echo "---- $name ----"
+        cat "$work/$(printf '%s' "$name" | tr -c 'A-Za-z0-9_.-' '_').log"
+    done < <(sed -n 's/^FAIL *[0-9]*s //p' "$work/$tier.results")
+}
+run_tier default
+if [ "$all" = 1 ]; then
+    run_tier exhaustive
+fi
+[ "${#failures[@]}" = 0 ] || printf 'failed: %s\n' "${failures[@]}"
+echo "time: $times"
+echo "$passed passed, $failed failed"
+[ "$failed" = 0 ] && [ "${#failures[@]}" = 0 ]

@@ -6,7 +6,7 @@
 #define MSD_COLLIDERS_GLSL
 #include "features.glsl"
 
-// Type ids (ColliderKind's glsl_id; checked by tests/layout.rs).
+// Type ids (ColliderKind's glsl_id; checked by tests/suite/layout.rs).
 #define COLLIDER_SPHERE 0u
 #define COLLIDER_GROUND 1u
 #define COLLIDER_BOX 2u

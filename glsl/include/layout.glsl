@@ -1,5 +1,5 @@
 // std430 layouts shared by every simulation shader: the single source of truth for GPU structs.
-// Mirrored in src/sim/gpu_types.rs (#[repr(C)] + bytemuck); tests/layout.rs checks every member
+// Mirrored in src/sim/gpu_types.rs (#[repr(C)] + bytemuck); tests/suite/layout.rs checks every member
 // offset and array stride of these structs in the compiled SPIR-V against the Rust mirrors.
 // Units: metres, seconds, kilograms, newtons.
 #ifndef MSD_LAYOUT_GLSL

@@ -1,5 +1,5 @@
 // Layouts shared by the scene-drawing shaders. Mirrored in src/sim/gpu_types.rs (Camera, Draw)
-// and checked against the SPIR-V by tests/layout.rs.
+// and checked against the SPIR-V by tests/suite/layout.rs.
 #ifndef MSD_RENDER_GLSL
 #define MSD_RENDER_GLSL
 

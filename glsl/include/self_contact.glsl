@@ -550,7 +550,7 @@ void add_move(uint i, vec3 move, vec3 rest) {
 // splitting), which a pile of layers needs many passes to sum to what holds it; 1.5 its
 // share, but never more than the contact alone would take (then its whole overlap), so that a
 // lone contact does not overshoot. Without edge contact 1 (colliding layers part at 0.004 to
-// 0.010 m/s after, against 0.011 to 0.034 with it and 1.5; tests/self_contact.rs).
+// 0.010 m/s after, against 0.011 to 0.034 with it and 1.5; tests/suite/self_contact.rs).
 float pair_relaxation() { return edge_contact() ? 1.5 : 1.0; }
 
 // With a cloth's edge pairs, how far a particle may move in a substep, as a fraction of the

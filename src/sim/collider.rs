@@ -26,7 +26,7 @@ pub struct KindRow {
     pub label: &'static str,
     /// The `FEATURES` specialization bit that compiles its test in (`F_*` in features.glsl).
     pub feature: u32,
-    /// `COLLIDER_*` in colliders.glsl (checked by tests/layout.rs).
+    /// `COLLIDER_*` in colliders.glsl (checked by tests/suite/layout.rs).
     pub glsl_id: u32,
 }
 

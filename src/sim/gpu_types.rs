@@ -1,5 +1,5 @@
 //! Rust mirrors of the std430 structs in `glsl/include/layout.glsl` (the source of truth).
-//! Each is `#[repr(C)]` + `Pod` with explicit padding and a `const` size assert; `tests/layout.rs`
+//! Each is `#[repr(C)]` + `Pod` with explicit padding and a `const` size assert; `tests/suite/layout.rs`
 //! compares every member offset, every scalar's offset and type, and array strides with the
 //! compiled SPIR-V.
 

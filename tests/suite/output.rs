@@ -2,7 +2,7 @@
 //! FIFO, a run stopped by Ctrl-C), and standard output closed early or full. Runs with
 //! --validation on the Vulkan device (lavapipe in CI).
 
-mod common;
+use crate::common;
 
 use std::io::{BufRead as _, BufReader, Read as _};
 use std::os::unix::fs::FileTypeExt as _;
@@ -1068,7 +1068,7 @@ fn every_usd_mesh_is_wound_about_its_normals() {
 /// A glTF recording counts the memory it really takes (issue 30, item 11: the frames it keeps
 /// and the file built from them at the end, 60 bytes a vertex a frame): 15,000 frames of the
 /// curtain (2,500 vertices, 2.1 GiB) are refused before the run with exit 2, naming the formats
-/// kept on disk. USD spools its frames to disk (`tests/recording_memory.rs`): not refused.
+/// kept on disk. USD spools its frames to disk (`tests/suite/recording_memory.rs`): not refused.
 #[test]
 fn a_gltf_recording_past_its_memory_is_refused_before_the_run() {
     let dir = tempfile::tempdir().unwrap();

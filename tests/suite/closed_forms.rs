@@ -1,7 +1,7 @@
 //! The GPU simulation against closed-form solutions. Validation and synchronization validation
 //! are on; any message fails the test.
 
-mod common;
+use crate::common;
 
 use common::*;
 use glam::DVec3;
@@ -102,7 +102,7 @@ fn stokes_drag_reaches_the_terminal_velocity() {
 
 /// A chain hanging at rest stretches, spring by spring, by the weight below it over k (the
 /// closed form), within 1% for every integrator on the GPU at 64 substeps and the iterations
-/// users run (tests/integrators.rs has the same on the CPU reference, and why 1% holds for
+/// users run (tests/suite/integrators.rs has the same on the CPU reference, and why 1% holds for
 /// XPBD's single iteration). f32 rounding of the 1 to 9 mm stretches is below 1e-4 of them.
 /// One second settles it to 1e-6 of its initial motion.
 #[test]

@@ -6,14 +6,14 @@
 //! two layers. Both GPU paths (fused and per stage, with and without contact lists). On
 //! lavapipe with validation and synchronization validation.
 
-mod common;
+use crate::common;
 
 use common::*;
 use glam::DVec3;
 use msdsim::sim::collider::{ColliderModel, Motion, Shape};
 use msdsim::sim::cpu::CpuSim;
 use msdsim::sim::gpu::GpuSim;
-use msdsim::sim::model::SimModel;
+use msdsim::sim::model::{SelfCollisionMethod, SimModel};
 
 /// Edges of the cloth (positions `x`, `cols` x `rows`) through one of its triangles that does
 /// not share a vertex with them.
@@ -337,9 +337,27 @@ fn most_contacts(s: &SimModel) -> usize {
 /// both paths; the thrown and the dense fold also with edges kept from edges (`edge_contact`).
 /// Within 1e-4 m a frame (f32 against f64; the contacts' sums are exact integers on the GPU,
 /// so every GPU path gives the same state).
+/// The default tier runs the hash fused and per stage with the lists; the exhaustive tier
+/// brute force and per stage without the lists.
 #[test]
 fn the_gpu_finds_the_contacts_the_reference_finds() {
-    use msdsim::sim::model::SelfCollisionMethod;
+    gpu_finds_the_contacts(&[
+        (SelfCollisionMethod::Hash, true, None),
+        (SelfCollisionMethod::Hash, false, Some(true)),
+    ]);
+}
+
+#[test]
+#[ignore = "exhaustive tier: the same by brute force, and per stage without lists"]
+fn the_gpu_finds_the_contacts_the_reference_finds_by_every_search() {
+    gpu_finds_the_contacts(&[
+        (SelfCollisionMethod::BruteForce, true, None),
+        (SelfCollisionMethod::Hash, false, Some(false)),
+    ]);
+}
+
+/// ... on each (search, fused, contact lists forced) of `paths`.
+fn gpu_finds_the_contacts(paths: &[(SelfCollisionMethod, bool, Option<bool>)]) {
     let ctx = gpu();
     let dense = fold_of(0.01, 0.019, 0.005, 0.0);
     let most = most_contacts(&dense);
@@ -360,12 +378,7 @@ fn the_gpu_finds_the_contacts_the_reference_finds() {
     ];
     for (name, s) in scenes {
         let mut states = Vec::new();
-        for (method, fused, lists) in [
-            (SelfCollisionMethod::BruteForce, true, None),
-            (SelfCollisionMethod::Hash, true, None),
-            (SelfCollisionMethod::Hash, false, Some(true)),
-            (SelfCollisionMethod::Hash, false, Some(false)),
-        ] {
+        for &(method, fused, lists) in paths {
             let mut m = s.clone();
             m.self_collision = method;
             let mut g = GpuSim::new(&ctx, &m).unwrap();

@@ -2,7 +2,7 @@
 //! substep, against its static equilibrium found independently (Newton's method on the total
 //! energy, f64, here in the test).
 
-mod common;
+use crate::common;
 
 use common::*;
 use glam::DVec3;

@@ -2,7 +2,7 @@
 //! compiled with: every member offset of every shared struct, in every embedded shader that
 //! uses it, and the array stride of arrays of it (the same check hot reload applies).
 
-mod common;
+use crate::common;
 
 use msdsim::shaders::{self, layout_check};
 

@@ -4,7 +4,7 @@
 //! draw the scene with no validation or synchronization-validation message.
 //! Run on lavapipe with validation and synchronization validation.
 
-mod common;
+use crate::common;
 
 use common::{assert_clean, gpu, GOOD};
 use msdsim::app::offscreen;

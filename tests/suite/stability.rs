@@ -2,7 +2,7 @@
 //! the predicted largest substep and blows up (the runtime guard trips) at 1.1x, so the
 //! prediction is right within 10%. Validation and synchronization validation are on.
 
-mod common;
+use crate::common;
 
 use common::*;
 use glam::DVec3;

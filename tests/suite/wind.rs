@@ -5,7 +5,7 @@
 //! of that. CPU reference and both GPU paths. On lavapipe with validation and synchronization
 //! validation.
 
-mod common;
+use crate::common;
 
 use common::*;
 use glam::DVec3;

@@ -3,7 +3,7 @@
 //! never trips it. Each test runs drawn and headless (`set_drawn(false)`: the surface stage
 //! runs the guard alone).
 
-mod common;
+use crate::common;
 
 use common::*;
 use glam::DVec3;

@@ -6,7 +6,7 @@
 //! synchronization validation on). The five cases are five cloths of one scene, each on its
 //! own box, so that each setting builds one simulation.
 
-mod common;
+use crate::common;
 
 use common::*;
 use glam::{DQuat, DVec3};
@@ -128,13 +128,24 @@ const METHODS: [Integrator; 6] = [
 /// substeps on the GPU). Every method at 8, 16 and 64 substeps, on
 /// the CPU reference and the GPU's fused path, and per stage for one explicit and one
 /// iterative method (the two paths differ only in where the substep's start is read, which
-/// both kinds of method leave in place).
+/// both kinds of method leave in place). The default tier runs 8 substeps (the coarsest, the
+/// largest error); 16 and 64 are the exhaustive tier's.
 #[test]
 fn friction_sticks_below_the_friction_angle_slides_above_it_and_stops_in_v2_over_2_mu_g() {
+    friction_on_slopes(&[8]);
+}
+
+#[test]
+#[ignore = "exhaustive tier: more substeps"]
+fn friction_on_slopes_at_more_substeps() {
+    friction_on_slopes(&[16, 64]);
+}
+
+fn friction_on_slopes(substep_counts: &[u32]) {
     let ctx = gpu();
     let mut failures = Vec::new();
     for m in METHODS {
-        for substeps in [8, 16, 64] {
+        for &substeps in substep_counts {
             let s = slopes(substeps, m);
             let frames = (SECONDS / s.frame_dt).round() as usize;
             let mut cpu = CpuSim::new(&s);
@@ -271,12 +282,23 @@ fn slopes_on_cloths(substeps: u32, edges: bool) -> SimModel {
 /// of two edges): measured within 1.9% (0.86% at 16 substeps, 0.24% at 64, the reference at
 /// 16 the same to 1e-5), creeping at most 0.40% (0.23%, 0.06%): the edge pairs' friction is
 /// Coulomb's too. Their run at 16 and 64 substeps and on the reference is left out of the
-/// suite for its time (half a minute each on lavapipe).
+/// suite for its time (half a minute each on lavapipe). The default tier runs 8 substeps; 16
+/// (with the reference) and 64 are the exhaustive tier's.
 #[test]
 fn friction_between_cloths_sticks_below_the_friction_angle_and_slides_above_it() {
+    friction_between_cloths(&[8]);
+}
+
+#[test]
+#[ignore = "exhaustive tier: more substeps and the reference"]
+fn friction_between_cloths_at_more_substeps_and_on_the_reference() {
+    friction_between_cloths(&[16, 64]);
+}
+
+fn friction_between_cloths(substep_counts: &[u32]) {
     let ctx = gpu();
     let mut failures = Vec::new();
-    for substeps in [8, 16, 64] {
+    for &substeps in substep_counts {
         let s = slopes_on_cloths(substeps, false);
         let frames = (SECONDS / s.frame_dt).round() as usize;
         let mut runs = vec![("gpu", gpu_travel(&ctx, &s, frames, false))];

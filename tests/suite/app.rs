@@ -2,7 +2,7 @@
 //! synchronization validation: the app exits non-zero on any validation message or leaked
 //! allocation, so every run here also checks those.
 
-mod common;
+use crate::common;
 
 use common::{broken, copy_dir};
 use std::path::{Path, PathBuf};

@@ -2,7 +2,7 @@
 //! drags what they touch. On lavapipe with validation and synchronization validation, both GPU
 //! paths (fused and per stage).
 
-mod common;
+use crate::common;
 
 use common::*;
 use glam::DVec3;

@@ -4,7 +4,7 @@
 //! the compiler's file:line; restoring it recovers; a header change that would break the host's
 //! struct layout is refused. Replaced pipelines are freed only after the frames that used them.
 
-mod common;
+use crate::common;
 
 use common::*;
 use glam::DVec3;

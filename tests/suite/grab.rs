@@ -3,7 +3,7 @@
 //! grabbed particle at its target and frees it on release. Validation and synchronization
 //! validation are on.
 
-mod common;
+use crate::common;
 
 use common::*;
 use glam::{DVec3, Vec3};

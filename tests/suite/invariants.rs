@@ -1,7 +1,7 @@
 //! Invariants of the GPU simulation, checked on lavapipe with validation and synchronization
 //! validation (any message fails the test).
 
-mod common;
+use crate::common;
 
 use common::*;
 use glam::DVec3;

@@ -19,7 +19,7 @@
 //! restarts from the GPU's state and both advance 16 substeps, compared with the same
 //! tolerances. The GPU still runs all 240 substeps with every barrier.
 
-mod common;
+use crate::common;
 
 use common::*;
 use glam::DVec3;
@@ -843,12 +843,24 @@ fn fused_substeps_equal_the_per_stage_path() {
 /// implicit method, whose dot products each path sums in its own order: a workgroup's
 /// subgroups fused, workgroups' sums per stage). Without the barrier
 /// between two colours a particle reads a neighbour's half-updated displacement: XPBD's paths
-/// then part by 0.25 m.
+/// then part by 0.25 m. The default tier takes one particle a thread here (two are
+/// `iterative_methods_at_two_particles_a_thread_match_the_per_stage_path`'s); the exhaustive
+/// tier both.
 #[test]
 fn fused_iterative_methods_equal_the_per_stage_path() {
+    fused_iterative_methods(&[1]);
+}
+
+#[test]
+#[ignore = "exhaustive tier: two particles a thread on this scene too"]
+fn fused_iterative_methods_equal_the_per_stage_path_at_two_particles_a_thread() {
+    fused_iterative_methods(&[2]);
+}
+
+fn fused_iterative_methods(slot_counts: &[u32]) {
     for method in iterative() {
         let s = integrator_scene(method);
-        for slots in [1, 2] {
+        for &slots in slot_counts {
             let worst = fused_against_per_stage(&s, FusedLimits::new(u32::MAX, slots));
             println!("{method:?}, {slots} slots: fused vs per stage {worst:e} m");
             assert!(worst <= 1e-6, "{method:?}, {slots} slots: the fused path differs by {worst} m");
@@ -1186,9 +1198,24 @@ fn the_bdf2_start_rounds_no_worse_than_an_explicit_step() {
 /// Euler (5e-4 m); the wind-blown version flips self-contacts the same way. (A length-weighted
 /// mean, continuous by construction, was tried: it overshoots, and GPU and CPU parted by 6e-3 m
 /// on the stretch-limit test.)
+/// The default tier runs VBD through the spatial hash (what users run); the exhaustive tier
+/// the other iterative methods, and each by brute force too.
 #[test]
 fn everything_with_the_iterative_integrators() {
-    for method in iterative() {
+    everything_iterative(&[Integrator::Vbd], &[SelfCollisionMethod::Hash]);
+}
+
+#[test]
+#[ignore = "exhaustive tier: the other iterative methods, and the brute-force search"]
+fn everything_with_every_iterative_integrator_and_search() {
+    let others: Vec<Integrator> = iterative().filter(|&m| m != Integrator::Vbd).collect();
+    everything_iterative(&others, &[SelfCollisionMethod::Hash]);
+    let all: Vec<Integrator> = iterative().collect();
+    everything_iterative(&all, &[SelfCollisionMethod::BruteForce]);
+}
+
+fn everything_iterative(methods: &[Integrator], searches: &[SelfCollisionMethod]) {
+    for &method in methods {
         let mut s = integrator_scene(method);
         s.wind = None;
         for o in &mut s.objects {
@@ -1196,6 +1223,10 @@ fn everything_with_the_iterative_integrators() {
             o.friction = 0.5;
         }
         s.colliders = vec![sphere([0.3, 0.6, 0.05], 0.1)];
-        both_methods(&format!("{method:?} everything"), &s);
+        for &search in searches {
+            let mut m = s.clone();
+            m.self_collision = search;
+            check_mode(&format!("{method:?} everything ({search:?})"), &m, Mode::Resync);
+        }
     }
 }

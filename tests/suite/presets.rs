@@ -1,7 +1,7 @@
 //! Every shipped preset loads, builds and runs on the GPU with validation and synchronization
 //! validation (two substeps per frame, to keep lavapipe quick).
 
-mod common;
+use crate::common;
 
 use msdsim::scene;
 use msdsim::sim::gpu::GpuSim;

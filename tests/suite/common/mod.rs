@@ -1,6 +1,5 @@
 //! Shared test harness: a validated GPU context that fails loudly without a device, model
 //! builders, and GPU-vs-CPU comparison helpers.
-#![allow(dead_code)] // each test binary uses a different subset
 
 pub mod crash;
 
@@ -114,7 +113,7 @@ pub fn scene(objects: Vec<ObjectModel>) -> SimModel {
         self_collision: Default::default(),
         max_speed: 100.0,
         // Off: most scenes here are built to test other things, some violently (layers started
-        // inside each other's thickness); tests/guard.rs turns it on.
+        // inside each other's thickness); tests/suite/guard.rs turns it on.
         max_strain: 0.0,
         max_energy_gain: 0.0,
         integrator: Default::default(),

@@ -1,7 +1,7 @@
 //! The integrators on the CPU reference (f64): convergence order against a converged
 //! reference, unconditional stability of the implicit method, energy behaviour.
 
-mod common;
+use crate::common;
 
 use common::*;
 use glam::DVec3;
