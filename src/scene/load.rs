@@ -15,11 +15,43 @@ pub const MAX_PRESET_BYTES: u64 = 2 << 20;
 /// Loads a preset file and applies `KEY=VALUE` overrides.
 pub fn load(path: &Path, overrides: &[String]) -> Result<Scene, UserError> {
     use std::io::Read as _;
+    use std::os::unix::fs::OpenOptionsExt as _;
+    const PIPE_WAIT: std::time::Duration = std::time::Duration::from_secs(10);
+    const PIPE_POLL: std::time::Duration = std::time::Duration::from_millis(10);
     let refuse = |why: String| UserError(format!("{}: {why}", path.display()));
-    let mut bytes = Vec::new();
-    std::fs::File::open(path)
-        .and_then(|f| f.take(MAX_PRESET_BYTES + 1).read_to_end(&mut bytes))
+    // Opened and read without blocking: a FIFO with no writer reads as empty at once instead
+    // of being waited on for ever; one whose writer is slow (`--preset <(...)`) is waited on
+    // while data keeps coming, PIPE_WAIT at most between two reads. A regular file is read
+    // as ever.
+    let mut file = std::fs::OpenOptions::new()
+        .read(true)
+        .custom_flags(libc::O_NONBLOCK)
+        .open(path)
         .map_err(|e| refuse(format!("cannot read the preset: {e}")))?;
+    if file.metadata().is_ok_and(|m| m.is_dir()) {
+        return Err(refuse("a folder, not a preset".into()));
+    }
+    let mut bytes = Vec::new();
+    let mut chunk = vec![0u8; 1 << 16];
+    let mut idle = std::time::Duration::ZERO;
+    while bytes.len() as u64 <= MAX_PRESET_BYTES {
+        match file.read(&mut chunk) {
+            Ok(0) => break,
+            Ok(n) => {
+                bytes.extend_from_slice(&chunk[..n]);
+                idle = std::time::Duration::ZERO;
+            }
+            Err(e) if e.kind() == std::io::ErrorKind::Interrupted => {}
+            Err(e) if e.kind() == std::io::ErrorKind::WouldBlock && idle < PIPE_WAIT => {
+                std::thread::sleep(PIPE_POLL);
+                idle += PIPE_POLL;
+            }
+            Err(e) if e.kind() == std::io::ErrorKind::WouldBlock => {
+                return Err(refuse(format!("nothing came from the pipe in {} s", PIPE_WAIT.as_secs())));
+            }
+            Err(e) => return Err(refuse(format!("cannot read the preset: {e}"))),
+        }
+    }
     if bytes.len() as u64 > MAX_PRESET_BYTES {
         return Err(refuse(format!("larger than {} MiB: not a preset", MAX_PRESET_BYTES >> 20)));
     }

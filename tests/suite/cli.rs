@@ -146,6 +146,42 @@ fn missing_file() {
     );
 }
 
+/// A FIFO with no writer as the preset reads as empty at once (it was waited on forever):
+/// `simulate` refuses the empty scene with exit code 2; a preset through a pipe with a writer
+/// (`--preset <(cat preset)`) runs; a folder is named as one. Each run must end within 30 s.
+#[test]
+fn a_pipe_or_a_folder_as_the_preset_is_refused_at_once() {
+    let dir = tempfile::tempdir().unwrap();
+    let fifo = dir.path().join("p.toml");
+    assert!(Command::new("mkfifo").arg(&fifo).status().unwrap().success());
+    let mut child = Command::new(env!("CARGO_BIN_EXE_msdsim"))
+        .args(["simulate", "--preset", fifo.to_str().unwrap(), "--frames", "1"])
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    let start = std::time::Instant::now();
+    while child.try_wait().unwrap().is_none() {
+        if start.elapsed().as_secs() > 30 {
+            child.kill().unwrap();
+            panic!("simulate waited on a FIFO as its preset");
+        }
+        std::thread::sleep(std::time::Duration::from_millis(50));
+    }
+    let out = child.wait_with_output().unwrap();
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{err}");
+    assert!(err.contains("nothing to simulate") && err.contains("p.toml"), "{err}");
+    let piped = format!(
+        "{} simulate --preset <(cat {}/presets/rope.toml) --frames 1 --quiet",
+        env!("CARGO_BIN_EXE_msdsim"),
+        env!("CARGO_MANIFEST_DIR")
+    );
+    let out = Command::new("bash").args(["-c", &piped]).output().unwrap();
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    rejects(&["simulate", "--preset", dir.path().to_str().unwrap()], &["a folder, not a preset"]);
+}
+
 #[test]
 fn bad_override() {
     let dir = tempfile::tempdir().unwrap();
