@@ -176,7 +176,10 @@ impl GuardTrip {
             );
             return Self { name: o.name.clone(), kind: o.kind, cause, particle, what, time, advice };
         }
-        if cause == GuardCause::Overstretched {
+        // A spring over-stretched by an explicit method past its predicted stability limit is
+        // the instability: the advice below for it, not the material's.
+        let unstable = !model.integrator.iterative() && model.dt() > predict(model)[object].dt_max;
+        if cause == GuardCause::Overstretched && !unstable {
             let advice = if model.integrator.iterative() {
                 format!(
                     "The {} solve stops short of its springs at sim.iterations = {} and sim.substeps = {}: raise \
@@ -232,6 +235,25 @@ impl GuardTrip {
 mod tests {
     use super::*;
     use crate::scene;
+
+    /// An explicit method's over-stretched spring is the instability where the substep is past
+    /// the predicted limit (the advice names the substeps and the stable integrators), and the
+    /// material's load where it is within it.
+    #[test]
+    fn an_over_stretched_spring_past_the_limit_is_called_the_instability() {
+        let rope = |stiffness: f64| {
+            let text = format!(
+                "[[rope]]\nname = \"r\"\nnodes = 50\nstart = [0, 0, 0]\nend = [1, 0, 0]\nmass = 0.01\nstiffness = {stiffness}\nradius = 0.01\n"
+            );
+            scene::to_model(&scene::parse(&text, "t", &[]).unwrap())
+        };
+        let advice = |m: &SimModel| GuardTrip::new(m, 0, 0, GuardCause::Overstretched, 0.1).advice;
+        let (stiff, soft) = (rope(1e9), rope(100.0));
+        assert!(stiff.dt() > predict(&stiff)[0].dt_max && soft.dt() <= predict(&soft)[0].dt_max);
+        let past = advice(&stiff);
+        assert!(past.contains("past the explicit stability limit") && past.contains("\"vbd\""), "{past}");
+        assert!(advice(&soft).contains("do not hold the load"), "{}", advice(&soft));
+    }
 
     #[test]
     fn a_chain_predicts_its_exact_highest_mode() {
