@@ -55,10 +55,12 @@ if [ "${#filters[@]}" = 0 ]; then
     times="$times, unit tests $(seconds "$start") s"
 fi
 
+# Where the output of integration test $1 is kept.
+log_of() { echo "$work/$(printf '%s' "$1" | tr -c 'A-Za-z0-9_.-' '_').log"; }
 # One integration test: its output kept, a line with its result and time.
 run_one() {
     local name=$1 log
-    log="$work/$(printf '%s' "$name" | tr -c 'A-Za-z0-9_.-' '_').log"
+    log=$(log_of "$name")
     local t0=$SECONDS
     if "$suite" --exact "$name" --include-ignored --test-threads 1 > "$log" 2>&1; then
         printf 'PASS %4ds %s\n' $((SECONDS - t0)) "$name"
@@ -66,7 +68,7 @@ run_one() {
         printf 'FAIL %4ds %s\n' $((SECONDS - t0)) "$name"
     fi
 }
-export -f run_one
+export -f log_of run_one
 export suite work
 
 # The integration tests of a tier (`--ignored`: the exhaustive one), listed by the binary.
@@ -88,7 +90,7 @@ run_tier() {
         failed=$((failed + 1))
         failures+=("$name")
         echo "---- $name ----"
-        cat "$work/$(printf '%s' "$name" | tr -c 'A-Za-z0-9_.-' '_').log"
+        cat "$(log_of "$name")"
     done < <(sed -n 's/^FAIL *[0-9]*s //p' "$work/$tier.results")
 }
 run_tier default

@@ -178,7 +178,9 @@ impl GuardTrip {
         }
         // A spring over-stretched by an explicit method past its predicted stability limit is
         // the instability: the advice below for it, not the material's.
-        let unstable = !model.integrator.iterative() && model.dt() > predict(model)[object].dt_max;
+        let p = &predict(model)[object];
+        let dt = model.dt();
+        let unstable = !model.integrator.iterative() && dt > p.dt_max;
         if cause == GuardCause::Overstretched && !unstable {
             let advice = if model.integrator.iterative() {
                 format!(
@@ -199,8 +201,6 @@ impl GuardTrip {
             };
             return Self { name: o.name.clone(), kind: o.kind, cause, particle, what, time, advice };
         }
-        let p = &predict(model)[object];
-        let dt = model.dt();
         let advice = if model.integrator.iterative() {
             format!(
                 "The {} integrator is stable for any spring stiffness, so look at what it treats explicitly and at the \
@@ -210,7 +210,7 @@ impl GuardTrip {
                 more_substeps(model),
                 model.iterations
             )
-        } else if dt > p.dt_max {
+        } else if unstable {
             format!(
                 "The substep ({:.3} ms, sim.substeps = {}) is past the explicit stability limit predicted for it \
                  ({:.3} ms, w_max = {:.0} rad/s): {}, or softer springs or heavier particles.",
