@@ -4,8 +4,8 @@
 //! panic reaches the user.
 
 use clap::Parser;
+use msdsim::atomic_file::Interrupted;
 use msdsim::error::{exit, UserError};
-use msdsim::temporary::Interrupted;
 use std::io::Write as _;
 
 fn main() {
@@ -26,7 +26,7 @@ fn main() {
             if let Some(signal) = Interrupted::signal_of(&e) {
                 let _ = writeln!(std::io::stderr(), "msdsim: {e:#}");
                 let _ = std::io::stdout().flush();
-                msdsim::temporary::end_by_signal(signal);
+                msdsim::atomic_file::end_by_signal(signal);
             }
             let line = format!("{e:#}").replace('\n', " ");
             let _ = writeln!(std::io::stderr(), "msdsim: error: {line}");

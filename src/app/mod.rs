@@ -14,9 +14,9 @@ pub use input::{pick, PickRay};
 pub use sim_host::{Applied, SimHost};
 pub use viewer::{preset_label, write_png};
 
+use crate::atomic_file::Interrupted;
 use crate::error::UserError;
 use crate::scene::{self, Scene};
-use crate::temporary::Interrupted;
 use crate::vk::ContextOptions;
 use anyhow::Result;
 use std::path::PathBuf;
@@ -185,7 +185,7 @@ impl ApplicationHandler for Handler {
     fn about_to_wait(&mut self, event_loop: &ActiveEventLoop) {
         // SIGINT or SIGTERM: stop as the close button would, keeping a recording (written by
         // the teardown) and unsaved edits.
-        if let Some(signal) = crate::temporary::stop_requested().filter(|_| self.error.is_none()) {
+        if let Some(signal) = crate::atomic_file::stop_requested().filter(|_| self.error.is_none()) {
             return self.stop_rescuing(event_loop, Interrupted(signal).into());
         }
         if let Some(v) = &self.viewer {
@@ -210,7 +210,7 @@ pub fn run(options: &ContextOptions, args: AppArgs, scene: Scene) -> Result<()> 
         ))
     })?;
     // The first SIGINT or SIGTERM asks the app to stop (`about_to_wait`), a second ends it.
-    let _graceful = crate::temporary::Graceful::new();
+    let _graceful = crate::atomic_file::Graceful::new();
     let mut handler = Handler {
         options: options.clone(),
         args,
@@ -224,7 +224,7 @@ pub fn run(options: &ContextOptions, args: AppArgs, scene: Scene) -> Result<()> 
         handler.report = Some(v.finish());
     }
     // A signal that came during the teardown (it was let finish) is a stop too.
-    if let Some(signal) = crate::temporary::stop_requested().filter(|_| handler.error.is_none()) {
+    if let Some(signal) = crate::atomic_file::stop_requested().filter(|_| handler.error.is_none()) {
         handler.error = Some(Interrupted(signal).into());
     }
     // A stop by a signal is reported after the teardown's checks, which it also passes.

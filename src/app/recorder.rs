@@ -74,7 +74,7 @@ impl AppRecorder {
     pub fn stop(&mut self) -> Result<String> {
         let Some((recording, path)) = self.active.take() else { return Ok("not recording".into()) };
         if recording.format().keeps_frames() {
-            crate::temporary::replace_with(&path, false, |w| recording.write_to(w))
+            crate::atomic_file::replace_with(&path, false, |w| recording.write_to(w))
                 .map_err(|e| anyhow::anyhow!("writing {}: {e}", path.display()))?;
         }
         Ok(recording.summary(&path))

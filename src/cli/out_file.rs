@@ -121,7 +121,7 @@ impl OutFile {
 
     /// Creates and removes a temporary file: the folder takes it.
     fn probe_temporary(&self) -> std::io::Result<()> {
-        crate::temporary::probe_beside(&self.target)
+        crate::atomic_file::probe_beside(&self.target)
     }
 
     /// Writes `bytes` (a whole file).
@@ -157,7 +157,7 @@ impl OutFile {
             write(&mut file)?;
             return file.flush();
         }
-        crate::temporary::replace_with(&self.target, true, write)
+        crate::atomic_file::replace_with(&self.target, true, write)
     }
 }
 

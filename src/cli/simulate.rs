@@ -272,13 +272,13 @@ fn simulate(
     // SIGTERM ends the frames, the file is written with those so far, and the process then
     // ends by the signal.
     let graceful =
-        recording.as_ref().filter(|(_, file)| file.is_some()).map(|_| crate::temporary::Graceful::new());
+        recording.as_ref().filter(|(_, file)| file.is_some()).map(|_| crate::atomic_file::Graceful::new());
     let mut interrupted = None;
     // Frames stay in flight as in the app: each submission first collects the frame that
     // used its slot, so timings (and a tripped guard) arrive a frame or two late.
     for frame in 1..=args.frames {
         // (Only a `Graceful` alive lets a signal ask for a stop.)
-        interrupted = crate::temporary::stop_requested();
+        interrupted = crate::atomic_file::stop_requested();
         if interrupted.is_some() {
             break;
         }
@@ -293,7 +293,7 @@ fn simulate(
     // From here a signal ends the process at once again (a write it interrupts leaves the
     // file as it was).
     drop(graceful);
-    interrupted = interrupted.or_else(crate::temporary::stop_requested);
+    interrupted = interrupted.or_else(crate::atomic_file::stop_requested);
     for t in sim.finish_frames(ctx).context("the last frames")? {
         report(out, t)?;
     }
@@ -308,7 +308,7 @@ fn simulate(
     }
     if let Some(signal) = interrupted {
         // The state file is for a finished run: left as it was.
-        return Err(crate::temporary::Interrupted(signal).into());
+        return Err(crate::atomic_file::Interrupted(signal).into());
     }
     if let Some(warning) = sim.take_warning() {
         say!(out, "warning: {warning}")?;

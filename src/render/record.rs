@@ -236,7 +236,7 @@ impl Recording {
         // The formats written as the frames come find a folder they cannot write in now, not at
         // the first frame after the run has begun (USD and glTF claim their file before).
         if !format.keeps_frames() {
-            crate::temporary::probe_beside(path).map_err(|e| {
+            crate::atomic_file::probe_beside(path).map_err(|e| {
                 crate::error::UserError(format!(
                     "{}: cannot write in the folder {} for the recording: {e}",
                     path.display(),
@@ -290,7 +290,7 @@ impl Recording {
         }
         let spool = match format {
             Format::Usd => Some(Spool {
-                file: crate::temporary::anonymous_beside(path).map_err(|e| {
+                file: crate::atomic_file::anonymous_beside(path).map_err(|e| {
                     anyhow::anyhow!("{}: cannot make the recording's spool beside it: {e}", path.display())
                 })?,
                 frame_bytes: spooled,
@@ -964,7 +964,7 @@ fn write_whole(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
     if target.exists() && !target.is_file() {
         return std::fs::write(&target, bytes);
     }
-    crate::temporary::replace(&target, bytes, false)
+    crate::atomic_file::replace(&target, bytes, false)
 }
 
 impl Track {

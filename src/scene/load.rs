@@ -89,7 +89,7 @@ pub fn save(scene: &Scene, path: &Path) -> anyhow::Result<()> {
         ))
         .into());
     }
-    crate::temporary::replace(path, text.as_bytes(), true)
+    crate::atomic_file::replace(path, text.as_bytes(), true)
         .map_err(|e| UserError(format!("{}: cannot write the preset: {e}", path.display())))?;
     Ok(())
 }

@@ -109,7 +109,7 @@ fn record(frames: u64) -> (isize, isize) {
         }
         recording.add(&states, f as f64 / 60.0).unwrap();
     }
-    msdsim::temporary::replace_with(&path, false, |w| recording.write_to(w)).unwrap();
+    msdsim::atomic_file::replace_with(&path, false, |w| recording.write_to(w)).unwrap();
     let grown = PEAK.with(Cell::get) - start;
 
     let usda = std::fs::read_to_string(&path).unwrap();
