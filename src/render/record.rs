@@ -548,9 +548,10 @@ impl Recording {
     /// `.pc2`: appends a frame to each mesh's point cache, the objects' and the moving
     /// colliders' (the first frame also writes the meshes as OBJ and starts the caches), then
     /// counts it in their headers, so that a run stopped at any point leaves caches of the whole
-    /// frames so far.
+    /// frames so far. A frame that cannot be written whole (a full disk) is taken back from
+    /// every cache, each cut to the frames its header counts, so that the caches stay whole and
+    /// agree with each other; the error then names the frame.
     fn add_to_caches(&mut self, states: &[ObjectState], time: f64) -> Result<()> {
-        use std::io::{Seek, SeekFrom, Write};
         let code = self.last_code();
         if self.caches.is_empty() {
             let base = self.base_path();
@@ -564,35 +565,56 @@ impl Recording {
             .map(|(t, state)| t.frame(state).0)
             .chain(collider_points)
             .collect();
-        for (k, points) in frames.into_iter().enumerate() {
-            if k == self.caches.len() {
-                // The first frame starts the cache: its header, with no sample counted yet.
+        for (k, points) in frames.iter().enumerate() {
+            if let Err(e) = self.append_to_cache(k, points) {
+                // (caches past k have not taken the frame; at the first frame none holds one)
+                let kept = self.frames - 1;
+                let cut = (0..self.caches.len().min(k + 1)).try_for_each(|j| {
+                    if kept == 0 {
+                        std::fs::remove_file(self.cache_path(j))
+                    } else {
+                        cut_cache(&mut self.caches[j], frames[j].len() as u64, kept)
+                    }
+                });
                 let path = self.cache_path(k);
-                let mut header = Vec::with_capacity(PC2_HEADER as usize);
-                header.extend_from_slice(b"POINTCACHE2\0");
-                header.extend_from_slice(&1i32.to_le_bytes()); // version
-                header.extend_from_slice(&(points.len() as i32).to_le_bytes());
-                header.extend_from_slice(&(self.first_code as f32).to_le_bytes()); // start frame
-                header.extend_from_slice(&1f32.to_le_bytes()); // samples a frame
-                header.extend_from_slice(&0i32.to_le_bytes()); // samples so far
-                let file = std::fs::File::create(&path)
-                    .and_then(|mut f| f.write_all(&header).map(|()| f))
-                    .map_err(|e| anyhow::anyhow!("recording to {}: {e}", path.display()))?;
-                self.caches.push(file);
+                return Err(match cut {
+                    Ok(()) if kept == 0 => anyhow::anyhow!("recording frame {code} to {}: {e}", path.display()),
+                    Ok(()) => anyhow::anyhow!(
+                        "recording frame {code} to {}: {e} (the caches keep the {kept} whole frames before it)",
+                        path.display()
+                    ),
+                    Err(cut) => anyhow::anyhow!(
+                        "recording frame {code} to {}: {e}; cutting the caches back to {kept} whole frames failed too: {cut}",
+                        path.display()
+                    ),
+                });
             }
-            let bytes: Vec<u8> = points.iter().flatten().flat_map(|x| x.to_le_bytes()).collect();
-            let count = (self.frames as i32).to_le_bytes();
-            let file = &mut self.caches[k];
-            let written = file
-                .seek(SeekFrom::End(0))
-                .and_then(|_| file.write_all(&bytes))
-                .and_then(|()| file.seek(SeekFrom::Start(PC2_HEADER - 4)))
-                .and_then(|_| file.write_all(&count));
-            written.map_err(|e| {
-                anyhow::anyhow!("recording frame {code} to {}: {e}", self.cache_path(k).display())
-            })?;
         }
         Ok(())
+    }
+
+    /// Appends one frame of `points` to mesh k's point cache (starting it, with its header and no
+    /// sample counted, at the first frame) and counts the frame in its header.
+    fn append_to_cache(&mut self, k: usize, points: &[[f32; 3]]) -> std::io::Result<()> {
+        use std::io::{Seek, SeekFrom, Write};
+        if k == self.caches.len() {
+            let mut header = Vec::with_capacity(PC2_HEADER as usize);
+            header.extend_from_slice(b"POINTCACHE2\0");
+            header.extend_from_slice(&1i32.to_le_bytes()); // version
+            header.extend_from_slice(&(points.len() as i32).to_le_bytes());
+            header.extend_from_slice(&(self.first_code as f32).to_le_bytes()); // start frame
+            header.extend_from_slice(&1f32.to_le_bytes()); // samples a frame
+            header.extend_from_slice(&0i32.to_le_bytes()); // samples so far
+            let mut file = std::fs::File::create(self.cache_path(k))?;
+            self.caches.push(file.try_clone()?);
+            file.write_all(&header)?;
+        }
+        let bytes: Vec<u8> = points.iter().flatten().flat_map(|x| x.to_le_bytes()).collect();
+        let file = &mut self.caches[k];
+        file.seek(SeekFrom::End(0))?;
+        file.write_all(&bytes)?;
+        file.seek(SeekFrom::Start(PC2_HEADER - 4))?;
+        file.write_all(&(self.frames as i32).to_le_bytes())
     }
 
     /// One frame as OBJ text, at simulated time `time`: every object an `o` group of vertices
@@ -965,6 +987,15 @@ fn write_whole(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
         return std::fs::write(&target, bytes);
     }
     crate::atomic_file::replace(&target, bytes, false)
+}
+
+/// Cuts a point cache of `points` points a sample back to its first `frames` samples, the
+/// header counting them (a smaller file and a word rewritten in place: no new space is needed).
+fn cut_cache(file: &mut std::fs::File, points: u64, frames: u64) -> std::io::Result<()> {
+    use std::io::{Seek, SeekFrom, Write};
+    file.set_len(PC2_HEADER + frames * points * 12)?;
+    file.seek(SeekFrom::Start(PC2_HEADER - 4))?;
+    file.write_all(&(frames as i32).to_le_bytes())
 }
 
 impl Track {

@@ -837,6 +837,33 @@ fn ctrl_c_leaves_point_caches_of_whole_frames() {
     assert!(dir.path().join("long.obj").is_file());
 }
 
+/// A disk that fills during a point-cache recording (here a limit of 64 KiB a file, which the
+/// rope's cache of 768 bytes a frame reaches in its 86th frame, partway through it) fails with
+/// exit 1 and a line naming the frame, and leaves every cache whole: its length is its header's
+/// samples, and all caches count the same frames.
+#[test]
+fn a_full_disk_leaves_point_caches_of_whole_frames() {
+    let dir = tempfile::tempdir().unwrap();
+    let p = preset(dir.path());
+    let pc2 = dir.path().join("full.pc2");
+    let run = "trap '' XFSZ; ulimit -f 64; exec \"$0\" --validation simulate --preset \"$1\" --frames 150 --quiet --record \"$2\"";
+    let out = Command::new("bash")
+        .args(["-c", run, env!("CARGO_BIN_EXE_msdsim"), &p, pc2.to_str().unwrap()])
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(1), "{}", stderr(&out));
+    assert!(stderr(&out).contains("recording frame"), "{}", stderr(&out));
+    let mut counts = Vec::new();
+    for name in ["full_c.pc2", "full_r.pc2"] {
+        let bytes = std::fs::read(dir.path().join(name)).unwrap();
+        let int = |at: usize| i32::from_le_bytes(bytes[at..at + 4].try_into().unwrap()) as usize;
+        let (points, samples) = (int(16), int(28));
+        assert_eq!(bytes.len(), 32 + samples * points * 12, "{name}: {samples} samples of {points} points");
+        counts.push(samples);
+    }
+    assert!(counts[0] == counts[1] && counts[0] >= 80, "the caches count {counts:?} frames");
+}
+
 /// `simulate --record FILE.glb`: glTF 2.0 binary ("glTF", version 2, a JSON and a BIN chunk).
 /// The cloth is a mesh whose vertices are the first frame and whose morph target k is frame k + 1
 /// less the first: the last target added to the vertices is the simulated state (`--out` of the
