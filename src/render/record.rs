@@ -151,7 +151,10 @@ impl Format {
 
 /// One object's mesh and its frames.
 struct Track {
+    /// The prim, group and cache name: letters, digits and underscores, unique.
     name: String,
+    /// The object's own name, as glTF keeps it (UTF-8, any characters).
+    label: String,
     /// The object's kind and grid: a recording keeps one set of meshes.
     shape: (ObjectKind, [u32; 2]),
     counts: usize,
@@ -268,6 +271,7 @@ impl Recording {
                 };
                 Track {
                     name: unique_name(&mut taken, usd_name(&o.name)),
+                    label: o.name.clone(),
                     rope_nodes,
                     shape: (o.kind, o.dims),
                     counts: indices.len() / 3,
@@ -463,7 +467,7 @@ impl Recording {
                     Some(s) => (&s.indices, &s.st, &s.points, &s.normals),
                 };
                 super::gltf::MeshFrames {
-                    name: &t.name,
+                    name: &t.label,
                     indices,
                     st: Some(st.as_slice()),
                     color: t.color,

@@ -869,7 +869,8 @@ fn a_full_disk_leaves_point_caches_of_whole_frames() {
 /// less the first: the last target added to the vertices is the simulated state (`--out` of the
 /// same run) to f32 rounding (1e-6 m); one animation weighs target k fully at keyframe k + 1
 /// (sparse, 5 ones in 6 x 5 weights), at the frames' times; the tablecloth's box is a collider
-/// mesh whose node's translation is animated at 0.5 m/s along x.
+/// mesh whose node's translation is animated at 0.5 m/s along x; an object's node keeps its
+/// name with non-ASCII letters.
 #[test]
 fn a_gltf_recording_reads_back_as_the_simulation() {
     let dir = tempfile::tempdir().unwrap();
@@ -905,10 +906,13 @@ fn a_gltf_recording_reads_back_as_the_simulation() {
     let out = binary()
         .args(["simulate", "--preset", "presets/tablecloth.toml", "--frames", "3", "--quiet"])
         .args(["--set", "box.0.motion={velocity=[0.5,0,0]}", "--record", table.to_str().unwrap()])
+        .args(["--set", "cloth.0.name=nappe_été"])
         .output()
         .unwrap();
     assert!(out.status.success(), "{}", stderr(&out));
     let (doc, bin) = parse(&table);
+    // (glTF's names are UTF-8: the object's own, where USD's prims take letters and digits)
+    assert!(doc["nodes"].as_array().unwrap().iter().any(|n| n["name"] == "nappe_été"), "{}", doc["nodes"]);
     let node =
         doc["nodes"].as_array().unwrap().iter().position(|n| n["name"] == "collider_box_1").expect("the box");
     let animation = &doc["animations"][0];
