@@ -268,11 +268,10 @@ fn simulate(
         })?;
         r.add(&sim.read_states(ctx)?, sim.time())?;
     }
-    // A recording written at the end is kept when a signal stops the run: the first SIGINT or
-    // SIGTERM ends the frames, the file is written with those so far, and the process then
-    // ends by the signal.
-    let graceful =
-        recording.as_ref().filter(|(_, file)| file.is_some()).map(|_| crate::atomic_file::Graceful::new());
+    // A recording is kept when a signal stops the run: the first SIGINT, SIGTERM or SIGHUP ends
+    // the frames (a streamed one between two, so none is cut), a recording written at the end
+    // is written with those so far, and the process then ends by the signal.
+    let graceful = recording.as_ref().map(|_| crate::atomic_file::Graceful::new());
     let mut interrupted = None;
     // Frames stay in flight as in the app: each submission first collects the frame that
     // used its slot, so timings (and a tripped guard) arrive a frame or two late.
@@ -299,6 +298,20 @@ fn simulate(
     }
     print_summary(out, sim, &timings)?;
     if let Some((r, file)) = recording {
+        if let (Some(signal), Some(path)) = (interrupted, &args.record) {
+            // (on standard error, with the stop itself: a user who pressed Ctrl-C looks there)
+            let what = if file.is_some() {
+                "writing them (another signal now discards the recording)"
+            } else {
+                "the recording keeps them"
+            };
+            eprintln!(
+                "msdsim: {} after {} frames of {}: {what}",
+                crate::atomic_file::Interrupted(signal),
+                r.frames(),
+                path.display()
+            );
+        }
         if let Some(file) = file {
             file.write_with(|w| r.write_to(w))?;
         }

@@ -230,6 +230,10 @@ fn a_signal_mid_run_keeps_the_recording_so_far() {
         child.stderr.take().unwrap().read_to_string(&mut err).unwrap();
         assert_eq!(status.signal(), Some(if signal == "INT" { 2 } else { 15 }), "{signal}: {status:?} {err}");
         assert!(err.contains("stopped by SIG"), "{err}");
+        assert!(
+            err.contains("frames of") && err.contains("writing them (another signal now discards"),
+            "{err}"
+        );
         assert!(rest.iter().any(|l| l.starts_with("recorded ")), "{rest:?}");
         assert_eq!(std::fs::read_to_string(&state).unwrap(), "old", "--out is for a finished run");
         let bytes = std::fs::read(&record).unwrap();
@@ -806,35 +810,56 @@ fn a_point_cache_recording_reads_back_as_the_simulation() {
     assert!(dir.path().join("anim_c.pc2").exists());
 }
 
-/// Ctrl-C during a point-cache recording leaves caches a reader takes whole: the header counts
-/// only frames whose samples are in the file (at most one frame's samples past them, which
-/// readers skip), every counted sample finite, and the meshes' OBJ beside them.
+/// Ctrl-C during a point-cache or OBJ recording stops it between two frames: the process ends
+/// by the signal, standard error says how many frames the recording keeps, the caches' headers
+/// count exactly the samples in them (every one finite) with the meshes' OBJ beside them, and
+/// the OBJ sequence holds that many whole files.
 #[test]
 fn ctrl_c_leaves_point_caches_of_whole_frames() {
-    let dir = tempfile::tempdir().unwrap();
-    let p = preset(dir.path());
-    let pc2 = dir.path().join("long.pc2");
-    let mut child = binary()
-        .args(["simulate", "--preset", &p, "--frames", "1000000", "--record", pc2.to_str().unwrap()])
-        .stdout(Stdio::piped())
-        .stderr(Stdio::null())
-        .spawn()
-        .unwrap();
-    let _lines = after_frames(&mut child, 5); // a few frames recorded
-    let killed = Command::new("kill").args(["-INT", &child.id().to_string()]).status().unwrap();
-    assert!(killed.success());
-    child.wait().unwrap();
-    let bytes = std::fs::read(dir.path().join("long_c.pc2")).unwrap();
-    let int = |at: usize| i32::from_le_bytes(bytes[at..at + 4].try_into().unwrap()) as usize;
-    let (points, samples) = (int(16), int(28));
-    let whole = 32 + samples * points * 12;
-    assert!(
-        samples >= 1 && bytes.len() >= whole && bytes.len() <= whole + points * 12,
-        "{samples} samples, {} bytes",
-        bytes.len()
-    );
-    assert!(bytes[32..whole].chunks_exact(4).all(|b| f32::from_le_bytes(b.try_into().unwrap()).is_finite()));
-    assert!(dir.path().join("long.obj").is_file());
+    use std::os::unix::process::ExitStatusExt as _;
+    for name in ["long.pc2", "long.obj"] {
+        let dir = tempfile::tempdir().unwrap();
+        let p = preset(dir.path());
+        let record = dir.path().join(name);
+        let mut child = binary()
+            .args(["simulate", "--preset", &p, "--frames", "1000000", "--record", record.to_str().unwrap()])
+            .stdout(Stdio::piped())
+            .stderr(Stdio::piped())
+            .spawn()
+            .unwrap();
+        let lines = after_frames(&mut child, 5); // a few frames recorded
+        let killed = Command::new("kill").args(["-INT", &child.id().to_string()]).status().unwrap();
+        assert!(killed.success());
+        let rest: Vec<String> = lines.map_while(Result::ok).collect();
+        let status = child.wait().unwrap();
+        let mut err = String::new();
+        child.stderr.take().unwrap().read_to_string(&mut err).unwrap();
+        assert_eq!(status.signal(), Some(2), "{name}: {status:?} {err}");
+        let kept: usize = err
+            .split_once(" after ")
+            .and_then(|(_, tail)| tail.split(' ').next()?.parse().ok())
+            .unwrap_or_else(|| panic!("{name}: no count of frames kept in {err:?}"));
+        assert!(err.contains("the recording keeps them"), "{err}");
+        assert!(rest.iter().any(|l| l.starts_with(&format!("recorded {kept} frames"))), "{rest:?}");
+        if name.ends_with(".pc2") {
+            let bytes = std::fs::read(dir.path().join("long_c.pc2")).unwrap();
+            let int = |at: usize| i32::from_le_bytes(bytes[at..at + 4].try_into().unwrap()) as usize;
+            let (points, samples) = (int(16), int(28));
+            assert_eq!((samples, bytes.len()), (kept, 32 + samples * points * 12));
+            assert!(bytes[32..]
+                .chunks_exact(4)
+                .all(|b| f32::from_le_bytes(b.try_into().unwrap()).is_finite()));
+            assert!(dir.path().join("long.obj").is_file());
+        } else {
+            let frames = std::fs::read_dir(dir.path()).unwrap().filter(|e| {
+                let n = e.as_ref().unwrap().file_name().to_string_lossy().into_owned();
+                n.starts_with("long_") && n.ends_with(".obj")
+            });
+            assert_eq!(frames.count(), kept, "{name}: whole frames");
+            assert!(dir.path().join(format!("long_{:05}.obj", kept - 1)).is_file());
+        }
+        assert_eq!(leftovers(dir.path()), Vec::<String>::new());
+    }
 }
 
 /// A disk that fills during a point-cache recording (here a limit of 64 KiB a file, which the
