@@ -42,6 +42,9 @@ const USD_SCOPES: [&str; 2] = ["colliders", "materials"];
 
 /// The colour colliders are recorded in (linear).
 const COLLIDER_GREY: f32 = 0.5;
+/// The material the colliders share in an OBJ recording's MTL file (an object named so has
+/// its group renamed apart, `unique_name`).
+const COLLIDER_MATERIAL: &str = "collider";
 
 /// The recording formats, by file extension.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -64,8 +67,8 @@ impl Format {
 
     /// Whether a recording of this format into `record` writes `other` besides `record`: an OBJ
     /// sequence its frames `{stem}_NNNNN.obj` (`Recording::obj_path`), a point cache its meshes
-    /// `{stem}.obj` and caches `{stem}_{name}.pc2` (`base_path`, `cache_path`), in `record`'s
-    /// folder.
+    /// `{stem}.obj` and caches `{stem}_{name}.pc2` (`base_path`, `cache_path`), both their
+    /// materials `{stem}.mtl` (`mtl_path`), in `record`'s folder.
     pub fn writes(self, record: &Path, other: &Path) -> bool {
         // (folders compared as the file system resolves them: a link or `..` is the same folder)
         let folder = |p: &Path| {
@@ -82,13 +85,15 @@ impl Format {
         let name = name.to_string_lossy();
         let after = name.strip_prefix(stem);
         match self {
-            Format::ObjSequence => after
-                .and_then(|a| a.strip_prefix('_'))
-                .and_then(|a| a.strip_suffix(".obj"))
-                .is_some_and(|n| n.len() >= 5 && n.bytes().all(|b| b.is_ascii_digit())),
-            Format::PointCache => {
-                after.is_some_and(|a| a == ".obj" || (a.starts_with('_') && a.ends_with(".pc2")))
+            Format::ObjSequence => {
+                after == Some(".mtl")
+                    || after
+                        .and_then(|a| a.strip_prefix('_'))
+                        .and_then(|a| a.strip_suffix(".obj"))
+                        .is_some_and(|n| n.len() >= 5 && n.bytes().all(|b| b.is_ascii_digit()))
             }
+            Format::PointCache => after
+                .is_some_and(|a| a == ".obj" || a == ".mtl" || (a.starts_with('_') && a.ends_with(".pc2"))),
             Format::Usd | Format::Gltf => false,
         }
     }
@@ -252,7 +257,8 @@ impl Recording {
         }
         // Objects are named apart from the scopes beside them under /scene in USD (a prim
         // path holds one prim), in every format so that the names agree.
-        let mut taken: std::collections::HashSet<String> = USD_SCOPES.iter().map(|s| s.to_string()).collect();
+        let mut taken: std::collections::HashSet<String> =
+            USD_SCOPES.iter().chain([&COLLIDER_MATERIAL]).map(|s| s.to_string()).collect();
         let mut tracks: Vec<Track> = model
             .objects
             .iter()
@@ -398,6 +404,11 @@ impl Recording {
         }
         if self.frames == 0 {
             self.first_code = if time == 0.0 { 0 } else { 1 };
+            if matches!(self.format, Format::ObjSequence | Format::PointCache) {
+                let path = self.mtl_path();
+                write_whole(&path, self.mtl().as_bytes())
+                    .map_err(|e| anyhow::anyhow!("recording the materials to {}: {e}", path.display()))?;
+            }
         }
         self.frames += 1;
         if self.format == Format::ObjSequence {
@@ -518,6 +529,24 @@ impl Recording {
         PathBuf::from(path)
     }
 
+    /// The materials an OBJ sequence's frames or a point cache's meshes name: `{stem}.mtl`.
+    fn mtl_path(&self) -> PathBuf {
+        self.stem.with_extension("mtl")
+    }
+
+    /// The materials as MTL text: one for each object, named as its group, with its colour as
+    /// the diffuse colour `Kd`, and a grey one the colliders share. Kd is linear, as Blender's
+    /// importer puts it into its (linear) base colour; the vertex colours stay sRGB (`obj`).
+    fn mtl(&self) -> String {
+        let mut out = String::from("# msdsim materials\n");
+        let grey = [COLLIDER_GREY; 3];
+        let materials = self.tracks.iter().map(|t| (t.name.as_str(), t.color));
+        for (name, [r, g, b]) in materials.chain(std::iter::once((COLLIDER_MATERIAL, grey))) {
+            let _ = writeln!(out, "\nnewmtl {name}\nKd {r} {g} {b}\nKa 0 0 0\nKs 0 0 0\nd 1\nillum 1");
+        }
+        out
+    }
+
     /// The OBJ file with the meshes a point cache animates: `{stem}.obj`.
     pub fn base_path(&self) -> PathBuf {
         self.stem.with_extension("obj")
@@ -626,9 +655,11 @@ impl Recording {
     /// it is at that time.
     fn obj(&self, states: &[ObjectState], time: f64) -> String {
         let mut out = format!("# msdsim frame {} ({} frames/s)\n", self.last_code(), self.fps);
+        let mtl = self.mtl_path();
+        let _ = writeln!(out, "mtllib {}", mtl.file_name().unwrap_or_default().to_string_lossy());
         let (mut base, mut st_base) = (1usize, 1usize);
         for (t, s) in self.tracks.iter().zip(states) {
-            let _ = writeln!(out, "o {}", t.name);
+            let _ = writeln!(out, "o {}\nusemtl {}", t.name, t.name);
             // OBJ readers (Blender, MeshLab) take vertex colours as sRGB; the scene's are linear.
             let [r, g, b] = t.color.map(srgb);
             let (points, normals) = t.frame(s);
@@ -651,7 +682,7 @@ impl Recording {
         }
         let grey = srgb(COLLIDER_GREY);
         for (c, name) in self.colliders.iter().zip(&self.collider_names) {
-            let _ = writeln!(out, "o {name}");
+            let _ = writeln!(out, "o {name}\nusemtl {COLLIDER_MATERIAL}");
             let (points, normals, triangles) = collider_mesh(c, time);
             for p in &points {
                 let _ = writeln!(out, "v {} {} {} {grey} {grey} {grey}", p.x, p.y, p.z);
@@ -1164,6 +1195,8 @@ mod tests {
         assert!(pc2.writes(p("x.pc2"), p("x_curtain.pc2")));
         assert!(pc2.writes(p("x.pc2"), p("x_collider_box_1.pc2")));
         assert!(!pc2.writes(p("x.pc2"), p("x.json")));
+        assert!(pc2.writes(p("x.pc2"), p("x.mtl")));
+        assert!(obj.writes(p("out/x.obj"), p("out/x.mtl")));
         assert!(!Format::Usd.writes(p("x.usda"), p("x.obj")));
     }
 

@@ -496,8 +496,8 @@ fn a_failed_obj_frame_is_a_clear_failure() {
     names.sort();
     assert_eq!(
         names,
-        ["f_00000.obj", "f_00001.obj", "f_00002.obj"],
-        "frames 0 and 1 whole, the link kept, no temporary file"
+        ["f.mtl", "f_00000.obj", "f_00001.obj", "f_00002.obj"],
+        "the materials, frames 0 and 1 whole, the link kept, no temporary file"
     );
 }
 
@@ -672,7 +672,7 @@ fn obj_groups(text: &str) -> Vec<ObjGroup> {
 /// winding agrees with its normals): the tablecloth's box (volume 8 hx hy hz, exact for a
 /// cube) moving at 0.5 m/s along x (its centre at 0.5 k / 60 m in frame k) and its ground
 /// facing up; the rope preset's sphere (r = 0.4 m, volume within 5% of 4/3 pi r^3: 12 x 16
-/// facets) closed, every edge shared by two faces.
+/// facets) closed, every edge shared by two faces; and the frames' materials, in `t.mtl`.
 #[test]
 fn an_obj_recording_carries_the_colliders() {
     let dir = tempfile::tempdir().unwrap();
@@ -723,6 +723,40 @@ fn an_obj_recording_carries_the_colliders() {
         let used: std::collections::BTreeSet<usize> = groups[2].3.iter().flatten().copied().collect();
         let centre = used.iter().map(|&i| groups[2].1[i]).sum::<glam::DVec3>() / used.len() as f64;
         assert!((centre.x - 0.5 * k as f64 / 60.0).abs() < 1e-5, "frame {k}: box centre {centre}");
+    }
+    // Materials: every frame names `t.mtl`, every group a material it defines; the tablecloth's
+    // diffuse colour is its vertex colour in linear light (those are sRGB), the colliders' grey.
+    let mtl = std::fs::read_to_string(dir.path().join("t.mtl")).expect("the materials beside the frames");
+    let mut kd = std::collections::HashMap::new();
+    let mut current = None;
+    for line in mtl.lines() {
+        let words: Vec<&str> = line.split_whitespace().collect();
+        match words.as_slice() {
+            ["newmtl", name] => current = Some(name.to_string()),
+            ["Kd", rgb @ ..] => {
+                let rgb: Vec<f64> = rgb.iter().map(|x| x.parse().unwrap()).collect();
+                kd.insert(current.clone().expect("Kd after newmtl"), rgb);
+            }
+            _ => {}
+        }
+    }
+    let text = std::fs::read_to_string(dir.path().join("t_00002.obj")).unwrap();
+    assert!(text.lines().any(|l| l == "mtllib t.mtl"), "the frame names its materials");
+    let mut group = String::new();
+    for line in text.lines() {
+        if let Some(name) = line.strip_prefix("o ") {
+            group = name.to_string();
+        } else if let Some(material) = line.strip_prefix("usemtl ") {
+            let rgb = kd.get(material).unwrap_or_else(|| panic!("{group}: {material} not in t.mtl"));
+            if group.starts_with("collider_") {
+                assert_eq!(rgb, &[0.5; 3], "{group}");
+            }
+        } else if group == "tablecloth" && line.starts_with("v ") {
+            let rgb = &kd["tablecloth"];
+            let srgb = |c: f64| if c <= 0.0031308 { 12.92 * c } else { 1.055 * c.powf(1.0 / 2.4) - 0.055 };
+            let vertex: Vec<f64> = line.split_whitespace().skip(4).map(|x| x.parse().unwrap()).collect();
+            assert!((0..3).all(|i| (srgb(rgb[i]) - vertex[i]).abs() < 1e-4), "{rgb:?} against {vertex:?}");
+        }
     }
     let text = std::fs::read_to_string(dir.path().join("r_00001.obj")).unwrap();
     let groups = obj_groups(&text);
