@@ -127,7 +127,7 @@ float pair_friction(uint a, uint b) { return 0.5 * (friction_of(a) + friction_of
 // between two cloths NOTE_PAIR | 6 ra + rb (k's edge to its ring vertex ra, j's to rb)); one
 // with more searches the hash again. Its count of contacts as the particle (not as a corner)
 // is moves[4 k + 3]. (Scene indices below 2^25.)
-const uint PAIR_MAX = 8u;
+const uint PAIR_MAX = 32u;  // sim::gpu::contact::PAIR_MAX
 const uint NOTE_SHIFT = 7u;
 const uint NOTE_PAIR = 64u;
 const uint SEGMENT_NEXT = 0u;

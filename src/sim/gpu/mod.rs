@@ -257,7 +257,7 @@ impl GpuSim {
         limits: FusedLimits,
     ) -> Result<Self> {
         check_fits(ctx.info(), &model.objects.iter().map(ObjectModel::shape).collect::<Vec<_>>())?;
-        contact::check_scene(model)?;
+        contact::check_scene(model, ctx.info().max_storage_buffer_range)?;
         let plans: Vec<ObjectPlan> = model.objects.iter().map(|o| ObjectPlan::of(o, model, limits)).collect();
         let mut parts = Parts::default();
         let fuse_contact = fused::default_fused_contact(ctx.info());
