@@ -54,13 +54,21 @@ uint count_in(uint q) { return floatBitsToUint(objects[OBJECT_ROWS * q].y); }
 uvec2 grid_of(uint q) { return floatBitsToUint(objects[OBJECT_ROWS * q + 1u].xy); }
 bool is_cloth(uint q) { return grid_of(q).x != 0u; }
 
-// The object a scene index belongs to (objects are few: a linear search).
+// The object a scene index belongs to: the last whose first index is at most k (the objects'
+// first indices rise with the object), by bisection, since every hash entry a search visits
+// asks (a pile of many small objects visits thousands).
 uint owner(uint k) {
-    uint o = 0u;
-    for (uint q = 1u; q < object_count(); ++q) {
-        if (k >= first_of(q)) o = q;
+    uint lo = 0u;
+    uint hi = object_count();
+    while (hi - lo > 1u) {
+        uint mid = (lo + hi) >> 1u;
+        if (k >= first_of(mid)) {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
     }
-    return o;
+    return lo;
 }
 
 // Passes 0 and 1 run over work items: object q's particles from item work_first(q) on, each
@@ -127,7 +135,7 @@ float pair_friction(uint a, uint b) { return 0.5 * (friction_of(a) + friction_of
 // between two cloths NOTE_PAIR | 6 ra + rb (k's edge to its ring vertex ra, j's to rb)); one
 // with more searches the hash again. Its count of contacts as the particle (not as a corner)
 // is moves[4 k + 3]. (Scene indices below 2^25.)
-const uint PAIR_MAX = 32u;  // sim::gpu::contact::PAIR_MAX
+const uint PAIR_MAX = 64u;  // sim::gpu::contact::PAIR_MAX
 const uint NOTE_SHIFT = 7u;
 const uint NOTE_PAIR = 64u;
 const uint SEGMENT_NEXT = 0u;

@@ -55,8 +55,8 @@ pub(super) struct SceneContact {
 /// Partners a particle keeps from the count pass (`PAIR_MAX` in contact.comp). A particle
 /// with more searches again in the sum pass: in piles, where a particle between layers has
 /// dozens of contacts, that second search was half the cost, so the notes hold as many as a
-/// pile gives (docs/PERFORMANCE.md, "Contact notes").
-const PAIR_MAX: u64 = 32;
+/// pile gives (docs/PERFORMANCE.md, "Contact notes, and whose particle it is").
+const PAIR_MAX: u64 = 64;
 
 /// Particles a scene with contact between objects may hold: contact.comp notes a particle's
 /// scene index in 25 bits (NOTE_SHIFT).
@@ -479,10 +479,10 @@ mod tests {
         model.objects[0].dims = [16384, 16384];
         let error = check_scene(&model, u64::MAX).expect_err("2^28 particles are refused").0;
         assert!(error.contains("contact between objects handles at most 33554432"), "{error}");
-        // A device binding at most 128 MiB a buffer (lavapipe's range): 2^20 particles' notes.
+        // A device binding at most 128 MiB a buffer (lavapipe's range): 2^19 particles' notes.
         model.objects[0].dims = [1024, 1025];
         let error = check_scene(&model, 1 << 27).expect_err("past the buffer range").0;
-        assert!(error.contains("at most 1048576 on this device"), "{error}");
+        assert!(error.contains("at most 524288 on this device"), "{error}");
         model.inter_object = false;
         assert!(check_scene(&model, u64::MAX).is_ok());
     }
