@@ -646,8 +646,7 @@ impl Recording {
         let file = &mut self.caches[k];
         file.seek(SeekFrom::End(0))?;
         file.write_all(&bytes)?;
-        file.seek(SeekFrom::Start(PC2_HEADER - 4))?;
-        file.write_all(&(self.frames as i32).to_le_bytes())
+        count_samples(file, self.frames)
     }
 
     /// One frame as OBJ text, at simulated time `time`: every object an `o` group of vertices
@@ -1027,8 +1026,13 @@ fn write_whole(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
 /// Cuts a point cache of `points` points a sample back to its first `frames` samples, the
 /// header counting them (a smaller file and a word rewritten in place: no new space is needed).
 fn cut_cache(file: &mut std::fs::File, points: u64, frames: u64) -> std::io::Result<()> {
-    use std::io::{Seek, SeekFrom, Write};
     file.set_len(PC2_HEADER + frames * points * 12)?;
+    count_samples(file, frames)
+}
+
+/// Writes a point cache's count of samples, the header's last word.
+fn count_samples(file: &mut std::fs::File, frames: u64) -> std::io::Result<()> {
+    use std::io::{Seek, SeekFrom, Write};
     file.seek(SeekFrom::Start(PC2_HEADER - 4))?;
     file.write_all(&(frames as i32).to_le_bytes())
 }
