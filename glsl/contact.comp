@@ -2,7 +2,7 @@
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_control_flow_attributes : require
 // Inter-object contact, 3 of 3, in three passes: 0 and 1 over the scene's particles (read from
-// the hash's copies; a rope's node in several lanes, `lanes_of`), 2 per object. Every contact
+// the scene's entries; a rope's node in several lanes, `lanes_of`), 2 per object. Every contact
 // is a particle p of object A against a piece of object B's surface, the reach being the two
 // objects' contact radii added:
 // - a triangle t of B, a cloth (its triangles as the renderer draws them): p nearer than the
@@ -31,13 +31,16 @@
 // corner k -w_k b_k lambda n, so the contact's momentum is unchanged (a segment pair likewise,
 // with A's ends in p's place). The particle that finds a contact computes all its moves.
 // Pass 0 counts each particle's contacts (touches[], with atomics: a piece's corners are
-// counted by the particle that touches it) and notes the first PAIR_MAX of its own (in the
-// order its lanes find them). Pass 1 sums the moves into moves[] in fixed point (integer
-// atomics: exact and in any order), from the notes (searching again only for a particle with
-// more).
-// Pass 2 writes each particle's sum (xyz) and whether it touches anything (w) into its
-// object's contact[]; the constraint stage adds it to its own correction. touches[] and
-// moves[] are cleared by contact_count.comp. The CPU twin is sim::cpu::inter_object.
+// counted by the particle that touches it). In a substep that rebuilds the lists
+// (contact_common.glsl) it searches the hash for them and lists the pieces within the reach
+// plus the skin, each by the rules above (so each is in one list), the first PAIR_MAX of them
+// (in the order its lanes find them); a longer list is marked overflowed, so the next substep
+// rebuilds. Otherwise it walks the particle's list. Pass 1 sums the moves into moves[] in
+// fixed point (integer atomics: exact and in any order) from the list (searching the hash
+// again for a particle whose list overflowed). Pass 2 writes each particle's sum (xyz) and
+// whether it touches anything (w) into its object's contact[]; the constraint stage adds it
+// to its own correction. touches[] and moves[] are cleared by contact_begin.comp. The CPU twin
+// is sim::cpu::inter_object.
 #include "layout.glsl"
 #include "contact_common.glsl"
 #include "triangle.glsl"
@@ -128,26 +131,45 @@ uint count_of(uint k, float w) { return w > 0.0 ? max(touches[k], 1u) : 1u; }
 // Two objects' friction coefficient with each other: the mean of theirs.
 float pair_friction(uint a, uint b) { return 0.5 * (friction_of(a) + friction_of(b)); }
 
-// Contacts a particle notes in pass 0 for pass 1 (pairs[], PAIR_MAX a particle, each the
-// piece's nearest corner j (scene index) << NOTE_SHIFT | the ring index r of triangle (j,
-// ring r, ring r + 1) of a cloth (VERTEX_RING), or for a pair of edges NOTE_PAIR | j's edge (a
-// rope's SEGMENT_NEXT, the ring index of a cloth's edge (j, ring r), or CLOTH_POINT), or
-// between two cloths NOTE_PAIR | 6 ra + rb (k's edge to its ring vertex ra, j's to rb)); one
-// with more searches the hash again. Its count of contacts as the particle (not as a corner)
-// is moves[4 k + 3]. (Scene indices below 2^25.)
+// A particle's list (pairs[], PAIR_MAX a particle, its length in built[4 k + 3]), each entry
+// the piece's corner j (scene index; the nearest when listed) << NOTE_SHIFT | the ring index
+// r of triangle (j, ring r, ring r + 1) of a cloth (VERTEX_RING), or for a pair of edges
+// NOTE_PAIR | j's edge (a rope's SEGMENT_NEXT, the ring index of a cloth's edge (j, ring r), or
+// CLOTH_POINT), or between two cloths NOTE_PAIR | 6 ra + rb (k's edge to its ring vertex ra,
+// j's to rb). Its count of contacts as the particle (not as a corner) is moves[4 k + 3].
+// (Scene indices below 2^25.)
 const uint PAIR_MAX = 64u;  // sim::gpu::contact::PAIR_MAX
 const uint NOTE_SHIFT = 7u;
 const uint NOTE_PAIR = 64u;
 const uint SEGMENT_NEXT = 0u;
 const uint SEGMENT_PREVIOUS = 1u;
 
-// Pass 0: notes a contact particle k found and counts it into n. A rope node's lanes take
-// slots in turn (moves[4 k + 3] counts them); a cloth's particle, alone, writes its count at
-// the end (an atomic a contact cost the cloths' search a seventh more on the H100).
-void note_contact(uint k, uint note, inout uint n) {
-    uint slot = SEGMENTS ? uint(atomicAdd(moves[4u * k + 3u], 1)) : n;
+// Pass 0 of a substep that rebuilds: lists a piece particle k found. A rope node's lanes take
+// slots in turn (built[4 k + 3] counts them); a cloth's particle, alone, counts in `listed`
+// and writes its length at the end (an atomic an entry cost the cloths' search a seventh more
+// on the H100).
+uint listed = 0u;
+void list_piece(uint k, uint note) {
+    uint slot = SEGMENTS ? atomicAdd(built[4u * k + 3u], 1u) : listed;
+    listed += 1u;
     if (slot < PAIR_MAX) pairs[k * PAIR_MAX + slot] = note;
+}
+
+// Whether pass 0 lists a piece at distance d (`touching`: a contact now) of the reach plus the
+// skin: with the lists on, every piece within it (its part in a pair of edges, which motion
+// changes, aside); off, the contacts alone, which pass 1 replays.
+bool listed_if(bool touching, float d, float reach) {
+    return lists_on() ? d < reach + list_skin() : touching;
+}
+
+// Pass 0: a contact of particle k with the piece whose corners (or ends) other than k are
+// `corners` (repeats of k or of one another counted once, as x, y, z, w in order) counted into
+// n and into those corners' touches.
+void count_contact(uvec3 corners, uint k, inout uint n) {
     n += 1u;
+    if (corners.x != k) atomicAdd(touches[corners.x], 1u);
+    atomicAdd(touches[corners.y], 1u);
+    if (corners.z != corners.y) atomicAdd(touches[corners.z], 1u);
 }
 
 // The scene index of vertex j's ring neighbour r in object q (j's grid position `at`), if any.
@@ -272,11 +294,10 @@ void edge_pairs_around(uint k, vec4 ek, uint me, uint j, vec4 ej, uint q, bool s
         vec2 st = capsule_nearest(e[0].xyz, e[1].xyz, e[2].xyz, e[3].xyz);
         vec3 off = (1.0 - st.x) * e[0].xyz + st.x * e[1].xyz - (1.0 - st.y) * e[2].xyz - st.y * e[3].xyz;
         float d = length(off);
-        if (!(d > 0.0 && d < reach)) continue;
-        note_contact(k, j << NOTE_SHIFT | NOTE_PAIR | rb, n);
-        if (ko != k) atomicAdd(touches[ko], 1u);
-        atomicAdd(touches[j], 1u);
-        if (jo != j) atomicAdd(touches[jo], 1u);
+        bool touching = d > 0.0 && d < reach;
+        if (!listed_if(touching, d, reach)) continue;
+        list_piece(k, j << NOTE_SHIFT | NOTE_PAIR | rb);
+        if (touching) count_contact(uvec3(ko, j, jo), k, n);
     }
 }
 // Cloth me's particle k (entry ek) against cloth q's particle j (entry ej, at squared
@@ -303,7 +324,7 @@ void cloth_edge_pairs_around(uint k, vec4 ek, uint me, uint j, vec4 ej, float dj
             uint jo;
             if (!ring_vertex(q, at_j, int(rb), jo)) continue;
             vec4 ejo = entry_of(jo);
-            float bound = reach + half_a + 0.5 * distance(ej.xyz, ejo.xyz);
+            float bound = reach + list_skin() + half_a + 0.5 * distance(ej.xyz, ejo.xyz);
             vec3 kjo = ek.xyz - ejo.xyz;
             vec3 kojo = eko.xyz - ejo.xyz;
             if (dj >= bound * bound || ends_in_order(dot(kjo, kjo), uvec2(k, jo), dj, uvec2(k, j), step)
@@ -318,11 +339,10 @@ void cloth_edge_pairs_around(uint k, vec4 ek, uint me, uint j, vec4 ej, float dj
             vec2 st = pair_nearest(e, me, part);
             vec3 off = (1.0 - st.x) * ek.xyz + st.x * eko.xyz - (1.0 - st.y) * ej.xyz - st.y * ejo.xyz;
             float d = length(off);
-            if (!(d > 0.0 && d < reach && part > 0.0)) continue;
-            note_contact(k, j << NOTE_SHIFT | NOTE_PAIR | (6u * ra + rb), n);
-            atomicAdd(touches[ko], 1u);
-            atomicAdd(touches[j], 1u);
-            atomicAdd(touches[jo], 1u);
+            bool touching = d > 0.0 && d < reach && part > 0.0;
+            if (!listed_if(touching, d, reach)) continue;
+            list_piece(k, j << NOTE_SHIFT | NOTE_PAIR | (6u * ra + rb));
+            if (touching) count_contact(uvec3(ko, j, jo), k, n);
         }
     }
 }
@@ -352,11 +372,10 @@ void triangles_around(uint k, vec4 ek, uint me, uint j, vec4 ej, float dj, uint 
         }
         vec3 w = triangle_nearest(ek.xyz, ej.xyz, ring[r].xyz, ring[s].xyz);
         float d = length(ek.xyz - (w.x * ej.xyz + w.y * ring[r].xyz + w.z * ring[s].xyz));
-        if (!(d > 0.0 && d < reach)) continue;
-        note_contact(k, j << NOTE_SHIFT | uint(r), n);
-        atomicAdd(touches[tv.x], 1u);
-        atomicAdd(touches[tv.y], 1u);
-        atomicAdd(touches[tv.z], 1u);
+        bool touching = d > 0.0 && d < reach;
+        if (!listed_if(touching, d, reach)) continue;
+        list_piece(k, j << NOTE_SHIFT | uint(r));
+        if (touching) count_contact(tv, k, n);
     }
 }
 
@@ -377,7 +396,7 @@ bool visit(uint at, vec4 ek, uint me) {
     if (other == me) return false;
     vec3 to_j = e.xyz - ek.xyz;
     float dj = dot(to_j, to_j);
-    float reach = radius_of(me) + radius_of(other);
+    float reach = radius_of(me) + radius_of(other) + list_skin();
     bool rope = SEGMENTS && !is_cloth(me);  // (its segments against the other's edges too)
     if (is_cloth(other)) {
         // (a pair of edges is found through their lower ends: each within a stretched length)
@@ -397,7 +416,7 @@ bool visit(uint at, vec4 ek, uint me) {
 // vertices among them), or between cloths that keep their edges apart, from the one of lower
 // index, k's edges against j's whose nearest ends are k and j.
 void pieces_around(uint k, vec4 ek, uint me, uint j, vec4 ej, float dj, uint q, bool sum, inout uint n) {
-    float sight = radius_of(me) + radius_of(q) + corner_reach(q);
+    float sight = radius_of(me) + radius_of(q) + list_skin() + corner_reach(q);
     if (is_cloth(q) && dj < sight * sight) triangles_around(k, ek, me, j, ej, dj, q, sum, n);
     if (SEGMENTS && !is_cloth(me)) edge_pairs_around(k, ek, me, j, ej, q, sum, n);
     if (cloth_edges(me, q) && me < q) cloth_edge_pairs_around(k, ek, me, j, ej, dj, q, sum, n);
@@ -413,20 +432,29 @@ void test_candidates(vec4 ek, uint k, uint me, bool sum, inout uint n, uint cand
     }
 }
 
-// Pass 1: the moves of the contact particle k noted in pass 0.
-void replay(uint note, vec4 ek, uint k, uint me) {
+// The piece of list entry `note` of particle k (entry ek, object me): pass 0 counts it into n
+// where it is a contact, pass 1 (`sum`) sums its moves.
+void replay(uint note, vec4 ek, uint k, uint me, bool sum, inout uint n) {
     uint j = note >> NOTE_SHIFT;
     uint q = owner(j);
     vec4 ej = entry_of(j);
     uint r = note & (NOTE_PAIR - 1u);
+    float reach = radius_of(me) + radius_of(q);
     if ((SEGMENTS || CLOTH_EDGES) && (note & NOTE_PAIR) != 0u) {
         bool cloths = is_cloth(me);
         uint ko, jo;
         edge_end(me, k, cloths ? r / 6u : SEGMENT_NEXT, ko);
         edge_end(q, j, cloths ? r % 6u : r, jo);
         uvec4 sv = uvec4(k, ko, j, jo);
-        vec4 e[4] = vec4[4](entry_of(sv.x), entry_of(sv.y), entry_of(sv.z), entry_of(sv.w));
-        segment_pair_moves(sv, e, me, q);
+        vec4 e[4] = vec4[4](ek, entry_of(ko), ej, entry_of(jo));
+        if (sum) {
+            segment_pair_moves(sv, e, me, q);
+            return;
+        }
+        float part;
+        vec2 st = pair_nearest(e, me, part);
+        float d = length((1.0 - st.x) * e[0].xyz + st.x * e[1].xyz - (1.0 - st.y) * e[2].xyz - st.y * e[3].xyz);
+        if (d > 0.0 && d < reach && part > 0.0) count_contact(uvec3(ko, j, jo), k, n);
         return;
     }
     int s = r == 5u ? 0 : int(r) + 1;
@@ -434,19 +462,59 @@ void replay(uint note, vec4 ek, uint k, uint me) {
     uvec3 tv = uvec3(j, 0u, 0u);
     ring_vertex(q, at, int(r), tv.y);
     ring_vertex(q, at, s, tv.z);
-    triangle_moves(k, ek, me, tv, ej, entry_of(tv.y), entry_of(tv.z), q);
+    vec4 ea = entry_of(tv.y);
+    vec4 eb = entry_of(tv.z);
+    if (sum) {
+        triangle_moves(k, ek, me, tv, ej, ea, eb, q);
+        return;
+    }
+    vec3 w = triangle_nearest(ek.xyz, ej.xyz, ea.xyz, eb.xyz);
+    float d = length(ek.xyz - (w.x * ej.xyz + w.y * ea.xyz + w.z * eb.xyz));
+    if (d > 0.0 && d < reach) count_contact(tv, k, n);
+}
+
+// Searches the hash around particle k (entry ek, object me) for the pieces near it: pass 0
+// lists them and counts the contacts into n, pass 1 (`sum`) sums the contacts' moves. Cells
+// are sized so that everything within the reach plus the skin lies in the 2 x 2 x 2 block of
+// cells nearest to the particle (SimModel::contact_cell). Buckets visited once; a rope node's
+// split among its lanes.
+void search(vec4 ek, uint k, uint me, uint lane, uint lanes, bool sum, inout uint n) {
+    ivec3 base = ivec3(floor(ek.xyz * hash_cell_inv() - 0.5));
+    uint candidates[CANDIDATE_MAX];
+    uint found = 0u;
+    uint seen[8];
+    for (int c = 0; c < 8; ++c) {
+        uint h = cell_hash(base + ivec3(c & 1, (c >> 1) & 1, c >> 2), table.hash_mask);
+        seen[c] = h;
+        bool again = false;
+        for (int q = 0; q < c; ++q) again = again || seen[q] == h;
+        if (again) continue;
+        uint end = BUCKET_START(h + 1u, table.hash_mask);
+        for (uint at = BUCKET_START(h, table.hash_mask) + lane; at < end; at += lanes) {
+            if (visit(at, ek, me)) candidates[found++] = at;
+            if (found == CANDIDATE_MAX) {
+                test_candidates(ek, k, me, sum, n, candidates, found);
+                found = 0u;
+            }
+        }
+    }
+    test_candidates(ek, k, me, sum, n, candidates, found);
 }
 
 void main() {
     uint i = gl_GlobalInvocationID.x;
-    if (which.pass == 2u) {
+    uint pass = pass_of();
+    if (pass == 2u) {
+        // (the next substep's control block starts at zero)
+        if (which.object == 0u && i < CONTROL_WORDS) control[CONTROL_WORDS - control_block() + i] = 0u;
+        if (which.object == 0u && i == 0u && lists_on()) control[CONTROL_COUNTERS] += 1u;
         if (i >= particle_count()) return;
         uint k = first_index() + i;
         vec3 sum = vec3(moves[4u * k], moves[4u * k + 1u], moves[4u * k + 2u]) / move_fix();
         contact[i] = vec4(sum, touches[k] > 0u ? 1.0 : 0.0);
         return;
     }
-    bool sum = which.pass == 1u;
+    bool sum = pass == 1u;
     // Work item i: lane `lane` of particle k of object me (see `lanes_of`).
     i += which.work_first;
     uint me = work_owner(i);
@@ -455,38 +523,33 @@ void main() {
     if (i >= which.work_end || local >= count_in(me) * lanes) return;
     uint k = first_of(me) + local / lanes;
     uint lane = local % lanes;
+    bool rebuild = rebuilds();
+    uint len = built[4u * k + 3u];
+    bool overflowed = rebuild && len > PAIR_MAX;
+    // An overflowed list is built at infinity: it counts as moved, so the next substep rebuilds.
+    if (sum && overflowed && lane == 0u) {
+        uint inf = 0x7F800000u;
+        built[4u * k] = inf;
+        built[4u * k + 1u] = inf;
+        built[4u * k + 2u] = inf;
+    }
     uint own = sum ? uint(moves[4u * k + 3u]) : 0u;
     if (sum && own == 0u) return;
     vec4 ek = entry_of(k);
     uint n = 0u;
-    if (sum && own <= PAIR_MAX) {
-        for (uint e = lane; e < own; e += lanes) replay(pairs[k * PAIR_MAX + e], ek, k, me);
+    if (rebuild && (!sum || overflowed)) {
+        search(ek, k, me, lane, lanes, sum, n);
     } else {
-        // Cells are sized so that everything a contact needs lies in the 2 x 2 x 2 block of
-        // cells nearest to the particle (SimModel::contact_cell). Buckets visited once.
-        ivec3 base = ivec3(floor(ek.xyz * table.cell_inv - 0.5));
-        uint candidates[CANDIDATE_MAX];
-        uint found = 0u;
-        uint seen[8];
-        for (int c = 0; c < 8; ++c) {
-            uint h = cell_hash(base + ivec3(c & 1, (c >> 1) & 1, c >> 2), table.hash_mask);
-            seen[c] = h;
-            bool again = false;
-            for (int q = 0; q < c; ++q) again = again || seen[q] == h;
-            if (again) continue;
-            uint end = BUCKET_START(h + 1u, table.hash_mask);
-            for (uint at = BUCKET_START(h, table.hash_mask) + lane; at < end; at += lanes) {
-                if (visit(at, ek, me)) candidates[found++] = at;
-                if (found == CANDIDATE_MAX) {
-                    test_candidates(ek, k, me, sum, n, candidates, found);
-                    found = 0u;
-                }
-            }
-        }
-        test_candidates(ek, k, me, sum, n, candidates, found);
+        for (uint e = lane; e < len; e += lanes) replay(pairs[k * PAIR_MAX + e], ek, k, me, sum, n);
     }
-    if (!sum && n > 0u) {
+    if (sum) return;
+    if (rebuild && !SEGMENTS) built[4u * k + 3u] = listed;
+    if (n > 0u) {
         atomicAdd(touches[k], n);
-        if (!SEGMENTS) moves[4u * k + 3u] = int(n);
+        if (SEGMENTS) {
+            atomicAdd(moves[4u * k + 3u], int(n));
+        } else {
+            moves[4u * k + 3u] = int(n);
+        }
     }
 }

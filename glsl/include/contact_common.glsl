@@ -1,12 +1,15 @@
-// Inter-object contact through one spatial hash over every object's particles, built each
-// substep after every object's physics: contact_count.comp counts each object's particles into
-// it, the hash scan (hash_scan.comp, over the scene's table) turns counts into starts,
-// contact_scatter.comp writes positions by bucket, and contact.comp queries it for each
-// object. Their binding set is each object's own (binding 1: its parameters, 2: its physics
-// output, 14: its contact sums) with the scene's hash in place of the object's (6..10), the
-// hash's own parameters (12: hash_mask, cell_inv of the scene's table), the object table (13)
-// and each scene particle's count of touches (3) and the slots of its partners (5). The CPU
-// twin is sim::cpu::inter_object.
+// Inter-object contact through contact lists over every object's particles. Each substep,
+// after every object's physics, contact_begin.comp writes each object's particles into the
+// scene's entries and notes whether the lists still hold; when they do not, the scene's
+// spatial hash is built (contact_hash.comp's count, the hash scan over the scene's table,
+// contact_hash.comp's scatter) and contact.comp searches it, listing for each particle the
+// pieces within the reach plus the skin; otherwise contact.comp walks the lists. Their
+// binding set is each object's own (binding 1: its parameters, 2: its physics output, 14: its
+// contact sums) with the scene's hash in place of the object's (6..10), the hash's own
+// parameters (12: hash_mask, cell_inv of the scene's table, and the skin), the object table
+// (13), each scene particle's count of touches (3) and its list (5), where the lists were
+// built (18) and the substeps' control blocks (19). The CPU twin is sim::cpu::inter_object
+// (which searches every substep: the lists change what is searched, not what is found).
 // Include after layout.glsl.
 #ifndef MSD_CONTACT_COMMON_GLSL
 #define MSD_CONTACT_COMMON_GLSL
@@ -30,17 +33,37 @@ layout(std430, set = 0, binding = 12) restrict readonly buffer SceneHash { Objec
 // (contact.comp).
 layout(std430, set = 0, binding = 13) restrict readonly buffer Objects { vec4 objects[]; };
 layout(std430, set = 0, binding = 14) buffer ContactBuf { vec4 contact[]; };
-// Per scene particle: how many particles of other objects it touches (contact.comp's first pass),
-// and the contacts it noted in pass 0 (PAIR_MAX a particle, contact.comp).
+// Per scene particle: how many particles of other objects it touches (contact.comp's first
+// pass), and its list (PAIR_MAX a particle, contact.comp).
 layout(std430, set = 0, binding = 3) buffer SceneTouches { uint touches[]; };
 layout(std430, set = 0, binding = 5) buffer ScenePairs { uint pairs[]; };
-// Per scene particle: the sum of its moves in fixed point (x, y, z) and the count of contacts
-// it noted in pass 0 (w; contact.comp).
+// Per scene particle: the sum of its moves in fixed point (x, y, z) and its count of contacts
+// as the particle that found them (w; contact.comp).
 layout(std430, set = 0, binding = 17) buffer SceneMoves { int moves[]; };
+
+// Per scene particle: where the lists were last built (words 4 k to 4 k + 2, float bits; at
+// infinity when its list is invalid or overflowed) and the length of its list (4 k + 3).
+layout(std430, set = 0, binding = 18) buffer SceneBuilt { uint built[]; };
+// Per substep parity a control block of CONTROL_WORDS words: word 0 is 1 when the substep
+// rebuilds the hash and the lists; from CONTROL_HASH the indirect dispatch (x, y, z) of
+// contact_hash.comp's passes, from CONTROL_SCAN the scan's; all zero when the lists hold.
+// contact_begin.comp sets them, contact.comp's pass 2 zeroes the next substep's block, and the
+// host zeroes both when a frame starts (sim::gpu::contact::CONTROL_WORDS mirrors this).
+layout(std430, set = 0, binding = 19) buffer SceneControl { uint control[]; };
+// After the two blocks, two counters (they wrap) of the substeps run with the lists on, and of
+// those that rebuilt them (read after each frame for the host's policy, and by tests and
+// `simulate`: GpuSim::contact_list_counters).
+const uint CONTROL_WORDS = 8u;
+const uint CONTROL_HASH = 1u;
+const uint CONTROL_SCAN = 4u;
+const uint CONTROL_COUNTERS = 2u * CONTROL_WORDS;
 
 layout(push_constant) uniform Which {
     uint object;  // this object's index in `objects`
-    uint pass;    // contact.comp: 0 counts each particle's contacts, 1 sums the moves, 2 takes them
+    // The pass (bits 0 to 3; contact.comp: 0 counts each particle's contacts, 1 sums the
+    // moves, 2 takes them; contact_hash.comp: 0 counts, 1 scatters), the substep's parity
+    // (bit 4: its control block) and LISTS_OFF (bit 5).
+    uint pass;
     uint work_first;  // contact.comp's passes 0 and 1: the work items of this dispatch
     uint work_end;
 } which;
@@ -51,5 +74,29 @@ const uint OBJECT_ROWS = 3u;
 uint first_of(uint q) { return floatBitsToUint(objects[OBJECT_ROWS * q].x); }
 uint first_index() { return first_of(which.object); }
 uint particle_count() { return obj.dims.x * obj.dims.y; }
+uint scene_particles() {
+    uint last = uint(objects.length()) / OBJECT_ROWS - 1u;
+    return first_of(last) + floatBitsToUint(objects[OBJECT_ROWS * last].y);
+}
+uint pass_of() { return which.pass & 15u; }
+uint control_block() { return CONTROL_WORDS * ((which.pass >> 4) & 1u); }
+// With the lists off (the host's policy, sim::gpu::hash::ListPolicy: while most substeps
+// rebuild them) every substep searches the hash, and lists only the contacts (no skin).
+const uint LISTS_OFF = 32u;
+bool lists_on() { return (which.pass & LISTS_OFF) == 0u; }
+// Whether this substep rebuilds the lists.
+bool rebuilds() { return control[control_block()] != 0u; }
+
+// The lists hold what is within the reach plus the skin (table.self_distance), so they stay
+// exact while no particle has moved half the skin from where they were built: a distance
+// between a particle and a triangle or between two edges changes no more than the largest
+// move of the particles involved (0.49 of the skin, for rounding).
+float list_skin() { return lists_on() ? table.self_distance : 0.0; }
+// The hash's 1 / cell edge: with the lists off, without the skin (table.margin).
+float hash_cell_inv() { return lists_on() ? table.cell_inv : table.margin; }
+float list_half_skin() { return 0.49 * list_skin(); }
+vec3 list_built(uint k) {
+    return vec3(uintBitsToFloat(built[4u * k]), uintBitsToFloat(built[4u * k + 1u]), uintBitsToFloat(built[4u * k + 2u]));
+}
 
 #endif

@@ -297,6 +297,13 @@ fn simulate(
         report(out, t)?;
     }
     print_summary(out, sim, &timings)?;
+    if let Some([on, rebuilt]) = sim.contact_list_counters(ctx).context("the contact counters")? {
+        let total = sim.substeps_done();
+        say!(
+            out,
+            "contact between objects: lists on in {on} of {total} substeps, rebuilt in {rebuilt} of those"
+        )?;
+    }
     if let Some((r, file)) = recording {
         if let (Some(signal), Some(path)) = (interrupted, &args.record) {
             // (on standard error, with the stop itself: a user who pressed Ctrl-C looks there)

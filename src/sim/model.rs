@@ -17,6 +17,13 @@ pub const TRIANGLE_STRETCH: f64 = 1.5;
 /// contact's reach plus its corner reach.
 pub const CONTACT_BLOCK_REACH: f64 = 0.49;
 
+/// The skin of the contact lists between objects, in the smallest reach (two contact radii):
+/// a list holds what is within the reach plus the skin and lasts until some particle has moved
+/// half the skin (`glsl/include/contact_common.glsl`). A larger skin rebuilds less often but
+/// lists more: a thick rope between two cloths then overflows its list (docs/PERFORMANCE.md,
+/// "Contact lists between objects").
+pub const CONTACT_SKIN: f64 = 0.5;
+
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, serde::Serialize)]
 #[serde(rename_all = "lowercase")]
 pub enum ObjectKind {
@@ -294,10 +301,11 @@ impl SimModel {
 
     /// The cell of the scene's contact hash (contact between objects) [m], such that a
     /// particle's block of cells reaches (`CONTACT_BLOCK_REACH` cells) the largest reach (two
-    /// contact radii) plus the largest corner reach (`ObjectModel::corner_reach`), or twice a
-    /// rope's and another object's added, or two cloths' added where they keep their edges
-    /// apart: a piece within reach has its nearest corner in sight, a rope's pair of edges their
-    /// lower ends, two cloths' their nearest ends.
+    /// contact radii) and the lists' skin plus the largest corner reach
+    /// (`ObjectModel::corner_reach`), or twice a rope's and another object's added, or two
+    /// cloths' added where they keep their edges apart: a piece within reach has its nearest
+    /// corner in sight, a rope's pair of edges their lower ends, two cloths' their nearest
+    /// ends.
     pub fn contact_cell(&self) -> f64 {
         let widest = self.objects.iter().map(ObjectModel::contact_radius).fold(0.0, f64::max);
         let edge = self.objects.iter().map(ObjectModel::corner_reach).fold(0.0, f64::max);
@@ -312,7 +320,18 @@ impl SimModel {
             })
         });
         let edge = pairs.fold(edge, f64::max);
-        ((2.0 * widest + edge) / CONTACT_BLOCK_REACH).max(1e-6)
+        ((2.0 * widest + self.contact_skin() + edge) / CONTACT_BLOCK_REACH).max(1e-6)
+    }
+
+    /// `contact_cell` with the lists off: every substep searches for the contacts alone.
+    pub fn contact_cell_without_skin(&self) -> f64 {
+        (self.contact_cell() - self.contact_skin() / CONTACT_BLOCK_REACH).max(1e-6)
+    }
+
+    /// The skin of the contact lists between objects [m] (`CONTACT_SKIN`).
+    pub fn contact_skin(&self) -> f64 {
+        let thinnest = self.objects.iter().map(ObjectModel::contact_radius).fold(f64::INFINITY, f64::min);
+        CONTACT_SKIN * 2.0 * thinnest.min(1e3)
     }
 
     /// Turns the guard's plausibility checks off (strain and energy gain), for runs that

@@ -1,10 +1,14 @@
-//! Contact between objects on the GPU: one spatial hash over every object's particles, built
-//! each substep after all physics (`contact_count.comp` per object, the shared hash scan over
-//! the scene's table, `contact_scatter.comp` per object) and queried per object
-//! (`contact.comp`) into the object's contact sums, which its constraint stage reads.
-//! `glsl/include/contact_common.glsl` has the bindings; the CPU twin is
+//! Contact between objects on the GPU: contact lists over every object's particles. Each
+//! substep after all physics, `contact_begin.comp` (per object) writes the scene's entries
+//! and notes whether the lists still hold; where they do not, one spatial hash over the
+//! scene is built (`contact_hash.comp`'s count, the shared hash scan, its scatter: indirect
+//! dispatches, of no workgroups while the lists hold) and `contact.comp` searches it and
+//! lists each particle's pieces within the reach plus the skin, else walks the lists, into
+//! the objects' contact sums, which their constraint stages read.
+//! `glsl/include/contact_common.glsl` has the bindings and the lists' rule; the CPU twin is
 //! `sim::cpu::inter_object`.
 
+use super::hash::ListPolicy;
 use super::object::{GpuObject, SCAN_BLOCK};
 use super::pipelines::{Pipelines, Stage};
 use super::BINDINGS;
@@ -18,8 +22,9 @@ use crate::vk::{
 
 /// The scene's contact hash: its buffers and the binding sets of its passes.
 pub(super) struct SceneContact {
-    /// `ObjectParams` with the table's `hash_mask` and `cell_inv` (binding 12; binding 1 of
-    /// the scan's set).
+    /// `ObjectParams` with the table's `hash_mask` and `cell_inv`, the lists' skin in
+    /// `self_distance` and the cell's 1 / edge with the lists off (no skin) in `margin`
+    /// (binding 12; binding 1 of the scan's set).
     table: Buffer,
     /// Per object three rows (contact_common.glsl): first scene index, particle count, contact
     /// radius, mass; grid columns and rows where its triangles take part, whether it keeps its
@@ -37,26 +42,51 @@ pub(super) struct SceneContact {
     begun: Buffer,
     block_sums: Buffer,
     /// Per scene particle: how many contacts with other objects it takes part in (binding 3),
-    /// and the first `PAIR_MAX` contacts it found itself (binding 5).
+    /// and its list, `PAIR_MAX` entries (binding 5).
     touches: Buffer,
     pairs: Buffer,
+    /// Per scene particle: where the lists were built and its list's length (binding 18).
+    built: Buffer,
+    /// The substeps' control blocks (binding 19; `CONTROL_WORDS` each, two), then the
+    /// counters, which each frame copies to `report` (host-visible) for `policy`.
+    control: Buffer,
+    report: Buffer,
+    /// Whether the lists are on: off while most substeps rebuild them, which then cost more
+    /// than a search without a skin (`ListPolicy`, as the per-stage self-contact lists).
+    pub(super) policy: ListPolicy,
     /// Work items of contact.comp's passes over the scene: the cloths' from `work[0]` to
     /// `work[1]`, the ropes' from there to `work[2]`.
     work: [u32; 3],
     /// Whether some two cloths keep their edges apart (contact.comp's CLOTH_EDGES).
     cloth_edges: bool,
-    buckets: u32,
     /// The scan's set, and each object's set (the object's own buffers at 1, 2, 14 and its
     /// state at the substep's start at 15).
     scan_set: BindingSet,
     sets: Vec<BindingSet>,
 }
 
-/// Partners a particle keeps from the count pass (`PAIR_MAX` in contact.comp). A particle
-/// with more searches again in the sum pass: in piles, where a particle between layers has
-/// dozens of contacts, that second search was half the cost, so the notes hold as many as a
-/// pile gives (docs/PERFORMANCE.md, "Contact notes, and whose particle it is").
+/// Entries of a particle's list (`PAIR_MAX` in contact.comp). A longer list overflows: the
+/// substep searches the hash again for its moves and the next rebuilds the lists. Piles list
+/// dozens a particle between layers (docs/PERFORMANCE.md, "Contact notes, and whose particle
+/// it is").
 const PAIR_MAX: u64 = 64;
+
+/// Words of a substep's control block (`CONTROL_WORDS` in contact_common.glsl), and where its
+/// indirect dispatches are: contact_hash.comp's passes, the scan's.
+const CONTROL_WORDS: u64 = 8;
+const CONTROL_HASH: u64 = 1;
+const CONTROL_SCAN: u64 = 4;
+/// After the two blocks: substeps run with the lists on, and those that rebuilt them
+/// (`CONTROL_COUNTERS`).
+const CONTROL_COUNTERS: u64 = 2 * CONTROL_WORDS;
+/// The pass word's bit that turns the lists off (`LISTS_OFF` in contact_common.glsl).
+const LISTS_OFF: u32 = 32;
+/// The lists go off for a while when more than this share of a frame's substeps rebuilt them:
+/// a substep that walks them costs a fraction of one that searches, one that rebuilds them a
+/// little more (its search reaches the skin further), so they pay while they last in most
+/// substeps; where they overflow (dense piles) or everything moves half the skin a substep,
+/// they do not (docs/PERFORMANCE.md, "Contact lists between objects").
+const LISTS_OFF_SHARE: [u64; 2] = [3, 4];
 
 /// Particles a scene with contact between objects may hold: contact.comp notes a particle's
 /// scene index in 25 bits (NOTE_SHIFT).
@@ -159,6 +189,14 @@ impl super::GpuSim {
         ctx.wait_idle()?;
         Ok(contact.set_lanes(ctx, &self.model, &self.objects, lanes)?)
     }
+
+    /// The contact lists between objects' counters since the state or the parameters last
+    /// changed from outside: substeps run with the lists on, and those that rebuilt them;
+    /// `None` without contact between objects. Waits for the frames in flight.
+    pub fn contact_list_counters(&mut self, ctx: &GpuContext) -> anyhow::Result<Option<[u32; 2]>> {
+        self.wait_all(ctx)?;
+        Ok(self.contact.as_ref().map(|c| c.counters()).transpose()?)
+    }
 }
 
 impl SceneContact {
@@ -182,8 +220,11 @@ impl SceneContact {
         let mut table_params: ObjectParams = bytemuck::Zeroable::zeroed();
         table_params.hash_mask = buckets as u32 - 1;
         table_params.cell_inv = (1.0 / cell) as f32;
+        table_params.self_distance = model.contact_skin() as f32;
+        table_params.margin = (1.0 / model.contact_cell_without_skin()) as f32;
         let (work, rows) = Self::rows(ctx, model, gpu, in_lanes(ctx));
         let (storage, gpu_only) = (BufferUsage::STORAGE, MemoryKind::GpuOnly);
+        let transfer = BufferUsage::TRANSFER_SRC | BufferUsage::TRANSFER_DST;
         let specs = [
             ("table", std::mem::size_of::<ObjectParams>() as u64, storage, MemoryKind::Upload),
             ("objects", 16 * rows.len() as u64, storage, MemoryKind::Upload),
@@ -197,9 +238,24 @@ impl SceneContact {
             ("block_sums", 4 * buckets.div_ceil(SCAN_BLOCK), storage, gpu_only),
             ("touches", 4 * total, storage, gpu_only),
             ("pairs", 4 * PAIR_MAX * total, storage, gpu_only),
+            ("built", 16 * total, storage | BufferUsage::TRANSFER_DST, gpu_only),
+            ("control", 4 * (CONTROL_COUNTERS + 2), storage | transfer | BufferUsage::INDIRECT, gpu_only),
         ];
-        let [table, objects, moves, cell_rank, counts, starts, sorted, particles, begun, block_sums, touches, pairs] =
+        let [table, objects, moves, cell_rank, counts, starts, sorted, particles, begun, block_sums, touches, pairs, built, control] =
             super::object::buffers(ctx, "contact", specs)?;
+        let report =
+            match Buffer::new(ctx, "contact.report", 8, BufferUsage::TRANSFER_DST, MemoryKind::Readback) {
+                Ok(r) => r,
+                Err(e) => {
+                    for b in [
+                        table, objects, moves, cell_rank, counts, starts, sorted, particles, begun,
+                        block_sums, touches, pairs, built, control,
+                    ] {
+                        b.destroy(ctx);
+                    }
+                    return Err(e);
+                }
+            };
         let mut contact = Self {
             table,
             objects,
@@ -213,9 +269,12 @@ impl SceneContact {
             block_sums,
             touches,
             pairs,
+            built,
+            control,
+            report,
+            policy: ListPolicy::default(),
             work,
             cloth_edges: model.has_cloth_edges_between(),
-            buckets: buckets as u32,
             scan_set: BindingSet::default(),
             sets: Vec::new(),
         };
@@ -247,6 +306,8 @@ impl SceneContact {
                     &o.state[0],
                     &c.particles,
                     &c.moves,
+                    &c.built,
+                    &c.control,
                 ];
                 debug_assert_eq!(bindings.len() as u32, BINDINGS);
                 sets.push(arena.allocate(ctx, layout, &bindings)?);
@@ -264,6 +325,8 @@ impl SceneContact {
                 &c.starts,
                 p,
                 &c.block_sums,
+                p,
+                p,
                 p,
                 p,
                 p,
@@ -326,18 +389,68 @@ impl SceneContact {
         Ok(())
     }
 
-    /// Records the substep's contacts after every object's physics (its output ordered for
-    /// reading) and before the constraints: count (which also clears the contact counts and
-    /// moves), scan, scatter, then contact.comp's passes: the counts and the moves over the
-    /// scene's particles, then each object's sums. Each is ordered after the one before by
-    /// barriers on exactly the buffers it uses; the contact sums are ordered for the
-    /// constraint stage at the end.
-    pub fn record(&self, rec: &mut Recorder<'_>, pipelines: &Pipelines, objects: &[GpuObject]) {
+    /// Zeroes the control blocks when a frame starts (each substep's last pass zeroes the
+    /// next one's; this also starts a frame after one of an odd number of substeps at the right
+    /// parity), and with `stale` (the state or the parameters changed outside the shaders)
+    /// makes every list invalid: built at infinity, so the first substep rebuilds them (and
+    /// zeroes the counters).
+    pub fn record_frame_start(&self, rec: &mut Recorder<'_>, stale: bool) {
+        // (stale, the counters too: they count from the last change)
+        let mut buffers =
+            vec![(&self.control, if stale { self.control.size() } else { 4 * CONTROL_COUNTERS }, 0)];
+        if stale {
+            buffers.push((&self.built, self.built.size(), super::transfer::LISTS_INVALID));
+        }
+        let around =
+            |src, dst| buffers.iter().map(|(b, ..)| BufferBarrier::new(b, src, dst)).collect::<Vec<_>>();
+        rec.barrier(&around(Access::ComputeOrIndirect, Access::TransferWrite));
+        for (b, bytes, word) in &buffers {
+            rec.fill_range(b, 0, *bytes, *word);
+        }
+        rec.barrier(&around(Access::TransferWrite, Access::ComputeOrIndirect));
+    }
+
+    /// Copies the counters to `report` at the end of a frame.
+    pub fn record_frame_end(&self, rec: &mut Recorder<'_>) {
+        rec.barrier(&[BufferBarrier::new(&self.control, Access::ComputeOrIndirect, Access::TransferRead)]);
+        rec.copy_buffer_region(&self.control, 4 * CONTROL_COUNTERS, &self.report, 0, 8);
+        rec.barrier(&[
+            BufferBarrier::new(&self.control, Access::TransferRead, Access::ComputeOrIndirect),
+            BufferBarrier::new(&self.report, Access::TransferWrite, Access::HostRead),
+        ]);
+    }
+
+    /// The counters as the last finished frame left them (substeps run with the lists on, and
+    /// rebuilt).
+    fn counters(&self) -> Result<[u32; 2], VkError> {
+        let words = self.report.read::<u32>(2)?;
+        Ok([words[0], words[1]])
+    }
+
+    /// After the fence of the last recorded frame: the policy takes the counters.
+    pub fn observe(&mut self, substeps: u32) -> Result<(), VkError> {
+        if self.policy.on() {
+            let counters = self.counters()?;
+            self.policy.observe_share(counters, substeps, LISTS_OFF_SHARE);
+        }
+        Ok(())
+    }
+
+    /// Records substep `substep`'s contacts after every object's physics (its output ordered
+    /// for reading) and before the constraints: each object's entries (which also clear the
+    /// contact counts and moves, and note whether the lists hold), the hash's count, scan and
+    /// scatter (indirect: no workgroups while the lists hold), then contact.comp's passes: the
+    /// counts and the moves over the scene's particles, then each object's sums. Each is
+    /// ordered after the one before by barriers on exactly the buffers it uses; the contact
+    /// sums are ordered for the constraint stage at the end.
+    pub fn record(&self, rec: &mut Recorder<'_>, pipelines: &Pipelines, objects: &[GpuObject], substep: u32) {
         let b = BufferBarrier::new;
+        // (the push constants' pass word: the substep's parity, and LISTS_OFF)
+        let parity = (substep & 1) << 4 | if self.policy.on() { 0 } else { LISTS_OFF };
         let each_object = |rec: &mut Recorder<'_>, stage: Stage, pass: u32| {
             for (k, (o, &set)) in objects.iter().zip(&self.sets).enumerate() {
                 let groups = [o.particles.div_ceil(256), 1, 1];
-                rec.dispatch_with(pipelines.get(stage), set, groups, &[k as u32, pass, 0, 0]);
+                rec.dispatch_with(pipelines.get(stage), set, groups, &[k as u32, pass | parity, 0, 0]);
             }
         };
         // Over the scene's work items, the cloths' then the ropes' (any object's set holds the
@@ -347,52 +460,80 @@ impl SceneContact {
                 let items = range[1] - range[0];
                 if items > 0 {
                     let groups = [items.div_ceil(256), 1, 1];
-                    let push = [0, pass, range[0], range[1]];
+                    let push = [0, pass | parity, range[0], range[1]];
                     let stage = Stage::Contact { segments, cloth_edges: self.cloth_edges && !segments };
                     rec.dispatch_with(pipelines.get(stage), self.sets[0], groups, &push);
                 }
             }
         };
-        // The last scan zeroed the counts; the last substep's passes used the ranks, contact
-        // counts and moves that the count pass rewrites.
+        // This substep's control block and its indirect dispatches.
+        let block = (substep & 1) as u64 * CONTROL_WORDS;
+        let indirect = |rec: &mut Recorder<'_>, stage: Stage, set: BindingSet, word: u64, pass: u32| {
+            rec.dispatch_indirect(
+                pipelines.get(stage),
+                set,
+                &self.control,
+                4 * (block + word),
+                &[0, pass | parity],
+            );
+        };
+        // The last substep's passes used the entries, contact counts and moves that the first
+        // pass rewrites, and the lists and control blocks it reads.
         rec.barrier(&[
-            b(&self.counts, Access::ComputeWrite, Access::ComputeReadWrite),
-            b(&self.cell_rank, Access::ComputeRead, Access::ComputeWrite),
+            b(&self.particles, Access::ComputeRead, Access::ComputeWrite),
+            b(&self.begun, Access::ComputeRead, Access::ComputeWrite),
             b(&self.touches, Access::ComputeReadWrite, Access::ComputeWrite),
             b(&self.moves, Access::ComputeReadWrite, Access::ComputeWrite),
+            b(&self.built, Access::ComputeReadWrite, Access::ComputeRead),
+            b(&self.control, Access::ComputeOrIndirect, Access::ComputeOrIndirect),
         ]);
-        each_object(rec, Stage::ContactCount, 0);
-        // The scan reads the counts and rewrites the starts the last query read.
+        each_object(rec, Stage::ContactBegin, 0);
+        // The count reads the entries and the dispatches; the last scan zeroed the counts.
+        // (Its shader also holds the scatter's stores: each of its passes is ordered as
+        // writing the hash's slots too.)
+        rec.barrier(&[
+            b(&self.control, Access::ComputeOrIndirect, Access::ComputeOrIndirect),
+            b(&self.particles, Access::ComputeWrite, Access::ComputeRead),
+            b(&self.counts, Access::ComputeWrite, Access::ComputeReadWrite),
+            b(&self.cell_rank, Access::ComputeRead, Access::ComputeWrite),
+            b(&self.built, Access::ComputeRead, Access::ComputeWrite),
+            b(&self.sorted, Access::ComputeRead, Access::ComputeWrite),
+        ]);
+        indirect(rec, Stage::ContactHash, self.sets[0], CONTROL_HASH, 0);
+        // The scan reads the counts and rewrites the starts the last search read.
         rec.barrier(&[
             b(&self.counts, Access::ComputeWrite, Access::ComputeReadWrite),
             b(&self.cell_rank, Access::ComputeWrite, Access::ComputeRead),
             b(&self.starts, Access::ComputeRead, Access::ComputeWrite),
             b(&self.block_sums, Access::ComputeRead, Access::ComputeReadWrite),
         ]);
-        let blocks = self.buckets.div_ceil(SCAN_BLOCK as u32);
-        rec.dispatch(pipelines.get(Stage::HashScan), self.scan_set, [blocks, 1, 1]);
+        indirect(rec, Stage::HashScan, self.scan_set, CONTROL_SCAN, 0);
         rec.barrier(&[
             b(&self.starts, Access::ComputeWrite, Access::ComputeRead),
             b(&self.block_sums, Access::ComputeWrite, Access::ComputeRead),
-            b(&self.sorted, Access::ComputeRead, Access::ComputeWrite),
-            b(&self.particles, Access::ComputeRead, Access::ComputeWrite),
-            b(&self.begun, Access::ComputeRead, Access::ComputeWrite),
+            b(&self.sorted, Access::ComputeWrite, Access::ComputeWrite),
+            b(&self.built, Access::ComputeWrite, Access::ComputeWrite),
+            b(&self.counts, Access::ComputeWrite, Access::ComputeReadWrite),
         ]);
-        each_object(rec, Stage::ContactScatter, 0);
+        indirect(rec, Stage::ContactHash, self.sets[0], CONTROL_HASH, 1);
         rec.barrier(&[
             b(&self.sorted, Access::ComputeWrite, Access::ComputeRead),
-            b(&self.particles, Access::ComputeWrite, Access::ComputeRead),
             b(&self.begun, Access::ComputeWrite, Access::ComputeRead),
+            b(&self.built, Access::ComputeWrite, Access::ComputeReadWrite),
             b(&self.touches, Access::ComputeWrite, Access::ComputeReadWrite),
             b(&self.moves, Access::ComputeWrite, Access::ComputeReadWrite),
             b(&self.pairs, Access::ComputeReadWrite, Access::ComputeReadWrite),
+            b(&self.control, Access::ComputeOrIndirect, Access::ComputeOrIndirect),
         ]);
-        // contact.comp's passes share one shader, which uses the counts, moves and pairs with
-        // atomics or writes: each pass is ordered as reading and writing all three.
+        // contact.comp's passes share one shader, which uses the counts, moves, lists, where
+        // they were built and the control blocks with atomics or writes: each pass is ordered
+        // as reading and writing all five.
         let between = [
             b(&self.touches, Access::ComputeReadWrite, Access::ComputeReadWrite),
             b(&self.moves, Access::ComputeReadWrite, Access::ComputeReadWrite),
             b(&self.pairs, Access::ComputeReadWrite, Access::ComputeReadWrite),
+            b(&self.built, Access::ComputeReadWrite, Access::ComputeReadWrite),
+            b(&self.control, Access::ComputeOrIndirect, Access::ComputeOrIndirect),
         ];
         scene(rec, 0);
         rec.barrier(&between);
@@ -402,8 +543,9 @@ impl SceneContact {
             sums.iter().map(|c| b(c, Access::ComputeRead, Access::ComputeWrite)).collect();
         before.extend(between);
         rec.barrier(&before);
+        // (it also zeroes the next substep's control block)
         each_object(rec, Stage::Contact { segments: false, cloth_edges: self.cloth_edges }, 2);
-        // The constraint stage reads the sums and writes the states the scatter read.
+        // The constraint stage reads the sums and writes the states the entries were read from.
         let mut after: Vec<_> =
             sums.iter().map(|c| b(c, Access::ComputeWrite, Access::ComputeRead)).collect();
         after.extend(objects.iter().map(|o| b(&o.state[0], Access::ComputeRead, Access::ComputeReadWrite)));
@@ -424,6 +566,9 @@ impl SceneContact {
             self.block_sums,
             self.touches,
             self.pairs,
+            self.built,
+            self.control,
+            self.report,
         ] {
             buffer.destroy(ctx);
         }

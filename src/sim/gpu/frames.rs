@@ -79,6 +79,9 @@ impl GpuSim {
     /// the first object whose state went non-finite or ran away, as a report with advice. The
     /// guard is cleared, so a resumed simulation reports again only if it trips again.
     pub fn check_guard(&mut self) -> Result<Option<GuardTrip>> {
+        if let Some(c) = &mut self.contact {
+            c.observe(self.model.substeps)?;
+        }
         let listed: Vec<bool> = self.objects.iter().map(|o| self.lists_on(o)).collect();
         let time = self.time();
         for (i, o) in self.objects.iter_mut().enumerate() {

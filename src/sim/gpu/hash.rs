@@ -39,10 +39,20 @@ impl ListPolicy {
     /// After a frame's fence: the counters (`list_counters` in glsl/include/lists.glsl) and
     /// the substeps a frame has.
     pub fn observe(&mut self, counters: [u32; 2], substeps: u32) {
+        self.observe_share(counters, substeps, [1, 4]);
+    }
+
+    /// `observe`, the lists turned off where more than `share` (a fraction, [numerator,
+    /// denominator]) of the substeps rebuilt them.
+    pub fn observe_share(&mut self, counters: [u32; 2], substeps: u32, share: [u64; 2]) {
         if let Some(seen) = self.seen {
             let on = counters[0].wrapping_sub(seen[0]);
             let rebuilt = counters[1].wrapping_sub(seen[1]);
-            if self.off_frames == 0 && on >= substeps && rebuilt <= on && 4 * rebuilt as u64 > on as u64 {
+            if self.off_frames == 0
+                && on >= substeps
+                && rebuilt <= on
+                && share[1] * rebuilt as u64 > share[0] * on as u64
+            {
                 self.off_frames = LISTS_OFF_FRAMES;
             }
         }
@@ -56,11 +66,15 @@ impl ListPolicy {
 }
 
 impl GpuSim {
-    /// Contact lists on the per-stage path always on or off (`Some`), or as `ListPolicy`
+    /// Contact lists (of self-contact on the per-stage path, and between objects) always on or
+    /// off (`Some`), or as `ListPolicy`
     /// decides (`None`, the default); for tests and measurements.
     pub fn force_contact_lists(&mut self, on: Option<bool>) {
         for o in &mut self.objects {
             o.lists.forced = on;
+        }
+        if let Some(c) = &mut self.contact {
+            c.policy.forced = on;
         }
     }
 

@@ -53,7 +53,7 @@ use pipelines::{Pipelines, SelfPass, Stage};
 const CLOTH_GROUP: [u32; 2] = [16, 16];
 const ROPE_GROUP: u32 = 64;
 /// Bindings per set, in the order of `glsl/include/bindings.glsl`.
-const BINDINGS: u32 = 18;
+const BINDINGS: u32 = 20;
 
 /// What each binding holds: the globals (0) are a uniform buffer, read by every invocation
 /// alike (the driver folds its members into the instructions), the rest storage buffers. The
@@ -386,6 +386,9 @@ impl GpuSim {
             .map(|h| (h, h.size(), 0));
         transfer::record_cleared(rec, &lists.chain(pairs).chain(histories).collect::<Vec<_>>());
         self.record_list_control_cleared(rec);
+        if let Some(c) = &self.contact {
+            c.record_frame_start(rec, lists_stale);
+        }
         self.record_collider_motion(rec, &dragged);
         let stages = self.stage_timing;
         // Small objects: every substep in one dispatch each. The state ends in A, as on the
@@ -432,7 +435,7 @@ impl GpuSim {
             rec.barrier(&after_physics);
             self.record_hash_build(rec, s);
             if let Some(c) = &self.contact {
-                c.record(rec, &self.pipelines, &self.objects);
+                c.record(rec, &self.pipelines, &self.objects, s);
             }
             self.record_self_pairs(rec, s);
             for o in self.objects.iter().filter(|o| !self.is_fused(o)) {
@@ -464,6 +467,10 @@ impl GpuSim {
         self.surface_stale = false;
         for o in &mut self.objects {
             o.lists.frame();
+        }
+        if let Some(c) = &mut self.contact {
+            c.record_frame_end(rec);
+            c.policy.frame();
         }
     }
 

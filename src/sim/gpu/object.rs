@@ -285,7 +285,7 @@ impl GpuObject {
             let set = |arena: &mut DescriptorArena, from: &Buffer, to: &Buffer| {
                 let bindings = [
                     globals, &params, from, to, colliders, &surface, cell_rank, counts, starts, sorted,
-                    blocks, &guard, iter, aux, touch, lists, history, pairs,
+                    blocks, &guard, iter, aux, touch, lists, history, pairs, p, p,
                 ];
                 debug_assert_eq!(bindings.len() as u32, BINDINGS);
                 arena.allocate(ctx, layout, &bindings)

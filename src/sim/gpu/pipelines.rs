@@ -47,10 +47,10 @@ pub(super) enum Stage {
     /// The hash's scatter (`creases`: a cloth with edge-edge contact also notes how creased
     /// each particle's ring edges are, glsl/include/creases.glsl).
     HashScatter(bool),
-    /// Contact between objects (`contact.rs`): the scene hash's count and scatter of one
-    /// object, and its query.
-    ContactCount,
-    ContactScatter,
+    /// Contact between objects (`contact.rs`): one object's entries, the scene hash's count
+    /// and scatter, and its query.
+    ContactBegin,
+    ContactHash,
     /// `segments`: the ropes' work items, with their segments' tests compiled in (contact.comp's
     /// SEGMENTS); without, the cloths' items and each object's sums.
     /// `cloth_edges`: cloths' edges kept from each other's compiled in (CLOTH_EDGES,
@@ -97,8 +97,8 @@ impl Stage {
             Stage::HashCount => "hash_count.comp",
             Stage::HashScan => "hash_scan.comp",
             Stage::HashScatter(_) => "hash_scatter.comp",
-            Stage::ContactCount => "contact_count.comp",
-            Stage::ContactScatter => "contact_scatter.comp",
+            Stage::ContactBegin => "contact_begin.comp",
+            Stage::ContactHash => "contact_hash.comp",
             Stage::Contact { .. } => "contact.comp",
             Stage::Fused(..) => "fused.comp",
         }
@@ -126,7 +126,7 @@ impl Stage {
             Stage::Surface(_, drawn) => vec![drawn as u32],
             Stage::HashScatter(creases) => vec![creases as u32],
             Stage::Contact { segments, cloth_edges } => vec![segments as u32, cloth_edges as u32],
-            Stage::HashCount | Stage::HashScan | Stage::ContactCount | Stage::ContactScatter => Vec::new(),
+            Stage::HashCount | Stage::HashScan | Stage::ContactBegin | Stage::ContactHash => Vec::new(),
             Stage::Fused(method, f, shape) => shape.specialization(method, f),
         }
     }
@@ -187,8 +187,8 @@ impl Stage {
         if model.inter_object_contact() {
             stages.extend([
                 Stage::HashScan,
-                Stage::ContactCount,
-                Stage::ContactScatter,
+                Stage::ContactBegin,
+                Stage::ContactHash,
                 Stage::Contact { segments: false, cloth_edges: model.has_cloth_edges_between() },
             ]);
             if model.objects.iter().any(|o| !o.contact_triangles()) {
