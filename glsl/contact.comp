@@ -2,7 +2,7 @@
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_control_flow_attributes : require
 // Inter-object contact, 3 of 3, in three passes: 0 and 1 over the scene's particles (read from
-// the scene's entries; a rope's node in several lanes, `lanes_of`), 2 per object. Every contact
+// the scene's entries; a particle in several lanes, `lanes_of`), 2 per object. Every contact
 // is a particle p of object A against a piece of object B's surface, the reach being the two
 // objects' contact radii added:
 // - a triangle t of B, a cloth (its triangles as the renderer draws them): p nearer than the
@@ -76,8 +76,10 @@ uint owner(uint k) {
 
 // Passes 0 and 1 run over work items: object q's particles from item work_first(q) on, each
 // particle's search and notes split among lanes_of(q) items (a rope's few nodes search large
-// blocks of cells: spread over lanes, their hash entries and candidates are taken side by side;
-// a cloth's particle searches alone; an object whose particles look for nothing has none).
+// blocks of cells, and a cloth's particle tests dozens of candidates' edges where cloths keep
+// their edges apart: spread over lanes, their hash entries and candidates are taken side by
+// side; otherwise a cloth's particle searches alone; an object whose particles look for
+// nothing has none).
 // The cloths' items come first, in a dispatch of this shader with SEGMENTS off, then the
 // ropes' with it on (ObjectModel::contact_lanes, SceneContact::record).
 uint work_first(uint q) { return floatBitsToUint(objects[OBJECT_ROWS * q + 2u].y); }
@@ -97,6 +99,10 @@ layout(constant_id = 0) const bool SEGMENTS = true;
 // Whether the cloths' dispatch keeps cloths' edges from each other's (some cloth keeps its
 // edges from edges); off, that code is compiled out.
 layout(constant_id = 1) const bool CLOTH_EDGES = false;
+// Whether a particle's search may be split among lanes: a rope's node, and a cloth's particle
+// where cloths keep their edges apart (it tests dozens of candidates' edges against its own);
+// then lanes count and list with atomics.
+const bool LANED = SEGMENTS || CLOTH_EDGES;
 
 // Whether cloths a and b keep their edges from each other's: either keeps its edges from edges.
 bool cloth_edges(uint a, uint b) {
@@ -144,13 +150,13 @@ const uint NOTE_PAIR = 64u;
 const uint SEGMENT_NEXT = 0u;
 const uint SEGMENT_PREVIOUS = 1u;
 
-// Pass 0 of a substep that rebuilds: lists a piece particle k found. A rope node's lanes take
-// slots in turn (built[4 k + 3] counts them); a cloth's particle, alone, counts in `listed`
+// Pass 0 of a substep that rebuilds: lists a piece particle k found. A particle's lanes take
+// slots in turn (built[4 k + 3] counts them); a particle searching alone counts in `listed`
 // and writes its length at the end (an atomic an entry cost the cloths' search a seventh more
 // on the H100).
 uint listed = 0u;
 void list_piece(uint k, uint note) {
-    uint slot = SEGMENTS ? atomicAdd(built[4u * k + 3u], 1u) : listed;
+    uint slot = LANED ? atomicAdd(built[4u * k + 3u], 1u) : listed;
     listed += 1u;
     if (slot < PAIR_MAX) pairs[k * PAIR_MAX + slot] = note;
 }
@@ -518,7 +524,7 @@ void main() {
     // Work item i: lane `lane` of particle k of object me (see `lanes_of`).
     i += which.work_first;
     uint me = work_owner(i);
-    uint lanes = SEGMENTS ? lanes_of(me) : 1u;
+    uint lanes = LANED ? lanes_of(me) : 1u;
     uint local = i - work_first(me);
     if (i >= which.work_end || local >= count_in(me) * lanes) return;
     uint k = first_of(me) + local / lanes;
@@ -543,10 +549,10 @@ void main() {
         for (uint e = lane; e < len; e += lanes) replay(pairs[k * PAIR_MAX + e], ek, k, me, sum, n);
     }
     if (sum) return;
-    if (rebuild && !SEGMENTS) built[4u * k + 3u] = listed;
+    if (rebuild && !LANED) built[4u * k + 3u] = listed;
     if (n > 0u) {
         atomicAdd(touches[k], n);
-        if (SEGMENTS) {
+        if (LANED) {
             atomicAdd(moves[4u * k + 3u], int(n));
         } else {
             moves[4u * k + 3u] = int(n);

@@ -5,8 +5,12 @@
 pub use super::integrator::Integrator;
 use glam::DVec3;
 
-/// Lanes a rope's node searches with (`ObjectModel::contact_lanes`; docs/records/bench/h100/rope-capsules-lanes).
+/// Lanes a rope's node searches with (`SimModel::contact_lanes`; docs/records/bench/h100/rope-capsules-lanes).
 pub const CONTACT_LANES: u32 = 64;
+
+/// Lanes a cloth's particle searches with where cloths keep their edges apart
+/// (`SimModel::contact_lanes`; docs/PERFORMANCE.md, "Contact lists between objects").
+pub const CLOTH_EDGE_LANES: u32 = 16;
 
 /// How far a cloth's grid diagonals may stretch with every self-contact still found
 /// (`TRIANGLE_STRETCH` in glsl/include/lists.glsl).
@@ -183,18 +187,6 @@ impl ObjectModel {
         0.5 * TRIANGLE_STRETCH * span
     }
 
-    /// Work items (lanes) among which contact between objects splits each particle's search
-    /// for contacts (contact.comp): a rope's few nodes each search a block of cells as large as
-    /// its segments, too much for one thread a node; a cloth's particles, many and each with a
-    /// small block, one each.
-    pub fn contact_lanes(&self) -> u32 {
-        if self.contact_triangles() {
-            1
-        } else {
-            CONTACT_LANES
-        }
-    }
-
     /// Whether contact between objects keeps this object's edges from `other`'s edges (rows,
     /// columns and diagonals; `sim::cpu::inter_object`): both cloths, either keeping its own
     /// edges from its edges (`edge_contact`). A rope's segments always keep from edges.
@@ -297,6 +289,22 @@ impl SimModel {
     pub fn has_cloth_edges_between(&self) -> bool {
         let o = &self.objects;
         o.iter().enumerate().any(|(a, x)| o[a + 1..].iter().any(|y| x.keeps_cloth_edges_from(y)))
+    }
+
+    /// Work items (lanes) among which contact between objects splits the search of each of
+    /// object q's particles (contact.comp): a rope's few nodes each search a block of cells as
+    /// large as their segments, too much for one thread a node; where cloths keep their edges
+    /// apart, a cloth's particle tests each candidate's edges against its own, dozens in a
+    /// pile (`CLOTH_EDGE_LANES`); otherwise a cloth's particle, with a small block, searches
+    /// alone.
+    pub fn contact_lanes(&self, q: usize) -> u32 {
+        if !self.objects[q].contact_triangles() {
+            CONTACT_LANES
+        } else if self.has_cloth_edges_between() {
+            CLOTH_EDGE_LANES
+        } else {
+            1
+        }
     }
 
     /// The cell of the scene's contact hash (contact between objects) [m], such that a

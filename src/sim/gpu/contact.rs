@@ -14,7 +14,7 @@ use super::pipelines::{Pipelines, Stage};
 use super::BINDINGS;
 use crate::error::UserError;
 use crate::sim::gpu_types::ObjectParams;
-use crate::sim::model::{ObjectModel, SimModel};
+use crate::sim::model::SimModel;
 use crate::vk::{
     Access, BindingSet, BindingSetLayout, Buffer, BufferBarrier, BufferUsage, DescriptorArena, GpuContext,
     MemoryKind, Recorder, VkError,
@@ -119,7 +119,7 @@ pub(super) fn sets_needed(model: &SimModel) -> u32 {
 }
 
 /// The work items of contact.comp's passes 0 and 1 (`work_first` and `lanes_of` there): each
-/// object's particles in `ObjectModel::contact_lanes` items, the cloths' first and then the
+/// object's particles in `SimModel::contact_lanes` items, the cloths' first and then the
 /// ropes' (a second dispatch, with the segment tests compiled in), each object's from a
 /// multiple of its lanes (a node's lanes in whole subgroups). An object whose particles look
 /// for nothing (a cloth with only ropes around: their segments find its vertices) has none.
@@ -136,7 +136,7 @@ struct WorkLayout {
 
 impl WorkLayout {
     fn new(model: &SimModel, particles: &[u32], max_groups: u64, in_lanes: bool) -> Self {
-        let layout = |lanes: &dyn Fn(&ObjectModel) -> u32| {
+        let layout = |lanes: &dyn Fn(usize) -> u32| {
             let mut first = vec![0u32; particles.len()];
             let mut lane_counts = vec![0u32; particles.len()];
             let mut bounds = [0u64; 3];
@@ -153,7 +153,7 @@ impl WorkLayout {
                             .iter()
                             .enumerate()
                             .any(|(p, other)| p != q && other.contact_triangles());
-                    let l = if looks { lanes(o) } else { 0 };
+                    let l = if looks { lanes(q) } else { 0 };
                     if l > 0 {
                         work = work.div_ceil(l as u64) * l as u64;
                     }
@@ -166,7 +166,7 @@ impl WorkLayout {
             (first, lane_counts, bounds)
         };
         let fits = |b: [u64; 3]| (b[1] - b[0]).div_ceil(256).max((b[2] - b[1]).div_ceil(256)) <= max_groups;
-        let (mut first, mut lanes, mut bounds) = layout(&ObjectModel::contact_lanes);
+        let (mut first, mut lanes, mut bounds) = layout(&|q| model.contact_lanes(q));
         if !in_lanes || !fits(bounds) {
             (first, lanes, bounds) = layout(&|_| 1);
         }
@@ -374,7 +374,7 @@ impl SceneContact {
         (work.bounds, rows)
     }
 
-    /// Splits a rope node's search among lanes (`ObjectModel::contact_lanes`) or not, whatever
+    /// Splits a particle's search among lanes (`SimModel::contact_lanes`) or not, whatever
     /// the device's default (`in_lanes`); no frame may be in flight.
     fn set_lanes(
         &mut self,
@@ -578,18 +578,19 @@ impl SceneContact {
 #[cfg(test)]
 mod tests {
     use super::{check_scene, WorkLayout};
-    use crate::sim::model::{SimModel, CONTACT_LANES};
+    use crate::sim::model::{SimModel, CLOTH_EDGE_LANES, CONTACT_LANES};
 
     fn rope_on_cloth() -> SimModel {
         let path = std::path::Path::new("presets/rope_on_cloth.toml");
         crate::scene::to_model(&crate::scene::load(path, &[]).expect("the preset loads"))
     }
 
-    /// The cloths' items first (one each), then a rope node's lanes from a multiple of the
-    /// lanes; a cloth with only ropes around has none; one lane each when the lanes would need
+    /// The cloths' items first (one each, or lanes each where cloths keep their edges apart),
+    /// then a rope node's lanes from a multiple of the lanes; a cloth with only ropes around
+    /// has none; one lane each when the lanes would need
     /// more workgroups than one dispatch allows or on a CPU driver.
     #[test]
-    fn work_items_put_the_cloths_first_and_a_rope_node_in_lanes() {
+    fn work_items_put_the_cloths_first_and_a_searching_particle_in_lanes() {
         let model = rope_on_cloth();
         let w = WorkLayout::new(&model, &[900, 21], u64::MAX, true);
         assert_eq!(
@@ -606,6 +607,13 @@ mod tests {
         assert_eq!(w.first, [rope_first, 0, 900]);
         assert_eq!(w.lanes, [CONTACT_LANES, 1, 1]);
         assert_eq!(w.bounds, [0, 1800, rope_first + 21 * CONTACT_LANES]);
+
+        // Where the cloths keep their edges apart, each cloth particle in its lanes too.
+        model.objects[1].edge_contact = true;
+        let w = WorkLayout::new(&model, &[21, 900, 900], u64::MAX, true);
+        let rope_first = (1800 * CLOTH_EDGE_LANES).div_ceil(CONTACT_LANES) * CONTACT_LANES;
+        assert_eq!(w.first, [rope_first, 0, 900 * CLOTH_EDGE_LANES]);
+        assert_eq!(w.lanes, [CONTACT_LANES, CLOTH_EDGE_LANES, CLOTH_EDGE_LANES]);
 
         // The rope's 21 x 64 items need 6 groups of 256: with at most 2, one lane each.
         let w = WorkLayout::new(&rope_on_cloth(), &[900, 21], 2, true);
