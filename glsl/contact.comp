@@ -144,7 +144,7 @@ float pair_friction(uint a, uint b) { return 0.5 * (friction_of(a) + friction_of
 // CLOTH_POINT), or between two cloths NOTE_PAIR | 6 ra + rb (k's edge to its ring vertex ra,
 // j's to rb). Its count of contacts as the particle (not as a corner) is moves[4 k + 3].
 // (Scene indices below 2^25.)
-const uint PAIR_MAX = 64u;  // sim::gpu::contact::PAIR_MAX
+layout(constant_id = 2) const uint PAIR_MAX = 64u;  // sim::gpu::contact::pair_max
 const uint NOTE_SHIFT = 7u;
 const uint NOTE_PAIR = 64u;
 const uint SEGMENT_NEXT = 0u;

@@ -59,17 +59,32 @@ pub(super) struct SceneContact {
     work: [u32; 3],
     /// Whether some two cloths keep their edges apart (contact.comp's CLOTH_EDGES).
     cloth_edges: bool,
+    /// Entries of a particle's list (`pair_max`).
+    pair_max: u32,
     /// The scan's set, and each object's set (the object's own buffers at 1, 2, 14 and its
     /// state at the substep's start at 15).
     scan_set: BindingSet,
     sets: Vec<BindingSet>,
 }
 
-/// Entries of a particle's list (`PAIR_MAX` in contact.comp). A longer list overflows: the
-/// substep searches the hash again for its moves and the next rebuilds the lists. Piles list
-/// dozens a particle between layers (docs/PERFORMANCE.md, "Contact notes, and whose particle
-/// it is").
+/// Entries of a particle's list (`PAIR_MAX` in contact.comp, `pair_max`). A longer list
+/// overflows: the substep searches the hash again for its moves and the next rebuilds the
+/// lists. Piles list dozens a particle between layers (docs/PERFORMANCE.md, "Contact notes,
+/// and whose particle it is").
 const PAIR_MAX: u64 = 64;
+/// Where cloths keep their edges apart: a particle in a pile lists well over 64 pairs of
+/// edges, and lists that overflow every substep cost more than none (docs/PERFORMANCE.md,
+/// "Contact lists between objects").
+const EDGE_PAIR_MAX: u64 = 256;
+
+/// Entries of a particle's list in the scene of `model`.
+pub(super) fn pair_max(model: &SimModel) -> u64 {
+    if model.has_cloth_edges_between() {
+        EDGE_PAIR_MAX
+    } else {
+        PAIR_MAX
+    }
+}
 
 /// Words of a substep's control block (`CONTROL_WORDS` in contact_common.glsl), and where its
 /// indirect dispatches are: contact_hash.comp's passes, the scan's.
@@ -87,6 +102,9 @@ const LISTS_OFF: u32 = 32;
 /// substeps; where they overflow (dense piles) or everything moves half the skin a substep,
 /// they do not (docs/PERFORMANCE.md, "Contact lists between objects").
 const LISTS_OFF_SHARE: [u64; 2] = [3, 4];
+/// ... for this many frames, then tried again: a pile settles within a few dozen frames, and a
+/// trial that fails costs one frame of rebuilds.
+const LISTS_OFF_FRAMES: u32 = 16;
 
 /// Particles a scene with contact between objects may hold: contact.comp notes a particle's
 /// scene index in 25 bits (NOTE_SHIFT).
@@ -100,7 +118,7 @@ pub(super) fn check_scene(model: &SimModel, max_buffer: u64) -> Result<(), UserE
     if !model.inter_object_contact() {
         return Ok(());
     }
-    let most = MAX_SCENE_PARTICLES.min(max_buffer / (4 * PAIR_MAX));
+    let most = MAX_SCENE_PARTICLES.min(max_buffer / (4 * pair_max(model)));
     if total > most {
         return Err(UserError(format!(
             "the scene has {total} particles: contact between objects handles at most {most} on this device (set sim.inter_object = false, or use fewer particles)"
@@ -237,7 +255,7 @@ impl SceneContact {
             ("begun", 16 * total, storage, gpu_only),
             ("block_sums", 4 * buckets.div_ceil(SCAN_BLOCK), storage, gpu_only),
             ("touches", 4 * total, storage, gpu_only),
-            ("pairs", 4 * PAIR_MAX * total, storage, gpu_only),
+            ("pairs", 4 * pair_max(model) * total, storage, gpu_only),
             ("built", 16 * total, storage | BufferUsage::TRANSFER_DST, gpu_only),
             ("control", 4 * (CONTROL_COUNTERS + 2), storage | transfer | BufferUsage::INDIRECT, gpu_only),
         ];
@@ -275,6 +293,7 @@ impl SceneContact {
             policy: ListPolicy::default(),
             work,
             cloth_edges: model.has_cloth_edges_between(),
+            pair_max: pair_max(model) as u32,
             scan_set: BindingSet::default(),
             sets: Vec::new(),
         };
@@ -431,7 +450,7 @@ impl SceneContact {
     pub fn observe(&mut self, substeps: u32) -> Result<(), VkError> {
         if self.policy.on() {
             let counters = self.counters()?;
-            self.policy.observe_share(counters, substeps, LISTS_OFF_SHARE);
+            self.policy.observe_share(counters, substeps, LISTS_OFF_SHARE, LISTS_OFF_FRAMES);
         }
         Ok(())
     }
@@ -461,7 +480,11 @@ impl SceneContact {
                 if items > 0 {
                     let groups = [items.div_ceil(256), 1, 1];
                     let push = [0, pass | parity, range[0], range[1]];
-                    let stage = Stage::Contact { segments, cloth_edges: self.cloth_edges && !segments };
+                    let stage = Stage::Contact {
+                        segments,
+                        cloth_edges: self.cloth_edges && !segments,
+                        pair_max: self.pair_max,
+                    };
                     rec.dispatch_with(pipelines.get(stage), self.sets[0], groups, &push);
                 }
             }
@@ -544,7 +567,11 @@ impl SceneContact {
         before.extend(between);
         rec.barrier(&before);
         // (it also zeroes the next substep's control block)
-        each_object(rec, Stage::Contact { segments: false, cloth_edges: self.cloth_edges }, 2);
+        each_object(
+            rec,
+            Stage::Contact { segments: false, cloth_edges: self.cloth_edges, pair_max: self.pair_max },
+            2,
+        );
         // The constraint stage reads the sums and writes the states the entries were read from.
         let mut after: Vec<_> =
             sums.iter().map(|c| b(c, Access::ComputeWrite, Access::ComputeRead)).collect();

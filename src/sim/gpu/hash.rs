@@ -39,12 +39,12 @@ impl ListPolicy {
     /// After a frame's fence: the counters (`list_counters` in glsl/include/lists.glsl) and
     /// the substeps a frame has.
     pub fn observe(&mut self, counters: [u32; 2], substeps: u32) {
-        self.observe_share(counters, substeps, [1, 4]);
+        self.observe_share(counters, substeps, [1, 4], LISTS_OFF_FRAMES);
     }
 
-    /// `observe`, the lists turned off where more than `share` (a fraction, [numerator,
-    /// denominator]) of the substeps rebuilt them.
-    pub fn observe_share(&mut self, counters: [u32; 2], substeps: u32, share: [u64; 2]) {
+    /// `observe`, the lists turned off for `off` frames where more than `share` (a fraction,
+    /// [numerator, denominator]) of the substeps rebuilt them.
+    pub fn observe_share(&mut self, counters: [u32; 2], substeps: u32, share: [u64; 2], off: u32) {
         if let Some(seen) = self.seen {
             let on = counters[0].wrapping_sub(seen[0]);
             let rebuilt = counters[1].wrapping_sub(seen[1]);
@@ -53,7 +53,7 @@ impl ListPolicy {
                 && rebuilt <= on
                 && share[1] * rebuilt as u64 > share[0] * on as u64
             {
-                self.off_frames = LISTS_OFF_FRAMES;
+                self.off_frames = off;
             }
         }
         self.seen = Some(counters);

@@ -58,6 +58,8 @@ pub(super) enum Stage {
     Contact {
         segments: bool,
         cloth_edges: bool,
+        /// Entries of a particle's list (contact.comp's PAIR_MAX, `contact::pair_max`).
+        pair_max: u32,
     },
     /// Every substep of an object in one workgroup, with the model's integrator.
     Fused(Integrator, u32, FusedShape),
@@ -125,7 +127,9 @@ impl Stage {
             Stage::Iterate(kind, _) => group(kind),
             Stage::Surface(_, drawn) => vec![drawn as u32],
             Stage::HashScatter(creases) => vec![creases as u32],
-            Stage::Contact { segments, cloth_edges } => vec![segments as u32, cloth_edges as u32],
+            Stage::Contact { segments, cloth_edges, pair_max } => {
+                vec![segments as u32, cloth_edges as u32, pair_max]
+            }
             Stage::HashCount | Stage::HashScan | Stage::ContactBegin | Stage::ContactHash => Vec::new(),
             Stage::Fused(method, f, shape) => shape.specialization(method, f),
         }
@@ -189,10 +193,18 @@ impl Stage {
                 Stage::HashScan,
                 Stage::ContactBegin,
                 Stage::ContactHash,
-                Stage::Contact { segments: false, cloth_edges: model.has_cloth_edges_between() },
+                Stage::Contact {
+                    segments: false,
+                    cloth_edges: model.has_cloth_edges_between(),
+                    pair_max: super::contact::pair_max(model) as u32,
+                },
             ]);
             if model.objects.iter().any(|o| !o.contact_triangles()) {
-                stages.push(Stage::Contact { segments: true, cloth_edges: false });
+                stages.push(Stage::Contact {
+                    segments: true,
+                    cloth_edges: false,
+                    pair_max: super::contact::pair_max(model) as u32,
+                });
             }
         }
         let mut seen = std::collections::HashSet::new();
