@@ -16,9 +16,9 @@
 //   through the lower end of B's edge (an index rule: no rounding decides who finds it), those
 //   two ends within the reach plus both segments' lengths stretched TRIANGLE_STRETCH times
 //   (twice the corner reaches); between two ropes only from the one of lower index;
-// - when A and B are cloths and either keeps its edges from edges (`edge_contact`, its
-//   self_contact "triangles_and_edges"), an edge of A against an edge of B (rows, columns and
-//   diagonals: their nearest points, weights as above), taking part by edge_fade (fully where
+// - when A and B are cloths that keep their edges apart (`sim.inter_object_edges`, or either
+//   has self_contact "triangles_and_edges"), an edge of A against an edge of B (rows, columns
+//   and diagonals: their nearest points, weights as above), taking part by edge_fade (fully where
 //   the nearest points lie inside both edges, fading to nothing at an end, where the
 //   vertex-triangle contacts hold), found from the cloth of lower index by the end of A's edge
 //   of the two edges' nearest ends (of the four pairs of ends, one of each edge, the nearest;
@@ -104,7 +104,8 @@ layout(constant_id = 1) const bool CLOTH_EDGES = false;
 // then lanes count and list with atomics.
 const bool LANED = SEGMENTS || CLOTH_EDGES;
 
-// Whether cloths a and b keep their edges from each other's: either keeps its edges from edges.
+// Whether cloths a and b keep their edges from each other's: either keeps its edges from every
+// other cloth's (SimModel::keeps_cloth_edges_apart).
 bool cloth_edges(uint a, uint b) {
     return CLOTH_EDGES && is_cloth(a) && is_cloth(b) && (objects[OBJECT_ROWS * a + 1u].z != 0.0 || objects[OBJECT_ROWS * b + 1u].z != 0.0);
 }

@@ -27,7 +27,7 @@ layout(std430, set = 0, binding = 10) buffer SceneBlocks { uint block_sums[]; };
 layout(std430, set = 0, binding = 12) restrict readonly buffer SceneHash { ObjectParams table; };  // hash_mask, cell_inv
 // Per object three rows (OBJECT_ROWS): [first scene index, particle count (float bits),
 // contact radius, mass], [grid columns, grid rows (float bits; columns 0 when it touches by
-// its segments, a rope), 1 where it keeps its edges from edges (else 0), its pieces' corner
+// its segments, a rope), 1 where it keeps its edges from other cloths' (else 0), its pieces' corner
 // reach],
 // [friction, first work item, lanes (float bits; 0 when its particles look for nothing), 0]
 // (contact.comp).

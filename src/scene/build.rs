@@ -54,6 +54,7 @@ pub fn to_model(scene: &Scene) -> SimModel {
         iterations: scene.sim.iterations,
         relaxation: scene.sim.relaxation,
         inter_object: scene.sim.inter_object,
+        inter_object_edges: scene.sim.inter_object_edges,
         contact_iterations: scene.sim.contact_iterations,
     }
 }

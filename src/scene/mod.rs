@@ -85,6 +85,11 @@ pub struct SimSettings {
     /// scenes with more than one object pay for it.
     #[serde(default = "defaults::yes")]
     pub inter_object: bool,
+    /// Whether two cloths touching each other also keep their edges (rows, columns, diagonals)
+    /// apart, so that no edge of one passes through the other where no vertex touches. Off,
+    /// only where one of them keeps its own edges apart (self_contact "triangles_and_edges").
+    #[serde(default = "defaults::yes")]
+    pub inter_object_edges: bool,
     /// Passes over a cloth's contacts with its own triangles each substep (self_contact =
     /// "triangles"): a layer landing on several others is stopped within the substep only
     /// with several.
@@ -164,6 +169,7 @@ impl Default for SimSettings {
             relaxation: 1.0,
             tolerance: defaults::tolerance(),
             inter_object: true,
+            inter_object_edges: true,
             contact_iterations: defaults::contact_iterations(),
         }
     }

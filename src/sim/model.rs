@@ -187,13 +187,6 @@ impl ObjectModel {
         0.5 * TRIANGLE_STRETCH * span
     }
 
-    /// Whether contact between objects keeps this object's edges from `other`'s edges (rows,
-    /// columns and diagonals; `sim::cpu::inter_object`): both cloths, either keeping its own
-    /// edges from its edges (`edge_contact`). A rope's segments always keep from edges.
-    pub fn keeps_cloth_edges_from(&self, other: &ObjectModel) -> bool {
-        self.contact_triangles() && other.contact_triangles() && (self.edge_contact || other.edge_contact)
-    }
-
     /// Half the distance kept from another object's particles (inter-object contact): a
     /// rope's tube radius, a cloth's collision margin.
     pub fn contact_radius(&self) -> f64 {
@@ -273,6 +266,9 @@ pub struct SimModel {
     pub relaxation: f64,
     /// Objects touch each other (`inter_object_contact` says whether a scene uses it).
     pub inter_object: bool,
+    /// Two touching cloths keep their edges apart (else only where either keeps its own edges
+    /// apart, `ObjectModel::edge_contact`).
+    pub inter_object_edges: bool,
     /// Passes over a cloth's contacts with its own triangles a substep (found once, each
     /// pass applied from the positions the passes before moved; `sim::cpu::self_contact`).
     pub contact_iterations: u32,
@@ -285,10 +281,20 @@ impl SimModel {
     }
 
     /// Whether contact between objects keeps some two cloths' edges apart
-    /// (`ObjectModel::keeps_cloth_edges_from`).
+    /// (`SimModel::keeps_cloth_edges_apart`).
     pub fn has_cloth_edges_between(&self) -> bool {
         let o = &self.objects;
-        o.iter().enumerate().any(|(a, x)| o[a + 1..].iter().any(|y| x.keeps_cloth_edges_from(y)))
+        o.iter().enumerate().any(|(a, x)| o[a + 1..].iter().any(|y| self.keeps_cloth_edges_apart(x, y)))
+    }
+
+    /// Whether contact between objects keeps object a's edges from object b's edges (rows,
+    /// columns and diagonals; `sim::cpu::inter_object`): both cloths, and the scene asks for it
+    /// (`inter_object_edges`) or either keeps its own edges from its edges (`edge_contact`). A
+    /// rope's segments always keep from edges.
+    pub fn keeps_cloth_edges_apart(&self, a: &ObjectModel, b: &ObjectModel) -> bool {
+        a.contact_triangles()
+            && b.contact_triangles()
+            && (self.inter_object_edges || a.edge_contact || b.edge_contact)
     }
 
     /// Work items (lanes) among which contact between objects splits the search of each of
@@ -321,10 +327,12 @@ impl SimModel {
         // both corner reaches; two cloths' edges through their nearest ends: both once.
         let pairs = self.objects.iter().enumerate().flat_map(|(a, o)| {
             let others = self.objects.iter().enumerate().filter(move |&(b, _)| b != a);
-            others.filter_map(move |(_, p)| match (o.contact_triangles(), o.keeps_cloth_edges_from(p)) {
-                (false, _) => Some(2.0 * (o.corner_reach() + p.corner_reach())),
-                (true, true) => Some(o.corner_reach() + p.corner_reach()),
-                (true, false) => None,
+            others.filter_map(move |(_, p)| {
+                match (o.contact_triangles(), self.keeps_cloth_edges_apart(o, p)) {
+                    (false, _) => Some(2.0 * (o.corner_reach() + p.corner_reach())),
+                    (true, true) => Some(o.corner_reach() + p.corner_reach()),
+                    (true, false) => None,
+                }
             })
         });
         let edge = pairs.fold(edge, f64::max);

@@ -412,6 +412,9 @@ fn simulation_panel(ui: &Ui, state: &mut EditorState, scene: &mut Scene, actions
     if scene.cloths.len() + scene.ropes.len() > 1 {
         check(ui, "objects touch each other", &mut scene.sim.inter_object);
     }
+    if scene.sim.inter_object && scene.cloths.len() > 1 {
+        check(ui, "cloths keep their edges apart", &mut scene.sim.inter_object_edges);
+    }
     if scene.cloths.iter().any(|c| c.self_collision && c.self_contact.triangles()) {
         int(ui, "contact iterations", &mut scene.sim.contact_iterations, 1, 64);
     }

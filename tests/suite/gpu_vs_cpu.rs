@@ -433,7 +433,8 @@ fn contact_lists_between_objects_hold_at_speed() {
 /// thrown down at 0.5 m/s and shifted half a cell so that the ridge and the valley cross in
 /// the middle of an edge of each: there the cloths touch edge against edge, which no vertex of
 /// either is near (each fold's vertices are half a cell from the crossing, 1.5 cm from the
-/// other cloth vertically), so the edge pairs between cloths (`edge_contact`) hold them, on both
+/// other cloth vertically), so the edge pairs between cloths (`inter_object_edges`, the default,
+/// and `edge_contact`) hold them, on both
 /// paths alike (without them the valley moves differently by more than a centimetre).
 #[test]
 fn edge_pairs_between_cloths() {
@@ -462,6 +463,7 @@ fn edge_pairs_between_cloths() {
     s.gravity = DVec3::new(0.0, -9.81, 0.0);
     s.inter_object = true;
     assert_matters("edge pairs between cloths", &s, |m| {
+        m.inter_object_edges = false;
         m.objects.iter_mut().for_each(|o| o.edge_contact = false)
     });
     check_mode("edge pairs between cloths", &s, Mode::Resync);

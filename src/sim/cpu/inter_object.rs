@@ -12,7 +12,7 @@
 //!   ends nearest to those points within the reach plus both corner reaches; between two ropes
 //!   once;
 //! - two cloths' edges (rows, columns and diagonals), when either keeps its edges from edges
-//!   (`ObjectModel::keeps_cloth_edges_from`): the nearest points of the segments, taking part
+//!   (`SimModel::keeps_cloth_edges_apart`): the nearest points of the segments, taking part
 //!   by `edge_fade` (near an end the vertex-triangle contacts hold), their nearest ends (of the
 //!   four pairs of ends, one of each edge) within the reach plus both corner reaches and plus
 //!   half of each edge's length (the GPU finds the pair through those ends); once.
@@ -137,7 +137,7 @@ fn contacts(m: &SimModel, x: &[&[DVec3]], x0: &[&[DVec3]]) -> Vec<Contact> {
                     continue;
                 }
             }
-            if a < b && o.keeps_cloth_edges_from(other) {
+            if a < b && m.keeps_cloth_edges_apart(o, other) {
                 let theirs = grid_edges(other);
                 let ends_sight = reach + o.corner_reach() + other.corner_reach();
                 for e in grid_edges(o) {

@@ -14,7 +14,7 @@ use super::pipelines::{Pipelines, Stage};
 use super::BINDINGS;
 use crate::error::UserError;
 use crate::sim::gpu_types::ObjectParams;
-use crate::sim::model::SimModel;
+use crate::sim::model::{ObjectModel, SimModel};
 use crate::vk::{
     Access, BindingSet, BindingSetLayout, Buffer, BufferBarrier, BufferUsage, DescriptorArena, GpuContext,
     MemoryKind, Recorder, VkError,
@@ -378,12 +378,14 @@ impl SceneContact {
         let work = WorkLayout::new(model, &particles, ctx.info().max_workgroup_count[0] as u64, lanes);
         let mut first = 0u32;
         let bits = f32::from_bits;
+        // (row 1's z: it keeps its edges from every other cloth's, `keeps_cloth_edges_apart`)
+        let edges_apart = |o: &ObjectModel| o.edge_contact || model.inter_object_edges;
         let rows = (model.objects.iter().zip(gpu).enumerate())
             .flat_map(|(q, (o, g))| {
                 let grid = if o.contact_triangles() { o.dims } else { [0, 0] };
                 let rows = [
                     [bits(first), bits(g.particles), o.contact_radius() as f32, o.mass as f32],
-                    [bits(grid[0]), bits(grid[1]), o.edge_contact as u32 as f32, o.corner_reach() as f32],
+                    [bits(grid[0]), bits(grid[1]), edges_apart(o) as u32 as f32, o.corner_reach() as f32],
                     [o.friction as f32, bits(work.first[q]), bits(work.lanes[q]), 0.0],
                 ];
                 first += g.particles;

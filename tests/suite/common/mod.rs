@@ -122,6 +122,7 @@ pub fn scene(objects: Vec<ObjectModel>) -> SimModel {
         // Off unless a test turns it on: the multi-object scenes here test other things, on
         // both GPU paths (inter-object contact runs per stage).
         inter_object: false,
+        inter_object_edges: true,
         contact_iterations: DEFAULT_CONTACT_ITERATIONS,
     }
 }
