@@ -8,7 +8,7 @@
 //! `glsl/include/contact_common.glsl` has the bindings and the lists' rule; the CPU twin is
 //! `sim::cpu::inter_object`.
 
-use super::hash::ListPolicy;
+use super::hash::{ListPolicy, LISTS_OFF_FRAMES};
 use super::object::{GpuObject, SCAN_BLOCK};
 use super::pipelines::{Pipelines, Stage};
 use super::BINDINGS;
@@ -102,9 +102,6 @@ const LISTS_OFF: u32 = 32;
 /// substeps; where they overflow (dense piles) or everything moves half the skin a substep,
 /// they do not (docs/PERFORMANCE.md, "Contact lists between objects").
 const LISTS_OFF_SHARE: [u64; 2] = [3, 4];
-/// ... for this many frames, then tried again: a pile settles within a few dozen frames, and a
-/// trial that fails costs one frame of rebuilds.
-const LISTS_OFF_FRAMES: u32 = 16;
 
 /// Particles a scene with contact between objects may hold: contact.comp notes a particle's
 /// scene index in 25 bits (NOTE_SHIFT).

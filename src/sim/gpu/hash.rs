@@ -12,8 +12,11 @@ use super::pipelines::{has_creases, Stage};
 use super::GpuSim;
 use crate::vk::{Access, BufferBarrier, Recorder};
 
-/// Frames the per-stage contact lists stay off once they did not last.
-const LISTS_OFF_FRAMES: u32 = 64;
+/// Frames the per-stage contact lists (self-contact's, and between objects) stay off once they
+/// did not last: a settling cloth comes to rest within a few dozen frames, and a trial that
+/// fails costs one frame of rebuilds (docs/PERFORMANCE.md, "Longer lists where cloths keep
+/// their edges apart, and shorter pauses").
+pub(super) const LISTS_OFF_FRAMES: u32 = 16;
 
 /// Whether an object's per-stage contact lists are on. A substep that rebuilds them costs more
 /// than one without lists (the hash's cells are twice as wide and the lists are written), one
