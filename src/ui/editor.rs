@@ -1,11 +1,10 @@
 //! The editor panels: simulation controls, wind, light, the object list with add and remove,
-//! a panel per selected object with every parameter, preset load/save, and stats.
+//! the selected object's panel (`objects`, `colliders`), preset load/save, and stats.
 
 use super::colliders;
-use super::widgets::{check, choice, color, drag, drag3, int, optional, tip};
-use crate::scene::{
-    Cloth, ClothPins, Orientation, PerSpring, Rope, RopePins, Scene, SelfContact, WindKind, MAX_FRICTION,
-};
+use super::objects::{cloth_panel, new_cloth, new_rope, rope_panel};
+use super::widgets::{check, choice, color, drag, drag3, int, tip};
+use crate::scene::{Scene, WindKind};
 use crate::sim::gpu::FrameTiming;
 use imgui::{Condition, TreeNodeFlags, Ui};
 use std::path::PathBuf;
@@ -547,129 +546,6 @@ fn selected_panel(ui: &Ui, state: &EditorState, scene: &mut Scene) {
     }
 }
 
-fn springs(ui: &Ui, label: &str, v: &mut PerSpring, speed: f32, min: f64, max: f64) {
-    ui.text(label);
-    drag(ui, &format!("structural##{label}"), &mut v.structural, speed, min, max);
-    drag(ui, &format!("shear##{label}"), &mut v.shear, speed, min, max);
-    drag(ui, &format!("bending##{label}"), &mut v.bending, speed, min, max);
-}
-
-fn cloth_panel(ui: &Ui, c: &mut Cloth) {
-    ui.text(format!("cloth '{}'", c.name));
-    int(ui, "columns", &mut c.resolution[0], 2, 4096);
-    int(ui, "rows", &mut c.resolution[1], 2, 4096);
-    drag(ui, "width [m]", &mut c.size[0], 0.01, 0.01, 100.0);
-    drag(ui, "height [m]", &mut c.size[1], 0.01, 0.01, 100.0);
-    drag3(ui, "origin [m]", &mut c.origin, 0.01);
-    choice(ui, "orientation", &mut c.orientation, &[Orientation::Vertical, Orientation::Horizontal]);
-    choice(
-        ui,
-        "pins",
-        &mut c.pin,
-        &[
-            ClothPins::None,
-            ClothPins::TopRow,
-            ClothPins::TopCorners,
-            ClothPins::LeftColumn,
-            ClothPins::Corners,
-        ],
-    );
-    drag(ui, "mass [kg/particle]", &mut c.mass, 0.0005, 1e-6, 100.0);
-    springs(ui, "stiffness [N/m]", &mut c.stiffness, 1.0, 0.0, 1e6);
-    springs(ui, "rest length scale", &mut c.rest_scale, 0.005, 0.05, 10.0);
-    drag(ui, "spring damping [N s/m]", &mut c.damping, 0.0005, 0.0, 100.0);
-    drag(ui, "drag [N s/m]", &mut c.drag, 0.0005, 0.0, 100.0);
-    optional(ui, "stretch limit", &mut c.stretch_limit, 0.1, 0.005, 10.0);
-    drag(ui, "friction", &mut c.friction, 0.01, 0.0, MAX_FRICTION);
-    drag(ui, "collision margin [m]", &mut c.collision_margin, 0.001, 0.0, 10.0);
-    check(ui, "self-collision", &mut c.self_collision);
-    if c.self_collision {
-        let default = c.default_self_collision_distance();
-        optional(ui, "self-collision distance [m]", &mut c.self_collision_distance, default, 0.001, 10.0);
-        choice(ui, "self-contact", &mut c.self_contact, &SelfContact::ALL);
-    }
-    color(ui, "front colour", &mut c.color);
-    color(ui, "back colour", &mut c.back_color);
-}
-
-fn rope_panel(ui: &Ui, r: &mut Rope) {
-    ui.text(format!("rope '{}'", r.name));
-    int(ui, "nodes", &mut r.nodes, 2, 1 << 20);
-    drag3(ui, "start [m]", &mut r.start, 0.01);
-    drag3(ui, "end [m]", &mut r.end, 0.01);
-    choice(ui, "pins", &mut r.pin, &[RopePins::None, RopePins::First, RopePins::Last, RopePins::Both]);
-    drag(ui, "mass [kg/node]", &mut r.mass, 0.0005, 1e-6, 100.0);
-    drag(ui, "stiffness [N/m]", &mut r.stiffness, 1.0, 0.0, 1e6);
-    drag(ui, "bending stiffness [N/m]", &mut r.bending_stiffness, 0.1, 0.0, 1e6);
-    drag(ui, "rest length scale", &mut r.rest_scale, 0.005, 0.05, 10.0);
-    drag(ui, "spring damping [N s/m]", &mut r.damping, 0.0005, 0.0, 100.0);
-    drag(ui, "drag [N s/m]", &mut r.drag, 0.0005, 0.0, 100.0);
-    optional(ui, "stretch limit", &mut r.stretch_limit, 0.05, 0.005, 10.0);
-    drag(ui, "friction", &mut r.friction, 0.01, 0.0, MAX_FRICTION);
-    drag(ui, "radius [m]", &mut r.radius, 0.001, 0.001, 10.0);
-    check(ui, "self-collision", &mut r.self_collision);
-    if r.self_collision {
-        optional(
-            ui,
-            "self-collision distance [m]",
-            &mut r.self_collision_distance,
-            2.0 * r.radius,
-            0.001,
-            10.0,
-        );
-    }
-    color(ui, "colour", &mut r.color);
-}
-
-fn new_cloth(name: String) -> Cloth {
-    Cloth {
-        name,
-        resolution: [32, 32],
-        size: [1.0, 1.0],
-        origin: [-0.5, 1.8, 0.5],
-        orientation: Orientation::Vertical,
-        mass: 0.01,
-        stiffness: PerSpring { structural: 300.0, shear: 80.0, bending: 20.0 },
-        rest_scale: PerSpring { structural: 1.0, shear: 1.0, bending: 1.0 },
-        damping: 0.005,
-        drag: 0.002,
-        stretch_limit: Some(0.1),
-        friction: 0.3,
-        collision_margin: 0.01,
-        self_collision: false,
-        self_collision_distance: None,
-        self_contact: SelfContact::Triangles,
-        pin: ClothPins::TopCorners,
-        pinned: Vec::new(),
-        color: [0.2, 0.45, 0.75],
-        back_color: [0.8, 0.8, 0.75],
-    }
-}
-
-fn new_rope(name: String) -> Rope {
-    Rope {
-        name,
-        nodes: 48,
-        start: [-0.6, 1.8, -0.5],
-        end: [0.6, 1.8, -0.5],
-        mass: 0.01,
-        stiffness: 600.0,
-        bending_stiffness: 2.0,
-        rest_scale: 1.0,
-        damping: 0.01,
-        drag: 0.005,
-        stretch_limit: Some(0.05),
-        friction: 0.5,
-        radius: 0.02,
-        ring_weights: None,
-        self_collision: false,
-        self_collision_distance: None,
-        pin: RopePins::First,
-        pinned: Vec::new(),
-        color: [0.72, 0.58, 0.36],
-    }
-}
-
 /// The compile errors overlay: shown while any shader fails; fixing the file clears it.
 fn shader_errors(ui: &Ui, errors: &[String]) {
     let size = ui.io().display_size;
@@ -753,7 +629,7 @@ mod tests {
     /// with the substeps it needs, and nothing for a method stable at any step.
     #[test]
     fn the_editor_says_when_an_object_is_past_the_explicit_limit() {
-        use crate::scene::IntegratorChoice;
+        use crate::scene::{IntegratorChoice, Rope};
         use crate::sim::model::Integrator;
         // A chain's highest mode is sqrt(4 k / m) (the bound is exact there): k = 1000 N/m,
         // m = 10 g, 632.5 rad/s, a stable substep of 3.16 ms, 6 substeps of a 1/60 s frame.

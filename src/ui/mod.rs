@@ -6,6 +6,7 @@ mod colliders;
 mod editor;
 mod help;
 mod notices;
+mod objects;
 mod widgets;
 
 pub use browse::resolve_preset;
