@@ -12,6 +12,7 @@ const HELP: &[(&str, &str)] = &[
     ("frame dt [ms]", "Simulated time per frame [ms]; 16.667 is 60 frames a second."),
     ("gravity [m/s^2]", "Gravitational acceleration, x y z [m/s^2]; -9.81 in y is Earth's."),
     ("objects touch each other", "Contact between objects: every particle is kept the sum of the two objects' contact radii (a cloth's collision margin, a rope's radius) from another cloth's triangles, and a rope's nodes that far from another rope's; equal and opposite, with Coulomb friction (the mean of the two objects' friction). Scenes pay for it only with two or more objects."),
+    ("cloths keep their edges apart", "Touching cloths also keep their edges (rows, columns, diagonals) apart, so no edge of one passes through another where no vertex touches (sim.inter_object_edges, on by default). Off: only where a cloth keeps its own edges apart (self contact triangles and edges)."),
     ("integrator", "How a substep advances the springs: symplectic Euler (the paper's) and Verlet are explicit (fast, limited by the stiffest spring); XPBD, implicit and VBD are stable at any stiffness and converge to BDF2, a second-order implicit method; auto picks the cheapest method within the tolerance."),
     ("iterations", "Solver iterations per substep of an iterative method (for the implicit method, conjugate-gradient iterations, linearised again every 5): more converge closer to the method's implicit (BDF2) solve and cost more. At one substep a stiff cloth needs about 10."),
     ("contact iterations", "Passes over a cloth's contacts with its own triangles each substep, each from where the passes before moved the particles: a layer landing on several others is stopped within the substep only with several (a strip piling on itself let 281 edges through with one pass, 6 with four). Each costs about as much as the first pass's application."),
@@ -96,7 +97,7 @@ mod tests {
     /// like, and the three spring types of `springs(ui, "...", ...)`) has a tooltip.
     #[test]
     fn every_editor_field_has_a_tooltip() {
-        let sources = [include_str!("editor.rs"), include_str!("colliders.rs")];
+        let sources = [include_str!("editor.rs"), include_str!("colliders.rs"), include_str!("objects.rs")];
         let helpers = ["drag(", "drag3(", "int(", "optional(", "choice(", "color(", "check("];
         let mut labels = Vec::new();
         for source in sources {

@@ -624,18 +624,25 @@ mod tests {
             ([0, CONTACT_LANES].as_slice(), [0, 0, 21 * CONTACT_LANES])
         );
 
-        // The rope first, then two cloths (which now look for each other's triangles).
+        // The rope first, then two cloths (which now look for each other's triangles), their
+        // edges not kept apart.
         let mut model = rope_on_cloth();
         let (cloth, rope) = (model.objects[0].clone(), model.objects[1].clone());
         model.objects = vec![rope, cloth.clone(), cloth];
+        model.inter_object_edges = false;
         let w = WorkLayout::new(&model, &[21, 900, 900], u64::MAX, true);
         let rope_first = 1800u32.div_ceil(CONTACT_LANES) * CONTACT_LANES;
         assert_eq!(w.first, [rope_first, 0, 900]);
         assert_eq!(w.lanes, [CONTACT_LANES, 1, 1]);
         assert_eq!(w.bounds, [0, 1800, rope_first + 21 * CONTACT_LANES]);
 
-        // Where the cloths keep their edges apart, each cloth particle in its lanes too.
+        // Where the cloths keep their edges apart (by default, or as one of them asks), each
+        // cloth particle in its lanes too.
         model.objects[1].edge_contact = true;
+        let w = WorkLayout::new(&model, &[21, 900, 900], u64::MAX, true);
+        assert_eq!(w.lanes, [CONTACT_LANES, CLOTH_EDGE_LANES, CLOTH_EDGE_LANES]);
+        model.objects[1].edge_contact = false;
+        model.inter_object_edges = true;
         let w = WorkLayout::new(&model, &[21, 900, 900], u64::MAX, true);
         let rope_first = (1800 * CLOTH_EDGE_LANES).div_ceil(CONTACT_LANES) * CONTACT_LANES;
         assert_eq!(w.first, [rope_first, 0, 900 * CLOTH_EDGE_LANES]);
