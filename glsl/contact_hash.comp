@@ -23,7 +23,11 @@ void main() {
     }
     uvec2 cr = cell_rank[k];
     sorted[BUCKET_START(cr.x, table.hash_mask) + cr.y] = e;
-    built[4u * k] = floatBitsToUint(e.x);
-    built[4u * k + 1u] = floatBitsToUint(e.y);
-    built[4u * k + 2u] = floatBitsToUint(e.z);
+    // With the lists off a list holds the contacts alone, not the skin: built at infinity, so
+    // the first substep with the lists on again rebuilds it.
+    uint inf = 0x7F800000u;
+    bool on = lists_on();
+    built[4u * k] = on ? floatBitsToUint(e.x) : inf;
+    built[4u * k + 1u] = on ? floatBitsToUint(e.y) : inf;
+    built[4u * k + 2u] = on ? floatBitsToUint(e.z) : inf;
 }

@@ -62,6 +62,11 @@ impl ListPolicy {
         self.seen = Some(counters);
     }
 
+    /// The counters were cleared (a stale frame): the next read is a baseline again.
+    pub fn restart(&mut self) {
+        self.seen = None;
+    }
+
     /// A frame was recorded.
     pub fn frame(&mut self) {
         self.off_frames = self.off_frames.saturating_sub(1);

@@ -339,6 +339,10 @@ impl GpuSim {
     pub fn record_frame(&mut self, rec: &mut Recorder<'_>, surface_consumer: Access, slot: usize) {
         let dragged = std::mem::take(&mut self.dragged);
         let lists_stale = std::mem::take(&mut self.lists_stale) || !self.pending_writes.is_empty();
+        if let Some(c) = self.contact.as_mut().filter(|_| lists_stale) {
+            // (the frame clears the contact counters, `record_frame_start`)
+            c.policy.restart();
+        }
         let history_stale = std::mem::take(&mut self.history_stale);
         let ts = self.timestamps.get(slot);
         if let Some(pool) = ts {
@@ -636,9 +640,14 @@ impl GpuSim {
     /// Whether `model` differs from the running one only in what `update_params` rewrites: the
     /// same objects, collider capacity, substep count, integrator and self-collision method, and
     /// the same compiled-in features and fused layouts, more than one contact pass on both or
-    /// neither (the further passes' pipelines). Otherwise rebuild the simulation.
+    /// neither (the further passes' pipelines), the same cloths keeping their edges apart
+    /// (contact between objects' pipelines, lists and rows). Otherwise rebuild the simulation.
     pub fn takes_params(&self, model: &SimModel) -> bool {
+        let edges = |m: &SimModel| {
+            (m.inter_object_edges, m.objects.iter().map(|o| o.edge_contact).collect::<Vec<_>>())
+        };
         model.objects.len() == self.objects.len()
+            && edges(model) == edges(&self.model)
             && (model.contact_iterations > 1) == (self.model.contact_iterations > 1)
             && model.colliders.len() <= self.collider_capacity()
             && model.substeps == self.model.substeps
