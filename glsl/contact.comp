@@ -153,8 +153,8 @@ const uint SEGMENT_PREVIOUS = 1u;
 
 // Pass 0 of a substep that rebuilds: lists a piece particle k found. A particle's lanes take
 // slots in turn (built[4 k + 3] counts them); a particle searching alone counts in `listed`
-// and writes its length at the end (an atomic an entry cost the cloths' search a seventh more
-// on the H100).
+// and writes its length at the end (cheaper than an atomic an entry, which measurably slowed
+// the cloths' search: docs/log.md).
 uint listed = 0u;
 void list_piece(uint k, uint note) {
     uint slot = LANED ? atomicAdd(built[4u * k + 3u], 1u) : listed;
@@ -533,13 +533,7 @@ void main() {
     bool rebuild = rebuilds();
     uint len = built[4u * k + 3u];
     bool overflowed = rebuild && len > PAIR_MAX;
-    // An overflowed list is built at infinity: it counts as moved, so the next substep rebuilds.
-    if (sum && overflowed && lane == 0u) {
-        uint inf = 0x7F800000u;
-        built[4u * k] = inf;
-        built[4u * k + 1u] = inf;
-        built[4u * k + 2u] = inf;
-    }
+    if (sum && overflowed && lane == 0u) set_list_built(k, false, vec3(0.0));
     uint own = sum ? uint(moves[4u * k + 3u]) : 0u;
     if (sum && own == 0u) return;
     vec4 ek = entry_of(k);

@@ -7,8 +7,9 @@
 // a piece's corners there) and where it began the substep into begun[] (friction); clears its
 // count of contacts and its moves. A particle that has moved half the lists' skin from where
 // the lists were built (or whose list is invalid or overflowed: built at infinity), or any
-// particle while the lists are off, makes the substep rebuild the hash and the lists: the first to find so sets the control block's flag
-// and the indirect dispatches of contact_hash.comp and the scan (contact_common.glsl).
+// particle while the lists are off, makes the substep rebuild the hash and the lists: the
+// first to find so sets the control block's flag and the indirect dispatches of
+// contact_hash.comp and the scan (contact_common.glsl).
 #include "layout.glsl"
 #include "contact_common.glsl"
 

@@ -23,11 +23,6 @@ void main() {
     }
     uvec2 cr = cell_rank[k];
     sorted[BUCKET_START(cr.x, table.hash_mask) + cr.y] = e;
-    // With the lists off a list holds the contacts alone, not the skin: built at infinity, so
-    // the first substep with the lists on again rebuilds it.
-    uint inf = 0x7F800000u;
-    bool on = lists_on();
-    built[4u * k] = on ? floatBitsToUint(e.x) : inf;
-    built[4u * k + 1u] = on ? floatBitsToUint(e.y) : inf;
-    built[4u * k + 2u] = on ? floatBitsToUint(e.z) : inf;
+    // (with the lists off a list holds the contacts alone, not the skin)
+    set_list_built(k, lists_on(), e.xyz);
 }

@@ -98,5 +98,14 @@ float list_half_skin() { return 0.49 * list_skin(); }
 vec3 list_built(uint k) {
     return vec3(uintBitsToFloat(built[4u * k]), uintBitsToFloat(built[4u * k + 1u]), uintBitsToFloat(built[4u * k + 2u]));
 }
+// Notes where particle k's list was built: at `at`, or (`holds` false: a list that overflowed,
+// or that holds the contacts alone) at infinity, which counts as moved, so the next substep
+// with the lists on rebuilds it.
+void set_list_built(uint k, bool holds, vec3 at) {
+    uvec3 bits = holds ? floatBitsToUint(at) : uvec3(0x7F800000u);
+    built[4u * k] = bits.x;
+    built[4u * k + 1u] = bits.y;
+    built[4u * k + 2u] = bits.z;
+}
 
 #endif

@@ -390,20 +390,27 @@ fn inter_object_contact() {
     check_mode("inter-object contact", &s, Mode::Resync);
 }
 
-/// The contact lists between objects miss nothing: the scene above with the small cloth
-/// thrown down from 10 cm higher at 3 m/s and the rope at 1 m/s, from beyond the lists' reach
-/// (between the cloths 2 cm, plus the 1 cm skin), matches the reference, which searches every
-/// pair every substep, with the lists as the host's policy keeps them and kept on; and over a
-/// second, kept on, the lists were walked, not rebuilt, in at least a quarter of the substeps (at 3 m/s a particle crosses half the skin, 5 mm, in 2 substeps;
-/// once landed, the held cloth keeps swinging and the rope sliding: lavapipe, 35%).
-#[test]
-fn contact_lists_between_objects_hold_at_speed() {
+/// `cloths_and_rope` with the small cloth 10 cm higher thrown down at 3 m/s, the rope at 1 m/s.
+fn thrown_cloths_and_rope() -> SimModel {
     let mut s = cloths_and_rope();
     for p in s.objects[1].positions.iter_mut() {
         p.y += 0.1;
     }
     s.objects[1].velocities.fill(DVec3::new(0.0, -3.0, 0.0));
     s.objects[2].velocities.fill(DVec3::new(0.0, -1.0, 0.0));
+    s
+}
+
+/// The contact lists between objects miss nothing: the scene above with the small cloth
+/// thrown down from 10 cm higher at 3 m/s and the rope at 1 m/s, from beyond the lists' reach
+/// (between the cloths 2 cm, plus the 1 cm skin), matches the reference, which searches every
+/// pair every substep, with the lists as the host's policy keeps them and kept on; and over a
+/// second, kept on, the lists were walked, not rebuilt, in at least a quarter of the substeps
+/// (at 3 m/s a particle crosses half the skin, 5 mm, in 2 substeps; once landed, the held
+/// cloth keeps swinging and the rope sliding: lavapipe, 35%).
+#[test]
+fn contact_lists_between_objects_hold_at_speed() {
+    let s = thrown_cloths_and_rope();
     let ctx = gpu();
     for forced in [None, Some(true)] {
         let (d, _) = compare_with(&ctx, &s, FRAMES, Mode::Resync, &|g| g.force_contact_lists(forced));
@@ -431,16 +438,11 @@ fn contact_lists_between_objects_hold_at_speed() {
 /// The contact lists between objects survive being turned off and on between frames: the
 /// thrown scene above with the lists forced off for two frames, then on for two, against the
 /// reference frame by frame. While off, a list holds the contacts alone, so the first substep
-/// with the lists on again must rebuild them rather than walk them (it missed the contacts
-/// that began within the skin before).
+/// with the lists on again must rebuild them rather than walk them (walking would miss the
+/// contacts that begin within the skin).
 #[test]
 fn contact_lists_between_objects_survive_being_turned_off_and_on() {
-    let mut s = cloths_and_rope();
-    for p in s.objects[1].positions.iter_mut() {
-        p.y += 0.1;
-    }
-    s.objects[1].velocities.fill(DVec3::new(0.0, -3.0, 0.0));
-    s.objects[2].velocities.fill(DVec3::new(0.0, -1.0, 0.0));
+    let s = thrown_cloths_and_rope();
     let ctx = gpu();
     let mut sim = GpuSim::new(&ctx, &s).expect("creating the GPU simulation");
     let mut cpu = CpuSim::new(&s);

@@ -8,7 +8,7 @@
 //! `glsl/include/contact_common.glsl` has the bindings and the lists' rule; the CPU twin is
 //! `sim::cpu::inter_object`.
 
-use super::hash::{ListPolicy, LISTS_OFF_FRAMES};
+use super::hash::ListPolicy;
 use super::object::{GpuObject, SCAN_BLOCK};
 use super::pipelines::{Pipelines, Stage};
 use super::BINDINGS;
@@ -255,22 +255,10 @@ impl SceneContact {
             ("pairs", 4 * pair_max(model) * total, storage, gpu_only),
             ("built", 16 * total, storage | BufferUsage::TRANSFER_DST, gpu_only),
             ("control", 4 * (CONTROL_COUNTERS + 2), storage | transfer | BufferUsage::INDIRECT, gpu_only),
+            ("report", 8, BufferUsage::TRANSFER_DST, MemoryKind::Readback),
         ];
-        let [table, objects, moves, cell_rank, counts, starts, sorted, particles, begun, block_sums, touches, pairs, built, control] =
+        let [table, objects, moves, cell_rank, counts, starts, sorted, particles, begun, block_sums, touches, pairs, built, control, report] =
             super::object::buffers(ctx, "contact", specs)?;
-        let report =
-            match Buffer::new(ctx, "contact.report", 8, BufferUsage::TRANSFER_DST, MemoryKind::Readback) {
-                Ok(r) => r,
-                Err(e) => {
-                    for b in [
-                        table, objects, moves, cell_rank, counts, starts, sorted, particles, begun,
-                        block_sums, touches, pairs, built, control,
-                    ] {
-                        b.destroy(ctx);
-                    }
-                    return Err(e);
-                }
-            };
         let mut contact = Self {
             table,
             objects,
@@ -428,6 +416,12 @@ impl SceneContact {
         rec.barrier(&around(Access::TransferWrite, Access::ComputeOrIndirect));
     }
 
+    /// contact.comp's pipeline for the ropes' items (`segments`), or the cloths' items and the
+    /// objects' sums.
+    fn stage(&self, segments: bool) -> Stage {
+        Stage::Contact { segments, cloth_edges: self.cloth_edges && !segments, pair_max: self.pair_max }
+    }
+
     /// Copies the counters to `report` at the end of a frame.
     pub fn record_frame_end(&self, rec: &mut Recorder<'_>) {
         rec.barrier(&[BufferBarrier::new(&self.control, Access::ComputeOrIndirect, Access::TransferRead)]);
@@ -449,7 +443,7 @@ impl SceneContact {
     pub fn observe(&mut self, substeps: u32) -> Result<(), VkError> {
         if self.policy.on() {
             let counters = self.counters()?;
-            self.policy.observe_share(counters, substeps, LISTS_OFF_SHARE, LISTS_OFF_FRAMES);
+            self.policy.observe_share(counters, substeps, LISTS_OFF_SHARE);
         }
         Ok(())
     }
@@ -479,12 +473,7 @@ impl SceneContact {
                 if items > 0 {
                     let groups = [items.div_ceil(256), 1, 1];
                     let push = [0, pass | parity, range[0], range[1]];
-                    let stage = Stage::Contact {
-                        segments,
-                        cloth_edges: self.cloth_edges && !segments,
-                        pair_max: self.pair_max,
-                    };
-                    rec.dispatch_with(pipelines.get(stage), self.sets[0], groups, &push);
+                    rec.dispatch_with(pipelines.get(self.stage(segments)), self.sets[0], groups, &push);
                 }
             }
         };
@@ -566,11 +555,7 @@ impl SceneContact {
         before.extend(between);
         rec.barrier(&before);
         // (it also zeroes the next substep's control block)
-        each_object(
-            rec,
-            Stage::Contact { segments: false, cloth_edges: self.cloth_edges, pair_max: self.pair_max },
-            2,
-        );
+        each_object(rec, self.stage(false), 2);
         // The constraint stage reads the sums and writes the states the entries were read from.
         let mut after: Vec<_> =
             sums.iter().map(|c| b(c, Access::ComputeWrite, Access::ComputeRead)).collect();

@@ -16,7 +16,7 @@ use crate::vk::{Access, BufferBarrier, Recorder};
 /// did not last: a settling cloth comes to rest within a few dozen frames, and a trial that
 /// fails costs one frame of rebuilds (docs/PERFORMANCE.md, "Longer lists where cloths keep
 /// their edges apart, and shorter pauses").
-pub(super) const LISTS_OFF_FRAMES: u32 = 16;
+const LISTS_OFF_FRAMES: u32 = 16;
 
 /// Whether an object's per-stage contact lists are on. A substep that rebuilds them costs more
 /// than one without lists (the hash's cells are twice as wide and the lists are written), one
@@ -42,12 +42,12 @@ impl ListPolicy {
     /// After a frame's fence: the counters (`list_counters` in glsl/include/lists.glsl) and
     /// the substeps a frame has.
     pub fn observe(&mut self, counters: [u32; 2], substeps: u32) {
-        self.observe_share(counters, substeps, [1, 4], LISTS_OFF_FRAMES);
+        self.observe_share(counters, substeps, [1, 4]);
     }
 
-    /// `observe`, the lists turned off for `off` frames where more than `share` (a fraction,
-    /// [numerator, denominator]) of the substeps rebuilt them.
-    pub fn observe_share(&mut self, counters: [u32; 2], substeps: u32, share: [u64; 2], off: u32) {
+    /// `observe`, the lists turned off where more than `share` (a fraction, [numerator,
+    /// denominator]) of the substeps rebuilt them.
+    pub fn observe_share(&mut self, counters: [u32; 2], substeps: u32, share: [u64; 2]) {
         if let Some(seen) = self.seen {
             let on = counters[0].wrapping_sub(seen[0]);
             let rebuilt = counters[1].wrapping_sub(seen[1]);
@@ -56,7 +56,7 @@ impl ListPolicy {
                 && rebuilt <= on
                 && share[1] * rebuilt as u64 > share[0] * on as u64
             {
-                self.off_frames = off;
+                self.off_frames = LISTS_OFF_FRAMES;
             }
         }
         self.seen = Some(counters);

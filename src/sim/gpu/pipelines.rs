@@ -189,22 +189,15 @@ impl Stage {
             stages.extend([Stage::HashCount, Stage::HashScan]);
         }
         if model.inter_object_contact() {
+            let pair_max = super::contact::pair_max(model) as u32;
             stages.extend([
                 Stage::HashScan,
                 Stage::ContactBegin,
                 Stage::ContactHash,
-                Stage::Contact {
-                    segments: false,
-                    cloth_edges: model.has_cloth_edges_between(),
-                    pair_max: super::contact::pair_max(model) as u32,
-                },
+                Stage::Contact { segments: false, cloth_edges: model.has_cloth_edges_between(), pair_max },
             ]);
             if model.objects.iter().any(|o| !o.contact_triangles()) {
-                stages.push(Stage::Contact {
-                    segments: true,
-                    cloth_edges: false,
-                    pair_max: super::contact::pair_max(model) as u32,
-                });
+                stages.push(Stage::Contact { segments: true, cloth_edges: false, pair_max });
             }
         }
         let mut seen = std::collections::HashSet::new();
