@@ -10,6 +10,7 @@
 // lists (LISTS) and one without, where their code is compiled out (measured: 3% of this
 // stage on a 256 x 256 cloth when it was a push constant).
 #define STATE_OUT_READ
+#define BATCHED
 #include "bindings.glsl"
 #include "springs.glsl"
 
@@ -17,6 +18,7 @@ layout(local_size_x_id = 0, local_size_y_id = 1, local_size_z = 1) in;
 layout(constant_id = 2) const bool LISTS = false;  // contact lists on (hash_count.glsl)
 layout(push_constant) uniform Push {
     uint substep;  // of the frame, 0-based
+    BATCH_PUSH
 } pc;
 
 #define IN(i) p_in[i]
@@ -29,6 +31,7 @@ void listed_candidates(uvec2 cell, vec3 x, float reach, inout vec3 correction, i
 #include "constraints_body.glsl"
 
 void main() {
+    if (!batch_begin(pc.batch_mask)) return;
     uvec2 cell = gl_GlobalInvocationID.xy;
     if (LISTS && has(F_SELF) && self_hashed() && cell == uvec2(0u)) {
         // The next substep's control block starts zeroed (this one's is read by the others),

@@ -22,6 +22,7 @@
 // sums of a 1024 x 1024 cloth cost 4.5 us a pass more on the H100).
 // The iterate and the vectors are slices of iter (S_*), displacements from the BDF2 base x~
 // (history H_BASE, see predict.comp); aux[i] holds the prediction y - x~.
+#define BATCHED
 #include "bindings.glsl"
 #include "springs.glsl"
 
@@ -78,12 +79,14 @@ uint total_slot() { return (PARTIAL + 1u) * n_all - 1u; }
 
 // The totals of the workgroups' partial sums (their count from the grid: a PHASE_TOTAL pass
 // runs one workgroup).
+// The object's workgroups (a batched dispatch has as many as its largest object).
+uvec2 object_grid() { return (obj.dims + gl_WorkGroupSize.xy - 1u) / gl_WorkGroupSize.xy; }
+
 vec3 totals() {
     if ((phase_bits & TOTALS) != 0u && (phase_bits & 3u) != PHASE_TOTAL) return aux[total_slot()].xyz;
-    uvec2 size = gl_WorkGroupSize.xy;
-    uvec2 grid = (obj.dims + size - 1u) / size;
+    uvec2 grid = object_grid();
     uint groups = grid.x * grid.y;
-    uint lanes = size.x * size.y;
+    uint lanes = gl_WorkGroupSize.x * gl_WorkGroupSize.y;
     vec3 sum = vec3(0.0);
     for (uint w = gl_LocalInvocationIndex; w < groups; w += lanes) sum += aux[PARTIAL * n_all + w].xyz;
     return workgroup_sum(sum);
@@ -95,13 +98,16 @@ vec3 totals() {
 // current one and d.q. Keep it so if the slots change.
 void add_partial(float mine, uint slot) {
     float total = workgroup_sum(vec3(mine, 0.0, 0.0)).x;
-    uint w = gl_WorkGroupID.x + gl_WorkGroupID.y * gl_NumWorkGroups.x;
+    uint w = gl_WorkGroupID.x + gl_WorkGroupID.y * object_grid().x;
     if (gl_LocalInvocationIndex == 0u) aux[PARTIAL * n_all + w][slot] = total;
 }
 
 void main() {
+    if (!iteration_begin()) return;
     phase_bits = it.colour;
     uint phase = phase_bits & 3u;
+    // Workgroups past this object's own leave its partial sums alone.
+    if (phase != PHASE_TOTAL && any(greaterThanEqual(gl_WorkGroupID.xy, object_grid()))) return;
     parity = (phase_bits >> 2u) & 1u;
     bool last_cg = (phase_bits & 16u) != 0u;
     n_all = particle_count();

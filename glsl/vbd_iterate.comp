@@ -7,6 +7,7 @@
 // solver_bodies.glsl), one invocation per particle of that colour, its neighbours (other
 // colours) held. In place in iter (one slice of displacements p - x~ from the BDF2 base x~,
 // see predict.comp); aux[i] holds the prediction y - x~.
+#define BATCHED
 #include "bindings.glsl"
 #include "springs.glsl"
 
@@ -20,6 +21,7 @@ layout(local_size_x_id = 0, local_size_y_id = 1, local_size_z = 1) in;
 #include "solver_end.glsl"
 
 void main() {
+    if (!iteration_begin()) return;
     uvec2 cell = coloured_cell(gl_GlobalInvocationID.xy);
     if (cell.x >= obj.dims.x || cell.y >= obj.dims.y) return;
     uint i = cell.x + cell.y * obj.dims.x;

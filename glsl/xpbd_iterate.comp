@@ -9,6 +9,7 @@
 // iter (one slice of displacements p - x~ from the BDF2 base x~, see predict.comp;
 // w = 1 pinned); aux[3i + dir / 4][dir % 4] holds the multiplier of particle i's forward spring
 // of direction dir. Pass SPRING_CLASS_COUNT, after the last iteration, finishes every particle.
+#define BATCHED
 #include "bindings.glsl"
 #include "springs.glsl"
 
@@ -21,6 +22,7 @@ layout(local_size_x_id = 0, local_size_y_id = 1, local_size_z = 1) in;
 #include "solver_end.glsl"
 
 void main() {
+    if (!iteration_begin()) return;
     uvec2 cell = gl_GlobalInvocationID.xy;
     if (cell.x >= obj.dims.x || cell.y >= obj.dims.y) return;
     uint i = cell.x + cell.y * obj.dims.x;

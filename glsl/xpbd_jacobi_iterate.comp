@@ -8,6 +8,7 @@
 // slice k % 2 (displacements p - x~ from the BDF2 base x~, see predict.comp) and writes
 // (k + 1) % 2; aux[3i .. 3i + 3) holds the multipliers of particle i's 12 springs (its own
 // copy: both ends of a spring compute the same update).
+#define BATCHED
 #include "bindings.glsl"
 #include "springs.glsl"
 
@@ -21,6 +22,7 @@ layout(local_size_x_id = 0, local_size_y_id = 1, local_size_z = 1) in;
 #include "solver_bodies.glsl"
 
 void main() {
+    if (!iteration_begin()) return;
     uvec2 cell = gl_GlobalInvocationID.xy;
     if (cell.x >= obj.dims.x || cell.y >= obj.dims.y) return;
     uint i = cell.x + cell.y * obj.dims.x;

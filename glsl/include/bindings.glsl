@@ -1,5 +1,7 @@
 // Descriptor bindings of the simulation pipelines (one set per object and ping-pong direction).
-// The host side is src/sim/gpu.rs (SimBinding); the order here is part of the layout contract.
+// The host side is src/sim/gpu/object.rs; the order here is part of the layout contract.
+// A shader that defines BATCHED runs a chunk of objects a dispatch and declares the per-object
+// bindings as arrays instead (batch.glsl); the globals and colliders are the scene's.
 #ifndef MSD_BINDINGS_GLSL
 #define MSD_BINDINGS_GLSL
 #include "layout.glsl"
@@ -7,6 +9,10 @@
 // Parameters are never written while a frame runs (restrict: the compiler may keep them in
 // registers across the shaders' stores and barriers).
 layout(std140, set = 0, binding = 0) uniform GlobalsBuf { Globals g; };
+layout(std430, set = 0, binding = 4) restrict readonly buffer ColliderBuf { Collider colliders[]; };
+#ifdef BATCHED
+#include "batch.glsl"
+#else
 #ifdef OBJ_COPY
 // The fused kernel reads a copy of the parameters (registers), taken at its start.
 layout(std430, set = 0, binding = 1) restrict readonly buffer ObjectBuf { ObjectParams obj_buffer; };
@@ -33,7 +39,6 @@ layout(std430, set = 0, binding = 3) buffer StateOut { Particle p_out[]; };
 layout(std430, set = 0, binding = 3) writeonly buffer StateOut { Particle p_out[]; };
 #endif
 #endif
-layout(std430, set = 0, binding = 4) restrict readonly buffer ColliderBuf { Collider colliders[]; };
 layout(std430, set = 0, binding = 5) writeonly buffer SurfaceBuf { SurfaceVertex surface[]; };
 // Spatial hash of the self-collision (objects without it bind a placeholder).
 layout(std430, set = 0, binding = 6) buffer HashCellRank { uvec2 cell_rank[]; }; // per particle: bucket, rank in it
@@ -73,6 +78,8 @@ layout(std430, set = 0, binding = 16) buffer SolverHistory { vec4 history[]; };
 // in fixed point and its count of contacts, then the contacts each keeps. Coherent: the fused
 // kernel's phases read what others' atomics wrote, between barriers.
 layout(std430, set = 0, binding = 17) coherent buffer SelfPairsBuf { int self_pairs[]; };
+
+#endif  // BATCHED
 
 const uint H_DX = 0u;
 const uint H_DV = 1u;

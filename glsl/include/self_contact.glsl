@@ -615,9 +615,9 @@ void apply_contact(uint p, vec3 x, uint code) {
     vec4 free_m = vec4(CPINNED(m.x) ? 0.0 : 1.0, CPINNED(m.y) ? 0.0 : 1.0, CPINNED(m.z) ? 0.0 : 1.0,
                        CPINNED(m.w) ? 0.0 : 1.0);
     // Each free particle's count of contacts.
-    vec4 counts = vec4(0.0);
+    vec4 shares = vec4(0.0);
     [[unroll]] for (int q = 0; q < 4; ++q) {
-        if (free_m[q] > 0.0) counts[q] = pair_count(m[q]);
+        if (free_m[q] > 0.0) shares[q] = pair_count(m[q]);
     }
     float overlap = max(obj.self_distance - d, 0.0);
     // A contact takes part by its weight in the counts: one that begins (overlap under h / 10)
@@ -626,7 +626,7 @@ void apply_contact(uint p, vec3 x, uint code) {
     float weight = contact_weight(overlap) * pair_part(p, code, c);
     // Each free particle's mass split among its contacts: inverse mass w n, n its count (at
     // least 1).
-    vec4 split_m = max(counts, free_m);
+    vec4 split_m = max(shares, free_m);
     // The relative motion of the two sides' nearest points over the substep: the overlap it
     // made (its approach along n) is undone with the velocity that made it; what overlap
     // remains from before is undone in position only (no bounce from an overlap resolved late).
@@ -648,7 +648,7 @@ void apply_contact(uint p, vec3 x, uint code) {
     // while a particle's weak contacts together undo no more than one would (times the
     // over-relaxation). The counts are fixed point (1 / 65536): a contact of weight near 1e-5
     // takes a somewhat smaller share on the GPU than on the reference, within a cone that small.
-    float counted = dot(c2, max(counts, weight * free_m));
+    float counted = dot(c2, max(shares, weight * free_m));
     float share = weight > 0.0 ? min(pair_relaxation() * weight / counted, 1.0 / whole) : 0.0;
     vec3 slip = share > 0.0 ? friction_correction(moved, n, k * approach / share, obj.friction) * share : vec3(0.0);
     vec3 push = n * (overlap * k) - slip;

@@ -11,7 +11,10 @@
 
 // k: 0-based iteration of this substep; colour: the vertex colour of a Gauss-Seidel pass;
 // substep: of the frame, 0-based; lists: 1 with self-collision contact lists on.
-layout(push_constant) uniform Iteration { uint k; uint colour; uint substep; uint lists; } it;
+layout(push_constant) uniform Iteration { uint k; uint colour; uint substep; uint lists; BATCH_PUSH } it;
+
+// Takes this workgroup's object (batch.glsl); false: the workgroup takes no part.
+bool iteration_begin() { return batch_begin(it.batch_mask); }
 
 bool last_iteration() { return it.k + 1u == g.iterations; }
 

@@ -258,7 +258,10 @@ fn bound_structs(m: &Module) -> Vec<(String, String)> {
         if ![STORAGE_UNIFORM, STORAGE_STORAGE_BUFFER, STORAGE_PUSH_CONSTANT].contains(&storage) {
             continue;
         }
-        let Some(Type::Pointer(block)) = m.types.get(&pointer) else { continue };
+        let Some(Type::Pointer(pointee)) = m.types.get(&pointer) else { continue };
+        // (an array of blocks: a batched shader's per-object bindings)
+        let Some(block) = m.element_struct(*pointee) else { continue };
+        let block = &block;
         let Some(Type::Struct(members)) = m.types.get(block) else { continue };
         let place = match m.bound.get(&var) {
             Some(b) => format!("binding {b}"),

@@ -223,8 +223,12 @@ impl GpuContext {
             .dynamic_rendering(true);
         let extensions: Vec<*const c_char> =
             if surface.is_some() { vec![ash::khr::swapchain::NAME.as_ptr()] } else { Vec::new() };
+        // The batched step shaders index their bindings' descriptor arrays by workgroup.
+        let features =
+            vk::PhysicalDeviceFeatures::default().shader_storage_buffer_array_dynamic_indexing(true);
         let create = vk::DeviceCreateInfo::default()
             .queue_create_infos(&queues)
+            .enabled_features(&features)
             .enabled_extension_names(&extensions)
             .push_next(&mut f13);
         // SAFETY: the physical device came from this instance; pointers outlive the call.

@@ -52,6 +52,9 @@ pub struct DeviceInfo {
     /// (`LP_MAX_TGSI_LOOP_ITERATIONS` in gallivm, one counter shared by all its loops and never
     /// reset), silently. `None`: no such limit.
     pub loop_iteration_limit: Option<u32>,
+    /// Storage buffer descriptors a compute stage may use (`maxPerStageDescriptorStorageBuffers`,
+    /// within `maxDescriptorSetStorageBuffers` and `maxPerStageResources`).
+    pub max_stage_storage_buffers: u32,
 }
 
 impl std::fmt::Display for DeviceInfo {
@@ -93,9 +96,11 @@ pub(crate) fn candidates(
             )
         };
         let props = props2.properties;
+        let dynamic_indexing = features2.features.shader_storage_buffer_array_dynamic_indexing == vk::TRUE;
         let sync2 = f13.synchronization2 == vk::TRUE
             && f13.maintenance4 == vk::TRUE
-            && f13.dynamic_rendering == vk::TRUE;
+            && f13.dynamic_rendering == vk::TRUE
+            && dynamic_indexing;
         let name = props
             .device_name_as_c_str()
             .map(|s| s.to_string_lossy().into_owned())
@@ -110,7 +115,7 @@ pub(crate) fn candidates(
         let api = props.api_version;
         if api < vk::API_VERSION_1_3 || !sync2 {
             skipped.push(format!(
-                "{name}: needs Vulkan 1.3 with synchronization2, maintenance4 and dynamic rendering"
+                "{name}: needs Vulkan 1.3 with synchronization2, maintenance4, dynamic rendering and dynamic indexing of storage buffer arrays"
             ));
             continue;
         }
@@ -173,6 +178,11 @@ pub(crate) fn candidates(
                 subgroup_clustered: v11.subgroup_supported_stages.contains(vk::ShaderStageFlags::COMPUTE)
                     && v11.subgroup_supported_operations.contains(vk::SubgroupFeatureFlags::CLUSTERED),
                 loop_iteration_limit: (v12.driver_id == vk::DriverId::MESA_LLVMPIPE).then_some(65_535),
+                max_stage_storage_buffers: props
+                    .limits
+                    .max_per_stage_descriptor_storage_buffers
+                    .min(props.limits.max_descriptor_set_storage_buffers)
+                    .min(props.limits.max_per_stage_resources),
             },
         });
     }

@@ -33,10 +33,12 @@ impl BindingKind {
     }
 }
 
-/// A descriptor set layout: binding `i` holds one buffer of `kinds[i]`.
+/// A descriptor set layout: binding `i` holds `counts[i]` buffers (an array; one by default)
+/// of `kinds[i]`.
 pub struct BindingSetLayout {
     pub(crate) raw: vk::DescriptorSetLayout,
     kinds: Vec<BindingKind>,
+    counts: Vec<u32>,
 }
 
 impl BindingSetLayout {
@@ -46,14 +48,21 @@ impl BindingSetLayout {
     }
 
     pub fn new(ctx: &GpuContext, kinds: &[BindingKind]) -> Result<Self, VkError> {
+        Self::with_counts(ctx, kinds, &vec![1; kinds.len()])
+    }
+
+    /// Binding `i` an array of `counts[i]` buffers of `kinds[i]`.
+    pub fn with_counts(ctx: &GpuContext, kinds: &[BindingKind], counts: &[u32]) -> Result<Self, VkError> {
+        assert_eq!(kinds.len(), counts.len(), "a count per binding");
         let bindings: Vec<_> = kinds
             .iter()
+            .zip(counts)
             .enumerate()
-            .map(|(i, kind)| {
+            .map(|(i, (kind, &count))| {
                 vk::DescriptorSetLayoutBinding::default()
                     .binding(i as u32)
                     .descriptor_type(kind.descriptor_type())
-                    .descriptor_count(1)
+                    .descriptor_count(count)
                     .stage_flags(kind.stages())
             })
             .collect();
@@ -61,11 +70,16 @@ impl BindingSetLayout {
         // SAFETY: valid device; destroyed in `destroy`.
         let raw = unsafe { ctx.device.create_descriptor_set_layout(&info, None) }
             .check("vkCreateDescriptorSetLayout")?;
-        Ok(Self { raw, kinds: kinds.to_vec() })
+        Ok(Self { raw, kinds: kinds.to_vec(), counts: counts.to_vec() })
     }
 
     pub fn count(&self) -> u32 {
         self.kinds.len() as u32
+    }
+
+    /// Descriptors in a set of this layout.
+    pub fn descriptors(&self) -> u32 {
+        self.counts.iter().sum()
     }
 
     pub fn destroy(self, ctx: &GpuContext) {
@@ -93,7 +107,12 @@ pub struct DescriptorArena {
 impl DescriptorArena {
     /// A pool for `max_sets` sets of up to `buffers_per_set` buffers of any kind.
     pub fn new(ctx: &GpuContext, max_sets: u32, buffers_per_set: u32) -> Result<Self, VkError> {
-        let count = (max_sets * buffers_per_set).max(1);
+        Self::for_descriptors(ctx, max_sets, max_sets * buffers_per_set)
+    }
+
+    /// A pool for `max_sets` sets of `descriptors` buffers in all, of any kind.
+    pub fn for_descriptors(ctx: &GpuContext, max_sets: u32, descriptors: u32) -> Result<Self, VkError> {
+        let count = descriptors.max(1);
         let sizes = [
             vk::DescriptorPoolSize { ty: vk::DescriptorType::STORAGE_BUFFER, descriptor_count: count },
             vk::DescriptorPoolSize { ty: vk::DescriptorType::UNIFORM_BUFFER, descriptor_count: count },
@@ -113,13 +132,36 @@ impl DescriptorArena {
         buffers: &[&Buffer],
     ) -> Result<BindingSet, VkError> {
         assert_eq!(buffers.len(), layout.kinds.len(), "binding count must match the layout");
+        let arrays: Vec<Vec<&Buffer>> = buffers.iter().map(|&b| vec![b]).collect();
+        self.allocate_arrays(ctx, layout, &arrays)
+    }
+
+    /// Allocates a set of `layout` whose binding `i` holds `buffers[i]` (as many as the
+    /// layout's count for it).
+    pub fn allocate_arrays(
+        &mut self,
+        ctx: &GpuContext,
+        layout: &BindingSetLayout,
+        buffers: &[Vec<&Buffer>],
+    ) -> Result<BindingSet, VkError> {
+        assert_eq!(buffers.len(), layout.kinds.len(), "binding count must match the layout");
+        for (b, &count) in buffers.iter().zip(&layout.counts) {
+            assert_eq!(b.len() as u32, count, "a buffer per array element");
+        }
         let layouts = [layout.raw];
         let info = vk::DescriptorSetAllocateInfo::default().descriptor_pool(self.raw).set_layouts(&layouts);
         // SAFETY: the pool and layout belong to this device.
         let raw = unsafe { ctx.device.allocate_descriptor_sets(&info) }.check("vkAllocateDescriptorSets")?[0];
-        let infos: Vec<[vk::DescriptorBufferInfo; 1]> = buffers
+        let infos: Vec<Vec<vk::DescriptorBufferInfo>> = buffers
             .iter()
-            .map(|b| [vk::DescriptorBufferInfo { buffer: b.raw, offset: 0, range: vk::WHOLE_SIZE }])
+            .map(|array| {
+                let info = |b: &&Buffer| vk::DescriptorBufferInfo {
+                    buffer: b.raw,
+                    offset: 0,
+                    range: vk::WHOLE_SIZE,
+                };
+                array.iter().map(info).collect()
+            })
             .collect();
         let writes: Vec<_> = infos
             .iter()
@@ -147,7 +189,7 @@ impl DescriptorArena {
 }
 
 /// Bytes of push constants every compute pipeline layout offers (`Recorder::dispatch_with`).
-pub const COMPUTE_PUSH_BYTES: u32 = 16;
+pub const COMPUTE_PUSH_BYTES: u32 = 32;
 
 /// A compute pipeline with its own pipeline layout (one binding set, `COMPUTE_PUSH_BYTES` of
 /// push constants, which shaders may leave undeclared).
@@ -167,30 +209,43 @@ impl ComputePipeline {
         set_layout: &BindingSetLayout,
         specialization: &[u32],
     ) -> Result<Self, VkError> {
+        let constants: Vec<(u32, u32)> = (0..).zip(specialization.iter().copied()).collect();
+        Self::with_constants(ctx, name, spirv, set_layout, &constants)
+    }
+
+    /// `new` with the constants as (id, value) pairs.
+    pub fn with_constants(
+        ctx: &GpuContext,
+        name: &str,
+        spirv: &[u32],
+        set_layout: &BindingSetLayout,
+        specialization: &[(u32, u32)],
+    ) -> Result<Self, VkError> {
         let key = PipelineKey {
             spirv: spirv.into(),
             specialization: specialization.to_vec(),
             kinds: set_layout.kinds.clone(),
+            counts: set_layout.counts.clone(),
         };
         if let Some((raw, layout)) = ctx.pipeline_cache().take(&key) {
             return Ok(Self { raw, layout });
         }
-        let entry = Self::create(ctx, name, spirv, &set_layout.kinds, specialization)?;
+        let entry = Self::create(ctx, name, spirv, set_layout, specialization)?;
         let created = Self { raw: entry.raw, layout: entry.layout };
         ctx.pipeline_cache().insert(key, entry);
         Ok(created)
     }
 
-    /// Compiles the pipeline, with a binding set layout of its own of `kinds` (the cache may
+    /// Compiles the pipeline, with a binding set layout of its own like `like` (the cache may
     /// keep it after the caller's layout is gone).
     fn create(
         ctx: &GpuContext,
         name: &str,
         spirv: &[u32],
-        kinds: &[BindingKind],
-        specialization: &[u32],
+        like: &BindingSetLayout,
+        specialization: &[(u32, u32)],
     ) -> Result<CachedPipeline, VkError> {
-        let set_layout = BindingSetLayout::new(ctx, kinds)?;
+        let set_layout = BindingSetLayout::with_counts(ctx, &like.kinds, &like.counts)?;
         let module_info = vk::ShaderModuleCreateInfo::default().code(spirv);
         // SAFETY: valid device; the module is destroyed below, after pipeline creation.
         let module = match unsafe { ctx.device.create_shader_module(&module_info, None) } {
@@ -218,10 +273,12 @@ impl ComputePipeline {
                 return Err(VkError::from_call("vkCreatePipelineLayout", e));
             }
         };
-        let entries: Vec<_> = (0..specialization.len() as u32)
-            .map(|i| vk::SpecializationMapEntry { constant_id: i, offset: 4 * i, size: 4 })
+        let entries: Vec<_> = (0..)
+            .zip(specialization)
+            .map(|(i, &(id, _))| vk::SpecializationMapEntry { constant_id: id, offset: 4 * i, size: 4 })
             .collect();
-        let data: &[u8] = bytemuck::cast_slice(specialization);
+        let values: Vec<u32> = specialization.iter().map(|&(_, v)| v).collect();
+        let data: &[u8] = bytemuck::cast_slice(&values);
         let spec = vk::SpecializationInfo::default().map_entries(&entries).data(data);
         let stage = vk::PipelineShaderStageCreateInfo::default()
             .stage(vk::ShaderStageFlags::COMPUTE)

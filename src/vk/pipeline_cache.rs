@@ -15,8 +15,10 @@ use std::sync::Arc;
 #[derive(Clone, PartialEq, Eq, Hash)]
 pub(crate) struct PipelineKey {
     pub spirv: Arc<[u32]>,
-    pub specialization: Vec<u32>,
+    pub specialization: Vec<(u32, u32)>,
     pub kinds: Vec<BindingKind>,
+    /// ... and their descriptor counts.
+    pub counts: Vec<u32>,
 }
 
 /// A pipeline with the layouts it was created with (its own binding set layout, identically
@@ -98,8 +100,9 @@ mod tests {
     fn key(n: u32) -> PipelineKey {
         PipelineKey {
             spirv: vec![0x0723_0203, n].into(),
-            specialization: vec![n],
+            specialization: vec![(0, n)],
             kinds: vec![BindingKind::ComputeStorage],
+            counts: vec![1],
         }
     }
 

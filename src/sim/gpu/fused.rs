@@ -348,7 +348,7 @@ impl super::GpuSim {
     /// fused kernels of objects that by default run per stage are created then).
     pub fn set_fused(&mut self, ctx: &crate::vk::GpuContext, on: bool) -> anyhow::Result<()> {
         if on {
-            self.pipelines.ensure(ctx, &self.layout)?;
+            self.pipelines.ensure(ctx, [&self.layout, &self.batches.layout], self.batches.chunk)?;
         }
         // The two paths keep their lists in the same layout, but nothing makes them one
         // contract (the fused kernel's LIST_VALID is the per-stage path's first control word).
@@ -546,6 +546,7 @@ mod tests {
             subgroup_size: 32,
             subgroup_clustered: true,
             loop_iteration_limit: loop_limit,
+            max_stage_storage_buffers: 4096,
         };
         let gpu = FusedLimits::for_device(&device(crate::vk::DeviceKind::Discrete, 48 * 1024, None));
         assert_eq!(

@@ -22,6 +22,7 @@
 //! written and the write-after-read on the buffer just read. Uploads and readbacks end with a
 //! barrier back to compute, so frames recorded after them need no barrier of their own.
 
+mod batch;
 mod contact;
 mod energy;
 mod frames;
@@ -98,6 +99,8 @@ pub struct GpuSim {
     globals: Buffer,
     colliders: Buffer,
     objects: Vec<GpuObject>,
+    /// The batched step pipelines' layout and each chunk of objects' sets (`batch.rs`).
+    batches: batch::Batches,
     /// Contact between objects: the scene's hash over every object's particles (`contact.rs`).
     contact: Option<SceneContact>,
     /// Command buffers of the headless frames (`frames.rs`), one per frame in flight, and
@@ -152,6 +155,7 @@ pub struct GpuSim {
 #[derive(Default)]
 struct Parts {
     layout: Option<BindingSetLayout>,
+    batches: Option<batch::Batches>,
     pipelines: Option<Pipelines>,
     arena: Option<DescriptorArena>,
     globals: Option<Buffer>,
@@ -173,9 +177,13 @@ impl Parts {
         // A fused kernel that runs only when `set_fused(true)` asks for it is created then.
         let (later, now): (Vec<Stage>, Vec<Stage>) = (Stage::needed(model, plans).into_iter())
             .partition(|s| matches!(*s, Stage::Fused(_, f, _) if fused::held_back(f, fuse_contact) != 0));
-        self.pipelines = Some(Pipelines::new(ctx, layout, shaders, &now, &later)?);
+        let batches = self.batches.insert(batch::Batches::new_layout(ctx, &binding_kinds())?);
+        self.pipelines =
+            Some(Pipelines::new(ctx, [&*layout, &batches.layout], batches.chunk, shaders, &now, &later)?);
         let n = model.objects.len() as u32;
-        self.arena = Some(DescriptorArena::new(ctx, 2 * n + contact::sets_needed(model), BINDINGS)?);
+        let (sets, chunk_sets) = (2 * n + contact::sets_needed(model), 2 * batches.chunks(n as usize));
+        let descriptors = sets * BINDINGS + chunk_sets * batches.layout.descriptors();
+        self.arena = Some(DescriptorArena::for_descriptors(ctx, sets + chunk_sets, descriptors)?);
         let globals_size = std::mem::size_of::<Globals>() as u64;
         self.globals =
             Some(Buffer::new(ctx, "globals", globals_size, BufferUsage::UNIFORM, MemoryKind::Upload)?);
@@ -217,6 +225,9 @@ impl Parts {
         }
         if let Some(p) = self.pipelines {
             p.destroy(ctx);
+        }
+        if let Some(b) = self.batches {
+            b.destroy(ctx);
         }
         if let Some(l) = self.layout {
             l.destroy(ctx);
@@ -267,6 +278,7 @@ impl GpuSim {
         }
         let Parts {
             layout: Some(layout),
+            batches: Some(batches),
             pipelines: Some(pipelines),
             arena: Some(arena),
             globals: Some(globals),
@@ -280,6 +292,7 @@ impl GpuSim {
         let mut sim = Self {
             pipelines,
             layout,
+            batches,
             arena,
             globals,
             colliders,
@@ -327,6 +340,7 @@ impl GpuSim {
             self.objects.push(obj);
         }
         let shared = [&self.globals, &self.colliders];
+        self.batches.allocate(ctx, &mut self.arena, shared, &self.objects)?;
         self.contact = SceneContact::new(ctx, &self.layout, &mut self.arena, shared, model, &self.objects)?;
         let initial: Vec<Vec<Particle>> = model.objects.iter().map(particles).collect();
         self.upload_states(ctx, &initial)
@@ -442,14 +456,12 @@ impl GpuSim {
                 c.record(rec, &self.pipelines, &self.objects, s);
             }
             self.record_self_pairs(rec, s);
-            for o in self.objects.iter().filter(|o| !self.is_fused(o)) {
-                rec.dispatch_with(
-                    self.pipelines.get(Stage::Constraints(o.kind, o.plan.features, self.lists_on(o))),
-                    o.sets[1],
-                    o.step_groups,
-                    &[s],
-                );
+            let mut constraints = batch::Pass::new();
+            for (k, o) in self.objects.iter().enumerate().filter(|(_, o)| !self.is_fused(o)) {
+                let stage = Stage::Constraints(o.kind, o.plan.features, self.lists_on(o));
+                constraints.add(k, self.pipelines.get(stage), o.step_groups, &[s]);
             }
+            constraints.record(rec, &self.batches, 1);
             if let Some(pool) = ts.filter(|_| stages) {
                 rec.timestamp(pool, 2 + 2 * s);
             }
@@ -612,7 +624,7 @@ impl GpuSim {
         changed: &[String],
     ) -> (Vec<String>, Vec<Retired>) {
         self.lists_stale = true; // a changed fused.comp may build other lists
-        self.pipelines.reload(ctx, &self.layout, shaders, changed)
+        self.pipelines.reload(ctx, [&self.layout, &self.batches.layout], self.batches.chunk, shaders, changed)
     }
 
     /// With `false` nothing reads the surface buffers (a headless run): the surface stage only
@@ -755,6 +767,7 @@ impl GpuSim {
         }
         Parts {
             layout: Some(self.layout),
+            batches: Some(self.batches),
             pipelines: Some(self.pipelines),
             arena: Some(self.arena),
             globals: Some(self.globals),

@@ -204,7 +204,6 @@ impl GpuObject {
         model: &SimModel,
         plan: ObjectPlan,
     ) -> Result<Self, VkError> {
-        let [globals, colliders] = shared;
         let n = o.particle_count() as u64;
         let state_bytes = n * std::mem::size_of::<Particle>() as u64;
         let state_usage = BufferUsage::STORAGE | BufferUsage::TRANSFER_SRC | BufferUsage::TRANSFER_DST;
@@ -236,7 +235,7 @@ impl GpuObject {
         let mut contact = None;
         let mut self_list = None;
         let mut self_pairs = None;
-        let sets = (|| -> Result<[BindingSet; 2], VkError> {
+        let made = (|| -> Result<(), VkError> {
             guard.write(0, &GUARD_CLEAR)?;
             params.write(0, &[object_params(o, model)])?;
             if builds_hash(o, model) {
@@ -270,29 +269,9 @@ impl GpuObject {
                 let name = format!("{}.self_pairs", o.name);
                 self_pairs = Some(Buffer::new(ctx, &name, bytes, usage, MemoryKind::GpuOnly)?);
             }
-            let p = &placeholder;
-            let [cell_rank, counts, starts, sorted, blocks] = match &hash {
-                Some(h) => h.buffers(),
-                None => [p; 5],
-            };
-            let [iter, aux, history] = match &solver {
-                Some(s) => [&s.iter, &s.aux, &s.history],
-                None => [p; 3],
-            };
-            let touch = contact.as_ref().unwrap_or(p);
-            let lists = self_list.as_ref().unwrap_or(p);
-            let pairs = self_pairs.as_ref().unwrap_or(p);
-            let set = |arena: &mut DescriptorArena, from: &Buffer, to: &Buffer| {
-                let bindings = [
-                    globals, &params, from, to, colliders, &surface, cell_rank, counts, starts, sorted,
-                    blocks, &guard, iter, aux, touch, lists, history, pairs, p, p,
-                ];
-                debug_assert_eq!(bindings.len() as u32, BINDINGS);
-                arena.allocate(ctx, layout, &bindings)
-            };
-            Ok([set(arena, &a, &b)?, set(arena, &b, &a)?])
+            Ok(())
         })();
-        let object = |sets| Self {
+        let mut object = Self {
             kind: o.kind,
             particles: n as u32,
             surface_len: o.surface_count() as u32,
@@ -310,18 +289,65 @@ impl GpuObject {
             contact,
             self_list,
             self_pairs,
-            sets,
+            sets: [BindingSet::default(); 2],
             lists: Default::default(),
             plan,
         };
+        let mut set = |direction| arena.allocate(ctx, layout, &object.bindings(shared, direction));
+        let sets = made.and_then(|()| Ok([set(0)?, set(1)?]));
         match sets {
-            Ok(sets) => Ok(object(sets)),
+            Ok(sets) => {
+                object.sets = sets;
+                Ok(object)
+            }
             Err(e) => {
                 // Descriptor sets belong to the arena; everything else is freed here.
-                object([BindingSet::default(); 2]).destroy(ctx);
+                object.destroy(ctx);
                 Err(e)
             }
         }
+    }
+
+    /// What its binding set of `direction` holds (0: A -> B), binding by binding
+    /// (glsl/include/bindings.glsl); `shared`: the scene's globals and colliders.
+    pub fn bindings<'a>(
+        &'a self,
+        shared: [&'a Buffer; 2],
+        direction: usize,
+    ) -> [&'a Buffer; BINDINGS as usize] {
+        let [globals, colliders] = shared;
+        let p = &self.placeholder;
+        let [cell_rank, counts, starts, sorted, blocks] = match &self.hash {
+            Some(h) => h.buffers(),
+            None => [p; 5],
+        };
+        let [iter, aux, history] = match &self.solver {
+            Some(s) => [&s.iter, &s.aux, &s.history],
+            None => [p; 3],
+        };
+        let [from, to] = [&self.state[direction], &self.state[1 - direction]];
+        [
+            globals,
+            &self.params,
+            from,
+            to,
+            colliders,
+            &self.surface,
+            cell_rank,
+            counts,
+            starts,
+            sorted,
+            blocks,
+            &self.guard,
+            iter,
+            aux,
+            self.contact.as_ref().unwrap_or(p),
+            self.self_list.as_ref().unwrap_or(p),
+            history,
+            self.self_pairs.as_ref().unwrap_or(p),
+            p,
+            p,
+        ]
     }
 
     /// Buffers that a stage may write through the hash and solver bindings besides its state

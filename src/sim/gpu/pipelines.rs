@@ -106,6 +106,12 @@ impl Stage {
         }
     }
 
+    /// Whether its shader runs a chunk of objects a dispatch (defines BATCHED,
+    /// glsl/include/batch.glsl; `batch.rs`).
+    pub(super) fn batched(self) -> bool {
+        matches!(self, Stage::Physics(..) | Stage::Predict(..) | Stage::Iterate(..) | Stage::Constraints(..))
+    }
+
     /// Constant `i` has id `i`: the step shaders take their workgroup shape (ids 0, 1), a
     /// variant flag (id 2; the prediction has none) and the features (id 3), the prediction also
     /// whether it keeps y (id 4) and starts adaptively (id 5); the fused kernel
@@ -206,6 +212,13 @@ impl Stage {
     }
 }
 
+/// The binding set layouts of the pipelines: per object, and the batched stages' (`batch.rs`).
+pub(super) type Layouts<'a> = [&'a BindingSetLayout; 2];
+
+/// The id of the batched shaders' `BATCH_CHUNK` constant (glsl/include/batch.glsl), past the
+/// step shaders' own.
+const BATCH_CHUNK_ID: u32 = 8;
+
 pub(super) struct Pipelines {
     map: HashMap<Stage, ComputePipeline>,
     /// Stages created only when first asked for (`ensure`), with their shaders' SPIR-V as
@@ -219,7 +232,8 @@ impl Pipelines {
     /// `later` are loaded now and created by `ensure`.
     pub(super) fn new(
         ctx: &GpuContext,
-        layout: &BindingSetLayout,
+        layouts: Layouts<'_>,
+        chunk: u32,
         shaders: &mut ShaderSet,
         stages: &[Stage],
         later: &[Stage],
@@ -237,7 +251,7 @@ impl Pipelines {
                     pipelines.later_words.insert(name, words.clone());
                     Ok(None)
                 } else {
-                    Self::create(ctx, layout, stage, &words).map(Some)
+                    Self::create(ctx, layouts, chunk, stage, &words).map(Some)
                 };
                 compiled.insert(name, words);
                 p
@@ -257,10 +271,10 @@ impl Pipelines {
     }
 
     /// Creates the pipelines `new` left for later.
-    pub(super) fn ensure(&mut self, ctx: &GpuContext, layout: &BindingSetLayout) -> Result<()> {
+    pub(super) fn ensure(&mut self, ctx: &GpuContext, layouts: Layouts<'_>, chunk: u32) -> Result<()> {
         while let Some(&stage) = self.later.first() {
             let words = &self.later_words[stage.shader()];
-            let p = Self::create(ctx, layout, stage, words)?;
+            let p = Self::create(ctx, layouts, chunk, stage, words)?;
             self.map.insert(stage, p);
             self.later.remove(0);
         }
@@ -268,14 +282,24 @@ impl Pipelines {
         Ok(())
     }
 
+    /// The pipeline of `stage` with the layout it takes (the batched stages `layouts[1]`, with
+    /// `chunk` objects a dispatch as constant 8, `BATCH_CHUNK`).
     fn create(
         ctx: &GpuContext,
-        layout: &BindingSetLayout,
+        layouts: Layouts<'_>,
+        chunk: u32,
         stage: Stage,
         words: &[u32],
     ) -> Result<ComputePipeline> {
         let name = stage.shader();
-        ComputePipeline::new(ctx, name, words, layout, &stage.specialization())
+        let mut constants: Vec<(u32, u32)> = (0..).zip(stage.specialization()).collect();
+        let layout = if stage.batched() {
+            constants.push((BATCH_CHUNK_ID, chunk));
+            layouts[1]
+        } else {
+            layouts[0]
+        };
+        ComputePipeline::with_constants(ctx, name, words, layout, &constants)
             .with_context(|| format!("creating pipeline {name} ({stage:?})"))
     }
 
@@ -284,7 +308,8 @@ impl Pipelines {
     pub(super) fn reload(
         &mut self,
         ctx: &GpuContext,
-        layout: &BindingSetLayout,
+        layouts: Layouts<'_>,
+        chunk: u32,
         shaders: &mut ShaderSet,
         changed: &[String],
     ) -> (Vec<String>, Vec<Retired>) {
@@ -302,7 +327,7 @@ impl Pipelines {
             }
             let mut fresh = Vec::new();
             for &stage in &stages {
-                match Self::create(ctx, layout, stage, &words) {
+                match Self::create(ctx, layouts, chunk, stage, &words) {
                     Ok(p) => fresh.push((stage, p)),
                     Err(e) => log::error!("shader {name}: {e:#}"),
                 }

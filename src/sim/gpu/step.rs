@@ -8,6 +8,7 @@
 //!   before by a barrier on the iterates and auxiliary data, and on what the last iteration
 //!   writes: the result into B and whether the contact lists hold (`hash.rs`).
 
+use super::batch::Pass;
 use super::object::GpuObject;
 use super::pipelines::Stage;
 use super::GpuSim;
@@ -18,29 +19,32 @@ impl GpuSim {
     /// `substep`: which of the frame's substeps (the pass that writes the new positions notes
     /// whether the contact lists hold for it, `hash.rs`).
     pub(super) fn record_physics(&self, rec: &mut Recorder<'_>, substep: u32) {
-        let stepped: Vec<&GpuObject> = self.objects.iter().filter(|o| !self.is_fused(o)).collect();
+        let stepped: Vec<(usize, &GpuObject)> =
+            self.objects.iter().enumerate().filter(|(_, o)| !self.is_fused(o)).collect();
+        let table = &self.batches;
         let method = self.model.integrator;
         let solver = match method.method().scheme {
             Scheme::Explicit { verlet } => {
-                for o in &stepped {
+                let mut physics = Pass::new();
+                for &(k, o) in &stepped {
                     let stage = Stage::Physics(o.kind, verlet, o.plan.features);
                     let push = [substep, self.lists_on(o) as u32];
-                    rec.dispatch_with(self.pipelines.get(stage), o.sets[0], o.step_groups, &push);
+                    physics.add(k, self.pipelines.get(stage), o.step_groups, &push);
                 }
+                physics.record(rec, table, 0);
                 return;
             }
             Scheme::Iterative(solver) => solver,
         };
-        for o in &stepped {
-            rec.dispatch(
-                self.pipelines.get(Stage::Predict(o.kind, method, o.plan.features)),
-                o.sets[0],
-                o.step_groups,
-            );
+        let mut predict = Pass::new();
+        for &(k, o) in &stepped {
+            let stage = Stage::Predict(o.kind, method, o.plan.features);
+            predict.add(k, self.pipelines.get(stage), o.step_groups, &[]);
         }
+        predict.record(rec, table, 0);
         let between_passes: Vec<BufferBarrier<'_>> = stepped
             .iter()
-            .flat_map(|o| {
+            .flat_map(|&(_, o)| {
                 let rw = |b| BufferBarrier::new(b, Access::ComputeReadWrite, Access::ComputeReadWrite);
                 // The last iteration's passes count into the hash (lists off), one colour each.
                 let hash = o.hash.iter().flat_map(|h| [&h.counts, &h.cell_rank]).map(rw);
@@ -51,20 +55,22 @@ impl GpuSim {
         let classes = 2 * SPRING_CLASSES.len() as u32;
         let passes = match solver.sweep {
             Sweep::Jacobi | Sweep::NewtonCg => 1,
-            Sweep::VertexColours => stepped.iter().map(|o| o.colours).max().unwrap_or(1),
+            Sweep::VertexColours => stepped.iter().map(|(_, o)| o.colours).max().unwrap_or(1),
             Sweep::SpringClasses => classes,
         };
         // One pass: each object's workgroups and pass word (SKIP: it takes no part).
         let iterate = |rec: &mut Recorder<'_>, k: u32, each: &dyn Fn(&GpuObject) -> ([u32; 3], u32)| {
             rec.barrier(&between_passes);
-            for o in &stepped {
+            let mut pass = Pass::new();
+            for &(i, o) in &stepped {
                 let (groups, word) = each(o);
                 if word == SKIP {
                     continue;
                 }
                 let pipeline = self.pipelines.get(Stage::Iterate(o.kind, method));
-                rec.dispatch_with(pipeline, o.sets[0], groups, &[k, word, substep, self.lists_on(o) as u32]);
+                pass.add(i, pipeline, groups, &[k, word, substep, self.lists_on(o) as u32]);
             }
+            pass.record(rec, table, 0);
         };
         if solver.sweep == Sweep::NewtonCg {
             // Objects of many workgroups have their partial sums totalled by a pass of one.
@@ -73,7 +79,7 @@ impl GpuSim {
                 iterate(rec, k, &|o| (o.step_groups, if totals(o) { word | CG_TOTALS } else { word }));
                 // A Newton step's last update is followed by a linearisation, which reads none.
                 let read_next = word & 3 != CG_UPDATE || word & LAST_CG == 0;
-                if read_next && stepped.iter().any(|&o| totals(o)) {
+                if read_next && stepped.iter().any(|&(_, o)| totals(o)) {
                     let total = (word & !3) | CG_TOTAL | CG_TOTALS;
                     iterate(rec, k, &|o| ([1, 1, 1], if totals(o) { total } else { SKIP }));
                 }
