@@ -318,6 +318,7 @@ fn record_frames_writes_a_png_per_frame() {
 /// `msdsim-rescued-*.toml`), says so, and ends by the signal (exit 130 from the shell).
 #[test]
 fn ctrl_c_stops_the_app_cleanly() {
+    common::default_sigint();
     let dir = tempfile::tempdir().unwrap();
     let preset = dir.path().join("ctrl-c-rope.toml");
     std::fs::copy(Path::new(env!("CARGO_MANIFEST_DIR")).join("presets/rope.toml"), &preset).unwrap();

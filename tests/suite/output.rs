@@ -120,6 +120,7 @@ fn out_to_a_fifo_writes_through() {
 /// Ctrl-C during the run leaves the target as it was and no temporary file.
 #[test]
 fn ctrl_c_leaves_no_partial_file() {
+    common::default_sigint();
     let dir = tempfile::tempdir().unwrap();
     let p = preset(dir.path());
     let target = dir.path().join("state.json");
@@ -144,6 +145,7 @@ fn ctrl_c_leaves_no_partial_file() {
 /// an OBJ frame with SIGINT (issue 30, item 4: each left a `.partial` file of 8-121 MB).
 #[test]
 fn a_signal_during_the_final_write_leaves_no_partial_file() {
+    common::default_sigint();
     use std::os::unix::process::ExitStatusExt as _;
     let cases: [(&str, &str, &str); 4] = [
         ("INT", "--out", "state.json"),
@@ -197,6 +199,7 @@ fn a_signal_during_the_final_write_leaves_no_partial_file() {
 /// far, `--out` is left as it was, and the process still ends by the signal.
 #[test]
 fn a_signal_mid_run_keeps_the_recording_so_far() {
+    common::default_sigint();
     use std::os::unix::process::ExitStatusExt as _;
     for (signal, name) in [("INT", "rec.usda"), ("TERM", "rec.glb")] {
         let dir = tempfile::tempdir().unwrap();
@@ -850,6 +853,7 @@ fn a_point_cache_recording_reads_back_as_the_simulation() {
 /// the OBJ sequence holds that many whole files.
 #[test]
 fn ctrl_c_leaves_point_caches_of_whole_frames() {
+    common::default_sigint();
     use std::os::unix::process::ExitStatusExt as _;
     for name in ["long.pc2", "long.obj"] {
         let dir = tempfile::tempdir().unwrap();

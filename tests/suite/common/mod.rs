@@ -15,6 +15,15 @@ use msdsim::vk::{ContextOptions, GpuContext};
 /// A context with validation and synchronization validation. Panics (never skips) when no
 /// Vulkan device or validation layer is available. A crash by a signal from here on prints
 /// its test thread and stack (`crash`).
+/// Gives SIGINT its default action back in this test's process, so that the children it
+/// stops with SIGINT inherit that: a shell starts a background job (`scripts/test.sh &`) with
+/// SIGINT ignored, a child keeps an ignored signal ignored (msdsim leaves it so, as programs
+/// should), and the test then waited for a stop that never came.
+pub fn default_sigint() {
+    // SAFETY: sets a signal's disposition to its default; no handler runs.
+    unsafe { libc::signal(libc::SIGINT, libc::SIG_DFL) };
+}
+
 pub fn gpu() -> GpuContext {
     crash::install();
     let options = ContextOptions {
