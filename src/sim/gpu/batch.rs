@@ -94,7 +94,8 @@ pub(super) struct Pass<'a> {
 struct Item<'a> {
     object: usize,
     pipeline: &'a ComputePipeline,
-    groups: [u32; 3],
+    /// Workgroups along x and y (z is the object).
+    groups: [u32; 2],
     push: [u32; 4],
 }
 
@@ -115,7 +116,7 @@ impl<'a> Pass<'a> {
         debug_assert_eq!(groups[2], 1, "workgroup z is the object");
         let mut words = [0; 4];
         words[..push.len()].copy_from_slice(push);
-        self.items.push(Item { object, pipeline, groups, push: words });
+        self.items.push(Item { object, pipeline, groups: [groups[0], groups[1]], push: words });
     }
 
     /// Records the pass in `direction` (0: A -> B): one dispatch per chunk, pipeline and push

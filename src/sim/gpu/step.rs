@@ -21,7 +21,7 @@ impl GpuSim {
     pub(super) fn record_physics(&self, rec: &mut Recorder<'_>, substep: u32) {
         let stepped: Vec<(usize, &GpuObject)> =
             self.objects.iter().enumerate().filter(|(_, o)| !self.is_fused(o)).collect();
-        let table = &self.batches;
+        let batches = &self.batches;
         let method = self.model.integrator;
         let solver = match method.method().scheme {
             Scheme::Explicit { verlet } => {
@@ -31,7 +31,7 @@ impl GpuSim {
                     let push = [substep, self.lists_on(o) as u32];
                     physics.add(k, self.pipelines.get(stage), o.step_groups, &push);
                 }
-                physics.record(rec, table, 0);
+                physics.record(rec, batches, 0);
                 return;
             }
             Scheme::Iterative(solver) => solver,
@@ -41,7 +41,7 @@ impl GpuSim {
             let stage = Stage::Predict(o.kind, method, o.plan.features);
             predict.add(k, self.pipelines.get(stage), o.step_groups, &[]);
         }
-        predict.record(rec, table, 0);
+        predict.record(rec, batches, 0);
         let between_passes: Vec<BufferBarrier<'_>> = stepped
             .iter()
             .flat_map(|&(_, o)| {
@@ -70,7 +70,7 @@ impl GpuSim {
                 let pipeline = self.pipelines.get(Stage::Iterate(o.kind, method));
                 pass.add(i, pipeline, groups, &[k, word, substep, self.lists_on(o) as u32]);
             }
-            pass.record(rec, table, 0);
+            pass.record(rec, batches, 0);
         };
         if solver.sweep == Sweep::NewtonCg {
             // Objects of many workgroups have their partial sums totalled by a pass of one.

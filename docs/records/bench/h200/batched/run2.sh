@@ -1,6 +1,7 @@
 #!/bin/bash
-# run.sh's cases again after the batched shaders took back their state buffers' qualifiers
-# (readonly input, writeonly output) and the fused kernel its every constant.
+# A chunk of objects a dispatch in the per-stage passes (msdsim_new, 5d1c260) against one
+# dispatch an object (msdsim_base, main 3bc50b6), A/B in one lease on the H200, two rounds; then
+# the same frames from both builds, and the contact lists' skin (an experiment build).
 for f in .gl/*.deb; do dpkg -x $f / ; done; ldconfig
 export VK_DRIVER_FILES=/usr/local/nvidia/share/vulkan/icd.d/nvidia_icd.json
 full=""; for k in 0 1 2 3 4 5 6 7; do
