@@ -41,6 +41,7 @@
 // whether it touches anything (w) into its object's contact[]; the constraint stage adds it
 // to its own correction. touches[] and moves[] are cleared by contact_begin.comp. The CPU twin
 // is sim::cpu::inter_object.
+#define BATCHED
 #include "layout.glsl"
 #include "contact_common.glsl"
 #include "triangle.glsl"
@@ -386,6 +387,12 @@ void triangles_around(uint k, vec4 ek, uint me, uint j, vec4 ej, float dj, uint 
     }
 }
 
+// The scene's particle count (`star_box`'s offsets), set when main starts.
+uint scene = 0u;
+// How much more than the reach plus the skin the boxes' test allows, relative: far above a
+// float's rounding of the distances the pieces' tests compute.
+const float BOX_SLACK = 1e-3;
+
 // Hash slots of other objects' particles near enough to lead to a contact, gathered by the
 // search and tested after it (`test_candidates`): the threads of a subgroup then test their
 // candidates side by side instead of one thread after another as each finds one.
@@ -397,9 +404,15 @@ const uint CANDIDATE_MAX = 32u;
 // apart, the other nearest end of a pair of edges). The caller keeps it (not passed in:
 // GLSL copies an inout array in and out of every call, which cost the cloths' search a
 // quarter on the H100).
-bool visit(uint at, vec4 ek, uint me) {
+// A cloth's particle also skips a candidate whose star box (`star_box`) is farther than the
+// reach plus the skin from it along some axis, or from its own star box where their edges
+// meet: no piece it would test could be listed. The test is exact, so it finds what the sphere
+// alone finds, but in a pile the sphere holds most of the pile and the boxes a few layers
+// (docs/design/contact.md).
+bool visit(uint at, vec4 ek, uint me, vec3 lo, vec3 hi) {
     vec4 e = sorted[at];
-    uint other = owner(floatBitsToUint(e.w) & ~PINNED_BIT);
+    uint j = floatBitsToUint(e.w) & ~PINNED_BIT;
+    uint other = owner(j);
     if (other == me) return false;
     vec3 to_j = e.xyz - ek.xyz;
     float dj = dot(to_j, to_j);
@@ -409,8 +422,17 @@ bool visit(uint at, vec4 ek, uint me) {
         // (a pair of edges is found through their lower ends: each within a stretched length)
         // (between cloths, through their nearest ends: each within half a stretched length)
         float r = reach + (rope ? 2.0 * (corner_reach(me) + corner_reach(other)) : corner_reach(other));
-        if (cloth_edges(me, other) && me < other) r += corner_reach(me);
-        return dj < r * r;
+        bool edges = cloth_edges(me, other) && me < other;
+        if (edges) r += corner_reach(me);
+        if (!(dj < r * r)) return false;
+        if (rope) return true;
+        vec3 lo_j, hi_j;
+        star_box(j, scene, lo_j, hi_j);
+        // (a rounding's worth more than the reach: the narrow tests round too)
+        float slack = reach * (1.0 + BOX_SLACK);
+        vec3 a = edges ? lo : ek.xyz;
+        vec3 b = edges ? hi : ek.xyz;
+        return all(lessThanEqual(lo_j - slack, b)) && all(greaterThanEqual(hi_j + slack, a));
     }
     // (between two ropes, found from the one of lower index)
     float r = reach + 2.0 * (corner_reach(me) + corner_reach(other));
@@ -487,6 +509,8 @@ void replay(uint note, vec4 ek, uint k, uint me, bool sum, inout uint n) {
 // split among its lanes.
 void search(vec4 ek, uint k, uint me, uint lane, uint lanes, bool sum, inout uint n) {
     ivec3 base = ivec3(floor(ek.xyz * hash_cell_inv() - 0.5));
+    vec3 lo, hi;
+    star_box(k, scene, lo, hi);
     uint candidates[CANDIDATE_MAX];
     uint found = 0u;
     uint seen[8];
@@ -498,7 +522,7 @@ void search(vec4 ek, uint k, uint me, uint lane, uint lanes, bool sum, inout uin
         if (again) continue;
         uint end = BUCKET_START(h + 1u, table.hash_mask);
         for (uint at = BUCKET_START(h, table.hash_mask) + lane; at < end; at += lanes) {
-            if (visit(at, ek, me)) candidates[found++] = at;
+            if (visit(at, ek, me, lo, hi)) candidates[found++] = at;
             if (found == CANDIDATE_MAX) {
                 test_candidates(ek, k, me, sum, n, candidates, found);
                 found = 0u;
@@ -511,10 +535,12 @@ void search(vec4 ek, uint k, uint me, uint lane, uint lanes, bool sum, inout uin
 void main() {
     uint i = gl_GlobalInvocationID.x;
     uint pass = pass_of();
+    // (passes 0 and 1 run over the scene as layer 0)
+    if (!batch_begin(which.batch_mask)) return;
     if (pass == 2u) {
         // (the next substep's control block starts at zero)
-        if (which.object == 0u && i < CONTROL_WORDS) control[CONTROL_WORDS - control_block() + i] = 0u;
-        if (which.object == 0u && i == 0u && lists_on()) control[CONTROL_COUNTERS] += 1u;
+        if (this_object() == 0u && i < CONTROL_WORDS) control[CONTROL_WORDS - control_block() + i] = 0u;
+        if (this_object() == 0u && i == 0u && lists_on()) control[CONTROL_COUNTERS] += 1u;
         if (i >= particle_count()) return;
         uint k = first_index() + i;
         vec3 sum = vec3(moves[4u * k], moves[4u * k + 1u], moves[4u * k + 2u]) / move_fix();
@@ -522,6 +548,7 @@ void main() {
         return;
     }
     bool sum = pass == 1u;
+    scene = scene_particles();
     // Work item i: lane `lane` of particle k of object me (see `lanes_of`).
     i += which.work_first;
     uint me = work_owner(i);

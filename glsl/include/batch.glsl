@@ -9,8 +9,7 @@
 #ifndef MSD_BATCH_GLSL
 #define MSD_BATCH_GLSL
 
-// Objects a batched dispatch spans at most (sim::gpu::batch::chunk_size).
-layout(constant_id = 8) const uint BATCH_CHUNK = 1u;
+#include "batch_chunk.glsl"
 
 layout(std430, set = 0, binding = 1) restrict readonly buffer ObjectBuf { ObjectParams v; } b_obj[BATCH_CHUNK];
 // (the state's qualifiers as bindings.glsl gives the single bindings)
@@ -39,11 +38,6 @@ layout(std430, set = 0, binding = 15) buffer SelfListBuf { uint v[]; } b_self_li
 layout(std430, set = 0, binding = 16) buffer SolverHistory { vec4 v[]; } b_history[BATCH_CHUNK];
 layout(std430, set = 0, binding = 17) coherent buffer SelfPairsBuf { int v[]; } b_self_pairs[BATCH_CHUNK];
 
-// The push constants after a shader's own four words: which of the chunk's objects take
-// part in the pass (bit z).
-#define BATCH_PUSH layout(offset = 16) uvec2 batch_mask;
-
-#define MSD_Z gl_WorkGroupID.z
 #define obj b_obj[MSD_Z].v
 #define p_in b_in[MSD_Z].v
 #define p_out b_out[MSD_Z].v
@@ -62,12 +56,5 @@ layout(std430, set = 0, binding = 17) coherent buffer SelfPairsBuf { int v[]; } 
 #define self_list b_self_list[MSD_Z].v
 #define history b_history[MSD_Z].v
 #define self_pairs b_self_pairs[MSD_Z].v
-
-// Whether this workgroup's object takes part in the pass (else the whole workgroup returns).
-bool batch_begin(uvec2 mask) {
-    uint z = gl_WorkGroupID.z;
-    uint bits = z < 32u ? mask.x : mask.y;
-    return ((bits >> (z & 31u)) & 1u) != 0u;
-}
 
 #endif

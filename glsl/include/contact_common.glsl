@@ -14,15 +14,33 @@
 #ifndef MSD_CONTACT_COMMON_GLSL
 #define MSD_CONTACT_COMMON_GLSL
 
+#ifdef BATCHED
+// contact_begin.comp and contact.comp run a chunk of objects a dispatch (batch_chunk.glsl):
+// the object's own bindings (1, 2, 14, 15) are arrays, one element an object of the chunk;
+// the scene's are the same buffer in every element, which they read as element 0.
+#include "batch_chunk.glsl"
+layout(std430, set = 0, binding = 1) restrict readonly buffer ObjectBuf { ObjectParams v; } b_obj[BATCH_CHUNK];
+layout(std430, set = 0, binding = 2) readonly buffer StateIn { Particle v[]; } b_in[BATCH_CHUNK];
+layout(std430, set = 0, binding = 14) buffer ContactBuf { vec4 v[]; } b_contact[BATCH_CHUNK];
+layout(std430, set = 0, binding = 15) readonly buffer StartIn { Particle v[]; } b_start[BATCH_CHUNK];
+#define obj b_obj[MSD_Z].v
+#define p_in b_in[MSD_Z].v
+#define contact b_contact[MSD_Z].v
+#define p_start b_start[MSD_Z].v
+#else
 layout(std430, set = 0, binding = 1) restrict readonly buffer ObjectBuf { ObjectParams obj; };
 layout(std430, set = 0, binding = 2) readonly buffer StateIn { Particle p_in[]; };
+layout(std430, set = 0, binding = 14) buffer ContactBuf { vec4 contact[]; };
+layout(std430, set = 0, binding = 15) readonly buffer StartIn { Particle p_start[]; };  // this object's state at the substep's start
+#endif
 layout(std430, set = 0, binding = 6) buffer SceneCellRank { uvec2 cell_rank[]; };  // per scene particle
 layout(std430, set = 0, binding = 7) buffer SceneCounts { uint counts[]; };
 layout(std430, set = 0, binding = 8) buffer SceneStarts { uint starts[]; };
 layout(std430, set = 0, binding = 9) buffer SceneSorted { vec4 sorted[]; };         // xyz, w: scene index | pinned << 31
-layout(std430, set = 0, binding = 16) buffer SceneParticles { vec4 particles[]; };  // the same, by scene index
+// The same by scene index, then each particle's star box: its lower corner (from the scene's
+// particle count on), its upper corner (from twice it), xyz (`star_box`).
+layout(std430, set = 0, binding = 16) buffer SceneParticles { vec4 particles[]; };
 layout(std430, set = 0, binding = 11) buffer SceneBegun { vec4 begun[]; };          // where each began the substep
-layout(std430, set = 0, binding = 15) readonly buffer StartIn { Particle p_start[]; };  // this object's state at the substep's start
 layout(std430, set = 0, binding = 10) buffer SceneBlocks { uint block_sums[]; };
 layout(std430, set = 0, binding = 12) restrict readonly buffer SceneHash { ObjectParams table; };  // hash_mask, cell_inv
 // Per object three rows (OBJECT_ROWS): [first scene index, particle count (float bits),
@@ -32,7 +50,6 @@ layout(std430, set = 0, binding = 12) restrict readonly buffer SceneHash { Objec
 // [friction, first work item, lanes (float bits; 0 when its particles look for nothing), 0]
 // (contact.comp).
 layout(std430, set = 0, binding = 13) restrict readonly buffer Objects { vec4 objects[]; };
-layout(std430, set = 0, binding = 14) buffer ContactBuf { vec4 contact[]; };
 // Per scene particle: how many particles of other objects it touches (contact.comp's first
 // pass), and its list (PAIR_MAX a particle, contact.comp).
 layout(std430, set = 0, binding = 3) buffer SceneTouches { uint touches[]; };
@@ -59,24 +76,39 @@ const uint CONTROL_SCAN = 4u;
 const uint CONTROL_COUNTERS = 2u * CONTROL_WORDS;
 
 layout(push_constant) uniform Which {
-    uint object;  // this object's index in `objects`
+    uint object;  // this object's index in `objects` (batched: the chunk's first object's)
     // The pass (bits 0 to 3; contact.comp: 0 counts each particle's contacts, 1 sums the
     // moves, 2 takes them; contact_hash.comp: 0 counts, 1 scatters), the substep's parity
     // (bit 4: its control block) and LISTS_OFF (bit 5).
     uint pass;
     uint work_first;  // contact.comp's passes 0 and 1: the work items of this dispatch
     uint work_end;
+#ifdef BATCHED
+    BATCH_PUSH
+#endif
 } which;
 
 const uint PINNED_BIT = 0x80000000u;
 
 const uint OBJECT_ROWS = 3u;
 uint first_of(uint q) { return floatBitsToUint(objects[OBJECT_ROWS * q].x); }
-uint first_index() { return first_of(which.object); }
+#ifdef BATCHED
+uint this_object() { return which.object + MSD_Z; }
+#else
+uint this_object() { return which.object; }
+#endif
+uint first_index() { return first_of(this_object()); }
 uint particle_count() { return obj.dims.x * obj.dims.y; }
 uint scene_particles() {
     uint last = uint(objects.length()) / OBJECT_ROWS - 1u;
     return first_of(last) + floatBitsToUint(objects[OBJECT_ROWS * last].y);
+}
+// Scene particle k's star box, of it and, on a cloth of triangles, its six ring neighbours:
+// every triangle and edge around it lies inside, so a piece around it is farther than d from
+// anything farther than d from the box along some axis (contact.comp's `visit`).
+void star_box(uint k, uint scene, out vec3 lo, out vec3 hi) {
+    lo = particles[scene + k].xyz;
+    hi = particles[2u * scene + k].xyz;
 }
 uint pass_of() { return which.pass & 15u; }
 uint control_block() { return CONTROL_WORDS * ((which.pass >> 4) & 1u); }

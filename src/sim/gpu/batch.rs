@@ -66,19 +66,28 @@ impl Batches {
             let mut sets = [BindingSet::default(); 2];
             for (direction, set) in sets.iter_mut().enumerate() {
                 let each: Vec<_> = members.iter().map(|o| o.bindings(shared, direction)).collect();
-                let arrays: Vec<Vec<&Buffer>> = (0..BINDINGS as usize)
-                    .map(|b| match SHARED_BINDINGS.contains(&b) {
-                        true => vec![each[0][b]],
-                        false => {
-                            (0..self.chunk as usize).map(|k| each.get(k).unwrap_or(&each[0])[b]).collect()
-                        }
-                    })
-                    .collect();
-                *set = arena.allocate_arrays(ctx, &self.layout, &arrays)?;
+                *set = self.chunk_set(ctx, arena, &each)?;
             }
             self.sets.push(sets);
         }
         Ok(())
+    }
+
+    /// A chunk's set of the batched layout: element k of a per-object binding is `each[k]`'s
+    /// (past the last, the first's); a shared binding is the first's.
+    pub(super) fn chunk_set(
+        &self,
+        ctx: &GpuContext,
+        arena: &mut DescriptorArena,
+        each: &[[&Buffer; BINDINGS as usize]],
+    ) -> Result<BindingSet, VkError> {
+        let arrays: Vec<Vec<&Buffer>> = (0..BINDINGS as usize)
+            .map(|b| match SHARED_BINDINGS.contains(&b) {
+                true => vec![each[0][b]],
+                false => (0..self.chunk as usize).map(|k| each.get(k).unwrap_or(&each[0])[b]).collect(),
+            })
+            .collect();
+        arena.allocate_arrays(ctx, &self.layout, &arrays)
     }
 
     pub(super) fn destroy(self, ctx: &GpuContext) {
@@ -123,7 +132,12 @@ impl<'a> Pass<'a> {
     /// words, as many workgroups as its largest object and a layer for each of the chunk's
     /// objects up to the last taking part.
     pub(super) fn record(self, rec: &mut Recorder<'_>, batches: &Batches, direction: usize) {
-        let size = batches.chunk as usize;
+        self.record_in(rec, batches.chunk, &|chunk| batches.sets[chunk][direction]);
+    }
+
+    /// Records the pass with chunks of `chunk` objects, chunk c's dispatches in set `set(c)`.
+    pub(super) fn record_in(self, rec: &mut Recorder<'_>, chunk: u32, set: &dyn Fn(usize) -> BindingSet) {
+        let size = chunk as usize;
         let mut done = vec![false; self.items.len()];
         for (i, first) in self.items.iter().enumerate() {
             if done[i] {
@@ -144,8 +158,7 @@ impl<'a> Pass<'a> {
             let layers = 64 - mask.leading_zeros();
             let p = first.push;
             let push = [p[0], p[1], p[2], p[3], mask as u32, (mask >> 32) as u32];
-            let set = batches.sets[chunk][direction];
-            rec.dispatch_with(first.pipeline, set, [groups[0], groups[1], layers], &push);
+            rec.dispatch_with(first.pipeline, set(chunk), [groups[0], groups[1], layers], &push);
         }
     }
 }

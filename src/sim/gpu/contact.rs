@@ -8,6 +8,7 @@
 //! `glsl/include/contact_common.glsl` has the bindings and the lists' rule; the CPU twin is
 //! `sim::cpu::inter_object`.
 
+use super::batch::{Batches, Pass};
 use super::hash::ListPolicy;
 use super::object::{GpuObject, SCAN_BLOCK};
 use super::pipelines::{Pipelines, Stage};
@@ -36,7 +37,8 @@ pub(super) struct SceneContact {
     pub counts: Buffer,
     starts: Buffer,
     sorted: Buffer,
-    /// The same entries by scene index (binding 16).
+    /// The same entries by scene index, then each particle's star box's lower and upper
+    /// corners (binding 16; `star_box` in contact_common.glsl).
     particles: Buffer,
     /// Where each scene particle began the substep (binding 11; friction).
     begun: Buffer,
@@ -61,10 +63,14 @@ pub(super) struct SceneContact {
     cloth_edges: bool,
     /// Entries of a particle's list (`pair_max`).
     pair_max: u32,
-    /// The scan's set, and each object's set (the object's own buffers at 1, 2, 14 and its
-    /// state at the substep's start at 15).
+    /// The scan's set; the first object's set, which the hash's passes use; each chunk's
+    /// set of the batched layout (`batch.rs`), for contact_begin.comp and contact.comp: an
+    /// object's own buffers at 1, 2, 14 and its state at the substep's start at 15.
     scan_set: BindingSet,
-    sets: Vec<BindingSet>,
+    hash_set: BindingSet,
+    chunk_sets: Vec<BindingSet>,
+    /// Objects a chunk set holds.
+    chunk: u32,
 }
 
 /// Entries of a particle's list (`PAIR_MAX` in contact.comp, `pair_max`). A longer list
@@ -124,12 +130,13 @@ pub(super) fn check_scene(model: &SimModel, max_buffer: u64) -> Result<(), UserE
     Ok(())
 }
 
-/// Binding sets `SceneContact::new` allocates for `objects` objects (one each and the scan's).
-pub(super) fn sets_needed(model: &SimModel) -> u32 {
+/// Binding sets `SceneContact::new` allocates: of the step layout (the hash's and the
+/// scan's), and of the batched layout (one a chunk of `chunk` objects).
+pub(super) fn sets_needed(model: &SimModel, chunk: u32) -> (u32, u32) {
     if model.inter_object_contact() {
-        model.objects.len() as u32 + 1
+        (2, (model.objects.len() as u32).div_ceil(chunk))
     } else {
-        0
+        (0, 0)
     }
 }
 
@@ -221,6 +228,7 @@ impl SceneContact {
     pub fn new(
         ctx: &GpuContext,
         layout: &BindingSetLayout,
+        batches: &Batches,
         arena: &mut DescriptorArena,
         shared: [&Buffer; 2],
         model: &SimModel,
@@ -248,7 +256,7 @@ impl SceneContact {
             ("counts", 4 * (buckets + 1), storage | BufferUsage::TRANSFER_DST, gpu_only),
             ("starts", 4 * (buckets + 1), storage, gpu_only),
             ("sorted", 16 * total, storage, gpu_only),
-            ("particles", 16 * total, storage, gpu_only),
+            ("particles", 3 * 16 * total, storage, gpu_only),
             ("begun", 16 * total, storage, gpu_only),
             ("block_sums", 4 * buckets.div_ceil(SCAN_BLOCK), storage, gpu_only),
             ("touches", 4 * total, storage, gpu_only),
@@ -280,14 +288,16 @@ impl SceneContact {
             cloth_edges: model.has_cloth_edges_between(),
             pair_max: pair_max(model) as u32,
             scan_set: BindingSet::default(),
-            sets: Vec::new(),
+            hash_set: BindingSet::default(),
+            chunk_sets: Vec::new(),
+            chunk: batches.chunk,
         };
         let result = (|| -> Result<(), VkError> {
             contact.table.write(0, &[table_params])?;
             contact.objects.write(0, &rows)?;
             let [globals, colliders] = shared;
             let c = &contact;
-            let mut sets = Vec::new();
+            let mut each = Vec::new();
             for o in gpu {
                 let p = &o.placeholder;
                 let touch = o.contact.as_ref().unwrap_or(p);
@@ -314,8 +324,12 @@ impl SceneContact {
                     &c.control,
                 ];
                 debug_assert_eq!(bindings.len() as u32, BINDINGS);
-                sets.push(arena.allocate(ctx, layout, &bindings)?);
+                each.push(bindings);
             }
+            let hash_set = arena.allocate(ctx, layout, &each[0])?;
+            let chunk_sets = (each.chunks(batches.chunk as usize))
+                .map(|members| batches.chunk_set(ctx, arena, members))
+                .collect::<Result<Vec<_>, _>>()?;
             let p = &gpu[0].placeholder;
             let bindings = [
                 globals,
@@ -341,7 +355,8 @@ impl SceneContact {
             ];
             debug_assert_eq!(bindings.len() as u32, BINDINGS);
             let scan_set = arena.allocate(ctx, layout, &bindings)?;
-            contact.sets = sets;
+            contact.hash_set = hash_set;
+            contact.chunk_sets = chunk_sets;
             contact.scan_set = scan_set;
             Ok(())
         })();
@@ -459,21 +474,30 @@ impl SceneContact {
         let b = BufferBarrier::new;
         // (the push constants' pass word: the substep's parity, and LISTS_OFF)
         let parity = (substep & 1) << 4 | if self.policy.on() { 0 } else { LISTS_OFF };
+        // A chunk of objects a dispatch, each its particles (the push constants' first word is
+        // the chunk's first object).
         let each_object = |rec: &mut Recorder<'_>, stage: Stage, pass: u32| {
-            for (k, (o, &set)) in objects.iter().zip(&self.sets).enumerate() {
-                let groups = [o.particles.div_ceil(256), 1, 1];
-                rec.dispatch_with(pipelines.get(stage), set, groups, &[k as u32, pass | parity, 0, 0]);
+            let mut batch = Pass::new();
+            for (k, o) in objects.iter().enumerate() {
+                let first = k as u32 / self.chunk * self.chunk;
+                batch.add(
+                    k,
+                    pipelines.get(stage),
+                    [o.particles.div_ceil(256), 1, 1],
+                    &[first, pass | parity],
+                );
             }
+            batch.record_in(rec, self.chunk, &|c| self.chunk_sets[c]);
         };
-        // Over the scene's work items, the cloths' then the ropes' (any object's set holds the
-        // scene's buffers).
+        // Over the scene's work items, the cloths' then the ropes', as the first chunk's layer 0
+        // (any set holds the scene's buffers).
         let scene = |rec: &mut Recorder<'_>, pass: u32| {
             for (segments, range) in [(false, &self.work[0..2]), (true, &self.work[1..3])] {
                 let items = range[1] - range[0];
                 if items > 0 {
                     let groups = [items.div_ceil(256), 1, 1];
-                    let push = [0, pass | parity, range[0], range[1]];
-                    rec.dispatch_with(pipelines.get(self.stage(segments)), self.sets[0], groups, &push);
+                    let push = [0, pass | parity, range[0], range[1], 1, 0];
+                    rec.dispatch_with(pipelines.get(self.stage(segments)), self.chunk_sets[0], groups, &push);
                 }
             }
         };
@@ -510,7 +534,7 @@ impl SceneContact {
             b(&self.built, Access::ComputeRead, Access::ComputeWrite),
             b(&self.sorted, Access::ComputeRead, Access::ComputeWrite),
         ]);
-        indirect(rec, Stage::ContactHash, self.sets[0], CONTROL_HASH, 0);
+        indirect(rec, Stage::ContactHash, self.hash_set, CONTROL_HASH, 0);
         // The scan reads the counts and rewrites the starts the last search read.
         rec.barrier(&[
             b(&self.counts, Access::ComputeWrite, Access::ComputeReadWrite),
@@ -526,7 +550,7 @@ impl SceneContact {
             b(&self.built, Access::ComputeWrite, Access::ComputeWrite),
             b(&self.counts, Access::ComputeWrite, Access::ComputeReadWrite),
         ]);
-        indirect(rec, Stage::ContactHash, self.sets[0], CONTROL_HASH, 1);
+        indirect(rec, Stage::ContactHash, self.hash_set, CONTROL_HASH, 1);
         rec.barrier(&[
             b(&self.sorted, Access::ComputeWrite, Access::ComputeRead),
             b(&self.begun, Access::ComputeWrite, Access::ComputeRead),

@@ -181,7 +181,8 @@ impl Parts {
         self.pipelines =
             Some(Pipelines::new(ctx, [&*layout, &batches.layout], batches.chunk, shaders, &now, &later)?);
         let n = model.objects.len() as u32;
-        let (sets, chunk_sets) = (2 * n + contact::sets_needed(model), 2 * batches.chunks(n as usize));
+        let (contact_sets, contact_chunk_sets) = contact::sets_needed(model, batches.chunk);
+        let (sets, chunk_sets) = (2 * n + contact_sets, 2 * batches.chunks(n as usize) + contact_chunk_sets);
         let descriptors = sets * BINDINGS + chunk_sets * batches.layout.descriptors();
         self.arena = Some(DescriptorArena::for_descriptors(ctx, sets + chunk_sets, descriptors)?);
         let globals_size = std::mem::size_of::<Globals>() as u64;
@@ -341,7 +342,15 @@ impl GpuSim {
         }
         let shared = [&self.globals, &self.colliders];
         self.batches.allocate(ctx, &mut self.arena, shared, &self.objects)?;
-        self.contact = SceneContact::new(ctx, &self.layout, &mut self.arena, shared, model, &self.objects)?;
+        self.contact = SceneContact::new(
+            ctx,
+            &self.layout,
+            &self.batches,
+            &mut self.arena,
+            shared,
+            model,
+            &self.objects,
+        )?;
         let initial: Vec<Vec<Particle>> = model.objects.iter().map(particles).collect();
         self.upload_states(ctx, &initial)
     }

@@ -109,7 +109,15 @@ impl Stage {
     /// Whether its shader runs a chunk of objects a dispatch (defines BATCHED,
     /// glsl/include/batch.glsl; `batch.rs`).
     pub(super) fn batched(self) -> bool {
-        matches!(self, Stage::Physics(..) | Stage::Predict(..) | Stage::Iterate(..) | Stage::Constraints(..))
+        matches!(
+            self,
+            Stage::Physics(..)
+                | Stage::Predict(..)
+                | Stage::Iterate(..)
+                | Stage::Constraints(..)
+                | Stage::ContactBegin
+                | Stage::Contact { .. }
+        )
     }
 
     /// Constant `i` has id `i`: the step shaders take their workgroup shape (ids 0, 1), a
