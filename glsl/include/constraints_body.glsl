@@ -1,9 +1,9 @@
 // The constraint stage for one particle, Jacobi: every correction is computed from the physics
 // output: the stretch limit on structural and shear springs, self-collision (spatial hash or
 // brute force), contact with other objects, then the colliders with friction, and the
-// velocity update. A rope's self-collision corrections are averaged (Jacobi averaging):
-// summing them, as sequential Gauss-Seidel would, overshoots when several act at once and
-// diverges; the stretch limit splits the masses instead, which keeps momentum. Contact between objects comes split already (contact.comp).
+// velocity update. The corrections of the stretch limit and self-collision are averaged
+// (Jacobi averaging): summing them, as sequential Gauss-Seidel would, overshoots when several
+// act at once and diverges. Contact between objects comes split already (contact.comp).
 // `constraint_correction` and `collide_all` (its edges here, the particle in colliders.glsl)
 // are shared by constraints.comp (through `constraints_particle`, which reads IN(i) and writes
 // OUT(i)) and fused.comp. Other
@@ -231,31 +231,6 @@ void self_pass(uvec2 cell, uint i, vec3 x, vec3 start, bool apply) {
 // (a cloth's self-contact undoing an overlap from an earlier substep).
 vec3 position_only;
 
-// How far spring s of the particle at grid `cell` (at x) is past the stretch limit (positive
-// when past), its other end j (-1: none, or not a limited spring) and the direction to it.
-// (By the grid, not SPRING_NEIGHBOUR: the fused kernel's holds the running particle's springs,
-// and this also asks for its partners'.)
-float limit_excess(uvec2 cell, vec3 x, int s, out int j, out vec3 dir) {
-    j = neighbour(ivec2(cell), SPRINGS[s].xy, obj.dims);
-    dir = vec3(0.0);
-    if (j < 0 || obj.stiffness[SPRINGS[s].z] == 0.0) return 0.0;
-    vec3 to_j = CPOS(j) - x;
-    float d = length(to_j);
-    dir = to_j / d;
-    return d - rest_length(s) * (1.0 + obj.stretch_limit);
-}
-
-// The number of springs of the particle at grid `cell` (at x) past the stretch limit.
-uint limits_past(uvec2 cell, vec3 x) {
-    uint n = 0u;
-    [[unroll]] for (int s = 0; s < 8; ++s) {
-        int j;
-        vec3 dir;
-        if (limit_excess(cell, x, s, j, dir) > 0.0) n += 1u;
-    }
-    return n;
-}
-
 // The position correction of the free particle at grid `cell`, at x after physics; the
 // velocity follows it but for position_only.
 vec3 constraint_correction(uvec2 cell, vec3 x) {
@@ -263,23 +238,20 @@ vec3 constraint_correction(uvec2 cell, vec3 x) {
     position_only = vec3(0.0);
     uint n_active = 0u;
 
-    // Springs may not stretch past (1 + stretch_limit) * rest. Each spring past it is a
-    // projection with the masses split among the springs past it at each end (Tonge et al.
-    // 2012, as contact between objects): lambda = excess / (n_i + n_j) (n_j 0 for a pinned
-    // end; the object's particles weigh the same), and the particle moves by the sum of its
-    // lambdas, its partner by minus each: every spring keeps momentum, and one spring alone
-    // moves each end half its excess (all of it when the other end is pinned), as before.
-    vec3 limited = vec3(0.0);
+    // Springs may not stretch past (1 + stretch_limit) * rest: each end moves half the excess
+    // (all of it when the other end is pinned).
     if (has(F_STRETCH) && (obj.flags & OBJ_STRETCH_LIMIT) != 0u) {
-        uint n_i = limits_past(cell, x);
         [[unroll]] for (int s = 0; s < 8; ++s) {
-            int j;
-            vec3 dir;
-            float excess = n_i == 0u ? 0.0 : limit_excess(cell, x, s, j, dir);
-            if (!(excess > 0.0)) continue;
-            uvec2 cell_j = uvec2(ivec2(cell) + SPRINGS[s].xy);
-            uint n_j = CPINNED(j) ? 0u : limits_past(cell_j, CPOS(j));
-            limited += dir * (excess / float(n_i + n_j));
+            ivec3 spring = SPRINGS[s];
+            int j = SPRING_NEIGHBOUR(cell, s);
+            if (j < 0 || obj.stiffness[spring.z] == 0.0) continue;
+            vec3 to_j = CPOS(j) - x;
+            float d = length(to_j);
+            float excess = d - rest_length(s) * (1.0 + obj.stretch_limit);
+            if (excess > 0.0) {
+                correction += (to_j / d) * (excess * (CPINNED(j) ? 1.0 : 0.5));
+                n_active += 1u;
+            }
         }
     }
 
@@ -291,7 +263,6 @@ vec3 constraint_correction(uvec2 cell, vec3 x) {
     if (self_on && !triangle_contact()) self_search(cell, x, correction, n_active);
 
     if (n_active > 1u) correction /= float(n_active);
-    correction += limited;
 
     if (self_on && triangle_contact()) correction += self_take(cell.x + cell.y * obj.dims.x, position_only, true);
 

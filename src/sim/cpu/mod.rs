@@ -146,23 +146,6 @@ fn springs(o: &ObjectModel, c: i64, r: i64) -> Vec<Spring> {
     out
 }
 
-/// The structural and shear springs of particle `k` (positions `x`) stretched past `limit`:
-/// the other end, the direction to it and the excess over (1 + limit) times the rest length.
-fn limits_past(o: &ObjectModel, x: &[DVec3], k: usize, limit: f64) -> Vec<(usize, DVec3, f64)> {
-    let cols = o.dims[0] as usize;
-    let (c, r) = ((k % cols) as i64, (k / cols) as i64);
-    springs(o, c, r)
-        .into_iter()
-        .filter(|s| s.kind != SpringType::Bending && o.stiffness[s.kind as usize] != 0.0)
-        .filter_map(|s| {
-            let delta = x[s.other] - x[k];
-            let d = delta.length();
-            let excess = d - rest_length(o, &s) * (1.0 + limit);
-            (excess > 0.0).then(|| (s.other, delta / d, excess))
-        })
-        .collect()
-}
-
 fn rest_length(o: &ObjectModel, s: &Spring) -> f64 {
     offset_rest_length(o, s.kind, s.offset)
 }
@@ -373,16 +356,18 @@ fn constraints(
         let (c, r) = ((i % cols) as i64, (i / cols) as i64);
         let mut correction = DVec3::ZERO;
         let mut active = 0u32;
-        // The stretch limit: each spring past it a projection with the masses split among the
-        // springs past it at either end (lambda = excess / (n_i + n_j), n_j 0 for a pinned end),
-        // which keeps momentum (glsl/include/constraints_body.glsl).
-        let mut limited = DVec3::ZERO;
         if let Some(limit) = o.stretch_limit {
-            let past = |k: usize| limits_past(o, x, k, limit).len();
-            let n_i = past(i);
-            for (other, dir, excess) in limits_past(o, x, i, limit) {
-                let n_j = if o.pinned[other] { 0 } else { past(other) };
-                limited += dir * (excess / (n_i + n_j) as f64);
+            for s in springs(o, c, r) {
+                if s.kind == SpringType::Bending || o.stiffness[s.kind as usize] == 0.0 {
+                    continue;
+                }
+                let delta = x[s.other] - x[i];
+                let d = delta.length();
+                let excess = d - rest_length(o, &s) * (1.0 + limit);
+                if excess > 0.0 {
+                    correction += delta / d * excess * share(s.other);
+                    active += 1;
+                }
             }
         }
         if let Some(reach) = o.self_distance.filter(|_| !o.has_triangles()) {
@@ -403,7 +388,7 @@ fn constraints(
         if active > 1 {
             correction /= active as f64;
         }
-        correction += limited + own.last[i] + contact[i];
+        correction += own.last[i] + contact[i];
         let mut p = x[i] + correction;
         let mut vel = v[i] + (correction - own.last_rest[i]) / dt;
         if edges {
