@@ -27,6 +27,7 @@ use msdsim::sim::cpu::CpuSim;
 use msdsim::sim::gpu::{FusedLimits, FusedShape, GpuSim, FUSED_SLOTS};
 use msdsim::sim::gpu_types::Particle;
 use msdsim::sim::model::{Integrator, SelfCollisionMethod, SimModel};
+use msdsim::vk::GpuContext;
 
 const FRAMES: usize = 15;
 const POSITION: f64 = 1e-4;
@@ -43,8 +44,8 @@ fn check(name: &str, model: &SimModel) {
 
 /// Both GPU paths against the reference: small objects fused (all substeps in one dispatch)
 /// and every object per stage (a dispatch and a barrier per stage and substep), the latter
-/// also with its self-collision contact lists kept on and kept off (by default they are
-/// turned off while they do not last).
+/// with its self-collision contact lists as the host's policy keeps them (turned off while
+/// they do not last; kept on and kept off: `check_mode_with_lists_forced`).
 ///
 /// In contact scenes (`Mode::Resync`) the velocity may differ by what a position deviation
 /// within POSITION implies over one substep, POSITION / dt: a pair that sits at the contact
@@ -57,16 +58,23 @@ fn check(name: &str, model: &SimModel) {
 /// another order). A wrong velocity of that size for a whole frame would move the particles
 /// by more than POSITION, so the positions still catch it.
 fn check_mode(name: &str, model: &SimModel, mode: Mode) {
+    check_paths(name, model, mode, &[(true, None), (false, None)]);
+}
+
+/// `check_mode` per stage with the self-collision contact lists kept on and kept off too (the
+/// exhaustive tier's: `check_mode` takes the lists as the host's policy keeps them).
+fn check_mode_with_lists_forced(name: &str, model: &SimModel, mode: Mode) {
+    let lists = model.objects.iter().any(|o| o.self_distance.is_some())
+        && model.self_collision == SelfCollisionMethod::Hash;
+    assert!(lists, "{name}: no self-collision lists to force");
+    check_paths(name, model, mode, &[(false, Some(true)), (false, Some(false))]);
+}
+
+/// `check_mode` on each (fused, self-collision lists forced on or off) of `paths`.
+fn check_paths(name: &str, model: &SimModel, mode: Mode, paths: &[(bool, Option<bool>)]) {
     let velocity = match mode {
         Mode::FreeRunning => VELOCITY,
         Mode::Resync => VELOCITY.max(POSITION / model.dt()),
-    };
-    let lists = model.objects.iter().any(|o| o.self_distance.is_some())
-        && model.self_collision == SelfCollisionMethod::Hash;
-    let paths: &[(bool, Option<bool>)] = if lists {
-        &[(true, None), (false, None), (false, Some(true)), (false, Some(false))]
-    } else {
-        &[(true, None), (false, None)]
     };
     // Contact between objects (per stage on every path) also with its rope nodes' searches
     // split among lanes as on a GPU (lavapipe gives each one lane), on the default path.
@@ -390,6 +398,23 @@ fn inter_object_contact() {
     check_mode("inter-object contact", &s, Mode::Resync);
 }
 
+#[test]
+#[ignore = "exhaustive tier: the lists as the host's policy keeps them"]
+fn contact_lists_between_objects_hold_at_speed_under_the_policy() {
+    let ctx = gpu();
+    lists_match_the_reference(&ctx, &thrown_cloths_and_rope(), None);
+    assert_clean(&ctx);
+}
+
+/// `s` on the GPU, its contact lists between objects forced on or off (or as the host's policy
+/// keeps them, `None`), matches the reference (which searches every substep).
+fn lists_match_the_reference(ctx: &GpuContext, s: &SimModel, forced: Option<bool>) {
+    let (d, _) = compare_with(ctx, s, FRAMES, Mode::Resync, &|g| g.force_contact_lists(forced));
+    println!("contact lists between objects ({forced:?}): {d:?}");
+    assert!(d.position <= POSITION, "position deviation {} m > {POSITION}", d.position);
+    assert!(d.velocity <= VELOCITY.max(POSITION / s.dt()), "velocity deviation {} m/s", d.velocity);
+}
+
 /// `cloths_and_rope` with the small cloth 10 cm higher thrown down at 3 m/s, the rope at 1 m/s.
 fn thrown_cloths_and_rope() -> SimModel {
     let mut s = cloths_and_rope();
@@ -407,17 +432,13 @@ fn thrown_cloths_and_rope() -> SimModel {
 /// pair every substep, with the lists as the host's policy keeps them and kept on; and over a
 /// second, kept on, the lists were walked, not rebuilt, in at least a quarter of the substeps
 /// (at 3 m/s a particle crosses half the skin, 5 mm, in 2 substeps; once landed, the held
-/// cloth keeps swinging and the rope sliding: lavapipe, 35%).
+/// cloth keeps swinging and the rope sliding: lavapipe, 35%). The lists as the host's policy
+/// keeps them (on and off) are the exhaustive tier's.
 #[test]
 fn contact_lists_between_objects_hold_at_speed() {
     let s = thrown_cloths_and_rope();
     let ctx = gpu();
-    for forced in [None, Some(true)] {
-        let (d, _) = compare_with(&ctx, &s, FRAMES, Mode::Resync, &|g| g.force_contact_lists(forced));
-        println!("contact lists between objects ({forced:?}): {d:?}");
-        assert!(d.position <= POSITION, "position deviation {} m > {POSITION}", d.position);
-        assert!(d.velocity <= VELOCITY.max(POSITION / s.dt()), "velocity deviation {} m/s", d.velocity);
-    }
+    lists_match_the_reference(&ctx, &s, Some(true));
     let mut g = GpuSim::new(&ctx, &s).unwrap();
     g.force_contact_lists(Some(true));
     let mut counters = Vec::new();
@@ -715,9 +736,16 @@ fn rope_on_sphere_with_friction() {
 
 #[test]
 fn rope_self_collision() {
-    // A rope folded in a hairpin: its two halves run 1.2 cm apart, inside the 2 cm contact
-    // distance (twice the radius), thrown at each other at 0.3 m/s each (without contact they
-    // pass through each other).
+    let s = hairpin_rope();
+    assert_eq!(s.self_collision, SelfCollisionMethod::Hash);
+    assert_matters("rope self-collision", &s, |m| m.objects[0].self_distance = None);
+    check_mode("rope self-collision (Hash)", &s, Mode::Resync);
+}
+
+/// A rope folded in a hairpin: its two halves run 1.2 cm apart, inside the 2 cm contact
+/// distance (twice the radius), thrown at each other at 0.3 m/s each (without contact they
+/// pass through each other).
+fn hairpin_rope() -> SimModel {
     let mut r = rope(40, 0.025);
     for (i, (p, v)) in r.positions.iter_mut().zip(&mut r.velocities).enumerate() {
         let (x, z) = if i < 20 { (i as f64 * 0.025, 0.0) } else { ((39 - i) as f64 * 0.025, 0.012) };
@@ -727,9 +755,42 @@ fn rope_self_collision() {
     r.stiffness = [200.0, 0.0, 2.0];
     r.rope_radius = 0.01;
     r.self_distance = Some(0.02);
-    let s = scene(vec![r]);
-    assert_matters("rope self-collision", &s, |m| m.objects[0].self_distance = None);
-    both_methods("rope self-collision", &s);
+    scene(vec![r])
+}
+
+/// The iterative methods' scene with self-collision, a sphere and friction.
+fn everything_iterative_scene(method: Integrator) -> SimModel {
+    let mut s = integrator_scene(method);
+    s.wind = None;
+    for o in &mut s.objects {
+        o.self_distance = Some(0.02);
+        o.friction = 0.5;
+    }
+    s.colliders = vec![sphere([0.3, 0.6, 0.05], 0.1)];
+    s
+}
+
+/// The self-collision contact lists kept on and kept off, per stage, on the scenes that use
+/// them: the hairpin rope, `everything_together`'s and the iterative methods'.
+#[test]
+#[ignore = "exhaustive tier: the self-collision lists forced on and off"]
+fn self_collision_lists_forced_on_and_off() {
+    check_mode_with_lists_forced("rope self-collision", &hairpin_rope(), Mode::Resync);
+    check_mode_with_lists_forced("everything", &everything_scene(), Mode::Resync);
+    check_mode_with_lists_forced(
+        "Vbd everything",
+        &everything_iterative_scene(Integrator::Vbd),
+        Mode::Resync,
+    );
+}
+
+/// `rope_self_collision` by brute force (the hash is the default tier's).
+#[test]
+#[ignore = "exhaustive tier: the brute-force search"]
+fn rope_self_collision_by_brute_force() {
+    let mut s = hairpin_rope();
+    s.self_collision = SelfCollisionMethod::BruteForce;
+    check_mode("rope self-collision (BruteForce)", &s, Mode::Resync);
 }
 
 #[test]
@@ -749,8 +810,12 @@ fn normals_of_a_bent_cloth() {
 
 #[test]
 fn everything_together() {
-    // Cloth and rope with all features in one scene; the dispatches of both objects share the
-    // barriers of each stage.
+    check_mode("everything", &everything_scene(), Mode::Resync);
+}
+
+/// Cloth and rope with all features in one scene; the dispatches of both objects share the
+/// barriers of each stage.
+fn everything_scene() -> SimModel {
     let mut c = jittered_cloth();
     c.stiffness = [80.0, 20.0, 5.0];
     c.damping = 0.01;
@@ -776,7 +841,7 @@ fn everything_together() {
     s.wind = Some(wind([0.3, 0.8, 1.0], [0.0, 0.0, -1.0], 0.01, 0.3, 0.6));
     s.colliders =
         (0..16).map(|k| sphere([k as f64 * 0.09 - 0.35, 0.35, 0.05 + 0.01 * (k % 3) as f64], 0.04)).collect();
-    check_mode("everything", &s, Mode::Resync);
+    s
 }
 
 /// An n x n cloth crumpled into a box `size` m wide, self-colliding at 2 cm, one substep per
@@ -924,12 +989,12 @@ fn fused_substeps_equal_the_per_stage_path() {
 /// implicit method, whose dot products each path sums in its own order: a workgroup's
 /// subgroups fused, workgroups' sums per stage). Without the barrier
 /// between two colours a particle reads a neighbour's half-updated displacement: XPBD's paths
-/// then part by 0.25 m. The default tier takes one particle a thread here (two are
+/// then part by 0.25 m. The default tier takes grids whose colour classes have uneven rows at
+/// one particle a thread (two are
 /// `iterative_methods_at_two_particles_a_thread_match_the_per_stage_path`'s); the exhaustive
-/// tier both.
+/// tier the 13 x 9 scene at both.
 #[test]
 fn fused_iterative_methods_equal_the_per_stage_path() {
-    fused_iterative_methods(1);
     // Grids whose colour classes have uneven rows: fewer rows or columns than colours, a
     // partial block of rows, a short rope. Every particle must be owned by exactly one slot.
     let shapes: Vec<_> = [(7, 3), (3, 11), (6, 7)]
@@ -958,8 +1023,9 @@ fn fused_iterative_methods_equal_the_per_stage_path() {
 }
 
 #[test]
-#[ignore = "exhaustive tier: two particles a thread on this scene too"]
-fn fused_iterative_methods_equal_the_per_stage_path_at_two_particles_a_thread() {
+#[ignore = "exhaustive tier: the 13 x 9 scene at one and two particles a thread"]
+fn fused_iterative_methods_equal_the_per_stage_path_on_the_integrators_scene() {
+    fused_iterative_methods(1);
     fused_iterative_methods(2);
 }
 
@@ -1189,11 +1255,28 @@ fn iterative_methods_on_stiff_springs_at_one_substep() {
 /// swinging scene a moving particle of the cloth is stopped and lifted by 1 cm; 5 frames later
 /// both must still agree (measured: 2.4e-6 m at most). Kept, the stale history moves it on by a
 /// third of its last step, and the paths part by 2.1e-4 m (XPBD), twice the tolerance.
+/// The default tier takes each method on one path (alternating), the exhaustive tier the other.
 #[test]
 fn a_particle_set_between_frames_loses_its_history() {
-    for method in iterative() {
+    particle_set_loses_history(&alternate_paths(true));
+}
+
+#[test]
+#[ignore = "exhaustive tier: each method on the other path"]
+fn a_particle_set_between_frames_loses_its_history_on_the_other_paths() {
+    particle_set_loses_history(&alternate_paths(false));
+}
+
+/// Each iterative method with a path, fused for every other one in order, starting with
+/// `first_fused` (the default tier takes one half, the exhaustive tier the other).
+fn alternate_paths(first_fused: bool) -> Vec<(Integrator, bool)> {
+    iterative().enumerate().map(|(i, m)| (m, (i % 2 == 0) == first_fused)).collect()
+}
+
+fn particle_set_loses_history(paths: &[(Integrator, bool)]) {
+    for &(method, fused) in paths {
         let s = integrator_scene(method);
-        for fused in [true, false] {
+        {
             let ctx = gpu();
             let mut sim = GpuSim::new(&ctx, &s).expect("creating the GPU simulation");
             sim.set_fused(&ctx, fused).unwrap();
@@ -1235,8 +1318,19 @@ fn a_particle_set_between_frames_loses_its_history() {
 /// symplectic Euler's deviation. Measured: symplectic Euler 3.2e-6 m, XPBD 3.6e-6, implicit
 /// 3.7e-6 to 4.0e-6, VBD 3.8e-6. With the rounding of the base x~ left in the positions (not
 /// carried in `lost`, predict_body.glsl) every method parted by 1.6e-5 m.
+/// The default tier takes each method on one path (alternating), the exhaustive tier the other.
 #[test]
 fn the_bdf2_start_rounds_no_worse_than_an_explicit_step() {
+    bdf2_start_rounding(&alternate_paths(true));
+}
+
+#[test]
+#[ignore = "exhaustive tier: each method on the other path"]
+fn the_bdf2_start_rounds_no_worse_than_an_explicit_step_on_the_other_paths() {
+    bdf2_start_rounding(&alternate_paths(false));
+}
+
+fn bdf2_start_rounding(paths: &[(Integrator, bool)]) {
     let n = 16;
     let mut c = cloth(n, n, 0.05);
     c.positions.iter_mut().for_each(|p| *p = DVec3::new(p.x, 1.0, 1.0 - p.y));
@@ -1257,8 +1351,8 @@ fn the_bdf2_start_rounds_no_worse_than_an_explicit_step() {
         d.position
     };
     let euler = deviation_of(Integrator::SymplecticEuler, true);
-    for method in iterative() {
-        for fused in [true, false] {
+    for &(method, fused) in paths {
+        {
             let d = deviation_of(method, fused);
             println!("{method:?} (fused: {fused}): {d:e} m, symplectic Euler {euler:e} m");
             assert!(
@@ -1296,13 +1390,7 @@ fn everything_with_every_iterative_integrator_and_search() {
 
 fn everything_iterative(methods: &[Integrator], searches: &[SelfCollisionMethod]) {
     for &method in methods {
-        let mut s = integrator_scene(method);
-        s.wind = None;
-        for o in &mut s.objects {
-            o.self_distance = Some(0.02);
-            o.friction = 0.5;
-        }
-        s.colliders = vec![sphere([0.3, 0.6, 0.05], 0.1)];
+        let s = everything_iterative_scene(method);
         for &search in searches {
             let mut m = s.clone();
             m.self_collision = search;
