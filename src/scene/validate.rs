@@ -31,6 +31,12 @@ const MAX_RING_WEIGHT: f64 = 100.0;
 /// The most passes over a cloth's self-contacts a substep (each costs about as much as the first's
 /// application).
 const MAX_CONTACT_ITERATIONS: u32 = 64;
+/// Most objects (cloths and ropes) a scene may have: each has buffers and descriptor sets of
+/// its own and takes part in every pass, so past this a frame takes seconds even of tiny ones.
+pub const MAX_OBJECTS: usize = 1024;
+/// Most colliders (spheres, boxes, capsules and the ground) a scene may have: every particle
+/// tests every collider each substep.
+pub const MAX_COLLIDERS: usize = 1024;
 
 /// A value as the user would write it: in exponent form when very large or small.
 fn num(v: f64) -> String {
@@ -183,6 +189,26 @@ pub fn check(scene: &Scene) -> Check {
     color("light.color", scene.light.color)?;
     unit_interval("light.ambient", scene.light.ambient)?;
 
+    let colliders =
+        scene.spheres.len() + scene.boxes.len() + scene.capsules.len() + scene.ground.iter().count();
+    if colliders > MAX_COLLIDERS {
+        return Err(format!(
+            "{colliders} colliders ({} spheres, {} boxes, {} capsules): a scene may have at most {MAX_COLLIDERS} \
+             (every particle tests every collider each substep)",
+            scene.spheres.len(),
+            scene.boxes.len(),
+            scene.capsules.len()
+        ));
+    }
+    let objects = scene.cloths.len() + scene.ropes.len();
+    if objects > MAX_OBJECTS {
+        return Err(format!(
+            "{objects} objects ({} cloths, {} ropes): a scene may have at most {MAX_OBJECTS} \
+             (each has its own buffers and takes part in every pass; a larger cloth costs far less)",
+            scene.cloths.len(),
+            scene.ropes.len()
+        ));
+    }
     for (i, sphere) in scene.spheres.iter().enumerate() {
         vector(&format!("sphere[{i}].center"), sphere.center, MAX_COORDINATE, "m")?;
         positive(&format!("sphere[{i}].radius"), sphere.radius, LENGTH, "m")?;
