@@ -410,11 +410,22 @@ fn check_rope(at: &str, r: &Rope, between: bool) -> Check {
     let own = if r.self_collision { r.self_collision_distance.unwrap_or(2.0 * r.radius) } else { 0.0 };
     let reach = if between { own.max(2.0 * r.radius) } else { own };
     if spacing > 0.0 && reach / spacing > 4.0 * MAX_CONTACT_SPAN {
+        // What would work: fewer nodes (where two or more still fit), or a shorter reach.
+        let most_nodes = (4.0 * MAX_CONTACT_SPAN * length / reach).floor() as u64 + 1;
+        let fewer = if most_nodes >= 2 {
+            format!("at most {most_nodes} nodes for this length and radius, or ")
+        } else {
+            String::new()
+        };
+        let longest = 4.0 * MAX_CONTACT_SPAN * spacing;
+        let shorter = match r.self_collision_distance.filter(|&d| r.self_collision && d >= 2.0 * r.radius) {
+            Some(_) => format!("a self_collision_distance of at most {longest:.3e} m"),
+            None => format!("a radius of at most {:.3e} m", 0.5 * longest),
+        };
         return Err(format!(
-            "{at}.nodes = {}: nodes {spacing:.3e} m apart with a contact reach of {reach:.3e} m (twice the radius, or the self-collision distance) would each touch {:.0} others along the rope, and contact search would take minutes a frame; use at most {} nodes for this length and radius",
+            "{at}.nodes = {}: nodes {spacing:.3e} m apart with a contact reach of {reach:.3e} m (twice the radius, or the self-collision distance) would each touch {:.0} others along the rope, and contact search would take minutes a frame; use {fewer}{shorter}",
             r.nodes,
             reach / spacing,
-            (4.0 * MAX_CONTACT_SPAN * length / reach).floor() as u64 + 1
         ));
     }
     color(&format!("{at}.color"), r.color)?;

@@ -895,17 +895,26 @@ fn gpu_work_past_the_timeout_stops_with_exit_1() {
 
 /// A contact reach of many grid spacings is refused before the run, saying how far it may go
 /// (a fuzzed rope of 21,000 nodes on 0.5 m with a 2 cm radius took over a minute a frame on
-/// lavapipe: each node touched 1,680 others along the rope).
+/// lavapipe: each node touched 1,680 others along the rope): the most nodes, or the largest
+/// radius, that works.
 #[test]
 fn contact_reach_of_many_spacings_is_refused() {
     let root = env!("CARGO_MANIFEST_DIR");
     let rope = format!("{root}/presets/rope_on_cloth.toml");
     rejects(
         &["simulate", "--preset", &rope, "--set", "rope.0.nodes=21000"],
-        &["rope[0].nodes = 21000", "at most 801 nodes"],
+        &["rope[0].nodes = 21000", "at most 801 nodes", "or a radius of at most"],
+    );
+    // A rope whose reach no node count fixes (a radius of 10 m on 2 nodes 10 cm apart, with
+    // self-collision; it ran into the GPU timeout before): the largest radius that works.
+    let alone = format!("{root}/presets/rope.toml");
+    let set =
+        ["--set", "rope.0.nodes=2", "--set", "rope.0.radius=10", "--set", "rope.0.end=[-1.1, 1.1, 0.05]"];
+    rejects(
+        &[&["simulate", "--preset", &alone][..], &set[..]].concat(),
+        &["rope[0].nodes = 2", "use a radius of at most 3.200e0 m"],
     );
     // Without contacts (no self-collision, no other object) a rope's nodes may be that dense.
-    let alone = format!("{root}/presets/rope.toml");
     let set = ["--set", "rope.0.nodes=5000", "--set", "rope.0.self_collision=false"];
     let out = msdsim(&[&["simulate", "--preset", &alone, "--frames", "1", "--quiet"][..], &set[..]].concat());
     assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
