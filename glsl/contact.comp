@@ -23,11 +23,12 @@
 //   vertex-triangle contacts hold), found from the cloth of lower index by the end of A's edge
 //   of the two edges' nearest ends (of the four pairs of ends, one of each edge, the nearest;
 //   as a cloth's self-contact does), those within the reach plus both corner reaches.
-// With n from the nearest point to p, inverse masses w (0 pinned) and each particle's count of
+// With n from the nearest point to p (turned back to the side where the pair began the substep
+// where it crossed within it: `gap_of`), inverse masses w (0 pinned) and each particle's count of
 // contacts n_k (mass splitting, Tonge et al. 2012: a particle in several contacts takes each as
 // if its mass were shared among them, so that it moves about its largest overlap, and a light
 // particle in many contacts, a rope's node under a cloth, does not hold back its partners'
-// corrections), lambda = (reach - d) / (n_p w_p + sum n_k w_k b_k^2): p moves w_p lambda n,
+// corrections), lambda = (reach - gap) / (n_p w_p + sum n_k w_k b_k^2): p moves w_p lambda n,
 // corner k -w_k b_k lambda n, so the contact's momentum is unchanged (a segment pair likewise,
 // with A's ends in p's place). The particle that finds a contact computes all its moves.
 // Pass 0 counts each particle's contacts (touches[], with atomics: a piece's corners are
@@ -136,6 +137,12 @@ void add_move(uint k, vec3 v) {
 // inverse mass 0, takes no part).
 uint count_of(uint k, float w) { return w > 0.0 ? max(touches[k], 1u) : 1u; }
 
+// The gap of a contact at distance d between its nearest points, whose offset is `off` now and
+// `began` at the substep's start (the same weights on the positions in begun[]): negative where
+// the two sides crossed within the substep, so that the pair is pushed back to the side it
+// began on, not on through the piece (sim::cpu::inter_object::gap).
+float gap_of(vec3 off, float d, vec3 began) { return dot(off, began) < 0.0 ? -d : d; }
+
 // Two objects' friction coefficient with each other: the mean of theirs.
 float pair_friction(uint a, uint b) { return 0.5 * (friction_of(a) + friction_of(b)); }
 
@@ -193,6 +200,18 @@ ivec2 grid_position(uint q, uint j) {
     return ivec2(local % grid_of(q).x, local / grid_of(q).x);
 }
 
+// The offset of particle k from the point of triangle tv of weights w where they began the
+// substep.
+vec3 triangle_began(uint k, uvec3 tv, vec3 w) {
+    return begun[k].xyz - (w.x * begun[tv.x].xyz + w.y * begun[tv.y].xyz + w.z * begun[tv.z].xyz);
+}
+
+// The offset between the nearest points of a pair of edges (ends sv, weights w, the second
+// edge's negative) where they began the substep.
+vec3 pair_began(uvec4 sv, vec4 w) {
+    return w.x * begun[sv.x].xyz + w.y * begun[sv.y].xyz + w.z * begun[sv.z].xyz + w.w * begun[sv.w].xyz;
+}
+
 // Pass 1: the moves of particle k (entry ek, object me) against triangle (j, a, b) of object q,
 // the corners' entries ej, ea, eb, summed into moves[].
 void triangle_moves(uint k, vec4 ek, uint me, uvec3 tv, vec4 ej, vec4 ea, vec4 eb, uint q) {
@@ -204,13 +223,14 @@ void triangle_moves(uint k, vec4 ek, uint me, uvec3 tv, vec4 ej, vec4 ea, vec4 e
     vec3 wk = vec3(inverse_mass(ej, q), inverse_mass(ea, q), inverse_mass(eb, q));
     vec3 nk = vec3(count_of(tv.x, wk.x), count_of(tv.y, wk.y), count_of(tv.z, wk.z));
     float denom = float(count_of(k, wp)) * wp + dot(nk * wk, w * w);
-    if (!(d > 0.0 && d < reach && denom > 0.0)) return;
-    vec3 n = off / d;
+    float gap = gap_of(off, d, triangle_began(k, tv, w));
+    if (!(d > 0.0 && gap < reach && denom > 0.0)) return;
+    vec3 n = off * (gap / (d * d));
     // The relative motion over the substep, along the contact's tangent: undone whole within
     // the friction cone, else by mu times the normal correction (Coulomb).
     vec3 moved = (ek.xyz - begun[k].xyz)
                - (w.x * (ej.xyz - begun[tv.x].xyz) + w.y * (ea.xyz - begun[tv.y].xyz) + w.z * (eb.xyz - begun[tv.z].xyz));
-    vec3 correction = n * (reach - d) - friction_correction(moved, n, reach - d, pair_friction(me, q));
+    vec3 correction = n * (reach - gap) - friction_correction(moved, n, reach - gap, pair_friction(me, q));
     vec3 push = correction / denom;
     add_move(k, wp * push);
     add_move(tv.x, -wk.x * w.x * push);
@@ -267,11 +287,12 @@ void segment_pair_moves(uvec4 sv, vec4 e[4], uint me, uint q) {
     vec4 wk = vec4(inverse_mass(e[0], me), inverse_mass(e[1], me), inverse_mass(e[2], q), inverse_mass(e[3], q));
     vec4 nk = vec4(count_of(sv.x, wk.x), count_of(sv.y, wk.y), count_of(sv.z, wk.z), count_of(sv.w, wk.w));
     float denom = dot(nk * wk, w * w);
-    if (!(d > 0.0 && d < reach && denom > 0.0 && part > 0.0)) return;
-    vec3 n = off / d;
+    float gap = gap_of(off, d, pair_began(sv, w));
+    if (!(d > 0.0 && gap < reach && denom > 0.0 && part > 0.0)) return;
+    vec3 n = off * (gap / (d * d));
     vec3 moved = w.x * (e[0].xyz - begun[sv.x].xyz) + w.y * (e[1].xyz - begun[sv.y].xyz)
                + w.z * (e[2].xyz - begun[sv.z].xyz) + w.w * (e[3].xyz - begun[sv.w].xyz);
-    vec3 correction = n * (reach - d) - friction_correction(moved, n, reach - d, pair_friction(me, q));
+    vec3 correction = n * (reach - gap) - friction_correction(moved, n, reach - gap, pair_friction(me, q));
     vec3 push = part * correction / denom;
     add_move(sv.x, wk.x * w.x * push);
     if (sv.y != sv.x) add_move(sv.y, wk.y * w.y * push);
@@ -302,7 +323,8 @@ void edge_pairs_around(uint k, vec4 ek, uint me, uint j, vec4 ej, uint q, bool s
         vec2 st = capsule_nearest(e[0].xyz, e[1].xyz, e[2].xyz, e[3].xyz);
         vec3 off = (1.0 - st.x) * e[0].xyz + st.x * e[1].xyz - (1.0 - st.y) * e[2].xyz - st.y * e[3].xyz;
         float d = length(off);
-        bool touching = d > 0.0 && d < reach;
+        vec4 w = vec4(1.0 - st.x, st.x, -(1.0 - st.y), -st.y);
+        bool touching = d > 0.0 && gap_of(off, d, pair_began(sv, w)) < reach;
         if (!listed_if(touching, d, reach)) continue;
         list_piece(k, j << NOTE_SHIFT | NOTE_PAIR | rb);
         if (touching) count_contact(uvec3(ko, j, jo), k, n);
@@ -347,7 +369,8 @@ void cloth_edge_pairs_around(uint k, vec4 ek, uint me, uint j, vec4 ej, float dj
             vec2 st = pair_nearest(e, me, part);
             vec3 off = (1.0 - st.x) * ek.xyz + st.x * eko.xyz - (1.0 - st.y) * ej.xyz - st.y * ejo.xyz;
             float d = length(off);
-            bool touching = d > 0.0 && d < reach && part > 0.0;
+            vec4 w = vec4(1.0 - st.x, st.x, -(1.0 - st.y), -st.y);
+            bool touching = d > 0.0 && gap_of(off, d, pair_began(sv, w)) < reach && part > 0.0;
             if (!listed_if(touching, d, reach)) continue;
             list_piece(k, j << NOTE_SHIFT | NOTE_PAIR | (6u * ra + rb));
             if (touching) count_contact(uvec3(ko, j, jo), k, n);
@@ -379,8 +402,9 @@ void triangles_around(uint k, vec4 ek, uint me, uint j, vec4 ej, float dj, uint 
             continue;
         }
         vec3 w = triangle_nearest(ek.xyz, ej.xyz, ring[r].xyz, ring[s].xyz);
-        float d = length(ek.xyz - (w.x * ej.xyz + w.y * ring[r].xyz + w.z * ring[s].xyz));
-        bool touching = d > 0.0 && d < reach;
+        vec3 off = ek.xyz - (w.x * ej.xyz + w.y * ring[r].xyz + w.z * ring[s].xyz);
+        float d = length(off);
+        bool touching = d > 0.0 && gap_of(off, d, triangle_began(k, tv, w)) < reach;
         if (!listed_if(touching, d, reach)) continue;
         list_piece(k, j << NOTE_SHIFT | uint(r));
         if (touching) count_contact(tv, k, n);
@@ -482,8 +506,10 @@ void replay(uint note, vec4 ek, uint k, uint me, bool sum, inout uint n) {
         }
         float part;
         vec2 st = pair_nearest(e, me, part);
-        float d = length((1.0 - st.x) * e[0].xyz + st.x * e[1].xyz - (1.0 - st.y) * e[2].xyz - st.y * e[3].xyz);
-        if (d > 0.0 && d < reach && part > 0.0) count_contact(uvec3(ko, j, jo), k, n);
+        vec4 w = vec4(1.0 - st.x, st.x, -(1.0 - st.y), -st.y);
+        vec3 off = w.x * e[0].xyz + w.y * e[1].xyz + w.z * e[2].xyz + w.w * e[3].xyz;
+        float d = length(off);
+        if (d > 0.0 && gap_of(off, d, pair_began(sv, w)) < reach && part > 0.0) count_contact(uvec3(ko, j, jo), k, n);
         return;
     }
     int s = r == 5u ? 0 : int(r) + 1;
@@ -498,8 +524,9 @@ void replay(uint note, vec4 ek, uint k, uint me, bool sum, inout uint n) {
         return;
     }
     vec3 w = triangle_nearest(ek.xyz, ej.xyz, ea.xyz, eb.xyz);
-    float d = length(ek.xyz - (w.x * ej.xyz + w.y * ea.xyz + w.z * eb.xyz));
-    if (d > 0.0 && d < reach) count_contact(tv, k, n);
+    vec3 off = ek.xyz - (w.x * ej.xyz + w.y * ea.xyz + w.z * eb.xyz);
+    float d = length(off);
+    if (d > 0.0 && gap_of(off, d, triangle_began(k, tv, w)) < reach) count_contact(tv, k, n);
 }
 
 // Searches the hash around particle k (entry ek, object me) for the pieces near it: pass 0

@@ -349,9 +349,12 @@ fn sign(x: f64) -> f64 {
 /// tested once per substep, at the substep's end, and resolved by projecting out to the
 /// nearer side: a particle that crosses more than a collider's half-thickness plus its margin
 /// in one substep (a sphere's or capsule's radius, a box's smallest half extent; the ground
-/// has no far side) lands past the middle and is pushed out of the far side. Likewise between
-/// particles: more than the contact distance (self-collision distance, or the two objects'
-/// contact radii) per substep, relative. Past this speed contacts can tunnel.
+/// has no far side) lands past the middle and is pushed out of the far side. Likewise within
+/// an object: more than the self-collision distance per substep, relative. Between objects a
+/// pair that crosses within a substep is pushed back to the side it began on (`contact.comp`'s
+/// `gap_of`), so a crossing is caught while the pair ends within the reach (the two objects'
+/// contact radii) of each other: from a gap of at least the reach, up to twice the reach per
+/// substep, relative. Past this speed contacts can tunnel.
 #[derive(Debug, Clone, PartialEq)]
 pub struct ContactSpeed {
     /// [m/s]
@@ -387,7 +390,7 @@ pub fn contact_speed(model: &super::model::SimModel) -> Option<ContactSpeed> {
             for other in &model.objects[k + 1..] {
                 let reach = o.contact_radius() + other.contact_radius();
                 limits.push((
-                    reach / dt,
+                    2.0 * reach / dt,
                     format!("the contact of {name} with {} '{}'", other.kind.label(), other.name),
                 ));
             }

@@ -17,7 +17,8 @@
 //!   four pairs of ends, one of each edge) within the reach plus both corner reaches and plus
 //!   half of each edge's length (the GPU finds the pair through those ends); once.
 //!
-//! With n from the nearest point to p, inverse masses w (0 pinned) and each particle's count
+//! With n from the nearest point to p (turned back to the side where the pair began the
+//! substep, if it crossed within it: `gap`), inverse masses w (0 pinned) and each particle's count
 //! of contacts n_k (mass splitting, Tonge et al. 2012: a particle in several contacts takes
 //! each as if its mass were shared among them), lambda = (reach - d) / (n_p w_p + sum n_k w_k
 //! b_k^2); p moves w_p lambda n, corner k -w_k b_k lambda n, so the contact keeps its momentum
@@ -80,19 +81,34 @@ fn ends(x: &[DVec3], piece: &[usize]) -> (DVec3, DVec3) {
     (x[piece[0]], x[piece[piece.len() - 1]])
 }
 
+/// The gap of a contact at distance d between its nearest points, whose offset is `off` now
+/// and `began` at the substep's start (the same weights): negative where the two sides crossed
+/// within the substep, so that the pair is pushed back to the side it began on rather than on
+/// through the piece (at a relative speed of more than the reach a substep, as the poker
+/// cards land on each other, a pair can cross within one).
+fn gap(off: DVec3, d: f64, began: DVec3) -> f64 {
+    if off.dot(began) < 0.0 {
+        -d
+    } else {
+        d
+    }
+}
+
 /// Every contact between the objects at positions `x` (`x0` where they began the substep).
 fn contacts(m: &SimModel, x: &[&[DVec3]], x0: &[&[DVec3]]) -> Vec<Contact> {
     // The contact of `corners` (see `Contact`), if within `reach`, its correction taken by
     // `part`.
     let contact = |corners: Vec<(usize, usize, f64)>, reach: f64, mu: f64, part: f64| -> Option<Contact> {
         let off = corners.iter().map(|&(o, i, w)| w * x[o][i]).sum::<DVec3>();
+        let began = corners.iter().map(|&(o, i, w)| w * x0[o][i]).sum::<DVec3>();
         let d = off.length();
-        if !(d > 0.0 && d < reach && part > 0.0) {
+        let gap = gap(off, d, began);
+        if !(d > 0.0 && gap < reach && part > 0.0) {
             return None;
         }
-        let n = off / d;
+        let n = off * (gap / (d * d));
         let moved = corners.iter().map(|&(o, i, w)| w * (x[o][i] - x0[o][i])).sum::<DVec3>();
-        let correction = (n * (reach - d) - friction_correction(moved, n, reach - d, mu)) * part;
+        let correction = (n * (reach - gap) - friction_correction(moved, n, reach - gap, mu)) * part;
         Some(Contact { corners, correction })
     };
     let mut found = Vec::new();
