@@ -137,10 +137,12 @@ void add_move(uint k, vec3 v) {
 // inverse mass 0, takes no part).
 uint count_of(uint k, float w) { return w > 0.0 ? max(touches[k], 1u) : 1u; }
 
-// The gap of a contact at distance d between its nearest points, whose offset is `off` now and
-// `began` at the substep's start (the same weights on the positions in begun[]): negative where
-// the two sides crossed within the substep, so that the pair is pushed back to the side it
-// began on, not on through the piece (sim::cpu::inter_object::gap).
+// The gap of a contact at distance d (within the reach) between its nearest points, whose
+// offset is `off` now and `began` at the substep's start (the same weights on the positions in
+// begun[]): negative where the two sides crossed within the substep, so that the pair is pushed
+// back to the side it began on, not on through the piece (sim::cpu::inter_object::gap). Only
+// a contact reads begun[] for it: whether a pair touches is its distance's alone, so a pair
+// that crossed deeper than the reach is not one.
 float gap_of(vec3 off, float d, vec3 began) { return dot(off, began) < 0.0 ? -d : d; }
 
 // Two objects' friction coefficient with each other: the mean of theirs.
@@ -223,8 +225,8 @@ void triangle_moves(uint k, vec4 ek, uint me, uvec3 tv, vec4 ej, vec4 ea, vec4 e
     vec3 wk = vec3(inverse_mass(ej, q), inverse_mass(ea, q), inverse_mass(eb, q));
     vec3 nk = vec3(count_of(tv.x, wk.x), count_of(tv.y, wk.y), count_of(tv.z, wk.z));
     float denom = float(count_of(k, wp)) * wp + dot(nk * wk, w * w);
+    if (!(d > 0.0 && d < reach && denom > 0.0)) return;
     float gap = gap_of(off, d, triangle_began(k, tv, w));
-    if (!(d > 0.0 && gap < reach && denom > 0.0)) return;
     vec3 n = off * (gap / (d * d));
     // The relative motion over the substep, along the contact's tangent: undone whole within
     // the friction cone, else by mu times the normal correction (Coulomb).
@@ -287,8 +289,8 @@ void segment_pair_moves(uvec4 sv, vec4 e[4], uint me, uint q) {
     vec4 wk = vec4(inverse_mass(e[0], me), inverse_mass(e[1], me), inverse_mass(e[2], q), inverse_mass(e[3], q));
     vec4 nk = vec4(count_of(sv.x, wk.x), count_of(sv.y, wk.y), count_of(sv.z, wk.z), count_of(sv.w, wk.w));
     float denom = dot(nk * wk, w * w);
+    if (!(d > 0.0 && d < reach && denom > 0.0 && part > 0.0)) return;
     float gap = gap_of(off, d, pair_began(sv, w));
-    if (!(d > 0.0 && gap < reach && denom > 0.0 && part > 0.0)) return;
     vec3 n = off * (gap / (d * d));
     vec3 moved = w.x * (e[0].xyz - begun[sv.x].xyz) + w.y * (e[1].xyz - begun[sv.y].xyz)
                + w.z * (e[2].xyz - begun[sv.z].xyz) + w.w * (e[3].xyz - begun[sv.w].xyz);
@@ -323,8 +325,7 @@ void edge_pairs_around(uint k, vec4 ek, uint me, uint j, vec4 ej, uint q, bool s
         vec2 st = capsule_nearest(e[0].xyz, e[1].xyz, e[2].xyz, e[3].xyz);
         vec3 off = (1.0 - st.x) * e[0].xyz + st.x * e[1].xyz - (1.0 - st.y) * e[2].xyz - st.y * e[3].xyz;
         float d = length(off);
-        vec4 w = vec4(1.0 - st.x, st.x, -(1.0 - st.y), -st.y);
-        bool touching = d > 0.0 && gap_of(off, d, pair_began(sv, w)) < reach;
+        bool touching = d > 0.0 && d < reach;
         if (!listed_if(touching, d, reach)) continue;
         list_piece(k, j << NOTE_SHIFT | NOTE_PAIR | rb);
         if (touching) count_contact(uvec3(ko, j, jo), k, n);
@@ -369,8 +370,7 @@ void cloth_edge_pairs_around(uint k, vec4 ek, uint me, uint j, vec4 ej, float dj
             vec2 st = pair_nearest(e, me, part);
             vec3 off = (1.0 - st.x) * ek.xyz + st.x * eko.xyz - (1.0 - st.y) * ej.xyz - st.y * ejo.xyz;
             float d = length(off);
-            vec4 w = vec4(1.0 - st.x, st.x, -(1.0 - st.y), -st.y);
-            bool touching = d > 0.0 && gap_of(off, d, pair_began(sv, w)) < reach && part > 0.0;
+            bool touching = d > 0.0 && d < reach && part > 0.0;
             if (!listed_if(touching, d, reach)) continue;
             list_piece(k, j << NOTE_SHIFT | NOTE_PAIR | (6u * ra + rb));
             if (touching) count_contact(uvec3(ko, j, jo), k, n);
@@ -402,9 +402,8 @@ void triangles_around(uint k, vec4 ek, uint me, uint j, vec4 ej, float dj, uint 
             continue;
         }
         vec3 w = triangle_nearest(ek.xyz, ej.xyz, ring[r].xyz, ring[s].xyz);
-        vec3 off = ek.xyz - (w.x * ej.xyz + w.y * ring[r].xyz + w.z * ring[s].xyz);
-        float d = length(off);
-        bool touching = d > 0.0 && gap_of(off, d, triangle_began(k, tv, w)) < reach;
+        float d = length(ek.xyz - (w.x * ej.xyz + w.y * ring[r].xyz + w.z * ring[s].xyz));
+        bool touching = d > 0.0 && d < reach;
         if (!listed_if(touching, d, reach)) continue;
         list_piece(k, j << NOTE_SHIFT | uint(r));
         if (touching) count_contact(tv, k, n);
@@ -506,10 +505,8 @@ void replay(uint note, vec4 ek, uint k, uint me, bool sum, inout uint n) {
         }
         float part;
         vec2 st = pair_nearest(e, me, part);
-        vec4 w = vec4(1.0 - st.x, st.x, -(1.0 - st.y), -st.y);
-        vec3 off = w.x * e[0].xyz + w.y * e[1].xyz + w.z * e[2].xyz + w.w * e[3].xyz;
-        float d = length(off);
-        if (d > 0.0 && gap_of(off, d, pair_began(sv, w)) < reach && part > 0.0) count_contact(uvec3(ko, j, jo), k, n);
+        float d = length((1.0 - st.x) * e[0].xyz + st.x * e[1].xyz - (1.0 - st.y) * e[2].xyz - st.y * e[3].xyz);
+        if (d > 0.0 && d < reach && part > 0.0) count_contact(uvec3(ko, j, jo), k, n);
         return;
     }
     int s = r == 5u ? 0 : int(r) + 1;
@@ -524,9 +521,8 @@ void replay(uint note, vec4 ek, uint k, uint me, bool sum, inout uint n) {
         return;
     }
     vec3 w = triangle_nearest(ek.xyz, ej.xyz, ea.xyz, eb.xyz);
-    vec3 off = ek.xyz - (w.x * ej.xyz + w.y * ea.xyz + w.z * eb.xyz);
-    float d = length(off);
-    if (d > 0.0 && gap_of(off, d, triangle_began(k, tv, w)) < reach) count_contact(tv, k, n);
+    float d = length(ek.xyz - (w.x * ej.xyz + w.y * ea.xyz + w.z * eb.xyz));
+    if (d > 0.0 && d < reach) count_contact(tv, k, n);
 }
 
 // Searches the hash around particle k (entry ek, object me) for the pieces near it: pass 0

@@ -81,9 +81,9 @@ fn ends(x: &[DVec3], piece: &[usize]) -> (DVec3, DVec3) {
     (x[piece[0]], x[piece[piece.len() - 1]])
 }
 
-/// The gap of a contact at distance d between its nearest points, whose offset is `off` now
-/// and `began` at the substep's start (the same weights): negative where the two sides crossed
-/// within the substep, so that the pair is pushed back to the side it began on rather than on
+/// The gap of a contact at distance d (within the reach) between its nearest points, whose
+/// offset is `off` now and `began` at the substep's start (the same weights): negative where the
+/// two sides crossed within the substep, so that the pair is pushed back to the side it began on rather than on
 /// through the piece (at a relative speed of more than the reach a substep, as the poker
 /// cards land on each other, a pair can cross within one).
 fn gap(off: DVec3, d: f64, began: DVec3) -> f64 {
@@ -102,10 +102,10 @@ fn contacts(m: &SimModel, x: &[&[DVec3]], x0: &[&[DVec3]]) -> Vec<Contact> {
         let off = corners.iter().map(|&(o, i, w)| w * x[o][i]).sum::<DVec3>();
         let began = corners.iter().map(|&(o, i, w)| w * x0[o][i]).sum::<DVec3>();
         let d = off.length();
-        let gap = gap(off, d, began);
-        if !(d > 0.0 && gap < reach && part > 0.0) {
+        if !(d > 0.0 && d < reach && part > 0.0) {
             return None;
         }
+        let gap = gap(off, d, began);
         let n = off * (gap / (d * d));
         let moved = corners.iter().map(|&(o, i, w)| w * (x[o][i] - x0[o][i])).sum::<DVec3>();
         let correction = (n * (reach - gap) - friction_correction(moved, n, reach - gap, mu)) * part;
