@@ -529,9 +529,9 @@ fn a_stack_of_thin_cloths_rests_without_passing() {
 /// side it began on: no edge of either may pass through a triangle of the other at any frame
 /// (exact segment-triangle test), and after 10 frames the upper cloth lies above the lower,
 /// on the GPU and on the reference. Measured: none through, the upper cloth 6.3 cm above the
-/// lower (they part at 0.4 m/s: contact between objects gives back about a tenth of the
-/// approach, as at 1.6 m/s, where nothing crosses); pushed on through before, the upper cloth
-/// ended 63 cm below the lower (and no edge through it at a frame's end).
+/// lower (they part at 0.4 m/s, a tenth of the approach, as they do at 1.6 m/s where nothing
+/// crosses); pushed on through before, the upper cloth ended 63 cm below the lower (and no edge
+/// through it at a frame's end).
 #[test]
 fn a_cloth_thrown_faster_than_the_reach_a_substep_stays_on_its_side() {
     let (n, spacing, margin) = (7u32, 0.03, 0.001);
