@@ -226,12 +226,12 @@ void triangle_moves(uint k, vec4 ek, uint me, uvec3 tv, vec4 ej, vec4 ea, vec4 e
     vec3 nk = vec3(count_of(tv.x, wk.x), count_of(tv.y, wk.y), count_of(tv.z, wk.z));
     float denom = float(count_of(k, wp)) * wp + dot(nk * wk, w * w);
     if (!(d > 0.0 && d < reach && denom > 0.0)) return;
-    float gap = gap_of(off, d, triangle_began(k, tv, w));
+    vec3 began = triangle_began(k, tv, w);
+    float gap = gap_of(off, d, began);
     vec3 n = off * (gap / (d * d));
     // The relative motion over the substep, along the contact's tangent: undone whole within
     // the friction cone, else by mu times the normal correction (Coulomb).
-    vec3 moved = (ek.xyz - begun[k].xyz)
-               - (w.x * (ej.xyz - begun[tv.x].xyz) + w.y * (ea.xyz - begun[tv.y].xyz) + w.z * (eb.xyz - begun[tv.z].xyz));
+    vec3 moved = off - began;
     vec3 correction = n * (reach - gap) - friction_correction(moved, n, reach - gap, pair_friction(me, q));
     vec3 push = correction / denom;
     add_move(k, wp * push);
@@ -290,10 +290,10 @@ void segment_pair_moves(uvec4 sv, vec4 e[4], uint me, uint q) {
     vec4 nk = vec4(count_of(sv.x, wk.x), count_of(sv.y, wk.y), count_of(sv.z, wk.z), count_of(sv.w, wk.w));
     float denom = dot(nk * wk, w * w);
     if (!(d > 0.0 && d < reach && denom > 0.0 && part > 0.0)) return;
-    float gap = gap_of(off, d, pair_began(sv, w));
+    vec3 began = pair_began(sv, w);
+    float gap = gap_of(off, d, began);
     vec3 n = off * (gap / (d * d));
-    vec3 moved = w.x * (e[0].xyz - begun[sv.x].xyz) + w.y * (e[1].xyz - begun[sv.y].xyz)
-               + w.z * (e[2].xyz - begun[sv.z].xyz) + w.w * (e[3].xyz - begun[sv.w].xyz);
+    vec3 moved = off - began;
     vec3 correction = n * (reach - gap) - friction_correction(moved, n, reach - gap, pair_friction(me, q));
     vec3 push = part * correction / denom;
     add_move(sv.x, wk.x * w.x * push);

@@ -1276,38 +1276,36 @@ fn alternate_paths(first_fused: bool) -> Vec<(Integrator, bool)> {
 fn particle_set_loses_history(paths: &[(Integrator, bool)]) {
     for &(method, fused) in paths {
         let s = integrator_scene(method);
-        {
-            let ctx = gpu();
-            let mut sim = GpuSim::new(&ctx, &s).expect("creating the GPU simulation");
-            sim.set_fused(&ctx, fused).unwrap();
-            let mut cpu = CpuSim::new(&s);
-            for _ in 0..10 {
-                sim.step_frame(&ctx).expect("GPU frame");
-                cpu.step_frame();
-            }
-            let index = 4 * 13 + 8;
-            let before = sim.read_states(&ctx).expect("readback");
-            let speed = before[0].velocities()[index].length();
-            assert!(speed > 0.3, "{method:?}: the particle moves at only {speed} m/s");
-            let x = before[0].positions()[index] + DVec3::new(0.0, 0.01, 0.0);
-            let p = x.as_vec3();
-            sim.set_particle(0, index as u32, Particle { pos: [p.x, p.y, p.z, 0.0], vel: [0.0; 4] });
-            cpu.set_particle(0, index, p.as_dvec3(), DVec3::ZERO);
-            let mut worst = Deviation::default();
-            for _ in 0..5 {
-                sim.step_frame(&ctx).expect("GPU frame");
-                cpu.step_frame();
-                worst = worst.max(deviation(&sim.read_states(&ctx).expect("readback"), cpu.objects()));
-            }
-            println!("{method:?} (fused: {fused}): {worst:?}");
-            assert!(
-                worst.position <= POSITION,
-                "{method:?} (fused: {fused}): position deviation {} m",
-                worst.position
-            );
-            sim.destroy(&ctx);
-            assert_clean(&ctx);
+        let ctx = gpu();
+        let mut sim = GpuSim::new(&ctx, &s).expect("creating the GPU simulation");
+        sim.set_fused(&ctx, fused).unwrap();
+        let mut cpu = CpuSim::new(&s);
+        for _ in 0..10 {
+            sim.step_frame(&ctx).expect("GPU frame");
+            cpu.step_frame();
         }
+        let index = 4 * 13 + 8;
+        let before = sim.read_states(&ctx).expect("readback");
+        let speed = before[0].velocities()[index].length();
+        assert!(speed > 0.3, "{method:?}: the particle moves at only {speed} m/s");
+        let x = before[0].positions()[index] + DVec3::new(0.0, 0.01, 0.0);
+        let p = x.as_vec3();
+        sim.set_particle(0, index as u32, Particle { pos: [p.x, p.y, p.z, 0.0], vel: [0.0; 4] });
+        cpu.set_particle(0, index, p.as_dvec3(), DVec3::ZERO);
+        let mut worst = Deviation::default();
+        for _ in 0..5 {
+            sim.step_frame(&ctx).expect("GPU frame");
+            cpu.step_frame();
+            worst = worst.max(deviation(&sim.read_states(&ctx).expect("readback"), cpu.objects()));
+        }
+        println!("{method:?} (fused: {fused}): {worst:?}");
+        assert!(
+            worst.position <= POSITION,
+            "{method:?} (fused: {fused}): position deviation {} m",
+            worst.position
+        );
+        sim.destroy(&ctx);
+        assert_clean(&ctx);
     }
 }
 
@@ -1352,14 +1350,12 @@ fn bdf2_start_rounding(paths: &[(Integrator, bool)]) {
     };
     let euler = deviation_of(Integrator::SymplecticEuler, true);
     for &(method, fused) in paths {
-        {
-            let d = deviation_of(method, fused);
-            println!("{method:?} (fused: {fused}): {d:e} m, symplectic Euler {euler:e} m");
-            assert!(
-                d <= 2.0 * euler,
-                "{method:?} (fused: {fused}): {d:e} m from the reference, symplectic Euler {euler:e}"
-            );
-        }
+        let d = deviation_of(method, fused);
+        println!("{method:?} (fused: {fused}): {d:e} m, symplectic Euler {euler:e} m");
+        assert!(
+            d <= 2.0 * euler,
+            "{method:?} (fused: {fused}): {d:e} m from the reference, symplectic Euler {euler:e}"
+        );
     }
 }
 

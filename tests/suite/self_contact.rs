@@ -173,7 +173,7 @@ fn standing_strip(dims: [usize; 2], spacing: f64, top: f64, tilt: f64) -> SimMod
 /// tier's.
 #[test]
 fn contact_iterations_stop_a_strip_piling_on_itself() {
-    let s = standing_strip([5, 61], 0.025, 1.6, 0.2);
+    let s = piling_strip();
     assert_eq!(s.contact_iterations, 4);
     let (four_edges, four_edges_layers) = reference_pile(&with_edges(&s), 4);
     let (gpu_four, _) = fused_pile(&s);
@@ -194,7 +194,7 @@ fn contact_iterations_stop_a_strip_piling_on_itself() {
 #[test]
 #[ignore = "exhaustive tier: the pile with edge contact on the GPU"]
 fn a_strip_piling_with_edge_contact_on_the_gpu_never_passes_a_layer() {
-    let (edges, layers) = fused_pile(&with_edges(&standing_strip([5, 61], 0.025, 1.6, 0.2)));
+    let (edges, layers) = fused_pile(&with_edges(&piling_strip()));
     println!("crossing edges at worst: {edges} ({layers} through a layer)");
     assert!(
         edges <= 15 && layers == 0,
@@ -204,6 +204,11 @@ fn a_strip_piling_with_edge_contact_on_the_gpu_never_passes_a_layer() {
 
 /// The piling strip's frames.
 const PILE_FRAMES: usize = 45;
+
+/// The 5 x 61 strip of `contact_iterations_stop_a_strip_piling_on_itself`, dropped on end.
+fn piling_strip() -> SimModel {
+    standing_strip([5, 61], 0.025, 1.6, 0.2)
+}
 
 /// `s` with edges kept from edges (`self_contact = "triangles_and_edges"`).
 fn with_edges(s: &SimModel) -> SimModel {
@@ -252,7 +257,7 @@ fn fused_pile(m: &SimModel) -> (usize, usize) {
 #[test]
 #[ignore = "exhaustive tier: the pile on the reference, at one pass and at four"]
 fn one_contact_pass_lets_a_strip_pile_through() {
-    let s = standing_strip([5, 61], 0.025, 1.6, 0.2);
+    let s = piling_strip();
     let ((one, _), (four, _)) = (reference_pile(&s, 1), reference_pile(&s, 4));
     println!("crossing edges at worst: one pass {one}, four {four}");
     assert!(one > 100, "one pass a substep should let the pile through (measured 283), not {one}");

@@ -20,7 +20,7 @@
 //! With n from the nearest point to p (turned back to the side where the pair began the
 //! substep, if it crossed within it: `gap`), inverse masses w (0 pinned) and each particle's count
 //! of contacts n_k (mass splitting, Tonge et al. 2012: a particle in several contacts takes
-//! each as if its mass were shared among them), lambda = (reach - d) / (n_p w_p + sum n_k w_k
+//! each as if its mass were shared among them), lambda = (reach - gap) / (n_p w_p + sum n_k w_k
 //! b_k^2); p moves w_p lambda n, corner k -w_k b_k lambda n, so the contact keeps its momentum
 //! (a segment pair likewise, with one segment's ends in p's place). Coulomb friction (mu the
 //! mean of the two objects' `friction`): the contact's relative motion over the substep along
@@ -82,10 +82,10 @@ fn ends(x: &[DVec3], piece: &[usize]) -> (DVec3, DVec3) {
 }
 
 /// The gap of a contact at distance d (within the reach) between its nearest points, whose
-/// offset is `off` now and `began` at the substep's start (the same weights): negative where the
-/// two sides crossed within the substep, so that the pair is pushed back to the side it began on rather than on
-/// through the piece (at a relative speed of more than the reach a substep, as the poker
-/// cards land on each other, a pair can cross within one).
+/// offset is `off` now and `began` at the substep's start (the same weights): negative where
+/// the two sides crossed within the substep, so that the pair is pushed back to the side it
+/// began on rather than on through the piece (at a relative speed of more than the reach a
+/// substep a pair can cross within one).
 fn gap(off: DVec3, d: f64, began: DVec3) -> f64 {
     if off.dot(began) < 0.0 {
         -d
@@ -107,7 +107,7 @@ fn contacts(m: &SimModel, x: &[&[DVec3]], x0: &[&[DVec3]]) -> Vec<Contact> {
         }
         let gap = gap(off, d, began);
         let n = off * (gap / (d * d));
-        let moved = corners.iter().map(|&(o, i, w)| w * (x[o][i] - x0[o][i])).sum::<DVec3>();
+        let moved = off - began;
         let correction = (n * (reach - gap) - friction_correction(moved, n, reach - gap, mu)) * part;
         Some(Contact { corners, correction })
     };
