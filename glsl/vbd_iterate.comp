@@ -19,6 +19,33 @@ layout(local_size_x_id = 0, local_size_y_id = 1, local_size_z = 1) in;
 #include "solver_bodies.glsl"
 #include "forces.glsl"
 #include "solver_end.glsl"
+#include "colliders.glsl"
+
+// The flags word's bit (it.lists) for contact between objects after every iteration
+// (sim::model::SimModel::contact_rounds): each iteration but the last writes the iterate's
+// positions into p_out for contact_begin.comp, and each but the first first adds the
+// particle's contact sum (contact[], from the round after the iteration before) to its
+// iterate and to its prediction, so that the solve keeps the correction instead of pulling
+// it back towards the prediction. Each iteration but the last also takes the particle out of
+// the colliders after its solve (the particle's response, with friction; the constraint stage
+// then takes it and its edges after the last), its prediction moved likewise: a pile's lowest
+// layer then holds on the ground within the iterations, as the layers above it hold on it.
+const uint CONTACT_ROUNDS = 2u;
+
+// The particle a visit solves (`substep_start`, which the colliders' friction asks for).
+uint visiting = 0u;
+vec3 substep_start() { return p_in[visiting].pos.xyz; }
+
+// The response of the colliders to the particle i at displacement dx, its velocity the one
+// that reaches it (finish_particle's): the move it makes.
+vec3 collider_move(uint i, vec3 dx) {
+    visiting = i;
+    vec3 x = SX(i) + dx;
+    vec3 v = (dx - history[hist(i, H_DV)].xyz) * (1.0 / solve_dt());
+    vec3 before = x;
+    collide(x, v, float(it.substep + 1u) * g.dt);
+    return x - before;
+}
 
 void main() {
     if (!iteration_begin()) return;
@@ -28,9 +55,27 @@ void main() {
     vec4 di = iter[i];
     vec3 dx = di.xyz;
     bool pinned = di.w > 0.5;
+    bool rounds = (it.lists & CONTACT_ROUNDS) != 0u;
     if (!pinned) {
-        dx = vbd_particle(cell, SX(i), dx, aux[i].xyz);
+        vec4 y = aux[i];
+        if (rounds && it.k > 0u) {
+            vec3 moved = contact[i].xyz;
+            dx += moved;
+            y.xyz += moved;
+            aux[i] = y;
+        }
+        dx = vbd_particle(cell, SX(i), dx, y.xyz);
+        if (rounds && !last_iteration() && has(F_COLLIDERS)) {
+            vec3 moved = collider_move(i, dx);
+            dx += moved;
+            y.xyz += moved;
+            aux[i] = y;
+        }
         iter[i] = vec4(dx, di.w);
     }
-    if (last_iteration()) finish_particle(i, dx, pinned, pinned ? 0.0 : held_fraction(dx, aux[i].xyz));
+    if (last_iteration()) {
+        finish_particle(i, dx, pinned, pinned ? 0.0 : held_fraction(dx, aux[i].xyz));
+    } else if (rounds) {
+        p_out[i] = Particle(vec4(SX(i) + dx, di.w), vec4(0.0));
+    }
 }

@@ -10,7 +10,8 @@
 #include "hash_count.glsl"
 
 // k: 0-based iteration of this substep; colour: the vertex colour of a Gauss-Seidel pass;
-// substep: of the frame, 0-based; lists: 1 with self-collision contact lists on.
+// substep: of the frame, 0-based; lists: bit 0 with self-collision contact lists on (bit 1:
+// vbd_iterate.comp's CONTACT_ROUNDS).
 layout(push_constant) uniform Iteration { uint k; uint colour; uint substep; uint lists; BATCH_PUSH } it;
 
 // Takes this workgroup's object (batch.glsl); false: the workgroup takes no part.
@@ -37,7 +38,7 @@ void finish_particle(uint i, vec3 dx, bool pinned, float held) {
     p_out[i] = Particle(vec4(x, pinned ? 1.0 : 0.0), vec4(v, 0.0));
     history[hist(i, H_DX)] = pinned ? vec4(0.0) : vec4((base - start.pos.xyz) + dx, 1.0);
     history[hist(i, H_DV)] = pinned ? vec4(0.0) : vec4(v - start.vel.xyz, held);
-    note_position(i, x, pinned, it.substep, it.lists != 0u);
+    note_position(i, x, pinned, it.substep, (it.lists & 1u) != 0u);
 }
 
 #endif

@@ -298,10 +298,14 @@ fn simulate(
     }
     print_summary(out, sim, &timings)?;
     if let Some([on, rebuilt]) = sim.contact_list_counters(ctx).context("the contact counters")? {
-        let total = sim.substeps_done();
+        // (a round a substep, or one an iteration: SimModel::contact_rounds)
+        let rounds = model.contact_rounds() as u64;
+        let total = sim.substeps_done() * rounds;
+        let unit =
+            if rounds > 1 { format!("contact rounds ({rounds} a substep)") } else { "substeps".into() };
         say!(
             out,
-            "contact between objects: lists on in {on} of {total} substeps, rebuilt in {rebuilt} of those"
+            "contact between objects: lists on in {on} of {total} {unit}, rebuilt in {rebuilt} of those"
         )?;
     }
     if let Some((r, file)) = recording {

@@ -64,6 +64,9 @@ pub struct Solver {
     /// The iterate starts from the prediction less the part of the external pull the springs
     /// held last substep (`sim::cpu::integrators::held_fraction`), not from the prediction.
     pub adaptive_start: bool,
+    /// Contact between objects is projected after every iteration, not only after the
+    /// solve, and each projection moves the particle's prediction with it (`contact_rounds`).
+    pub contact_rounds: bool,
     /// Vec4s per particle of iterate slices and of auxiliary data.
     pub slices: u64,
     pub aux: u64,
@@ -139,7 +142,7 @@ pub struct Method {
 
 const fn solver(
     shader: &'static str,
-    (keeps_y, adaptive): (bool, bool),
+    (keeps_y, adaptive, rounds): (bool, bool, bool),
     slices: u64,
     aux: u64,
     sweep: Sweep,
@@ -148,6 +151,7 @@ const fn solver(
         shader,
         keeps_prediction: keeps_y,
         adaptive_start: adaptive,
+        contact_rounds: rounds,
         slices,
         aux,
         sweep,
@@ -181,7 +185,7 @@ const METHODS: [Method; 6] = [
         label: "xpbd",
         order: 2.0,
         // In place (one slice); aux: the multipliers of the particle's 6 forward springs.
-        scheme: solver("xpbd_iterate.comp", (false, false), 1, 3, Sweep::SpringClasses),
+        scheme: solver("xpbd_iterate.comp", (false, false, false), 1, 3, Sweep::SpringClasses),
         cpu: cpu::xpbd,
         colour: (255, 127, 14),
         few_iterations: 1,
@@ -194,7 +198,7 @@ const METHODS: [Method; 6] = [
         // Slices: the iterate, CG's move, residual, preconditioned residual, two directions,
         // the Hessian's product and the preconditioner (two); aux: the prediction, then the
         // workgroups' partial dot products.
-        scheme: solver("implicit_iterate.comp", (true, true), 9, 2, Sweep::NewtonCg),
+        scheme: solver("implicit_iterate.comp", (true, true, false), 9, 2, Sweep::NewtonCg),
         cpu: cpu::implicit,
         colour: (214, 39, 40),
         few_iterations: 4,
@@ -205,7 +209,7 @@ const METHODS: [Method; 6] = [
         label: "vbd",
         order: 2.0,
         // In place (one slice); aux: the prediction.
-        scheme: solver("vbd_iterate.comp", (true, true), 1, 1, Sweep::VertexColours),
+        scheme: solver("vbd_iterate.comp", (true, true, true), 1, 1, Sweep::VertexColours),
         cpu: cpu::vbd,
         colour: (148, 103, 189),
         few_iterations: 4,
@@ -216,7 +220,7 @@ const METHODS: [Method; 6] = [
         label: "xpbd_jacobi",
         order: 2.0,
         // Two alternating slices; aux: the multipliers of the particle's 12 springs.
-        scheme: solver("xpbd_jacobi_iterate.comp", (false, false), 2, 3, Sweep::Jacobi),
+        scheme: solver("xpbd_jacobi_iterate.comp", (false, false, false), 2, 3, Sweep::Jacobi),
         cpu: cpu::xpbd_jacobi,
         colour: (140, 86, 75),
         few_iterations: 1,

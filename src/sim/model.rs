@@ -280,6 +280,20 @@ impl SimModel {
         self.inter_object && self.objects.len() > 1
     }
 
+    /// Projections of contact between objects a substep: one after each iteration of a method
+    /// whose iterations pull back to the prediction (`Solver::contact_rounds`: VBD), each moving
+    /// the prediction with the particle, so that the next iteration keeps the correction and
+    /// a pile's support carries through it; else one after the solve. With one a substep a
+    /// stack of cards fell through itself at VBD 20 x 10 (docs/design/contact.md).
+    pub fn contact_rounds(&self) -> u32 {
+        let rounds = self.integrator.solver().is_some_and(|s| s.contact_rounds);
+        if self.inter_object_contact() && rounds {
+            self.iterations.max(1)
+        } else {
+            1
+        }
+    }
+
     /// Whether contact between objects keeps some two cloths' edges apart
     /// (`SimModel::keeps_cloth_edges_apart`).
     pub fn has_cloth_edges_between(&self) -> bool {

@@ -376,27 +376,73 @@ pub(crate) fn xpbd_jacobi(s: &Substep<'_>, history: &mut [History]) -> State {
 /// (the spring's transverse term clamped at compression keeps it positive definite).
 /// Stable at any stiffness; at convergence BDF2 with implicit dashpots.
 pub(crate) fn vbd(s: &Substep<'_>, history: &mut [History]) -> State {
-    let Substep { model: m, object: o, dt, x: x0, v } = *s;
-    let start = inertial(m, o, dt, x0, v, history);
-    let (dt, x, y) = (start.h, &start.base[..], &start.y[..]);
-    let mut p = start.start.clone();
-    let inertia = o.mass / (dt * dt);
-    let order = colour_order(o);
-    for _ in 0..m.iterations {
-        for &i in &order {
+    let mut solve = VbdSolve::new(s, history);
+    for _ in 0..s.model.iterations {
+        solve.sweep(s, None, None);
+    }
+    solve.finish(s, history)
+}
+
+/// One object's VBD solve of a substep, an iteration at a time (`vbd`; with contact between
+/// objects after every iteration, `sim::cpu`'s scene solve: `SimModel::contact_rounds`).
+pub(super) struct VbdSolve {
+    start: Inertial,
+    /// The iterate.
+    p: Vec<DVec3>,
+    order: Vec<usize>,
+}
+
+impl VbdSolve {
+    pub fn new(s: &Substep<'_>, history: &[History]) -> Self {
+        let start = inertial(s.model, s.object, s.dt, s.x, s.v, history);
+        Self { p: start.start.clone(), start, order: colour_order(s.object) }
+    }
+
+    /// The iterate's positions.
+    pub fn positions(&self) -> &[DVec3] {
+        &self.p
+    }
+
+    /// One iteration; `moved`: each particle's contact sum of the round after the iteration
+    /// before, which it adds to its iterate and its prediction when its colour comes (as
+    /// glsl/vbd_iterate.comp), so that its solve keeps the correction; `colliders`: each
+    /// collider's offset and velocity at the substep's end, to take each particle out of them
+    /// after its solve (the particle's response, with friction), its prediction moved likewise.
+    pub fn sweep(&mut self, s: &Substep<'_>, moved: Option<&[DVec3]>, colliders: Option<&[(DVec3, DVec3)]>) {
+        let o = s.object;
+        let (dt, x) = (self.start.h, &self.start.base[..]);
+        let inertia = o.mass / (dt * dt);
+        for &i in &self.order {
             if o.pinned[i] {
                 continue;
             }
-            let mut force = (y[i] - p[i]) * inertia;
+            if let Some(moved) = moved {
+                self.p[i] += moved[i];
+                self.start.y[i] += moved[i];
+            }
+            let p = &self.p;
+            let mut force = (self.start.y[i] - p[i]) * inertia;
             let mut hessian = DMat3::from_diagonal(DVec3::splat(inertia));
-            for (_, f, block) in newton_springs(o, dt, &p, x, i) {
+            for (_, f, block) in newton_springs(o, dt, p, x, i) {
                 force += f;
                 hessian += block;
             }
-            p[i] += hessian.inverse() * force;
+            self.p[i] += hessian.inverse() * force;
+            if let Some(motions) = colliders {
+                let mut at = self.p[i];
+                let mut v = (at - x[i]) / dt;
+                for (c, &motion) in s.model.colliders.iter().zip(motions) {
+                    c.respond((o.margin, o.friction), motion, (s.x[i], s.dt), &mut at, &mut v);
+                }
+                self.start.y[i] += at - self.p[i];
+                self.p[i] = at;
+            }
         }
     }
-    finish(s, &start, p, history)
+
+    pub fn finish(self, s: &Substep<'_>, history: &mut [History]) -> State {
+        finish(s, &self.start, self.p, history)
+    }
 }
 
 /// One spring of particle i in BDF2's incremental potential at the iterate p (`vbd` and

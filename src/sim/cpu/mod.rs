@@ -302,15 +302,19 @@ impl CpuSim {
         self.substeps_done += 1;
         // Every object's physics first: the constraints of one read the others' new positions
         // (inter-object contact), as the GPU's constraint stage follows all physics.
-        let advanced: Vec<(Vec<DVec3>, Vec<DVec3>)> = m
-            .objects
-            .iter()
-            .zip(&mut self.objects)
-            .map(|(o, state)| {
-                let s = integrators::Substep { model: m, object: o, dt: self.dt, x: &state.x, v: &state.v };
-                integrators::advance(&s, &mut state.history)
-            })
-            .collect();
+        let advanced: Vec<(Vec<DVec3>, Vec<DVec3>)> = if m.contact_rounds() > 1 {
+            solve_with_contact_rounds(m, &mut self.objects, self.dt, &motions)
+        } else {
+            m.objects
+                .iter()
+                .zip(&mut self.objects)
+                .map(|(o, state)| {
+                    let s =
+                        integrators::Substep { model: m, object: o, dt: self.dt, x: &state.x, v: &state.v };
+                    integrators::advance(&s, &mut state.history)
+                })
+                .collect()
+        };
         let positions: Vec<&[DVec3]> = advanced.iter().map(|(x, _)| x.as_slice()).collect();
         let contact = if m.inter_object_contact() {
             let starts: Vec<&[DVec3]> = self.objects.iter().map(|o| o.x.as_slice()).collect();
@@ -325,6 +329,45 @@ impl CpuSim {
             state.v = cv;
         }
     }
+}
+
+/// Every object's VBD solve of a substep together, with contact between objects from the
+/// iterates after every iteration but the last, which the next iteration takes into each
+/// particle's iterate and prediction, and in those iterations each particle's colliders after
+/// its solve (`SimModel::contact_rounds`; the last round and the colliders after the last
+/// iteration are the constraint stage's, as for the other methods). `motions`: each
+/// collider's offset and velocity at the substep's end.
+fn solve_with_contact_rounds(
+    m: &SimModel,
+    objects: &mut [CpuObject],
+    dt: f64,
+    motions: &[(DVec3, DVec3)],
+) -> Vec<(Vec<DVec3>, Vec<DVec3>)> {
+    let mut histories: Vec<Vec<History>> = objects.iter().map(|o| o.history.clone()).collect();
+    let steps: Vec<integrators::Substep<'_>> = (m.objects.iter().zip(objects.iter()))
+        .map(|(o, state)| integrators::Substep { model: m, object: o, dt, x: &state.x, v: &state.v })
+        .collect();
+    let mut solves: Vec<integrators::VbdSolve> =
+        steps.iter().zip(&histories).map(|(s, history)| integrators::VbdSolve::new(s, history)).collect();
+    let starts: Vec<&[DVec3]> = objects.iter().map(|o| o.x.as_slice()).collect();
+    let mut moved: Option<Vec<Vec<DVec3>>> = None;
+    for k in 0..m.iterations {
+        for (a, solve) in solves.iter_mut().enumerate() {
+            let colliders = (k + 1 < m.iterations).then_some(motions);
+            solve.sweep(&steps[a], moved.as_ref().map(|v| v[a].as_slice()), colliders);
+        }
+        if k + 1 < m.iterations {
+            let positions: Vec<&[DVec3]> = solves.iter().map(|s| s.positions()).collect();
+            moved = Some(inter_object::inter_object(m, &positions, &starts));
+        }
+    }
+    let advanced = (solves.into_iter().zip(&steps).zip(&mut histories))
+        .map(|((solve, s), history)| solve.finish(s, history))
+        .collect();
+    for (state, history) in objects.iter_mut().zip(histories) {
+        state.history = history;
+    }
+    advanced
 }
 
 /// The constraint stage of object `o` on the physics result `(x, v)`; `motions` holds each

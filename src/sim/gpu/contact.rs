@@ -463,17 +463,19 @@ impl SceneContact {
         Ok(())
     }
 
-    /// Records substep `substep`'s contacts after every object's physics (its output ordered
-    /// for reading) and before the constraints: each object's entries (which also clear the
+    /// Records a round of contacts (`round` counts them through the frame: a substep's, or
+    /// one an iteration with `SimModel::contact_rounds`) after every object's physics or
+    /// iteration (its output ordered for reading) and before the constraints or the next
+    /// iteration: each object's entries (which also clear the
     /// contact counts and moves, and note whether the lists hold), the hash's count, scan and
     /// scatter (indirect: no workgroups while the lists hold), then contact.comp's passes: the
     /// counts and the moves over the scene's particles, then each object's sums. Each is
     /// ordered after the one before by barriers on exactly the buffers it uses; the contact
     /// sums are ordered for the constraint stage at the end.
-    pub fn record(&self, rec: &mut Recorder<'_>, pipelines: &Pipelines, objects: &[GpuObject], substep: u32) {
+    pub fn record(&self, rec: &mut Recorder<'_>, pipelines: &Pipelines, objects: &[GpuObject], round: u32) {
         let b = BufferBarrier::new;
-        // (the push constants' pass word: the substep's parity, and LISTS_OFF)
-        let parity = (substep & 1) << 4 | if self.policy.on() { 0 } else { LISTS_OFF };
+        // (the push constants' pass word: the round's parity, and LISTS_OFF)
+        let parity = (round & 1) << 4 | if self.policy.on() { 0 } else { LISTS_OFF };
         // A chunk of objects a dispatch, each its particles (the push constants' first word is
         // the chunk's first object).
         let each_object = |rec: &mut Recorder<'_>, stage: Stage, pass: u32| {
@@ -501,8 +503,8 @@ impl SceneContact {
                 }
             }
         };
-        // This substep's control block and its indirect dispatches.
-        let block = (substep & 1) as u64 * CONTROL_WORDS;
+        // This round's control block and its indirect dispatches.
+        let block = (round & 1) as u64 * CONTROL_WORDS;
         let indirect = |rec: &mut Recorder<'_>, stage: Stage, set: BindingSet, word: u64, pass: u32| {
             rec.dispatch_indirect(
                 pipelines.get(stage),

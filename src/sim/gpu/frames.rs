@@ -80,7 +80,7 @@ impl GpuSim {
     /// guard is cleared, so a resumed simulation reports again only if it trips again.
     pub fn check_guard(&mut self) -> Result<Option<GuardTrip>> {
         if let Some(c) = &mut self.contact {
-            c.observe(self.model.substeps)?;
+            c.observe(self.model.substeps * self.model.contact_rounds())?;
         }
         let listed: Vec<bool> = self.objects.iter().map(|o| self.lists_on(o)).collect();
         let time = self.time();

@@ -462,7 +462,9 @@ impl GpuSim {
             rec.barrier(&after_physics);
             self.record_hash_build(rec, s);
             if let Some(c) = &self.contact {
-                c.record(rec, &self.pipelines, &self.objects, s);
+                // (the substep's last round: `record_physics` ran the others)
+                let rounds = self.model.contact_rounds();
+                c.record(rec, &self.pipelines, &self.objects, s * rounds + rounds - 1);
             }
             self.record_self_pairs(rec, s);
             let mut constraints = batch::Pass::new();

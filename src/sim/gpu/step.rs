@@ -58,6 +58,7 @@ impl GpuSim {
             Sweep::VertexColours => stepped.iter().map(|(_, o)| o.colours).max().unwrap_or(1),
             Sweep::SpringClasses => classes,
         };
+        let rounds = self.model.contact_rounds();
         // One pass: each object's workgroups and pass word (SKIP: it takes no part).
         let iterate = |rec: &mut Recorder<'_>, k: u32, each: &dyn Fn(&GpuObject) -> ([u32; 3], u32)| {
             rec.barrier(&between_passes);
@@ -68,7 +69,8 @@ impl GpuSim {
                     continue;
                 }
                 let pipeline = self.pipelines.get(Stage::Iterate(o.kind, method));
-                pass.add(i, pipeline, groups, &[k, word, substep, self.lists_on(o) as u32]);
+                let flags = self.lists_on(o) as u32 | if rounds > 1 { CONTACT_ROUNDS } else { 0 };
+                pass.add(i, pipeline, groups, &[k, word, substep, flags]);
             }
             pass.record(rec, batches, 0);
         };
@@ -106,6 +108,13 @@ impl GpuSim {
             for pass in 0..passes {
                 iterate(rec, k, &swept(pass));
             }
+            // Contact between objects from the iterates every iteration but the last (whose
+            // result takes the substep's own round after the physics): the next iteration
+            // adds each particle's sum to its iterate and its prediction.
+            if let Some(contact) = self.contact.as_ref().filter(|_| k + 1 < rounds) {
+                rec.barrier(&between_passes);
+                contact.record(rec, &self.pipelines, &self.objects, substep * rounds + k);
+            }
         }
         if solver.sweep == Sweep::SpringClasses {
             // Every particle finished once all classes of the last iteration are done.
@@ -138,6 +147,9 @@ const CG_TOTAL: u32 = 3;
 const CG_TOTALS: u32 = 32;
 /// The pass word's bit of a Newton step's last CG iteration (`cg_pass`).
 const LAST_CG: u32 = 16;
+/// The iteration's flags word: contact between objects runs after each iteration
+/// (`SimModel::contact_rounds`; glsl/vbd_iterate.comp's CONTACT_ROUNDS).
+const CONTACT_ROUNDS: u32 = 2;
 /// A pass word no pass has: the object takes no part in the pass.
 const SKIP: u32 = u32::MAX;
 
