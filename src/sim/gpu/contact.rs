@@ -213,7 +213,8 @@ impl super::GpuSim {
     }
 
     /// The contact lists between objects' counters since the state or the parameters last
-    /// changed from outside: substeps run with the lists on, and those that rebuilt them;
+    /// changed from outside: rounds run with the lists on (a round a substep, or one an
+    /// iteration: `SimModel::contact_rounds`), and those that rebuilt them;
     /// `None` without contact between objects. Waits for the frames in flight.
     pub fn contact_list_counters(&mut self, ctx: &GpuContext) -> anyhow::Result<Option<[u32; 2]>> {
         self.wait_all(ctx)?;
