@@ -26,26 +26,19 @@ layout(local_size_x_id = 0, local_size_y_id = 1, local_size_z = 1) in;
 // positions into p_out for contact_begin.comp, and each but the first first adds the
 // particle's contact sum (contact[], from the round after the iteration before) to its
 // iterate and to its prediction, so that the solve keeps the correction instead of pulling
-// it back towards the prediction. Each iteration but the last also takes the particle out of
-// the colliders after its solve (the particle's response, with friction; the constraint stage
-// then takes it and its edges after the last), its prediction moved likewise: a pile's lowest
-// layer then holds on the ground within the iterations, as the layers above it hold on it.
+// it back towards the prediction. Each iteration also takes the particle out of the
+// colliders after its solve (the particle's response, with friction): in all but the last
+// its prediction moves likewise; in the last the response gives its velocity too. A pile's
+// lowest layer then holds on the ground within the iterations, as the layers above it hold on
+// it. Contact's moves are the solve's own: in the velocity (x - x~) / h and the history. The
+// colliders' are kept apart (in aux's second slice) and taken as the constraint stage takes
+// them: out of the history and the velocity, which their response in the last iteration gives
+// (sim::cpu::integrators::VbdSolve says why).
 const uint CONTACT_ROUNDS = 2u;
 
 // The particle a visit solves (`substep_start`, which the colliders' friction asks for).
 uint visiting = 0u;
 vec3 substep_start() { return p_in[visiting].pos.xyz; }
-
-// The response of the colliders to the particle i at displacement dx, its velocity the one
-// that reaches it (finish_particle's): the move it makes.
-vec3 collider_move(uint i, vec3 dx) {
-    visiting = i;
-    vec3 x = SX(i) + dx;
-    vec3 v = (dx - history[hist(i, H_DV)].xyz) * (1.0 / solve_dt());
-    vec3 before = x;
-    collide(x, v, float(it.substep + 1u) * g.dt);
-    return x - before;
-}
 
 void main() {
     if (!iteration_begin()) return;
@@ -56,25 +49,48 @@ void main() {
     vec3 dx = di.xyz;
     bool pinned = di.w > 0.5;
     bool rounds = (it.lists & CONTACT_ROUNDS) != 0u;
+    bool last = last_iteration();
+    // This substep's moves of the colliders so far (before the last iteration's).
+    vec3 kept = vec3(0.0);
+    vec3 lost = history[hist(i, H_DV)].xyz;
+    vec3 v = vec3(0.0);
+    vec3 last_move = vec3(0.0);  // the colliders' in the last iteration
     if (!pinned) {
         vec4 y = aux[i];
         if (rounds && it.k > 0u) {
             vec3 moved = contact[i].xyz;
+            kept = aux[particle_count() + i].xyz;
             dx += moved;
             y.xyz += moved;
             aux[i] = y;
         }
         dx = vbd_particle(cell, SX(i), dx, y.xyz);
-        if (rounds && !last_iteration() && has(F_COLLIDERS)) {
-            vec3 moved = collider_move(i, dx);
+        v = (dx - kept - lost) * (1.0 / solve_dt());
+        if (rounds && has(F_COLLIDERS)) {
+            visiting = i;
+            vec3 x = SX(i) + dx;
+            vec3 before = x;
+            vec3 vc = v;
+            // (the last: touching within a few f32 steps of the margin, where the iterations
+            // before held it)
+            collide_within(x, vc, float(it.substep + 1u) * g.dt, last ? position_slack(x) : 0.0);
+            vec3 moved = x - before;
             dx += moved;
-            y.xyz += moved;
-            aux[i] = y;
+            if (last) {
+                v = vc;
+                last_move = moved;
+            } else {
+                kept += moved;
+                y.xyz += moved;
+                aux[i] = y;
+            }
         }
         iter[i] = vec4(dx, di.w);
+        if (rounds && !last) aux[particle_count() + i] = vec4(kept, 0.0);
     }
-    if (last_iteration()) {
-        finish_particle(i, dx, pinned, pinned ? 0.0 : held_fraction(dx, aux[i].xyz));
+    if (last) {
+        float held = pinned ? 0.0 : held_fraction(dx, aux[i].xyz);
+        finish_particle_moved(i, dx, v, dx - kept - last_move, pinned, held);
     } else if (rounds) {
         p_out[i] = Particle(vec4(SX(i) + dx, di.w), vec4(0.0));
     }

@@ -120,15 +120,20 @@ float collider_friction(Collider c) { return c.extra.x >= 0.0 ? c.extra.x : obj.
 // velocity over the frame (extra.yzw): `since` is the time from the frame's start to the end
 // of this substep, so the collider is `since` times its velocity further on (the particle is
 // tested `since` times it back).
-void collide(inout vec3 x, inout vec3 v, float since) {
+// `touch`: how far past the margin a particle still counts as touching (its velocity answers
+// the collider, its position is not moved): 0 but for vbd_iterate.comp's last iteration, whose
+// particles the iterations before held at the margin exactly.
+void collide_within(inout vec3 x, inout vec3 v, float since, float touch) {
     if (!has(F_COLLIDERS)) return;
     for (uint k = 0u; k < g.collider_count; ++k) {
         Collider c = colliders[k];
         vec3 velocity = c.extra.yzw;
         vec3 n;
         float d = collider_distance(c, x - velocity * since, n);
-        if (d < obj.margin) contact_response(x, v, n, obj.margin - d, collider_friction(c), velocity);
+        if (d < obj.margin + touch) contact_response(x, v, n, max(obj.margin - d, 0.0), collider_friction(c), velocity);
     }
 }
+
+void collide(inout vec3 x, inout vec3 v, float since) { collide_within(x, v, since, 0.0); }
 
 #endif

@@ -27,18 +27,29 @@ uvec2 coloured_cell(uvec2 id) {
     return uvec2(colour_first(it.colour, id.y, colours) + colours * id.x, id.y);
 }
 
-// `held`: the fraction of gravity the solve held (held_fraction; 0 without an adaptive start),
-// kept in H_DV's w for the next substep's start.
-void finish_particle(uint i, vec3 dx, bool pinned, float held) {
+// The end of the substep: position x~ + dx with velocity v into p_out, and the history from
+// the solve's own displacement `solved`. `held`: the fraction of gravity the solve held
+// (held_fraction; 0 without an adaptive start), kept in H_DV's w for the next substep's start.
+// vbd_iterate.comp's contact rounds pass a dx and v with the colliders' moves within the solve
+// in them and a `solved` without: the history leaves those out, as it leaves out the
+// constraint stage's corrections (sim::cpu::integrators::VbdSolve::sweep says why).
+void finish_particle_moved(uint i, vec3 dx, vec3 v, vec3 solved, bool pinned, float held) {
     Particle start = p_in[i];
     vec3 base = history[hist(i, H_BASE)].xyz;
     vec3 lost = history[hist(i, H_DV)].xyz;  // (predict.comp)
     vec3 x = base + dx;
-    vec3 v = pinned ? vec3(0.0) : (dx - lost) * (1.0 / solve_dt());
-    p_out[i] = Particle(vec4(x, pinned ? 1.0 : 0.0), vec4(v, 0.0));
-    history[hist(i, H_DX)] = pinned ? vec4(0.0) : vec4((base - start.pos.xyz) + dx, 1.0);
-    history[hist(i, H_DV)] = pinned ? vec4(0.0) : vec4(v - start.vel.xyz, held);
+    vec3 solved_v = (solved - lost) * (1.0 / solve_dt());
+    p_out[i] = Particle(vec4(x, pinned ? 1.0 : 0.0), vec4(pinned ? vec3(0.0) : v, 0.0));
+    history[hist(i, H_DX)] = pinned ? vec4(0.0) : vec4((base - start.pos.xyz) + solved, 1.0);
+    history[hist(i, H_DV)] = pinned ? vec4(0.0) : vec4(solved_v - start.vel.xyz, held);
     note_position(i, x, pinned, it.substep, (it.lists & 1u) != 0u);
+}
+
+// The end of the substep at the solve's displacement dx, with the velocity that reaches it,
+// v = (dx - lost) / h (predict_body.glsl).
+void finish_particle(uint i, vec3 dx, bool pinned, float held) {
+    vec3 lost = history[hist(i, H_DV)].xyz;
+    finish_particle_moved(i, dx, (dx - lost) * (1.0 / solve_dt()), dx, pinned, held);
 }
 
 #endif

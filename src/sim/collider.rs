@@ -176,10 +176,25 @@ impl ColliderModel {
         x: &mut DVec3,
         v: &mut DVec3,
     ) {
+        self.respond_within((margin, object_friction), (shift, velocity), (start, dt), 0.0, x, v);
+    }
+
+    /// `respond` with a particle within `touch` past the margin counted as touching (its
+    /// velocity answers the collider; its position is not moved): `collide_within` in
+    /// colliders.glsl.
+    pub fn respond_within(
+        &self,
+        (margin, object_friction): (f64, f64),
+        (shift, velocity): (DVec3, DVec3),
+        (start, dt): (DVec3, f64),
+        touch: f64,
+        x: &mut DVec3,
+        v: &mut DVec3,
+    ) {
         let (d, n) = self.shape.distance(*x - shift);
-        if d < margin {
+        if d < margin + touch {
             let mu = self.friction.unwrap_or(object_friction);
-            respond_along((n, margin - d), (mu, velocity), (start, dt), x, v);
+            respond_along((n, (margin - d).max(0.0)), (mu, velocity), (start, dt), x, v);
         }
     }
 }

@@ -398,14 +398,17 @@ fn inter_object_contact() {
     check_mode("inter-object contact", &s, Mode::Resync);
 }
 
-/// Contact between objects inside VBD's iterations (`SimModel::contact_rounds`): the small
-/// cloth of `thrown_cloths_and_rope` thrown onto the held one at 3 m/s, VBD at 4 iterations,
-/// contact after every iteration, each round's moves taken into the next iteration's iterate
-/// and prediction, as the reference does. Without the rope: a rope node resting on a cloth
-/// sits at the reach's edge between rounds, where a contact switches on or off, so f32 against
-/// f64 grows to a millimetre within a frame there (the reference against itself, each
-/// position moved 2e-7 m, does the same; with one round it stays at 1e-7). Measured 7.6e-5 m
-/// at the impact (lavapipe).
+/// Contact between objects inside VBD's iterations (`SimModel::contact_rounds`), VBD at 4
+/// iterations, contact after every iteration, each round's moves taken into the next
+/// iteration's iterate and prediction, the colliders after each solve, as the reference does:
+/// the small cloth of `thrown_cloths_and_rope` thrown onto the held one at 3 m/s (measured
+/// 7.6e-5 m at the impact), and the same beside it, 5 m away, onto a ground 1.5 cm under the
+/// held one, friction 0.5 (the colliders inside the iterations; 6.8e-7 m). Without the rope: a
+/// rope node resting on a cloth sits at the reach's edge between rounds, where a contact
+/// switches on or off, so f32 against f64 grows to a millimetre within a frame there (the
+/// reference against itself, each position moved 2e-7 m, does the same; with one round it
+/// stays at 1e-7); with the cloth thrown onto the held one and the ground together, 2.2e-4
+/// against the reference's 1.3e-4 against itself.
 #[test]
 fn contact_rounds_between_objects_match_the_reference() {
     let mut s = thrown_cloths_and_rope();
@@ -415,6 +418,28 @@ fn contact_rounds_between_objects_match_the_reference() {
     assert_eq!(s.contact_rounds(), 4);
     // (objects that touch each other run per stage on either path: once)
     check_paths("contact rounds between objects", &s, Mode::Resync, &[(false, None)]);
+    check_paths(
+        "contact rounds, on the ground",
+        &cloth_thrown_on_the_ground(),
+        Mode::Resync,
+        &[(false, None)],
+    );
+}
+
+/// `thrown_cloths_and_rope`'s two cloths at VBD 4 iterations, the small one 5 m aside, thrown
+/// at 3 m/s onto a ground 1.5 cm under the held one, friction 0.5.
+fn cloth_thrown_on_the_ground() -> SimModel {
+    use msdsim::sim::collider::{ColliderModel, Motion, Shape};
+    let mut s = thrown_cloths_and_rope();
+    s.objects.pop();
+    for p in s.objects[1].positions.iter_mut() {
+        p.x += 5.0;
+    }
+    let ground = Shape::Ground { height: 0.485 };
+    s.colliders = vec![ColliderModel { shape: ground, friction: Some(0.5), motion: Motion::Fixed }];
+    s.integrator = Integrator::Vbd;
+    s.iterations = 4;
+    s
 }
 
 #[test]

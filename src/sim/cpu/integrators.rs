@@ -206,7 +206,22 @@ fn restart(o: &ObjectModel, i: usize, x: &[DVec3], v: DVec3, force: DVec3, dt: f
 /// Positions after the solve, with the velocity that reaches them, v = (p - x~) / h, and each
 /// particle's new history (with `adaptive`, the fraction of gravity it held).
 fn finish(s: &Substep<'_>, start: &Inertial, p: Vec<DVec3>, history: &mut [History]) -> State {
-    let (o, x, v) = (s.object, s.x, s.v);
+    let v: Vec<DVec3> = p.iter().zip(&start.base).map(|(p, b)| (*p - *b) / start.h).collect();
+    finish_moved(s, start, (p, v), None, history)
+}
+
+/// The end of a substep at positions `p` with velocities `v`, each particle's history from
+/// the solve's own positions `solved` (`p` where `None`): VBD's contact rounds (`VbdSolve`)
+/// move particles out of the colliders within the solve, and the history leaves those moves
+/// out as it leaves out the constraint stage's corrections (`VbdSolve::sweep` says why).
+fn finish_moved(
+    s: &Substep<'_>,
+    start: &Inertial,
+    (p, v): (Vec<DVec3>, Vec<DVec3>),
+    solved: Option<&[DVec3]>,
+    history: &mut [History],
+) -> State {
+    let (o, x, v0) = (s.object, s.x, s.v);
     let adaptive = adaptive_start(s.model);
     let nv = (0..x.len())
         .map(|i| {
@@ -214,10 +229,11 @@ fn finish(s: &Substep<'_>, start: &Inertial, p: Vec<DVec3>, history: &mut [Histo
                 history[i] = None;
                 return DVec3::ZERO;
             }
-            let nv = (p[i] - start.base[i]) / start.h;
             let held = if adaptive { held_fraction(s.model, start.h, p[i] - start.y[i]) } else { 0.0 };
-            history[i] = Some(Past { dx: p[i] - x[i], dv: nv - v[i], held });
-            nv
+            let solved = solved.map_or(p[i], |q| q[i]);
+            let solved_v = (solved - start.base[i]) / start.h;
+            history[i] = Some(Past { dx: solved - x[i], dv: solved_v - v0[i], held });
+            v[i]
         })
         .collect();
     (p, nv)
@@ -378,7 +394,7 @@ pub(crate) fn xpbd_jacobi(s: &Substep<'_>, history: &mut [History]) -> State {
 pub(crate) fn vbd(s: &Substep<'_>, history: &mut [History]) -> State {
     let mut solve = VbdSolve::new(s, history);
     for _ in 0..s.model.iterations {
-        solve.sweep(s, None, None);
+        solve.sweep(s, None, None, false);
     }
     solve.finish(s, history)
 }
@@ -389,13 +405,24 @@ pub(super) struct VbdSolve {
     start: Inertial,
     /// The iterate.
     p: Vec<DVec3>,
+    /// Each particle's moves of the colliders within the solve (`finish` leaves them out of
+    /// the history), and its velocity where the last iteration's colliders gave it.
+    kept_colliders: Vec<DVec3>,
+    end_velocity: Vec<Option<DVec3>>,
     order: Vec<usize>,
 }
 
 impl VbdSolve {
     pub fn new(s: &Substep<'_>, history: &[History]) -> Self {
         let start = inertial(s.model, s.object, s.dt, s.x, s.v, history);
-        Self { p: start.start.clone(), start, order: colour_order(s.object) }
+        let n = s.x.len();
+        Self {
+            p: start.start.clone(),
+            start,
+            kept_colliders: vec![DVec3::ZERO; n],
+            end_velocity: vec![None; n],
+            order: colour_order(s.object),
+        }
     }
 
     /// The iterate's positions.
@@ -403,15 +430,29 @@ impl VbdSolve {
         &self.p
     }
 
-    /// One iteration; `moved`: each particle's contact sum of the round after the iteration
-    /// before, which it adds to its iterate and its prediction when its colour comes (as
-    /// glsl/vbd_iterate.comp), so that its solve keeps the correction; `colliders`: each
-    /// collider's offset and velocity at the substep's end, to take each particle out of them
-    /// after its solve (the particle's response, with friction), its prediction moved likewise.
-    pub fn sweep(&mut self, s: &Substep<'_>, moved: Option<&[DVec3]>, colliders: Option<&[(DVec3, DVec3)]>) {
+    /// One iteration (`last`: the substep's last). `moved`: each particle's contact sum of the
+    /// round after the iteration before, which it adds to its iterate and its prediction when
+    /// its colour comes (as glsl/vbd_iterate.comp), so that its solve keeps the correction.
+    /// `colliders`: each collider's offset and velocity at the substep's end, to take each
+    /// particle out of them after its solve (the particle's response, with friction): before
+    /// the last iteration its prediction moves likewise; in the last the response gives its
+    /// velocity from the solve's. Contact's moves are the solve's own (in the velocity and the
+    /// history: a pile's support is part of its motion); the colliders' are kept out of both,
+    /// as the constraint stage keeps them: with them in the history BDF2 carried the push into
+    /// the next substeps, and with them in the velocity over h the base BDF2 put below the
+    /// surface came back as speed (a cloth dropped at 3.5 m/s on the ground bounced back at 1.0
+    /// to 1.6 m/s either way). Contact's moves taken that way instead (out of the history, into
+    /// the velocity over the substep) threw a stack of cards apart.
+    pub fn sweep(
+        &mut self,
+        s: &Substep<'_>,
+        moved: Option<&[DVec3]>,
+        colliders: Option<&[(DVec3, DVec3)]>,
+        last: bool,
+    ) {
         let o = s.object;
-        let (dt, x) = (self.start.h, &self.start.base[..]);
-        let inertia = o.mass / (dt * dt);
+        let (h, x) = (self.start.h, &self.start.base[..]);
+        let inertia = o.mass / (h * h);
         for &i in &self.order {
             if o.pinned[i] {
                 continue;
@@ -423,25 +464,38 @@ impl VbdSolve {
             let p = &self.p;
             let mut force = (self.start.y[i] - p[i]) * inertia;
             let mut hessian = DMat3::from_diagonal(DVec3::splat(inertia));
-            for (_, f, block) in newton_springs(o, dt, p, x, i) {
+            for (_, f, block) in newton_springs(o, h, p, x, i) {
                 force += f;
                 hessian += block;
             }
             self.p[i] += hessian.inverse() * force;
-            if let Some(motions) = colliders {
-                let mut at = self.p[i];
-                let mut v = (at - x[i]) / dt;
-                for (c, &motion) in s.model.colliders.iter().zip(motions) {
-                    c.respond((o.margin, o.friction), motion, (s.x[i], s.dt), &mut at, &mut v);
-                }
-                self.start.y[i] += at - self.p[i];
-                self.p[i] = at;
+            let Some(motions) = colliders else { continue };
+            let mut v = (self.p[i] - self.kept_colliders[i] - x[i]) / h;
+            let mut at = self.p[i];
+            // (the last: touching within a few f32 steps of the margin, where the iterations
+            // before held it; position_slack in colliders.glsl)
+            let touch = if last { 5e-7 * (1.0 + at.abs().max_element()) } else { 0.0 };
+            for (c, &motion) in s.model.colliders.iter().zip(motions) {
+                c.respond_within((o.margin, o.friction), motion, (s.x[i], s.dt), touch, &mut at, &mut v);
             }
+            if last {
+                self.end_velocity[i] = Some(v);
+                self.kept_colliders[i] += at - self.p[i];
+            } else {
+                self.start.y[i] += at - self.p[i];
+                self.kept_colliders[i] += at - self.p[i];
+            }
+            self.p[i] = at;
         }
     }
 
     pub fn finish(self, s: &Substep<'_>, history: &mut [History]) -> State {
-        finish(s, &self.start, self.p, history)
+        let h = self.start.h;
+        let solved: Vec<DVec3> = (0..self.p.len()).map(|i| self.p[i] - self.kept_colliders[i]).collect();
+        let v = (0..self.p.len())
+            .map(|i| self.end_velocity[i].unwrap_or((solved[i] - self.start.base[i]) / h))
+            .collect();
+        finish_moved(s, &self.start, (self.p, v), Some(&solved), history)
     }
 }
 

@@ -353,8 +353,8 @@ fn solve_with_contact_rounds(
     let mut moved: Option<Vec<Vec<DVec3>>> = None;
     for k in 0..m.iterations {
         for (a, solve) in solves.iter_mut().enumerate() {
-            let colliders = (k + 1 < m.iterations).then_some(motions);
-            solve.sweep(&steps[a], moved.as_ref().map(|v| v[a].as_slice()), colliders);
+            let last = k + 1 == m.iterations;
+            solve.sweep(&steps[a], moved.as_ref().map(|v| v[a].as_slice()), Some(motions), last);
         }
         if k + 1 < m.iterations {
             let positions: Vec<&[DVec3]> = solves.iter().map(|s| s.positions()).collect();
