@@ -418,12 +418,15 @@ fn contact_rounds_between_objects_match_the_reference() {
     assert_eq!(s.contact_rounds(), 4);
     // (objects that touch each other run per stage on either path: once)
     check_paths("contact rounds between objects", &s, Mode::Resync, &[(false, None)]);
-    check_paths(
-        "contact rounds, on the ground",
-        &cloth_thrown_on_the_ground(),
-        Mode::Resync,
-        &[(false, None)],
-    );
+    // (nothing touches between the objects there: the lanes' run would repeat this one)
+    let ctx = gpu();
+    let s = cloth_thrown_on_the_ground();
+    let (d, _) = compare_with(&ctx, &s, FRAMES, Mode::Resync, &|_| {});
+    println!("contact rounds, on the ground: {d:?}");
+    assert!(d.position <= POSITION, "on the ground: position deviation {} m > {POSITION}", d.position);
+    let velocity = VELOCITY.max(POSITION / s.dt());
+    assert!(d.velocity <= velocity, "on the ground: velocity deviation {} m/s > {velocity}", d.velocity);
+    assert_clean(&ctx);
 }
 
 /// `thrown_cloths_and_rope`'s two cloths at VBD 4 iterations, the small one 5 m aside, thrown
