@@ -33,7 +33,8 @@ layout(local_size_x_id = 0, local_size_y_id = 1, local_size_z = 1) in;
 // it. Contact's moves are the solve's own: in the velocity (x - x~) / h and the history. The
 // colliders' are kept apart (in aux's second slice) and taken as the constraint stage takes
 // them: out of the history and the velocity, which their response in the last iteration gives
-// (sim::cpu::integrators::VbdSolve says why).
+// (sim::cpu::integrators::VbdSolve says why). Their moves take aux's second slice, which the
+// object has with contact rounds only (sim::gpu::object::SolverBuffers).
 const uint CONTACT_ROUNDS = 2u;
 
 // The particle a visit solves (`substep_start`, which the colliders' friction asks for).
@@ -50,11 +51,11 @@ void main() {
     bool pinned = di.w > 0.5;
     bool rounds = (it.lists & CONTACT_ROUNDS) != 0u;
     bool last = last_iteration();
-    // This substep's moves of the colliders so far (before the last iteration's).
+    // With contact rounds: this substep's moves of the colliders so far (before the last
+    // iteration's), the last iteration's, and the velocity their response gives.
     vec3 kept = vec3(0.0);
-    vec3 lost = history[hist(i, H_DV)].xyz;
+    vec3 last_move = vec3(0.0);
     vec3 v = vec3(0.0);
-    vec3 last_move = vec3(0.0);  // the colliders' in the last iteration
     if (!pinned) {
         vec4 y = aux[i];
         if (rounds && it.k > 0u) {
@@ -65,32 +66,34 @@ void main() {
             aux[i] = y;
         }
         dx = vbd_particle(cell, SX(i), dx, y.xyz);
-        v = (dx - kept - lost) * (1.0 / solve_dt());
-        if (rounds && has(F_COLLIDERS)) {
+        if (rounds) {
             visiting = i;
+            v = (dx - kept - history[hist(i, H_DV)].xyz) * (1.0 / solve_dt());
             vec3 x = SX(i) + dx;
             vec3 before = x;
-            vec3 vc = v;
             // (the last: touching within a few f32 steps of the margin, where the iterations
             // before held it)
-            collide_within(x, vc, float(it.substep + 1u) * g.dt, last ? position_slack(x) : 0.0);
+            collide_within(x, v, float(it.substep + 1u) * g.dt, last ? position_slack(x) : 0.0);
             vec3 moved = x - before;
             dx += moved;
             if (last) {
-                v = vc;
                 last_move = moved;
             } else {
                 kept += moved;
                 y.xyz += moved;
                 aux[i] = y;
+                aux[particle_count() + i] = vec4(kept, 0.0);
             }
         }
         iter[i] = vec4(dx, di.w);
-        if (rounds && !last) aux[particle_count() + i] = vec4(kept, 0.0);
     }
     if (last) {
         float held = pinned ? 0.0 : held_fraction(dx, aux[i].xyz);
-        finish_particle_moved(i, dx, v, dx - kept - last_move, pinned, held);
+        if (rounds) {
+            finish_particle_moved(i, dx, v, dx - kept - last_move, pinned, held);
+        } else {
+            finish_particle(i, dx, pinned, held);
+        }
     } else if (rounds) {
         p_out[i] = Particle(vec4(SX(i) + dx, di.w), vec4(0.0));
     }

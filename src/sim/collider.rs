@@ -199,6 +199,12 @@ impl ColliderModel {
     }
 }
 
+/// A few f32 steps of a position near x [m]: 5e-7 (1 + its largest coordinate), as the GPU's
+/// `position_slack` in colliders.glsl.
+pub fn position_slack(x: DVec3) -> f64 {
+    5e-7 * (1.0 + x.abs().max_element())
+}
+
 /// The response to a collider moving at `velocity` that a particle is `depth` inside of its
 /// margin along the normal `n`: moved out along n by the depth, its approaching normal velocity
 /// (relative to the collider) removed, then Coulomb friction with coefficient mu: the normal
@@ -217,10 +223,9 @@ pub fn respond_along(
     *x += n * depth;
     let relative = *v - velocity;
     let vn = relative.dot(n);
-    // The depth past a few f32 steps of the position only, as the GPU (position_slack); never
-    // negative (a particle leaving within that slack takes no friction).
-    let slack = 5e-7 * (1.0 + x.abs().max_element());
-    let jn = (-vn).max((depth - slack) / dt).max(0.0);
+    // The depth past a few f32 steps of the position only; never negative (a particle leaving
+    // within that slack takes no friction).
+    let jn = (-vn).max((depth - position_slack(*x)) / dt).max(0.0);
     let mut vt = relative - n * vn;
     let moved = *x - start - velocity * dt;
     let slip = moved - n * moved.dot(n);

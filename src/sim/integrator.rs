@@ -208,9 +208,9 @@ const METHODS: [Method; 6] = [
         integrator: Integrator::Vbd,
         label: "vbd",
         order: 2.0,
-        // In place (one slice); aux: the prediction, then the colliders' moves within the
-        // solve (with contact rounds).
-        scheme: solver("vbd_iterate.comp", (true, true, true), 1, 2, Sweep::VertexColours),
+        // In place (one slice); aux: the prediction (and with contact rounds the colliders'
+        // moves within the solve: `sim::gpu::object::SolverBuffers`).
+        scheme: solver("vbd_iterate.comp", (true, true, true), 1, 1, Sweep::VertexColours),
         cpu: cpu::vbd,
         colour: (148, 103, 189),
         few_iterations: 4,

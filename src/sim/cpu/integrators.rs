@@ -473,17 +473,17 @@ impl VbdSolve {
             let mut v = (self.p[i] - self.kept_colliders[i] - x[i]) / h;
             let mut at = self.p[i];
             // (the last: touching within a few f32 steps of the margin, where the iterations
-            // before held it; position_slack in colliders.glsl)
-            let touch = if last { 5e-7 * (1.0 + at.abs().max_element()) } else { 0.0 };
+            // before held it)
+            let touch = if last { crate::sim::collider::position_slack(at) } else { 0.0 };
             for (c, &motion) in s.model.colliders.iter().zip(motions) {
                 c.respond_within((o.margin, o.friction), motion, (s.x[i], s.dt), touch, &mut at, &mut v);
             }
+            let moved = at - self.p[i];
+            self.kept_colliders[i] += moved;
             if last {
                 self.end_velocity[i] = Some(v);
-                self.kept_colliders[i] += at - self.p[i];
             } else {
-                self.start.y[i] += at - self.p[i];
-                self.kept_colliders[i] += at - self.p[i];
+                self.start.y[i] += moved;
             }
             self.p[i] = at;
         }

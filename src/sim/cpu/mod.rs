@@ -333,10 +333,10 @@ impl CpuSim {
 
 /// Every object's VBD solve of a substep together, with contact between objects from the
 /// iterates after every iteration but the last, which the next iteration takes into each
-/// particle's iterate and prediction, and in those iterations each particle's colliders after
-/// its solve (`SimModel::contact_rounds`; the last round and the colliders after the last
-/// iteration are the constraint stage's, as for the other methods). `motions`: each
-/// collider's offset and velocity at the substep's end.
+/// particle's iterate and prediction, and each particle's colliders after its solve in every
+/// iteration (`SimModel::contact_rounds`, `VbdSolve::sweep`; the last round between objects
+/// is the constraint stage's, as for the other methods). `motions`: each collider's offset
+/// and velocity at the substep's end.
 fn solve_with_contact_rounds(
     m: &SimModel,
     objects: &mut [CpuObject],

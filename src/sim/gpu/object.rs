@@ -133,14 +133,12 @@ pub(super) struct SolverBuffers {
 }
 
 impl SolverBuffers {
-    fn new(
-        ctx: &GpuContext,
-        name: &str,
-        particles: u64,
-        method: Integrator,
-    ) -> Result<Option<Self>, VkError> {
-        let Some(solver) = method.solver() else { return Ok(None) };
-        let (slices, aux) = (solver.slices, solver.aux);
+    fn new(ctx: &GpuContext, name: &str, particles: u64, model: &SimModel) -> Result<Option<Self>, VkError> {
+        let Some(solver) = model.integrator.solver() else { return Ok(None) };
+        // With contact rounds a slice more: the colliders' moves within the solve
+        // (glsl/vbd_iterate.comp); a scene without them does not pay for it.
+        let aux = solver.aux + (model.contact_rounds() > 1) as u64;
+        let slices = solver.slices;
         let (storage, gpu) = (BufferUsage::STORAGE, MemoryKind::GpuOnly);
         let cleared = storage | BufferUsage::TRANSFER_DST;
         let [iter, aux, history] = buffers(
@@ -251,7 +249,7 @@ impl GpuObject {
                     MemoryKind::GpuOnly,
                 )?);
             }
-            solver = SolverBuffers::new(ctx, &o.name, n, model.integrator)?;
+            solver = SolverBuffers::new(ctx, &o.name, n, model)?;
             if builds_hash(o, model) {
                 let fused = 4 * plan.fused.map_or(0, |f| f.list_words());
                 let name = format!("{}.self_list", o.name);
