@@ -11,10 +11,9 @@ use msdsim::sim::model::{
     default_ring_weights, ObjectKind, ObjectModel, SimModel, WindModel, DEFAULT_CONTACT_ITERATIONS,
 };
 use msdsim::vk::{ContextOptions, GpuContext};
+use std::cell::RefCell;
+use std::rc::Rc;
 
-/// A context with validation and synchronization validation. Panics (never skips) when no
-/// Vulkan device or validation layer is available. A crash by a signal from here on prints
-/// its test thread and stack (`crash`).
 /// Gives SIGINT its default action back in this test's process, so that the children it
 /// stops with SIGINT inherit that: a shell starts a background job (`scripts/test.sh &`) with
 /// SIGINT ignored, a child keeps an ignored signal ignored (msdsim leaves it so, as programs
@@ -24,7 +23,23 @@ pub fn default_sigint() {
     unsafe { libc::signal(libc::SIGINT, libc::SIG_DFL) };
 }
 
-pub fn gpu() -> GpuContext {
+/// A context with validation and synchronization validation. Panics (never skips) when no
+/// Vulkan device or validation layer is available. A crash by a signal from here on prints
+/// its test thread and stack (`crash`).
+pub fn gpu() -> Rc<GpuContext> {
+    CONTEXT.with(|c| c.borrow_mut().get_or_insert_with(|| Rc::new(new_context())).clone())
+}
+
+thread_local! {
+    /// The test thread's context: every `gpu()` of one test shares it, so that a pipeline one
+    /// path or run compiled is taken from the context's cache by the next instead of compiled
+    /// again (on lavapipe compiling the pipelines was over half of a test's time). Validation
+    /// messages and live allocations are counted over the whole test (`assert_clean`). It
+    /// goes with the test's thread.
+    static CONTEXT: RefCell<Option<Rc<GpuContext>>> = const { RefCell::new(None) };
+}
+
+fn new_context() -> GpuContext {
     crash::install();
     let options = ContextOptions {
         validation: true,
