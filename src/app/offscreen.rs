@@ -191,7 +191,7 @@ fn run(
         renderer.set_camera(slot, &uniform)?;
         let last = frame + 1 == total;
         let mut rec = target.slots[slot].begin(ctx)?;
-        sim.record_frame(&mut rec, Access::VertexInput, slot);
+        sim.record_frame(&mut rec, Access::VertexInput, slot)?;
         let pool = target.pools.get(slot);
         if let Some(pool) = pool {
             rec.reset_timestamps(pool);

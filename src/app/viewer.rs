@@ -541,7 +541,7 @@ impl Viewer {
         let host = self.host.as_mut().expect("host");
         if run_sim {
             for _ in 0..sim_frames {
-                host.sim_mut().record_frame(&mut rec, Access::VertexInput, slot);
+                host.sim_mut().record_frame(&mut rec, Access::VertexInput, slot)?;
             }
         } else if host.sim_mut().take_surface_stale() {
             // Paused after a reset (or a rebuild): show the new state at once.

@@ -151,7 +151,12 @@ pub struct Recorder<'a> {
     cb: vk::CommandBuffer,
 }
 
-impl Recorder<'_> {
+impl<'a> Recorder<'a> {
+    /// The context the commands are recorded on.
+    pub fn context(&self) -> &'a GpuContext {
+        self.ctx
+    }
+
     /// Binds a compute pipeline and its binding set and dispatches `groups` workgroups.
     pub fn dispatch(&mut self, pipeline: &ComputePipeline, set: BindingSet, groups: [u32; 3]) {
         self.dispatch_with(pipeline, set, groups, &[]);

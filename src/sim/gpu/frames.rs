@@ -31,7 +31,7 @@ impl GpuSim {
         let slot = (self.frames % FRAME_SLOTS as u64) as usize;
         let finished = self.complete(ctx, slot)?;
         let mut rec = self.slots[slot].begin(ctx)?;
-        self.record_frame(&mut rec, Access::ComputeReadWrite, slot);
+        self.record_frame(&mut rec, Access::ComputeReadWrite, slot)?;
         self.slots[slot].submit(ctx, rec)?;
         self.unread[slot] = true;
         Ok(finished)

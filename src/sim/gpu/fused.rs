@@ -344,12 +344,9 @@ impl FusedShape {
 /// Which path each object takes.
 impl super::GpuSim {
     /// With `false`, every object takes the per-stage path (the reference for the fused one);
-    /// with `true`, every object whose layout fits runs fused, triangle self-contact too (the
-    /// fused kernels of objects that by default run per stage are created then).
+    /// with `true`, every object whose layout fits runs fused, triangle self-contact too. The
+    /// pipelines the next frame runs are created now.
     pub fn set_fused(&mut self, ctx: &crate::vk::GpuContext, on: bool) -> anyhow::Result<()> {
-        if on {
-            self.pipelines.ensure(ctx, [&self.layout, &self.batches.layout], self.batches.chunk)?;
-        }
         // The two paths keep their lists in the same layout, but nothing makes them one
         // contract (the fused kernel's LIST_VALID is the per-stage path's first control word).
         let more = (self.objects.iter())
@@ -359,7 +356,8 @@ impl super::GpuSim {
         if on {
             self.fuse_contact = CONTACT_FEATURES;
         }
-        Ok(())
+        // (what the next frame would create: a pipeline that fails to compile fails here)
+        self.ensure_pipelines(ctx)
     }
 
     /// Whether object `object` runs its substeps fused (its layout fits and the path is on).

@@ -171,12 +171,11 @@ impl Parts {
         model: &SimModel,
         shaders: &mut ShaderSet,
         plans: &[ObjectPlan],
-        fuse_contact: u32,
     ) -> Result<()> {
         let layout = self.layout.insert(BindingSetLayout::new(ctx, &binding_kinds())?);
-        // A fused kernel that runs only when `set_fused(true)` asks for it is created then.
-        let (later, now): (Vec<Stage>, Vec<Stage>) = (Stage::needed(model, plans).into_iter())
-            .partition(|s| matches!(*s, Stage::Fused(_, f, _) if fused::held_back(f, fuse_contact) != 0));
+        // (the step stages once a frame runs them: `GpuSim::ensure_pipelines`)
+        let (later, now): (Vec<Stage>, Vec<Stage>) =
+            Stage::needed(model, plans).into_iter().partition(|s| s.deferred(model));
         let batches = self.batches.insert(batch::Batches::new_layout(ctx, &binding_kinds())?);
         self.pipelines =
             Some(Pipelines::new(ctx, [&*layout, &batches.layout], batches.chunk, shaders, &now, &later)?);
@@ -272,8 +271,7 @@ impl GpuSim {
         contact::check_scene(model, ctx.info().max_storage_buffer_range)?;
         let plans: Vec<ObjectPlan> = model.objects.iter().map(|o| ObjectPlan::of(o, model, limits)).collect();
         let mut parts = Parts::default();
-        let fuse_contact = fused::default_fused_contact(ctx.info());
-        if let Err(e) = parts.create(ctx, model, shaders, &plans, fuse_contact) {
+        if let Err(e) = parts.create(ctx, model, shaders, &plans) {
             parts.destroy(ctx);
             return Err(e);
         }
@@ -304,7 +302,7 @@ impl GpuSim {
             timestamps,
             stage_timing: true,
             fused: true,
-            fuse_contact,
+            fuse_contact: fused::default_fused_contact(ctx.info()),
             cg_totals_above: step::CG_TOTALS_ABOVE,
             limits,
             drawn: true,
@@ -359,7 +357,13 @@ impl GpuSim {
     /// the access that reads the surface buffers after this frame (vertex input when drawing);
     /// `slot` (below `FRAME_SLOTS`) picks the timestamp pool, read back with `read_timing`
     /// after this submission's fence. Pending particle writes are applied first.
-    pub fn record_frame(&mut self, rec: &mut Recorder<'_>, surface_consumer: Access, slot: usize) {
+    pub fn record_frame(
+        &mut self,
+        rec: &mut Recorder<'_>,
+        surface_consumer: Access,
+        slot: usize,
+    ) -> Result<()> {
+        self.ensure_pipelines(rec.context())?;
         let dragged = std::mem::take(&mut self.dragged);
         let lists_stale = std::mem::take(&mut self.lists_stale) || !self.pending_writes.is_empty();
         if let Some(c) = self.contact.as_mut().filter(|_| lists_stale) {
@@ -499,6 +503,25 @@ impl GpuSim {
             c.record_frame_end(rec);
             c.policy.frame();
         }
+        Ok(())
+    }
+
+    /// Creates the pipelines the next frame runs that are not created yet: the fused kernels
+    /// of the objects that run fused, and every step stage once some object runs per stage.
+    pub(super) fn ensure_pipelines(&mut self, ctx: &GpuContext) -> Result<()> {
+        if self.pipelines.all_created() {
+            return Ok(());
+        }
+        let method = self.model.integrator;
+        let fused: Vec<Stage> = (self.objects.iter().filter(|o| self.is_fused(o)))
+            .filter_map(|o| o.plan.fused.map(|shape| Stage::Fused(method, o.plan.features, shape)))
+            .collect();
+        let stepped = self.objects.iter().any(|o| !self.is_fused(o));
+        let layouts = [&self.layout, &self.batches.layout];
+        self.pipelines.ensure(ctx, layouts, self.batches.chunk, |s| match s {
+            Stage::Fused(..) => fused.contains(s),
+            _ => stepped,
+        })
     }
 
     /// The passes of the objects' contact with their own surface (a cloth's triangles, a

@@ -169,6 +169,25 @@ impl Stage {
         stages
     }
 
+    /// Whether the pipeline of this stage, which `model` needs, is created only once a frame
+    /// runs it (`GpuSim::ensure_pipelines`): an object's step runs fused or per stage, and a
+    /// scene often runs one path only (on lavapipe each compile of the larger kernels takes
+    /// 0.2 to 0.5 s). The surface and contact between objects always run.
+    pub(super) fn deferred(self, model: &SimModel) -> bool {
+        match self {
+            Stage::Physics(..)
+            | Stage::Predict(..)
+            | Stage::Iterate(..)
+            | Stage::Constraints(..)
+            | Stage::SelfPairs(..)
+            | Stage::HashScatter(_)
+            | Stage::HashCount
+            | Stage::Fused(..) => true,
+            Stage::HashScan => !model.inter_object_contact(),
+            Stage::Surface(..) | Stage::ContactBegin | Stage::ContactHash | Stage::Contact { .. } => false,
+        }
+    }
+
     /// The pipelines `model` needs, its objects planned as `plans` (one per object).
     pub(super) fn needed(model: &SimModel, plans: &[ObjectPlan]) -> Vec<Stage> {
         let mut stages: Vec<Stage> = model
@@ -278,16 +297,34 @@ impl Pipelines {
         Ok(pipelines)
     }
 
-    /// Creates the pipelines `new` left for later.
-    pub(super) fn ensure(&mut self, ctx: &GpuContext, layouts: Layouts<'_>, chunk: u32) -> Result<()> {
-        while let Some(&stage) = self.later.first() {
-            let words = &self.later_words[stage.shader()];
-            let p = Self::create(ctx, layouts, chunk, stage, words)?;
+    /// Creates the pipelines `new` left for later that `wanted` asks for.
+    pub(super) fn ensure(
+        &mut self,
+        ctx: &GpuContext,
+        layouts: Layouts<'_>,
+        chunk: u32,
+        wanted: impl Fn(&Stage) -> bool,
+    ) -> Result<()> {
+        let mut k = 0;
+        while k < self.later.len() {
+            let stage = self.later[k];
+            if !wanted(&stage) {
+                k += 1;
+                continue;
+            }
+            let p = Self::create(ctx, layouts, chunk, stage, &self.later_words[stage.shader()])?;
             self.map.insert(stage, p);
-            self.later.remove(0);
+            self.later.remove(k);
         }
-        self.later_words.clear();
+        if self.later.is_empty() {
+            self.later_words.clear();
+        }
         Ok(())
+    }
+
+    /// Whether every stage's pipeline is created.
+    pub(super) fn all_created(&self) -> bool {
+        self.later.is_empty()
     }
 
     /// The pipeline of `stage` with the layout it takes (the batched stages `layouts[1]`, with
