@@ -227,24 +227,6 @@ void self_pass(uvec2 cell, uint i, vec3 x, vec3 start, bool apply) {
     } while (from < len);
 }
 
-// How far spring s, along `to` from one end to the other, is stretched past the limit
-// (positive: past it), the same from either end.
-float stretch_excess(vec3 to, int s) {
-    return length(to) - rest_length(s) * (1.0 + obj.stretch_limit);
-}
-
-// How many of the structural and shear springs of the particle at `cell` are stretched past
-// the limit.
-uint stretched_springs(ivec2 cell) {
-    vec3 x = CPOS(cell.x + cell.y * int(obj.dims.x));
-    uint n = 0u;
-    [[unroll]] for (int t = 0; t < 8; ++t) {
-        int k = neighbour(cell, SPRINGS[t].xy, obj.dims);
-        if (k >= 0 && obj.stiffness[SPRINGS[t].z] != 0.0 && stretch_excess(CPOS(k) - x, t) > 0.0) n += 1u;
-    }
-    return n;
-}
-
 // The part of the last constraint_correction that moves the position only, not the velocity
 // (a cloth's self-contact undoing an overlap from an earlier substep).
 vec3 position_only;
@@ -257,31 +239,19 @@ vec3 constraint_correction(uvec2 cell, vec3 x) {
     uint n_active = 0u;
 
     // Springs may not stretch past (1 + stretch_limit) * rest: each end moves half the excess
-    // (all of it when the other end is pinned) times the mean of the two ends' shares (one
-    // over each end's count of stretched springs), so that both ends move equally and
-    // oppositely and the limit keeps momentum: each end's own share (a Jacobi mean) moved one
-    // end of a spring more than the other. The mean closes as much of each spring as the
-    // Jacobi mean did (the larger share alone let a piling strip's edges through). Next to a
-    // pin, the particle's own share.
-    vec3 limited = vec3(0.0);
+    // (all of it when the other end is pinned).
     if (has(F_STRETCH) && (obj.flags & OBJ_STRETCH_LIMIT) != 0u) {
-        vec3 to[8];
-        float excess[8];
-        uint mine = 0u;
         [[unroll]] for (int s = 0; s < 8; ++s) {
+            ivec3 spring = SPRINGS[s];
             int j = SPRING_NEIGHBOUR(cell, s);
-            excess[s] = 0.0;
-            if (j < 0 || obj.stiffness[SPRINGS[s].z] == 0.0) continue;
-            to[s] = CPOS(j) - x;
-            excess[s] = stretch_excess(to[s], s);
-            if (excess[s] > 0.0) mine += 1u;
-        }
-        [[unroll]] for (int s = 0; s < 8; ++s) {
-            if (!(excess[s] > 0.0)) continue;
-            int j = SPRING_NEIGHBOUR(cell, s);
-            float split = CPINNED(j) ? 1.0 / float(mine)
-                : 0.5 / float(mine) + 0.5 / float(stretched_springs(ivec2(cell) + SPRINGS[s].xy));
-            limited += (to[s] / length(to[s])) * (excess[s] * (CPINNED(j) ? 1.0 : 0.5) * split);
+            if (j < 0 || obj.stiffness[spring.z] == 0.0) continue;
+            vec3 to_j = CPOS(j) - x;
+            float d = length(to_j);
+            float excess = d - rest_length(s) * (1.0 + obj.stretch_limit);
+            if (excess > 0.0) {
+                correction += (to_j / d) * (excess * (CPINNED(j) ? 1.0 : 0.5));
+                n_active += 1u;
+            }
         }
     }
 
@@ -293,7 +263,6 @@ vec3 constraint_correction(uvec2 cell, vec3 x) {
     if (self_on && !triangle_contact()) self_search(cell, x, correction, n_active);
 
     if (n_active > 1u) correction /= float(n_active);
-    correction += limited;
 
     if (self_on && triangle_contact()) correction += self_take(cell.x + cell.y * obj.dims.x, position_only, true);
 

@@ -945,7 +945,7 @@ fn wide_strip_crossings(tilt: f64) -> (usize, usize) {
 /// the substep's start (`BOUND_FRACTION`), so that no two sides meet within it. A strip the
 /// other tests do not use, at three tilts: no edge through a layer, and at most a few through
 /// the triangles next to it where a fold is sharper than a cell (pairs the rest-state filter
-/// leaves out). Measured here: 4, 0 and 0 edges, none through a layer (without the bound 23, 4
+/// leaves out). Measured here: 2, 0 and 2 edges, none through a layer (without the bound 23, 4
 /// and 27, of which 11, 0 and 6 through a layer); over the eight tilts from 0.05 to 0.4 rad
 /// none through a layer, 2 to 10 next to a fold at three (docs/records/bench/cpu/edge-margin/, 6).
 #[test]

@@ -146,23 +146,6 @@ fn springs(o: &ObjectModel, c: i64, r: i64) -> Vec<Spring> {
     out
 }
 
-/// The springs of the particle at column c, row r that the stretch limit holds: structural
-/// and shear, of nonzero stiffness.
-fn limited_springs(o: &ObjectModel, c: i64, r: i64) -> impl Iterator<Item = Spring> + '_ {
-    springs(o, c, r)
-        .into_iter()
-        .filter(|s| s.kind != SpringType::Bending && o.stiffness[s.kind as usize] != 0.0)
-}
-
-/// How many of particle k's springs at positions x are stretched past the limit.
-fn stretched_springs(o: &ObjectModel, x: &[DVec3], k: usize, limit: f64) -> u32 {
-    let cols = o.dims[0] as usize;
-    let (c, r) = ((k % cols) as i64, (k / cols) as i64);
-    limited_springs(o, c, r)
-        .filter(|s| (x[s.other] - x[k]).length() > rest_length(o, s) * (1.0 + limit))
-        .count() as u32
-}
-
 fn rest_length(o: &ObjectModel, s: &Spring) -> f64 {
     offset_rest_length(o, s.kind, s.offset)
 }
@@ -414,27 +397,22 @@ fn constraints(
             continue;
         }
         let (c, r) = ((i % cols) as i64, (i / cols) as i64);
-        let mut limited = DVec3::ZERO;
+        let mut correction = DVec3::ZERO;
+        let mut active = 0u32;
         if let Some(limit) = o.stretch_limit {
-            let stretched = |k: usize| stretched_springs(o, x, k, limit);
-            let mine = stretched(i);
-            for s in limited_springs(o, c, r) {
+            for s in springs(o, c, r) {
+                if s.kind == SpringType::Bending || o.stiffness[s.kind as usize] == 0.0 {
+                    continue;
+                }
                 let delta = x[s.other] - x[i];
                 let d = delta.length();
                 let excess = d - rest_length(o, &s) * (1.0 + limit);
                 if excess > 0.0 {
-                    // (the mean of the ends' shares: glsl/include/constraints_body.glsl says why)
-                    let split = if o.pinned[s.other] {
-                        1.0 / mine as f64
-                    } else {
-                        0.5 / mine as f64 + 0.5 / stretched(s.other) as f64
-                    };
-                    limited += delta / d * excess * share(s.other) * split;
+                    correction += delta / d * excess * share(s.other);
+                    active += 1;
                 }
             }
         }
-        let mut correction = DVec3::ZERO;
-        let mut active = 0u32;
         if let Some(reach) = o.self_distance.filter(|_| !o.has_triangles()) {
             for j in 0..x.len() {
                 let rest_c = ((j % cols) as i64 - c) as f64 * o.spacing[0];
@@ -453,7 +431,7 @@ fn constraints(
         if active > 1 {
             correction /= active as f64;
         }
-        correction += limited + own.last[i] + contact[i];
+        correction += own.last[i] + contact[i];
         let mut p = x[i] + correction;
         let mut vel = v[i] + (correction - own.last_rest[i]) / dt;
         if edges {
