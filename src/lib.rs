@@ -10,6 +10,7 @@ pub mod atomic_file;
 pub mod bench;
 pub mod cli;
 pub mod error;
+pub mod export;
 pub mod render;
 pub mod scene;
 pub mod shaders;

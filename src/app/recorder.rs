@@ -5,7 +5,7 @@
 //! recorded frame is read back from the GPU, so the app runs slower while it records.
 
 use super::sim_host::SimHost;
-use crate::render::record::{self, Format, Recording};
+use crate::export::{self as record, Format, Recording};
 use crate::vk::GpuContext;
 use anyhow::Result;
 use std::path::{Path, PathBuf};

@@ -2,7 +2,7 @@
 
 use super::out_file::OutFile;
 use super::stdout::{say, Stdout};
-use crate::render::record::{same_file, Format, Recording};
+use crate::export::{same_file, Format, Recording};
 use crate::scene;
 use crate::shaders::ShaderSet;
 use crate::sim::gpu::{self, FrameTiming, GpuSim};
@@ -213,7 +213,7 @@ pub fn run(args: &SimulateArgs, options: &ContextOptions) -> Result<()> {
     }
     let recording = match &args.record {
         Some(path) => {
-            let colors = crate::render::record::colors(&scene);
+            let colors = crate::export::colors(&scene);
             let recording = Recording::new(&model, &colors, path, Some(args.frames)).map_err(|e| {
                 match e.downcast::<crate::error::UserError>() {
                     Ok(refused) => crate::error::UserError(format!("--record {}", refused.0)).into(),

@@ -3,9 +3,7 @@
 //! are drawn directly as vertex buffers; nothing goes through the CPU.
 
 pub mod camera;
-pub mod gltf;
 pub mod mesh;
-pub mod record;
 mod scene_renderer;
 pub mod view;
 

@@ -95,7 +95,7 @@ const COLLIDER_COLOR: [f32; 3] = [0.45, 0.5, 0.58];
 
 /// The draws of one collider (the ground is drawn as the grid, by `grid_height`): unit meshes
 /// placed by their model matrices (recordings without shapes build their meshes from them).
-pub(super) fn collider_items(shape: &collider::Shape) -> Vec<DrawItem> {
+pub(crate) fn collider_items(shape: &collider::Shape) -> Vec<DrawItem> {
     let v = |p: glam::DVec3| p.as_vec3();
     let solid = |shape, model| DrawItem::solid(shape, model, COLLIDER_COLOR, true);
     match *shape {

@@ -5,7 +5,7 @@
 //! The heap is measured by a counting allocator, per thread (other tests of this binary run on
 //! threads of their own), from before the first frame to after the file is written.
 
-use msdsim::render::record::Recording;
+use msdsim::export::Recording;
 use msdsim::sim::gpu::ObjectState;
 use msdsim::sim::gpu_types::{Particle, SurfaceVertex, ROPE_RING};
 use std::alloc::{GlobalAlloc, Layout, System};
@@ -94,8 +94,7 @@ fn record(frames: u64) -> (isize, isize) {
             ],
         })
         .collect();
-    let mut recording =
-        Recording::new(&model, &msdsim::render::record::colors(&scene), &path, Some(frames)).unwrap();
+    let mut recording = Recording::new(&model, &msdsim::export::colors(&scene), &path, Some(frames)).unwrap();
     let start = LIVE.with(Cell::get);
     PEAK.with(|p| p.set(start));
     for f in 0..frames {

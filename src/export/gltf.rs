@@ -5,8 +5,12 @@
 //! with the frames, not their square); colliders as meshes, a moving one's node translated over
 //! time. Blender imports the targets as shape keys with their values animated. glTF is Y-up in
 //! metres, as the simulation. Every mesh carries texture coordinates, per vertex (a rope's
-//! tube comes split along its seam: `record::split_seams`).
+//! tube comes split along its seam: `split_seams`).
 
+use super::{collider_mesh, Recording, Track};
+use crate::sim::model::ObjectKind;
+use anyhow::Result;
+use glam::DVec3;
 use gltf_json as json;
 use json::validation::Checked::Valid;
 use json::validation::USize64;
@@ -301,6 +305,92 @@ pub fn glb(meshes: &[MeshFrames], colliders: &[ColliderMesh], times: &[f32]) -> 
     out.extend_from_slice(b"BIN\0");
     out.extend_from_slice(&b.bin);
     Ok(out)
+}
+
+impl Recording {
+    /// The glTF binary (`glb`, below): texture coordinates per vertex (a rope's tube, whose
+    /// coordinates are face-varying at its seam and caps, with a vertex for each coordinate a
+    /// point takes: `split_seams`), the colliders as meshes where the first frame had them.
+    pub fn glb(&self) -> Result<Vec<u8>> {
+        let split: Vec<Option<Seams>> =
+            (self.tracks.iter()).map(|t| (t.st_indices != t.indices).then(|| split_seams(t))).collect();
+        let meshes: Vec<MeshFrames> = (self.tracks.iter().zip(&split))
+            .map(|(t, seams)| {
+                let (indices, st, points, normals) = match seams {
+                    None => (&t.indices, &t.st, &t.points, &t.normals),
+                    Some(s) => (&s.indices, &s.st, &s.points, &s.normals),
+                };
+                MeshFrames {
+                    name: &t.label,
+                    indices,
+                    st: Some(st.as_slice()),
+                    color: t.color,
+                    double_sided: t.shape.0 == ObjectKind::Cloth,
+                    points,
+                    normals,
+                }
+            })
+            .collect();
+        let first = self.times.first().copied().unwrap_or(0.0);
+        let f32s = |v: DVec3| v.as_vec3().to_array();
+        let colliders: Vec<ColliderMesh> = (self.colliders.iter().zip(&self.collider_names))
+            .map(|(c, name)| {
+                let (points, normals, triangles) = collider_mesh(c, first);
+                let start = c.motion.offset(first);
+                ColliderMesh {
+                    name: name.clone(),
+                    points: points.into_iter().map(f32s).collect(),
+                    normals: normals.into_iter().map(f32s).collect(),
+                    indices: triangles.into_iter().flatten().collect(),
+                    offsets: c
+                        .motion
+                        .is_moving()
+                        .then(|| self.times.iter().map(|&t| f32s(c.motion.offset(t) - start)).collect()),
+                }
+            })
+            .collect();
+        let times: Vec<f32> = self.times.iter().map(|&t| (t - first) as f32).collect();
+        glb(&meshes, &colliders, &times)
+    }
+}
+
+/// A track's mesh with a vertex for each point and texture coordinate its corners pair (glTF's
+/// attributes are per vertex): its points and normals at every frame, coordinates, triangles.
+pub(super) struct Seams {
+    pub(super) points: Vec<Vec<[f32; 3]>>,
+    pub(super) normals: Vec<Vec<[f32; 3]>>,
+    pub(super) st: Vec<[f32; 2]>,
+    pub(super) indices: Vec<u32>,
+}
+
+/// `t`'s mesh split along its seams (`Seams`): vertex v keeps its index with the coordinate of
+/// its first corner; a corner with another coordinate gets a copy of v after the others.
+pub(super) fn split_seams(t: &Track) -> Seams {
+    let vertices = t.recorded_vertices();
+    let mut first_st: Vec<Option<u32>> = vec![None; vertices];
+    let mut copies = std::collections::HashMap::new();
+    let mut source: Vec<u32> = (0..vertices as u32).collect();
+    let mut indices = Vec::with_capacity(t.indices.len());
+    for (&v, &uv) in t.indices.iter().zip(&t.st_indices) {
+        let at = first_st[v as usize].get_or_insert(uv);
+        if *at == uv {
+            indices.push(v);
+        } else {
+            let copy = *copies.entry((v, uv)).or_insert_with(|| {
+                source.push(v);
+                source.len() as u32 - 1
+            });
+            indices.push(copy);
+        }
+    }
+    let mut st: Vec<[f32; 2]> = first_st.iter().map(|uv| uv.map_or([0.0; 2], |k| t.st[k as usize])).collect();
+    let mut extra: Vec<(u32, u32)> = copies.into_iter().map(|((_, uv), copy)| (copy, uv)).collect();
+    extra.sort_unstable();
+    st.extend(extra.iter().map(|&(_, uv)| t.st[uv as usize]));
+    let remap = |frames: &[Vec<[f32; 3]>]| -> Vec<Vec<[f32; 3]>> {
+        frames.iter().map(|f| source.iter().map(|&v| f[v as usize]).collect()).collect()
+    };
+    Seams { points: remap(&t.points), normals: remap(&t.normals), st, indices }
 }
 
 #[cfg(test)]

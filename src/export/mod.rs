@@ -1,5 +1,6 @@
 //! Recordings of the animated surfaces (`simulate --record`, the app's Record button), one mesh
-//! per object (a cloth's grid, a rope's tube), in the format the file name's extension picks:
+//! per object (a cloth's grid, a rope's tube), in the format the file name's extension picks
+//! (a file a format: `usd`, `gltf`, `pc2`, `obj`; what they share is here):
 //! - `.usda`: USD (ASCII) with points, normals and extents time-sampled at every frame (and the
 //!   frame rate as framesPerSecond), so Blender, Houdini, usdview and Omniverse play it back;
 //!   prims are named after the objects, made unique; each mesh and shape has a UsdPreviewSurface
@@ -7,7 +8,7 @@
 //!   so it is written when the recording ends (`write_to`, by the caller, through a temporary
 //!   file: an interrupted run leaves no partial file); until then the frames go to a spool file
 //!   beside it, unlinked from the start, so memory stays at a frame however long the recording.
-//! - `.glb`: glTF 2.0 binary (`super::gltf`), frames kept in memory (up to `MAX_BYTES`), each a
+//! - `.glb`: glTF 2.0 binary (`gltf`), frames kept in memory (up to `MAX_BYTES`), each a
 //!   morph target, written at the end as USD is.
 //! - `.pc2`: a PC2 point cache a mesh, streamed, with the meshes in an OBJ file.
 //! - `.obj`: a sequence of Wavefront OBJ files, `NAME_00001.obj`, `NAME_00002.obj`, ... one per
@@ -24,6 +25,14 @@ use anyhow::Result;
 use glam::{DQuat, DVec3};
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
+
+pub mod gltf;
+mod obj;
+mod pc2;
+mod usd;
+
+use obj::remove_old_frames;
+use usd::usd_name;
 
 /// Half the side of the square that stands for the ground in a USD recording [m].
 const GROUND_HALF_SIZE: f64 = 20.0;
@@ -372,13 +381,6 @@ impl Recording {
         (self.first_code + self.frames).saturating_sub(1)
     }
 
-    /// The file of OBJ frame `n` (its time code).
-    pub fn obj_path(&self, n: u64) -> PathBuf {
-        let mut name = self.stem.clone().into_os_string();
-        name.push(format!("_{n:05}.obj"));
-        PathBuf::from(name)
-    }
-
     /// Adds a frame, the state at simulated time `time`: each object's surface (a cloth's
     /// particles, a rope's tube vertices). USD keeps it (refused past `MAX_BYTES`); an OBJ
     /// sequence writes its file now.
@@ -465,88 +467,6 @@ impl Recording {
         }
     }
 
-    /// The glTF binary (`super::gltf`): texture coordinates per vertex (a rope's tube, whose
-    /// coordinates are face-varying at its seam and caps, with a vertex for each coordinate a
-    /// point takes: `split_seams`), the colliders as meshes where the first frame had them.
-    pub fn glb(&self) -> Result<Vec<u8>> {
-        let split: Vec<Option<Seams>> =
-            (self.tracks.iter()).map(|t| (t.st_indices != t.indices).then(|| split_seams(t))).collect();
-        let meshes: Vec<super::gltf::MeshFrames> = (self.tracks.iter().zip(&split))
-            .map(|(t, seams)| {
-                let (indices, st, points, normals) = match seams {
-                    None => (&t.indices, &t.st, &t.points, &t.normals),
-                    Some(s) => (&s.indices, &s.st, &s.points, &s.normals),
-                };
-                super::gltf::MeshFrames {
-                    name: &t.label,
-                    indices,
-                    st: Some(st.as_slice()),
-                    color: t.color,
-                    double_sided: t.shape.0 == ObjectKind::Cloth,
-                    points,
-                    normals,
-                }
-            })
-            .collect();
-        let first = self.times.first().copied().unwrap_or(0.0);
-        let f32s = |v: DVec3| v.as_vec3().to_array();
-        let colliders: Vec<super::gltf::ColliderMesh> = (self.colliders.iter().zip(&self.collider_names))
-            .map(|(c, name)| {
-                let (points, normals, triangles) = collider_mesh(c, first);
-                let start = c.motion.offset(first);
-                super::gltf::ColliderMesh {
-                    name: name.clone(),
-                    points: points.into_iter().map(f32s).collect(),
-                    normals: normals.into_iter().map(f32s).collect(),
-                    indices: triangles.into_iter().flatten().collect(),
-                    offsets: c
-                        .motion
-                        .is_moving()
-                        .then(|| self.times.iter().map(|&t| f32s(c.motion.offset(t) - start)).collect()),
-                }
-            })
-            .collect();
-        let times: Vec<f32> = self.times.iter().map(|&t| (t - first) as f32).collect();
-        super::gltf::glb(&meshes, &colliders, &times)
-    }
-
-    /// The names of the meshes a point cache animates: every object's, then every moving
-    /// collider's (a fixed one stays where the OBJ has it).
-    fn cached_names(&self) -> Vec<&str> {
-        let moving = self.colliders.iter().zip(&self.collider_names).filter(|(c, _)| c.motion.is_moving());
-        self.tracks.iter().map(|t| t.name.as_str()).chain(moving.map(|(_, name)| name.as_str())).collect()
-    }
-
-    /// The file of cached mesh k's point cache (`cached_names`).
-    pub fn cache_path(&self, k: usize) -> PathBuf {
-        self.cache_file(self.cached_names()[k])
-    }
-
-    /// The point cache of the mesh named `name`: `{stem}_{name}.pc2`.
-    fn cache_file(&self, name: &str) -> PathBuf {
-        let mut path = self.stem.clone().into_os_string();
-        path.push(format!("_{name}.pc2"));
-        PathBuf::from(path)
-    }
-
-    /// The materials an OBJ sequence's frames or a point cache's meshes name: `{stem}.mtl`.
-    fn mtl_path(&self) -> PathBuf {
-        self.stem.with_extension("mtl")
-    }
-
-    /// The materials as MTL text: one for each object, named as its group, with its colour as
-    /// the diffuse colour `Kd`, and a grey one the colliders share. Kd is linear, as Blender's
-    /// importer puts it into its (linear) base colour; the vertex colours stay sRGB (`obj`).
-    fn mtl(&self) -> String {
-        let mut out = String::from("# msdsim materials\n");
-        let grey = [COLLIDER_GREY; 3];
-        let materials = self.tracks.iter().map(|t| (t.name.as_str(), t.color));
-        for (name, [r, g, b]) in materials.chain(std::iter::once((COLLIDER_MATERIAL, grey))) {
-            let _ = writeln!(out, "\nnewmtl {name}\nKd {r} {g} {b}\nKa 0 0 0\nKs 0 0 0\nd 1\nillum 1");
-        }
-        out
-    }
-
     /// The OBJ file with the meshes a point cache animates: `{stem}.obj`.
     pub fn base_path(&self) -> PathBuf {
         self.stem.with_extension("obj")
@@ -577,324 +497,6 @@ impl Recording {
             }
         }
     }
-
-    /// `.pc2`: appends a frame to each mesh's point cache, the objects' and the moving
-    /// colliders' (the first frame also writes the meshes as OBJ and starts the caches), then
-    /// counts it in their headers, so that a run stopped at any point leaves caches of the whole
-    /// frames so far. A frame that cannot be written whole (a full disk) is taken back from
-    /// every cache, each cut to the frames its header counts, so that the caches stay whole and
-    /// agree with each other; the error then names the frame.
-    fn add_to_caches(&mut self, states: &[ObjectState], time: f64) -> Result<()> {
-        let code = self.last_code();
-        if self.caches.is_empty() {
-            let base = self.base_path();
-            write_whole(&base, self.obj(states, time).as_bytes())
-                .map_err(|e| anyhow::anyhow!("recording the meshes to {}: {e}", base.display()))?;
-        }
-        let moving = self.colliders.iter().filter(|c| c.motion.is_moving());
-        let collider_points =
-            moving.map(|c| collider_mesh(c, time).0.iter().map(|p| p.as_vec3().to_array()).collect());
-        let frames: Vec<Vec<[f32; 3]>> = (self.tracks.iter().zip(states))
-            .map(|(t, state)| t.frame(state).0)
-            .chain(collider_points)
-            .collect();
-        for (k, points) in frames.iter().enumerate() {
-            if let Err(e) = self.append_to_cache(k, points) {
-                // (caches past k have not taken the frame; at the first frame none holds one)
-                let kept = self.frames - 1;
-                let cut = (0..self.caches.len().min(k + 1)).try_for_each(|j| {
-                    if kept == 0 {
-                        std::fs::remove_file(self.cache_path(j))
-                    } else {
-                        cut_cache(&mut self.caches[j], frames[j].len() as u64, kept)
-                    }
-                });
-                let path = self.cache_path(k);
-                return Err(match cut {
-                    Ok(()) if kept == 0 => anyhow::anyhow!("recording frame {code} to {}: {e}", path.display()),
-                    Ok(()) => anyhow::anyhow!(
-                        "recording frame {code} to {}: {e} (the caches keep the {kept} whole frames before it)",
-                        path.display()
-                    ),
-                    Err(cut) => anyhow::anyhow!(
-                        "recording frame {code} to {}: {e}; cutting the caches back to {kept} whole frames failed too: {cut}",
-                        path.display()
-                    ),
-                });
-            }
-        }
-        Ok(())
-    }
-
-    /// Appends one frame of `points` to mesh k's point cache (starting it, with its header and no
-    /// sample counted, at the first frame) and counts the frame in its header.
-    fn append_to_cache(&mut self, k: usize, points: &[[f32; 3]]) -> std::io::Result<()> {
-        use std::io::{Seek, SeekFrom, Write};
-        if k == self.caches.len() {
-            let mut header = Vec::with_capacity(PC2_HEADER as usize);
-            header.extend_from_slice(b"POINTCACHE2\0");
-            header.extend_from_slice(&1i32.to_le_bytes()); // version
-            header.extend_from_slice(&(points.len() as i32).to_le_bytes());
-            header.extend_from_slice(&(self.first_code as f32).to_le_bytes()); // start frame
-            header.extend_from_slice(&1f32.to_le_bytes()); // samples a frame
-            header.extend_from_slice(&0i32.to_le_bytes()); // samples so far
-            let mut file = std::fs::File::create(self.cache_path(k))?;
-            self.caches.push(file.try_clone()?);
-            file.write_all(&header)?;
-        }
-        let bytes: Vec<u8> = points.iter().flatten().flat_map(|x| x.to_le_bytes()).collect();
-        let file = &mut self.caches[k];
-        file.seek(SeekFrom::End(0))?;
-        file.write_all(&bytes)?;
-        count_samples(file, self.frames)
-    }
-
-    /// One frame as OBJ text, at simulated time `time`: every object an `o` group of vertices
-    /// (with the object's colour), normals and triangles, then every collider one (grey) where
-    /// it is at that time.
-    fn obj(&self, states: &[ObjectState], time: f64) -> String {
-        let mut out = format!("# msdsim frame {} ({} frames/s)\n", self.last_code(), self.fps);
-        let mtl = self.mtl_path();
-        let _ = writeln!(out, "mtllib {}", mtl.file_name().unwrap_or_default().to_string_lossy());
-        let (mut base, mut st_base) = (1usize, 1usize);
-        for (t, s) in self.tracks.iter().zip(states) {
-            let _ = writeln!(out, "o {}\nusemtl {}", t.name, t.name);
-            // OBJ readers (Blender, MeshLab) take vertex colours as sRGB; the scene's are linear.
-            let [r, g, b] = t.color.map(srgb);
-            let (points, normals) = t.frame(s);
-            for [x, y, z] in &points {
-                let _ = writeln!(out, "v {x} {y} {z} {r} {g} {b}");
-            }
-            for [x, y, z] in &normals {
-                let _ = writeln!(out, "vn {x} {y} {z}");
-            }
-            for [u, v] in &t.st {
-                let _ = writeln!(out, "vt {u} {v}");
-            }
-            for (tri, uv) in t.indices.chunks_exact(3).zip(t.st_indices.chunks_exact(3)) {
-                let [a, b, c] = [tri[0], tri[1], tri[2]].map(|i| i as usize + base);
-                let [ta, tb, tc] = [uv[0], uv[1], uv[2]].map(|i| i as usize + st_base);
-                let _ = writeln!(out, "f {a}/{ta}/{a} {b}/{tb}/{b} {c}/{tc}/{c}");
-            }
-            base += points.len();
-            st_base += t.st.len();
-        }
-        let grey = srgb(COLLIDER_GREY);
-        for (c, name) in self.colliders.iter().zip(&self.collider_names) {
-            let _ = writeln!(out, "o {name}\nusemtl {COLLIDER_MATERIAL}");
-            let (points, normals, triangles) = collider_mesh(c, time);
-            for p in &points {
-                let _ = writeln!(out, "v {} {} {} {grey} {grey} {grey}", p.x, p.y, p.z);
-            }
-            for n in &normals {
-                let _ = writeln!(out, "vn {} {} {}", n.x, n.y, n.z);
-            }
-            for tri in &triangles {
-                let [a, b, c] = tri.map(|i| i as usize + base);
-                let _ = writeln!(out, "f {a}//{a} {b}//{b} {c}//{c}");
-            }
-            base += points.len();
-        }
-        out
-    }
-
-    /// Writes the USD ASCII text: time codes `first_code()..=last_code()` at the simulation's
-    /// frame rate; the meshes' time samples from the spool, a frame at a time.
-    fn write_usda(&self, w: &mut dyn std::io::Write) -> std::io::Result<()> {
-        let mut out = String::new();
-        let _ = writeln!(
-            out,
-            "#usda 1.0\n(\n    defaultPrim = \"scene\"\n    metersPerUnit = 1\n    upAxis = \"Y\""
-        );
-        let _ = writeln!(
-            out,
-            "    startTimeCode = {}\n    endTimeCode = {}\n    timeCodesPerSecond = {}\n    framesPerSecond = {}\n)\n",
-            self.first_code,
-            self.last_code().max(self.first_code),
-            self.fps,
-            self.fps
-        );
-        let _ = writeln!(out, "def Xform \"scene\"\n{{");
-        for t in &self.tracks {
-            let _ = writeln!(
-                out,
-                "    def Mesh \"{}\" (\n        prepend apiSchemas = [\"MaterialBindingAPI\"]\n    )\n    {{",
-                t.name
-            );
-            let _ = writeln!(out, "        rel material:binding = </scene/materials/{}>", t.name);
-            let _ = writeln!(out, "        uniform token subdivisionScheme = \"none\"");
-            let _ = writeln!(out, "        uniform bool doubleSided = 1");
-            let _ = writeln!(out, "        int[] faceVertexCounts = [{}]", vec!["3"; t.counts].join(", "));
-            let indices: Vec<String> = t.indices.iter().map(u32::to_string).collect();
-            let _ = writeln!(out, "        int[] faceVertexIndices = [{}]", indices.join(", "));
-            let [r, g, b] = t.color;
-            let _ = writeln!(out, "        color3f[] primvars:displayColor = [({r}, {g}, {b})]");
-            // UsdPreviewSurface has one colour for both sides: a cloth's back goes in a primvar.
-            let [r, g, b] = t.back;
-            let _ = writeln!(out, "        color3f primvars:msdsim:backColor = ({r}, {g}, {b}) (\n            interpolation = \"constant\"\n        )");
-            let st: Vec<String> = t.st.iter().map(|[u, v]| format!("({u}, {v})")).collect();
-            let _ = writeln!(
-                out,
-                "        texCoord2f[] primvars:st = [{}] (\n            interpolation = \"faceVarying\"\n        )",
-                st.join(", ")
-            );
-            let st_indices: Vec<String> = t.st_indices.iter().map(u32::to_string).collect();
-            let _ = writeln!(out, "        int[] primvars:st:indices = [{}]", st_indices.join(", "));
-            w.write_all(out.as_bytes())?;
-            out.clear();
-            let spooled = |k: u64| move |f: u64, values: &mut Vec<[f32; 3]>| self.spooled(t, k, f, values);
-            samples(w, self.first_code, self.frames, "point3f[] points", spooled(0))?;
-            let _ = writeln!(
-                out,
-                "        normal3f[] normals (\n            interpolation = \"vertex\"\n        )"
-            );
-            w.write_all(out.as_bytes())?;
-            out.clear();
-            samples(w, self.first_code, self.frames, "normal3f[] normals", spooled(1))?;
-            samples(w, self.first_code, self.frames, "vector3f[] velocities", spooled(2))?;
-            let extents = |f: u64, values: &mut Vec<[f32; 3]>| {
-                self.spooled(t, 0, f, values)?;
-                *values = extent(values).to_vec();
-                Ok(())
-            };
-            samples(w, self.first_code, self.frames, "float3[] extent", extents)?;
-            let _ = writeln!(out, "    }}");
-        }
-        self.usda_colliders(&mut out);
-        self.usda_materials(&mut out);
-        let _ = writeln!(out, "}}");
-        w.write_all(out.as_bytes())
-    }
-
-    /// Track `t`'s attribute k (0 points, 1 normals, 2 velocities) in frame f, from the spool.
-    fn spooled(&self, t: &Track, k: u64, f: u64, values: &mut Vec<[f32; 3]>) -> std::io::Result<()> {
-        use std::os::unix::fs::FileExt as _;
-        let spool =
-            self.spool.as_ref().ok_or_else(|| std::io::Error::other("a USD recording has a spool"))?;
-        let n = t.recorded_vertices() as u64;
-        let mut bytes = vec![0u8; 12 * n as usize];
-        spool.file.read_exact_at(&mut bytes, f * spool.frame_bytes + t.spooled_at + k * 12 * n)?;
-        values.clear();
-        values.extend(bytes.chunks_exact(12).map(|c| {
-            std::array::from_fn(|i| f32::from_le_bytes([c[4 * i], c[4 * i + 1], c[4 * i + 2], c[4 * i + 3]]))
-        }));
-        Ok(())
-    }
-
-    /// The name of the colliders' material: `colliders`, made unique against the objects'.
-    fn collider_material(&self) -> String {
-        let mut taken = self.tracks.iter().map(|t| t.name.clone()).collect();
-        unique_name(&mut taken, "colliders".into())
-    }
-
-    /// A `UsdPreviewSurface` material for each object (its front colour) and one for the
-    /// colliders (grey), in a scope `materials`; the meshes and shapes bind them.
-    fn usda_materials(&self, out: &mut String) {
-        let _ = writeln!(out, "    def Scope \"materials\"\n    {{");
-        let grey = [COLLIDER_GREY; 3];
-        let shared = self.collider_material();
-        let colliders = (!self.colliders.is_empty()).then_some((shared.as_str(), &grey));
-        for (name, [r, g, b]) in self.tracks.iter().map(|t| (t.name.as_str(), &t.color)).chain(colliders) {
-            let _ = writeln!(out, "        def Material \"{name}\"\n        {{");
-            let _ = writeln!(
-                out,
-                "            token outputs:surface.connect = </scene/materials/{name}/surface.outputs:surface>"
-            );
-            let _ = writeln!(out, "            def Shader \"surface\"\n            {{");
-            let _ = writeln!(out, "                uniform token info:id = \"UsdPreviewSurface\"");
-            let _ = writeln!(out, "                color3f inputs:diffuseColor = ({r}, {g}, {b})");
-            let _ = writeln!(out, "                float inputs:roughness = 0.8");
-            let _ = writeln!(out, "                token outputs:surface");
-            let _ = writeln!(out, "            }}\n        }}");
-        }
-        let _ = writeln!(out, "    }}");
-    }
-
-    /// The colliders as USD shapes in a scope `colliders` (grey): a sphere as a Sphere, a
-    /// capsule as a Capsule along its local z, a box as a Cube of size 2 scaled by its half
-    /// extents and turned by its rotation, the ground as a 40 m square Mesh facing up at its
-    /// height. A moving collider's translation is time-sampled at every frame, a fixed one's
-    /// constant.
-    fn usda_colliders(&self, out: &mut String) {
-        if self.colliders.is_empty() {
-            return;
-        }
-        let _ = writeln!(out, "    def Scope \"colliders\"\n    {{");
-        let material = self.collider_material();
-        for (i, c) in self.colliders.iter().enumerate() {
-            let kind = c.shape.kind().label();
-            let (prim, place, rotation): (&str, DVec3, Option<DQuat>) = match c.shape {
-                Shape::Sphere { center, .. } => ("Sphere", center, None),
-                Shape::Capsule { a, b, .. } => (
-                    "Capsule",
-                    (a + b) / 2.0,
-                    Some(DQuat::from_rotation_arc(DVec3::Z, (b - a).normalize_or(DVec3::Z))),
-                ),
-                Shape::Box { center, rotation, .. } => ("Cube", center, Some(rotation)),
-                Shape::Ground { height } => ("Mesh", DVec3::new(0.0, height, 0.0), None),
-            };
-            let _ = writeln!(out, "        def {prim} \"{kind}_{i}\" (\n            prepend apiSchemas = [\"MaterialBindingAPI\"]\n        )\n        {{");
-            let _ = writeln!(out, "            rel material:binding = </scene/materials/{material}>");
-            match c.shape {
-                Shape::Sphere { radius, .. } => {
-                    let _ = writeln!(out, "            double radius = {radius}");
-                }
-                Shape::Capsule { a, b, radius } => {
-                    let _ = writeln!(out, "            uniform token axis = \"Z\"\n            double height = {}\n            double radius = {radius}", a.distance(b));
-                }
-                Shape::Box { .. } => {
-                    let _ = writeln!(out, "            double size = 2");
-                }
-                Shape::Ground { .. } => {
-                    let h = GROUND_HALF_SIZE;
-                    // (a flat quad, not a subdivision cage: as the objects' meshes say)
-                    let _ = writeln!(out, "            uniform token subdivisionScheme = \"none\"");
-                    let _ = writeln!(out, "            int[] faceVertexCounts = [4]\n            int[] faceVertexIndices = [0, 1, 2, 3]");
-                    let _ = writeln!(out, "            point3f[] points = [(-{h}, 0, -{h}), (-{h}, 0, {h}), ({h}, 0, {h}), ({h}, 0, -{h})]");
-                    let _ = writeln!(
-                        out,
-                        "            normal3f[] normals = [(0, 1, 0), (0, 1, 0), (0, 1, 0), (0, 1, 0)]"
-                    );
-                    let _ = writeln!(out, "            float3[] extent = [(-{h}, 0, -{h}), ({h}, 0, {h})]");
-                }
-            }
-            let _ = writeln!(out, "            color3f[] primvars:displayColor = [({COLLIDER_GREY}, {COLLIDER_GREY}, {COLLIDER_GREY})]");
-            let mut order = vec!["\"xformOp:translate\""];
-            if c.motion.is_moving() {
-                let _ = writeln!(out, "            double3 xformOp:translate.timeSamples = {{");
-                for (f, &t) in self.times.iter().enumerate() {
-                    let p = place + c.motion.offset(t);
-                    let _ = writeln!(
-                        out,
-                        "                {}: ({}, {}, {}),",
-                        self.first_code + f as u64,
-                        p.x,
-                        p.y,
-                        p.z
-                    );
-                }
-                let _ = writeln!(out, "            }}");
-            } else {
-                let _ = writeln!(
-                    out,
-                    "            double3 xformOp:translate = ({}, {}, {})",
-                    place.x, place.y, place.z
-                );
-            }
-            if let Some(q) = rotation {
-                let _ =
-                    writeln!(out, "            quatd xformOp:orient = ({}, {}, {}, {})", q.w, q.x, q.y, q.z);
-                order.push("\"xformOp:orient\"");
-            }
-            if let Shape::Box { half_extents: e, .. } = c.shape {
-                let _ = writeln!(out, "            double3 xformOp:scale = ({}, {}, {})", e.x, e.y, e.z);
-                order.push("\"xformOp:scale\"");
-            }
-            let _ = writeln!(out, "            uniform token[] xformOpOrder = [{}]", order.join(", "));
-            let _ = writeln!(out, "        }}");
-        }
-        let _ = writeln!(out, "    }}");
-    }
 }
 
 /// Collider `c` where it is at simulated time `t` as a triangle mesh for formats without
@@ -909,11 +511,11 @@ fn collider_mesh(c: &ColliderModel, t: f64) -> (Vec<DVec3>, Vec<DVec3>, Vec<[u32
         return (points.to_vec(), vec![DVec3::Y; 4], vec![[0, 1, 2], [0, 2, 3]]);
     }
     let (mut points, mut normals, mut triangles) = (Vec::new(), Vec::new(), Vec::new());
-    for item in super::view::collider_items(&shape) {
+    for item in crate::render::view::collider_items(&shape) {
         let unit = match item.shape {
-            super::Shape::Sphere => mesh::sphere(12, 16),
-            super::Shape::Tube => mesh::tube(16),
-            super::Shape::Cube => mesh::cube(),
+            crate::render::Shape::Sphere => mesh::sphere(12, 16),
+            crate::render::Shape::Tube => mesh::tube(16),
+            crate::render::Shape::Cube => mesh::cube(),
             _ => continue,
         };
         let model = item.model.as_dmat4();
@@ -952,65 +554,6 @@ fn collider_mesh(c: &ColliderModel, t: f64) -> (Vec<DVec3>, Vec<DVec3>, Vec<[u32
     (points, normals, triangles)
 }
 
-/// Removes the frames an earlier OBJ recording under the same name left (regular files named
-/// `{stem}_NNNNN.obj`, five digits or more), so that a shorter recording leaves no stale
-/// higher-numbered frames for an importer to pick up.
-fn remove_old_frames(path: &Path) -> Result<()> {
-    let stem = path.with_extension("");
-    let (Some(folder), Some(name)) = (stem.parent(), stem.file_name()) else { return Ok(()) };
-    let folder = if folder.as_os_str().is_empty() { Path::new(".") } else { folder };
-    let prefix = format!("{}_", name.to_string_lossy());
-    for entry in std::fs::read_dir(folder)?.flatten() {
-        let file = entry.file_name().to_string_lossy().into_owned();
-        let number = file.strip_prefix(&prefix).and_then(|rest| rest.strip_suffix(".obj"));
-        let regular = entry.file_type().is_ok_and(|t| t.is_file());
-        if regular && number.is_some_and(|n| n.len() >= 5 && n.bytes().all(|b| b.is_ascii_digit())) {
-            std::fs::remove_file(entry.path())
-                .map_err(|e| anyhow::anyhow!("removing the earlier frame {}: {e}", entry.path().display()))?;
-        }
-    }
-    Ok(())
-}
-
-/// A track's mesh with a vertex for each point and texture coordinate its corners pair (glTF's
-/// attributes are per vertex): its points and normals at every frame, coordinates, triangles.
-struct Seams {
-    points: Vec<Vec<[f32; 3]>>,
-    normals: Vec<Vec<[f32; 3]>>,
-    st: Vec<[f32; 2]>,
-    indices: Vec<u32>,
-}
-
-/// `t`'s mesh split along its seams (`Seams`): vertex v keeps its index with the coordinate of
-/// its first corner; a corner with another coordinate gets a copy of v after the others.
-fn split_seams(t: &Track) -> Seams {
-    let vertices = t.recorded_vertices();
-    let mut first_st: Vec<Option<u32>> = vec![None; vertices];
-    let mut copies = std::collections::HashMap::new();
-    let mut source: Vec<u32> = (0..vertices as u32).collect();
-    let mut indices = Vec::with_capacity(t.indices.len());
-    for (&v, &uv) in t.indices.iter().zip(&t.st_indices) {
-        let at = first_st[v as usize].get_or_insert(uv);
-        if *at == uv {
-            indices.push(v);
-        } else {
-            let copy = *copies.entry((v, uv)).or_insert_with(|| {
-                source.push(v);
-                source.len() as u32 - 1
-            });
-            indices.push(copy);
-        }
-    }
-    let mut st: Vec<[f32; 2]> = first_st.iter().map(|uv| uv.map_or([0.0; 2], |k| t.st[k as usize])).collect();
-    let mut extra: Vec<(u32, u32)> = copies.into_iter().map(|((_, uv), copy)| (copy, uv)).collect();
-    extra.sort_unstable();
-    st.extend(extra.iter().map(|&(_, uv)| t.st[uv as usize]));
-    let remap = |frames: &[Vec<[f32; 3]>]| -> Vec<Vec<[f32; 3]>> {
-        frames.iter().map(|f| source.iter().map(|&v| f[v as usize]).collect()).collect()
-    };
-    Seams { points: remap(&t.points), normals: remap(&t.normals), st, indices }
-}
-
 /// Writes `bytes` to `path` so that no reader (and no interrupted run) sees part of it: a
 /// regular file, or a new one, through a temporary file beside it renamed over it (at a
 /// symbolic link's target: the link stays); anything else (/dev/null, a device) in place. A
@@ -1021,20 +564,6 @@ fn write_whole(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
         return std::fs::write(&target, bytes);
     }
     crate::atomic_file::replace(&target, bytes, false)
-}
-
-/// Cuts a point cache of `points` points a sample back to its first `frames` samples, the
-/// header counting them (a smaller file and a word rewritten in place: no new space is needed).
-fn cut_cache(file: &mut std::fs::File, points: u64, frames: u64) -> std::io::Result<()> {
-    file.set_len(PC2_HEADER + frames * points * 12)?;
-    count_samples(file, frames)
-}
-
-/// Writes a point cache's count of samples, the header's last word.
-fn count_samples(file: &mut std::fs::File, frames: u64) -> std::io::Result<()> {
-    use std::io::{Seek, SeekFrom, Write};
-    file.seek(SeekFrom::Start(PC2_HEADER - 4))?;
-    file.write_all(&(frames as i32).to_le_bytes())
 }
 
 impl Track {
@@ -1090,13 +619,6 @@ impl Track {
     }
 }
 
-/// A linear colour channel in sRGB's transfer curve, to 4 decimals.
-fn srgb(linear: f32) -> f32 {
-    let c = linear.clamp(0.0, 1.0);
-    let s = if c <= 0.003_130_8 { 12.92 * c } else { 1.055 * c.powf(1.0 / 2.4) - 0.055 };
-    (s * 1e4).round() / 1e4
-}
-
 /// Texture coordinates of an object's recorded mesh, and the one each triangle corner takes
 /// (in the order of its indices). A cloth: its grid stretched over the unit square, row 0 at
 /// v = 1. A rope: the tube unrolled, u around (0 to 1, the seam given both) and v along; each
@@ -1129,13 +651,6 @@ fn texture_coordinates(kind: ObjectKind, [cols, rows]: [u32; 2]) -> (Vec<[f32; 2
     }
 }
 
-/// The bounding box of `points`: [min, max].
-fn extent(points: &[[f32; 3]]) -> [[f32; 3]; 2] {
-    let lo = points.iter().fold([f32::MAX; 3], |m, p| std::array::from_fn(|i| m[i].min(p[i])));
-    let hi = points.iter().fold([f32::MIN; 3], |m, p| std::array::from_fn(|i| m[i].max(p[i])));
-    [lo, hi]
-}
-
 /// `name`, or with `_2`, `_3`, ... appended when an earlier object took it (names that differ
 /// only in characters USD does not allow, "my cloth" and "my-cloth", would be one prim).
 fn unique_name(taken: &mut std::collections::HashSet<String>, name: String) -> String {
@@ -1146,37 +661,6 @@ fn unique_name(taken: &mut std::collections::HashSet<String>, name: String) -> S
         candidate = format!("{name}_{n}");
     }
     candidate
-}
-
-/// `name.timeSamples = { first: [(x, y, z), ...], ... }`, numbers in Rust's shortest exact
-/// form, `frames` frames (each read by `frame`) at time codes from `first` on.
-fn samples(
-    w: &mut dyn std::io::Write,
-    first: u64,
-    frames: u64,
-    name: &str,
-    mut frame: impl FnMut(u64, &mut Vec<[f32; 3]>) -> std::io::Result<()>,
-) -> std::io::Result<()> {
-    writeln!(w, "        {name}.timeSamples = {{")?;
-    let mut values = Vec::new();
-    for f in 0..frames {
-        frame(f, &mut values)?;
-        write!(w, "            {}: [", first + f)?;
-        for (i, [x, y, z]) in values.iter().enumerate() {
-            write!(w, "{}({x}, {y}, {z})", if i == 0 { "" } else { ", " })?;
-        }
-        writeln!(w, "],")?;
-    }
-    writeln!(w, "        }}")
-}
-
-/// A valid USD prim name: letters, digits and underscores, not starting with a digit.
-fn usd_name(name: &str) -> String {
-    let mut s: String = name.chars().map(|c| if c.is_ascii_alphanumeric() { c } else { '_' }).collect();
-    if s.is_empty() || s.starts_with(|c: char| c.is_ascii_digit()) {
-        s.insert(0, '_');
-    }
-    s
 }
 
 #[cfg(test)]
@@ -1206,9 +690,9 @@ mod tests {
 
     #[test]
     fn prim_names_are_valid() {
-        assert_eq!(super::usd_name("my cloth-1"), "my_cloth_1");
-        assert_eq!(super::usd_name("3d"), "_3d");
-        assert_eq!(super::usd_name(""), "_");
+        assert_eq!(super::usd::usd_name("my cloth-1"), "my_cloth_1");
+        assert_eq!(super::usd::usd_name("3d"), "_3d");
+        assert_eq!(super::usd::usd_name(""), "_");
     }
 
     #[test]
@@ -1216,7 +700,7 @@ mod tests {
         let mut taken = std::collections::HashSet::new();
         let names: Vec<String> = ["my cloth", "my-cloth", "my_cloth_2", "my.cloth"]
             .iter()
-            .map(|n| super::unique_name(&mut taken, super::usd_name(n)))
+            .map(|n| super::unique_name(&mut taken, super::usd::usd_name(n)))
             .collect();
         assert_eq!(names, ["my_cloth", "my_cloth_2", "my_cloth_2_2", "my_cloth_3"]);
     }
@@ -1250,7 +734,7 @@ mod tests {
             rec.add(&[state], f as f64 / 60.0).unwrap();
         }
         let t = &rec.tracks[0];
-        let seams = super::split_seams(t);
+        let seams = super::gltf::split_seams(t);
         assert_eq!(seams.indices.len(), t.indices.len());
         for (c, (&v, &uv)) in t.indices.iter().zip(&t.st_indices).enumerate() {
             let w = seams.indices[c] as usize;
