@@ -70,9 +70,7 @@ layout(std430, set = 0, binding = 15) buffer SelfListBuf { uint self_list[]; };
 // v_{n-1}. During a substep the per-stage shaders keep the solve's base x~ in H_BASE, read by
 // the neighbours, and what its rounding left out (bdf2_start) in H_DV. All zero is "no
 // history". Arrays, not a record a particle: the passes that read the neighbours' bases then
-// read 16 bytes a particle, not one vec4 of every 48 (measured: VBD at 4 iterations on a
-// 1024 x 1024 cloth per stage 39.0 ms a frame with records, 18.3 with arrays, 23.0 before
-// BDF2 reading the particles' 32-byte records).
+// read 16 bytes a particle, not one vec4 of every 48 (docs/design/integrators.md, "BDF2").
 layout(std430, set = 0, binding = 16) buffer SolverHistory { vec4 history[]; };
 // A cloth's contact with its own triangles (self_contact.glsl): per particle its summed moves
 // in fixed point and its count of contacts, then the contacts each keeps. Coherent: the fused

@@ -98,11 +98,8 @@ struct ObjectParams {
 // The spatial hash of a grid cell: Teschner et al.'s (2003) mix of y and z, plus x itself, so
 // that cells next to each other along x have buckets next to each other. The threads of a warp
 // (particles next to each other) then read their candidates' bucket starts and positions from
-// a few runs of memory rather than from a random bucket each: measured on the H100, the
-// 1024 x 1024 cloth with self-collision 3.81 against 6.58 ms a frame with Teschner's x * 73856093
-// (and inter-object contact of 8 cloths 1.48 against 1.77). A linear x + 2039 y + 4194301 z was
-// faster still on the large cloth (3.65) but collides in regular patterns: the curtain's
-// 2,048-bucket shared hash 0.45 against 0.39, the 8 stacked cloths 4.9 against 1.8.
+// a few runs of memory rather than from a random bucket each. A linear mix of all three
+// collides in regular patterns (docs/design/contact.md, "Detection", has the figures).
 uint cell_hash(ivec3 c, uint mask) {
     return (uint(c.x) + ((uint(c.y) * 19349663u) ^ (uint(c.z) * 83492791u))) & mask;
 }

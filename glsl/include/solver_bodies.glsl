@@ -8,8 +8,7 @@
 // Include after bindings.glsl and springs.glsl.
 // Each body repeats the neighbour lookup at the top of its spring loop on purpose: a shared
 // helper (returning j, its displacement and p_i - p_j through out parameters) made the fused
-// methods 10-14% slower on the H100 (XPBD 0.258 -> 0.293 ms per frame on a 32 x 32 cloth,
-// measured A/B, two runs each).
+// methods slower (docs/design/integrators.md, "One table").
 // SELECT_SPRINGS (the fused kernel defines it true): the Newton step's and the Hessian
 // product's spring loops skip a spring with no other end or with coincident ends by selects,
 // not branches: one with no other end reads the particle itself (SPRING_OTHER), whose p_i - p_j

@@ -100,10 +100,8 @@ pub type CpuStep = fn(&cpu::Substep<'_>, &mut [cpu::History]) -> (Vec<DVec3>, Ve
 /// differentiation formula: each substep's solve is implicit over h = BDF2_STEP dt from a base
 /// and a prediction that carry the particle's last substep (`sim::cpu::integrators::inertial`
 /// has the formulas). It is L-stable like implicit Euler, which they used before, but damps a
-/// mode of frequency w by O((w dt)^4) a substep, not (w dt)^2 / 2: on the chart's cloth XPBD
-/// at one iteration went from 41 times symplectic Euler's error at 256 substeps to 2.6 times
-/// on the H100, where f32 rounding is the floor (below it in f64; docs/ACCURACY.md), and at
-/// one 1/60 s substep it stretched less than before.
+/// mode of frequency w by O((w dt)^4) a substep, not (w dt)^2 / 2, which on stiff, lightly
+/// damped cloth was the whole error of implicit Euler (docs/design/integrators.md, "BDF2").
 pub const BDF2_STEP: f64 = 2.0 / 3.0;
 
 /// Conjugate-gradient iterations of one Newton step of the implicit method (`sim::cpu::integrators::implicit`): every

@@ -65,18 +65,14 @@ pub struct FusedLimits {
 }
 
 /// Substeps a fused dispatch runs at most on a device that ends an invocation's loops after a
-/// number of iterations (`DeviceInfo::loop_iteration_limit`: lavapipe, 65,535 for all its loops
-/// together, after which the dispatch's writes were lost: the frame left the state as it was,
-/// silently). Measured on lavapipe: the 33 x 33 towel with triangle self-contact, two particles
-/// a thread, took about 590 loop iterations an invocation a substep and reached the limit in
-/// its 112th substep; 8
-/// substeps stay 14 times within it there (and within it at 8,000 a substep), at no measurable
-/// cost (the towel preset 26.0 against 26.2 ms a frame, the rope 1.16 against 1.11 ms;
-/// a dispatch a substep cost 38% and 90%).
+/// number of iterations (`DeviceInfo::loop_iteration_limit`: lavapipe, after which the
+/// dispatch's writes are lost, silently): 8 stay well within the limit for the presets' scenes
+/// and cost nothing measurable, where a dispatch a substep does (docs/design/fused.md, "Devices
+/// with a loop limit", has the figures).
 const LIMITED_SUBSTEPS_PER_DISPATCH: u32 = 8;
-/// ... for an object with edge-edge self-contact: one. Its edge pairs' search runs two loops of
-/// six a candidate (glsl/include/self_contact.glsl): a dense fold of 13 x 10 particles searched
-/// by brute force reached the limit in its fifth substep.
+/// ... for an object with edge-edge self-contact: one (its edge pairs' search runs two loops of
+/// six a candidate, glsl/include/self_contact.glsl, and reaches the limit within a few
+/// substeps of a dense fold).
 const LIMITED_EDGE_PAIR_SUBSTEPS_PER_DISPATCH: u32 = 1;
 
 impl FusedLimits {
