@@ -43,7 +43,7 @@ pub struct SimHost {
 /// The model of a scene, calibrated first when it asks for `integrator = "auto"`, and then
 /// what it picked (also logged).
 fn model_for(ctx: &GpuContext, scene: &Scene) -> Result<(SimModel, Option<String>)> {
-    let (model, picked) = crate::study::auto::model_for(ctx, scene)?;
+    let (model, picked) = crate::study::integrator_choice::model_for(ctx, scene)?;
     if let Some(p) = &picked {
         log::info!("{p}");
     }

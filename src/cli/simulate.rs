@@ -168,7 +168,7 @@ pub fn run(args: &SimulateArgs, options: &ContextOptions) -> Result<()> {
     let ctx = GpuContext::new(options)?;
     say!(out, "device: {}", ctx.info())?;
     gpu::check_fits(ctx.info(), &scene::shapes(&scene))?;
-    let (model, picked) = crate::study::auto::model_for(&ctx, &scene)?;
+    let (model, picked) = crate::study::integrator_choice::model_for(&ctx, &scene)?;
     if let Some(p) = picked {
         say!(out, "{p}")?;
     }

@@ -49,7 +49,7 @@ pub fn to_model(scene: &Scene) -> SimModel {
         max_speed: scene.sim.max_speed,
         max_strain: scene.sim.max_strain,
         max_energy_gain: scene.sim.max_energy_gain,
-        // "auto" starts from the paper's method; the calibration (study::auto) replaces it.
+        // "auto" starts from the paper's method; the calibration (study::integrator_choice) replaces it.
         integrator: scene.sim.integrator.method().unwrap_or_default(),
         iterations: scene.sim.iterations,
         relaxation: scene.sim.relaxation,

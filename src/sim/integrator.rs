@@ -2,7 +2,8 @@
 //! (name, order, how the GPU runs it, its CPU twin, its chart colour). Everything else (scene
 //! parsing, the editor's list, the CPU reference, the GPU pipelines and buffers, the chart, the
 //! stability map, `auto`) looks a method up here, so a new method is its shader, its CPU twin
-//! (`sim::cpu::integrators`) and one row.
+//! (`sim::cpu::integrators`) and one row. The runtime choice among them (`integrator =
+//! "auto"`, a calibration on the GPU) is `study::integrator_choice`.
 //!
 //! Every method advances the spring network of one substep and is followed by the same
 //! constraint stage (stretch limit, self-collision, spheres).
