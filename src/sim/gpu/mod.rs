@@ -356,7 +356,8 @@ impl GpuSim {
     /// Records one frame (all substeps and the surface stage) into `rec`. `surface_consumer` is
     /// the access that reads the surface buffers after this frame (vertex input when drawing);
     /// `slot` (below `FRAME_SLOTS`) picks the timestamp pool, read back with `read_timing`
-    /// after this submission's fence. Pending particle writes are applied first.
+    /// after this submission's fence. Pending particle writes are applied first. Fails where a
+    /// pipeline the frame runs for the first time does not compile (`ensure_pipelines`).
     pub fn record_frame(
         &mut self,
         rec: &mut Recorder<'_>,
