@@ -1089,6 +1089,9 @@ fn fused_iterative_methods_equal_the_per_stage_path() {
         .collect();
     let mut s = scene(shapes);
     s.gravity = DVec3::new(0.0, -9.81, 0.0);
+    // Four iterations: each reads the colours the one before wrote, which is what the barriers
+    // order; more repeat that (and cost per-stage dispatches, lavapipe's slowest part here).
+    s.iterations = 4;
     // Without dashpots no velocity window is staged before the prediction.
     for method in iterative() {
         s.integrator = method;
