@@ -137,6 +137,12 @@ pub struct Method {
     pub few_iterations: u32,
     /// `sim.relaxation` applies (scales each constraint update).
     pub relaxed: bool,
+    /// Its springs are constraints with a compliance, each pulling with its multiplier: a
+    /// solve cut short leaves the multiplier below k times the stretch, so the springs pull
+    /// less than their stiffness says and the cloth hangs longer than its springs' energy
+    /// assumes. The energy it integrates then lies between the motion's and gravity's alone
+    /// and the total with the springs' energy at their stiffness (`sim::gpu::energy`).
+    pub compliant: bool,
 }
 
 const fn solver(
@@ -168,6 +174,7 @@ const METHODS: [Method; 6] = [
         colour: (31, 119, 180),
         few_iterations: 1,
         relaxed: false,
+        compliant: false,
     },
     Method {
         integrator: Integrator::Verlet,
@@ -178,6 +185,7 @@ const METHODS: [Method; 6] = [
         colour: (44, 160, 44),
         few_iterations: 1,
         relaxed: false,
+        compliant: false,
     },
     Method {
         integrator: Integrator::Xpbd,
@@ -189,6 +197,7 @@ const METHODS: [Method; 6] = [
         colour: (255, 127, 14),
         few_iterations: 1,
         relaxed: true,
+        compliant: true,
     },
     Method {
         integrator: Integrator::Implicit,
@@ -202,6 +211,7 @@ const METHODS: [Method; 6] = [
         colour: (214, 39, 40),
         few_iterations: 4,
         relaxed: false,
+        compliant: false,
     },
     Method {
         integrator: Integrator::Vbd,
@@ -214,6 +224,7 @@ const METHODS: [Method; 6] = [
         colour: (148, 103, 189),
         few_iterations: 4,
         relaxed: false,
+        compliant: false,
     },
     Method {
         integrator: Integrator::XpbdJacobi,
@@ -226,6 +237,7 @@ const METHODS: [Method; 6] = [
         few_iterations: 1,
         // Its step bound picks the step (a relaxation would cancel out where it acts).
         relaxed: false,
+        compliant: true,
     },
 ];
 
