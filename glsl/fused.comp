@@ -357,8 +357,8 @@ void main() {
                     bdf2_start(x[s], base, start, missed);
                     dy[s] += missed;
                     lost[s] = missed;
-                    dx[s] = ADAPTIVE_START ? adaptive_start(dy[s], pull, hx[s], hv[s].w) : dy[s];
                     precise vec3 moved = start - x[s];  // x~ - x_n, exact
+                    dx[s] = ADAPTIVE_START ? adaptive_start(cells[s], dy[s], pull, hx[s], hv[s].w, -moved) : dy[s];
                     hx[s].xyz = moved;
                     x[s] = start;
                     continue;

@@ -13,6 +13,7 @@
 #define OBJ_SELF_COLLISION 2u   // particle-particle self-collision
 #define OBJ_SELF_HASH      4u   // ... found through the spatial hash (else brute force)
 #define OBJ_SELF_TRIANGLES 8u   // ... a cloth's particles against its triangles (self_contact.glsl)
+#define OBJ_ANCHORED      16u   // a particle is pinned (predict_body.glsl's adaptive_start)
 
 // Integrators, as sim::integrator::Integrator's discriminants (the fused kernel's SOLVER).
 #define METHOD_SYMPLECTIC_EULER 0u

@@ -33,12 +33,35 @@ vec3 predicted_displacement(uvec2 cell, vec3 x, vec3 v, vec4 hx, vec3 hv, out ve
     return v * (BDF2_STEP * g.dt) + dv * ((2.0 / 9.0) * g.dt) + pull;
 }
 
-// Where a method with an adaptive start (sim::integrator's row) starts its iterate: the
-// prediction `dy` less the fraction of its `pull` that the springs held last substep (`held`,
-// history H_DV's w; none without history, hx.w = 0). sim::cpu::integrators::held_fraction
-// says why.
-vec3 adaptive_start(vec3 dy, vec3 pull, vec4 hx, float held) {
-    return hx.w > 0.5 ? dy - pull * held : dy;
+// Must equal sim::integrator::STIFF_START.
+const float STIFF_START = 10.0;
+
+// How stiff the springs of the particle at `cell` are against its inertia over the solve's
+// step h: (h^2 sum k + h sum b) / m over its springs that have a stiffness
+// (sim::cpu::integrators::stiffness_ratio).
+float stiffness_ratio(uvec2 cell, float h) {
+    float sum = 0.0;
+    [[unroll]] for (int s = 0; s < 12; ++s) {
+        ivec3 spring = SPRINGS[s];
+        if (!has(1u << spring.z)) continue;
+        float k = obj.stiffness[spring.z];
+        if (k == 0.0 || SPRING_NEIGHBOUR(cell, s) < 0) continue;
+        sum += h * (h * k + obj.stiffness.w);
+    }
+    return sum / obj.mass;
+}
+
+// Where a method with an adaptive start (sim::integrator's row) starts the iterate of the
+// particle at `cell`, as a displacement from the solve's base: the prediction `dy` less the
+// fraction of its `pull` that the springs held last substep (`held`, history H_DV's w; none
+// without history, hx.w = 0; sim::cpu::integrators::held_fraction says why); on an anchored
+// object, moved towards where the particle is (`here`, x - base) by the share of its
+// stiffness ratio (sim::cpu::integrators::toward_rest says why).
+vec3 adaptive_start(uvec2 cell, vec3 dy, vec3 pull, vec4 hx, float held, vec3 here) {
+    vec3 guess = hx.w > 0.5 ? dy - pull * held : dy;
+    if ((obj.flags & OBJ_ANCHORED) == 0u) return guess;
+    float kappa = stiffness_ratio(cell, solve_dt());
+    return here + (guess - here) * (STIFF_START / (STIFF_START + kappa));
 }
 
 // The solve's base x~ = x + base rounded to f32 (`start`) and what the rounding left out

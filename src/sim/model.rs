@@ -124,6 +124,12 @@ impl ObjectModel {
         self.shape().surface_count() as usize
     }
 
+    /// Whether a particle is pinned: the object cannot move as a whole
+    /// (`sim::cpu::integrators::toward_rest`).
+    pub fn anchored(&self) -> bool {
+        self.pinned.iter().any(|&p| p)
+    }
+
     /// Whether self-contact is between the pieces of the surface, equal and opposite
     /// (`sim::cpu::self_contact`; the GPU's F_TRIANGLES): a cloth's particles against its
     /// triangles, asked for, on a grid of at least 2 x 2; a rope's segments against its

@@ -5,7 +5,7 @@
 
 use super::{air_force, rest_length, rest_lengths, springs, wind_at, Spring, SPRING_GROUPS};
 use crate::sim::integrator::{
-    newton_steps, spring_class_parity, vertex_colour, vertex_colours, BDF2_STEP, SPRING_CLASSES,
+    newton_steps, spring_class_parity, vertex_colour, vertex_colours, BDF2_STEP, SPRING_CLASSES, STIFF_START,
 };
 use crate::sim::model::{ObjectModel, SimModel};
 use glam::{DMat3, DVec3};
@@ -159,11 +159,38 @@ fn inertial(
             let past = history[i].unwrap_or_else(|| restart(o, i, x, v[i], force, dt));
             let base = x[i] + past.dx / 3.0;
             let y = base + v[i] * (2.0 / 3.0 * dt) + past.dv * (2.0 / 9.0 * dt) + pull;
-            start.push(if adaptive { y - pull * past.held } else { y });
+            let guess = y - pull * past.held;
+            start.push(match adaptive {
+                true if o.anchored() => toward_rest(o, i, h, x[i], guess),
+                true => guess,
+                false => y,
+            });
             (base, y)
         })
         .unzip();
     Inertial { h, base, y, start }
+}
+
+/// How stiff a particle's springs are against its inertia over the solve's step h:
+/// (h^2 sum k + h sum b) / m over its springs that have a stiffness (`elastic_springs`).
+fn stiffness_ratio(o: &ObjectModel, i: usize, h: f64) -> f64 {
+    elastic_springs(o, i).map(|(_, k)| h * h * k + h * o.damping).sum::<f64>() / o.mass
+}
+
+/// Where the adaptive methods start particle i of an anchored object (a particle pinned):
+/// `guess` (the prediction less the pull its springs held), moved towards where the particle
+/// is (`x`) by the share kappa / (kappa + STIFF_START) of the way, kappa its
+/// `stiffness_ratio`. Where the springs are soft against the step a few iterations converge
+/// from the guess, which keeps the motion (second order); where they are stiff the sweeps
+/// cannot carry a correction across the object, and what they leave of the guess's distance
+/// from the solution becomes velocity: from the guess a stiff cloth held at its corners at one
+/// large substep never came to rest and gained energy; from where it is, what the solve leaves
+/// is motion not taken, which damps. An object with no pin keeps the guess: started from
+/// where it is, a stiff cloth in free fall did not fall (its sweeps cannot move it as a whole
+/// either) (docs/design/integrators.md, "Where the solve starts").
+fn toward_rest(o: &ObjectModel, i: usize, h: f64, x: DVec3, guess: DVec3) -> DVec3 {
+    let kappa = stiffness_ratio(o, i, h);
+    x + (guess - x) * (STIFF_START / (STIFF_START + kappa))
 }
 
 /// The model's method starts its iterate adaptively (its row's `adaptive_start`).

@@ -5,8 +5,8 @@ use super::fused::ObjectPlan;
 use super::{BINDINGS, CLOTH_GROUP, ROPE_GROUP};
 use crate::error::UserError;
 use crate::sim::gpu_types::{
-    Globals, ObjectParams, Particle, SurfaceVertex, OBJ_SELF_COLLISION, OBJ_SELF_HASH, OBJ_SELF_TRIANGLES,
-    OBJ_STRETCH_LIMIT,
+    Globals, ObjectParams, Particle, SurfaceVertex, OBJ_ANCHORED, OBJ_SELF_COLLISION, OBJ_SELF_HASH,
+    OBJ_SELF_TRIANGLES, OBJ_STRETCH_LIMIT,
 };
 use crate::sim::integrator::{vertex_colours, BDF2_STEP};
 use crate::sim::model::{Integrator, ObjectKind, ObjectModel, ObjectShape, SelfCollisionMethod, SimModel};
@@ -573,6 +573,9 @@ pub(super) fn object_params(o: &ObjectModel, model: &SimModel) -> ObjectParams {
         if o.has_triangles() {
             flags |= OBJ_SELF_TRIANGLES;
         }
+    }
+    if o.anchored() {
+        flags |= OBJ_ANCHORED;
     }
     let buckets = hash_table_size(o.particle_count() as u64) as u32;
     let cell = 2.0 * o.self_reach().unwrap_or(1.0).max(1e-6);
