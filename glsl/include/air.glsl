@@ -4,7 +4,9 @@
 // x_up) / 4 (a missing neighbour replaced by the particle itself: half the share on an edge, a
 // quarter at a corner), along its normal n = a / |a|; the force is |a| (wind_normal |u.n| (u.n)
 // n + wind_tangent |u_t| u_t): normal drag on the area the air meets, so an edge-on sheet
-// feels only the small tangential drag, and none once it moves with the air. A rope node's
+// feels only the small tangential drag, and none once it moves with the air; plus the lift
+// wind_lift |u| (u.n) (n - (u.n) u / |u|^2), across u in the plane of u and n: a flat plate's
+// 1/2 rho C_L sin(2 alpha) |u|^2 at an angle of attack alpha, none face-on or edge-on. A rope node's
 // area is the diameter times half its two segments, the drag across the rope (normal) and
 // along it (tangent). The CPU twin is sim::cpu::air_force.
 // Neighbours are read through NPOS(j) with `drift`, as the springs read them.
@@ -29,7 +31,10 @@ vec3 air_force(uvec2 cell, vec3 x, vec3 v, float drift) {
         vec3 n = area / a;
         float un = dot(u, n);
         vec3 ut = u - n * un;
-        return a * (n * (g.wind_normal * abs(un) * un) + ut * (g.wind_tangent * length(ut)));
+        float speed = length(u);
+        // Lift across u in the plane of u and n (sim::cpu::air_force).
+        vec3 lift = speed > 0.0 ? (n * speed - u * (un / speed)) * (g.wind_lift * un) : vec3(0.0);
+        return a * (n * (g.wind_normal * abs(un) * un) + ut * (g.wind_tangent * length(ut)) + lift);
     }
     vec3 axis = (cell.x + 1u < cols ? NPOS(i + 1u) : x) - (cell.x > 0u ? NPOS(i - 1u) : x);
     float len = length(axis);

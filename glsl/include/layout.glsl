@@ -63,6 +63,10 @@ struct Globals {
     float wind_tangent;                        // 1/2 air density x tangential drag coefficient
     float guard_strain;                        // a structural spring stretched past this strain is
                                                // implausible (0: no check; sim.max_strain)
+    float wind_lift;                           // air density x lift coefficient (air.glsl)
+    float pad0;                                // unused (a uniform block's size is a multiple of 16)
+    float pad1;
+    float pad2;
 };
 
 // Bits of the runtime guard (GuardBuf.flags).

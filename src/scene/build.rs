@@ -35,6 +35,7 @@ pub fn to_model(scene: &Scene) -> SimModel {
                 speed: w.speed,
                 normal: 0.5 * w.density * w.normal_drag,
                 tangent: 0.5 * w.density * w.tangential_drag,
+                lift: w.density * w.lift,
             }),
         }
     });

@@ -180,8 +180,9 @@ impl Default for SimSettings {
 /// `attenuation_radius`. As the paper has it (`model = "paper"`), a force on every particle
 /// whatever the cloth's orientation and speed; aerodynamic (`model = "aerodynamic"`), air
 /// flowing at `speed` along the axis that pushes on the cloth's area, by the air's velocity
-/// relative to the cloth: normal drag 1/2 density normal_drag |u_n| u_n per unit area, and
-/// tangential drag likewise with `tangential_drag`.
+/// relative to the cloth: normal drag 1/2 density normal_drag |u_n| u_n per unit area,
+/// tangential drag likewise with `tangential_drag`, and on a cloth lift 1/2 density lift
+/// sin(2 alpha) |u|^2 per unit area across the air (alpha the angle of attack).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Wind {
@@ -201,6 +202,9 @@ pub struct Wind {
     /// Drag coefficient along the cloth (skin friction, a few hundredths) (aerodynamic).
     #[serde(default = "defaults::tangential_drag")]
     pub tangential_drag: f64,
+    /// Lift coefficient of a cloth at 45 degrees to the air (0: drag only) (aerodynamic).
+    #[serde(default)]
+    pub lift: f64,
     /// Apex of the cone [m].
     #[serde(default)]
     pub origin: [f64; 3],
@@ -230,6 +234,7 @@ impl Default for Wind {
             density: defaults::air_density(),
             normal_drag: defaults::normal_drag(),
             tangential_drag: defaults::tangential_drag(),
+            lift: 0.0,
             origin: [0.0; 3],
             direction: defaults::wind_direction(),
             force: 0.0,

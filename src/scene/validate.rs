@@ -178,6 +178,7 @@ pub fn check(scene: &Scene) -> Check {
     positive("wind.density", w.density, (1e-6, 1e5), "kg/m^3")?;
     non_negative("wind.normal_drag", w.normal_drag, 100.0, "a drag coefficient")?;
     non_negative("wind.tangential_drag", w.tangential_drag, 100.0, "a drag coefficient")?;
+    non_negative("wind.lift", w.lift, 100.0, "a lift coefficient")?;
     non_negative("wind.full_force_radius", w.full_force_radius, LENGTH.1, "m")?;
     non_negative("wind.attenuation_radius", w.attenuation_radius, LENGTH.1, "m")?;
     positive("wind.reference_distance", w.reference_distance, LENGTH, "m")?;

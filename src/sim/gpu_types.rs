@@ -135,7 +135,7 @@ gpu_struct!(
 
 gpu_struct!(
     /// Scene-wide parameters.
-    Globals, size 96, {
+    Globals, size 112, {
     gravity: [f32; 3],
     dt: f32,
     wind_origin: [f32; 3],
@@ -154,6 +154,10 @@ gpu_struct!(
     wind_normal: f32,
     wind_tangent: f32,
     guard_strain: f32,
+    wind_lift: f32,
+    pad0: f32,
+    pad1: f32,
+    pad2: f32,
 });
 
 /// Runtime guard bits (`GUARD_*` in the header).

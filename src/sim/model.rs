@@ -221,7 +221,9 @@ pub struct WindModel {
 
 /// The aerodynamic wind: air flowing along the cone's axis at `speed` times the cone's
 /// strength there, pushing on the cloth by the air's velocity u relative to it: `normal` |u_n|
-/// u_n + `tangent` |u_t| u_t per unit area (for a rope, per unit length of its diameter) [N].
+/// u_n + `tangent` |u_t| u_t per unit area (for a rope, per unit length of its diameter) [N],
+/// and on a cloth the lift `lift` |u| (u.n) (n - (u.n) u / |u|^2) per unit area, across the
+/// air in the plane of the air and the normal (`sim::cpu::air_force`).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct AirModel {
     /// [m/s]
@@ -230,6 +232,9 @@ pub struct AirModel {
     pub normal: f64,
     /// 1/2 density tangential drag coefficient [kg/m^3].
     pub tangent: f64,
+    /// Density lift coefficient [kg/m^3]: the lift is 1/2 density lift_coefficient sin(2 alpha)
+    /// |u|^2 per unit area at an angle of attack alpha.
+    pub lift: f64,
 }
 
 /// How self-collision finds its candidate pairs.

@@ -202,6 +202,7 @@ pub fn build(ui: &Ui, state: &mut EditorState, scene: &mut Scene, stats: &Stats)
                     drag(ui, "air density [kg/m^3]", &mut w.density, 0.01, 0.001, 100.0);
                     drag(ui, "normal drag", &mut w.normal_drag, 0.01, 0.0, 10.0);
                     drag(ui, "tangential drag", &mut w.tangential_drag, 0.001, 0.0, 10.0);
+                    drag(ui, "lift", &mut w.lift, 0.01, 0.0, 10.0);
                 } else {
                     drag(ui, "force [N]##wind", &mut w.force, 0.001, -10.0, 10.0);
                 }

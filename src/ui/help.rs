@@ -27,6 +27,7 @@ const HELP: &[(&str, &str)] = &[
     ("air density [kg/m^3]", "Aerodynamic wind: the air's density (1.2 at sea level) [kg/m^3]."),
     ("normal drag", "Aerodynamic wind: drag coefficient across the cloth (about 1.2 for a flat plate)."),
     ("tangential drag", "Aerodynamic wind: drag coefficient along the cloth (skin friction, a few hundredths)."),
+    ("lift", "Aerodynamic wind: lift coefficient of a cloth at 45 degrees to the air, across the air (0: drag only); none face-on or edge-on."),
     ("force [N]##wind", "The paper's wind: force on each particle at full strength [N]."),
     ("full-force radius [m]", "Radius of the cone's full-force core at the reference distance [m]."),
     ("attenuation radius [m]", "Radius at the reference distance where the force has faded to zero [m]."),

@@ -80,6 +80,7 @@ fn rounded(model: &SimModel) -> SimModel {
             speed: r32(a.speed),
             normal: r32(a.normal),
             tangent: r32(a.tangent),
+            lift: r32(a.lift),
         }),
     });
     m.colliders = m.colliders.iter().map(|c| c.rounded_to_f32()).collect();
@@ -213,7 +214,11 @@ pub(crate) fn air_force(m: &SimModel, o: &ObjectModel, i: usize, x: &[DVec3], v:
         let n = area / a;
         let un = u.dot(n);
         let ut = u - n * un;
-        (n * (air.normal * un.abs() * un) + ut * (air.tangent * ut.length())) * a
+        let speed = u.length();
+        // Lift: across u in the plane of u and n, |u|^2 sin(2 alpha) / 2 (cos alpha = |u_t| /
+        // |u|); none face-on or edge-on.
+        let lift = if speed > 0.0 { (n * speed - u * (un / speed)) * (air.lift * un) } else { DVec3::ZERO };
+        (n * (air.normal * un.abs() * un) + ut * (air.tangent * ut.length()) + lift) * a
     } else {
         let axis = at(c + 1 < cols, i + 1) - at(c > 0, i.wrapping_sub(1));
         let len = axis.length();

@@ -531,6 +531,10 @@ pub(super) fn globals(model: &SimModel) -> Globals {
         wind_normal: wind.and_then(|w| w.air).map(|a| a.normal as f32).unwrap_or(0.0),
         wind_tangent: wind.and_then(|w| w.air).map(|a| a.tangent as f32).unwrap_or(0.0),
         guard_strain: model.max_strain as f32,
+        wind_lift: wind.and_then(|w| w.air).map(|a| a.lift as f32).unwrap_or(0.0),
+        pad0: 0.0,
+        pad1: 0.0,
+        pad2: 0.0,
     }
 }
 
