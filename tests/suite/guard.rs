@@ -256,32 +256,19 @@ fn cloths_released_stretched_run_10000_explicit_substeps() {
 
 /// A compliant method is judged by the energy it integrates: XPBD and XPBD by Jacobi at one
 /// 1/60 s substep and 4 iterations leave a stiff cloth's springs far longer than their
-/// stiffness says (the 12 x 12 cloth of 1 g particles held at its corners, 1e4 N/m, shear
-/// half, bending a tenth, the presets' light dashpots and drag: on the f64 reference they hang
-/// about 5 and 15 times the equilibrium's sag), so the springs' energy at their stiffness grows as it settles, which
-/// the energy check took for a gain and stopped at frame 31 (7.0 and 186 times the scale). It
-/// now runs 90 frames. Independently, nothing supplies energy, so the motion's and gravity's
-/// energy must stay below its start, and the settling cloth slows (its fastest particle at the
-/// end below a tenth of the fastest at frame 30; measured 0.4% and 0.4%).
+/// stiffness says (`stiff_cloth` at 1e4 N/m with the presets' light dashpots: on the f64
+/// reference they hang about 5 and 15 times the equilibrium's sag), so the springs' energy at
+/// their stiffness grows as it settles, which the energy check took for a gain and stopped at
+/// frame 31 (7.0 and 186 times the scale). It now runs 90 frames. Independently, nothing
+/// supplies energy, so the motion's and gravity's energy must stay below its start, and the
+/// settling cloth slows (its fastest particle at the end below a tenth of the fastest at frame
+/// 30; measured 0.4% and 0.4%).
 #[test]
 fn a_compliant_method_that_hangs_long_is_not_stopped() {
     let ctx = gpu();
     for method in [Integrator::Xpbd, Integrator::XpbdJacobi] {
-        let n = 12;
-        let mut c = cloth(n, n, 0.025);
-        for p in &mut c.positions {
-            *p = DVec3::new(p.x, 1.0, 1.0 - p.y);
-        }
-        c.mass = 1e-3;
-        c.stiffness = [1e4, 5e3, 1e3];
-        c.damping = 0.01;
-        c.drag = 0.01;
-        for i in [0, n - 1, n * (n - 1), n * n - 1] {
-            c.pinned[i as usize] = true;
-        }
-        let mut model = scene(vec![c]);
-        model.gravity = DVec3::new(0.0, -9.81, 0.0);
-        model.substeps = 1;
+        let mut model = stiff_cloth(1e4);
+        model.objects[0].damping = 0.01;
         model.integrator = method;
         model.iterations = 4;
         model.max_energy_gain = 0.5;

@@ -10,29 +10,8 @@ use msdsim::sim::cpu::CpuSim;
 use msdsim::sim::gpu::ObjectState;
 use msdsim::sim::model::{Integrator, ObjectModel, SimModel};
 
-const N: u32 = 12;
-const SPACING: f64 = 0.025;
-
-/// A 12 x 12 cloth, 2.5 cm apart, 1 g particles, lying flat and held at its four corners,
-/// springs k (structural), k / 2 (shear), k / 10 (bending), light dashpots and air drag that
-/// settle it within a second or two.
-fn stiff_cloth(k: f64) -> SimModel {
-    let mut c = cloth(N, N, SPACING);
-    for p in &mut c.positions {
-        *p = DVec3::new(p.x, 1.0, 1.0 - p.y);
-    }
-    c.mass = 1e-3;
-    c.stiffness = [k, k / 2.0, k / 10.0];
-    c.damping = 0.0;
-    c.drag = 0.01;
-    for i in [0, N - 1, N * (N - 1), N * N - 1] {
-        c.pinned[i as usize] = true;
-    }
-    let mut m = scene(vec![c]);
-    m.gravity = DVec3::new(0.0, -9.81, 0.0);
-    m.substeps = 1;
-    m
-}
+const N: u32 = STIFF_N;
+const SPACING: f64 = STIFF_SPACING;
 
 /// The springs of the grid, each once: (i, j, stiffness, rest length).
 fn spring_list(o: &ObjectModel) -> Vec<(usize, usize, f64, f64)> {

@@ -116,6 +116,32 @@ pub fn cloth(cols: u32, rows: u32, spacing: f64) -> ObjectModel {
     c
 }
 
+/// Columns and rows of `stiff_cloth`, and its spacing [m].
+pub const STIFF_N: u32 = 12;
+pub const STIFF_SPACING: f64 = 0.025;
+
+/// The stiff cloth of the large-step tests: 12 x 12 particles 2.5 cm apart, 1 g each, lying
+/// flat at y = 1 and held at its four corners, springs k (structural), k / 2 (shear), k / 10
+/// (bending), no dashpots, air drag 0.01 N s/m, under gravity at one substep a frame.
+pub fn stiff_cloth(k: f64) -> SimModel {
+    let mut c = cloth(STIFF_N, STIFF_N, STIFF_SPACING);
+    for p in &mut c.positions {
+        *p = DVec3::new(p.x, 1.0, 1.0 - p.y);
+    }
+    c.mass = 1e-3;
+    c.stiffness = [k, k / 2.0, k / 10.0];
+    c.damping = 0.0;
+    c.drag = 0.01;
+    let n = STIFF_N;
+    for i in [0, n - 1, n * (n - 1), n * n - 1] {
+        c.pinned[i as usize] = true;
+    }
+    let mut m = scene(vec![c]);
+    m.gravity = DVec3::new(0.0, -9.81, 0.0);
+    m.substeps = 1;
+    m
+}
+
 /// A straight rope along +x with every feature off.
 pub fn rope(nodes: u32, spacing: f64) -> ObjectModel {
     let positions = (0..nodes).map(|i| DVec3::new(i as f64 * spacing - 0.5, 1.0, 0.0)).collect();
