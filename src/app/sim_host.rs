@@ -260,8 +260,17 @@ impl SimHost {
     /// Pins or unpins particle `index` of object `object` at `at` (where it is: Ctrl + click): in the
     /// running simulation at the next frame, in the model (a reset keeps it) and in the scene's
     /// `pinned` list (saving keeps it). A particle pinned by the object's `pin` rule cannot be
-    /// unpinned this way: the error says which rule to change.
-    pub fn set_pinned(&mut self, object: usize, index: u32, pin: bool, at: [f32; 3]) -> Result<(), String> {
+    /// unpinned this way: the error says which rule to change. The first pin of an object or the
+    /// removal of its last rewrites its parameters (the adaptive methods start a held object's
+    /// particles otherwise: `OBJ_ANCHORED`), after the frames in flight.
+    pub fn set_pinned(
+        &mut self,
+        ctx: &GpuContext,
+        object: usize,
+        index: u32,
+        pin: bool,
+        at: [f32; 3],
+    ) -> Result<(), String> {
         let n_cloths = self.scene.cloths.len();
         let o = self.model.objects.get_mut(object).ok_or("no such object")?;
         let i = index as usize;
@@ -287,7 +296,9 @@ impl SimHost {
                 ));
             }
         }
+        let anchored = o.anchored();
         o.pinned[i] = pin;
+        let anchoring = o.anchored() != anchored;
         if pin {
             self.pinned_at.insert((object, index), at);
         } else {
@@ -295,6 +306,13 @@ impl SimHost {
         }
         let particle = Particle { pos: [at[0], at[1], at[2], pin as u32 as f32], vel: [0.0; 4] };
         self.sim.set_particle(object, index, particle);
+        if anchoring {
+            let mut rewrite = || -> Result<()> {
+                ctx.wait_idle()?;
+                self.sim.update_params(&self.model)
+            };
+            rewrite().map_err(|e| format!("pinning: the object's parameters: {e:#}"))?;
+        }
         Ok(())
     }
 

@@ -79,7 +79,7 @@ impl Viewer {
                 // Ctrl + click's path: pin rope node 5 (saved with the preset at 14).
                 let host = self.host.as_mut().expect("host");
                 let p = host.sim_mut().read_states(&self.ctx)?[0].particles[5].pos;
-                host.set_pinned(0, 5, true, [p[0], p[1], p[2]])
+                host.set_pinned(&self.ctx, 0, 5, true, [p[0], p[1], p[2]])
                     .map_err(|e| anyhow::anyhow!("exercise: pinning failed: {e}"))?;
             }
             14 => self.pending_actions.push(Action::Save(saved.clone())),

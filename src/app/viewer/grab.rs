@@ -56,9 +56,13 @@ impl Viewer {
             match picked {
                 Ok(Some(((object, index, _, was_pinned), p))) => {
                     let at = [p[0], p[1], p[2]];
-                    if let Err(e) =
-                        self.host.as_mut().expect("host").set_pinned(object, index, !was_pinned, at)
-                    {
+                    if let Err(e) = self.host.as_mut().expect("host").set_pinned(
+                        &self.ctx,
+                        object,
+                        index,
+                        !was_pinned,
+                        at,
+                    ) {
                         self.message(e, true);
                     }
                 }

@@ -584,8 +584,8 @@ fn newton_springs<'a>(
 /// iterate moves by dp. CG's dot products span the object, so stiffness crosses it within an
 /// iteration's reach of the whole (a Jacobi sweep moves it one neighbour an iteration). At
 /// convergence BDF2 with implicit dashpots, at any stiffness; cut short it is not a descent
-/// (no line search): a stiff cloth at one 1/60 s substep gains energy at 2 and 4 iterations
-/// (the runtime guard stops it; docs/ACCURACY.md, "Large steps") and settles from 10.
+/// (no line search): a very stiff cloth (1e5 N/m and more) at one 1/60 s substep gains energy
+/// on the way below 10 iterations before it settles (docs/ACCURACY.md, "Large steps").
 pub(crate) fn implicit(s: &Substep<'_>, history: &mut [History]) -> State {
     let Substep { model: m, object: o, dt, x: x0, v } = *s;
     let n = x0.len();
