@@ -147,6 +147,7 @@ fn inertial(
 ) -> Inertial {
     let h = BDF2_STEP * dt;
     let adaptive = adaptive_start(m);
+    let anchored = adaptive && o.anchored();
     let mut start = Vec::with_capacity(x.len());
     let (base, y) = (0..x.len())
         .map(|i| {
@@ -161,7 +162,7 @@ fn inertial(
             let y = base + v[i] * (2.0 / 3.0 * dt) + past.dv * (2.0 / 9.0 * dt) + pull;
             let guess = y - pull * past.held;
             start.push(match adaptive {
-                true if o.anchored() => toward_rest(o, i, h, x[i], guess),
+                true if anchored => toward_rest(o, i, h, x[i], guess),
                 true => guess,
                 false => y,
             });
