@@ -7,7 +7,6 @@ use crate::common;
 use common::*;
 use glam::DVec3;
 use msdsim::sim::cpu::CpuSim;
-use msdsim::sim::gpu::ObjectState;
 use msdsim::sim::model::{Integrator, ObjectModel, SimModel};
 
 const N: u32 = STIFF_N;
@@ -182,32 +181,6 @@ fn fastest(v: &[DVec3]) -> f64 {
     v.iter().map(|v| v.length()).fold(0.0, f64::max)
 }
 
-/// The final positions and velocities of the model's one object on the CPU reference and on
-/// the GPU's fused and per-stage paths, after `frames` frames.
-fn runs(
-    ctx: &msdsim::vk::GpuContext,
-    m: &SimModel,
-    frames: usize,
-) -> Vec<(&'static str, Vec<DVec3>, Vec<DVec3>)> {
-    let mut cpu = CpuSim::new(m);
-    for _ in 0..frames {
-        cpu.step_frame();
-    }
-    let o = &cpu.objects()[0];
-    let mut out = vec![("cpu", o.x.clone(), o.v.clone())];
-    for (label, fused) in [("gpu fused", true), ("gpu per stage", false)] {
-        let mut gpu = msdsim::sim::gpu::GpuSim::new(ctx, m).expect("creating the GPU simulation");
-        gpu.set_fused(ctx, fused).unwrap();
-        for _ in 0..frames {
-            gpu.step_frame(ctx).expect("GPU frame");
-        }
-        let states: Vec<ObjectState> = gpu.read_states(ctx).expect("readback");
-        gpu.destroy(ctx);
-        out.push((label, states[0].positions(), states[0].velocities()));
-    }
-    out
-}
-
 /// VBD and the implicit method at ONE 1/60 s substep and 10 iterations, the setting they
 /// exist for, on a cloth stiff enough that Verlet needs hundreds of substeps (1e4 and 1e5 N/m,
 /// 1 g particles): after 4 s the sag is within 5% of the static equilibrium (Newton's method,
@@ -228,7 +201,7 @@ fn the_large_step_methods_settle_at_the_equilibrium_sag_at_one_substep() {
         let mut m = stiff_cloth(k);
         m.integrator = method;
         m.iterations = 10;
-        let results = runs(&ctx, &m, 240);
+        let results = every_path(&ctx, &m, 240);
         let exact = sag(&equilibrium(&m, &results[0].1));
         for (label, x, v) in &results {
             let error = sag(x) / exact - 1.0;
@@ -273,7 +246,7 @@ fn a_stiff_cloth_falls_freely_at_a_large_step() {
         m.integrator = method;
         for iterations in [4, 10] {
             m.iterations = iterations;
-            let (early, late) = (runs(&ctx, &m, 15), runs(&ctx, &m, 30));
+            let (early, late) = (every_path(&ctx, &m, 15), every_path(&ctx, &m, 30));
             for ((label, _, v0), (_, _, v1)) in early.iter().zip(&late) {
                 let gained = (mean(v1) - mean(v0)).dot(DVec3::NEG_Y);
                 let error = gained / (9.81 * 0.25) - 1.0;

@@ -9,7 +9,6 @@ use crate::common;
 
 use common::*;
 use glam::DVec3;
-use msdsim::sim::gpu::GpuSim;
 use msdsim::sim::integrator::Integrator;
 use msdsim::sim::model::{AirModel, SimModel};
 
@@ -40,24 +39,9 @@ fn plate(along: DVec3, across: DVec3) -> SimModel {
 fn travel(s: &SimModel) -> Vec<(&'static str, f64)> {
     let centre = |x: &[DVec3]| -(x.iter().sum::<DVec3>() / x.len() as f64).z;
     let start = centre(&s.objects[0].positions);
-    let mut cpu = msdsim::sim::cpu::CpuSim::new(s);
-    for _ in 0..FRAMES {
-        cpu.step_frame();
-    }
-    let mut out = vec![("cpu", centre(&cpu.objects()[0].x) - start)];
     let ctx = gpu();
-    for fused in [true, false] {
-        let mut g = GpuSim::new(&ctx, s).unwrap();
-        g.set_fused(&ctx, fused).unwrap();
-        for _ in 0..FRAMES {
-            g.step_frame(&ctx).unwrap();
-        }
-        out.push((
-            if fused { "fused" } else { "per stage" },
-            centre(&g.read_states(&ctx).unwrap()[0].positions()) - start,
-        ));
-        g.destroy(&ctx);
-    }
+    let out =
+        every_path(&ctx, s, FRAMES).into_iter().map(|(path, x, _)| (path, centre(&x) - start)).collect();
     assert_clean(&ctx);
     out
 }
@@ -158,21 +142,10 @@ fn lift_is_a_flat_plates_across_the_stream() {
             let w = s.wind.as_mut().unwrap();
             w.air.as_mut().unwrap().lift = 1.2 * lift;
             let m = s.objects[0].mass;
-            let total = |v: &[DVec3]| v.iter().sum::<DVec3>() * m;
-            let mut cpu = msdsim::sim::cpu::CpuSim::new(&s);
-            cpu.step_frame();
-            let mut out = vec![("cpu", total(&cpu.objects()[0].v))];
-            for fused in [true, false] {
-                let mut g = GpuSim::new(&ctx, &s).unwrap();
-                g.set_fused(&ctx, fused).unwrap();
-                g.step_frame(&ctx).unwrap();
-                out.push((
-                    if fused { "fused" } else { "per stage" },
-                    total(&g.read_states(&ctx).unwrap()[0].velocities()),
-                ));
-                g.destroy(&ctx);
-            }
-            out
+            every_path(&ctx, &s, 1)
+                .into_iter()
+                .map(|(path, _, v)| (path, v.iter().sum::<DVec3>() * m))
+                .collect()
         };
         let want = impulse * (2.0 * a).sin();
         for ((path, with), (_, without)) in momentum(1.0).into_iter().zip(momentum(0.0)) {

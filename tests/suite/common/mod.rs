@@ -294,6 +294,33 @@ pub fn compare_with(
     (worst, last)
 }
 
+/// The final positions and velocities of the model's first object on the CPU reference and on
+/// the GPU's fused and per-stage paths ("cpu", "gpu fused", "gpu per stage"), after `frames`
+/// frames.
+pub fn every_path(
+    ctx: &GpuContext,
+    m: &SimModel,
+    frames: usize,
+) -> Vec<(&'static str, Vec<DVec3>, Vec<DVec3>)> {
+    let mut cpu = CpuSim::new(m);
+    for _ in 0..frames {
+        cpu.step_frame();
+    }
+    let o = &cpu.objects()[0];
+    let mut out = vec![("cpu", o.x.clone(), o.v.clone())];
+    for (label, fused) in [("gpu fused", true), ("gpu per stage", false)] {
+        let mut gpu = GpuSim::new(ctx, m).expect("creating the GPU simulation");
+        gpu.set_fused(ctx, fused).unwrap();
+        for _ in 0..frames {
+            gpu.step_frame(ctx).expect("GPU frame");
+        }
+        let states: Vec<ObjectState> = gpu.read_states(ctx).expect("readback");
+        gpu.destroy(ctx);
+        out.push((label, states[0].positions(), states[0].velocities()));
+    }
+    out
+}
+
 /// Runs the GPU simulation alone for `frames` frames, calling `each` with the state after each.
 pub fn run_gpu(
     ctx: &GpuContext,
