@@ -322,6 +322,7 @@ void main() {
     }
 
     for (uint sub = chunk.first; sub < chunk.first + chunk.count; ++sub) {
+        air_time = float(sub) * g.dt;
         [[unroll]] for (uint s = 0u; s < MAX_SLOTS; ++s) began[s] = has(F_COLLIDERS) || self_triangles_on ? x[s] : vec3(0.0);
         // Physics: forces on the drifted positions (and, with dashpots, the neighbours'
         // velocities staged pass by pass), new state into registers.

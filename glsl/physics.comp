@@ -22,6 +22,7 @@ layout(push_constant) uniform Push {
 
 void main() {
     if (!batch_begin(pc.batch_mask)) return;
+    air_time = float(pc.substep) * g.dt;
     uvec2 cell = gl_GlobalInvocationID.xy;
     if (cell.x >= obj.dims.x || cell.y >= obj.dims.y) return;
     physics_particle(cell, pc.substep, pc.lists != 0u);

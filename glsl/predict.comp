@@ -21,12 +21,16 @@
 #include "predict_body.glsl"
 
 layout(local_size_x_id = 0, local_size_y_id = 1, local_size_z = 1) in;
-layout(push_constant) uniform Push { BATCH_PUSH } pc;
+layout(push_constant) uniform Push {
+    uint substep;  // of the frame, 0-based (the wind's turbulence)
+    BATCH_PUSH
+} pc;
 layout(constant_id = 4) const bool KEEP_PREDICTION = false;
 layout(constant_id = 5) const bool ADAPTIVE_START = false;
 
 void main() {
     if (!batch_begin(pc.batch_mask)) return;
+    air_time = float(pc.substep) * g.dt;
     uvec2 cell = gl_GlobalInvocationID.xy;
     if (cell.x >= obj.dims.x || cell.y >= obj.dims.y) return;
     uint i = cell.x + cell.y * obj.dims.x;

@@ -1,6 +1,6 @@
 // The aerodynamic wind (Globals.wind_speed > 0): air flowing along the cone's axis at
-// wind_speed times the cone's strength there pushes on the cloth by its velocity u relative to
-// the particle. A cloth particle's share of the area is a = (x_right - x_left) x (x_down -
+// wind_speed, with its turbulence added (`turbulence`), times the cone's strength there pushes
+// on the cloth by its velocity u relative to the particle. A cloth particle's share of the area is a = (x_right - x_left) x (x_down -
 // x_up) / 4 (a missing neighbour replaced by the particle itself: half the share on an edge, a
 // quarter at a corner), along its normal n = a / |a|; the force is |a| (wind_normal |u.n| (u.n)
 // n + wind_tangent |u_t| u_t): normal drag on the area the air meets, so an edge-on sheet
@@ -15,9 +15,25 @@
 #define MSD_AIR_GLSL
 #include "forces.glsl"
 
+// When within the frame the forces are taken: the substep's start [s] (the calling shader's main
+// sets it; the turbulence's phases are the frame's start's).
+float air_time = 0.0;
+
+// The air's turbulent velocity at x: a sum of Fourier modes, each amplitude across its wave
+// vector, so the field has no divergence (sim::turbulence, which draws them from the seed).
+vec3 turbulence(vec3 x) {
+    vec3 u = vec3(0.0);
+    for (uint m = 0u; m < g.wind_modes; ++m) {
+        vec4 k = g.wind_waves[m];
+        vec4 a = g.wind_gusts[m];
+        u += a.xyz * sin(dot(k.xyz, x) + a.w - k.w * air_time);
+    }
+    return u;
+}
+
 vec3 air_force(uvec2 cell, vec3 x, vec3 v, float drift) {
     if (!has(F_WIND) || g.wind_enabled == 0u || g.wind_speed <= 0.0) return vec3(0.0);
-    vec3 u = g.wind_dir * (g.wind_speed * wind_strength(x)) - v;
+    vec3 u = (g.wind_dir * g.wind_speed + turbulence(x)) * wind_strength(x) - v;
     uint cols = obj.dims.x;
     uint i = cell.x + cell.y * cols;
     if (obj.dims.y > 1u) {

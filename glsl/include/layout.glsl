@@ -45,6 +45,9 @@ struct Collider {
     vec4 extra;
 };
 
+// Fourier modes of the wind's turbulence (sim::turbulence::TURBULENCE_MODES).
+#define TURBULENCE_MODES 8
+
 struct Globals {
     vec3 gravity;        float dt;             // [m/s^2], substep length [s]
     vec3 wind_origin;    float wind_force;     // cone apex [m], force at full strength [N per particle]
@@ -64,9 +67,11 @@ struct Globals {
     float guard_strain;                        // a structural spring stretched past this strain is
                                                // implausible (0: no check; sim.max_strain)
     float wind_lift;                           // air density x lift coefficient (air.glsl)
-    float pad0;                                // unused (a uniform block's size is a multiple of 16)
-    float pad1;
+    uint wind_modes;                           // the turbulence's modes in use (0: none; air.glsl)
+    float pad1;                                // unused (the arrays start at a multiple of 16)
     float pad2;
+    vec4 wind_waves[TURBULENCE_MODES];         // per mode: wave vector [1/m], w its phase's rate [1/s]
+    vec4 wind_gusts[TURBULENCE_MODES];         // amplitude [m/s], w its phase at the frame's start
 };
 
 // Bits of the runtime guard (GuardBuf.flags).

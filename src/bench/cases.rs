@@ -133,10 +133,12 @@ fn shapes(span: f64, y: f64) -> (Ground, BoxCollider, Capsule) {
     (ground, block, capsule)
 }
 
-/// A wind cone aimed at the centre of an object of `span` metres at height `y`.
+/// The paper's wind cone (a force on every particle) aimed at the centre of an object of `span`
+/// metres at height `y`.
 fn wind(span: f64, y: f64) -> Wind {
     Wind {
         enabled: true,
+        model: crate::scene::WindKind::Paper,
         origin: [0.0, y, span],
         direction: [0.0, 0.0, -1.0],
         force: 0.02,

@@ -66,6 +66,7 @@ fn builtin(names: &[String], overrides: &[String]) -> Result<Vec<(String, Scene)
     }
     cloth.wind = scene::Wind {
         enabled: true,
+        model: scene::WindKind::Paper,
         origin: [0.0, 1.0, 2.0],
         direction: [0.0, 0.0, -1.0],
         force: 0.02,

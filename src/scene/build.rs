@@ -36,6 +36,11 @@ pub fn to_model(scene: &Scene) -> SimModel {
                 normal: 0.5 * w.density * w.normal_drag,
                 tangent: 0.5 * w.density * w.tangential_drag,
                 lift: w.density * w.lift,
+                turbulence: (w.turbulence > 0.0).then(|| {
+                    let mean = DVec3::from_array(w.direction).normalize() * w.speed;
+                    let t = crate::sim::turbulence::Turbulence::new;
+                    t(w.turbulence, w.turbulence_scale, w.turbulence_frequency, mean, w.seed)
+                }),
             }),
         }
     });

@@ -178,9 +178,9 @@ impl Default for SimSettings {
 /// The wind: a cone from `origin` along `direction`. At `reference_distance` along the axis it
 /// is full within `full_force_radius` of the axis and falls to zero over a further
 /// `attenuation_radius`. As the paper has it (`model = "paper"`), a force on every particle
-/// whatever the cloth's orientation and speed; aerodynamic (`model = "aerodynamic"`), air
-/// flowing at `speed` along the axis that pushes on the cloth's area, by the air's velocity
-/// relative to the cloth: normal drag 1/2 density normal_drag |u_n| u_n per unit area,
+/// whatever the cloth's orientation and speed; aerodynamic (the default), air flowing at
+/// `speed` along the axis, with `turbulence` (`sim::turbulence`) added, that pushes on the
+/// cloth's area, by the air's velocity relative to the cloth: normal drag 1/2 density normal_drag |u_n| u_n per unit area,
 /// tangential drag likewise with `tangential_drag`, and on a cloth lift 1/2 density lift
 /// sin(2 alpha) |u|^2 per unit area across the air (alpha the angle of attack).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -205,6 +205,18 @@ pub struct Wind {
     /// Lift coefficient of a cloth at 45 degrees to the air (0: drag only) (aerodynamic).
     #[serde(default)]
     pub lift: f64,
+    /// Root-mean-square speed of the air's turbulence [m/s] (0: a steady wind) (aerodynamic).
+    #[serde(default)]
+    pub turbulence: f64,
+    /// Size of the turbulence's eddies [m] (aerodynamic).
+    #[serde(default = "defaults::turbulence_scale")]
+    pub turbulence_scale: f64,
+    /// How fast the eddies change as the wind carries them [Hz] (aerodynamic).
+    #[serde(default = "defaults::turbulence_frequency")]
+    pub turbulence_frequency: f64,
+    /// Picks the turbulence's eddies: the same seed, the same wind.
+    #[serde(default = "defaults::seed")]
+    pub seed: u32,
     /// Apex of the cone [m].
     #[serde(default)]
     pub origin: [f64; 3],
@@ -229,12 +241,16 @@ impl Default for Wind {
     fn default() -> Self {
         Self {
             enabled: false,
-            model: WindKind::Paper,
+            model: WindKind::Aerodynamic,
             speed: 0.0,
             density: defaults::air_density(),
             normal_drag: defaults::normal_drag(),
             tangential_drag: defaults::tangential_drag(),
             lift: 0.0,
+            turbulence: 0.0,
+            turbulence_scale: defaults::turbulence_scale(),
+            turbulence_frequency: defaults::turbulence_frequency(),
+            seed: defaults::seed(),
             origin: [0.0; 3],
             direction: defaults::wind_direction(),
             force: 0.0,
@@ -281,9 +297,9 @@ impl SelfContact {
 #[serde(rename_all = "snake_case")]
 pub enum WindKind {
     /// The paper's: `force` newtons on every particle in the cone.
-    #[default]
     Paper,
     /// Drag from the air's velocity relative to the cloth, on its area and orientation.
+    #[default]
     Aerodynamic,
 }
 
@@ -609,6 +625,15 @@ mod defaults {
     }
     pub fn tangential_drag() -> f64 {
         0.02
+    }
+    pub fn turbulence_scale() -> f64 {
+        0.5
+    }
+    pub fn turbulence_frequency() -> f64 {
+        1.0
+    }
+    pub fn seed() -> u32 {
+        1
     }
     pub fn wind_direction() -> [f64; 3] {
         [0.0, 0.0, -1.0]

@@ -171,7 +171,7 @@ pub fn check(scene: &Scene) -> Check {
     non_negative("wind.speed", w.speed, 1e3, "m/s")?;
     if w.enabled && w.model == super::WindKind::Aerodynamic && w.speed <= 0.0 {
         return Err(format!(
-            "wind.speed = {}: the aerodynamic wind needs an air speed > 0 (m/s)",
+            "wind.speed = {}: the aerodynamic wind (the default) needs an air speed > 0 (m/s); for the paper's force on every particle (wind.force), set model = \"paper\"",
             num(w.speed)
         ));
     }
@@ -179,6 +179,15 @@ pub fn check(scene: &Scene) -> Check {
     non_negative("wind.normal_drag", w.normal_drag, 100.0, "a drag coefficient")?;
     non_negative("wind.tangential_drag", w.tangential_drag, 100.0, "a drag coefficient")?;
     non_negative("wind.lift", w.lift, 100.0, "a lift coefficient")?;
+    non_negative("wind.turbulence", w.turbulence, 1e3, "m/s")?;
+    positive("wind.turbulence_scale", w.turbulence_scale, LENGTH, "m")?;
+    non_negative("wind.turbulence_frequency", w.turbulence_frequency, 1e3, "Hz")?;
+    if w.enabled && w.model == super::WindKind::Paper && w.turbulence > 0.0 {
+        return Err(format!(
+            "wind.turbulence = {}: turbulence is the air's, for the aerodynamic wind (remove model = \"paper\", and set wind.speed)",
+            num(w.turbulence)
+        ));
+    }
     non_negative("wind.full_force_radius", w.full_force_radius, LENGTH.1, "m")?;
     non_negative("wind.attenuation_radius", w.attenuation_radius, LENGTH.1, "m")?;
     positive("wind.reference_distance", w.reference_distance, LENGTH, "m")?;

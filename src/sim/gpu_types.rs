@@ -3,6 +3,8 @@
 //! compares every member offset, every scalar's offset and type, and array strides with the
 //! compiled SPIR-V.
 
+use crate::sim::turbulence::TURBULENCE_MODES;
+
 /// A struct whose layout must agree with a GLSL struct of the same name.
 pub trait GpuLayout {
     const NAME: &'static str;
@@ -135,7 +137,7 @@ gpu_struct!(
 
 gpu_struct!(
     /// Scene-wide parameters.
-    Globals, size 112, {
+    Globals, size 368, {
     gravity: [f32; 3],
     dt: f32,
     wind_origin: [f32; 3],
@@ -155,9 +157,14 @@ gpu_struct!(
     wind_tangent: f32,
     guard_strain: f32,
     wind_lift: f32,
-    pad0: f32,
+    /// The turbulence's modes in use (0 or `TURBULENCE_MODES`).
+    wind_modes: u32,
     pad1: f32,
     pad2: f32,
+    /// Per mode its wave vector and its phase's rate (`sim::turbulence::Turbulence::gpu`).
+    wind_waves: [[f32; 4]; TURBULENCE_MODES],
+    /// Per mode its amplitude and its phase at the frame's start (rewritten each frame).
+    wind_gusts: [[f32; 4]; TURBULENCE_MODES],
 });
 
 /// Runtime guard bits (`GUARD_*` in the header).

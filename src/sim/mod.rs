@@ -8,3 +8,4 @@ pub mod gpu_types;
 pub mod integrator;
 pub mod model;
 pub mod stability;
+pub mod turbulence;

@@ -235,6 +235,8 @@ pub struct AirModel {
     /// Density lift coefficient [kg/m^3]: the lift is 1/2 density lift_coefficient sin(2 alpha)
     /// |u|^2 per unit area at an angle of attack alpha.
     pub lift: f64,
+    /// The air's turbulent part, added to the mean within the cone (times its strength).
+    pub turbulence: Option<crate::sim::turbulence::Turbulence>,
 }
 
 /// How self-collision finds its candidate pairs.

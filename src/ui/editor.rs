@@ -4,7 +4,8 @@
 use super::colliders;
 use super::objects::{cloth_panel, new_cloth, new_rope, rope_panel};
 use super::widgets::{check, choice, color, drag, drag3, int, tip};
-use crate::scene::{Scene, WindKind};
+use super::wind;
+use crate::scene::Scene;
 use crate::sim::gpu::FrameTiming;
 use imgui::{Condition, TreeNodeFlags, Ui};
 use std::path::PathBuf;
@@ -192,23 +193,7 @@ pub fn build(ui: &Ui, state: &mut EditorState, scene: &mut Scene, stats: &Stats)
             let _width = ui.push_item_width(-label);
             simulation_panel(ui, state, scene, &mut actions);
             if ui.collapsing_header("Wind", TreeNodeFlags::empty()) {
-                let w = &mut scene.wind;
-                check(ui, "enabled##wind", &mut w.enabled);
-                drag3(ui, "origin [m]##wind", &mut w.origin, 0.01);
-                drag3(ui, "direction##wind", &mut w.direction, 0.01);
-                choice(ui, "model##wind", &mut w.model, &[WindKind::Paper, WindKind::Aerodynamic]);
-                if w.model == WindKind::Aerodynamic {
-                    drag(ui, "air speed [m/s]", &mut w.speed, 0.05, 0.0, 100.0);
-                    drag(ui, "air density [kg/m^3]", &mut w.density, 0.01, 0.001, 100.0);
-                    drag(ui, "normal drag", &mut w.normal_drag, 0.01, 0.0, 10.0);
-                    drag(ui, "tangential drag", &mut w.tangential_drag, 0.001, 0.0, 10.0);
-                    drag(ui, "lift", &mut w.lift, 0.01, 0.0, 10.0);
-                } else {
-                    drag(ui, "force [N]##wind", &mut w.force, 0.001, -10.0, 10.0);
-                }
-                drag(ui, "full-force radius [m]", &mut w.full_force_radius, 0.01, 0.0, 100.0);
-                drag(ui, "attenuation radius [m]", &mut w.attenuation_radius, 0.01, 0.0, 100.0);
-                drag(ui, "reference distance [m]", &mut w.reference_distance, 0.01, 0.01, 100.0);
+                wind::wind_panel(ui, &mut scene.wind);
             }
             if ui.collapsing_header("Light", TreeNodeFlags::empty()) {
                 drag3(ui, "position [m]##light", &mut scene.light.position, 0.02);

@@ -8,6 +8,7 @@ mod help;
 mod notices;
 mod objects;
 mod widgets;
+mod wind;
 
 pub use browse::resolve_preset;
 pub use editor::{build, covered, unique_name, Action, EditorState, Selection, Stats};

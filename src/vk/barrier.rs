@@ -28,6 +28,8 @@ pub enum Access {
     IndexInput,
     /// Uniform buffer read by the vertex or fragment shader.
     GraphicsUniformRead,
+    /// Uniform buffer read by a compute shader.
+    ComputeUniformRead,
     /// A swapchain image just acquired: ordered after the acquire semaphore's wait at the
     /// colour-output stage, contents undefined.
     Acquired,
@@ -56,6 +58,7 @@ impl Access {
             Access::VertexInput => (S::VERTEX_ATTRIBUTE_INPUT, A::VERTEX_ATTRIBUTE_READ),
             Access::IndexInput => (S::INDEX_INPUT, A::INDEX_READ),
             Access::GraphicsUniformRead => (S::VERTEX_SHADER | S::FRAGMENT_SHADER, A::UNIFORM_READ),
+            Access::ComputeUniformRead => (S::COMPUTE_SHADER, A::UNIFORM_READ),
             Access::Acquired => (S::COLOR_ATTACHMENT_OUTPUT, A::NONE),
             Access::ColorAttachment => {
                 (S::COLOR_ATTACHMENT_OUTPUT, A::COLOR_ATTACHMENT_READ | A::COLOR_ATTACHMENT_WRITE)

@@ -844,8 +844,8 @@ fn hostile_keys_values_and_names_get_one_clear_line() {
         &["must not be a number"],
     );
     rejects(
-        &["simulate", "--preset", "presets/flag.toml", "--set", "wind.model=\"aerodynamic\""],
-        &["wind.speed = 0", "air speed"],
+        &["simulate", "--preset", "presets/flag.toml", "--set", "wind.speed=0"],
+        &["wind.speed = 0", "air speed", "model = \"paper\""],
     );
     for on in ["1", "true", "yes"] {
         let run = Command::new(env!("CARGO_BIN_EXE_msdsim"))

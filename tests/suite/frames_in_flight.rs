@@ -15,7 +15,7 @@ use msdsim::sim::gpu::GpuSim;
 /// The tests' small preset with wind and cloth self-collision: every stage and barrier kind.
 fn busy_scene() -> Scene {
     let text = GOOD.replace("pin = \"top_row\"", "pin = \"top_row\"\nself_collision = true")
-        + "[wind]\nenabled = true\nforce = 0.05\n";
+        + "[wind]\nenabled = true\nmodel = \"paper\"\nforce = 0.05\n";
     scene::parse(&text, "test", &[]).expect("the test preset parses")
 }
 

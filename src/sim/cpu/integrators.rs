@@ -38,6 +38,8 @@ pub struct Substep<'a> {
     pub dt: f64,
     pub x: &'a [DVec3],
     pub v: &'a [DVec3],
+    /// When the substep starts [s] (the wind's turbulence).
+    pub time: f64,
 }
 
 /// One substep with the model's integrator; the position-based methods read and update each
@@ -70,8 +72,8 @@ fn elastic_springs(o: &ObjectModel, i: usize) -> impl Iterator<Item = (Spring, f
 
 /// Gravity, wind and drag on particle i at x[i] with velocity v [N] (x: every particle's
 /// position, for the aerodynamic wind's area and orientation).
-fn external(m: &SimModel, o: &ObjectModel, i: usize, x: &[DVec3], v: DVec3) -> DVec3 {
-    m.gravity * o.mass + wind_at(&m.wind, x[i]) + air_force(m, o, i, x, v) - v * o.drag
+fn external(m: &SimModel, o: &ObjectModel, i: usize, x: &[DVec3], v: DVec3, time: f64) -> DVec3 {
+    m.gravity * o.mass + wind_at(&m.wind, x[i]) + air_force(m, o, i, x, v, time) - v * o.drag
 }
 
 /// The springs' force on particle i: elastic and dashpot parts [N].
@@ -97,7 +99,7 @@ fn spring_force(o: &ObjectModel, i: usize, x: &[DVec3], v: &[DVec3]) -> DVec3 {
 /// Symplectic Euler, or position Verlet (`verlet`): forces at the half-drifted positions
 /// x + v dt / 2, the kick, then the second half of the drift with the new velocity.
 fn explicit(s: &Substep<'_>, verlet: bool) -> State {
-    let Substep { model: m, object: o, dt, x, v } = *s;
+    let Substep { model: m, object: o, dt, x, v, time } = *s;
     let drift = if verlet { 0.5 * dt } else { 0.0 };
     let at: Vec<DVec3> = x.iter().zip(v).map(|(x, v)| *x + *v * drift).collect();
     let mut nx = x.to_vec();
@@ -106,7 +108,7 @@ fn explicit(s: &Substep<'_>, verlet: bool) -> State {
         if o.pinned[i] {
             continue;
         }
-        let force = external(m, o, i, &at, v[i]) + spring_force(o, i, &at, v);
+        let force = external(m, o, i, &at, v[i], time) + spring_force(o, i, &at, v);
         nv[i] = v[i] + force / o.mass * dt;
         nx[i] = at[i] + nv[i] * (dt - drift);
     }
@@ -137,14 +139,8 @@ struct Inertial {
     start: Vec<DVec3>,
 }
 
-fn inertial(
-    m: &SimModel,
-    o: &ObjectModel,
-    dt: f64,
-    x: &[DVec3],
-    v: &[DVec3],
-    history: &[History],
-) -> Inertial {
+fn inertial(s: &Substep<'_>, history: &[History]) -> Inertial {
+    let Substep { model: m, object: o, dt, x, v, time } = *s;
     let h = BDF2_STEP * dt;
     let adaptive = adaptive_start(m);
     let anchored = adaptive && o.anchored();
@@ -155,7 +151,7 @@ fn inertial(
                 start.push(x[i]);
                 return (x[i], x[i]);
             }
-            let force = external(m, o, i, x, v[i]);
+            let force = external(m, o, i, x, v[i], time);
             let pull = force / o.mass * (h * h);
             let past = history[i].unwrap_or_else(|| restart(o, i, x, v[i], force, dt));
             let base = x[i] + past.dx / 3.0;
@@ -297,9 +293,9 @@ fn colour_order(o: &ObjectModel) -> Vec<usize> {
 /// held, was right but converged slowly: after 1 s of a 24 x 24 cloth at 16 substeps and one
 /// iteration it stood 106 mm from the converged solve, against 4.6 mm for the spring classes.)
 pub(crate) fn xpbd(s: &Substep<'_>, history: &mut [History]) -> State {
-    let Substep { model: m, object: o, dt, x: x0, v } = *s;
+    let Substep { model: m, object: o, x: x0, .. } = *s;
     let n = x0.len();
-    let start = inertial(m, o, dt, x0, v, history);
+    let start = inertial(s, history);
     let (dt, x) = (start.h, &start.base[..]);
     let mut p = start.y.clone();
     let mut lambda = vec![[0.0f64; 6]; n];
@@ -369,9 +365,9 @@ pub(crate) fn xpbd(s: &Substep<'_>, history: &mut [History]) -> State {
 /// mode) is what makes plain Jacobi blow up at large substeps. `sim.relaxation` does not apply:
 /// the bound sets the step (scaled by it, beta would cancel it wherever it acts).
 pub(crate) fn xpbd_jacobi(s: &Substep<'_>, history: &mut [History]) -> State {
-    let Substep { model: m, object: o, dt, x: x0, v } = *s;
+    let Substep { model: m, object: o, x: x0, .. } = *s;
     let n = x0.len();
-    let start = inertial(m, o, dt, x0, v, history);
+    let start = inertial(s, history);
     let (dt, x) = (start.h, &start.base[..]);
     let mut p = start.y.clone();
     let mut lambda = vec![[0.0f64; 12]; n];
@@ -442,7 +438,7 @@ pub(super) struct VbdSolve {
 
 impl VbdSolve {
     pub fn new(s: &Substep<'_>, history: &[History]) -> Self {
-        let start = inertial(s.model, s.object, s.dt, s.x, s.v, history);
+        let start = inertial(s, history);
         let n = s.x.len();
         Self {
             p: start.start.clone(),
@@ -588,9 +584,9 @@ fn newton_springs<'a>(
 /// (no line search): a very stiff cloth (1e5 N/m and more) at one 1/60 s substep gains energy
 /// on the way below 10 iterations before it settles (docs/ACCURACY.md, "Large steps").
 pub(crate) fn implicit(s: &Substep<'_>, history: &mut [History]) -> State {
-    let Substep { model: m, object: o, dt, x: x0, v } = *s;
+    let Substep { model: m, object: o, x: x0, .. } = *s;
     let n = x0.len();
-    let start = inertial(m, o, dt, x0, v, history);
+    let start = inertial(s, history);
     let (dt, x, y) = (start.h, &start.base[..], &start.y[..]);
     let inertia = o.mass / (dt * dt);
     let mut p = start.start.clone();

@@ -81,6 +81,14 @@ fn rounded(model: &SimModel) -> SimModel {
             normal: r32(a.normal),
             tangent: r32(a.tangent),
             lift: r32(a.lift),
+            turbulence: a.turbulence.map(|t| crate::sim::turbulence::Turbulence {
+                modes: t.modes.map(|m| crate::sim::turbulence::Mode {
+                    k: r32v(m.k),
+                    a: r32v(m.a),
+                    rate: r32(m.rate),
+                    ..m
+                }),
+            }),
         }),
     });
     m.colliders = m.colliders.iter().map(|c| c.rounded_to_f32()).collect();
@@ -195,10 +203,11 @@ fn wind_at(wind: &Option<WindModel>, x: DVec3) -> DVec3 {
 /// share on an edge, a quarter at a corner), its normal n = a / |a|; the force is |a| (normal
 /// |u.n| (u.n) n + tangent |u_t| u_t). A rope node's is the diameter times half its two
 /// segments, drag across the rope (normal) and along it (tangent).
-pub(crate) fn air_force(m: &SimModel, o: &ObjectModel, i: usize, x: &[DVec3], v: DVec3) -> DVec3 {
+pub(crate) fn air_force(m: &SimModel, o: &ObjectModel, i: usize, x: &[DVec3], v: DVec3, time: f64) -> DVec3 {
     let Some(w) = &m.wind else { return DVec3::ZERO };
     let Some(air) = w.air else { return DVec3::ZERO };
-    let u = w.direction * (air.speed * wind_strength(w, x[i])) - v;
+    let gust = air.turbulence.map_or(DVec3::ZERO, |t| t.velocity(x[i], time));
+    let u = (w.direction * air.speed + gust) * wind_strength(w, x[i]) - v;
     let cols = o.dims[0] as usize;
     let (c, r) = (i % cols, i / cols);
     let at = |ok: bool, j: usize| if ok { x[j] } else { x[i] };
@@ -296,6 +305,8 @@ impl CpuSim {
         let substeps = m.substeps as u64;
         let frame_start = (self.substeps_done / substeps) as f64 * m.frame_dt;
         let since = ((self.substeps_done % substeps) + 1) as f64 * self.dt;
+        // (the substep's start, as the GPU has it: the frame's start and whole substeps since)
+        let time = frame_start + (self.substeps_done % substeps) as f64 * self.dt;
         let motions: Vec<(DVec3, DVec3)> = m
             .colliders
             .iter()
@@ -308,14 +319,20 @@ impl CpuSim {
         // Every object's physics first: the constraints of one read the others' new positions
         // (inter-object contact), as the GPU's constraint stage follows all physics.
         let advanced: Vec<(Vec<DVec3>, Vec<DVec3>)> = if m.contact_rounds() > 1 {
-            solve_with_contact_rounds(m, &mut self.objects, self.dt, &motions)
+            solve_with_contact_rounds(m, &mut self.objects, (self.dt, time), &motions)
         } else {
             m.objects
                 .iter()
                 .zip(&mut self.objects)
                 .map(|(o, state)| {
-                    let s =
-                        integrators::Substep { model: m, object: o, dt: self.dt, x: &state.x, v: &state.v };
+                    let s = integrators::Substep {
+                        model: m,
+                        object: o,
+                        dt: self.dt,
+                        x: &state.x,
+                        v: &state.v,
+                        time,
+                    };
                     integrators::advance(&s, &mut state.history)
                 })
                 .collect()
@@ -341,16 +358,16 @@ impl CpuSim {
 /// particle's iterate and prediction, and each particle's colliders after its solve in every
 /// iteration (`SimModel::contact_rounds`, `VbdSolve::sweep`; the last round between objects
 /// is the constraint stage's, as for the other methods). `motions`: each collider's offset
-/// and velocity at the substep's end.
+/// and velocity at the substep's end; `time`: when the substep starts.
 fn solve_with_contact_rounds(
     m: &SimModel,
     objects: &mut [CpuObject],
-    dt: f64,
+    (dt, time): (f64, f64),
     motions: &[(DVec3, DVec3)],
 ) -> Vec<(Vec<DVec3>, Vec<DVec3>)> {
     let mut histories: Vec<Vec<History>> = objects.iter().map(|o| o.history.clone()).collect();
     let steps: Vec<integrators::Substep<'_>> = (m.objects.iter().zip(objects.iter()))
-        .map(|(o, state)| integrators::Substep { model: m, object: o, dt, x: &state.x, v: &state.v })
+        .map(|(o, state)| integrators::Substep { model: m, object: o, dt, x: &state.x, v: &state.v, time })
         .collect();
     let mut solves: Vec<integrators::VbdSolve> =
         steps.iter().zip(&histories).map(|(s, history)| integrators::VbdSolve::new(s, history)).collect();

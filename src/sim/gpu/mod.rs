@@ -185,8 +185,9 @@ impl Parts {
         let descriptors = sets * BINDINGS + chunk_sets * batches.layout.descriptors();
         self.arena = Some(DescriptorArena::for_descriptors(ctx, sets + chunk_sets, descriptors)?);
         let globals_size = std::mem::size_of::<Globals>() as u64;
-        self.globals =
-            Some(Buffer::new(ctx, "globals", globals_size, BufferUsage::UNIFORM, MemoryKind::Upload)?);
+        // (each frame writes the turbulence's phases in its commands: `record_wind_phases`)
+        let globals_usage = BufferUsage::UNIFORM | BufferUsage::TRANSFER_DST;
+        self.globals = Some(Buffer::new(ctx, "globals", globals_size, globals_usage, MemoryKind::Upload)?);
         let colliders_size = COLLIDER_BYTES * model.colliders.len().max(1) as u64;
         self.colliders = Some(Buffer::new(
             ctx,
@@ -330,7 +331,7 @@ impl GpuSim {
     }
 
     fn populate(&mut self, ctx: &GpuContext, model: &SimModel, plans: &[ObjectPlan]) -> Result<()> {
-        self.globals.write(0, &[globals(model)])?;
+        self.globals.write(0, &[globals(model, 0.0)])?;
         self.colliders.write(0, &collider_data(model, 0.0))?;
         for (o, &plan) in model.objects.iter().zip(plans) {
             let shared = [&self.globals, &self.colliders];
@@ -422,6 +423,7 @@ impl GpuSim {
             c.record_frame_start(rec, lists_stale);
         }
         self.record_collider_motion(rec, &dragged);
+        self.record_wind_phases(rec);
         let stages = self.stage_timing;
         // Small objects: every substep in one dispatch each. The state ends in A, as on the
         // per-stage path; the barrier orders it (and B) for the surface stage and next frame.
@@ -648,6 +650,18 @@ impl GpuSim {
         rec.barrier(&[BufferBarrier::new(&self.colliders, Access::TransferWrite, Access::ComputeRead)]);
     }
 
+    /// The wind's turbulence: its phases at this frame's start, written in the command stream
+    /// (as the colliders' records) so frames in flight keep their own; the shaders add the
+    /// time since (glsl/include/air.glsl). Scenes without turbulence record nothing.
+    fn record_wind_phases(&self, rec: &mut Recorder<'_>) {
+        let Some(turbulence) = object::turbulence(&self.model) else { return };
+        let (_, gusts) = turbulence.gpu(self.time());
+        let offset = std::mem::offset_of!(Globals, wind_gusts) as u64;
+        rec.barrier(&[BufferBarrier::new(&self.globals, Access::ComputeUniformRead, Access::TransferWrite)]);
+        rec.update_buffer(&self.globals, offset, bytemuck::cast_slice(&gusts));
+        rec.barrier(&[BufferBarrier::new(&self.globals, Access::TransferWrite, Access::ComputeUniformRead)]);
+    }
+
     /// Rebuilds the pipelines of the `changed` shaders (names like "physics.comp") from
     /// `shaders`. A shader that fails keeps its running pipeline (the error is in `shaders`).
     /// Returns the shaders reloaded and the replaced pipelines, which frames recorded before
@@ -714,7 +728,7 @@ impl GpuSim {
             self.takes_params(model),
             "the objects, colliders, substeps, integrator, self-collision method or the features in use changed: rebuild the simulation instead"
         );
-        self.globals.write(0, &[globals(model)])?;
+        self.globals.write(0, &[globals(model, self.time())])?;
         self.colliders.write(0, &collider_data(model, self.time()))?;
         // Colliders the edit moved (the same ones, in the same order): moved during the next
         // frame rather than jumping (see `record_collider_motion`).

@@ -10,6 +10,7 @@ use crate::sim::gpu_types::{
 };
 use crate::sim::integrator::{vertex_colours, BDF2_STEP};
 use crate::sim::model::{Integrator, ObjectKind, ObjectModel, ObjectShape, SelfCollisionMethod, SimModel};
+use crate::sim::turbulence::{Turbulence, TURBULENCE_MODES};
 use crate::vk::{
     Access, BindingSet, BindingSetLayout, Buffer, BufferBarrier, BufferUsage, DescriptorArena, DeviceInfo,
     GpuContext, MemoryKind, VkError,
@@ -510,8 +511,12 @@ fn f3(v: glam::DVec3) -> [f32; 3] {
     v.as_vec3().to_array()
 }
 
-pub(super) fn globals(model: &SimModel) -> Globals {
+/// The globals of `model` at a frame that starts at `t` (the turbulence's phases, which each
+/// frame rewrites: `GpuSim::record_wind_phases`).
+pub(super) fn globals(model: &SimModel, t: f64) -> Globals {
     let wind = model.wind;
+    let turbulence = turbulence(model);
+    let (wind_waves, wind_gusts) = turbulence.map(|w| w.gpu(t)).unwrap_or_default();
     Globals {
         gravity: f3(model.gravity),
         dt: model.dt() as f32,
@@ -532,10 +537,17 @@ pub(super) fn globals(model: &SimModel) -> Globals {
         wind_tangent: wind.and_then(|w| w.air).map(|a| a.tangent as f32).unwrap_or(0.0),
         guard_strain: model.max_strain as f32,
         wind_lift: wind.and_then(|w| w.air).map(|a| a.lift as f32).unwrap_or(0.0),
-        pad0: 0.0,
+        wind_modes: turbulence.map_or(0, |_| TURBULENCE_MODES as u32),
         pad1: 0.0,
         pad2: 0.0,
+        wind_waves,
+        wind_gusts,
     }
+}
+
+/// The wind's turbulence in `model`, if any.
+pub(super) fn turbulence(model: &SimModel) -> Option<Turbulence> {
+    model.wind.and_then(|w| w.air).and_then(|a| a.turbulence)
 }
 
 /// Byte offset in an object's self_pairs buffer (`n` particles) of the indirect dispatch of

@@ -39,7 +39,7 @@ impl GpuSim {
         let mut predict = Pass::new();
         for &(k, o) in &stepped {
             let stage = Stage::Predict(o.kind, method, o.plan.features);
-            predict.add(k, self.pipelines.get(stage), o.step_groups, &[]);
+            predict.add(k, self.pipelines.get(stage), o.step_groups, &[substep]);
         }
         predict.record(rec, batches, 0);
         let between_passes: Vec<BufferBarrier<'_>> = stepped
