@@ -21,19 +21,20 @@ float air_time = 0.0;
 
 // The air's turbulent velocity at x: a sum of Fourier modes, each amplitude across its wave
 // vector, so the field has no divergence (sim::turbulence, which draws them from the seed).
-vec3 turbulence(vec3 x) {
+// At `drift` [s] after air_time (position Verlet takes the forces at the half-drifted state).
+vec3 turbulence(vec3 x, float drift) {
     vec3 u = vec3(0.0);
     for (uint m = 0u; m < g.wind_modes; ++m) {
         vec4 k = g.wind_waves[m];
         vec4 a = g.wind_gusts[m];
-        u += a.xyz * sin(dot(k.xyz, x) + a.w - k.w * air_time);
+        u += a.xyz * sin(dot(k.xyz, x) + a.w - k.w * (air_time + drift));
     }
     return u;
 }
 
 vec3 air_force(uvec2 cell, vec3 x, vec3 v, float drift) {
     if (!has(F_WIND) || g.wind_enabled == 0u || g.wind_speed <= 0.0) return vec3(0.0);
-    vec3 u = (g.wind_dir * g.wind_speed + turbulence(x)) * wind_strength(x) - v;
+    vec3 u = (g.wind_dir * g.wind_speed + turbulence(x, drift)) * wind_strength(x) - v;
     uint cols = obj.dims.x;
     uint i = cell.x + cell.y * cols;
     if (obj.dims.y > 1u) {

@@ -48,9 +48,38 @@ pub fn scene_items(scene: &Scene, time: f64, tinted: Option<usize>) -> Vec<DrawI
         let (r, l) = (WIND_CONE_RADIUS, WIND_CONE_LENGTH);
         let model = placed(Vec3::new(r, r, l), Quat::from_rotation_arc(Vec3::Z, dir), v(scene.wind.origin));
         items.push(DrawItem::solid(Shape::Cone, model, [0.25, 0.45, 0.95], true));
+        items.extend(gust_items(&scene.wind, time));
     }
     items
 }
+
+/// The turbulent wind's gusts at `time`: small cones across the wind cone at its reference
+/// distance (its axis and a ring at half the full-strength radius), each along the air's
+/// velocity there and as long as its speed against the mean's (none without turbulence).
+fn gust_items(w: &scene::Wind, time: f64) -> Vec<DrawItem> {
+    let Some(turbulence) = scene::turbulence_of(w) else { return Vec::new() };
+    let axis = glam::DVec3::from_array(w.direction).normalize_or(glam::DVec3::Z);
+    let (side, up) = axis.any_orthonormal_pair();
+    let centre = glam::DVec3::from_array(w.origin) + axis * w.reference_distance;
+    let ring = 0.5 * w.full_force_radius;
+    let points = std::iter::once(centre).chain((0..GUST_RING).map(|k| {
+        let a = std::f64::consts::TAU * k as f64 / GUST_RING as f64;
+        centre + (side * a.cos() + up * a.sin()) * ring
+    }));
+    points
+        .map(|p| {
+            let u = (axis * w.speed + turbulence.velocity(p, time)).as_vec3();
+            let length = WIND_CONE_LENGTH * 0.5 * u.length() / w.speed.max(1e-6) as f32;
+            let turn = Quat::from_rotation_arc(Vec3::Z, u.normalize_or(Vec3::Z));
+            let r = WIND_CONE_RADIUS * 0.25;
+            let model = Mat4::from_scale_rotation_translation(Vec3::new(r, r, length), turn, p.as_vec3());
+            DrawItem::solid(Shape::Cone, model, [0.45, 0.65, 1.0], true)
+        })
+        .collect()
+}
+
+/// Gust markers on the ring around the axis (`gust_items`).
+const GUST_RING: usize = 8;
 
 /// Surface `surface` (the selected cloth or rope) drawn tinted towards `SELECTED`, so the
 /// object the panel edits is seen in the view (colliders, the wind and the light get arrows).

@@ -20,6 +20,17 @@ pub fn shapes(scene: &Scene) -> Vec<ObjectShape> {
     cloths.chain(ropes).collect()
 }
 
+/// The turbulence of an aerodynamic wind `w`, if it has any (the simulation's, and the gusts
+/// the app draws).
+pub fn turbulence_of(w: &crate::scene::Wind) -> Option<crate::sim::turbulence::Turbulence> {
+    let aerodynamic = w.model == crate::scene::WindKind::Aerodynamic;
+    (aerodynamic && w.turbulence > 0.0).then(|| {
+        let mean = DVec3::from_array(w.direction).normalize_or_zero() * w.speed;
+        let t = crate::sim::turbulence::Turbulence::new;
+        t(w.turbulence, w.turbulence_scale, w.turbulence_frequency, mean, w.seed)
+    })
+}
+
 /// Builds the model of a validated scene.
 pub fn to_model(scene: &Scene) -> SimModel {
     let w = &scene.wind;
@@ -36,11 +47,7 @@ pub fn to_model(scene: &Scene) -> SimModel {
                 normal: 0.5 * w.density * w.normal_drag,
                 tangent: 0.5 * w.density * w.tangential_drag,
                 lift: w.density * w.lift,
-                turbulence: (w.turbulence > 0.0).then(|| {
-                    let mean = DVec3::from_array(w.direction).normalize() * w.speed;
-                    let t = crate::sim::turbulence::Turbulence::new;
-                    t(w.turbulence, w.turbulence_scale, w.turbulence_frequency, mean, w.seed)
-                }),
+                turbulence: turbulence_of(w),
             }),
         }
     });

@@ -8,7 +8,7 @@ mod load;
 pub mod place;
 mod validate;
 
-pub use build::{colliders, shapes, to_model};
+pub use build::{colliders, shapes, to_model, turbulence_of};
 pub use load::{apply_override, load, load_runnable, parse, save};
 pub use validate::{check as validate, MAX_FRICTION};
 
@@ -191,7 +191,7 @@ pub struct Wind {
     #[serde(default)]
     pub model: WindKind,
     /// Air speed at full strength [m/s] (aerodynamic).
-    #[serde(default)]
+    #[serde(default = "defaults::wind_speed")]
     pub speed: f64,
     /// Air density [kg/m^3] (aerodynamic).
     #[serde(default = "defaults::air_density")]
@@ -242,7 +242,7 @@ impl Default for Wind {
         Self {
             enabled: false,
             model: WindKind::Aerodynamic,
-            speed: 0.0,
+            speed: defaults::wind_speed(),
             density: defaults::air_density(),
             normal_drag: defaults::normal_drag(),
             tangential_drag: defaults::tangential_drag(),
@@ -625,6 +625,9 @@ mod defaults {
     }
     pub fn tangential_drag() -> f64 {
         0.02
+    }
+    pub fn wind_speed() -> f64 {
+        5.0
     }
     pub fn turbulence_scale() -> f64 {
         0.5

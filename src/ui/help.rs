@@ -19,7 +19,7 @@ const HELP: &[(&str, &str)] = &[
     ("relaxation", "XPBD over-relaxation of each Gauss-Seidel correction (1: none; below 2)."),
     ("tolerance (of size)", "For integrator = auto: the largest position error allowed after 0.5 s, as a fraction of the scene's size."),
     // Wind
-    ("enabled##wind", "Blow wind on every particle inside the cone."),
+    ("enabled##wind", "Blow wind inside the cone."),
     ("origin [m]##wind", "The wind cone's apex [m]."),
     ("direction##wind", "The wind's direction (normalised)."),
     ("model##wind", "paper: the same force on every particle in the cone, whatever the cloth's orientation (the paper's figures); aerodynamic: drag from the air's velocity relative to the cloth, on its area facing the air (a flag flutters, an edge-on sheet barely moves)."),

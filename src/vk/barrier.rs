@@ -53,7 +53,8 @@ impl Access {
                 A::SHADER_STORAGE_READ | A::SHADER_STORAGE_WRITE | A::INDIRECT_COMMAND_READ,
             ),
             Access::TransferRead => (S::COPY, A::TRANSFER_READ),
-            Access::TransferWrite => (S::COPY, A::TRANSFER_WRITE),
+            // (copies, and the fills and updates that synchronization2 counts as clears)
+            Access::TransferWrite => (S::ALL_TRANSFER, A::TRANSFER_WRITE),
             Access::HostRead => (S::HOST, A::HOST_READ),
             Access::VertexInput => (S::VERTEX_ATTRIBUTE_INPUT, A::VERTEX_ATTRIBUTE_READ),
             Access::IndexInput => (S::INDEX_INPUT, A::INDEX_READ),

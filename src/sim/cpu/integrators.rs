@@ -108,7 +108,8 @@ fn explicit(s: &Substep<'_>, verlet: bool) -> State {
         if o.pinned[i] {
             continue;
         }
-        let force = external(m, o, i, &at, v[i], time) + spring_force(o, i, &at, v);
+        // (at the half-drifted state's time too: the wind's turbulence)
+        let force = external(m, o, i, &at, v[i], time + drift) + spring_force(o, i, &at, v);
         nv[i] = v[i] + force / o.mass * dt;
         nx[i] = at[i] + nv[i] * (dt - drift);
     }
