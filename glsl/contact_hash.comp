@@ -16,7 +16,7 @@ void main() {
     if (k >= scene_particles()) return;
     vec4 e = particles[k];
     if (pass_of() == 0u) {
-        uint h = cell_hash(ivec3(floor(e.xyz * hash_cell_inv())), table.hash_mask);
+        uint h = cell_hash(hash_cell(e.xyz, hash_cell_inv(), k), table.hash_mask);
         cell_rank[k] = uvec2(h, atomicAdd(counts[h], 1u));
         built[4u * k + 3u] = 0u;
         return;

@@ -612,7 +612,7 @@ void main() {
                     if (s >= SLOTS) break;
                     uint k = own[s];
                     if (k >= n) continue;
-                    uint h = cell_hash(ivec3(floor(x[s] * obj.cell_inv)), BUCKETS - 1u);
+                    uint h = cell_hash(hash_cell(x[s], obj.cell_inv, k), BUCKETS - 1u);
                     scratch[BUCKETS + k] = atomicExchange(scratch[h], k);
                     // (how creased its ring edges are, which the search reads for every
                     // candidate: creases.glsl)

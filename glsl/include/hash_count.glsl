@@ -16,7 +16,7 @@ float hash_cell_inv(bool lists) { return lists ? obj.cell_inv * (self_reach() / 
 // Takes a rank in the bucket of position x of particle i (counts[] were zeroed by the last
 // scan).
 void count_into_bucket(uint i, vec3 x, bool lists) {
-    uint h = cell_hash(ivec3(floor(x * hash_cell_inv(lists))), obj.hash_mask);
+    uint h = cell_hash(hash_cell(x, hash_cell_inv(lists), i), obj.hash_mask);
     cell_rank[i] = uvec2(h, atomicAdd(counts[h], 1u));
 }
 

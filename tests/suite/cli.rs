@@ -243,6 +243,35 @@ fn an_unstable_scene_exits_3_with_advice() {
     assert!(stdout.contains("PAST IT"), "the prediction is printed before the run:\n{stdout}");
 }
 
+/// A blow-up is stopped by the guard at the end of its frame, not by the GPU timeout (issue
+/// 69, item 6): the towel with edge contact and particles a thousand times too light blows up
+/// in its first frame; its particles' non-finite positions used to share one cell of the
+/// self-contact hash, so each search walked all of them and the frame took 5 to 8 s on
+/// lavapipe (past a 4 s timeout: exit 1); each now has a cell of its own and the run ends with
+/// the guard's exit 3 in about a second.
+#[test]
+fn a_blow_up_with_edge_contact_ends_within_its_frame() {
+    let out = msdsim(&[
+        "--gpu-timeout",
+        "4",
+        "simulate",
+        "--preset",
+        "presets/towel.toml",
+        "--set",
+        "cloth.0.mass=1e-7",
+        "--set",
+        "cloth.0.self_contact=\"triangles_and_edges\"",
+        "--set",
+        "sim.integrator=\"symplectic_euler\"",
+        "--frames",
+        "4",
+        "--quiet",
+    ]);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(3), "stderr: {stderr}");
+    assert!(stderr.contains("blew up"), "{stderr}");
+}
+
 /// `stability` sweeps stiffness x substeps per method and writes the CSV and an SVG map each;
 /// for symplectic Euler the stiffest, coarsest cell is unstable and predicted so, the softest,
 /// finest one stable; the implicit method is stable in every cell, four decades of stiffness
