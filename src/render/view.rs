@@ -98,22 +98,28 @@ fn tint(c: [f32; 3]) -> [f32; 3] {
     std::array::from_fn(|k| c[k] + (SELECTED[k] - c[k]) * 0.45)
 }
 
-/// A marker (a small unlit sphere) on every pinned particle at `at`: its size a third of the
-/// finest grid spacing in the scene, between 4 mm and 2 cm.
-pub fn pin_items(at: &[Vec3], model: &SimModel) -> Vec<DrawItem> {
+/// A marker (a small unlit sphere) on every pinned particle at `at`, seen from `eye`: its size a
+/// third of the finest grid spacing in the scene, between 4 mm and 2 cm, and at least
+/// `PIN_SIGHT` of its distance from the eye, so that it stays a few pixels wide from afar.
+pub fn pin_items(at: &[Vec3], model: &SimModel, eye: Vec3) -> Vec<DrawItem> {
     let spacing =
         (model.objects.iter()).flat_map(|o| o.spacing).filter(|s| *s > 0.0).fold(f64::INFINITY, f64::min);
     let radius = if spacing.is_finite() { (spacing as f32 / 3.0).clamp(0.004, 0.02) } else { 0.01 };
     at.iter()
         .map(|&p| {
-            let model = Mat4::from_scale_rotation_translation(Vec3::splat(radius), Quat::IDENTITY, p);
+            let r = radius.max(PIN_SIGHT * p.distance(eye));
+            let model = Mat4::from_scale_rotation_translation(Vec3::splat(r), Quat::IDENTITY, p);
             DrawItem::solid(Shape::Sphere, model, PIN_COLOR, false)
         })
         .collect()
 }
 
-/// The pin markers' colour.
-const PIN_COLOR: [f32; 3] = [0.95, 0.35, 0.2];
+/// The pin markers' colour: a green no cloth, rope, collider or gizmo has by default, and no
+/// selection tint makes (the cloths' red was the markers' own before, which hid them).
+const PIN_COLOR: [f32; 3] = [0.2, 0.95, 0.35];
+/// A pin marker's least radius per metre from the eye: about 3 pixels at the default view of an
+/// 800-pixel-high window (a 2 cm marker 4 m away was about 1 pixel).
+const PIN_SIGHT: f32 = 0.004;
 
 /// The wind cone's base radius and length [m]: a gizmo at the wind's origin along its axis.
 const WIND_CONE_RADIUS: f32 = 0.12;

@@ -15,7 +15,7 @@ impl Viewer {
         if let Some(object) = self.editor.selected.object(host.scene().cloths.len()) {
             view::mark_selected(&mut items, object);
         }
-        items.extend(view::pin_items(&host.pin_markers(), host.model()));
+        items.extend(view::pin_items(&host.pin_markers(), host.model(), self.camera.eye()));
         if let Some(at) = handles::position(host.scene(), self.editor.selected) {
             items.extend(handles::items(&self.camera, at, self.handle.map(|h| h.axis)));
         }
