@@ -271,14 +271,14 @@ pub fn build(ui: &Ui, state: &mut EditorState, scene: &mut Scene, stats: &Stats)
 }
 
 /// While recording, a red dot and "REC", the frames so far and the file, at the top right of
-/// the view (also with the panels hidden): a recording slows the app, and should not be left
-/// running unnoticed.
+/// the view (also with the panels hidden; under the Stats window where it is shown): a
+/// recording slows the app, and should not be left running unnoticed.
 fn recording_indicator(ui: &Ui, state: &EditorState) {
     let Some((frames, file)) = &state.recording else { return };
     let text = format!("REC  {frames} frame{}  {file}", if *frames == 1 { "" } else { "s" });
-    let [width, _] = ui.io().display_size;
     let size = ui.calc_text_size(&text);
-    let (x, y) = ((width - size[0] - 40.0).max(8.0), 10.0);
+    let stats = state.stats_panel.filter(|_| !state.hide_ui && !state.hide_stats);
+    let [x, y] = badge_origin(ui.io().display_size, size, stats);
     let draw = ui.get_foreground_draw_list();
     draw.add_rect([x - 8.0, y - 4.0], [x + size[0] + 30.0, y + size[1] + 4.0], [0.0, 0.0, 0.0, 0.6])
         .filled(true)
@@ -286,6 +286,24 @@ fn recording_indicator(ui: &Ui, state: &EditorState) {
         .build();
     draw.add_circle([x + 6.0, y + size[1] / 2.0], 6.0, [0.95, 0.15, 0.15, 1.0]).filled(true).build();
     draw.add_text([x + 20.0, y], [1.0, 1.0, 1.0, 1.0], &text);
+}
+
+/// The top left of the recording badge's text of `text` size in a view of `display` size: at the
+/// top right, or under the Stats window (`stats`: x, y, width, height) where the badge would
+/// cover it (it covered the window's title). The badge reaches 8 pixels left of the text, 30
+/// right of it and 4 above and below.
+fn badge_origin(display: [f32; 2], text: [f32; 2], stats: Option<[f32; 4]>) -> [f32; 2] {
+    let x = (display[0] - text[0] - 40.0).max(8.0);
+    let (left, right) = (x - 8.0, x + text[0] + 30.0);
+    let y = 10.0;
+    match stats {
+        Some([sx, sy, sw, sh])
+            if left < sx + sw && right > sx && y - 4.0 < sy + sh && y + text[1] + 4.0 > sy =>
+        {
+            [x, sy + sh + 10.0]
+        }
+        _ => [x, y],
+    }
 }
 
 /// The app's controls (the table in docs/guide/app.md), shown with F1.
@@ -610,6 +628,21 @@ fn stats_window(ui: &Ui, stats: &Stats, state: &mut EditorState, scene: &Scene) 
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The recording badge sits at the top right, under the Stats window where that is at its
+    /// place (it covered the window's title), and nowhere over it.
+    #[test]
+    fn the_recording_badge_does_not_cover_the_stats_window() {
+        let display = [1280.0, 800.0];
+        let text = [260.0, 13.0];
+        assert_eq!(badge_origin(display, text, None), [980.0, 10.0]);
+        let [sx, sy, sw, sh] = stats_start(display);
+        let [x, y] = badge_origin(display, text, Some([sx, sy, sw, sh]));
+        let (left, right, top, bottom) = (x - 8.0, x + text[0] + 30.0, y - 4.0, y + text[1] + 4.0);
+        let apart = right <= sx || left >= sx + sw || bottom <= sy || top >= sy + sh;
+        assert!(apart, "badge [{left}, {right}] x [{top}, {bottom}] over Stats {:?}", [sx, sy, sw, sh]);
+        assert!(x > display[0] / 2.0, "still at the right: {x}");
+    }
 
     /// With an explicit method the editor names an object past the predicted stable substep,
     /// with the substeps it needs, and nothing for a method stable at any step.
