@@ -174,6 +174,16 @@ fn hsv(c: [f32; 3]) -> (f32, f32, f32) {
     (hue, if max > 0.0 { d / max } else { 0.0 }, max)
 }
 
+/// The preset at `path` drawn without the UI at its first frame, 320 x 240, into `shot`: its
+/// width, height and every pixel's hue, saturation and value.
+fn first_frame(path: &Path, shot: &Path) -> (u32, u32, Vec<(f32, f32, f32)>) {
+    let args = ["--no-ui", "--paused", "--size", "320x240", "--frames", "1"];
+    let files = ["--preset", path.to_str().unwrap(), "--screenshot", shot.to_str().unwrap()];
+    app(&[&args[..], &files[..]].concat());
+    let (w, h, rgba) = read_png(shot);
+    (w, h, rgba.chunks(4).map(|p| hsv([p[0], p[1], p[2]].map(|c| c as f32 / 255.0))).collect())
+}
+
 /// Every shipped preset, a kind of scene each (a hanging cloth, a rope, cloth on a box, a flag
 /// in the wind, a towel, a rope on a cloth, all of them together), drawn without the UI at its
 /// first frame: each cloth and rope shows, as pixels of its own colour's hue (front or back,
@@ -190,22 +200,7 @@ fn every_shipped_preset_draws_its_objects() {
     for path in paths {
         let name = path.file_stem().unwrap().to_string_lossy().to_string();
         let shot = artifacts().join(format!("preset-{name}.png"));
-        let preset = path.to_str().unwrap();
-        app(&[
-            "--preset",
-            preset,
-            "--no-ui",
-            "--paused",
-            "--size",
-            "320x240",
-            "--frames",
-            "1",
-            "--screenshot",
-            shot.to_str().unwrap(),
-        ]);
-        let (w, h, rgba) = read_png(&shot);
-        let pixels: Vec<(f32, f32, f32)> =
-            rgba.chunks(4).map(|p| hsv([p[0], p[1], p[2]].map(|c| c as f32 / 255.0))).collect();
+        let (w, h, pixels) = first_frame(&path, &shot);
         let scene = msdsim::scene::load(&path, &[]).unwrap();
         let cloths = scene.cloths.iter().map(|c| (c.name.clone(), vec![c.color, c.back_color]));
         let ropes = scene.ropes.iter().map(|r| (r.name.clone(), vec![r.color]));
@@ -229,24 +224,11 @@ fn every_shipped_preset_draws_its_objects() {
 /// and were about a pixel each.
 #[test]
 fn pin_markers_stand_out() {
-    let shot = artifacts().join("pins-curtain.png");
     let curtain = Path::new(env!("CARGO_MANIFEST_DIR")).join("presets/curtain.toml");
-    app(&[
-        "--preset",
-        curtain.to_str().unwrap(),
-        "--no-ui",
-        "--paused",
-        "--size",
-        "320x240",
-        "--frames",
-        "1",
-        "--screenshot",
-        shot.to_str().unwrap(),
-    ]);
-    let (_, _, rgba) = read_png(&shot);
-    let green = rgba
-        .chunks(4)
-        .map(|p| hsv([p[0], p[1], p[2]].map(|c| c as f32 / 255.0)))
+    let shot = artifacts().join("pins-curtain.png");
+    let (_, _, pixels) = first_frame(&curtain, &shot);
+    let green = pixels
+        .iter()
         .filter(|(hue, sat, val)| (hue - 130.0).abs() <= 20.0 && *sat > 0.5 && *val > 0.3)
         .count();
     println!("pin markers: {green} pixels");
