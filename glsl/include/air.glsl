@@ -1,14 +1,14 @@
 // The aerodynamic wind (Globals.wind_speed > 0): air flowing along the cone's axis at
 // wind_speed, with its turbulence added (`turbulence`), times the cone's strength there pushes
-// on the cloth by its velocity u relative to the particle. A cloth particle's share of the area is a = (x_right - x_left) x (x_down -
-// x_up) / 4 (a missing neighbour replaced by the particle itself: half the share on an edge, a
-// quarter at a corner), along its normal n = a / |a|; the force is |a| (wind_normal |u.n| (u.n)
-// n + wind_tangent |u_t| u_t): normal drag on the area the air meets, so an edge-on sheet
-// feels only the small tangential drag, and none once it moves with the air; plus the lift
-// wind_lift |u| (u.n) (n - (u.n) u / |u|^2), across u in the plane of u and n: a flat plate's
-// 1/2 rho C_L sin(2 alpha) |u|^2 at an angle of attack alpha, none face-on or edge-on. A rope node's
-// area is the diameter times half its two segments, the drag across the rope (normal) and
-// along it (tangent). The CPU twin is sim::cpu::air_force.
+// on the cloth by its velocity u relative to the particle. A cloth particle's share of the
+// area is a = (x_right - x_left) x (x_down - x_up) / 4 (a missing neighbour replaced by the
+// particle itself: half the share on an edge, a quarter at a corner), along its normal n =
+// a / |a|; the force is |a| (wind_normal |u.n| (u.n) n + wind_tangent |u_t| u_t): normal drag
+// on the area the air meets, so an edge-on sheet feels only the small tangential drag, and
+// none once it moves with the air; plus the lift wind_lift |u| (u.n) (n - (u.n) u / |u|^2),
+// across u in the plane of u and n: a flat plate's 1/2 rho C_L sin(2 alpha) |u|^2 at an angle
+// of attack alpha, none face-on or edge-on. A rope node's area is the diameter times half its
+// two segments, the drag across the rope (normal) and along it (tangent). The CPU twin is sim::cpu::air_force.
 // Neighbours are read through NPOS(j) with `drift`, as the springs read them.
 // Include after spring_forces.glsl.
 #ifndef MSD_AIR_GLSL

@@ -180,9 +180,10 @@ impl Default for SimSettings {
 /// `attenuation_radius`. As the paper has it (`model = "paper"`), a force on every particle
 /// whatever the cloth's orientation and speed; aerodynamic (the default), air flowing at
 /// `speed` along the axis, with `turbulence` (`sim::turbulence`) added, that pushes on the
-/// cloth's area, by the air's velocity relative to the cloth: normal drag 1/2 density normal_drag |u_n| u_n per unit area,
-/// tangential drag likewise with `tangential_drag`, and on a cloth lift 1/2 density lift
-/// sin(2 alpha) |u|^2 per unit area across the air (alpha the angle of attack).
+/// cloth's area, by the air's velocity relative to the cloth: normal drag 1/2 density
+/// normal_drag |u_n| u_n per unit area, tangential drag likewise with `tangential_drag`, and on
+/// a cloth lift 1/2 density lift sin(2 alpha) |u|^2 per unit area across the air (alpha the
+/// angle of attack).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Wind {
