@@ -175,6 +175,14 @@ pub fn check(scene: &Scene) -> Check {
             num(w.speed)
         ));
     }
+    // A force on an aerodynamic wind would be dropped without a word (a preset written for the
+    // paper's wind before aerodynamic became the default): say which model uses it.
+    if w.enabled && w.model == super::WindKind::Aerodynamic && w.force != 0.0 {
+        return Err(format!(
+            "wind.force = {}: the aerodynamic wind (the default) pushes with its air (wind.speed) and has no force; set model = \"paper\" for the paper's force on every particle, or remove force",
+            num(w.force)
+        ));
+    }
     positive("wind.density", w.density, (1e-6, 1e5), "kg/m^3")?;
     non_negative("wind.normal_drag", w.normal_drag, 100.0, "a drag coefficient")?;
     non_negative("wind.tangential_drag", w.tangential_drag, 100.0, "a drag coefficient")?;

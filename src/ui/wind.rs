@@ -9,7 +9,17 @@ pub(super) fn wind_panel(ui: &Ui, w: &mut Wind) {
     check(ui, "enabled##wind", &mut w.enabled);
     drag3(ui, "origin [m]##wind", &mut w.origin, 0.01);
     drag3(ui, "direction##wind", &mut w.direction, 0.01);
+    let model = w.model;
     choice(ui, "model##wind", &mut w.model, &[WindKind::Paper, WindKind::Aerodynamic]);
+    // The other model's own setting goes with it, so that the scene stays valid (validation
+    // refuses a force on the aerodynamic wind and turbulence on the paper's) and a saved
+    // preset says only what the wind does.
+    if w.model != model {
+        match w.model {
+            WindKind::Aerodynamic => w.force = 0.0,
+            WindKind::Paper => w.turbulence = 0.0,
+        }
+    }
     if w.model == WindKind::Aerodynamic {
         drag(ui, "air speed [m/s]", &mut w.speed, 0.05, 0.0, 100.0);
         drag(ui, "air density [kg/m^3]", &mut w.density, 0.01, 0.001, 100.0);

@@ -876,6 +876,12 @@ fn hostile_keys_values_and_names_get_one_clear_line() {
         &["simulate", "--preset", "presets/flag.toml", "--set", "wind.speed=0"],
         &["wind.speed = 0", "air speed", "model = \"paper\""],
     );
+    // A preset written for the paper's wind (a force, no model) would otherwise blow the
+    // default aerodynamic air and drop its force without a word.
+    rejects(
+        &["simulate", "--preset", "presets/flag.toml", "--set", "wind.force=0.05"],
+        &["wind.force = 0.05", "no force", "model = \"paper\""],
+    );
     for on in ["1", "true", "yes"] {
         let run = Command::new(env!("CARGO_BIN_EXE_msdsim"))
             .env("MSDSIM_VALIDATION", on)
