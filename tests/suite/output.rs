@@ -258,6 +258,59 @@ fn a_signal_mid_run_keeps_the_recording_so_far() {
     }
 }
 
+/// A streamed recording (an OBJ sequence, a PC2 point cache) stopped by a signal says on
+/// standard error how many whole frames it keeps (issue 69, item 15), and the files hold exactly
+/// those: that many OBJ frames, or a cache whose header and length both count them.
+#[test]
+fn a_signal_mid_run_says_how_many_streamed_frames_are_kept() {
+    common::default_sigint();
+    use std::os::unix::process::ExitStatusExt as _;
+    for (signal, name) in [("INT", "rec.obj"), ("TERM", "rec.pc2")] {
+        let dir = tempfile::tempdir().unwrap();
+        let p = preset(dir.path());
+        let record = dir.path().join(name);
+        let mut child = binary()
+            .args(["simulate", "--preset", &p, "--frames", "3000", "--record"])
+            .arg(&record)
+            .stdout(Stdio::piped())
+            .stderr(Stdio::piped())
+            .spawn()
+            .unwrap();
+        let lines = after_frames(&mut child, 5);
+        let killed =
+            Command::new("kill").args([&format!("-{signal}"), &child.id().to_string()]).status().unwrap();
+        assert!(killed.success());
+        let rest: Vec<String> = lines.map_while(Result::ok).collect();
+        let status = child.wait().unwrap();
+        let mut err = String::new();
+        child.stderr.take().unwrap().read_to_string(&mut err).unwrap();
+        assert_eq!(status.signal(), Some(if signal == "INT" { 2 } else { 15 }), "{signal}: {status:?} {err}");
+        // "msdsim: stopped by SIGINT after N frames of PATH: the recording keeps them"
+        let line =
+            err.lines().find(|l| l.contains("the recording keeps them")).unwrap_or_else(|| panic!("{err}"));
+        let kept: usize =
+            line.split(" after ").nth(1).and_then(|t| t.split(' ').next()).unwrap().parse().unwrap();
+        assert!((5..3000).contains(&kept), "{line}");
+        assert!(rest.iter().any(|l| l.starts_with(&format!("recorded {kept} frames"))), "{rest:?}");
+        let files: Vec<std::path::PathBuf> =
+            std::fs::read_dir(dir.path()).unwrap().map(|e| e.unwrap().path()).collect();
+        if name.ends_with(".obj") {
+            let frames =
+                files.iter().filter(|f| f.file_name().unwrap().to_string_lossy().starts_with("rec_")).count();
+            assert_eq!(frames, kept, "OBJ frames on disk");
+        } else {
+            let cache = files.iter().find(|f| f.extension().is_some_and(|e| e == "pc2")).unwrap();
+            let bytes = std::fs::read(cache).unwrap();
+            assert_eq!(&bytes[..12], b"POINTCACHE2\0");
+            let word = |at: usize| u32::from_le_bytes(bytes[at..at + 4].try_into().unwrap()) as usize;
+            let (points, samples) = (word(16), word(28));
+            assert_eq!(samples, kept, "the cache's frame count");
+            assert_eq!(bytes.len(), 32 + 12 * points * samples, "whole frames only");
+        }
+        assert_eq!(leftovers(dir.path()), Vec::<String>::new());
+    }
+}
+
 /// A reader that closes the pipe early (`| head -1`) ends neither in a panic nor a leak: the
 /// run finishes, writes its --out file and exits 0.
 #[test]
