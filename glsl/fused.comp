@@ -68,6 +68,14 @@ layout(constant_id = 10) const uint LIST_MAX = 0u;   // contact list entries a p
 // displacements in half precision (8 bytes a particle, not 12), which only the dashpots read;
 // each thread keeps its own particles' displacements exact in registers.
 layout(constant_id = 11) const bool COMPACT = false;
+// Where the stretch limit's counts live (four bits a particle, written before the constraints
+// of each substep; FusedShape's `stretch_counts`), in scratch, which needs no shared memory
+// of their own: packed eight a word from its start (STRETCH_PACKED), where the constraints
+// read nothing else there; or, where a particle self-collision searches the hash during the
+// constraints, in the top bits of the particles' hash links (STRETCH_IN_LINKS).
+layout(constant_id = 12) const uint STRETCH_AT = 0u;
+const uint STRETCH_PACKED = 1u;
+const uint STRETCH_IN_LINKS = 2u;
 
 const uint THREADS = gl_WorkGroupSize.x;
 const uint MAX_SLOTS = 4u;  // particles per thread at most (FUSED_SLOTS on the host)
@@ -162,6 +170,22 @@ void listed_candidates(uvec2 cell, vec3 x, float reach, inout vec3 correction, i
 #define CPOS(j) spos(uint(j))
 #define CPINNED(j) spinned(uint(j))
 #define HASH_MASK (BUCKETS - 1u)
+// The stretch limit's counts (stretch.glsl), and the hash's links below them (visit_bucket).
+const uint LINK_BITS = 0x0FFFFFFFu;
+uint stretched(uint k) {
+    if (STRETCH_AT == STRETCH_IN_LINKS) return scratch[BUCKETS + k] >> 28u;
+    return (scratch[k >> 3u] >> ((k & 7u) * 4u)) & 15u;
+}
+#define STRETCHED(j) stretched(uint(j))
+void set_stretched(uint k, uint count) {
+    if (STRETCH_AT == STRETCH_IN_LINKS) {
+        scratch[BUCKETS + k] = (scratch[BUCKETS + k] & LINK_BITS) | (count << 28u);  // (its own word)
+    } else {
+        uint shift = (k & 7u) * 4u;
+        atomicAnd(scratch[k >> 3u], ~(15u << shift));
+        atomicOr(scratch[k >> 3u], count << shift);
+    }
+}
 #include "physics_body.glsl"
 #include "constraints_body.glsl"
 #include "predict_body.glsl"
@@ -184,10 +208,15 @@ void listed_candidates(uvec2 cell, vec3 x, float reach, inout vec3 correction, i
 #include "reduce.glsl"
 
 // The shared spatial hash: scratch[h] is the first particle of bucket h, scratch[BUCKETS + j]
-// the one after particle j (EMPTY ends a list).
+// the one after particle j (EMPTY ends a list) in its low bits (LINK_BITS; the top four may
+// hold j's stretch count).
+uint next_in_bucket(uint j) {
+    uint next = scratch[BUCKETS + j] & LINK_BITS;
+    return next == LINK_BITS ? EMPTY : next;
+}
 void visit_bucket(uint h, uvec2 cell, vec3 x, float reach, inout vec3 correction, inout uint n_active) {
     float listed = LISTED && list_build ? list_reach() : reach;
-    for (uint j = scratch[h]; j != EMPTY; j = scratch[BUCKETS + j]) {
+    for (uint j = scratch[h]; j != EMPTY; j = next_in_bucket(j)) {
         float d = distance(spos(j), x);
         if (d < listed && !rest_neighbour(cell, j, obj.self_distance)) {
             self_candidate(cell, x, j, d, reach, correction, n_active);
@@ -668,6 +697,17 @@ void main() {
                 memoryBarrierBuffer();
                 barrier();
             }
+        }
+        if (STRETCH_AT != 0u && stretch) {
+            // Each particle's count of stretched springs, from the shared positions (final
+            // since the last barrier), for its neighbours' constraints.
+            [[unroll]] for (uint s = 0u; s < MAX_SLOTS; ++s) {
+                if (s >= SLOTS) break;
+                uint k = own[s];
+                if (k >= n) continue;
+                set_stretched(k, stretched_springs(ivec2(cells[s]), x[s]));
+            }
+            barrier();
         }
         [[unroll]] for (uint s = 0u; s < MAX_SLOTS; ++s) {
             if (s >= SLOTS) break;

@@ -22,6 +22,7 @@
 #define CPOS(j) IN(j).pos.xyz
 #define CPINNED(j) (IN(j).pos.w > 0.5)
 #endif
+#include "stretch.glsl"
 #ifndef HASH_MASK
 #define HASH_MASK obj.hash_mask
 #endif
@@ -236,33 +237,38 @@ vec3 position_only;
 vec3 constraint_correction(uvec2 cell, vec3 x) {
     vec3 correction = vec3(0.0);
     position_only = vec3(0.0);
-    uint n_active = 0u;
 
-    // Springs may not stretch past (1 + stretch_limit) * rest: each end moves half the excess
-    // (all of it when the other end is pinned).
+    // Springs may not stretch past (1 + stretch_limit) * rest: the two ends of a stretched
+    // spring move towards each other by half the excess times the mean of their shares, one
+    // over each end's count of stretched springs (stretch.glsl), so their moves are equal and
+    // opposite and momentum is kept (each end's own share, a Jacobi mean, was not: 57% of a
+    // thrown rope's momentum with a 1% limit; the smaller share, over the larger count, let
+    // edges of a piling strip through each other); the end of one held by a pin moves all of
+    // it over its own count.
+    uint n_stretched = 0u;
     if (has(F_STRETCH) && (obj.flags & OBJ_STRETCH_LIMIT) != 0u) {
+        n_stretched = STRETCHED(cell.x + cell.y * obj.dims.x);
         [[unroll]] for (int s = 0; s < 8; ++s) {
-            ivec3 spring = SPRINGS[s];
-            int j = SPRING_NEIGHBOUR(cell, s);
-            if (j < 0 || obj.stiffness[spring.z] == 0.0) continue;
-            vec3 to_j = CPOS(j) - x;
-            float d = length(to_j);
-            float excess = d - rest_length(s) * (1.0 + obj.stretch_limit);
-            if (excess > 0.0) {
-                correction += (to_j / d) * (excess * (CPINNED(j) ? 1.0 : 0.5));
-                n_active += 1u;
-            }
+            int j;
+            float excess;
+            if (n_stretched == 0u || !overstretched(ivec2(cell), x, s, j, excess)) continue;
+            float split = CPINNED(j) ? 1.0 / float(n_stretched) : 0.25 * (1.0 / float(n_stretched) + 1.0 / float(STRETCHED(j)));
+            correction += normalize(CPOS(j) - x) * (excess * split);
         }
     }
 
     // A rope's self-collision: particles closer than self_distance push apart, except pairs
     // that are closer than that in the rest state (grid neighbours), which the springs
-    // already keep. A cloth's contact with its own triangles was summed by its passes
-    // (self_contact.glsl) and is added below.
+    // already keep: the mean of the pushes, and where springs are stretched too the mean of
+    // both (the stretch limit's share weighted by its count). A cloth's contact with its own
+    // triangles was summed by its passes (self_contact.glsl) and is added below.
     bool self_on = has(F_SELF) && (obj.flags & OBJ_SELF_COLLISION) != 0u;
-    if (self_on && !triangle_contact()) self_search(cell, x, correction, n_active);
-
-    if (n_active > 1u) correction /= float(n_active);
+    if (self_on && !triangle_contact()) {
+        vec3 pushes = vec3(0.0);
+        uint n_pushes = 0u;
+        self_search(cell, x, pushes, n_pushes);
+        if (n_pushes > 0u) correction = (correction * float(n_stretched) + pushes) / float(n_stretched + n_pushes);
+    }
 
     if (self_on && triangle_contact()) correction += self_take(cell.x + cell.y * obj.dims.x, position_only, true);
 

@@ -251,6 +251,51 @@ fn stretch_limit() {
     check("stretch_limit", &s);
 }
 
+/// The stretch limit keeps momentum (issue 69, item 10): a free cloth and a free rope, no
+/// gravity, thrown with velocities scattered by 2 m/s about a drift, a 2% limit. The two ends
+/// of a stretched spring move equally and oppositely (each end's own mean of its stretched
+/// springs changed the momentum by 0.19 of the scale on the reference), on the reference, both
+/// GPU paths (the fused kernel's counts in shared memory, the per-stage path's in its count
+/// pass) and with the limit mattering. Tolerances: 1e-9 of the scale on the f64 reference
+/// (rounding), 1e-5 on the GPU (f32 velocities summed over 320 substeps).
+#[test]
+fn the_stretch_limit_keeps_momentum() {
+    let ctx = gpu();
+    let mut c = cloth(9, 7, 0.05);
+    c.stiffness = [50.0, 20.0, 2.0];
+    let mut r = rope(12, 0.05);
+    r.stiffness = [80.0, 0.0, 2.0];
+    for (o, seed) in [(&mut c, 3u64), (&mut r, 7)] {
+        o.stretch_limit = Some(0.02);
+        o.damping = 0.01;
+        for (i, v) in o.velocities.iter_mut().enumerate() {
+            let k = seed * 1000 + 3 * i as u64;
+            *v = DVec3::new(0.3, -0.2, 0.1) + DVec3::new(noise(k), noise(k + 1), noise(k + 2)) * 2.0;
+        }
+    }
+    for o in [c, r] {
+        let name = o.name.clone();
+        let s = scene(vec![o]);
+        let momentum = |v: &[DVec3]| v.iter().sum::<DVec3>() * s.objects[0].mass;
+        let scale = 2.0 * s.objects[0].mass * s.objects[0].velocities.len() as f64;
+        let start: Vec<DVec3> = s.objects[0].velocities.iter().map(|v| v.as_vec3().as_dvec3()).collect();
+        let before = momentum(&start);
+        let paths = every_path(&ctx, &s, 20);
+        let mut free = s.clone();
+        free.objects[0].stretch_limit = None;
+        let unlimited = every_path(&ctx, &free, 20).remove(0).1;
+        let moved = paths[0].1.iter().zip(&unlimited).map(|(a, b)| (*a - *b).length()).fold(0.0, f64::max);
+        assert!(moved > 1e-3, "{name}: the limit moved nothing ({moved:.1e} m)");
+        for (label, _, v) in &paths {
+            let change = (momentum(v) - before).length() / scale;
+            eprintln!("{name}, {label}: momentum change {change:.2e} of m N 2 m/s");
+            let tolerance = if *label == "cpu" { 1e-9 } else { 1e-5 };
+            assert!(change < tolerance, "{name}, {label}: the momentum changed by {change:.2e} of the scale");
+        }
+    }
+    assert_clean(&ctx);
+}
+
 /// A 13 x 9 jittered cloth lying flat at y = 0.5 (5 cm spacing) and falling, with `friction`
 /// and a 1 cm margin: the collider tests drop it onto what they test.
 fn falling_cloth(seed: u64, friction: f64) -> SimModel {

@@ -7,11 +7,13 @@
 //!    with u the unit vector to the neighbour, d the distance and L the rest length. Pinned
 //!    particles keep their position and have zero velocity.
 //! 2. Constraints, Jacobi on the physics result: each free particle sums (a) for every structural
-//!    and shear spring stretched past (1 + limit) L, half the excess towards the neighbour (all of
-//!    it when the neighbour is pinned), and (b) in a rope, for every particle nearer than the
-//!    self-collision distance s (except pairs nearer than s at rest), half the overlap away from
-//!    it (all of it when that one is pinned). The correction is the mean of these (Jacobi
-//!    averaging), plus in a cloth its moves from contacts with its own triangles (particle
+//!    and shear spring stretched past (1 + limit) L, half the excess towards the neighbour times
+//!    the mean of the two ends' shares, one over each one's count of such springs (equal and
+//!    opposite; all of it over its own count when the neighbour is pinned), and (b) in a rope, for every particle nearer than
+//!    the self-collision distance s (except pairs nearer than s at rest), half the overlap away
+//!    from it (all of it when that one is pinned). Where (b) finds any, the correction is the
+//!    mean of (b) and of (a) weighted by its count (Jacobi averaging), plus in a cloth its moves
+//!    from contacts with its own triangles (particle
 //!    against triangle, equal and opposite, `self_contact`), plus (c) for
 //!    every particle of another object nearer than the two contact radii, its share of the
 //!    overlap by inverse mass over the larger of the two particles' contact counts (equal and
@@ -153,6 +155,24 @@ fn springs(o: &ObjectModel, c: i64, r: i64) -> Vec<Spring> {
         }
     }
     out
+}
+
+/// The structural and shear springs of particle i stretched past (1 + limit) L: the other end
+/// and the excess.
+fn overstretched<'a>(
+    o: &'a ObjectModel,
+    x: &'a [DVec3],
+    i: usize,
+    limit: f64,
+) -> impl Iterator<Item = (usize, f64)> + 'a {
+    let cols = o.dims[0] as usize;
+    springs(o, (i % cols) as i64, (i / cols) as i64).into_iter().filter_map(move |s| {
+        if s.kind == SpringType::Bending || o.stiffness[s.kind as usize] == 0.0 {
+            return None;
+        }
+        let excess = (x[s.other] - x[i]).length() - rest_length(o, &s) * (1.0 + limit);
+        (excess > 0.0).then_some((s.other, excess))
+    })
 }
 
 fn rest_length(o: &ObjectModel, s: &Spring) -> f64 {
@@ -420,22 +440,21 @@ fn constraints(
         }
         let (c, r) = ((i % cols) as i64, (i / cols) as i64);
         let mut correction = DVec3::ZERO;
-        let mut active = 0u32;
+        let mut stretched = 0u32;
         if let Some(limit) = o.stretch_limit {
-            for s in springs(o, c, r) {
-                if s.kind == SpringType::Bending || o.stiffness[s.kind as usize] == 0.0 {
-                    continue;
-                }
-                let delta = x[s.other] - x[i];
-                let d = delta.length();
-                let excess = d - rest_length(o, &s) * (1.0 + limit);
-                if excess > 0.0 {
-                    correction += delta / d * excess * share(s.other);
-                    active += 1;
-                }
+            let counts = |j: usize| overstretched(o, x, j, limit).count() as u32;
+            stretched = counts(i);
+            for (j, excess) in overstretched(o, x, i, limit) {
+                let split = if o.pinned[j] {
+                    1.0 / stretched as f64
+                } else {
+                    0.5 * (1.0 / stretched as f64 + 1.0 / counts(j) as f64)
+                };
+                correction += (x[j] - x[i]).normalize() * excess * share(j) * split;
             }
         }
         if let Some(reach) = o.self_distance.filter(|_| !o.has_triangles()) {
+            let (mut pushes, mut active) = (DVec3::ZERO, 0u32);
             for j in 0..x.len() {
                 let rest_c = ((j % cols) as i64 - c) as f64 * o.spacing[0];
                 let rest_r = ((j / cols) as i64 - r) as f64 * o.spacing[1];
@@ -445,13 +464,13 @@ fn constraints(
                 let delta = x[j] - x[i];
                 let d = delta.length();
                 if d > 0.0 && d < reach {
-                    correction += delta / d * (d - reach) * share(j);
+                    pushes += delta / d * (d - reach) * share(j);
                     active += 1;
                 }
             }
-        }
-        if active > 1 {
-            correction /= active as f64;
+            if active > 0 {
+                correction = (correction * stretched as f64 + pushes) / (stretched + active) as f64;
+            }
         }
         correction += own.last[i] + contact[i];
         let mut p = x[i] + correction;

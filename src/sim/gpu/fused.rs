@@ -197,7 +197,7 @@ impl ObjectPlan {
     }
 }
 
-/// The specialization of `fused.comp` for one object (`specialization`: ids 0, 4..=8, 10 and 11
+/// The specialization of `fused.comp` for one object (`specialization`: ids 0, 4..=8, 10 to 12
 /// from the layout; 1, 2, 3 and 9 from the integrator, its iterations and the features).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub struct FusedShape {
@@ -231,6 +231,12 @@ pub struct FusedShape {
     /// classes), read it at full precision in their springs (XPBD by Jacobi) or keep their
     /// directions there (the implicit method): they run per stage instead.
     pub compact: bool,
+    /// Where the stretch limit's counts live in scratch (`STRETCH_AT`; four bits a
+    /// particle): 0 without the limit, 1 packed from its start, 2 in the top bits of the
+    /// hash's links, where a particle self-collision reads the hash during the constraints.
+    /// They take no shared memory of their own, so the paper's curtain keeps its 2,048
+    /// buckets in 48 KiB.
+    pub stretch_counts: u32,
 }
 
 impl FusedShape {
@@ -254,6 +260,12 @@ impl FusedShape {
         let halo = if o.dims[1] > 1 { 2 * o.dims[0] } else { 2 };
         let budget = limits.shared_bytes.saturating_sub(SHARED_MARGIN);
         let reduce = if model.integrator == Integrator::Implicit { 2 * threads.div_ceil(4) } else { 2 };
+        // (a cloth's triangles and a rope's segments are searched before the constraints)
+        let stretch_counts = match o.stretch_limit {
+            None => 0,
+            Some(_) if hashed && !o.has_triangles() => 2,
+            Some(_) => 1,
+        };
         let fixed = 12 * n + 4 * n.div_ceil(32) + 4 * reduce;
         let words = budget.checked_sub(fixed)? / 4;
         // The physics reads the neighbours' velocities (the dashpots; the iterative methods
@@ -281,11 +293,15 @@ impl FusedShape {
             if damped { window(pass_slots) } else { 0 },
             if hashed { buckets + n } else { 0 },
             displacements,
+            if stretch_counts == 1 { n.div_ceil(8) } else { 0 },
             1,
         ]
         .into_iter()
         .max()
         .unwrap_or(1);
+        if scratch > words {
+            return None;
+        }
         let one_iteration = solver.is_some() && model.iterations == 1;
         let list = if hashed { SELF_LIST_ENTRIES } else { 0 };
         Some(Self {
@@ -299,6 +315,7 @@ impl FusedShape {
             list,
             reduce,
             compact,
+            stretch_counts,
         })
     }
 
@@ -317,7 +334,7 @@ impl FusedShape {
         }
     }
 
-    /// Specialization constants 0..=11 (index = id) for the integrator and the features.
+    /// Specialization constants 0..=12 (index = id) for the integrator and the features.
     pub fn specialization(&self, method: Integrator, features: u32) -> Vec<u32> {
         let verlet = method.method().scheme == Scheme::Explicit { verlet: true };
         vec![
@@ -333,6 +350,7 @@ impl FusedShape {
             method as u32,
             self.list,
             self.compact as u32,
+            self.stretch_counts,
         ]
     }
 }
@@ -491,12 +509,13 @@ mod tests {
             }
         }
         // Without dashpots the compact layout keeps no displacements: a cloth of 3,844
-        // particles fits (the iterates, pins and nothing more), not with dashpots.
+        // particles fits (the iterates, pins and the stretch limit's counts), not with
+        // dashpots.
         m.integrator = Integrator::Vbd;
         m.objects[0].dims = [62, 62];
         m.objects[0].damping = 0.0;
         let bare = FusedShape::plan(&m.objects[0], &m, default).expect("fits without dashpots");
-        assert!(bare.compact && bare.scratch == 1, "{bare:?}");
+        assert!(bare.compact && bare.scratch == bare.particles.div_ceil(8), "{bare:?}");
         assert!(bare.shared_bytes() <= 48 * 1024 - SHARED_MARGIN, "{bare:?}");
         m.objects[0].damping = 0.1;
         assert_eq!(FusedShape::plan(&m.objects[0], &m, default), None);

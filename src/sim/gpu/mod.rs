@@ -474,6 +474,7 @@ impl GpuSim {
                 c.record(rec, &self.pipelines, &self.objects, s * rounds + rounds - 1);
             }
             self.record_self_pairs(rec, s);
+            self.record_stretch_counts(rec);
             let mut constraints = batch::Pass::new();
             for (k, o) in self.objects.iter().enumerate().filter(|(_, o)| !self.is_fused(o)) {
                 let stage = Stage::Constraints(o.kind, o.plan.features, self.lists_on(o));
@@ -582,6 +583,35 @@ impl GpuSim {
             }
             rec.barrier(&barriers);
         }
+    }
+
+    /// The stretch limit's counts of the objects with one on the per-stage path
+    /// (`stretch_count.comp`): written into the physics output, after every pass that reads or
+    /// moves it and before the constraint stage reads them.
+    fn record_stretch_counts(&self, rec: &mut Recorder<'_>) {
+        let limited: Vec<(usize, &GpuObject)> = (self.objects.iter().enumerate())
+            .filter(|(_, o)| {
+                !self.is_fused(o) && o.plan.features & crate::sim::gpu_types::FEATURE_STRETCH != 0
+            })
+            .collect();
+        if limited.is_empty() {
+            return;
+        }
+        let outputs: Vec<BufferBarrier<'_>> = (limited.iter())
+            .map(|(_, o)| BufferBarrier::new(&o.state[1], Access::ComputeReadWrite, Access::ComputeReadWrite))
+            .collect();
+        rec.barrier(&outputs);
+        let mut counts = batch::Pass::new();
+        for &(k, o) in &limited {
+            counts.add(
+                k,
+                self.pipelines.get(Stage::StretchCount(o.kind, o.plan.features)),
+                o.step_groups,
+                &[],
+            );
+        }
+        counts.record(rec, &self.batches, 1);
+        rec.barrier(&outputs);
     }
 
     /// The surface stage alone: cloth normals and rope tube vertices from the current state

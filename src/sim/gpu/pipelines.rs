@@ -37,6 +37,8 @@ pub(super) enum Stage {
     Iterate(ObjectKind, Integrator),
     /// The constraints (`lists`: with the self-collision contact lists on, `hash.rs`).
     Constraints(ObjectKind, u32, bool),
+    /// The stretch limit's counts, before the constraints (objects with a stretch limit).
+    StretchCount(ObjectKind, u32),
     /// A cloth's contact with its own triangles: one of its passes (`lists`: with the contact
     /// lists on, which only the find and apply passes read; `self_pairs.comp`).
     SelfPairs(u32, bool, SelfPass),
@@ -93,6 +95,7 @@ impl Stage {
             Stage::Predict(..) => "predict.comp",
             Stage::Iterate(_, method) => solver(method).shader,
             Stage::Constraints(..) => "constraints.comp",
+            Stage::StretchCount(..) => "stretch_count.comp",
             Stage::SelfPairs(..) => "self_pairs.comp",
             Stage::Surface(ObjectKind::Cloth, _) => "cloth_normals.comp",
             Stage::Surface(ObjectKind::Rope, _) => "rope_vertices.comp",
@@ -115,6 +118,7 @@ impl Stage {
                 | Stage::Predict(..)
                 | Stage::Iterate(..)
                 | Stage::Constraints(..)
+                | Stage::StretchCount(..)
                 | Stage::ContactBegin
                 | Stage::Contact { .. }
         )
@@ -132,6 +136,7 @@ impl Stage {
                 [group(kind), vec![0, f, s.keeps_prediction as u32, s.adaptive_start as u32]].concat()
             }
             Stage::Constraints(kind, f, lists) => [group(kind), vec![lists as u32, f]].concat(),
+            Stage::StretchCount(kind, f) => [group(kind), vec![0, f]].concat(),
             Stage::SelfPairs(f, lists, pass) => {
                 // (dispatched over the object's step groups: a rope's when its segments pair)
                 let rope = f & crate::sim::gpu_types::FEATURE_SEGMENT_PAIRS != 0;
@@ -164,6 +169,9 @@ impl Stage {
             Stage::Surface(kind, true),
             Stage::Surface(kind, false),
         ]);
+        if f & crate::sim::gpu_types::FEATURE_STRETCH != 0 {
+            stages.push(Stage::StretchCount(kind, f));
+        }
 
         stages.extend(plan.fused.map(|shape| Stage::Fused(method, f, shape)));
         stages
@@ -179,6 +187,7 @@ impl Stage {
             | Stage::Predict(..)
             | Stage::Iterate(..)
             | Stage::Constraints(..)
+            | Stage::StretchCount(..)
             | Stage::SelfPairs(..)
             | Stage::HashScatter(_)
             | Stage::HashCount
