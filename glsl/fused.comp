@@ -17,7 +17,8 @@
 //   pin_bits   which particles are pinned;
 //   scratch    during physics: the velocities (for the spring dashpots) of the particles one
 //              pass computes plus HALO on each side, in passes of PASS_SLOTS slots when not all
-//              fit; during the constraints: the spatial hash, bucket heads and a linked list.
+//              fit; during the constraints: the spatial hash, bucket heads and a linked list,
+//              and the stretch limit's counts (STRETCH_AT).
 // Registers also hold a copy of the object's parameters (`obj`, taken from the buffer at the
 // start: reading them from the storage buffer in every spring loop cost 15 to 25%), each owned
 // particle's grid cell and the mask of its springs that have another end (SPRING_NEIGHBOUR).
@@ -69,8 +70,8 @@ layout(constant_id = 10) const uint LIST_MAX = 0u;   // contact list entries a p
 // each thread keeps its own particles' displacements exact in registers.
 layout(constant_id = 11) const bool COMPACT = false;
 // Where the stretch limit's counts live (four bits a particle, written before the constraints
-// of each substep; FusedShape's `stretch_counts`), in scratch, which needs no shared memory
-// of their own: packed eight a word from its start (STRETCH_PACKED), where the constraints
+// of each substep; FusedShape's `stretch_counts`), in scratch, not an array of their own:
+// packed eight a word from its start (STRETCH_PACKED), where the constraints
 // read nothing else there; or, where a particle self-collision searches the hash during the
 // constraints, in the top bits of the particles' hash links (STRETCH_IN_LINKS).
 layout(constant_id = 12) const uint STRETCH_AT = 0u;

@@ -252,7 +252,9 @@ vec3 constraint_correction(uvec2 cell, vec3 x) {
             int j;
             float excess;
             if (n_stretched == 0u || !overstretched(ivec2(cell), x, s, j, excess)) continue;
-            float split = CPINNED(j) ? 1.0 / float(n_stretched) : 0.25 * (1.0 / float(n_stretched) + 1.0 / float(STRETCHED(j)));
+            // (the other end counted this spring too, from the same positions; at least one
+            // in case rounding of a spring at the limit told it otherwise)
+            float split = CPINNED(j) ? 1.0 / float(n_stretched) : 0.25 * (1.0 / float(n_stretched) + 1.0 / float(max(STRETCHED(j), 1u)));
             correction += normalize(CPOS(j) - x) * (excess * split);
         }
     }

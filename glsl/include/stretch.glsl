@@ -14,7 +14,9 @@ bool overstretched(ivec2 cell, vec3 x, int s, out int j, out float excess) {
     excess = 0.0;
     j = neighbour(cell, SPRINGS[s].xy, obj.dims);
     if (j < 0 || obj.stiffness[SPRINGS[s].z] == 0.0) return false;
-    excess = length(CPOS(j) - x) - rest_length(s) * (1.0 + obj.stretch_limit);
+    // (precise: the count pass and the constraint stage compute it alike)
+    precise float d = length(CPOS(j) - x) - rest_length(s) * (1.0 + obj.stretch_limit);
+    excess = d;
     return excess > 0.0;
 }
 

@@ -134,11 +134,14 @@ pub fn choice<T: Copy + PartialEq + serde::Serialize>(
     changed
 }
 
-/// A tooltip for the widget just drawn: what it means and its units.
-pub fn tip(ui: &Ui, text: &str) {
-    if ui.is_item_hovered() {
+/// A tooltip for the widget just drawn: what it means and its units. Not while the widget is
+/// in use (a number being typed or dragged): the tooltip would cover the next row.
+pub fn tip(ui: &Ui, text: &str) -> bool {
+    let shown = ui.is_item_hovered() && !ui.is_item_active();
+    if shown {
         ui.tooltip_text(text);
     }
+    shown
 }
 
 /// A checkbox.
@@ -274,6 +277,39 @@ mod tests {
         let down = frame(ctx, value, count, |io| io.add_key_event(key, true));
         let up = frame(ctx, value, count, |io| io.add_key_event(key, false));
         (down.0 || up.0, down.1 || up.1)
+    }
+
+    /// A field's tooltip shows while the mouse rests on it, not while a number is typed into
+    /// it (it covered the next row, issue 69 item 14).
+    #[test]
+    fn no_tooltip_over_a_field_being_typed_in() {
+        let mut ctx = context();
+        let tipped = |ctx: &mut Context, input: &dyn Fn(&mut Io)| -> bool {
+            input(ctx.io_mut());
+            ctx.io_mut().delta_time = 1.0 / 60.0;
+            let ui = ctx.new_frame();
+            let mut count = 16u32;
+            let mut shown = false;
+            ui.window("editor")
+                .position([0.0, 0.0], Condition::Always)
+                .size([400.0, 300.0], Condition::Always)
+                .build(|| {
+                    let mut value = 400.0;
+                    drag(ui, "stiffness", &mut value, 1.0, 0.0, 1e9);
+                    int(ui, "substeps", &mut count, 1, 4096);
+                    shown = tip(ui, "what substeps are");
+                });
+            ctx.render();
+            shown
+        };
+        for _ in 0..3 {
+            tipped(&mut ctx, &|_| {});
+        }
+        assert!(tipped(&mut ctx, &|io| io.add_mouse_pos_event(INT_AT)), "hovered, no tooltip");
+        tipped(&mut ctx, &|io| io.add_mouse_button_event(MouseButton::Left, true));
+        tipped(&mut ctx, &|io| io.add_mouse_button_event(MouseButton::Left, false));
+        let typing = ['1', '2', '8'].map(|c| tipped(&mut ctx, &|io| io.add_input_character(c)));
+        assert_eq!(typing, [false; 3], "a tooltip over the field being typed in");
     }
 
     /// Esc in a typed field reverts it: nothing is applied and no change is reported (an

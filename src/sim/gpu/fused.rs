@@ -234,8 +234,8 @@ pub struct FusedShape {
     /// Where the stretch limit's counts live in scratch (`STRETCH_AT`; four bits a
     /// particle): 0 without the limit, 1 packed from its start, 2 in the top bits of the
     /// hash's links, where a particle self-collision reads the hash during the constraints.
-    /// They take no shared memory of their own, so the paper's curtain keeps its 2,048
-    /// buckets in 48 KiB.
+    /// No array of their own (scratch grows to n / 8 words where it was smaller), so the
+    /// paper's curtain keeps its 2,048 buckets in 48 KiB.
     pub stretch_counts: u32,
 }
 
@@ -299,7 +299,7 @@ impl FusedShape {
         .into_iter()
         .max()
         .unwrap_or(1);
-        if scratch > words {
+        if stretch_counts == 1 && n.div_ceil(8) > words {
             return None;
         }
         let one_iteration = solver.is_some() && model.iterations == 1;

@@ -10,6 +10,7 @@
 //!                       explicit integrators: one pass;
 //!                       iterative ones: predict, then `iterations` solver passes, each
 //!                       ordered after the one before by a barrier on the iterates
+//!                     [the stretch limit's counts into B's velocity w, between barriers on B]
 //!                     barrier  B: ComputeWrite -> ComputeReadWrite   (constraints read B)
 //!                              A: ComputeRead  -> ComputeWrite       (constraints overwrite A)
 //!                     constraints  B -> A   (all objects)
@@ -597,8 +598,10 @@ impl GpuSim {
         if limited.is_empty() {
             return;
         }
-        let outputs: Vec<BufferBarrier<'_>> = (limited.iter())
-            .map(|(_, o)| BufferBarrier::new(&o.state[1], Access::ComputeReadWrite, Access::ComputeReadWrite))
+        // (every object's stepped per stage: validation takes a batched dispatch to write
+        // every output of its chunk, the pass's shader declaring them writable)
+        let outputs: Vec<BufferBarrier<'_>> = (self.objects.iter().filter(|o| !self.is_fused(o)))
+            .map(|o| BufferBarrier::new(&o.state[1], Access::ComputeReadWrite, Access::ComputeReadWrite))
             .collect();
         rec.barrier(&outputs);
         let mut counts = batch::Pass::new();
