@@ -12,8 +12,8 @@ use crate::sim::gpu::ObjectState;
 use crate::sim::model::{ObjectKind, ObjectModel, SimModel};
 use glam::Vec3;
 use std::collections::HashSet;
-use winit::event::{ElementState, MouseButton, MouseScrollDelta, WindowEvent};
-use winit::keyboard::{KeyCode, ModifiersState, PhysicalKey};
+use winit::event::{ElementState, KeyEvent, MouseButton, MouseScrollDelta, WindowEvent};
+use winit::keyboard::{Key, KeyCode, ModifiersState, NamedKey, PhysicalKey};
 
 /// A grabbed particle.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -58,6 +58,9 @@ pub struct Input {
     buttons: HashSet<MouseButton>,
     keys: HashSet<KeyCode>,
     modifiers: ModifiersState,
+    /// Keys whose press went to an editor field as its characters alone (`typed`): their
+    /// release goes nowhere either.
+    typing: HashSet<PhysicalKey>,
     /// The left button went down this frame outside the UI: the app tries a pick.
     pub pick_requested: bool,
     /// Ctrl + left click: pin or unpin the particle under the cursor.
@@ -194,6 +197,7 @@ impl Input {
             WindowEvent::Focused(false) => {
                 self.keys.clear();
                 self.buttons.clear();
+                self.typing.clear();
             }
             _ => {}
         }
@@ -293,8 +297,60 @@ pub fn pick(
     best.map(|(_, hit)| hit)
 }
 
+impl Input {
+    /// A key event while an editor field takes text (`taking_text`, ImGui's
+    /// `want_text_input`): for a press that only types, its characters, which go to ImGui
+    /// without the key's own press and release (an empty string for that release); `None` for
+    /// what goes as it is. ImGui's input queue trickles: a key's press or release and text in
+    /// one frame end that frame's input, so a field took about a character every two frames,
+    /// and typing at a few frames a second fell seconds behind and looked lost (issue 69, item
+    /// 11). The characters alone are all taken in one frame. Keys with Ctrl, Alt or Super,
+    /// named keys but Space (Enter, Backspace, Tab, the arrows) and control characters go as
+    /// they are.
+    pub fn typed(&mut self, event: &KeyEvent, taking_text: bool) -> Option<String> {
+        if event.state == ElementState::Released {
+            return self.typing.remove(&event.physical_key).then(String::new);
+        }
+        let text = event.text.as_deref()?;
+        if !characters_only(taking_text, &event.logical_key, text, self.modifiers) {
+            return None;
+        }
+        self.typing.insert(event.physical_key);
+        Some(text.to_owned())
+    }
+}
+
+/// Whether a press of `key` that produced `text` only types it into a field taking text.
+fn characters_only(taking_text: bool, key: &Key, text: &str, modifiers: ModifiersState) -> bool {
+    let chord = modifiers.control_key() || modifiers.alt_key() || modifiers.super_key();
+    taking_text
+        && !chord
+        && matches!(key, Key::Character(_) | Key::Named(NamedKey::Space))
+        && !text.is_empty()
+        && !text.chars().any(char::is_control)
+}
+
 #[cfg(test)]
 mod tests {
+    /// Only plain characters (and spaces) typed into a field skip their key events: not
+    /// outside a field, not with Ctrl (select all, copy, paste), not other named keys (Enter
+    /// applies, Tab moves on), not control characters.
+    #[test]
+    fn only_plain_characters_typed_into_a_field_go_alone() {
+        use super::characters_only;
+        use winit::keyboard::{Key, ModifiersState, NamedKey};
+        let a = Key::Character("a".into());
+        let none = ModifiersState::empty();
+        assert!(characters_only(true, &a, "a", none));
+        assert!(characters_only(true, &Key::Character("8".into()), "8", ModifiersState::SHIFT));
+        assert!(!characters_only(false, &a, "a", none), "no field takes text");
+        assert!(!characters_only(true, &a, "a", ModifiersState::CONTROL), "Ctrl+A selects all");
+        assert!(!characters_only(true, &a, "\u{1}", none), "a control character");
+        assert!(!characters_only(true, &Key::Named(NamedKey::Enter), "\r", none), "Enter applies");
+        assert!(characters_only(true, &Key::Named(NamedKey::Space), " ", none), "a space types");
+        assert!(!characters_only(true, &Key::Named(NamedKey::Tab), "\t", none), "Tab moves on");
+    }
+
     #[test]
     fn esc_quits_only_when_pressed_twice_in_time() {
         use std::time::{Duration, Instant};

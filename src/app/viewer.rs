@@ -223,6 +223,12 @@ impl Viewer {
 
     /// Handles a window event; returns true when the app should quit.
     pub fn handle_event(&mut self, event: &WindowEvent) -> bool {
+        if let WindowEvent::KeyboardInput { event: key, .. } = event {
+            if let Some(text) = self.input.typed(key, self.imgui.io().want_text_input) {
+                text.chars().for_each(|c| self.imgui.io_mut().add_input_character(c));
+                return false;
+            }
+        }
         let wrapped: winit::event::Event<()> =
             winit::event::Event::WindowEvent { window_id: self.window.id(), event: event.clone() };
         self.platform.handle_event(self.imgui.io_mut(), &self.window, &wrapped);
