@@ -278,6 +278,18 @@ mod tests {
         frame(&mut ctx, &mut value, &mut count, |io| io.add_mouse_button_event(MouseButton::Left, false));
     }
 
+    /// Three idle frames, then a click into the int field and Ctrl+A: what is typed next
+    /// replaces its text.
+    fn select_the_int_field(ctx: &mut Context, value: &mut f64, count: &mut u32) {
+        for _ in 0..3 {
+            frame(ctx, value, count, |_| {});
+        }
+        click(ctx, value, count, INT_AT, false);
+        frame(ctx, value, count, |io| io.add_key_event(Key::ModCtrl, true));
+        key(ctx, value, count, Key::A);
+        frame(ctx, value, count, |io| io.add_key_event(Key::ModCtrl, false));
+    }
+
     fn key(ctx: &mut Context, value: &mut f64, count: &mut u32, key: Key) -> (bool, bool) {
         let down = frame(ctx, value, count, |io| io.add_key_event(key, true));
         let up = frame(ctx, value, count, |io| io.add_key_event(key, false));
@@ -327,13 +339,7 @@ mod tests {
         let frames_to_apply = |with_keys: bool| -> usize {
             let (_turn, mut ctx) = context();
             let (mut value, mut count) = (400.0, 16u32);
-            for _ in 0..3 {
-                frame(&mut ctx, &mut value, &mut count, |_| {});
-            }
-            click(&mut ctx, &mut value, &mut count, INT_AT, false);
-            frame(&mut ctx, &mut value, &mut count, |io| io.add_key_event(Key::ModCtrl, true));
-            key(&mut ctx, &mut value, &mut count, Key::A);
-            frame(&mut ctx, &mut value, &mut count, |io| io.add_key_event(Key::ModCtrl, false));
+            select_the_int_field(&mut ctx, &mut value, &mut count);
             frame(&mut ctx, &mut value, &mut count, |io| {
                 for (c, k) in [('1', Key::Alpha1), ('2', Key::Alpha2), ('8', Key::Alpha8)] {
                     if with_keys {
@@ -369,13 +375,7 @@ mod tests {
     fn esc_in_a_typed_field_applies_nothing() {
         let (_turn, mut ctx) = context();
         let (mut value, mut count) = (400.0, 16u32);
-        for _ in 0..3 {
-            frame(&mut ctx, &mut value, &mut count, |_| {});
-        }
-        click(&mut ctx, &mut value, &mut count, INT_AT, false);
-        frame(&mut ctx, &mut value, &mut count, |io| io.add_key_event(Key::ModCtrl, true));
-        key(&mut ctx, &mut value, &mut count, Key::A);
-        frame(&mut ctx, &mut value, &mut count, |io| io.add_key_event(Key::ModCtrl, false));
+        select_the_int_field(&mut ctx, &mut value, &mut count);
         type_text(&mut ctx, &mut value, &mut count, "8");
         let reported = key(&mut ctx, &mut value, &mut count, Key::Escape);
         for _ in 0..3 {

@@ -194,13 +194,33 @@ fn a_signal_during_the_final_write_leaves_no_partial_file() {
     }
 }
 
+/// Sends SIG`signal` (INT or TERM) to the running `child` once `frames` lines of frames have
+/// come, checks that it ended by that signal, and returns the rest of its standard output and
+/// its standard error.
+fn signalled_after_frames(
+    child: &mut std::process::Child,
+    signal: &str,
+    frames: u32,
+) -> (Vec<String>, String) {
+    use std::os::unix::process::ExitStatusExt as _;
+    let lines = after_frames(child, frames);
+    let killed =
+        Command::new("kill").args([&format!("-{signal}"), &child.id().to_string()]).status().unwrap();
+    assert!(killed.success());
+    let rest: Vec<String> = lines.map_while(Result::ok).collect();
+    let status = child.wait().unwrap();
+    let mut err = String::new();
+    child.stderr.take().unwrap().read_to_string(&mut err).unwrap();
+    assert_eq!(status.signal(), Some(if signal == "INT" { 2 } else { 15 }), "{signal}: {status:?} {err}");
+    (rest, err)
+}
+
 /// A recording written at the end (USD, glTF) is kept when a signal stops the run (issue 29:
 /// Ctrl-C left no file): the first SIGINT or SIGTERM ends the frames, the file holds those so
 /// far, `--out` is left as it was, and the process still ends by the signal.
 #[test]
 fn a_signal_mid_run_keeps_the_recording_so_far() {
     common::default_sigint();
-    use std::os::unix::process::ExitStatusExt as _;
     for (signal, name) in [("INT", "rec.usda"), ("TERM", "rec.glb")] {
         let dir = tempfile::tempdir().unwrap();
         let p = preset(dir.path());
@@ -223,15 +243,7 @@ fn a_signal_mid_run_keeps_the_recording_so_far() {
             .stderr(Stdio::piped())
             .spawn()
             .unwrap();
-        let lines = after_frames(&mut child, 5);
-        let killed =
-            Command::new("kill").args([&format!("-{signal}"), &child.id().to_string()]).status().unwrap();
-        assert!(killed.success());
-        let rest: Vec<String> = lines.map_while(Result::ok).collect();
-        let status = child.wait().unwrap();
-        let mut err = String::new();
-        child.stderr.take().unwrap().read_to_string(&mut err).unwrap();
-        assert_eq!(status.signal(), Some(if signal == "INT" { 2 } else { 15 }), "{signal}: {status:?} {err}");
+        let (rest, err) = signalled_after_frames(&mut child, signal, 5);
         assert!(err.contains("stopped by SIG"), "{err}");
         assert!(
             err.contains("frames of") && err.contains("writing them (another signal now discards"),
@@ -264,7 +276,6 @@ fn a_signal_mid_run_keeps_the_recording_so_far() {
 #[test]
 fn a_signal_mid_run_says_how_many_streamed_frames_are_kept() {
     common::default_sigint();
-    use std::os::unix::process::ExitStatusExt as _;
     for (signal, name) in [("INT", "rec.obj"), ("TERM", "rec.pc2")] {
         let dir = tempfile::tempdir().unwrap();
         let p = preset(dir.path());
@@ -276,15 +287,7 @@ fn a_signal_mid_run_says_how_many_streamed_frames_are_kept() {
             .stderr(Stdio::piped())
             .spawn()
             .unwrap();
-        let lines = after_frames(&mut child, 5);
-        let killed =
-            Command::new("kill").args([&format!("-{signal}"), &child.id().to_string()]).status().unwrap();
-        assert!(killed.success());
-        let rest: Vec<String> = lines.map_while(Result::ok).collect();
-        let status = child.wait().unwrap();
-        let mut err = String::new();
-        child.stderr.take().unwrap().read_to_string(&mut err).unwrap();
-        assert_eq!(status.signal(), Some(if signal == "INT" { 2 } else { 15 }), "{signal}: {status:?} {err}");
+        let (rest, err) = signalled_after_frames(&mut child, signal, 5);
         // "msdsim: stopped by SIGINT after N frames of PATH: the recording keeps them"
         let line =
             err.lines().find(|l| l.contains("the recording keeps them")).unwrap_or_else(|| panic!("{err}"));
