@@ -9,11 +9,11 @@
 //! 2. Constraints, Jacobi on the physics result: each free particle sums (a) for every structural
 //!    and shear spring stretched past (1 + limit) L, half the excess towards the neighbour times
 //!    the mean of the two ends' shares, one over each one's count of such springs (equal and
-//!    opposite; all of it over its own count when the neighbour is pinned), and (b) in a rope, for every particle nearer than
-//!    the self-collision distance s (except pairs nearer than s at rest), half the overlap away
-//!    from it (all of it when that one is pinned). Where (b) finds any, the correction is the
-//!    mean of (b) and of (a) weighted by its count (Jacobi averaging), plus in a cloth its moves
-//!    from contacts with its own triangles (particle
+//!    opposite; all of it over its own count when the neighbour is pinned), and (b) in a rope,
+//!    for every particle nearer than the self-collision distance s (except pairs nearer than s
+//!    at rest), half the overlap away from it (all of it when that one is pinned). Where (b)
+//!    finds any, the correction is the mean of (b) and of (a) weighted by its count (Jacobi
+//!    averaging), plus in a cloth its moves from contacts with its own triangles (particle
 //!    against triangle, equal and opposite, `self_contact`), plus (c) for
 //!    every particle of another object nearer than the two contact radii, its share of the
 //!    overlap by inverse mass over the larger of the two particles' contact counts (equal and
@@ -442,13 +442,13 @@ fn constraints(
         let mut correction = DVec3::ZERO;
         let mut stretched = 0u32;
         if let Some(limit) = o.stretch_limit {
-            let counts = |j: usize| overstretched(o, x, j, limit).count() as u32;
-            stretched = counts(i);
-            for (j, excess) in overstretched(o, x, i, limit) {
+            let own: Vec<(usize, f64)> = overstretched(o, x, i, limit).collect();
+            stretched = own.len() as u32;
+            for (j, excess) in own {
                 let split = if o.pinned[j] {
                     1.0 / stretched as f64
                 } else {
-                    0.5 * (1.0 / stretched as f64 + 1.0 / counts(j) as f64)
+                    0.5 * (1.0 / stretched as f64 + 1.0 / overstretched(o, x, j, limit).count() as f64)
                 };
                 correction += (x[j] - x[i]).normalize() * excess * share(j) * split;
             }

@@ -232,12 +232,18 @@ pub struct FusedShape {
     /// directions there (the implicit method): they run per stage instead.
     pub compact: bool,
     /// Where the stretch limit's counts live in scratch (`STRETCH_AT`; four bits a
-    /// particle): 0 without the limit, 1 packed from its start, 2 in the top bits of the
-    /// hash's links, where a particle self-collision reads the hash during the constraints.
+    /// particle): 0 without the limit, `STRETCH_PACKED` from its start, or `STRETCH_IN_LINKS`.
     /// No array of their own (scratch grows to n / 8 words where it was smaller), so the
     /// paper's curtain keeps its 2,048 buckets in 48 KiB.
     pub stretch_counts: u32,
 }
+
+/// The stretch limit's counts packed eight a word from scratch's start (fused.comp's
+/// STRETCH_PACKED).
+const STRETCH_PACKED: u32 = 1;
+/// ... in the top bits of the hash's links, where a particle self-collision reads the hash
+/// during the constraints (STRETCH_IN_LINKS).
+const STRETCH_IN_LINKS: u32 = 2;
 
 impl FusedShape {
     /// The layout of object `o` in `model` within `limits`, or `None` when the object does not
@@ -263,8 +269,8 @@ impl FusedShape {
         // (a cloth's triangles and a rope's segments are searched before the constraints)
         let stretch_counts = match o.stretch_limit {
             None => 0,
-            Some(_) if hashed && !o.has_triangles() => 2,
-            Some(_) => 1,
+            Some(_) if hashed && !o.has_triangles() => STRETCH_IN_LINKS,
+            Some(_) => STRETCH_PACKED,
         };
         let fixed = 12 * n + 4 * n.div_ceil(32) + 4 * reduce;
         let words = budget.checked_sub(fixed)? / 4;
@@ -293,13 +299,13 @@ impl FusedShape {
             if damped { window(pass_slots) } else { 0 },
             if hashed { buckets + n } else { 0 },
             displacements,
-            if stretch_counts == 1 { n.div_ceil(8) } else { 0 },
+            if stretch_counts == STRETCH_PACKED { n.div_ceil(8) } else { 0 },
             1,
         ]
         .into_iter()
         .max()
         .unwrap_or(1);
-        if stretch_counts == 1 && n.div_ceil(8) > words {
+        if stretch_counts == STRETCH_PACKED && n.div_ceil(8) > words {
             return None;
         }
         let one_iteration = solver.is_some() && model.iterations == 1;
