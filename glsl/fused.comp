@@ -201,6 +201,7 @@ void set_stretched(uint k, uint count) {
 // The implicit method's Hessian products: px/py/pz hold the iterates p, scratch the directions.
 #define PP(j) spos(uint(j))
 #define DD(j) sdisp(uint(j))
+#define DP(j) sdisp(uint(j))
 #define SELECT_SPRINGS true
 #include "solver_bodies.glsl"
 // The implicit method's dot products (a quarter of the threads: subgroups of 4 lanes or more).
@@ -487,6 +488,46 @@ void main() {
                         }
                         rz_before = rz;
                         rz = workgroup_sum(mine);
+                    }
+                    if ((obj.flags & OBJ_LINE_SEARCH) != 0u) {
+                        // The line search (implicit_iterate.comp's PHASE_SEARCH and PHASE_MOVE):
+                        // r0.dp from the linearisation's state again (bases and displacements
+                        // shared: r0 kept in registers through CG would cost every run), then
+                        // newton_descent from p and the steps.
+                        [[unroll]] for (uint s = 0u; s < MAX_SLOTS; ++s) {
+                            if (s < SLOTS && own[s] < n) {
+                                set_spos(own[s], x[s]);
+                                set_sdisp(own[s], dx[s]);
+                            }
+                        }
+                        barrier();
+                        float r0dp[MAX_SLOTS];
+                        [[unroll]] for (uint s = 0u; s < MAX_SLOTS; ++s) {
+                            r0dp[s] = 0.0;
+                            if (s < SLOTS && own[s] < n && !pinned[s]) {
+                                spring_mask = masks[s];
+                                Sym3 hessian;
+                                r0dp[s] = dot(newton_particle(cells[s], x[s], dx[s], dy[s], hessian), dp[s]);
+                            }
+                        }
+                        barrier();
+                        [[unroll]] for (uint s = 0u; s < MAX_SLOTS; ++s) {
+                            if (s < SLOTS && own[s] < n) {
+                                set_spos(own[s], x[s] + dx[s]);
+                                set_sdisp(own[s], dp[s]);
+                            }
+                        }
+                        barrier();
+                        vec4 change = vec4(0.0);
+                        [[unroll]] for (uint s = 0u; s < MAX_SLOTS; ++s) {
+                            if (s < SLOTS && own[s] < n) {
+                                spring_mask = masks[s];
+                                change += newton_descent(cells[s], x[s] + dx[s], dp[s], r0dp[s]);
+                            }
+                        }
+                        vec4 total = vec4(workgroup_sum(change.x), workgroup_sum(change.y), workgroup_sum(change.z), workgroup_sum(change.w));
+                        float step = line_search_step(total);
+                        [[unroll]] for (uint s = 0u; s < MAX_SLOTS; ++s) dp[s] *= step;
                     }
                     [[unroll]] for (uint s = 0u; s < MAX_SLOTS; ++s) {
                         if (s >= SLOTS) break;

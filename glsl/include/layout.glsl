@@ -14,6 +14,7 @@
 #define OBJ_SELF_HASH      4u   // ... found through the spatial hash (else brute force)
 #define OBJ_SELF_TRIANGLES 8u   // ... a cloth's particles against its triangles (self_contact.glsl)
 #define OBJ_ANCHORED      16u   // a particle is pinned (predict_body.glsl's adaptive_start)
+#define OBJ_LINE_SEARCH   32u   // the implicit method searches along its Newton steps
 
 // Integrators, as sim::integrator::Integrator's discriminants (the fused kernel's SOLVER).
 #define METHOD_SYMPLECTIC_EULER 0u

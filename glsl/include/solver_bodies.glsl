@@ -212,4 +212,52 @@ vec3 hessian_product(uvec2 cell, vec3 pi, vec3 di) {
 }
 #endif
 
+// The implicit method's line search (sim::cpu::integrators::descent): particle i's share of
+// G(p + a dp) - G(p) for each trial length a of LINE_SEARCH_STEPS, i at p_i with Newton step
+// dp_i and r0dp = r0.dp_i (r0 = -g at p): its inertia's change and the first-order change
+// -a r0.dp_i, then for each of its forward springs (each spring once) the exact change of its
+// energy less its first-order part and its dashpot's, along the spring's direction at p. PP(j)
+// gives neighbour j's p and DP(j) its step (zero where pinned). A pinned particle takes part
+// (dp_i and r0dp zero) for its springs.
+#if defined(PP) && defined(DP)
+// Must equal sim::cpu::integrators::LINE_SEARCH_STEPS.
+const vec4 LINE_SEARCH_STEPS = vec4(1.0, 0.5, 0.25, 0.125);
+
+vec4 newton_descent(uvec2 cell, vec3 pi, vec3 dpi, float r0dp) {
+    float h = solve_dt();
+    float damp = has(F_DAMPING) ? obj.stiffness.w / h : 0.0;
+    vec4 a = LINE_SEARCH_STEPS;
+    vec4 change = -a * r0dp + ((0.5 * obj.mass / (h * h)) * dot(dpi, dpi)) * (a * a);
+    [[unroll]] for (int s = 0; s < 12; s += 2) {
+        ivec3 spring = SPRINGS[s];
+        if (!has(1u << spring.z)) continue;  // (as newton_particle)
+        int j = SPRING_NEIGHBOUR(cell, s);
+        if (j < 0) continue;
+        vec3 delta = pi - PP(j);
+        float dd = dot(delta, delta);
+        if (dd <= 0.0) continue;
+        float k = obj.stiffness[spring.z];
+        float inv = inversesqrt(dd);
+        float d = dd * inv;
+        vec3 e = dpi - DP(j);
+        float ne = dot(delta, e) * inv;
+        float stretch = d - rest_length(s);
+        // d' - d from d'^2 - d^2 = a e.(2 delta + a e): exact where a e is small against delta.
+        vec4 grown = a * (2.0 * dot(delta, e)) + (a * a) * dot(e, e);
+        vec4 moved = grown / (sqrt(dd + grown) + d);
+        change += (0.5 * k) * moved * (moved + 2.0 * stretch) - a * (k * stretch * ne) + (0.5 * damp * ne * ne) * (a * a);
+    }
+    return change;
+}
+
+// The length the line search takes a Newton step at: the trial length whose total change
+// (newton_descent summed over the object) is lowest, or 0 where none lowers G.
+float line_search_step(vec4 change) {
+    float best = min(min(change.x, change.y), min(change.z, change.w));
+    if (!(best < 0.0)) return 0.0;
+    return best == change.x ? LINE_SEARCH_STEPS.x : best == change.y ? LINE_SEARCH_STEPS.y
+         : best == change.z ? LINE_SEARCH_STEPS.z : LINE_SEARCH_STEPS.w;
+}
+#endif
+
 #endif

@@ -213,8 +213,8 @@ const METHODS: [Method; 6] = [
         order: 2.0,
         // Slices: the iterate, CG's move, residual, preconditioned residual, two directions,
         // the Hessian's product and the preconditioner (two); aux: the prediction, then the
-        // workgroups' partial dot products.
-        scheme: solver("implicit_iterate.comp", (true, true, false), 9, 2, Sweep::NewtonCg),
+        // workgroups' partial dot products and their partial sums of the line search.
+        scheme: solver("implicit_iterate.comp", (true, true, false), 9, 3, Sweep::NewtonCg),
         cpu: cpu::implicit,
         colour: (214, 39, 40),
         few_iterations: 4,

@@ -7,7 +7,7 @@ use super::{air_force, rest_length, rest_lengths, springs, wind_at, Spring, SPRI
 use crate::sim::integrator::{
     newton_steps, spring_class_parity, vertex_colour, vertex_colours, BDF2_STEP, SPRING_CLASSES, STIFF_START,
 };
-use crate::sim::model::{ObjectModel, SimModel};
+use crate::sim::model::{Integrator, ObjectModel, SimModel};
 use glam::{DMat3, DVec3};
 
 type State = (Vec<DVec3>, Vec<DVec3>);
@@ -581,9 +581,11 @@ fn newton_springs<'a>(
 /// gradients from dp = 0, preconditioned by H's 3x3 diagonal blocks, pinned particles held; the
 /// iterate moves by dp. CG's dot products span the object, so stiffness crosses it within an
 /// iteration's reach of the whole (a Jacobi sweep moves it one neighbour an iteration). At
-/// convergence BDF2 with implicit dashpots, at any stiffness; cut short it is not a descent
-/// (no line search): a very stiff cloth (1e5 N/m and more) at one 1/60 s substep gains energy
-/// on the way below 10 iterations before it settles (docs/ACCURACY.md, "Large steps").
+/// convergence BDF2 with implicit dashpots, at any stiffness. Cut short, a Newton step is not
+/// always a descent of G: on an object whose springs are stiff against its inertia
+/// (`implicit_searches`) the step is scaled by the best of four trial lengths
+/// (`line_search`), else a very stiff cloth (1e5 N/m and more) at one 1/60 s substep gains
+/// energy on the way below 10 iterations before it settles (docs/ACCURACY.md, "Large steps").
 pub(crate) fn implicit(s: &Substep<'_>, history: &mut [History]) -> State {
     let Substep { model: m, object: o, x: x0, .. } = *s;
     let n = x0.len();
@@ -592,6 +594,7 @@ pub(crate) fn implicit(s: &Substep<'_>, history: &mut [History]) -> State {
     let inertia = o.mass / (dt * dt);
     let mut p = start.start.clone();
     let free: Vec<usize> = (0..n).filter(|&i| !o.pinned[i]).collect();
+    let search = implicit_searches(m, o);
     for cg in newton_steps(m.iterations) {
         // Linearise at p: r = -g, each spring's block, and the preconditioner.
         let mut r = vec![DVec3::ZERO; n];
@@ -608,6 +611,7 @@ pub(crate) fn implicit(s: &Substep<'_>, history: &mut [History]) -> State {
             r[i] = force;
             pre[i] = diagonal.inverse();
         }
+        let r0 = if search { r.clone() } else { Vec::new() };
         let product = |d: &[DVec3]| -> Vec<DVec3> {
             let mut q = vec![DVec3::ZERO; n];
             for &i in &free {
@@ -636,11 +640,100 @@ pub(crate) fn implicit(s: &Substep<'_>, history: &mut [History]) -> State {
             }
             rz = next;
         }
+        let scale = if search { line_search(o, dt, &p, &dp, &r0) } else { 1.0 };
         for &i in &free {
-            p[i] += dp[i];
+            p[i] += dp[i] * scale;
         }
     }
     finish(s, &start, p, history)
+}
+
+/// The trial lengths of the implicit method's line search (glsl/include/solver_bodies.glsl's
+/// `newton_descent` evaluates the same four).
+pub const LINE_SEARCH_STEPS: [f64; 4] = [1.0, 0.5, 0.25, 0.125];
+
+/// Whether the implicit method searches along its Newton steps on object `o`: where some
+/// particle's springs are stiffer than its inertia over the solve's step (`stiffness_ratio`
+/// above 1). Below that the incremental potential is close to its quadratic model and a
+/// Newton step close to exact, and a search would cost a pass over the springs for nothing.
+/// The GPU's per-stage path asks it as it records each frame: it tries the particles at and
+/// near the grid's corners, edges and middle, which have every set of springs a particle of
+/// the grid can have, not all of them.
+pub fn implicit_searches(m: &SimModel, o: &ObjectModel) -> bool {
+    if m.integrator != Integrator::Implicit {
+        return false;
+    }
+    let h = BDF2_STEP * m.dt();
+    let near = |n: u32| {
+        let n = n as i64;
+        let mut at: Vec<i64> =
+            [0, 1, 2, n / 2, n - 3, n - 2, n - 1].into_iter().filter(|&c| c >= 0 && c < n).collect();
+        at.sort_unstable();
+        at.dedup();
+        at
+    };
+    let rows = near(o.dims[1]);
+    near(o.dims[0])
+        .into_iter()
+        .any(|c| rows.iter().any(|&r| stiffness_ratio(o, (c + r * o.dims[0] as i64) as usize, h) > 1.0))
+}
+
+/// The length a Newton step `dp` from the iterate `p` is taken at: of `LINE_SEARCH_STEPS`, the
+/// one that lowers BDF2's incremental potential G the most, or none (0) where none lowers it.
+/// `r0` is -g at p (the linearisation's residual). The change of G is summed by pieces
+/// (`descent`), each exact from p and dp, so that its rounding is that of the change, not of
+/// G.
+fn line_search(o: &ObjectModel, h: f64, p: &[DVec3], dp: &[DVec3], r0: &[DVec3]) -> f64 {
+    let change = descent(o, h, p, dp, r0);
+    let best = (0..4).min_by(|&a, &b| change[a].total_cmp(&change[b])).unwrap_or(0);
+    if change[best] < 0.0 {
+        LINE_SEARCH_STEPS[best]
+    } else {
+        0.0
+    }
+}
+
+/// G(p + a dp) - G(p) for each trial length a of `LINE_SEARCH_STEPS`, with the dashpots'
+/// potential along their directions at p: -a r0.dp + a^2 / 2 dp.(M / h^2) dp, and for each
+/// spring (once) k/2 ((d' - L)^2 - (d - L)^2) - a k (d - L) n.e + a^2 / 2 (b / h) (n.e)^2,
+/// e = dp_i - dp_j (-a r0.dp holds the springs' first-order change, which their exact change
+/// replaces; d' - d is formed from d'^2 - d^2 = a e.(2 delta + a e), exact where a e is small
+/// against the spring).
+fn descent(o: &ObjectModel, h: f64, p: &[DVec3], dp: &[DVec3], r0: &[DVec3]) -> [f64; 4] {
+    let inertia = o.mass / (h * h);
+    let damp = o.damping / h;
+    let mut change = [0.0; 4];
+    for i in 0..p.len() {
+        let (c, r) = grid(o, i);
+        let first = -r0[i].dot(dp[i]);
+        let second = inertia * dp[i].length_squared();
+        for (t, &a) in LINE_SEARCH_STEPS.iter().enumerate() {
+            change[t] += a * first + 0.5 * a * a * second;
+        }
+        for s in springs(o, c, r).iter().filter(|s| counted_once(s)) {
+            let k = o.stiffness[s.kind as usize];
+            if k == 0.0 && o.damping == 0.0 {
+                continue;
+            }
+            let delta = p[i] - p[s.other];
+            let dd = delta.length_squared();
+            if dd <= 0.0 {
+                continue;
+            }
+            let d = dd.sqrt();
+            let e = dp[i] - dp[s.other];
+            let ne = delta.dot(e) / d;
+            let stretch = d - rest_length(o, s);
+            for (t, &a) in LINE_SEARCH_STEPS.iter().enumerate() {
+                let grown = a * e.dot(2.0 * delta + a * e);
+                let d2 = (dd + grown).sqrt();
+                let moved = grown / (d2 + d);
+                change[t] += 0.5 * k * moved * (moved + 2.0 * stretch) - a * k * stretch * ne
+                    + 0.5 * a * a * damp * ne * ne;
+            }
+        }
+    }
+    change
 }
 
 /// Total energy of an object [J]: kinetic, elastic (each spring once) and gravitational

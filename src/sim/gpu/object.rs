@@ -5,8 +5,8 @@ use super::fused::ObjectPlan;
 use super::{BINDINGS, CLOTH_GROUP, ROPE_GROUP};
 use crate::error::UserError;
 use crate::sim::gpu_types::{
-    Globals, ObjectParams, Particle, SurfaceVertex, OBJ_ANCHORED, OBJ_SELF_COLLISION, OBJ_SELF_HASH,
-    OBJ_SELF_TRIANGLES, OBJ_STRETCH_LIMIT,
+    Globals, ObjectParams, Particle, SurfaceVertex, OBJ_ANCHORED, OBJ_LINE_SEARCH, OBJ_SELF_COLLISION,
+    OBJ_SELF_HASH, OBJ_SELF_TRIANGLES, OBJ_STRETCH_LIMIT,
 };
 use crate::sim::integrator::{vertex_colours, BDF2_STEP};
 use crate::sim::model::{Integrator, ObjectKind, ObjectModel, ObjectShape, SelfCollisionMethod, SimModel};
@@ -592,6 +592,9 @@ pub(super) fn object_params(o: &ObjectModel, model: &SimModel) -> ObjectParams {
     }
     if o.anchored() {
         flags |= OBJ_ANCHORED;
+    }
+    if crate::sim::cpu::implicit_searches(model, o) {
+        flags |= OBJ_LINE_SEARCH;
     }
     let buckets = hash_table_size(o.particle_count() as u64) as u32;
     let cell = 2.0 * o.self_reach().unwrap_or(1.0).max(1e-6);

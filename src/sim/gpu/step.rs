@@ -60,11 +60,11 @@ impl GpuSim {
         };
         let rounds = self.model.contact_rounds();
         // One pass: each object's workgroups and pass word (SKIP: it takes no part).
-        let iterate = |rec: &mut Recorder<'_>, k: u32, each: &dyn Fn(&GpuObject) -> ([u32; 3], u32)| {
+        let iterate = |rec: &mut Recorder<'_>, k: u32, each: &PassOf| {
             rec.barrier(&between_passes);
             let mut pass = Pass::new();
             for &(i, o) in &stepped {
-                let (groups, word) = each(o);
+                let (groups, word) = each(i, o);
                 if word == SKIP {
                     continue;
                 }
@@ -77,28 +77,54 @@ impl GpuSim {
         if solver.sweep == Sweep::NewtonCg {
             // Objects of many workgroups have their partial sums totalled by a pass of one.
             let totals = |o: &GpuObject| o.step_groups.iter().product::<u32>() > self.cg_totals_above;
-            let pass = |rec: &mut Recorder<'_>, k: u32, word: u32| {
-                iterate(rec, k, &|o| (o.step_groups, if totals(o) { word | CG_TOTALS } else { word }));
-                // A Newton step's last update is followed by a linearisation, which reads none.
-                let read_next = word & 3 != CG_UPDATE || word & LAST_CG == 0;
-                if read_next && stepped.iter().any(|&(_, o)| totals(o)) {
-                    let total = (word & !3) | CG_TOTAL | CG_TOTALS;
-                    iterate(rec, k, &|o| ([1, 1, 1], if totals(o) { total } else { SKIP }));
+            // Objects that search along their Newton steps (their parameters' OBJ_LINE_SEARCH).
+            let searched = |i: usize| crate::sim::cpu::implicit_searches(&self.model, &self.model.objects[i]);
+            let word_of = |i: usize, o: &GpuObject, word: u32| {
+                let word = if totals(o) { word | CG_TOTALS } else { word };
+                if searched(i) {
+                    word | CG_SEARCHED
+                } else {
+                    word
                 }
             };
+            // `search`: the pass is the search's, which the other objects skip.
+            let pass = |rec: &mut Recorder<'_>, k: u32, word: u32, search: bool| {
+                let takes_part = |i: usize| !search || searched(i);
+                iterate(rec, k, &|i, o| match takes_part(i) {
+                    true => (o.step_groups, word_of(i, o, word)),
+                    false => ([0; 3], SKIP),
+                });
+                // A Newton step's last update is followed by a linearisation or the search,
+                // which read no totals, and the move by a linearisation.
+                let phase = word & CG_PHASES;
+                let read_next = !(phase == CG_UPDATE && word & LAST_CG != 0) && phase != CG_MOVE;
+                if read_next && stepped.iter().any(|&(i, o)| totals(o) && takes_part(i)) {
+                    let total =
+                        (word & !CG_PHASES) | if phase == CG_SEARCH { CG_SEARCH_TOTAL } else { CG_TOTAL };
+                    iterate(rec, k, &|i, o| match totals(o) && takes_part(i) {
+                        true => ([1, 1, 1], word_of(i, o, total)),
+                        false => ([0; 3], SKIP),
+                    });
+                }
+            };
+            let any_search = stepped.iter().any(|&(i, _)| searched(i));
             let mut k = 0;
             for cg in newton_steps(self.model.iterations) {
-                pass(rec, k, cg_pass(CG_LINEARISE, 0, cg));
+                pass(rec, k, cg_pass(CG_LINEARISE, 0, cg), false);
                 for c in 0..cg {
-                    pass(rec, k + c, cg_pass(CG_PRODUCT, c, cg));
-                    pass(rec, k + c, cg_pass(CG_UPDATE, c, cg));
+                    pass(rec, k + c, cg_pass(CG_PRODUCT, c, cg), false);
+                    pass(rec, k + c, cg_pass(CG_UPDATE, c, cg), false);
+                }
+                if any_search {
+                    pass(rec, k + cg - 1, cg_pass(CG_SEARCH, cg - 1, cg), true);
+                    pass(rec, k + cg - 1, cg_pass(CG_MOVE, cg - 1, cg), true);
                 }
                 k += cg;
             }
             return;
         }
         let swept = |pass: u32| {
-            move |o: &GpuObject| match solver.sweep {
+            move |_: usize, o: &GpuObject| match solver.sweep {
                 Sweep::VertexColours if pass >= o.colours => ([0; 3], SKIP),
                 Sweep::VertexColours => (o.colour_groups, pass),
                 _ => (o.step_groups, pass),
@@ -123,6 +149,9 @@ impl GpuSim {
     }
 }
 
+/// One pass of an iteration: object i's workgroups and pass word (`SKIP`: it takes no part).
+type PassOf<'a> = dyn Fn(usize, &GpuObject) -> ([u32; 3], u32) + 'a;
+
 /// The implicit method per stage: objects of more workgroups than this total their partial
 /// sums in a pass of one workgroup (each pass's workgroups summing them all themselves grows
 /// with the square of the count: a 1024 x 1024 cloth's 4,096 took 12.65 against 13.33 ms a
@@ -138,15 +167,23 @@ impl GpuSim {
     }
 }
 
-/// The implicit method's passes (glsl/implicit_iterate.comp's PHASE_*).
+/// The implicit method's passes (glsl/implicit_iterate.comp's PHASE_*) and the bits of the
+/// pass word that hold them.
 const CG_LINEARISE: u32 = 0;
 const CG_PRODUCT: u32 = 1;
 const CG_UPDATE: u32 = 2;
 const CG_TOTAL: u32 = 3;
-/// The pass word's bit saying that PHASE_TOTAL passes total the partial sums.
-const CG_TOTALS: u32 = 32;
+const CG_SEARCH: u32 = 4;
+const CG_SEARCH_TOTAL: u32 = 5;
+const CG_MOVE: u32 = 6;
+const CG_PHASES: u32 = 7;
 /// The pass word's bit of a Newton step's last CG iteration (`cg_pass`).
-const LAST_CG: u32 = 16;
+const LAST_CG: u32 = 32;
+/// The pass word's bit saying that PHASE_TOTAL passes total the partial sums.
+const CG_TOTALS: u32 = 64;
+/// The pass word's bit of an object that searches along its Newton steps: its last update
+/// leaves the iterate to PHASE_MOVE.
+const CG_SEARCHED: u32 = 128;
 /// The iteration's flags word: contact between objects runs after each iteration
 /// (`SimModel::contact_rounds`; glsl/vbd_iterate.comp's CONTACT_ROUNDS).
 const CONTACT_ROUNDS: u32 = 2;
@@ -154,7 +191,7 @@ const CONTACT_ROUNDS: u32 = 2;
 const SKIP: u32 = u32::MAX;
 
 /// The pass word of a Newton step's pass `phase` in its CG iteration `c` of `count`: the phase,
-/// c's parity (bit 2), whether c is the first (bit 3) and the last (bit 4).
+/// c's parity (bit 3), whether c is the first (bit 4) and the last (`LAST_CG`).
 fn cg_pass(phase: u32, c: u32, count: u32) -> u32 {
-    phase | (c & 1) << 2 | ((c == 0) as u32) << 3 | if c + 1 == count { LAST_CG } else { 0 }
+    phase | (c & 1) << 3 | ((c == 0) as u32) << 4 | if c + 1 == count { LAST_CG } else { 0 }
 }
