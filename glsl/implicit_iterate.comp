@@ -25,7 +25,7 @@
 // iteration's parity (rz and the one before), d.q in a third. Each pass reads their totals at
 // its start: on objects of few workgroups it sums the partial sums itself (every workgroup the
 // same way, so all get the same totals), on others (TOTALS) a PHASE_TOTAL pass after each of
-// the others has summed them into aux's last vec4 (every workgroup reading all 4,096 partial
+// the others has summed them into the last vec4 of their region (total_slot; every workgroup reading all 4,096 partial
 // sums of a 1024 x 1024 cloth cost 4.5 us a pass more on the H100).
 // The iterate and the vectors are slices of iter (S_*), displacements from the BDF2 base x~
 // (history H_BASE, see predict.comp); aux[i] holds the prediction y - x~.

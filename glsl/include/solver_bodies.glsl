@@ -244,7 +244,8 @@ vec4 newton_descent(uvec2 cell, vec3 pi, vec3 dpi, float r0dp) {
         float stretch = d - rest_length(s);
         // d' - d from d'^2 - d^2 = a e.(2 delta + a e): exact where a e is small against delta.
         vec4 grown = a * (2.0 * dot(delta, e)) + (a * a) * dot(e, e);
-        vec4 moved = grown / (sqrt(dd + grown) + d);
+        // (d'^2 >= 0: rounding can take a nearly collapsed trial below it)
+        vec4 moved = grown / (sqrt(max(dd + grown, vec4(0.0))) + d);
         change += (0.5 * k) * moved * (moved + 2.0 * stretch) - a * (k * stretch * ne) + (0.5 * damp * ne * ne) * (a * a);
     }
     return change;

@@ -726,7 +726,7 @@ fn descent(o: &ObjectModel, h: f64, p: &[DVec3], dp: &[DVec3], r0: &[DVec3]) -> 
             let stretch = d - rest_length(o, s);
             for (t, &a) in LINE_SEARCH_STEPS.iter().enumerate() {
                 let grown = a * e.dot(2.0 * delta + a * e);
-                let d2 = (dd + grown).sqrt();
+                let d2 = (dd + grown).max(0.0).sqrt(); // (as the GPU's, newton_descent)
                 let moved = grown / (d2 + d);
                 change[t] += 0.5 * k * moved * (moved + 2.0 * stretch) - a * k * stretch * ne
                     + 0.5 * a * a * damp * ne * ne;

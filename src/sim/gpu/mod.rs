@@ -784,6 +784,7 @@ impl GpuSim {
         };
         for (gpu, o) in self.objects.iter_mut().zip(&model.objects) {
             gpu.params.write(0, &[object_params(o, model)])?;
+            gpu.searches = crate::sim::cpu::implicit_searches(model, o);
         }
         self.history_stale |= model.dt() != self.model.dt();
         let now = self.time();

@@ -188,6 +188,9 @@ pub(super) struct GpuObject {
     pub sets: [BindingSet; 2],
     /// Whether its per-stage contact lists are on.
     pub lists: super::hash::ListPolicy,
+    /// The implicit method searches along its Newton steps (`sim::cpu::implicit_searches`,
+    /// the parameters' OBJ_LINE_SEARCH; kept here so that recording a frame does not ask).
+    pub searches: bool,
     /// The features its step pipelines compile in and its fused layout.
     pub plan: ObjectPlan,
 }
@@ -290,6 +293,7 @@ impl GpuObject {
             self_pairs,
             sets: [BindingSet::default(); 2],
             lists: Default::default(),
+            searches: crate::sim::cpu::implicit_searches(model, o),
             plan,
         };
         let mut set = |direction| arena.allocate(ctx, layout, &object.bindings(shared, direction));
@@ -429,7 +433,7 @@ fn object_bytes(o: &ObjectShape) -> u64 {
 }
 
 /// The most vec4s a particle that any iterative method keeps in its iterate slices and in its
-/// auxiliary data (`sim::integrator`'s table; the implicit method's 9 and 2).
+/// auxiliary data (`sim::integrator`'s table; the implicit method's 9 and 3).
 fn solver_vec4s() -> (u64, u64) {
     let solvers = Integrator::ALL.into_iter().filter_map(|m| m.solver());
     solvers.fold((0, 0), |(slices, aux), s| (slices.max(s.slices), aux.max(s.aux)))

@@ -4,7 +4,9 @@
 //! - iterative methods: the prediction (`predict.comp`: y into the iterates and auxiliary
 //!   buffers), then `iterations` iterations of the solver, each one pass over every particle
 //!   (Jacobi), one pass per vertex colour or spring class (Gauss-Seidel), or for the implicit
-//!   method's conjugate gradients two passes and one more for each Newton step. Every pass is ordered after the one
+//!   method's conjugate gradients two passes and one more for each Newton step (and on an
+//!   object that searches along its steps two more: the search's sums and the move; with a
+//!   total pass after the sums on large objects). Every pass is ordered after the one
 //!   before by a barrier on the iterates and auxiliary data, and on what the last iteration
 //!   writes: the result into B and whether the contact lists hold (`hash.rs`).
 
@@ -78,7 +80,7 @@ impl GpuSim {
             // Objects of many workgroups have their partial sums totalled by a pass of one.
             let totals = |o: &GpuObject| o.step_groups.iter().product::<u32>() > self.cg_totals_above;
             // Objects that search along their Newton steps (their parameters' OBJ_LINE_SEARCH).
-            let searched = |i: usize| crate::sim::cpu::implicit_searches(&self.model, &self.model.objects[i]);
+            let searched = |i: usize| self.objects[i].searches;
             let word_of = |i: usize, o: &GpuObject, word: u32| {
                 let word = if totals(o) { word | CG_TOTALS } else { word };
                 if searched(i) {
