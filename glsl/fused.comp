@@ -332,7 +332,7 @@ void main() {
             Particle p = p_in[k];
             pinned[s] = p.pos.w > 0.5;
             x[s] = p.pos.xyz;
-            v[s] = pinned[s] ? vec3(0.0) : p.vel.xyz;
+            v[s] = p.vel.xyz;  // (a pinned particle's: its pins', physics_particle)
             if (ITERATIVE) {
                 hx[s] = history[hist(k, H_DX)];
                 hv[s] = history[hist(k, H_DV)];
@@ -377,7 +377,21 @@ void main() {
             [[unroll]] for (uint s = 0u; s < MAX_SLOTS; ++s) {
                 if (s >= SLOTS) break;
                 uint k = own[s];
-                if (s / PASS_SLOTS != chunk || k >= n || pinned[s]) continue;
+                if (s / PASS_SLOTS != chunk || k >= n) continue;
+                if (pinned[s]) {
+                    // Moved with its pins (physics_particle, predict.comp: the iterative
+                    // methods' base of the pins' steady motion, displacement u h).
+                    vec3 u = obj.pin_velocity.xyz;
+                    if (ITERATIVE) {
+                        x[s] += u * (g.dt / 3.0);
+                        dy[s] = u * solve_dt();
+                        dx[s] = dy[s];
+                    } else {
+                        x[s] += u * g.dt;
+                        v_new[s] = u;
+                    }
+                    continue;
+                }
                 if (ITERATIVE) {
                     spring_mask = masks[s];
                     vec3 base;
@@ -605,7 +619,11 @@ void main() {
             }
             [[unroll]] for (uint s = 0u; s < MAX_SLOTS; ++s) {
                 if (s >= SLOTS) break;
-                if (pinned[s]) continue;
+                if (pinned[s]) {
+                    x[s] += dx[s];  // (where its pins are at the substep's end)
+                    v[s] = obj.pin_velocity.xyz;
+                    continue;
+                }
                 if (SOLVER == METHOD_XPBD && own[s] < n) dx[s] = sdisp(own[s]);  // moved by springs
                 x[s] += dx[s];
                 vec3 v_next = (dx[s] - lost[s]) * (1.0 / solve_dt());  // (v[s] is still v_n)

@@ -41,7 +41,14 @@ void main() {
     vec3 guess = vec3(0.0);  // where the iterate starts
     precise vec3 start = x;    // x~, rounded
     precise vec3 lost = vec3(0.0);  // what rounding x~ left out (bdf2_start)
-    if (p.pos.w <= 0.5) {
+    if (p.pos.w > 0.5) {
+        // Moving pins (sim::cpu::integrators::inertial): a base of their steady motion, so
+        // that y - x~ = u h is their velocity over h, as the free particles' displacements are.
+        vec3 u = obj.pin_velocity.xyz;
+        start = x + u * (g.dt / 3.0);
+        dy = u * solve_dt();
+        guess = dy;
+    } else {
         vec3 base;
         vec3 pull;
         vec4 hx = history[hist(i, H_DX)];

@@ -386,7 +386,7 @@ void constraints_particle(uvec2 cell, uint substep, bool lists) {
     uint i = cell.x + cell.y * obj.dims.x;
     Particle p = IN(i);
     if (p.pos.w > 0.5) {
-        OUT(i) = Particle(p.pos, vec4(0.0));
+        OUT(i) = p;  // (at its pins' place and velocity)
         return;
     }
     vec3 x = p.pos.xyz;

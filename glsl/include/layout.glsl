@@ -104,6 +104,8 @@ struct ObjectParams {
     vec4 xpbd[3];          // XPBD per spring type, for the substep: alpha~ = 1 / (k dt^2),
                            // gamma = b / (k dt), and the correction's scale relaxation / denominator
                            // with the other end free (z) or pinned (w); zero for k = 0
+    vec4 pin_velocity;     // xyz: the pinned particles' velocity over the frame [m/s] (each
+                           // substep moves them by it times dt); w unused
 };
 
 // The spatial hash of a grid cell: Teschner et al.'s (2003) mix of y and z, plus x itself, so

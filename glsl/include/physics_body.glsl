@@ -34,9 +34,11 @@ void physics_step(uvec2 cell, inout vec3 x, inout vec3 v) {
 void physics_particle(uvec2 cell, uint substep, bool lists) {
     uint i = cell.x + cell.y * obj.dims.x;
     Particle p = IN(i);
-    if (p.pos.w > 0.5) {  // pinned: keep the position, no velocity
-        OUT(i) = Particle(p.pos, vec4(0.0));
-        note_position(i, p.pos.xyz, true, substep, lists);
+    if (p.pos.w > 0.5) {  // pinned: moved with its pins (obj.pin_velocity, usually zero)
+        vec3 u = obj.pin_velocity.xyz;
+        vec3 x = p.pos.xyz + u * g.dt;
+        OUT(i) = Particle(vec4(x, 1.0), vec4(u, 0.0));
+        note_position(i, x, true, substep, lists);
         return;
     }
     vec3 x = p.pos.xyz + physics_drift() * p.vel.xyz;

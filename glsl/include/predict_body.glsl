@@ -55,13 +55,15 @@ float stiffness_ratio(uvec2 cell, float h) {
 // particle at `cell`, as a displacement from the solve's base: the prediction `dy` less the
 // fraction of its `pull` that the springs held last substep (`held`, history H_DV's w; none
 // without history, hx.w = 0; sim::cpu::integrators::held_fraction says why); on an anchored
-// object, moved towards where the particle is (`here`, x - base) by the share of its
-// stiffness ratio (sim::cpu::integrators::toward_rest says why).
+// object, moved towards where the particle is (`here`, x - base), carried on by its pins'
+// move over the substep, by the share of its stiffness ratio
+// (sim::cpu::integrators::toward_rest says why).
 vec3 adaptive_start(uvec2 cell, vec3 dy, vec3 pull, vec4 hx, float held, vec3 here) {
     vec3 guess = hx.w > 0.5 ? dy - pull * held : dy;
     if ((obj.flags & OBJ_ANCHORED) == 0u) return guess;
     float kappa = stiffness_ratio(cell, solve_dt());
-    return here + (guess - here) * (STIFF_START / (STIFF_START + kappa));
+    vec3 rest = here + obj.pin_velocity.xyz * g.dt;
+    return rest + (guess - rest) * (STIFF_START / (STIFF_START + kappa));
 }
 
 // The solve's base x~ = x + base rounded to f32 (`start`) and what the rounding left out

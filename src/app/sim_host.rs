@@ -319,7 +319,8 @@ impl SimHost {
     /// Puts every object back to the scene's initial state.
     pub fn reset(&mut self, ctx: &GpuContext) -> Result<()> {
         ctx.wait_idle()?;
-        let initial: Vec<_> = self.model.objects.iter().map(gpu::particles).collect();
+        let initial: Vec<_> =
+            self.model.objects.iter().map(|o| gpu::particles(o, self.model.frame_dt)).collect();
         self.sim.upload_states(ctx, &initial)?;
         self.sim.reset_time();
         self.pinned_at.clear();

@@ -164,6 +164,20 @@ fn cloth(c: &Cloth) -> ObjectModel {
         velocities: vec![DVec3::ZERO; n],
         positions,
         pinned,
+        pin_motion: pin_motion(&c.pin_motion),
+    }
+}
+
+/// A validated `pin_motion` in the model: keyframes are already displacements.
+fn pin_motion(m: &Option<super::Motion>) -> Motion {
+    match m {
+        None => Motion::Fixed,
+        Some(m) => match m.velocity {
+            Some(v) => Motion::Velocity(DVec3::from_array(v)),
+            None => {
+                Motion::Keyframes(m.keyframes.iter().map(|k| (k[0], DVec3::new(k[1], k[2], k[3]))).collect())
+            }
+        },
     }
 }
 
@@ -212,5 +226,6 @@ fn rope(r: &Rope) -> ObjectModel {
         velocities: vec![DVec3::ZERO; n],
         positions,
         pinned,
+        pin_motion: pin_motion(&r.pin_motion),
     }
 }

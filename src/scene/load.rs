@@ -472,6 +472,39 @@ stiffness = { structural = 1.0, shear = 1.0, bending = 1.0 }
         assert!(e.contains("cloth[0].mass = NaN"), "{e}");
     }
 
+    /// A pin motion needs pins to move and exactly one way of moving, as a collider's; a valid
+    /// one survives a save.
+    #[test]
+    fn a_pin_motion_is_checked_and_kept() {
+        let e = with(&["cloth.a.pin_motion={ velocity = [0, 1, 0] }"]).unwrap_err().0;
+        assert!(e.contains("cloth[0].pin_motion: no particle is pinned for it to move"), "{e}");
+        let e = with(&[
+            "cloth.a.pin=\"corners\"",
+            "cloth.a.pin_motion={ velocity = [0, 1, 0], keyframes = [[0, 0, 0, 0]] }",
+        ])
+        .unwrap_err()
+        .0;
+        assert!(e.contains("cloth[0].pin_motion: give a velocity or keyframes, not both"), "{e}");
+        let e = with(&[
+            "cloth.a.pin=\"corners\"",
+            "cloth.a.pin_motion={ keyframes = [[1, 0, 0, 0], [0.5, 0, 1, 0]] }",
+        ])
+        .unwrap_err()
+        .0;
+        assert!(e.contains("cloth[0].pin_motion.keyframes[1]: time 0.5 s is not after"), "{e}");
+        let s = with(&[
+            "cloth.b.pinned=[[1, 1]]",
+            "cloth.b.pin_motion={ keyframes = [[0, 0, 0, 0], [2, 0, 0.5, 0]] }",
+        ])
+        .unwrap();
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("pins.toml");
+        save(&s, &path).unwrap();
+        let back = crate::scene::load(&path, &[]).unwrap();
+        assert_eq!(back.cloths[1].pin_motion, s.cloths[1].pin_motion);
+        assert!(back.cloths[1].pin_motion.is_some());
+    }
+
     #[test]
     fn saved_presets_keep_their_tables_inline() {
         let mut s = with(&["cloth.a.stretch_limit=0.1", "cloth.b.pinned=[[1, 1]]"]).unwrap();

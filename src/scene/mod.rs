@@ -338,7 +338,9 @@ pub struct Sphere {
 }
 
 /// How a collider moves: a kinematic body, whose velocity its contacts' friction follows.
-/// Exactly one of the two.
+/// Exactly one of the two. As an object's `pin_motion`, how its pinned particles move, all by
+/// the same translation: a velocity, or keyframes of their displacement [t, dx, dy, dz] (only
+/// its change counts: the pins start where they are placed).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, Default)]
 #[serde(deny_unknown_fields)]
 pub struct Motion {
@@ -508,6 +510,9 @@ pub struct Cloth {
     /// Further pinned particles as [column, row].
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub pinned: Vec<[u32; 2]>,
+    /// How the pinned particles move together (absent: they stay put): `PinMotion`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub pin_motion: Option<Motion>,
     /// Linear RGB of the side the normals point to, 0..1 (drawing only).
     #[serde(default = "defaults::cloth_color")]
     pub color: [f64; 3],
@@ -574,6 +579,9 @@ pub struct Rope {
     /// Further pinned node indices.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub pinned: Vec<u32>,
+    /// How the pinned nodes move together (absent: they stay put), as a cloth's `pin_motion`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub pin_motion: Option<Motion>,
     /// Linear RGB, 0..1 (drawing only).
     #[serde(default = "defaults::rope_color")]
     pub color: [f64; 3],

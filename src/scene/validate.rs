@@ -271,8 +271,8 @@ pub fn check(scene: &Scene) -> Check {
     Ok(())
 }
 
-/// A collider's motion: a velocity or keyframes (not both, not neither), keyframe times
-/// finite, at least 0 and increasing.
+/// A collider's motion (or an object's pins'): a velocity or keyframes (not both, not
+/// neither), keyframe times finite, at least 0 and increasing.
 fn check_motion(at: &str, m: &Option<super::Motion>) -> Check {
     let Some(m) = m else { return Ok(()) };
     match (m.velocity, m.keyframes.is_empty()) {
@@ -386,7 +386,19 @@ fn check_cloth(at: &str, c: &Cloth) -> Check {
             return Err(format!("{at}.pinned[{k}] = [{}, {}]: outside the {cols} x {rows} grid", p[0], p[1]));
         }
     }
-    Ok(())
+    let pins = c.pin != super::ClothPins::None || !c.pinned.is_empty();
+    check_pin_motion(at, &c.pin_motion, pins)
+}
+
+/// An object's `pin_motion`: a motion as a collider's (`check_motion`), on an object with a
+/// pinned particle for it to move.
+fn check_pin_motion(at: &str, m: &Option<super::Motion>, pins: bool) -> Check {
+    if m.is_some() && !pins {
+        return Err(format!(
+            "{at}.pin_motion: no particle is pinned for it to move (set `pin` or `pinned`, or leave pin_motion out)"
+        ));
+    }
+    check_motion(&format!("{at}.pin_motion"), m)
 }
 
 fn check_rope(at: &str, r: &Rope, between: bool) -> Check {
@@ -456,5 +468,6 @@ fn check_rope(at: &str, r: &Rope, between: bool) -> Check {
             ));
         }
     }
-    Ok(())
+    let pins = r.pin != super::RopePins::None || !r.pinned.is_empty();
+    check_pin_motion(at, &r.pin_motion, pins)
 }

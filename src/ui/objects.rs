@@ -99,6 +99,7 @@ pub fn new_cloth(name: String) -> Cloth {
         self_contact: SelfContact::Triangles,
         pin: ClothPins::TopCorners,
         pinned: Vec::new(),
+        pin_motion: None,
         color: [0.2, 0.45, 0.75],
         back_color: [0.8, 0.8, 0.75],
     }
@@ -124,6 +125,7 @@ pub fn new_rope(name: String) -> Rope {
         self_collision_distance: None,
         pin: RopePins::First,
         pinned: Vec::new(),
+        pin_motion: None,
         color: [0.72, 0.58, 0.36],
     }
 }

@@ -105,7 +105,8 @@ fn a_reset_surface_shows_the_initial_state_without_simulating() {
         sim.step_frame(&ctx).unwrap();
     }
     assert!(!sim.take_surface_stale());
-    let particles: Vec<_> = model.objects.iter().map(msdsim::sim::gpu::particles).collect();
+    let particles: Vec<_> =
+        model.objects.iter().map(|o| msdsim::sim::gpu::particles(o, model.frame_dt)).collect();
     sim.upload_states(&ctx, &particles).unwrap();
     sim.reset_time();
     assert_eq!(sim.time(), 0.0);

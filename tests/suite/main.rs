@@ -20,6 +20,7 @@ mod invariants;
 mod large_steps;
 mod layout;
 mod output;
+mod pins;
 mod preset_roundtrip;
 mod presets;
 mod recording_memory;

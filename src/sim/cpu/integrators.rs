@@ -40,6 +40,9 @@ pub struct Substep<'a> {
     pub v: &'a [DVec3],
     /// When the substep starts [s] (the wind's turbulence).
     pub time: f64,
+    /// The pinned particles' velocity over this frame (`ObjectModel::pin_velocity`): they
+    /// move by it times dt and keep it as their velocity.
+    pub pins: DVec3,
 }
 
 /// One substep with the model's integrator; the position-based methods read and update each
@@ -99,13 +102,15 @@ fn spring_force(o: &ObjectModel, i: usize, x: &[DVec3], v: &[DVec3]) -> DVec3 {
 /// Symplectic Euler, or position Verlet (`verlet`): forces at the half-drifted positions
 /// x + v dt / 2, the kick, then the second half of the drift with the new velocity.
 fn explicit(s: &Substep<'_>, verlet: bool) -> State {
-    let Substep { model: m, object: o, dt, x, v, time } = *s;
+    let Substep { model: m, object: o, dt, x, v, time, pins } = *s;
     let drift = if verlet { 0.5 * dt } else { 0.0 };
     let at: Vec<DVec3> = x.iter().zip(v).map(|(x, v)| *x + *v * drift).collect();
     let mut nx = x.to_vec();
     let mut nv = vec![DVec3::ZERO; x.len()];
     for i in 0..x.len() {
         if o.pinned[i] {
+            nx[i] = x[i] + pins * dt;
+            nv[i] = pins;
             continue;
         }
         // (at the half-drifted state's time too: the wind's turbulence)
@@ -131,9 +136,9 @@ fn explicit(s: &Substep<'_>, verlet: bool) -> State {
 struct Inertial {
     /// The solve's step h.
     h: f64,
-    /// x~ (x for a pinned particle).
+    /// x~ (x + pins dt / 3 for a pinned particle).
     base: Vec<DVec3>,
-    /// y (x for a pinned particle).
+    /// y (x + pins dt for a pinned particle: where it is at the substep's end).
     y: Vec<DVec3>,
     /// Where the solve's iterate starts: y, or with `adaptive` y less the part of the external
     /// acceleration's pull h^2 F / m that the springs held last substep (`held_fraction`).
@@ -141,7 +146,7 @@ struct Inertial {
 }
 
 fn inertial(s: &Substep<'_>, history: &[History]) -> Inertial {
-    let Substep { model: m, object: o, dt, x, v, time } = *s;
+    let Substep { model: m, object: o, dt, x, v, time, pins } = *s;
     let h = BDF2_STEP * dt;
     let adaptive = adaptive_start(m);
     let anchored = adaptive && o.anchored();
@@ -149,8 +154,12 @@ fn inertial(s: &Substep<'_>, history: &[History]) -> Inertial {
     let (base, y) = (0..x.len())
         .map(|i| {
             if o.pinned[i] {
-                start.push(x[i]);
-                return (x[i], x[i]);
+                // Moving pins: a base x~ of their steady motion (x_n - x_{n-1} = pins dt), so
+                // that the solve's displacements y - x~ = pins h are their velocity over h,
+                // as its neighbours' are.
+                let y = x[i] + pins * dt;
+                start.push(y);
+                return (x[i] + pins * (dt / 3.0), y);
             }
             let force = external(m, o, i, x, v[i], time);
             let pull = force / o.mass * (h * h);
@@ -159,7 +168,7 @@ fn inertial(s: &Substep<'_>, history: &[History]) -> Inertial {
             let y = base + v[i] * (2.0 / 3.0 * dt) + past.dv * (2.0 / 9.0 * dt) + pull;
             let guess = y - pull * past.held;
             start.push(match adaptive {
-                true if anchored => toward_rest(o, i, h, x[i], guess),
+                true if anchored => toward_rest(o, i, h, x[i] + pins * dt, guess),
                 true => guess,
                 false => y,
             });
@@ -177,7 +186,9 @@ fn stiffness_ratio(o: &ObjectModel, i: usize, h: f64) -> f64 {
 
 /// Where the adaptive methods start particle i of an anchored object (a particle pinned):
 /// `guess` (the prediction less the pull its springs held), moved towards where the particle
-/// is (`x`) by the share kappa / (kappa + STIFF_START) of the way, kappa its
+/// is (`x`, carried on by its pins' move over the substep: at rest with its pins, so that a
+/// carried cloth starts as a held one does) by the share kappa / (kappa + STIFF_START) of the
+/// way, kappa its
 /// `stiffness_ratio`. Where the springs are soft against the step a few iterations converge
 /// from the guess, which keeps the motion (second order); where they are stiff the sweeps
 /// cannot carry a correction across the object, and what they leave of the guess's distance
@@ -252,7 +263,7 @@ fn finish_moved(
         .map(|i| {
             if o.pinned[i] {
                 history[i] = None;
-                return DVec3::ZERO;
+                return s.pins;
             }
             let held = if adaptive { held_fraction(s.model, start.h, p[i] - start.y[i]) } else { 0.0 };
             let solved = solved.map_or(p[i], |q| q[i]);

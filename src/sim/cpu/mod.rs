@@ -271,10 +271,12 @@ impl CpuSim {
             .iter()
             .map(|o| CpuObject {
                 x: o.positions.clone(),
+                // (a pinned particle: its pins' velocity over the first frame, as the GPU's
+                // `particles`)
                 v: o.velocities
                     .iter()
                     .zip(&o.pinned)
-                    .map(|(v, &p)| if p { DVec3::ZERO } else { *v })
+                    .map(|(v, &p)| if p { o.pin_velocity(0.0, model.frame_dt) } else { *v })
                     .collect(),
                 surface: vec![(DVec3::ZERO, DVec3::ZERO); o.surface_count()],
                 history: vec![None; o.particle_count()],
@@ -339,7 +341,7 @@ impl CpuSim {
         // Every object's physics first: the constraints of one read the others' new positions
         // (inter-object contact), as the GPU's constraint stage follows all physics.
         let advanced: Vec<(Vec<DVec3>, Vec<DVec3>)> = if m.contact_rounds() > 1 {
-            solve_with_contact_rounds(m, &mut self.objects, (self.dt, time), &motions)
+            solve_with_contact_rounds(m, &mut self.objects, (self.dt, time, frame_start), &motions)
         } else {
             m.objects
                 .iter()
@@ -352,6 +354,7 @@ impl CpuSim {
                         x: &state.x,
                         v: &state.v,
                         time,
+                        pins: o.pin_velocity(frame_start, m.frame_dt),
                     };
                     integrators::advance(&s, &mut state.history)
                 })
@@ -378,16 +381,20 @@ impl CpuSim {
 /// particle's iterate and prediction, and each particle's colliders after its solve in every
 /// iteration (`SimModel::contact_rounds`, `VbdSolve::sweep`; the last round between objects
 /// is the constraint stage's, as for the other methods). `motions`: each collider's offset
-/// and velocity at the substep's end; `time`: when the substep starts.
+/// and velocity at the substep's end; `time`: when the substep starts, `frame_start`: its
+/// frame.
 fn solve_with_contact_rounds(
     m: &SimModel,
     objects: &mut [CpuObject],
-    (dt, time): (f64, f64),
+    (dt, time, frame_start): (f64, f64, f64),
     motions: &[(DVec3, DVec3)],
 ) -> Vec<(Vec<DVec3>, Vec<DVec3>)> {
     let mut histories: Vec<Vec<History>> = objects.iter().map(|o| o.history.clone()).collect();
     let steps: Vec<integrators::Substep<'_>> = (m.objects.iter().zip(objects.iter()))
-        .map(|(o, state)| integrators::Substep { model: m, object: o, dt, x: &state.x, v: &state.v, time })
+        .map(|(o, state)| {
+            let pins = o.pin_velocity(frame_start, m.frame_dt);
+            integrators::Substep { model: m, object: o, dt, x: &state.x, v: &state.v, time, pins }
+        })
         .collect();
     let mut solves: Vec<integrators::VbdSolve> =
         steps.iter().zip(&histories).map(|(s, history)| integrators::VbdSolve::new(s, history)).collect();
@@ -436,6 +443,7 @@ fn constraints(
     let mut nx = x.to_vec();
     for i in 0..x.len() {
         if o.pinned[i] {
+            nv[i] = v[i]; // (its pins' velocity)
             continue;
         }
         let (c, r) = ((i % cols) as i64, (i / cols) as i64);
@@ -702,6 +710,7 @@ mod tests {
             positions: Vec::new(),
             velocities: Vec::new(),
             pinned: Vec::new(),
+            pin_motion: Default::default(),
         };
         let straight = face_signs(&rope_surface(&o, &rope(0.0)), nodes);
         assert!(straight.iter().all(|&s| s == straight[0]), "a straight tube's faces agree");

@@ -1,5 +1,5 @@
 //! The runtime guard's energy check. With nothing in the scene supplying energy (no wind, no
-//! moving collider, no state written by the host since), a simulation's total mechanical energy
+//! moving collider or pins, no state written by the host since), a simulation's total mechanical energy
 //! (kinetic, gravity's, the springs') can only fall: damping, drag, friction and inelastic
 //! contact take it away. A run whose energy rises above the lowest it had by more than
 //! `sim.max_energy_gain` times its scale is implausible, even while every particle stays slower
@@ -114,6 +114,7 @@ impl GpuSim {
         self.model.max_energy_gain > 0.0
             && self.model.wind.is_none()
             && !self.model.colliders.iter().any(|c| c.motion.is_moving())
+            && !self.model.objects.iter().any(|o| o.pin_motion.is_moving())
     }
 
     /// Starts the energy check from `states` (what the host wrote, or the first reading).

@@ -309,7 +309,8 @@ impl FusedShape {
             return None;
         }
         let one_iteration = solver.is_some() && model.iterations == 1;
-        let list = if hashed { SELF_LIST_ENTRIES } else { 0 };
+        // (moving pins keep the lists off, as per stage: `GpuObject::pins_move`)
+        let list = if hashed && !o.pin_motion.is_moving() { SELF_LIST_ENTRIES } else { 0 };
         Some(Self {
             threads,
             particles: n,

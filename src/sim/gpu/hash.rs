@@ -88,7 +88,7 @@ impl GpuSim {
 
     /// Whether object `o`'s substeps use its per-stage contact lists (push constant `lists`).
     pub(super) fn lists_on(&self, o: &GpuObject) -> bool {
-        o.hash.is_some() && !self.is_fused(o) && o.lists.on()
+        o.hash.is_some() && !self.is_fused(o) && o.lists.on() && !o.pins_move
     }
 
     /// The objects not fused that use the spatial hash, with their hash buffers.

@@ -351,7 +351,8 @@ impl GpuSim {
             model,
             &self.objects,
         )?;
-        let initial: Vec<Vec<Particle>> = model.objects.iter().map(particles).collect();
+        let initial: Vec<Vec<Particle>> =
+            model.objects.iter().map(|o| particles(o, model.frame_dt)).collect();
         self.upload_states(ctx, &initial)
     }
 
@@ -425,6 +426,7 @@ impl GpuSim {
         }
         self.record_collider_motion(rec, &dragged);
         self.record_wind_phases(rec);
+        self.record_pin_motion(rec);
         let stages = self.stage_timing;
         // Small objects: every substep in one dispatch each. The state ends in A, as on the
         // per-stage path; the barrier orders it (and B) for the surface stage and next frame.
@@ -683,6 +685,29 @@ impl GpuSim {
         rec.barrier(&[BufferBarrier::new(&self.colliders, Access::TransferWrite, Access::ComputeRead)]);
     }
 
+    /// Moving pins: each such object's pins' velocity over this frame into its parameters,
+    /// written in the command stream (as the colliders' records) so frames in flight keep
+    /// their own. Objects whose pins stay put record nothing.
+    fn record_pin_motion(&self, rec: &mut Recorder<'_>) {
+        let moving: Vec<(&GpuObject, &crate::sim::model::ObjectModel)> = (self.objects.iter())
+            .zip(&self.model.objects)
+            .filter(|(_, o)| o.pin_motion.is_moving())
+            .collect();
+        if moving.is_empty() {
+            return;
+        }
+        let around = |src, dst| -> Vec<BufferBarrier<'_>> {
+            moving.iter().map(|(gpu, _)| BufferBarrier::new(&gpu.params, src, dst)).collect()
+        };
+        rec.barrier(&around(Access::ComputeRead, Access::TransferWrite));
+        let offset = std::mem::offset_of!(crate::sim::gpu_types::ObjectParams, pin_velocity) as u64;
+        for (gpu, o) in &moving {
+            let record = object::pin_record(o, &self.model, self.time());
+            rec.update_buffer(&gpu.params, offset, bytemuck::cast_slice(&record));
+        }
+        rec.barrier(&around(Access::TransferWrite, Access::ComputeRead));
+    }
+
     /// The wind's turbulence: its phases at this frame's start, written in the command stream
     /// (as the colliders' records) so frames in flight keep their own; the shaders add the
     /// time since (glsl/include/air.glsl). Scenes without turbulence record nothing.
@@ -747,6 +772,8 @@ impl GpuSim {
             && model.substeps == self.model.substeps
             && model.integrator == self.model.integrator
             && model.self_collision == self.model.self_collision
+            && (model.objects.iter().zip(&self.model.objects))
+                .all(|(new, old)| new.pin_motion.is_moving() == old.pin_motion.is_moving())
             && self.objects.iter().zip(&model.objects).all(|(gpu, o)| {
                 o.particle_count() as u32 == gpu.particles
                     && ObjectPlan::of(o, model, self.limits) == gpu.plan

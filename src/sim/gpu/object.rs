@@ -188,6 +188,9 @@ pub(super) struct GpuObject {
     pub sets: [BindingSet; 2],
     /// Whether its per-stage contact lists are on.
     pub lists: super::hash::ListPolicy,
+    /// Its pins move (`ObjectModel::pin_motion`): its self-contact lists stay off, since a
+    /// list's skin is measured against the free particles' moves alone (`note_position`).
+    pub pins_move: bool,
     /// The implicit method searches along its Newton steps (`sim::cpu::implicit_searches`,
     /// the parameters' OBJ_LINE_SEARCH; kept here so that recording a frame does not ask).
     pub searches: bool,
@@ -217,7 +220,8 @@ impl GpuObject {
                 (
                     "params",
                     std::mem::size_of::<ObjectParams>() as u64,
-                    BufferUsage::STORAGE,
+                    // (moving pins' velocity is written each frame: `record_pin_motion`)
+                    BufferUsage::STORAGE | BufferUsage::TRANSFER_DST,
                     MemoryKind::Upload,
                 ),
                 ("state_a", state_bytes, state_usage, MemoryKind::GpuOnly),
@@ -293,6 +297,7 @@ impl GpuObject {
             self_pairs,
             sets: [BindingSet::default(); 2],
             lists: Default::default(),
+            pins_move: o.pin_motion.is_moving(),
             searches: crate::sim::cpu::implicit_searches(model, o),
             plan,
         };
@@ -622,7 +627,14 @@ pub(super) fn object_params(o: &ObjectModel, model: &SimModel) -> ObjectParams {
         pad1: 0.0,
         rest: crate::sim::cpu::rest_lengths(o).map(|g| g.map(|l| l as f32)),
         xpbd: std::array::from_fn(|t| xpbd_constants(o.stiffness[t], o, model).map(|c| c as f32)),
+        pin_velocity: pin_record(o, model, 0.0),
     }
+}
+
+/// The parameters' `pin_velocity` for the frame that starts at `t0`.
+pub(super) fn pin_record(o: &ObjectModel, model: &SimModel, t0: f64) -> [f32; 4] {
+    let v = o.pin_velocity(t0, model.frame_dt);
+    [v.x as f32, v.y as f32, v.z as f32, 0.0]
 }
 
 /// XPBD's per-spring-type constants for the substep's solve (`obj.xpbd` in the shaders), with
@@ -651,15 +663,17 @@ pub(super) fn collider_data(model: &SimModel, t0: f64) -> Vec<[[f32; 4]; 4]> {
     data
 }
 
-/// The initial particles of an object (positions, velocities, pinned flags).
-pub fn particles(o: &ObjectModel) -> Vec<Particle> {
+/// The initial particles of an object (positions, velocities, pinned flags) in a model of
+/// frames `frame_dt` long: a pinned particle has its pins' velocity over the first frame.
+pub fn particles(o: &ObjectModel, frame_dt: f64) -> Vec<Particle> {
+    let pins = o.pin_velocity(0.0, frame_dt).as_vec3();
     o.positions
         .iter()
         .zip(&o.velocities)
         .zip(&o.pinned)
         .map(|((x, v), &pinned)| {
             let x = x.as_vec3();
-            let v = if pinned { glam::Vec3::ZERO } else { v.as_vec3() };
+            let v = if pinned { pins } else { v.as_vec3() };
             Particle { pos: [x.x, x.y, x.z, pinned as u32 as f32], vel: [v.x, v.y, v.z, 0.0] }
         })
         .collect()

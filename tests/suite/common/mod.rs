@@ -103,6 +103,7 @@ fn plain(kind: ObjectKind, name: String, dims: [u32; 2], spacing: f64, positions
         positions,
         velocities: vec![DVec3::ZERO; n],
         pinned: vec![false; n],
+        pin_motion: Default::default(),
     }
 }
 
