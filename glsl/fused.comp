@@ -380,15 +380,15 @@ void main() {
                 if (s / PASS_SLOTS != chunk || k >= n) continue;
                 if (pinned[s]) {
                     // Moved with its pins (physics_particle, predict.comp: the iterative
-                    // methods' base of the pins' steady motion, displacement u h).
-                    vec3 u = obj.pin_velocity.xyz;
+                    // methods' base of the pins' steady motion, displacement 2 d / 3).
+                    vec3 d = pin_move(x[s], sub);
+                    v_new[s] = pin_velocity_of(d);
                     if (ITERATIVE) {
-                        x[s] += u * (g.dt / 3.0);
-                        dy[s] = u * solve_dt();
+                        x[s] += d * (1.0 / 3.0);
+                        dy[s] = d * BDF2_STEP;
                         dx[s] = dy[s];
                     } else {
-                        x[s] += u * g.dt;
-                        v_new[s] = u;
+                        x[s] += d;
                     }
                     continue;
                 }
@@ -404,7 +404,7 @@ void main() {
                     dy[s] += missed;
                     lost[s] = missed;
                     precise vec3 moved = start - x[s];  // x~ - x_n, exact
-                    dx[s] = ADAPTIVE_START ? adaptive_start(cells[s], dy[s], pull, hx[s], hv[s].w, -moved) : dy[s];
+                    dx[s] = ADAPTIVE_START ? adaptive_start(cells[s], dy[s], pull, hx[s], hv[s].w, -moved, pin_move(x[s], sub)) : dy[s];
                     hx[s].xyz = moved;
                     x[s] = start;
                     continue;
@@ -621,7 +621,7 @@ void main() {
                 if (s >= SLOTS) break;
                 if (pinned[s]) {
                     x[s] += dx[s];  // (where its pins are at the substep's end)
-                    v[s] = obj.pin_velocity.xyz;
+                    v[s] = v_new[s];
                     continue;
                 }
                 if (SOLVER == METHOD_XPBD && own[s] < n) dx[s] = sdisp(own[s]);  // moved by springs

@@ -42,11 +42,12 @@ void main() {
     precise vec3 start = x;    // x~, rounded
     precise vec3 lost = vec3(0.0);  // what rounding x~ left out (bdf2_start)
     if (p.pos.w > 0.5) {
-        // Moving pins (sim::cpu::integrators::inertial): a base of their steady motion, so
-        // that y - x~ = u h is their velocity over h, as the free particles' displacements are.
-        vec3 u = obj.pin_velocity.xyz;
-        start = x + u * (g.dt / 3.0);
-        dy = u * solve_dt();
+        // Moving pins (sim::cpu::integrators::inertial): a base of their steady motion (a
+        // move of d a substep), so that y - x~ = 2 d / 3 is their velocity over h, as the free
+        // particles' displacements are.
+        vec3 d = pin_move(x, pc.substep);
+        start = x + d * (1.0 / 3.0);
+        dy = d * BDF2_STEP;
         guess = dy;
     } else {
         vec3 base;
@@ -56,7 +57,7 @@ void main() {
         dy = predicted_displacement(cell, x, v, hx, hv.xyz, base, pull);
         bdf2_start(x, base, start, lost);
         dy += lost;
-        guess = ADAPTIVE_START ? adaptive_start(cell, dy, pull, hx, hv.w, lost - base) : dy;
+        guess = ADAPTIVE_START ? adaptive_start(cell, dy, pull, hx, hv.w, lost - base, pin_move(x, pc.substep)) : dy;
     }
     history[hist(i, H_DV)] = vec4(lost, 0.0);  // (v_n - v_{n-1} is read; finish_particle rewrites it)
     history[hist(i, H_BASE)] = vec4(start, 0.0);

@@ -104,8 +104,9 @@ struct ObjectParams {
     vec4 xpbd[3];          // XPBD per spring type, for the substep: alpha~ = 1 / (k dt^2),
                            // gamma = b / (k dt), and the correction's scale relaxation / denominator
                            // with the other end free (z) or pinned (w); zero for k = 0
-    vec4 pin_velocity;     // xyz: the pinned particles' velocity over the frame [m/s] (each
-                           // substep moves them by it times dt); w unused
+    vec4 pin_velocity;     // how the pinned particles move over this frame's substeps (pins.glsl):
+    vec4 pin_pivot;        // the translation's velocity [m/s]; the pivot at the frame's start [m]
+    vec4 pin_turn;         // (w: 1 where they turn); a substep's turn (unit quaternion, xyzw)
 };
 
 // The spatial hash of a grid cell: Teschner et al.'s (2003) mix of y and z, plus x itself, so

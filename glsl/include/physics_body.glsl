@@ -12,6 +12,7 @@
 #include "hash_count.glsl"
 #include "spring_forces.glsl"
 #include "air.glsl"
+#include "pins.glsl"
 
 // Position Verlet instead of symplectic Euler (a pipeline per choice).
 layout(constant_id = 2) const bool VERLET = false;
@@ -34,10 +35,10 @@ void physics_step(uvec2 cell, inout vec3 x, inout vec3 v) {
 void physics_particle(uvec2 cell, uint substep, bool lists) {
     uint i = cell.x + cell.y * obj.dims.x;
     Particle p = IN(i);
-    if (p.pos.w > 0.5) {  // pinned: moved with its pins (obj.pin_velocity, usually zero)
-        vec3 u = obj.pin_velocity.xyz;
-        vec3 x = p.pos.xyz + u * g.dt;
-        OUT(i) = Particle(vec4(x, 1.0), vec4(u, 0.0));
+    if (p.pos.w > 0.5) {  // pinned: moved with its pins (pins.glsl; usually not at all)
+        vec3 d = pin_move(p.pos.xyz, substep);
+        vec3 x = p.pos.xyz + d;
+        OUT(i) = Particle(vec4(x, 1.0), vec4(pin_velocity_of(d), 0.0));
         note_position(i, x, true, substep, lists);
         return;
     }

@@ -264,7 +264,7 @@ mod tests {
         use crate::scene::{BoxCollider, Capsule, Ground, Motion, Sphere};
         let mut scene = Scene { ground: Some(Ground { height: 0.0, friction: None }), ..Default::default() };
         scene.spheres.push(Sphere { center: [0.0, 0.5, 0.0], radius: 0.2, motion: None });
-        let moving = Motion { velocity: Some([1.0, 0.0, 0.0]), keyframes: Vec::new() };
+        let moving = Motion { velocity: Some([1.0, 0.0, 0.0]), ..Default::default() };
         scene.spheres.push(Sphere { center: [-3.0, 0.5, 0.0], radius: 0.1, motion: Some(moving) });
         scene.boxes.push(BoxCollider {
             center: [2.0, 0.5, 0.0],

@@ -3,6 +3,7 @@
 use super::{Cloth, ClothPins, Orientation, Rope, RopePins, Scene, SelfContact};
 use crate::sim::collider::{ColliderModel, Motion, Shape};
 use crate::sim::model::{default_ring_weights, ObjectKind, ObjectModel, ObjectShape, SimModel, WindModel};
+use crate::sim::pins::PinMotion;
 use glam::{DQuat, DVec3, EulerRot};
 
 /// The size of every object of a validated scene, cloths first, without building particles.
@@ -162,22 +163,29 @@ fn cloth(c: &Cloth) -> ObjectModel {
         rope_radius: 0.0,
         ring_weights: default_ring_weights(),
         velocities: vec![DVec3::ZERO; n],
+        pin_motion: pin_motion(&c.pin_motion, &positions, &pinned),
         positions,
         pinned,
-        pin_motion: pin_motion(&c.pin_motion),
     }
 }
 
-/// A validated `pin_motion` in the model: keyframes are already displacements.
-fn pin_motion(m: &Option<super::Motion>) -> Motion {
-    match m {
-        None => Motion::Fixed,
-        Some(m) => match m.velocity {
-            Some(v) => Motion::Velocity(DVec3::from_array(v)),
-            None => {
-                Motion::Keyframes(m.keyframes.iter().map(|k| (k[0], DVec3::new(k[1], k[2], k[3]))).collect())
-            }
-        },
+/// A validated `pin_motion` in the model: keyframes are already displacements; the turn in
+/// radians, about the pinned particles' centre where no pivot is given.
+fn pin_motion(m: &Option<super::Motion>, positions: &[DVec3], pinned: &[bool]) -> PinMotion {
+    let Some(m) = m else { return PinMotion::default() };
+    let translation = match (m.velocity, m.keyframes.is_empty()) {
+        (Some(v), _) => Motion::Velocity(DVec3::from_array(v)),
+        (None, false) => {
+            Motion::Keyframes(m.keyframes.iter().map(|k| (k[0], DVec3::new(k[1], k[2], k[3]))).collect())
+        }
+        (None, true) => Motion::Fixed,
+    };
+    let held: Vec<DVec3> = positions.iter().zip(pinned).filter(|(_, &p)| p).map(|(x, _)| *x).collect();
+    let centre = held.iter().sum::<DVec3>() / held.len().max(1) as f64;
+    PinMotion {
+        translation,
+        spin: m.angular_velocity.map_or(DVec3::ZERO, |w| DVec3::from_array(w) * std::f64::consts::PI / 180.0),
+        pivot: m.pivot.map_or(centre, DVec3::from_array),
     }
 }
 
@@ -224,8 +232,8 @@ fn rope(r: &Rope) -> ObjectModel {
         rope_radius: r.radius,
         ring_weights,
         velocities: vec![DVec3::ZERO; n],
+        pin_motion: pin_motion(&r.pin_motion, &positions, &pinned),
         positions,
         pinned,
-        pin_motion: pin_motion(&r.pin_motion),
     }
 }

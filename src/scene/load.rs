@@ -492,6 +492,18 @@ stiffness = { structural = 1.0, shear = 1.0, bending = 1.0 }
         .unwrap_err()
         .0;
         assert!(e.contains("cloth[0].pin_motion.keyframes[1]: time 0.5 s is not after"), "{e}");
+        let corners = "cloth.a.pin=\"corners\"";
+        let e = with(&[corners, "cloth.a.pin_motion={ pivot = [0, 1, 0] }"]).unwrap_err().0;
+        assert!(e.contains("cloth[0].pin_motion.pivot: there is no angular_velocity"), "{e}");
+        let e = with(&[corners, "cloth.a.pin_motion={ angular_velocity = [0, nan, 0] }"]).unwrap_err().0;
+        assert!(e.contains("cloth[0].pin_motion.angular_velocity"), "{e}");
+        assert!(
+            with(&[corners, "cloth.a.pin_motion={ angular_velocity = [0, 90, 0] }"]).is_ok(),
+            "a turn alone"
+        );
+        let text = format!("{BASE}[[sphere]]\ncenter = [0, 0, 0]\nradius = 1\nmotion = {{ angular_velocity = [0, 90, 0] }}\n");
+        let e = parse(&text, "t.toml", &[]).unwrap_err().0;
+        assert!(e.contains("sphere[0].motion: colliders do not turn yet"), "{e}");
         let s = with(&[
             "cloth.b.pinned=[[1, 1]]",
             "cloth.b.pin_motion={ keyframes = [[0, 0, 0, 0], [2, 0, 0.5, 0]] }",
@@ -512,8 +524,8 @@ stiffness = { structural = 1.0, shear = 1.0, bending = 1.0 }
             center: [0.0, 0.5, 0.0],
             radius: 0.2,
             motion: Some(crate::scene::Motion {
-                velocity: None,
                 keyframes: vec![[0.0, 0.0, 0.5, 0.0], [1.0, 0.2, 0.5, 0.0]],
+                ..Default::default()
             }),
         });
         let text = preset_text(&s).unwrap();

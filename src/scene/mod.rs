@@ -338,9 +338,10 @@ pub struct Sphere {
 }
 
 /// How a collider moves: a kinematic body, whose velocity its contacts' friction follows.
-/// Exactly one of the two. As an object's `pin_motion`, how its pinned particles move, all by
-/// the same translation: a velocity, or keyframes of their displacement [t, dx, dy, dz] (only
-/// its change counts: the pins start where they are placed).
+/// Exactly one of the two. As an object's `pin_motion`, how its pinned particles move, all
+/// together: a velocity, or keyframes of their displacement [t, dx, dy, dz] (only its change
+/// counts: the pins start where they are placed), and or a turn (`angular_velocity` about
+/// `pivot`; pins only).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, Default)]
 #[serde(deny_unknown_fields)]
 pub struct Motion {
@@ -351,6 +352,14 @@ pub struct Motion {
     /// increasing; linear in between, held before the first and after the last.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub keyframes: Vec<[f64; 4]>,
+    /// Pins only: a steady turn about `pivot`, about the vector's direction at its length
+    /// [degrees/s].
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub angular_velocity: Option<[f64; 3]>,
+    /// Pins only: what they turn about where it is at the start [m] (default: the pinned
+    /// particles' centre); the translation carries it.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub pivot: Option<[f64; 3]>,
 }
 
 /// The ground: everything below y = height is solid.

@@ -275,6 +275,11 @@ pub fn check(scene: &Scene) -> Check {
 /// neither), keyframe times finite, at least 0 and increasing.
 fn check_motion(at: &str, m: &Option<super::Motion>) -> Check {
     let Some(m) = m else { return Ok(()) };
+    if m.angular_velocity.is_some() || m.pivot.is_some() {
+        return Err(format!(
+            "{at}: colliders do not turn yet (angular_velocity and pivot are for a cloth's or rope's pin_motion)"
+        ));
+    }
     match (m.velocity, m.keyframes.is_empty()) {
         (Some(_), false) => return Err(format!("{at}: give a velocity or keyframes, not both")),
         (None, true) => return Err(format!("{at}: give a velocity or keyframes")),
@@ -393,13 +398,31 @@ fn check_cloth(at: &str, c: &Cloth) -> Check {
 /// An object's `pin_motion`: a motion as a collider's (`check_motion`), on an object with a
 /// pinned particle for it to move.
 fn check_pin_motion(at: &str, m: &Option<super::Motion>, pins: bool) -> Check {
-    if m.is_some() && !pins {
+    let Some(motion) = m else { return Ok(()) };
+    let at = format!("{at}.pin_motion");
+    if !pins {
         return Err(format!(
-            "{at}.pin_motion: no particle is pinned for it to move (set `pin` or `pinned`, or leave pin_motion out)"
+            "{at}: no particle is pinned for it to move (set `pin` or `pinned`, or leave pin_motion out)"
         ));
     }
-    check_motion(&format!("{at}.pin_motion"), m)
+    if let Some(w) = motion.angular_velocity {
+        vector(&format!("{at}.angular_velocity"), w, MAX_TURN, "degrees/s")?;
+    }
+    if let Some(p) = motion.pivot {
+        if motion.angular_velocity.is_none() {
+            return Err(format!("{at}.pivot: there is no angular_velocity to turn about it"));
+        }
+        vector(&format!("{at}.pivot"), p, MAX_COORDINATE, "m")?;
+    }
+    let translation = super::Motion { angular_velocity: None, pivot: None, ..motion.clone() };
+    if motion.angular_velocity.is_some() && translation == super::Motion::default() {
+        return Ok(()); // (a turn alone)
+    }
+    check_motion(&at, &Some(translation))
 }
+
+/// The fastest turn a pin motion takes [degrees/s]: ten turns a frame at 60 frames/s.
+const MAX_TURN: f64 = 216_000.0;
 
 fn check_rope(at: &str, r: &Rope, between: bool) -> Check {
     check_name(at, &r.name)?;

@@ -178,7 +178,7 @@ pub const GUARD_STRAIN: u32 = 8;
 gpu_struct!(
     /// Per-object parameters (std430; every array is of 16-byte elements, so the layout is
     /// also valid std140, as a uniform buffer would need).
-    ObjectParams, size 272, {
+    ObjectParams, size 304, {
     dims: [u32; 2],
     spacing: [f32; 2],
     stiffness: [f32; 4],
@@ -204,9 +204,13 @@ gpu_struct!(
     /// XPBD per spring type for the substep: alpha~, gamma, relaxation over the denominator
     /// with the other end free, and with it pinned.
     xpbd: [[f32; 4]; 3],
-    /// The pinned particles' velocity over the frame (`ObjectModel::pin_velocity`; w unused),
-    /// written each frame where pins move [m/s].
+    /// How the pinned particles move over this frame's substeps (`sim::pins`, written each
+    /// frame where they move): the translation's velocity [m/s] (w unused), the pivot at the
+    /// frame's start [m] (w: 1 where the pins turn), and a substep's turn (a unit quaternion,
+    /// xyzw).
     pin_velocity: [f32; 4],
+    pin_pivot: [f32; 4],
+    pin_turn: [f32; 4],
 });
 
 gpu_struct!(

@@ -7,5 +7,6 @@ pub mod gpu;
 pub mod gpu_types;
 pub mod integrator;
 pub mod model;
+pub mod pins;
 pub mod stability;
 pub mod turbulence;

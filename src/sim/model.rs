@@ -109,20 +109,11 @@ pub struct ObjectModel {
     pub positions: Vec<DVec3>,
     pub velocities: Vec<DVec3>,
     pub pinned: Vec<bool>,
-    /// How the pinned particles move, all by one translation (`pin_velocity`); a keyframed
-    /// motion's offsets are displacements (only their change counts).
-    pub pin_motion: crate::sim::collider::Motion,
+    /// How the pinned particles move, all together (`sim::pins`).
+    pub pin_motion: crate::sim::pins::PinMotion,
 }
 
 impl ObjectModel {
-    /// The velocity of the pinned particles over the frame that starts at `t0` and lasts
-    /// `frame_dt` (the chord of their motion, as a collider's `frame_motion`): within the frame
-    /// each substep moves them by it times the substep. The GPU's parameters and the CPU
-    /// reference both use this.
-    pub fn pin_velocity(&self, t0: f64, frame_dt: f64) -> DVec3 {
-        (self.pin_motion.offset(t0 + frame_dt) - self.pin_motion.offset(t0)) / frame_dt
-    }
-
     pub fn shape(&self) -> ObjectShape {
         ObjectShape { kind: self.kind, name: self.name.clone(), dims: self.dims }
     }

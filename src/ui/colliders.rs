@@ -123,15 +123,27 @@ pub fn panel(ui: &Ui, scene: &mut Scene, selected: Selection) -> bool {
 /// A collider's motion: a constant velocity behind a checkbox; keyframes are shown, and edited
 /// in the preset.
 fn motion(ui: &Ui, m: &mut Option<Motion>) {
+    motion_with(ui, m, ["moves", "velocity [m/s]"], [0.2, 0.0, 0.0]);
+}
+
+/// A motion (a collider's, or an object's pins'), its widgets labelled `[checkbox, velocity]`,
+/// starting at velocity `start` when ticked.
+pub(super) fn motion_with(ui: &Ui, m: &mut Option<Motion>, labels: [&str; 2], start: [f64; 3]) {
+    if let Some(w) = m.as_ref().and_then(|m| m.angular_velocity) {
+        ui.text_disabled(format!(
+            "turns at [{}, {}, {}] degrees/s (edit it in the preset)",
+            w[0], w[1], w[2]
+        ));
+    }
     if let Some(Motion { keyframes, .. }) = m.as_ref().filter(|m| !m.keyframes.is_empty()) {
         ui.text_disabled(format!("moves along {} keyframes (edit them in the preset)", keyframes.len()));
         return;
     }
     let mut moving = m.is_some();
-    if check(ui, "moves", &mut moving) {
-        *m = moving.then(|| Motion { velocity: Some([0.2, 0.0, 0.0]), keyframes: Vec::new() });
+    if check(ui, labels[0], &mut moving) {
+        *m = moving.then(|| Motion { velocity: Some(start), ..Default::default() });
     }
     if let Some(Motion { velocity: Some(v), .. }) = m {
-        drag3(ui, "velocity [m/s]", v, 0.01);
+        drag3(ui, labels[1], v, 0.01);
     }
 }

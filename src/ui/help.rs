@@ -86,6 +86,8 @@ const HELP: &[(&str, &str)] = &[
     ("end [m]##capsule", "Centre of the capsule's second end cap [m]."),
     ("moves", "Move the collider at a constant velocity (it drags what it touches through friction)."),
     ("velocity [m/s]", "The collider's velocity [m/s]."),
+    ("pins move", "Move the pinned particles together at a constant velocity: they carry the object (keyframes: `pin_motion` in the preset)."),
+    ("pin velocity [m/s]", "The pinned particles' velocity [m/s]."),
 ];
 
 /// The tooltip of the widget labelled `label`.

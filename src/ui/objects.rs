@@ -12,6 +12,16 @@ fn springs(ui: &Ui, label: &str, v: &mut PerSpring, speed: f32, min: f64, max: f
     drag(ui, &format!("bending##{label}"), &mut v.bending, speed, min, max);
 }
 
+/// How an object's pins move (`pin_motion`), while it has pins: with none it has no motion
+/// (a scene with one would be refused).
+fn pin_motion(ui: &Ui, m: &mut Option<crate::scene::Motion>, pins: bool) {
+    if !pins {
+        *m = None;
+        return;
+    }
+    super::colliders::motion_with(ui, m, ["pins move", "pin velocity [m/s]"], [0.0, 0.2, 0.0]);
+}
+
 pub fn cloth_panel(ui: &Ui, c: &mut Cloth) {
     ui.text(format!("cloth '{}'", c.name));
     int(ui, "columns", &mut c.resolution[0], 2, 4096);
@@ -32,6 +42,7 @@ pub fn cloth_panel(ui: &Ui, c: &mut Cloth) {
             ClothPins::Corners,
         ],
     );
+    pin_motion(ui, &mut c.pin_motion, c.pin != ClothPins::None || !c.pinned.is_empty());
     drag(ui, "mass [kg/particle]", &mut c.mass, 0.0005, 1e-6, 100.0);
     springs(ui, "stiffness [N/m]", &mut c.stiffness, 1.0, 0.0, 1e6);
     springs(ui, "rest length scale", &mut c.rest_scale, 0.005, 0.05, 10.0);
@@ -56,6 +67,7 @@ pub fn rope_panel(ui: &Ui, r: &mut Rope) {
     drag3(ui, "start [m]", &mut r.start, 0.01);
     drag3(ui, "end [m]", &mut r.end, 0.01);
     choice(ui, "pins", &mut r.pin, &[RopePins::None, RopePins::First, RopePins::Last, RopePins::Both]);
+    pin_motion(ui, &mut r.pin_motion, r.pin != RopePins::None || !r.pinned.is_empty());
     drag(ui, "mass [kg/node]", &mut r.mass, 0.0005, 1e-6, 100.0);
     drag(ui, "stiffness [N/m]", &mut r.stiffness, 1.0, 0.0, 1e6);
     drag(ui, "bending stiffness [N/m]", &mut r.bending_stiffness, 0.1, 0.0, 1e6);

@@ -35,6 +35,12 @@ fn an_edited_scene_survives_save_and_load() {
     extra.stretch_limit = None;
     extra.self_collision_distance = Some(0.0123);
     extra.pinned = vec![[1, 2], [3, 0]];
+    extra.pin_motion = Some(scene::Motion {
+        keyframes: vec![[0.0, 0.0, 0.0, 0.0], [0.5, 0.0, 1.0 / 3.0, 0.0]],
+        angular_velocity: Some([0.0, 45.0, 0.1]),
+        pivot: Some([0.2, 1.0 / 7.0, 0.0]),
+        ..Default::default()
+    });
     extra.color = [0.1, 0.2, 0.3];
     s.cloths.push(extra);
     s.ropes[0].ring_weights = Some(vec![[0.5, 0.25]; 8]);
@@ -42,8 +48,8 @@ fn an_edited_scene_survives_save_and_load() {
         center: [0.1, -0.2, 1.0 / 3.0],
         radius: 0.1,
         motion: Some(scene::Motion {
-            velocity: None,
             keyframes: vec![[0.0, 0.1, -0.2, 0.3], [1.5, 0.4, 0.0, 0.3]],
+            ..Default::default()
         }),
     });
     s.light.ambient = 0.3;

@@ -8,6 +8,7 @@ use crate::sim::integrator::{
     newton_steps, spring_class_parity, vertex_colour, vertex_colours, BDF2_STEP, SPRING_CLASSES, STIFF_START,
 };
 use crate::sim::model::{Integrator, ObjectModel, SimModel};
+use crate::sim::pins::PinStep;
 use glam::{DMat3, DVec3};
 
 type State = (Vec<DVec3>, Vec<DVec3>);
@@ -40,9 +41,9 @@ pub struct Substep<'a> {
     pub v: &'a [DVec3],
     /// When the substep starts [s] (the wind's turbulence).
     pub time: f64,
-    /// The pinned particles' velocity over this frame (`ObjectModel::pin_velocity`): they
-    /// move by it times dt and keep it as their velocity.
-    pub pins: DVec3,
+    /// How the pinned particles move over the substep (`sim::pins`); they keep the velocity
+    /// of that move.
+    pub pins: PinStep,
 }
 
 /// One substep with the model's integrator; the position-based methods read and update each
@@ -109,8 +110,9 @@ fn explicit(s: &Substep<'_>, verlet: bool) -> State {
     let mut nv = vec![DVec3::ZERO; x.len()];
     for i in 0..x.len() {
         if o.pinned[i] {
-            nx[i] = x[i] + pins * dt;
-            nv[i] = pins;
+            let d = pins.move_of(x[i]);
+            nx[i] = x[i] + d;
+            nv[i] = pins.velocity_of(d);
             continue;
         }
         // (at the half-drifted state's time too: the wind's turbulence)
@@ -154,12 +156,12 @@ fn inertial(s: &Substep<'_>, history: &[History]) -> Inertial {
     let (base, y) = (0..x.len())
         .map(|i| {
             if o.pinned[i] {
-                // Moving pins: a base x~ of their steady motion (x_n - x_{n-1} = pins dt), so
-                // that the solve's displacements y - x~ = pins h are their velocity over h,
-                // as its neighbours' are.
-                let y = x[i] + pins * dt;
-                start.push(y);
-                return (x[i] + pins * (dt / 3.0), y);
+                // Moving pins: a base x~ of their steady motion (x_n - x_{n-1} = d, the move
+                // over the substep), so that the solve's displacement y - x~ = 2 d / 3 is
+                // their velocity over h, as its neighbours' are.
+                let d = pins.move_of(x[i]);
+                start.push(x[i] + d);
+                return (x[i] + d / 3.0, x[i] + d);
             }
             let force = external(m, o, i, x, v[i], time);
             let pull = force / o.mass * (h * h);
@@ -168,7 +170,7 @@ fn inertial(s: &Substep<'_>, history: &[History]) -> Inertial {
             let y = base + v[i] * (2.0 / 3.0 * dt) + past.dv * (2.0 / 9.0 * dt) + pull;
             let guess = y - pull * past.held;
             start.push(match adaptive {
-                true if anchored => toward_rest(o, i, h, x[i] + pins * dt, guess),
+                true if anchored => toward_rest(o, i, h, x[i] + pins.move_of(x[i]), guess),
                 true => guess,
                 false => y,
             });
@@ -263,7 +265,7 @@ fn finish_moved(
         .map(|i| {
             if o.pinned[i] {
                 history[i] = None;
-                return s.pins;
+                return s.pins.velocity_of(s.pins.move_of(x[i]));
             }
             let held = if adaptive { held_fraction(s.model, start.h, p[i] - start.y[i]) } else { 0.0 };
             let solved = solved.map_or(p[i], |q| q[i]);

@@ -273,10 +273,10 @@ impl CpuSim {
                 x: o.positions.clone(),
                 // (a pinned particle: its pins' velocity over the first frame, as the GPU's
                 // `particles`)
-                v: o.velocities
-                    .iter()
-                    .zip(&o.pinned)
-                    .map(|(v, &p)| if p { o.pin_velocity(0.0, model.frame_dt) } else { *v })
+                v: (o.velocities.iter().zip(&o.pinned).zip(&o.positions))
+                    .map(
+                        |((v, &p), x)| if p { o.pin_motion.initial_velocity(*x, model.frame_dt) } else { *v },
+                    )
                     .collect(),
                 surface: vec![(DVec3::ZERO, DVec3::ZERO); o.surface_count()],
                 history: vec![None; o.particle_count()],
@@ -329,6 +329,7 @@ impl CpuSim {
         let since = ((self.substeps_done % substeps) + 1) as f64 * self.dt;
         // (the substep's start, as the GPU has it: the frame's start and whole substeps since)
         let time = frame_start + (self.substeps_done % substeps) as f64 * self.dt;
+        let step = (self.substeps_done % substeps) as u32;
         let motions: Vec<(DVec3, DVec3)> = m
             .colliders
             .iter()
@@ -341,7 +342,7 @@ impl CpuSim {
         // Every object's physics first: the constraints of one read the others' new positions
         // (inter-object contact), as the GPU's constraint stage follows all physics.
         let advanced: Vec<(Vec<DVec3>, Vec<DVec3>)> = if m.contact_rounds() > 1 {
-            solve_with_contact_rounds(m, &mut self.objects, (self.dt, time, frame_start), &motions)
+            solve_with_contact_rounds(m, &mut self.objects, (self.dt, time, frame_start, step), &motions)
         } else {
             m.objects
                 .iter()
@@ -354,7 +355,7 @@ impl CpuSim {
                         x: &state.x,
                         v: &state.v,
                         time,
-                        pins: o.pin_velocity(frame_start, m.frame_dt),
+                        pins: o.pin_motion.step(frame_start, m.frame_dt, step, self.dt),
                     };
                     integrators::advance(&s, &mut state.history)
                 })
@@ -382,17 +383,17 @@ impl CpuSim {
 /// iteration (`SimModel::contact_rounds`, `VbdSolve::sweep`; the last round between objects
 /// is the constraint stage's, as for the other methods). `motions`: each collider's offset
 /// and velocity at the substep's end; `time`: when the substep starts, `frame_start`: its
-/// frame.
+/// frame, `step`: which of the frame's substeps it is.
 fn solve_with_contact_rounds(
     m: &SimModel,
     objects: &mut [CpuObject],
-    (dt, time, frame_start): (f64, f64, f64),
+    (dt, time, frame_start, step): (f64, f64, f64, u32),
     motions: &[(DVec3, DVec3)],
 ) -> Vec<(Vec<DVec3>, Vec<DVec3>)> {
     let mut histories: Vec<Vec<History>> = objects.iter().map(|o| o.history.clone()).collect();
     let steps: Vec<integrators::Substep<'_>> = (m.objects.iter().zip(objects.iter()))
         .map(|(o, state)| {
-            let pins = o.pin_velocity(frame_start, m.frame_dt);
+            let pins = o.pin_motion.step(frame_start, m.frame_dt, step, dt);
             integrators::Substep { model: m, object: o, dt, x: &state.x, v: &state.v, time, pins }
         })
         .collect();

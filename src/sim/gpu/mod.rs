@@ -685,7 +685,7 @@ impl GpuSim {
         rec.barrier(&[BufferBarrier::new(&self.colliders, Access::TransferWrite, Access::ComputeRead)]);
     }
 
-    /// Moving pins: each such object's pins' velocity over this frame into its parameters,
+    /// Moving pins: how each such object's pins move over this frame into its parameters,
     /// written in the command stream (as the colliders' records) so frames in flight keep
     /// their own. Objects whose pins stay put record nothing.
     fn record_pin_motion(&self, rec: &mut Recorder<'_>) {
@@ -702,6 +702,7 @@ impl GpuSim {
         rec.barrier(&around(Access::ComputeRead, Access::TransferWrite));
         let offset = std::mem::offset_of!(crate::sim::gpu_types::ObjectParams, pin_velocity) as u64;
         for (gpu, o) in &moving {
+            // (pin_velocity, pin_pivot and pin_turn, one after the other)
             let record = object::pin_record(o, &self.model, self.time());
             rec.update_buffer(&gpu.params, offset, bytemuck::cast_slice(&record));
         }

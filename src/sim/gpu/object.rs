@@ -586,6 +586,7 @@ pub(super) fn builds_hash(o: &ObjectModel, model: &SimModel) -> bool {
 }
 
 pub(super) fn object_params(o: &ObjectModel, model: &SimModel) -> ObjectParams {
+    let pins = pin_record(o, model, 0.0);
     let mut flags = 0;
     if o.stretch_limit.is_some() {
         flags |= OBJ_STRETCH_LIMIT;
@@ -627,14 +628,25 @@ pub(super) fn object_params(o: &ObjectModel, model: &SimModel) -> ObjectParams {
         pad1: 0.0,
         rest: crate::sim::cpu::rest_lengths(o).map(|g| g.map(|l| l as f32)),
         xpbd: std::array::from_fn(|t| xpbd_constants(o.stiffness[t], o, model).map(|c| c as f32)),
-        pin_velocity: pin_record(o, model, 0.0),
+        pin_velocity: pins[0],
+        pin_pivot: pins[1],
+        pin_turn: pins[2],
     }
 }
 
-/// The parameters' `pin_velocity` for the frame that starts at `t0`.
-pub(super) fn pin_record(o: &ObjectModel, model: &SimModel, t0: f64) -> [f32; 4] {
-    let v = o.pin_velocity(t0, model.frame_dt);
-    [v.x as f32, v.y as f32, v.z as f32, 0.0]
+/// The parameters' `pin_velocity`, `pin_pivot` and `pin_turn` for the frame that starts at
+/// `t0` (`sim::pins::PinMotion::step`: the substep's pivot is the frame's moved on by the
+/// velocity, as glsl/include/pins.glsl has it).
+pub(super) fn pin_record(o: &ObjectModel, model: &SimModel, t0: f64) -> [[f32; 4]; 3] {
+    // (the substep as the shaders have it, in f32: `Globals::dt`)
+    let step = o.pin_motion.step(t0, model.frame_dt, 0, model.dt() as f32 as f64);
+    let (v, c) = (step.velocity, step.pivot);
+    let q = step.turn.unwrap_or(glam::DQuat::IDENTITY);
+    [
+        [v.x as f32, v.y as f32, v.z as f32, 0.0],
+        [c.x as f32, c.y as f32, c.z as f32, step.turn.is_some() as u32 as f32],
+        [q.x as f32, q.y as f32, q.z as f32, q.w as f32],
+    ]
 }
 
 /// XPBD's per-spring-type constants for the substep's solve (`obj.xpbd` in the shaders), with
@@ -664,16 +676,16 @@ pub(super) fn collider_data(model: &SimModel, t0: f64) -> Vec<[[f32; 4]; 4]> {
 }
 
 /// The initial particles of an object (positions, velocities, pinned flags) in a model of
-/// frames `frame_dt` long: a pinned particle has its pins' velocity over the first frame.
+/// frames `frame_dt` long: a pinned particle has its pins' velocity at the start
+/// (`PinMotion::initial_velocity`).
 pub fn particles(o: &ObjectModel, frame_dt: f64) -> Vec<Particle> {
-    let pins = o.pin_velocity(0.0, frame_dt).as_vec3();
     o.positions
         .iter()
         .zip(&o.velocities)
         .zip(&o.pinned)
         .map(|((x, v), &pinned)| {
+            let v = if pinned { o.pin_motion.initial_velocity(*x, frame_dt).as_vec3() } else { v.as_vec3() };
             let x = x.as_vec3();
-            let v = if pinned { pins } else { v.as_vec3() };
             Particle { pos: [x.x, x.y, x.z, pinned as u32 as f32], vel: [v.x, v.y, v.z, 0.0] }
         })
         .collect()
