@@ -87,10 +87,11 @@ const float BDF2_STEP = 2.0 / 3.0;
 // The step of the iterative integrators' solve, h = 2 dt / 3.
 float solve_dt() { return BDF2_STEP * g.dt; }
 
-// Flags particle i when its state is non-finite or runs away (called once per frame).
+// Flags particle i when its state is non-finite or runs away (called once per frame). A
+// pinned particle's speed is its pins' (sim::pins), given, not a runaway.
 void guard_check(uint i, Particle p) {
     bool bad = any(isnan(p.pos.xyz)) || any(isinf(p.pos.xyz)) || any(isnan(p.vel.xyz)) || any(isinf(p.vel.xyz));
-    float speed2 = dot(p.vel.xyz, p.vel.xyz);
+    float speed2 = p.pos.w > 0.5 ? 0.0 : dot(p.vel.xyz, p.vel.xyz);
     uint flag = bad ? GUARD_NON_FINITE : (speed2 > g.guard_speed * g.guard_speed ? GUARD_RUNAWAY : 0u);
     if (flag == 0u && g.contact_speed > 0.0 && speed2 > g.contact_speed * g.contact_speed) flag = GUARD_FAST;
     if (flag != 0u) {

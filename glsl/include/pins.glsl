@@ -1,5 +1,6 @@
 // Moving pins (sim::pins): how an object's pinned particles move over a substep, from its
-// parameters (obj.pin_*, written each frame where they move; zero where they stay put).
+// parameters (obj.pin_*, written each frame where they move; where they stay put the velocity
+// is zero and pin_pivot.w, the turn's flag, is 0).
 // Include after bindings.glsl.
 #ifndef MSD_PINS_GLSL
 #define MSD_PINS_GLSL

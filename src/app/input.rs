@@ -1,7 +1,8 @@
 //! Mouse and keyboard: camera controls and grabbing particles.
 //!
 //! Left-drag on a particle grabs it (it follows the cursor at its depth, pinned, until the
-//! button is released or Esc lets go of it); a click on a sphere, box or capsule in front of
+//! button is released or Esc lets go of it; on an object whose pins move, its pins carry it
+//! within each frame too, from where the cursor put it); a click on a sphere, box or capsule in front of
 //! any particle selects it (`handles::pick_collider`); left-drag elsewhere or right-drag orbits; middle-drag or Shift+drag pans;
 //! the wheel zooms; W/A/S/D/Q/E fly; F fits the scene; Home resets the camera; Space pauses;
 //! N steps one frame; Ctrl+R resets the simulation; Ctrl+Z undoes an edit, Ctrl+Shift+Z or

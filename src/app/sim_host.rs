@@ -74,17 +74,18 @@ fn layout_key(s: &Scene) -> String {
         .iter()
         .map(|c| {
             format!(
-                "{:?}{:?}{:?}{:?}{:?}{:?}",
-                c.resolution, c.size, c.origin, c.orientation, c.pin, c.pinned
+                "{:?}{:?}{:?}{:?}{:?}{:?}{:?}",
+                c.resolution, c.size, c.origin, c.orientation, c.pin, c.pinned, c.pin_motion
             )
         })
         .collect();
     let ropes: Vec<_> = s
         .ropes
         .iter()
-        .map(|r| format!("{}{:?}{:?}{:?}{:?}", r.nodes, r.start, r.end, r.pin, r.pinned))
+        .map(|r| format!("{}{:?}{:?}{:?}{:?}{:?}", r.nodes, r.start, r.end, r.pin, r.pinned, r.pin_motion))
         .collect();
-    // A collider's motion is a function of the time since the start: changing it restarts.
+    // A collider's motion (and pins') is a function of the time since the start: changing it
+    // restarts (a pin motion's pivot is where the pins have been carried since).
     let kinds: Vec<_> = crate::scene::colliders(s).into_iter().map(|c| (c.shape.kind(), c.motion)).collect();
     format!("{cloths:?}{ropes:?}{kinds:?}")
 }
@@ -287,6 +288,9 @@ impl SimHost {
                     cloth.name, cloth.pin
                 ));
             }
+            if cloth.pin == crate::scene::ClothPins::None && cloth.pinned.is_empty() {
+                cloth.pin_motion = None; // (nothing left for it to move: a preset with it is refused)
+            }
         } else {
             let rope = &mut self.scene.ropes[object - n_cloths];
             if !set_listed(&mut rope.pinned, index, pin) {
@@ -294,6 +298,9 @@ impl SimHost {
                     "rope '{}' node {index} is pinned by pin = {:?}: change the rope's pin to free it",
                     rope.name, rope.pin
                 ));
+            }
+            if rope.pin == crate::scene::RopePins::None && rope.pinned.is_empty() {
+                rope.pin_motion = None;
             }
         }
         let anchored = o.anchored();
@@ -327,14 +334,16 @@ impl SimHost {
         Ok(())
     }
 
-    /// Where every pinned particle is held (its marker in the view).
+    /// Where every pinned particle is held (its marker in the view): where it was placed,
+    /// carried by its pins' motion to now (`PinMotion::carried`).
     pub fn pin_markers(&self) -> Vec<glam::Vec3> {
         let mut out = Vec::new();
+        let now = self.sim.time();
         for (k, o) in self.model.objects.iter().enumerate() {
             for (i, _) in o.pinned.iter().enumerate().filter(|(_, &p)| p) {
                 out.push(match self.pinned_at.get(&(k, i as u32)) {
                     Some(&at) => glam::Vec3::from(at),
-                    None => o.positions[i].as_vec3(),
+                    None => o.pin_motion.carried(o.positions[i], now).as_vec3(),
                 });
             }
         }

@@ -115,7 +115,7 @@ fn motion(shape: &Shape, m: &Option<super::Motion>) -> Motion {
     Motion::Keyframes(m.keyframes.iter().map(|k| (k[0], DVec3::new(k[1], k[2], k[3]) - at)).collect())
 }
 
-fn cloth(c: &Cloth) -> ObjectModel {
+pub(super) fn cloth(c: &Cloth) -> ObjectModel {
     let [cols, rows] = c.resolution;
     let spacing = c.spacing();
     let down = match c.orientation {
@@ -189,7 +189,7 @@ fn pin_motion(m: &Option<super::Motion>, positions: &[DVec3], pinned: &[bool]) -
     }
 }
 
-fn rope(r: &Rope) -> ObjectModel {
+pub(super) fn rope(r: &Rope) -> ObjectModel {
     let n = r.nodes as usize;
     let (start, end) = (DVec3::from_array(r.start), DVec3::from_array(r.end));
     let segment = start.distance(end) / (n - 1) as f64;

@@ -501,6 +501,16 @@ stiffness = { structural = 1.0, shear = 1.0, bending = 1.0 }
             with(&[corners, "cloth.a.pin_motion={ angular_velocity = [0, 90, 0] }"]).is_ok(),
             "a turn alone"
         );
+        // (the guard's 100 m/s: 150 m/s along, or 20 turns a second 1.4 m from the pivot)
+        let e = with(&[corners, "cloth.a.pin_motion={ velocity = [150, 0, 0] }"]).unwrap_err().0;
+        assert!(
+            e.contains("cloth[0].pin_motion: its pins would move at up to 150 m/s, past sim.max_speed"),
+            "{e}"
+        );
+        let e = with(&[corners, "cloth.a.pin_motion={ angular_velocity = [0, 7200, 0], pivot = [1, 0, 1] }"])
+            .unwrap_err()
+            .0;
+        assert!(e.contains("past sim.max_speed"), "{e}");
         let text = format!("{BASE}[[sphere]]\ncenter = [0, 0, 0]\nradius = 1\nmotion = {{ angular_velocity = [0, 90, 0] }}\n");
         let e = parse(&text, "t.toml", &[]).unwrap_err().0;
         assert!(e.contains("sphere[0].motion: colliders do not turn yet"), "{e}");

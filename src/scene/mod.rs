@@ -338,10 +338,10 @@ pub struct Sphere {
 }
 
 /// How a collider moves: a kinematic body, whose velocity its contacts' friction follows.
-/// Exactly one of the two. As an object's `pin_motion`, how its pinned particles move, all
-/// together: a velocity, or keyframes of their displacement [t, dx, dy, dz] (only its change
-/// counts: the pins start where they are placed), and or a turn (`angular_velocity` about
-/// `pivot`; pins only).
+/// Exactly one of `velocity` and `keyframes`. As an object's `pin_motion`, how its pinned
+/// particles move, all together: a velocity, or keyframes of their displacement [t, dx, dy,
+/// dz] (only its change counts: the pins start where they are placed), a turn
+/// (`angular_velocity` about `pivot`; pins only), or a turn with either.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, Default)]
 #[serde(deny_unknown_fields)]
 pub struct Motion {

@@ -268,6 +268,25 @@ pub fn check(scene: &Scene) -> Check {
             return Err(format!("rope[{i}].name = \"{}\": another object has this name", r.name));
         }
     }
+    let moving = (scene.cloths.iter().enumerate())
+        .filter(|(_, c)| c.pin_motion.is_some())
+        .map(|(i, c)| (format!("cloth[{i}]"), super::build::cloth(c)))
+        .chain(
+            (scene.ropes.iter().enumerate())
+                .filter(|(_, r)| r.pin_motion.is_some())
+                .map(|(i, r)| (format!("rope[{i}]"), super::build::rope(r))),
+        );
+    for (at, o) in moving {
+        let pins: Vec<_> = o.positions.iter().zip(&o.pinned).filter(|(_, &p)| p).map(|(x, _)| *x).collect();
+        let fastest = o.pin_motion.top_speed(&pins);
+        if fastest > scene.sim.max_speed {
+            return Err(format!(
+                "{at}.pin_motion: its pins would move at up to {} m/s, past sim.max_speed = {} m/s (the runtime guard would stop the run at once): raise sim.max_speed or slow the pins",
+                num(fastest),
+                num(scene.sim.max_speed)
+            ));
+        }
+    }
     Ok(())
 }
 

@@ -138,9 +138,9 @@ fn explicit(s: &Substep<'_>, verlet: bool) -> State {
 struct Inertial {
     /// The solve's step h.
     h: f64,
-    /// x~ (x + pins dt / 3 for a pinned particle).
+    /// x~ (x + d / 3 for a pinned particle that its pins move by d over the substep).
     base: Vec<DVec3>,
-    /// y (x + pins dt for a pinned particle: where it is at the substep's end).
+    /// y (x + d for a pinned particle: where it is at the substep's end).
     y: Vec<DVec3>,
     /// Where the solve's iterate starts: y, or with `adaptive` y less the part of the external
     /// acceleration's pull h^2 F / m that the springs held last substep (`held_fraction`).

@@ -271,8 +271,7 @@ impl CpuSim {
             .iter()
             .map(|o| CpuObject {
                 x: o.positions.clone(),
-                // (a pinned particle: its pins' velocity over the first frame, as the GPU's
-                // `particles`)
+                // (a pinned particle: its pins' velocity at the start, as the GPU's `particles`)
                 v: (o.velocities.iter().zip(&o.pinned).zip(&o.positions))
                     .map(
                         |((v, &p), x)| if p { o.pin_motion.initial_velocity(*x, model.frame_dt) } else { *v },

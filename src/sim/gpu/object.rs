@@ -220,7 +220,7 @@ impl GpuObject {
                 (
                     "params",
                     std::mem::size_of::<ObjectParams>() as u64,
-                    // (moving pins' velocity is written each frame: `record_pin_motion`)
+                    // (how moving pins move is written each frame: `record_pin_motion`)
                     BufferUsage::STORAGE | BufferUsage::TRANSFER_DST,
                     MemoryKind::Upload,
                 ),
