@@ -198,31 +198,7 @@ fn a_rod_thinner_than_the_spacing_holds_a_cloth() {
             })
             .fold(f64::MAX, f64::min)
     };
-    let frames = 60;
-    let mut runs: Vec<(&str, Vec<Vec<DVec3>>)> = Vec::new();
-    let mut cpu = msdsim::sim::cpu::CpuSim::new(&s);
-    runs.push((
-        "cpu",
-        (0..frames)
-            .map(|_| {
-                cpu.step_frame();
-                cpu.objects()[0].x.clone()
-            })
-            .collect(),
-    ));
-    for fused in [true, false] {
-        let mut gpu = GpuSim::new(&ctx, &s).unwrap();
-        gpu.set_fused(&ctx, fused).unwrap();
-        let frames_x = (0..frames)
-            .map(|_| {
-                gpu.step_frame(&ctx).unwrap();
-                gpu.read_states(&ctx).unwrap()[0].positions()
-            })
-            .collect();
-        gpu.destroy(&ctx);
-        runs.push((if fused { "fused" } else { "per stage" }, frames_x));
-    }
-    for (path, frames_x) in runs {
+    for (path, frames_x) in every_path_each_frame(&ctx, &s, 60) {
         let lowest = frames_x.iter().map(|x| crossing(x)).fold(f64::MAX, f64::min);
         let end = frames_x.last().unwrap();
         let centre = end.iter().map(|p| p.y).sum::<f64>() / end.len() as f64 - rod_y;

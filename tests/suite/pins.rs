@@ -5,7 +5,6 @@ use crate::common::*;
 use glam::DVec3;
 use msdsim::sim::collider::Motion;
 use msdsim::sim::cpu::CpuSim;
-use msdsim::sim::gpu::GpuSim;
 use msdsim::sim::model::{Integrator, SimModel};
 
 /// A 6 x 6 cloth, 5 cm apart, lying flat and held at the two corners of one edge, swinging
@@ -34,36 +33,6 @@ fn methods() -> Vec<(Integrator, u32)> {
     Integrator::ALL.into_iter().map(|m| (m, if m.iterative() { 4 } else { 16 })).collect()
 }
 
-/// Positions after each of `frames` frames: (label, per frame the object's positions) on the
-/// CPU reference, the fused kernel and the per-stage path.
-fn every_path_each_frame(m: &SimModel, frames: usize) -> Vec<(&'static str, Vec<Vec<DVec3>>)> {
-    let ctx = gpu();
-    let mut cpu = CpuSim::new(m);
-    let mut out = vec![(
-        "cpu",
-        (0..frames)
-            .map(|_| {
-                cpu.step_frame();
-                cpu.objects()[0].x.clone()
-            })
-            .collect(),
-    )];
-    for (label, fused) in [("gpu fused", true), ("gpu per stage", false)] {
-        let mut gpu = GpuSim::new(&ctx, m).expect("creating the GPU simulation");
-        gpu.set_fused(&ctx, fused).unwrap();
-        let runs = (0..frames)
-            .map(|_| {
-                gpu.step_frame(&ctx).expect("GPU frame");
-                gpu.read_states(&ctx).expect("readback")[0].positions()
-            })
-            .collect();
-        gpu.destroy(&ctx);
-        out.push((label, runs));
-    }
-    assert_clean(&ctx);
-    out
-}
-
 /// Pins moved by keyframes follow them exactly: at every frame's end each pinned particle is
 /// where it started plus the change of the keyed displacement, with every method, on the CPU
 /// reference (to 1e-7 m: it takes the substep rounded to f32, as the GPU does, 3e-8 of the
@@ -75,6 +44,7 @@ fn every_path_each_frame(m: &SimModel, frames: usize) -> Vec<(&'static str, Vec<
 /// place at each frame's end is the keys' own.
 #[test]
 fn moving_pins_follow_their_keys_exactly() {
+    let ctx = gpu();
     let keys = vec![
         (0.0, DVec3::ZERO),
         (0.26, DVec3::new(0.0, 0.3, 0.0)),
@@ -95,7 +65,7 @@ fn moving_pins_follow_their_keys_exactly() {
             (0..FRAMES).for_each(|_| cpu.step_frame());
             cpu.objects()[0].x.iter().map(|p| p.y).sum::<f64>() / start.len() as f64
         };
-        for (label, frames) in every_path_each_frame(&m, FRAMES) {
+        for (label, frames) in every_path_each_frame(&ctx, &m, FRAMES) {
             let mut worst = 0.0f64;
             for (f, x) in frames.iter().enumerate() {
                 let t = (f + 1) as f64 * m.frame_dt;
@@ -115,6 +85,7 @@ fn moving_pins_follow_their_keys_exactly() {
             );
         }
     }
+    assert_clean(&ctx);
 }
 
 /// Galilean invariance: a cloth carried at a steady velocity u hangs and swings as the same
@@ -127,6 +98,7 @@ fn moving_pins_follow_their_keys_exactly() {
 /// 3.5e-5 for the iterative methods at 4).
 #[test]
 fn a_cloth_carried_at_a_steady_velocity_swings_as_a_held_one() {
+    let ctx = gpu();
     let u = DVec3::new(0.4, 0.25, -0.1);
     const FRAMES: usize = 60;
     for (method, substeps) in methods() {
@@ -138,8 +110,8 @@ fn a_cloth_carried_at_a_steady_velocity_swings_as_a_held_one() {
         carried.objects[0].velocities.iter_mut().for_each(|v| *v = u);
         // (the time the substeps add up to: both take the substep rounded to f32)
         let t = (FRAMES * substeps as usize) as f64 * (held.dt() as f32) as f64;
-        let still = every_path_each_frame(&held, FRAMES);
-        let moving = every_path_each_frame(&carried, FRAMES);
+        let still = every_path_each_frame(&ctx, &held, FRAMES);
+        let moving = every_path_each_frame(&ctx, &carried, FRAMES);
         for ((label, a), (_, b)) in still.iter().zip(&moving) {
             let (a, b) = (a.last().unwrap(), b.last().unwrap());
             let worst = a.iter().zip(b).map(|(a, b)| (*b - u * t).distance(*a)).fold(0.0, f64::max);
@@ -156,6 +128,7 @@ fn a_cloth_carried_at_a_steady_velocity_swings_as_a_held_one() {
             assert!(swing > 0.01, "{method:?}, {label}: the held cloth did not swing ({swing:.3} m)");
         }
     }
+    assert_clean(&ctx);
 }
 
 /// Turning pins follow their turn exactly: the hanging cloth's two pins turned at 90 degrees/s
@@ -168,6 +141,7 @@ fn a_cloth_carried_at_a_steady_velocity_swings_as_a_held_one() {
 /// 5e-5 to 1.5e-4 with the iterative ones, which damp the turn's start a little).
 #[test]
 fn turning_pins_follow_their_turn_exactly() {
+    let ctx = gpu();
     use msdsim::sim::pins::PinMotion;
     const FRAMES: usize = 36;
     for (method, substeps) in methods() {
@@ -186,7 +160,7 @@ fn turning_pins_follow_their_turn_exactly() {
         let turned =
             |x: DVec3, t: f64| pivot + lift * t + glam::DQuat::from_scaled_axis(spin * t) * (x - pivot);
         let dt = (m.dt() as f32) as f64;
-        for (label, frames) in every_path_each_frame(&m, FRAMES) {
+        for (label, frames) in every_path_each_frame(&ctx, &m, FRAMES) {
             let mut worst = 0.0f64;
             for (f, x) in frames.iter().enumerate() {
                 let t = ((f + 1) * substeps as usize) as f64 * dt;
@@ -206,4 +180,5 @@ fn turning_pins_follow_their_turn_exactly() {
             );
         }
     }
+    assert_clean(&ctx);
 }

@@ -322,6 +322,38 @@ pub fn every_path(
     out
 }
 
+/// The first object's positions after each of `frames` frames: (label, per frame) on the CPU
+/// reference ("cpu"), the fused kernel ("gpu fused") and the per-stage path ("gpu per stage").
+pub fn every_path_each_frame(
+    ctx: &GpuContext,
+    m: &SimModel,
+    frames: usize,
+) -> Vec<(&'static str, Vec<Vec<DVec3>>)> {
+    let mut cpu = CpuSim::new(m);
+    let mut out = vec![(
+        "cpu",
+        (0..frames)
+            .map(|_| {
+                cpu.step_frame();
+                cpu.objects()[0].x.clone()
+            })
+            .collect(),
+    )];
+    for (label, fused) in [("gpu fused", true), ("gpu per stage", false)] {
+        let mut gpu = GpuSim::new(ctx, m).expect("creating the GPU simulation");
+        gpu.set_fused(ctx, fused).unwrap();
+        let runs = (0..frames)
+            .map(|_| {
+                gpu.step_frame(ctx).expect("GPU frame");
+                gpu.read_states(ctx).expect("readback")[0].positions()
+            })
+            .collect();
+        gpu.destroy(ctx);
+        out.push((label, runs));
+    }
+    out
+}
+
 /// Runs the GPU simulation alone for `frames` frames, calling `each` with the state after each.
 pub fn run_gpu(
     ctx: &GpuContext,
