@@ -511,6 +511,12 @@ stiffness = { structural = 1.0, shear = 1.0, bending = 1.0 }
             .unwrap_err()
             .0;
         assert!(e.contains("past sim.max_speed"), "{e}");
+        // (4 substeps of 1/60 s: 50,000 degrees/s is 208 degrees a substep)
+        let e =
+            with(&[corners, "cloth.a.pin_motion={ angular_velocity = [0, 50000, 0], pivot = [0, 0, 0] }"])
+                .unwrap_err()
+                .0;
+        assert!(e.contains("degrees a substep, half a turn or more"), "{e}");
         let text = format!("{BASE}[[sphere]]\ncenter = [0, 0, 0]\nradius = 1\nmotion = {{ angular_velocity = [0, 90, 0] }}\n");
         let e = parse(&text, "t.toml", &[]).unwrap_err().0;
         assert!(e.contains("sphere[0].motion: colliders do not turn yet"), "{e}");

@@ -276,7 +276,16 @@ pub fn check(scene: &Scene) -> Check {
                 .filter(|(_, r)| r.pin_motion.is_some())
                 .map(|(i, r)| (format!("rope[{i}]"), super::build::rope(r))),
         );
+    let substep = scene.sim.frame_dt / scene.sim.substeps as f64;
     for (at, o) in moving {
+        // A substep's turn is a rotation: past half a turn it would turn the other way.
+        let turn = o.pin_motion.spin.length() * substep;
+        if turn >= 0.5 * std::f64::consts::TAU {
+            return Err(format!(
+                "{at}.pin_motion.angular_velocity: {} degrees a substep, half a turn or more (a substep's turn would go the other way): more substeps or a slower turn",
+                num(turn.to_degrees())
+            ));
+        }
         let pins: Vec<_> = o.positions.iter().zip(&o.pinned).filter(|(_, &p)| p).map(|(x, _)| *x).collect();
         let fastest = o.pin_motion.top_speed(&pins);
         if fastest > scene.sim.max_speed {
