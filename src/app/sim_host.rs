@@ -288,7 +288,7 @@ impl SimHost {
                     cloth.name, cloth.pin
                 ));
             }
-            if cloth.pin == crate::scene::ClothPins::None && cloth.pinned.is_empty() {
+            if !cloth.has_pins() {
                 cloth.pin_motion = None; // (nothing left for it to move: a preset with it is refused)
             }
         } else {
@@ -299,7 +299,7 @@ impl SimHost {
                     rope.name, rope.pin
                 ));
             }
-            if rope.pin == crate::scene::RopePins::None && rope.pinned.is_empty() {
+            if !rope.has_pins() {
                 rope.pin_motion = None;
             }
         }

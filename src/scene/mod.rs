@@ -531,6 +531,11 @@ pub struct Cloth {
 }
 
 impl Cloth {
+    /// Whether a particle is pinned (by `pin` or `pinned`): what a `pin_motion` needs.
+    pub fn has_pins(&self) -> bool {
+        self.pin != ClothPins::None || !self.pinned.is_empty()
+    }
+
     /// Rest distance between grid neighbours along columns and rows [m].
     pub fn spacing(&self) -> [f64; 2] {
         [self.size[0] / (self.resolution[0] - 1) as f64, self.size[1] / (self.resolution[1] - 1) as f64]
@@ -597,6 +602,11 @@ pub struct Rope {
 }
 
 impl Rope {
+    /// Whether a node is pinned (by `pin` or `pinned`): what a `pin_motion` needs.
+    pub fn has_pins(&self) -> bool {
+        self.pin != RopePins::None || !self.pinned.is_empty()
+    }
+
     /// Its springs' stiffness as a model's [structural, shear, bending]: a rope has no shear.
     pub fn stiffness_array(&self) -> [f64; 3] {
         [self.stiffness, 0.0, self.bending_stiffness]

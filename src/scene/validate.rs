@@ -419,8 +419,7 @@ fn check_cloth(at: &str, c: &Cloth) -> Check {
             return Err(format!("{at}.pinned[{k}] = [{}, {}]: outside the {cols} x {rows} grid", p[0], p[1]));
         }
     }
-    let pins = c.pin != super::ClothPins::None || !c.pinned.is_empty();
-    check_pin_motion(at, &c.pin_motion, pins)
+    check_pin_motion(at, &c.pin_motion, c.has_pins())
 }
 
 /// An object's `pin_motion`: a motion as a collider's (`check_motion`), on an object with a
@@ -519,6 +518,5 @@ fn check_rope(at: &str, r: &Rope, between: bool) -> Check {
             ));
         }
     }
-    let pins = r.pin != super::RopePins::None || !r.pinned.is_empty();
-    check_pin_motion(at, &r.pin_motion, pins)
+    check_pin_motion(at, &r.pin_motion, r.has_pins())
 }

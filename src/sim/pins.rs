@@ -95,9 +95,6 @@ impl PinMotion {
 }
 
 impl PinStep {
-    /// Pins that stay put.
-    pub const HELD: PinStep = PinStep { velocity: DVec3::ZERO, pivot: DVec3::ZERO, turn: None, dt: 1.0 };
-
     /// The move over the substep of a particle at `x` where it starts, carried by the pins.
     pub fn move_of(&self, x: DVec3) -> DVec3 {
         let along = self.velocity * self.dt;

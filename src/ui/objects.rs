@@ -42,7 +42,8 @@ pub fn cloth_panel(ui: &Ui, c: &mut Cloth) {
             ClothPins::Corners,
         ],
     );
-    pin_motion(ui, &mut c.pin_motion, c.pin != ClothPins::None || !c.pinned.is_empty());
+    let pins = c.has_pins();
+    pin_motion(ui, &mut c.pin_motion, pins);
     drag(ui, "mass [kg/particle]", &mut c.mass, 0.0005, 1e-6, 100.0);
     springs(ui, "stiffness [N/m]", &mut c.stiffness, 1.0, 0.0, 1e6);
     springs(ui, "rest length scale", &mut c.rest_scale, 0.005, 0.05, 10.0);
@@ -67,7 +68,8 @@ pub fn rope_panel(ui: &Ui, r: &mut Rope) {
     drag3(ui, "start [m]", &mut r.start, 0.01);
     drag3(ui, "end [m]", &mut r.end, 0.01);
     choice(ui, "pins", &mut r.pin, &[RopePins::None, RopePins::First, RopePins::Last, RopePins::Both]);
-    pin_motion(ui, &mut r.pin_motion, r.pin != RopePins::None || !r.pinned.is_empty());
+    let pins = r.has_pins();
+    pin_motion(ui, &mut r.pin_motion, pins);
     drag(ui, "mass [kg/node]", &mut r.mass, 0.0005, 1e-6, 100.0);
     drag(ui, "stiffness [N/m]", &mut r.stiffness, 1.0, 0.0, 1e6);
     drag(ui, "bending stiffness [N/m]", &mut r.bending_stiffness, 0.1, 0.0, 1e6);

@@ -811,8 +811,9 @@ impl GpuSim {
             Vec::new()
         };
         for (gpu, o) in self.objects.iter_mut().zip(&model.objects) {
-            gpu.params.write(0, &[object_params(o, model)])?;
-            gpu.searches = crate::sim::cpu::implicit_searches(model, o);
+            let params = object_params(o, model);
+            gpu.params.write(0, &[params])?;
+            gpu.searches = object::searches(&params);
         }
         self.history_stale |= model.dt() != self.model.dt();
         let now = self.time();

@@ -191,8 +191,8 @@ pub(super) struct GpuObject {
     /// Its pins move (`ObjectModel::pin_motion`): its self-contact lists stay off, since a
     /// list's skin is measured against the free particles' moves alone (`note_position`).
     pub pins_move: bool,
-    /// The implicit method searches along its Newton steps (`sim::cpu::implicit_searches`,
-    /// the parameters' OBJ_LINE_SEARCH; kept here so that recording a frame does not ask).
+    /// The implicit method searches along its Newton steps (the parameters' OBJ_LINE_SEARCH,
+    /// `searches`; kept here so that recording a frame does not ask).
     pub searches: bool,
     /// The features its step pipelines compile in and its fused layout.
     pub plan: ObjectPlan,
@@ -213,6 +213,7 @@ impl GpuObject {
         let state_bytes = n * std::mem::size_of::<Particle>() as u64;
         let state_usage = BufferUsage::STORAGE | BufferUsage::TRANSFER_SRC | BufferUsage::TRANSFER_DST;
         let surface_bytes = o.surface_count() as u64 * std::mem::size_of::<SurfaceVertex>() as u64;
+        let parameters = object_params(o, model);
         let [mut params, a, b, surface, mut guard, placeholder] = buffers(
             ctx,
             &o.name,
@@ -243,7 +244,7 @@ impl GpuObject {
         let mut self_pairs = None;
         let made = (|| -> Result<(), VkError> {
             guard.write(0, &GUARD_CLEAR)?;
-            params.write(0, &[object_params(o, model)])?;
+            params.write(0, &[parameters])?;
             if builds_hash(o, model) {
                 hash = Some(Box::new(HashBuffers::new(ctx, &o.name, n)?));
             }
@@ -298,7 +299,7 @@ impl GpuObject {
             sets: [BindingSet::default(); 2],
             lists: Default::default(),
             pins_move: o.pin_motion.is_moving(),
-            searches: crate::sim::cpu::implicit_searches(model, o),
+            searches: searches(&parameters),
             plan,
         };
         let mut set = |direction| arena.allocate(ctx, layout, &object.bindings(shared, direction));
@@ -632,6 +633,12 @@ pub(super) fn object_params(o: &ObjectModel, model: &SimModel) -> ObjectParams {
         pin_pivot: pins[1],
         pin_turn: pins[2],
     }
+}
+
+/// Whether the per-stage recording gives an object with `params` the line search's passes:
+/// its OBJ_LINE_SEARCH, which the fused kernel reads, so the two paths cannot disagree.
+pub(super) fn searches(params: &ObjectParams) -> bool {
+    params.flags & OBJ_LINE_SEARCH != 0
 }
 
 /// The parameters' `pin_velocity`, `pin_pivot` and `pin_turn` for the frame that starts at
