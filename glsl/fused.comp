@@ -558,7 +558,8 @@ void main() {
                     // The spring classes (springs.glsl) in turn: the thread owning a spring's
                     // first node moves both ends (no other spring of the class touches them).
                     float w = 1.0 / obj_buffer.mass;
-                    [[unroll]] for (uint q = 0u; q < SPRING_CLASS_COUNT; ++q) {
+                    [[unroll]] for (uint pass = 0u; pass < SPRING_CLASS_COUNT; ++pass) {
+                        uint q = xpbd_class(pass);
                         uint dir = q >> 1u;
                         int slot = class_slot(dir);
                         if (obj_buffer.stiffness[slot >> 2] != 0.0) {

@@ -4,8 +4,9 @@
 #extension GL_KHR_shader_subgroup_basic : require
 #extension GL_KHR_shader_subgroup_vote : require
 // One spring class of one XPBD Gauss-Seidel iteration (xpbd_spring in solver_bodies.glsl; the
-// classes in springs.glsl), one invocation per particle: the spring of the class whose first
-// node it is, if any, moves both ends (no other spring of the class touches them). In place in
+// classes and their order, xpbd_class, in springs.glsl), one invocation per particle: the
+// spring of the class whose first node it is, if any, moves both ends (no other spring of the
+// class touches them). In place in
 // iter (one slice of displacements p - x~ from the BDF2 base x~, see predict.comp;
 // w = 1 pinned); aux[3i + dir / 4][dir % 4] holds the multiplier of particle i's forward spring
 // of direction dir. Pass SPRING_CLASS_COUNT, after the last iteration, finishes every particle.
@@ -31,9 +32,10 @@ void main() {
         finish_particle(i, di.xyz, di.w > 0.5, 0.0);
         return;
     }
-    uint dir = it.colour >> 1u;
+    uint q = xpbd_class(it.colour);
+    uint dir = q >> 1u;
     int slot = class_slot(dir);
-    if (class_parity(dir, ivec2(cell)) != (it.colour & 1u) || obj.stiffness[slot >> 2] == 0.0) return;
+    if (class_parity(dir, ivec2(cell)) != (q & 1u) || obj.stiffness[slot >> 2] == 0.0) return;
     int j = neighbour(ivec2(cell), class_offset(dir), obj.dims);
     if (j < 0) return;
     vec4 di = iter[i];

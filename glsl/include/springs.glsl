@@ -58,6 +58,9 @@ void guard_strain(uvec2 cell) {
 // for bending). No two springs of a class share a particle. A pass per class, then a pass
 // (q = SPRING_CLASS_COUNT) that finishes every particle.
 const uint SPRING_CLASS_COUNT = 12u;
+// The class XPBD sweeps in its pass-th pass of an iteration: from the last class to the first,
+// so the structural springs come last (sim::integrator::xpbd_class_order says why).
+uint xpbd_class(uint pass) { return SPRING_CLASS_COUNT - 1u - pass; }
 ivec2 class_offset(uint dir) {
     return dir == 0u ? ivec2(1, 0) : dir == 1u ? ivec2(0, 1) : dir == 2u ? ivec2(1, 1)
          : dir == 3u ? ivec2(-1, 1) : dir == 4u ? ivec2(2, 0) : ivec2(0, 2);

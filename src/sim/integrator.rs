@@ -328,6 +328,17 @@ pub fn vertex_colour(c: u32, r: u32, colours: u32) -> u32 {
 pub const SPRING_CLASSES: [((i64, i64), usize); 6] =
     [((1, 0), 0), ((0, 1), 2), ((1, 1), 4), ((-1, 1), 7), ((2, 0), 8), ((0, 2), 10)];
 
+/// The order XPBD sweeps its classes in, as (direction, parity): `SPRING_CLASSES` backwards,
+/// the bending directions first and the structural last, parity 1 before 0 (class q = 2 dir +
+/// parity from 11 down to 0; `xpbd_class` in glsl/include/springs.glsl). The structural springs
+/// last: a weak spring with a heavy dashpot (its damping gamma = b / (k h) far past 1) swept
+/// after them undid their work every iteration, and a stiff cloth held at its corners rang at
+/// up to 1.3 m/s after 4 s at one substep; swept before them, every run of the large-step
+/// matrix comes to rest (docs/log.md, 2026-12-05).
+pub fn xpbd_class_order() -> impl Iterator<Item = (usize, u32)> {
+    (0..2 * SPRING_CLASSES.len()).rev().map(|q| (q / 2, (q % 2) as u32))
+}
+
 /// The parity (0 or 1) of the spring of direction `dir` whose first node is (c, r): its
 /// coordinate along the direction's line (the column for (1, 0), (1, 1), (2, 0); the row
 /// otherwise), halved for the bending directions, modulo 2. Two springs of one direction that

@@ -5,7 +5,8 @@
 
 use super::{air_force, rest_length, rest_lengths, springs, wind_at, Spring, SPRING_GROUPS};
 use crate::sim::integrator::{
-    newton_steps, spring_class_parity, vertex_colour, vertex_colours, BDF2_STEP, SPRING_CLASSES, STIFF_START,
+    newton_steps, spring_class_parity, vertex_colour, vertex_colours, xpbd_class_order, BDF2_STEP,
+    SPRING_CLASSES, STIFF_START,
 };
 use crate::sim::model::{Integrator, ObjectModel, SimModel};
 use crate::sim::pins::PinStep;
@@ -292,8 +293,8 @@ fn colour_order(o: &ObjectModel) -> Vec<usize> {
 /// its step h = 2 dt / 3 and dp the displacement from its base x~). Each spring of stiffness
 /// k > 0 is a distance constraint C = |p_i - p_j| - L with compliance 1/k (alpha~ = 1 / (k
 /// dt^2)), damping gamma = b / (k dt) and one multiplier lambda. An iteration visits the classes in turn
-/// (`sim::integrator::SPRING_CLASSES`: within a class no two springs share a particle, so the
-/// order inside it does not matter); each spring takes the XPBD update
+/// (`sim::integrator::xpbd_class_order`, the structural last: within a class no two springs
+/// share a particle, so the order inside it does not matter); each spring takes the XPBD update
 /// dlambda = relaxation (-C - alpha~ lambda - gamma n.(dp_i - dp_j)) / ((1 + gamma)(w_i + w_j) + alpha~),
 /// p_i += w_i n dlambda, p_j -= w_j n dlambda, lambda += dlambda (w = 0 for a pinned end). At
 /// convergence the result is BDF2; with one iteration and a small substep (alpha~ >> w) a
@@ -317,41 +318,39 @@ pub(crate) fn xpbd(s: &Substep<'_>, history: &mut [History]) -> State {
     let rest = super::rest_lengths(o);
     let (cols, rows) = (o.dims[0] as i64, o.dims[1] as i64);
     for _ in 0..m.iterations {
-        for (dir, ((dc, dr), slot)) in SPRING_CLASSES.into_iter().enumerate() {
+        for (dir, parity) in xpbd_class_order() {
+            let ((dc, dr), slot) = SPRING_CLASSES[dir];
             let k = o.stiffness[slot / 4];
             if k == 0.0 {
                 continue;
             }
             let (alpha, gamma) = (1.0 / (k * dt * dt), o.damping / (k * dt));
-            for parity in 0..2 {
-                for r in 0..rows {
-                    for c in 0..cols {
-                        let (nc, nr) = (c + dc, r + dr);
-                        if nc < 0
-                            || nr < 0
-                            || nc >= cols
-                            || nr >= rows
-                            || spring_class_parity(dir, c, r) != parity
-                        {
-                            continue;
-                        }
-                        let (i, j) = ((c + r * cols) as usize, (nc + nr * cols) as usize);
-                        let (w_i, w_j) =
-                            (if o.pinned[i] { 0.0 } else { w }, if o.pinned[j] { 0.0 } else { w });
-                        let delta = p[i] - p[j];
-                        let d = delta.length();
-                        if w_i + w_j == 0.0 || d <= 0.0 {
-                            continue;
-                        }
-                        let normal = delta / d;
-                        let moved = normal.dot((p[i] - x[i]) - (p[j] - x[j]));
-                        let cons = d - rest[slot / 4][slot % 4];
-                        let dl = m.relaxation * (-cons - alpha * lambda[i][dir] - gamma * moved)
-                            / ((1.0 + gamma) * (w_i + w_j) + alpha);
-                        p[i] += normal * (w_i * dl);
-                        p[j] -= normal * (w_j * dl);
-                        lambda[i][dir] += dl;
+            for r in 0..rows {
+                for c in 0..cols {
+                    let (nc, nr) = (c + dc, r + dr);
+                    if nc < 0
+                        || nr < 0
+                        || nc >= cols
+                        || nr >= rows
+                        || spring_class_parity(dir, c, r) != parity
+                    {
+                        continue;
                     }
+                    let (i, j) = ((c + r * cols) as usize, (nc + nr * cols) as usize);
+                    let (w_i, w_j) = (if o.pinned[i] { 0.0 } else { w }, if o.pinned[j] { 0.0 } else { w });
+                    let delta = p[i] - p[j];
+                    let d = delta.length();
+                    if w_i + w_j == 0.0 || d <= 0.0 {
+                        continue;
+                    }
+                    let normal = delta / d;
+                    let moved = normal.dot((p[i] - x[i]) - (p[j] - x[j]));
+                    let cons = d - rest[slot / 4][slot % 4];
+                    let dl = m.relaxation * (-cons - alpha * lambda[i][dir] - gamma * moved)
+                        / ((1.0 + gamma) * (w_i + w_j) + alpha);
+                    p[i] += normal * (w_i * dl);
+                    p[j] -= normal * (w_j * dl);
+                    lambda[i][dir] += dl;
                 }
             }
         }
