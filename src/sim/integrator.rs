@@ -27,8 +27,8 @@ pub enum Integrator {
     /// Extended position-based dynamics (Macklin et al. 2016, 2019): one distance constraint per
     /// spring with compliance 1/k and the spring's damping, Gauss-Seidel over spring classes,
     /// on BDF2 (`BDF2_STEP`). One iteration with small substeps is a consistent second-order
-    /// method; many iterations converge to BDF2. Stable at any stiffness with light dashpots
-    /// (at a damping ratio of 2 it rings: docs/ACCURACY.md, "Large steps").
+    /// method; many iterations converge to BDF2. A held object settles at any stiffness and
+    /// dashpot, soft at few iterations (docs/ACCURACY.md, "Large steps").
     Xpbd,
     /// BDF2 (`BDF2_STEP`) by Newton's method with preconditioned conjugate gradients (Baraff
     /// and Witkin 1998): `iterations` CG iterations a substep, linearised again every
@@ -42,8 +42,8 @@ pub enum Integrator {
     /// before, each particle's move bounded so that no sweep overshoots (plain Jacobi where
     /// the springs are soft against the substep, their mean where they are stiff). One pass an
     /// iteration (the spring classes take twelve); consistent like XPBD as the substep
-    /// shrinks, softer at few iterations and large substeps. Stable at any stiffness with
-    /// light dashpots, as XPBD.
+    /// shrinks, softer at few iterations and large substeps. Settles at any stiffness, as
+    /// XPBD (slowly at one iteration with heavy dashpots).
     XpbdJacobi,
 }
 

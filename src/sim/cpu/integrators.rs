@@ -427,7 +427,8 @@ pub(crate) fn xpbd_jacobi(s: &Substep<'_>, history: &mut [History]) -> State {
 /// on G as a function of its own position, with the 3x3 Hessian
 /// m / dt^2 I + sum k (n n^T + max(0, 1 - L / d) (I - n n^T)) + (b / dt) n n^T
 /// (the spring's transverse term clamped at compression keeps it positive definite).
-/// Stable at any stiffness; at convergence BDF2 with implicit dashpots.
+/// A held object settles at any stiffness (a free stiff one at few iterations can gain energy:
+/// docs/guide/limits.md); at convergence BDF2 with implicit dashpots.
 pub(crate) fn vbd(s: &Substep<'_>, history: &mut [History]) -> State {
     let mut solve = VbdSolve::new(s, history);
     for _ in 0..s.model.iterations {
