@@ -112,7 +112,16 @@ fn motion(shape: &Shape, m: &Option<super::Motion>) -> Motion {
         return Motion::Fixed;
     }
     let at = shape.reference_point();
-    Motion::Keyframes(m.keyframes.iter().map(|k| (k[0], DVec3::new(k[1], k[2], k[3]) - at)).collect())
+    keyed(m, at)
+}
+
+/// The keyframes of `m` (validated, not empty) as offsets from `at`, joined as `m` asks.
+fn keyed(m: &super::Motion, at: DVec3) -> Motion {
+    let keys = m.keyframes.iter().map(|k| (k[0], DVec3::new(k[1], k[2], k[3]) - at)).collect();
+    match m.interpolation {
+        super::Interpolation::Linear => Motion::Keyframes(keys),
+        super::Interpolation::Smooth => Motion::Smooth(keys),
+    }
 }
 
 pub(super) fn cloth(c: &Cloth) -> ObjectModel {
@@ -175,9 +184,7 @@ fn pin_motion(m: &Option<super::Motion>, positions: &[DVec3], pinned: &[bool]) -
     let Some(m) = m else { return PinMotion::default() };
     let translation = match (m.velocity, m.keyframes.is_empty()) {
         (Some(v), _) => Motion::Velocity(DVec3::from_array(v)),
-        (None, false) => {
-            Motion::Keyframes(m.keyframes.iter().map(|k| (k[0], DVec3::new(k[1], k[2], k[3]))).collect())
-        }
+        (None, false) => keyed(m, DVec3::ZERO),
         (None, true) => Motion::Fixed,
     };
     let held: Vec<DVec3> = positions.iter().zip(pinned).filter(|(_, &p)| p).map(|(x, _)| *x).collect();

@@ -517,20 +517,36 @@ stiffness = { structural = 1.0, shear = 1.0, bending = 1.0 }
                 .unwrap_err()
                 .0;
         assert!(e.contains("degrees a substep, half a turn or more"), "{e}");
+        let e = with(&[corners, "cloth.a.pin_motion={ velocity = [0, 1, 0], interpolation = \"smooth\" }"])
+            .unwrap_err()
+            .0;
+        assert!(e.contains("cloth[0].pin_motion: interpolation joins keyframes"), "{e}");
+        let e =
+            with(&[corners, "cloth.a.pin_motion={ keyframes = [[0, 0, 0, 0]], interpolation = \"cubic\" }"])
+                .unwrap_err()
+                .0;
+        assert!(e.contains("unknown variant `cubic`, expected `linear` or `smooth`"), "{e}");
         let text = format!("{BASE}[[sphere]]\ncenter = [0, 0, 0]\nradius = 1\nmotion = {{ angular_velocity = [0, 90, 0] }}\n");
         let e = parse(&text, "t.toml", &[]).unwrap_err().0;
         assert!(e.contains("sphere[0].motion: colliders do not turn yet"), "{e}");
         let s = with(&[
             "cloth.b.pinned=[[1, 1]]",
-            "cloth.b.pin_motion={ keyframes = [[0, 0, 0, 0], [2, 0, 0.5, 0]] }",
+            "cloth.b.pin_motion={ keyframes = [[0, 0, 0, 0], [2, 0, 0.5, 0]], interpolation = \"smooth\" }",
         ])
         .unwrap();
         let dir = tempfile::tempdir().unwrap();
         let path = dir.path().join("pins.toml");
         save(&s, &path).unwrap();
+        assert!(std::fs::read_to_string(&path).unwrap().contains("interpolation = \"smooth\""));
         let back = crate::scene::load(&path, &[]).unwrap();
         assert_eq!(back.cloths[1].pin_motion, s.cloths[1].pin_motion);
         assert!(back.cloths[1].pin_motion.is_some());
+        let model = crate::scene::build::to_model(&back);
+        assert!(
+            matches!(model.objects[1].pin_motion.translation, crate::sim::collider::Motion::Smooth(_)),
+            "{:?}",
+            model.objects[1].pin_motion.translation
+        );
     }
 
     #[test]

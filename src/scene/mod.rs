@@ -349,9 +349,12 @@ pub struct Motion {
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub velocity: Option<[f64; 3]>,
     /// Where its centre (a capsule's midpoint) is over time: rows of [t (s), x, y, z (m)], t
-    /// increasing; linear in between, held before the first and after the last.
+    /// increasing; joined by `interpolation`, held before the first and after the last.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub keyframes: Vec<[f64; 4]>,
+    /// How the keyframes are joined: `Interpolation`.
+    #[serde(default, skip_serializing_if = "Interpolation::is_linear")]
+    pub interpolation: Interpolation,
     /// Pins only: a steady turn about `pivot`, about the vector's direction at its length
     /// [degrees/s].
     #[serde(default, skip_serializing_if = "Option::is_none")]
@@ -360,6 +363,23 @@ pub struct Motion {
     /// particles' centre); the translation carries it.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub pivot: Option<[f64; 3]>,
+}
+
+/// How a motion's keyframes are joined: "linear" (the default: straight at a constant speed
+/// from key to key) or "smooth" (a monotone cubic: its velocity continuous, at rest at the first
+/// and last key and where it turns back, never past a key; `sim::collider::smooth_offset`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default)]
+#[serde(rename_all = "snake_case")]
+pub enum Interpolation {
+    #[default]
+    Linear,
+    Smooth,
+}
+
+impl Interpolation {
+    fn is_linear(&self) -> bool {
+        *self == Interpolation::Linear
+    }
 }
 
 /// The ground: everything below y = height is solid.

@@ -308,6 +308,9 @@ fn check_motion(at: &str, m: &Option<super::Motion>) -> Check {
             "{at}: colliders do not turn yet (angular_velocity and pivot are for a cloth's or rope's pin_motion)"
         ));
     }
+    if m.interpolation != super::Interpolation::Linear && m.keyframes.is_empty() {
+        return Err(format!("{at}: interpolation joins keyframes; give keyframes or leave it out"));
+    }
     match (m.velocity, m.keyframes.is_empty()) {
         (Some(_), false) => return Err(format!("{at}: give a velocity or keyframes, not both")),
         (None, true) => return Err(format!("{at}: give a velocity or keyframes")),

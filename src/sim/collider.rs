@@ -91,6 +91,80 @@ pub enum Motion {
     /// Offsets from the shape's placement at times t (increasing): linear in between, held
     /// before the first and after the last.
     Keyframes(Vec<(f64, DVec3)>),
+    /// The same keys, smooth in between (`smooth_offset`).
+    Smooth(Vec<(f64, DVec3)>),
+}
+
+/// The offset at time `t` along `keys` (times increasing) by a monotone cubic (Fritsch and
+/// Carlson 1980), component by component: through every key, its velocity continuous, at rest
+/// at the first and last key and wherever a component turns back at a key, and never beyond
+/// the keys on either side within a segment (no overshoot, as Blender's auto-clamped handles).
+/// Held before the first key and after the last.
+pub fn smooth_offset(keys: &[(f64, DVec3)], t: f64) -> DVec3 {
+    let Some(&(t0, first)) = keys.first() else { return DVec3::ZERO };
+    if t <= t0 {
+        return first;
+    }
+    let Some(k) = keys.windows(2).position(|w| t <= w[1].0) else {
+        return keys.last().map(|k| k.1).unwrap_or_default();
+    };
+    let ((ta, a), (tb, b)) = (keys[k], keys[k + 1]);
+    let span = tb - ta;
+    let (ma, mb) = (key_slope(keys, k), key_slope(keys, k + 1));
+    let u = (t - ta) / span;
+    let (u2, u3) = (u * u, u * u * u);
+    a * (2.0 * u3 - 3.0 * u2 + 1.0)
+        + ma * (span * (u3 - 2.0 * u2 + u))
+        + b * (-2.0 * u3 + 3.0 * u2)
+        + mb * (span * (u3 - u2))
+}
+
+/// The velocity at key `k` of `smooth_offset`: per component the mean of the two segments'
+/// slopes, zero at the ends and where they differ in sign (a turn or a hold), and at most three
+/// times the smaller of them (Fritsch and Carlson's bound, which keeps each segment monotone).
+fn key_slope(keys: &[(f64, DVec3)], k: usize) -> DVec3 {
+    if k == 0 || k + 1 >= keys.len() {
+        return DVec3::ZERO;
+    }
+    let slope = |i: usize| (keys[i + 1].1 - keys[i].1) / (keys[i + 1].0 - keys[i].0);
+    let (before, after) = (slope(k - 1), slope(k));
+    let one = |l: f64, r: f64| {
+        if l * r <= 0.0 {
+            return 0.0;
+        }
+        let mean = 0.5 * (l + r);
+        mean.signum() * mean.abs().min(3.0 * l.abs().min(r.abs()))
+    };
+    DVec3::new(one(before.x, after.x), one(before.y, after.y), one(before.z, after.z))
+}
+
+/// The fastest `smooth_offset` moves along `keys` [m/s]: an upper bound, each component's
+/// fastest on each segment (its velocity is a quadratic in time: at a key or at the vertex).
+pub fn smooth_top_speed(keys: &[(f64, DVec3)]) -> f64 {
+    let mut top = 0.0f64;
+    for k in 0..keys.len().saturating_sub(1) {
+        let span = keys[k + 1].0 - keys[k].0;
+        let (a, b) = (keys[k].1, keys[k + 1].1);
+        let (ma, mb) = (key_slope(keys, k), key_slope(keys, k + 1));
+        let mut peak = DVec3::ZERO;
+        for c in 0..3 {
+            // d/du of the Hermite form, over the span: q(u) = c0 + c1 u + c2 u^2.
+            let c0 = ma[c] * span;
+            let c1 = 6.0 * (b[c] - a[c]) - 4.0 * ma[c] * span - 2.0 * mb[c] * span;
+            let c2 = -6.0 * (b[c] - a[c]) + 3.0 * (ma[c] + mb[c]) * span;
+            let q = |u: f64| (c0 + c1 * u + c2 * u * u).abs();
+            let mut m = q(0.0).max(q(1.0));
+            if c2 != 0.0 {
+                let v = -c1 / (2.0 * c2);
+                if (0.0..=1.0).contains(&v) {
+                    m = m.max(q(v));
+                }
+            }
+            peak[c] = m / span;
+        }
+        top = top.max(peak.length());
+    }
+    top
 }
 
 impl Motion {
@@ -112,6 +186,7 @@ impl Motion {
                 }
                 keys.last().map(|k| k.1).unwrap_or_default()
             }
+            Motion::Smooth(keys) => smooth_offset(keys, t),
         }
     }
 
@@ -259,6 +334,7 @@ impl ColliderModel {
             Motion::Fixed => Motion::Fixed,
             Motion::Velocity(v) => Motion::Velocity(rv(*v)),
             Motion::Keyframes(k) => Motion::Keyframes(k.iter().map(|&(t, p)| (t, rv(p))).collect()),
+            Motion::Smooth(k) => Motion::Smooth(k.iter().map(|&(t, p)| (t, rv(p))).collect()),
         };
         Self { shape, friction: self.friction.map(r), motion }
     }
@@ -567,5 +643,45 @@ mod tests {
         let c = ColliderModel { motion: m, ..ColliderModel::sphere(DVec3::ZERO, 0.1) };
         let (start, v) = c.frame_motion(1.0, 0.25);
         assert!((start.x - 0.5).abs() < 1e-12 && (v.x - 1.0).abs() < 1e-12);
+    }
+
+    /// Smooth keys: through every key, held outside them, at rest at the ends and where a
+    /// component turns back, the velocity continuous at an interior key (within 1e-6 of
+    /// itself from both sides: a finite difference's error), no component beyond the keys on
+    /// either side of its segment, and no faster than `smooth_top_speed` says (sampled).
+    #[test]
+    fn smooth_keyframes() {
+        let keys = vec![
+            (0.0, DVec3::ZERO),
+            (1.0, DVec3::new(1.0, 2.0, 0.0)),
+            (1.5, DVec3::new(3.0, 2.5, -1.0)),
+            (3.0, DVec3::new(3.5, 0.0, 0.0)),
+        ];
+        let m = Motion::Smooth(keys.clone());
+        for &(t, p) in &keys {
+            assert!((m.offset(t) - p).length() < 1e-12, "{t}: {}", m.offset(t));
+        }
+        assert_eq!(m.offset(-1.0), DVec3::ZERO);
+        assert_eq!(m.offset(5.0), keys[3].1);
+        let velocity = |t: f64| (m.offset(t + 1e-7) - m.offset(t - 1e-7)) / 2e-7;
+        assert!(velocity(1e-6).length() < 1e-4 && velocity(3.0 - 1e-6).length() < 1e-4);
+        for &(t, _) in &keys[1..3] {
+            let (left, right) =
+                ((m.offset(t) - m.offset(t - 1e-7)) / 1e-7, (m.offset(t + 1e-7) - m.offset(t)) / 1e-7);
+            assert!((left - right).length() < 1e-5 * (1.0 + left.length()), "{t}: {left} against {right}");
+        }
+        // y turns back at t = 1.5: at rest there.
+        assert!(velocity(1.5).y.abs() < 1e-5, "{}", velocity(1.5));
+        let top = smooth_top_speed(&keys);
+        let mut fastest = 0.0f64;
+        for i in 1..3000 {
+            let t = i as f64 * 1e-3;
+            let k = keys.windows(2).position(|w| t <= w[1].0).unwrap();
+            let (lo, hi) = (keys[k].1.min(keys[k + 1].1), keys[k].1.max(keys[k + 1].1));
+            let p = m.offset(t);
+            assert!(p.cmpge(lo - 1e-12).all() && p.cmple(hi + 1e-12).all(), "{t}: {p} beyond {lo}..{hi}");
+            fastest = fastest.max(velocity(t).length());
+        }
+        assert!(fastest <= top * (1.0 + 1e-6) && fastest > 0.9 * top, "sampled {fastest}, bound {top}");
     }
 }

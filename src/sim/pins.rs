@@ -82,6 +82,7 @@ impl PinMotion {
             Motion::Keyframes(keys) => {
                 keys.windows(2).map(|w| (w[1].1 - w[0].1).length() / (w[1].0 - w[0].0)).fold(0.0, f64::max)
             }
+            Motion::Smooth(keys) => crate::sim::collider::smooth_top_speed(keys),
         };
         let reach = at.iter().map(|x| x.distance(self.pivot)).fold(0.0, f64::max);
         along + self.spin.length() * reach
