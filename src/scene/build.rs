@@ -189,9 +189,23 @@ fn pin_motion(m: &Option<super::Motion>, positions: &[DVec3], pinned: &[bool]) -
     };
     let held: Vec<DVec3> = positions.iter().zip(pinned).filter(|(_, &p)| p).map(|(x, _)| *x).collect();
     let centre = held.iter().sum::<DVec3>() / held.len().max(1) as f64;
+    let rotation = if m.rotation_keyframes.is_empty() {
+        Motion::Fixed
+    } else {
+        let angles = super::Motion {
+            keyframes: m
+                .rotation_keyframes
+                .iter()
+                .map(|k| [k[0], k[1].to_radians(), k[2].to_radians(), k[3].to_radians()])
+                .collect(),
+            ..m.clone()
+        };
+        keyed(&angles, DVec3::ZERO)
+    };
     PinMotion {
         translation,
         spin: m.angular_velocity.map_or(DVec3::ZERO, |w| DVec3::from_array(w) * std::f64::consts::PI / 180.0),
+        rotation,
         pivot: m.pivot.map_or(centre, DVec3::from_array),
     }
 }

@@ -526,12 +526,43 @@ stiffness = { structural = 1.0, shear = 1.0, bending = 1.0 }
                 .unwrap_err()
                 .0;
         assert!(e.contains("unknown variant `cubic`, expected `linear` or `smooth`"), "{e}");
+        let e = with(&[
+            corners,
+            "cloth.a.pin_motion={ angular_velocity = [0, 90, 0], rotation_keyframes = [[0, 0, 0, 0]] }",
+        ])
+        .unwrap_err()
+        .0;
+        assert!(
+            e.contains("cloth[0].pin_motion: give angular_velocity or rotation_keyframes, not both"),
+            "{e}"
+        );
+        let e = with(&[corners, "cloth.a.pin_motion={ rotation_keyframes = [[0, 0, 0, 0], [0, 0, 90, 0]] }"])
+            .unwrap_err()
+            .0;
+        assert!(e.contains("cloth[0].pin_motion.rotation_keyframes[1]: time 0 s is not after"), "{e}");
+        assert!(
+            with(&[
+                corners,
+                "cloth.a.pin_motion={ rotation_keyframes = [[0, 0, 0, 0], [1, 0, 90, 0]], pivot = [0, 1, 0], interpolation = \"smooth\" }"
+            ])
+            .is_ok(),
+            "a keyed turn alone, smooth, about a pivot"
+        );
+        // (a frame of 1/60 s: 180 degrees in 0.1 s is 30 degrees a frame; 10 times that is past half a turn)
+        let e =
+            with(&[corners, "cloth.a.pin_motion={ rotation_keyframes = [[0, 0, 0, 0], [0.01, 0, 180, 0]] }"])
+                .unwrap_err()
+                .0;
+        assert!(e.contains("rotation_keyframes: up to 300 degrees a frame, half a turn or more"), "{e}");
+        let text = format!("{BASE}[[sphere]]\ncenter = [0, 0, 0]\nradius = 1\nmotion = {{ rotation_keyframes = [[0, 0, 0, 0]] }}\n");
+        let e = parse(&text, "t.toml", &[]).unwrap_err().0;
+        assert!(e.contains("sphere[0].motion: colliders do not turn yet"), "{e}");
         let text = format!("{BASE}[[sphere]]\ncenter = [0, 0, 0]\nradius = 1\nmotion = {{ angular_velocity = [0, 90, 0] }}\n");
         let e = parse(&text, "t.toml", &[]).unwrap_err().0;
         assert!(e.contains("sphere[0].motion: colliders do not turn yet"), "{e}");
         let s = with(&[
             "cloth.b.pinned=[[1, 1]]",
-            "cloth.b.pin_motion={ keyframes = [[0, 0, 0, 0], [2, 0, 0.5, 0]], interpolation = \"smooth\" }",
+            "cloth.b.pin_motion={ keyframes = [[0, 0, 0, 0], [2, 0, 0.5, 0]], interpolation = \"smooth\", rotation_keyframes = [[0, 0, 0, 0], [2, 0, 45, 0]] }",
         ])
         .unwrap();
         let dir = tempfile::tempdir().unwrap();

@@ -340,8 +340,9 @@ pub struct Sphere {
 /// How a collider moves: a kinematic body, whose velocity its contacts' friction follows.
 /// Exactly one of `velocity` and `keyframes`. As an object's `pin_motion`, how its pinned
 /// particles move, all together: a velocity, or keyframes of their displacement [t, dx, dy,
-/// dz] (only its change counts: the pins start where they are placed), a turn
-/// (`angular_velocity` about `pivot`; pins only), or a turn with either.
+/// dz] (only its change counts: the pins start where they are placed), a turn about `pivot`
+/// (pins only: steady, `angular_velocity`, or keyed, `rotation_keyframes`), or a turn with
+/// either.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, Default)]
 #[serde(deny_unknown_fields)]
 pub struct Motion {
@@ -359,6 +360,12 @@ pub struct Motion {
     /// [degrees/s].
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub angular_velocity: Option<[f64; 3]>,
+    /// Pins only: their turn over time about `pivot`, rows of [t (s), rx, ry, rz (degrees)]:
+    /// the turn from the start about x, then y, then z (as a box's `rotation`), t increasing;
+    /// each angle joined by `interpolation`, held before the first row and after the last.
+    /// Not with `angular_velocity`.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub rotation_keyframes: Vec<[f64; 4]>,
     /// Pins only: what they turn about where it is at the start [m] (default: the pinned
     /// particles' centre); the translation carries it.
     #[serde(default, skip_serializing_if = "Option::is_none")]

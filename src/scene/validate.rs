@@ -278,12 +278,19 @@ pub fn check(scene: &Scene) -> Check {
         );
     let substep = scene.sim.frame_dt / scene.sim.substeps as f64;
     for (at, o) in moving {
-        // A substep's turn is a rotation: past half a turn it would turn the other way.
-        let turn = o.pin_motion.spin.length() * substep;
+        // A substep's turn is a rotation: past half a turn it would turn the other way; a keyed
+        // turn is taken a frame at a time (`PinMotion::frame_spin`), so half a turn a frame.
+        let (keyed, step) = match o.pin_motion.rotation.is_moving() {
+            true => ("rotation_keyframes", scene.sim.frame_dt),
+            false => ("angular_velocity", substep),
+        };
+        let turn = o.pin_motion.top_spin() * step;
         if turn >= 0.5 * std::f64::consts::TAU {
+            let per = if o.pin_motion.rotation.is_moving() { "frame" } else { "substep" };
             return Err(format!(
-                "{at}.pin_motion.angular_velocity: {} degrees a substep, half a turn or more (a substep's turn would go the other way): more substeps or a slower turn",
-                num(turn.to_degrees())
+                "{at}.pin_motion.{keyed}: up to {} degrees a {per}, half a turn or more (the {per}'s turn would go the other way): a slower turn{}",
+                num(turn.to_degrees()),
+                if per == "substep" { " or more substeps" } else { "" }
             ));
         }
         let pins: Vec<_> = o.positions.iter().zip(&o.pinned).filter(|(_, &p)| p).map(|(x, _)| *x).collect();
@@ -303,9 +310,9 @@ pub fn check(scene: &Scene) -> Check {
 /// neither), keyframe times finite, at least 0 and increasing.
 fn check_motion(at: &str, m: &Option<super::Motion>) -> Check {
     let Some(m) = m else { return Ok(()) };
-    if m.angular_velocity.is_some() || m.pivot.is_some() {
+    if m.angular_velocity.is_some() || m.pivot.is_some() || !m.rotation_keyframes.is_empty() {
         return Err(format!(
-            "{at}: colliders do not turn yet (angular_velocity and pivot are for a cloth's or rope's pin_motion)"
+            "{at}: colliders do not turn yet (angular_velocity, rotation_keyframes and pivot are for a cloth's or rope's pin_motion)"
         ));
     }
     if m.interpolation != super::Interpolation::Linear && m.keyframes.is_empty() {
@@ -316,24 +323,7 @@ fn check_motion(at: &str, m: &Option<super::Motion>) -> Check {
         (None, true) => return Err(format!("{at}: give a velocity or keyframes")),
         (Some(v), true) => vector(&format!("{at}.velocity"), v, MAX_SPEED, "m/s")?,
         (None, false) => {
-            let mut last = -1.0;
-            for (k, key) in m.keyframes.iter().enumerate() {
-                let t = key[0];
-                non_negative(&format!("{at}.keyframes[{k}] time"), t, 1e9, "s")?;
-                if t <= last {
-                    return Err(format!(
-                        "{at}.keyframes[{k}]: time {} s is not after the one before ({last} s)",
-                        num(t)
-                    ));
-                }
-                last = t;
-                vector(
-                    &format!("{at}.keyframes[{k}] position"),
-                    [key[1], key[2], key[3]],
-                    MAX_COORDINATE,
-                    "m",
-                )?;
-            }
+            check_times(&format!("{at}.keyframes"), &m.keyframes, ("position", MAX_COORDINATE, "m"))?
         }
     }
     Ok(())
@@ -437,19 +427,61 @@ fn check_pin_motion(at: &str, m: &Option<super::Motion>, pins: bool) -> Check {
     }
     if let Some(w) = motion.angular_velocity {
         vector(&format!("{at}.angular_velocity"), w, MAX_TURN, "degrees/s")?;
+        if !motion.rotation_keyframes.is_empty() {
+            return Err(format!("{at}: give angular_velocity or rotation_keyframes, not both"));
+        }
     }
+    check_times(
+        &format!("{at}.rotation_keyframes"),
+        &motion.rotation_keyframes,
+        ("angles", MAX_ANGLE, "degrees"),
+    )?;
+    let turns = motion.angular_velocity.is_some() || !motion.rotation_keyframes.is_empty();
     if let Some(p) = motion.pivot {
-        if motion.angular_velocity.is_none() {
-            return Err(format!("{at}.pivot: there is no angular_velocity to turn about it"));
+        if !turns {
+            return Err(format!(
+                "{at}.pivot: there is no angular_velocity or rotation_keyframes to turn about it"
+            ));
         }
         vector(&format!("{at}.pivot"), p, MAX_COORDINATE, "m")?;
     }
-    let translation = super::Motion { angular_velocity: None, pivot: None, ..motion.clone() };
-    if motion.angular_velocity.is_some() && translation == super::Motion::default() {
+    if motion.interpolation != super::Interpolation::Linear
+        && motion.keyframes.is_empty()
+        && motion.rotation_keyframes.is_empty()
+    {
+        return Err(format!("{at}: interpolation joins keyframes; give keyframes or leave it out"));
+    }
+    let translation = super::Motion {
+        angular_velocity: None,
+        pivot: None,
+        rotation_keyframes: Vec::new(),
+        interpolation: if motion.keyframes.is_empty() { Default::default() } else { motion.interpolation },
+        ..motion.clone()
+    };
+    if turns && translation == super::Motion::default() {
         return Ok(()); // (a turn alone)
     }
     check_motion(&at, &Some(translation))
 }
+
+/// Keyframe rows [t, a, b, c] at `at`: times finite, at least 0 and increasing; the values
+/// (`what`) within ±`most` (`unit`).
+fn check_times(at: &str, keys: &[[f64; 4]], (what, most, unit): (&str, f64, &str)) -> Check {
+    let mut last = -1.0;
+    for (k, key) in keys.iter().enumerate() {
+        let t = key[0];
+        non_negative(&format!("{at}[{k}] time"), t, 1e9, "s")?;
+        if t <= last {
+            return Err(format!("{at}[{k}]: time {} s is not after the one before ({last} s)", num(t)));
+        }
+        last = t;
+        vector(&format!("{at}[{k}] {what}"), [key[1], key[2], key[3]], most, unit)?;
+    }
+    Ok(())
+}
+
+/// The largest keyed pin angle [degrees]: a thousand turns.
+const MAX_ANGLE: f64 = 360_000.0;
 
 /// The fastest turn a pin motion takes [degrees/s]: ten turns a frame at 60 frames/s.
 const MAX_TURN: f64 = 216_000.0;

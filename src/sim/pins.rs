@@ -1,10 +1,11 @@
 //! Moving pins (`pin_motion` in presets): an object's pinned particles carried together by a
-//! translation (a velocity, or keyframes of their displacement) and a steady turn about a
-//! pivot that the translation carries. Within a frame the translation moves at the frame's
-//! chord velocity, as a moving collider does (`ColliderModel::frame_motion`); each substep the
-//! pins turn by the angular velocity times the substep. The CPU reference takes each substep
-//! from `PinStep`, the GPU from the object's parameters (`pin_*`, written each frame) through
-//! glsl/include/pins.glsl: the same arithmetic.
+//! translation (a velocity, or keyframes of their displacement) and a turn about a pivot that
+//! the translation carries (steady, or keyframed angles). Within a frame the translation moves
+//! at the frame's chord velocity, as a moving collider does (`ColliderModel::frame_motion`),
+//! and the pins turn at the frame's steady rate: each substep by the same share of the
+//! frame's turn. The CPU reference takes each substep from `PinStep`, the GPU from the
+//! object's parameters (`pin_*`, written each frame) through glsl/include/pins.glsl: the same
+//! arithmetic.
 
 use crate::sim::collider::Motion;
 use glam::{DQuat, DVec3};
@@ -13,8 +14,11 @@ use glam::{DQuat, DVec3};
 pub struct PinMotion {
     /// The translation: a velocity, or keyframed displacements (only their change counts).
     pub translation: Motion,
-    /// The angular velocity about `pivot` [rad/s]; zero: the pins do not turn.
+    /// The angular velocity about `pivot` [rad/s]; zero: the pins do not turn steadily.
     pub spin: DVec3,
+    /// Or keyframed angles about x, then y, then z [rad] (`orientation`; only their change
+    /// counts); `Motion::Fixed` where the pins turn steadily or not at all.
+    pub rotation: Motion,
     /// What they turn about, where it is at t = 0 [m]; the translation carries it.
     pub pivot: DVec3,
 }
@@ -38,7 +42,48 @@ impl PinMotion {
     }
 
     pub fn turns(&self) -> bool {
-        self.spin != DVec3::ZERO
+        self.spin != DVec3::ZERO || self.rotation.is_moving()
+    }
+
+    /// The pins' turn from t = 0 to `t`.
+    pub fn orientation(&self, t: f64) -> DQuat {
+        if self.spin != DVec3::ZERO {
+            return DQuat::from_scaled_axis(self.spin * t);
+        }
+        let at = |t: f64| {
+            let a = self.rotation.offset(t);
+            DQuat::from_euler(glam::EulerRot::XYZ, a.x, a.y, a.z)
+        };
+        (at(t) * at(0.0).inverse()).normalize()
+    }
+
+    /// The pins' angular velocity over the frame that starts at `t0` and lasts `frame_dt`
+    /// [rad/s]: the steady one, or the keyed turn over the frame at a steady rate (the
+    /// shorter way: a keyed turn stays under half a turn a frame, scene validation).
+    pub fn frame_spin(&self, t0: f64, frame_dt: f64) -> DVec3 {
+        if self.spin != DVec3::ZERO || !self.rotation.is_moving() {
+            return self.spin;
+        }
+        let turn = self.orientation(t0 + frame_dt) * self.orientation(t0).inverse();
+        turn.to_scaled_axis() / frame_dt
+    }
+
+    /// The fastest the pins turn [rad/s]: an upper bound (keyed angles: each angle's rate
+    /// adds, at most its rate about a unit axis).
+    pub fn top_spin(&self) -> f64 {
+        let rate = match &self.rotation {
+            Motion::Keyframes(keys) => keys
+                .windows(2)
+                .map(|w| {
+                    let r = (w[1].1 - w[0].1) / (w[1].0 - w[0].0);
+                    r.x.abs() + r.y.abs() + r.z.abs()
+                })
+                .fold(0.0, f64::max),
+            // (the components' fastest, each at most the bound's length)
+            Motion::Smooth(keys) => 3f64.sqrt() * crate::sim::collider::smooth_top_speed(keys),
+            Motion::Fixed | Motion::Velocity(_) => 0.0,
+        };
+        self.spin.length() + rate
     }
 
     /// The frame that starts at `t0` and lasts `frame_dt`: where the pivot is at its start
@@ -55,7 +100,7 @@ impl PinMotion {
         PinStep {
             velocity,
             pivot: pivot + velocity * (s as f64 * dt),
-            turn: self.turns().then(|| DQuat::from_scaled_axis(self.spin * dt)),
+            turn: self.turns().then(|| DQuat::from_scaled_axis(self.frame_spin(t0, frame_dt) * dt)),
             dt,
         }
     }
@@ -64,11 +109,7 @@ impl PinMotion {
     /// the translation's chord meets it, exactly; the app's pin markers).
     pub fn carried(&self, x: DVec3, t: f64) -> DVec3 {
         let moved = self.translation.offset(t) - self.translation.offset(0.0);
-        let turned = if self.turns() {
-            DQuat::from_scaled_axis(self.spin * t) * (x - self.pivot)
-        } else {
-            x - self.pivot
-        };
+        let turned = if self.turns() { self.orientation(t) * (x - self.pivot) } else { x - self.pivot };
         self.pivot + moved + turned
     }
 
@@ -85,13 +126,13 @@ impl PinMotion {
             Motion::Smooth(keys) => crate::sim::collider::smooth_top_speed(keys),
         };
         let reach = at.iter().map(|x| x.distance(self.pivot)).fold(0.0, f64::max);
-        along + self.spin.length() * reach
+        along + self.top_spin() * reach
     }
 
     /// The velocity of a pinned particle at `x` at t = 0 (its initial state).
     pub fn initial_velocity(&self, x: DVec3, frame_dt: f64) -> DVec3 {
         let (pivot, velocity) = self.frame(0.0, frame_dt);
-        velocity + self.spin.cross(x - pivot)
+        velocity + self.frame_spin(0.0, frame_dt).cross(x - pivot)
     }
 }
 
@@ -121,29 +162,42 @@ mod tests {
 
     /// Substep by substep (`step`, `move_of`), over frames whose keys fall inside them, a pin
     /// lands where the closed form (`carried`) has it at every frame's end: the translation's
-    /// chords meet its keys there, and the turns compose exactly (to 1e-12 m in f64).
+    /// chords meet its keys there, and the turns compose exactly (to 1e-12 m in f64), steady
+    /// or keyed (smooth angles about all three axes, turning back at a key).
     #[test]
     fn substeps_compose_to_the_closed_form_at_every_frame_end() {
-        let pins = PinMotion {
+        let steady = PinMotion {
             translation: Motion::Keyframes(vec![
                 (0.0, DVec3::ZERO),
                 (0.11, DVec3::new(0.3, 0.0, 0.0)),
                 (0.5, DVec3::new(0.3, 0.2, -0.4)),
             ]),
             spin: DVec3::new(0.3, 2.0, -0.5),
+            rotation: Motion::Fixed,
             pivot: DVec3::new(0.1, 1.0, 0.2),
+        };
+        let keyed = PinMotion {
+            spin: DVec3::ZERO,
+            rotation: Motion::Smooth(vec![
+                (0.0, DVec3::new(0.1, 0.0, 0.0)),
+                (0.2, DVec3::new(0.4, 1.5, -0.2)),
+                (0.45, DVec3::new(0.3, 0.5, 0.6)),
+            ]),
+            ..steady.clone()
         };
         let (frame_dt, substeps) = (1.0 / 60.0, 7);
         let dt = frame_dt / substeps as f64;
         let start = DVec3::new(0.4, 0.9, -0.3);
-        let mut x = start;
-        for f in 0..40 {
-            for s in 0..substeps {
-                x += pins.step(f as f64 * frame_dt, frame_dt, s, dt).move_of(x);
+        for pins in [steady, keyed] {
+            let mut x = start;
+            for f in 0..40 {
+                for s in 0..substeps {
+                    x += pins.step(f as f64 * frame_dt, frame_dt, s, dt).move_of(x);
+                }
+                let t = (f + 1) as f64 * frame_dt;
+                let exact = pins.carried(start, t);
+                assert!(x.distance(exact) < 1e-12, "frame {f}: {x} against {exact}");
             }
-            let t = (f + 1) as f64 * frame_dt;
-            let exact = pins.carried(start, t);
-            assert!(x.distance(exact) < 1e-12, "frame {f}: {x} against {exact}");
         }
     }
 }

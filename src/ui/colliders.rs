@@ -135,8 +135,18 @@ pub(super) fn motion_with(ui: &Ui, m: &mut Option<Motion>, labels: [&str; 2], st
             w[0], w[1], w[2]
         ));
     }
-    if let Some(Motion { keyframes, .. }) = m.as_ref().filter(|m| !m.keyframes.is_empty()) {
-        ui.text_disabled(format!("moves along {} keyframes (edit them in the preset)", keyframes.len()));
+    // (keyed motion is edited in the preset: no checkbox here to drop it)
+    if let Some(keyed) = m.as_ref().filter(|m| !m.keyframes.is_empty() || !m.rotation_keyframes.is_empty()) {
+        if !keyed.keyframes.is_empty() {
+            ui.text_disabled(format!(
+                "moves along {} keyframes (edit them in the preset)",
+                keyed.keyframes.len()
+            ));
+        }
+        if !keyed.rotation_keyframes.is_empty() {
+            let n = keyed.rotation_keyframes.len();
+            ui.text_disabled(format!("turns along {n} rotation keyframes (edit them in the preset)"));
+        }
         return;
     }
     let mut moving = m.is_some();
