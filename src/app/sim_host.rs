@@ -284,7 +284,7 @@ impl SimHost {
             let cloth = &mut self.scene.cloths[object];
             if !set_listed(&mut cloth.pinned, [col, row], pin) {
                 return Err(format!(
-                    "cloth '{}' particle [{col}, {row}] is pinned by pin = {:?}: change the cloth's pin to free it",
+                    "cloth '{}' particle [{col}, {row}] is pinned by pin = {:?} or pin_box: change the cloth's pin or pin_box to free it",
                     cloth.name, cloth.pin
                 ));
             }
@@ -295,7 +295,7 @@ impl SimHost {
             let rope = &mut self.scene.ropes[object - n_cloths];
             if !set_listed(&mut rope.pinned, index, pin) {
                 return Err(format!(
-                    "rope '{}' node {index} is pinned by pin = {:?}: change the rope's pin to free it",
+                    "rope '{}' node {index} is pinned by pin = {:?} or pin_box: change the rope's pin or pin_box to free it",
                     rope.name, rope.pin
                 ));
             }

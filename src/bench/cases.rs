@@ -77,6 +77,7 @@ fn cloth(res: u32) -> Cloth {
         self_contact: SelfContact::Particles,
         pin: ClothPins::TopRow,
         pinned: Vec::new(),
+        pin_box: None,
         pin_motion: None,
         color: [0.7, 0.2, 0.2],
         back_color: [0.8, 0.7, 0.5],
@@ -104,6 +105,7 @@ fn rope(nodes: u32) -> Rope {
         self_collision_distance: None,
         pin: RopePins::First,
         pinned: Vec::new(),
+        pin_box: None,
         pin_motion: None,
         color: [0.7, 0.6, 0.4],
     }

@@ -151,6 +151,7 @@ pub(super) fn cloth(c: &Cloth) -> ObjectModel {
     for p in &c.pinned {
         pinned[(p[0] + p[1] * cols) as usize] = true;
     }
+    pin_inside(&c.pin_box, &positions, &mut pinned);
     ObjectModel {
         kind: ObjectKind::Cloth,
         name: c.name.clone(),
@@ -210,6 +211,15 @@ fn pin_motion(m: &Option<super::Motion>, positions: &[DVec3], pinned: &[bool]) -
     }
 }
 
+/// Pins the particles at `positions` inside `pin_box`, if any.
+fn pin_inside(pin_box: &Option<super::PinBox>, positions: &[DVec3], pinned: &mut [bool]) {
+    if let Some(b) = pin_box {
+        for (p, x) in pinned.iter_mut().zip(positions) {
+            *p |= b.contains(*x);
+        }
+    }
+}
+
 pub(super) fn rope(r: &Rope) -> ObjectModel {
     let n = r.nodes as usize;
     let (start, end) = (DVec3::from_array(r.start), DVec3::from_array(r.end));
@@ -226,6 +236,7 @@ pub(super) fn rope(r: &Rope) -> ObjectModel {
     for &p in &r.pinned {
         pinned[p as usize] = true;
     }
+    pin_inside(&r.pin_box, &positions, &mut pinned);
     let mut ring_weights = default_ring_weights();
     if let Some(w) = &r.ring_weights {
         for (dst, src) in ring_weights.iter_mut().zip(w) {

@@ -580,6 +580,34 @@ stiffness = { structural = 1.0, shear = 1.0, bending = 1.0 }
         );
     }
 
+    /// A pin box pins the particles placed inside it (its faces too), is checked, carries a
+    /// pin motion on its own, and survives a save.
+    #[test]
+    fn a_pin_box_pins_what_it_holds() {
+        // (cloth a: 3 x 3 particles 0.5 m apart from the origin, rows going down -y)
+        let s = with(&["cloth.a.pin_box={ min = [-0.1, -0.5, -0.1], max = [1.1, 0.1, 0.1] }"]).unwrap();
+        let model = crate::scene::build::to_model(&s);
+        let pinned: Vec<usize> = (0..9).filter(|&i| model.objects[0].pinned[i]).collect();
+        assert_eq!(pinned, vec![0, 1, 2, 3, 4, 5], "the top two rows");
+        let e = with(&["cloth.a.pin_box={ min = [0, 0, 0], max = [1, -1, 0] }"]).unwrap_err().0;
+        assert!(e.contains("cloth[0].pin_box: min [0.0, 0.0, 0.0] is past max [1.0, -1.0, 0.0]"), "{e}");
+        let e = with(&["cloth.a.pin_box={ min = [5, 5, 5], max = [6, 6, 6] }"]).unwrap_err().0;
+        assert!(e.contains("cloth[0].pin_box: no particle is placed inside it"), "{e}");
+        let e = with(&["cloth.a.pin_box={ min = [0, 0, 0], max = [nan, 1, 1] }"]).unwrap_err().0;
+        assert!(e.contains("cloth[0].pin_box.max"), "{e}");
+        let s = with(&[
+            "cloth.b.pin_box={ min = [-0.1, -0.1, -0.1], max = [0.1, 0.1, 0.1] }",
+            "cloth.b.pin_motion={ velocity = [0, 0.5, 0] }",
+        ])
+        .unwrap();
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("box.toml");
+        save(&s, &path).unwrap();
+        let back = crate::scene::load(&path, &[]).unwrap();
+        assert_eq!(back.cloths[1].pin_box, s.cloths[1].pin_box);
+        assert!(crate::scene::build::to_model(&back).objects[1].pinned[0]);
+    }
+
     #[test]
     fn saved_presets_keep_their_tables_inline() {
         let mut s = with(&["cloth.a.stretch_limit=0.1", "cloth.b.pinned=[[1, 1]]"]).unwrap();

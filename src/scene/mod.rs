@@ -546,6 +546,9 @@ pub struct Cloth {
     /// Further pinned particles as [column, row].
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub pinned: Vec<[u32; 2]>,
+    /// Further pinned particles: those placed inside this box.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub pin_box: Option<PinBox>,
     /// How the pinned particles move together (absent: they stay put): `PinMotion`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub pin_motion: Option<Motion>,
@@ -557,10 +560,28 @@ pub struct Cloth {
     pub back_color: [f64; 3],
 }
 
+/// An axis-aligned box of a cloth's or rope's `pin_box`: the particles placed inside it (its
+/// faces included) are pinned.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct PinBox {
+    /// Its lowest corner [m].
+    pub min: [f64; 3],
+    /// Its highest corner [m].
+    pub max: [f64; 3],
+}
+
+impl PinBox {
+    pub fn contains(&self, x: glam::DVec3) -> bool {
+        (0..3).all(|k| self.min[k] <= x[k] && x[k] <= self.max[k])
+    }
+}
+
 impl Cloth {
-    /// Whether a particle is pinned (by `pin` or `pinned`): what a `pin_motion` needs.
+    /// Whether a particle is pinned (by `pin`, `pinned` or `pin_box`, which validation keeps
+    /// from being empty): what a `pin_motion` needs.
     pub fn has_pins(&self) -> bool {
-        self.pin != ClothPins::None || !self.pinned.is_empty()
+        self.pin != ClothPins::None || !self.pinned.is_empty() || self.pin_box.is_some()
     }
 
     /// Rest distance between grid neighbours along columns and rows [m].
@@ -620,6 +641,9 @@ pub struct Rope {
     /// Further pinned node indices.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub pinned: Vec<u32>,
+    /// Further pinned nodes: those placed inside this box.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub pin_box: Option<PinBox>,
     /// How the pinned nodes move together (absent: they stay put), as a cloth's `pin_motion`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub pin_motion: Option<Motion>,
@@ -629,9 +653,9 @@ pub struct Rope {
 }
 
 impl Rope {
-    /// Whether a node is pinned (by `pin` or `pinned`): what a `pin_motion` needs.
+    /// Whether a node is pinned (by `pin`, `pinned` or `pin_box`): what a `pin_motion` needs.
     pub fn has_pins(&self) -> bool {
-        self.pin != RopePins::None || !self.pinned.is_empty()
+        self.pin != RopePins::None || !self.pinned.is_empty() || self.pin_box.is_some()
     }
 
     /// Its springs' stiffness as a model's [structural, shear, bending]: a rope has no shear.

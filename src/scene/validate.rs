@@ -412,7 +412,26 @@ fn check_cloth(at: &str, c: &Cloth) -> Check {
             return Err(format!("{at}.pinned[{k}] = [{}, {}]: outside the {cols} x {rows} grid", p[0], p[1]));
         }
     }
+    check_pin_box(at, &c.pin_box, || super::build::cloth(c).positions)?;
     check_pin_motion(at, &c.pin_motion, c.has_pins())
+}
+
+/// An object's `pin_box`: its corners finite and in order, and some particle (at `positions`,
+/// where the object places them) inside it.
+fn check_pin_box(at: &str, b: &Option<super::PinBox>, positions: impl FnOnce() -> Vec<glam::DVec3>) -> Check {
+    let Some(b) = b else { return Ok(()) };
+    vector(&format!("{at}.pin_box.min"), b.min, MAX_COORDINATE, "m")?;
+    vector(&format!("{at}.pin_box.max"), b.max, MAX_COORDINATE, "m")?;
+    if (0..3).any(|k| b.min[k] > b.max[k]) {
+        return Err(format!(
+            "{at}.pin_box: min {:?} is past max {:?} along some axis (min is the lowest corner)",
+            b.min, b.max
+        ));
+    }
+    if !positions().into_iter().any(|x| b.contains(x)) {
+        return Err(format!("{at}.pin_box: no particle is placed inside it (leave it out, or move it)"));
+    }
+    Ok(())
 }
 
 /// An object's `pin_motion`: a motion as a collider's (`check_motion`), on an object with a
@@ -553,5 +572,6 @@ fn check_rope(at: &str, r: &Rope, between: bool) -> Check {
             ));
         }
     }
+    check_pin_box(at, &r.pin_box, || super::build::rope(r).positions)?;
     check_pin_motion(at, &r.pin_motion, r.has_pins())
 }

@@ -12,6 +12,16 @@ fn springs(ui: &Ui, label: &str, v: &mut PerSpring, speed: f32, min: f64, max: f
     drag(ui, &format!("bending##{label}"), &mut v.bending, speed, min, max);
 }
 
+/// Says that an object's particles inside its `pin_box` are pinned too (edited in the preset).
+fn pin_box_note(ui: &Ui, b: &Option<crate::scene::PinBox>) {
+    if let Some(b) = b {
+        ui.text_disabled(format!(
+            "and those inside the box {:?} to {:?} (pin_box: edit it in the preset)",
+            b.min, b.max
+        ));
+    }
+}
+
 /// How an object's pins move (`pin_motion`), while it has pins: with none it has no motion
 /// (a scene with one would be refused).
 fn pin_motion(ui: &Ui, m: &mut Option<crate::scene::Motion>, pins: bool) {
@@ -42,6 +52,7 @@ pub fn cloth_panel(ui: &Ui, c: &mut Cloth) {
             ClothPins::Corners,
         ],
     );
+    pin_box_note(ui, &c.pin_box);
     let pins = c.has_pins();
     pin_motion(ui, &mut c.pin_motion, pins);
     drag(ui, "mass [kg/particle]", &mut c.mass, 0.0005, 1e-6, 100.0);
@@ -68,6 +79,7 @@ pub fn rope_panel(ui: &Ui, r: &mut Rope) {
     drag3(ui, "start [m]", &mut r.start, 0.01);
     drag3(ui, "end [m]", &mut r.end, 0.01);
     choice(ui, "pins", &mut r.pin, &[RopePins::None, RopePins::First, RopePins::Last, RopePins::Both]);
+    pin_box_note(ui, &r.pin_box);
     let pins = r.has_pins();
     pin_motion(ui, &mut r.pin_motion, pins);
     drag(ui, "mass [kg/node]", &mut r.mass, 0.0005, 1e-6, 100.0);
@@ -113,6 +125,7 @@ pub fn new_cloth(name: String) -> Cloth {
         self_contact: SelfContact::Triangles,
         pin: ClothPins::TopCorners,
         pinned: Vec::new(),
+        pin_box: None,
         pin_motion: None,
         color: [0.2, 0.45, 0.75],
         back_color: [0.8, 0.8, 0.75],
@@ -139,6 +152,7 @@ pub fn new_rope(name: String) -> Rope {
         self_collision_distance: None,
         pin: RopePins::First,
         pinned: Vec::new(),
+        pin_box: None,
         pin_motion: None,
         color: [0.72, 0.58, 0.36],
     }
