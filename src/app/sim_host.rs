@@ -74,15 +74,20 @@ fn layout_key(s: &Scene) -> String {
         .iter()
         .map(|c| {
             format!(
-                "{:?}{:?}{:?}{:?}{:?}{:?}{:?}",
-                c.resolution, c.size, c.origin, c.orientation, c.pin, c.pinned, c.pin_motion
+                "{:?}{:?}{:?}{:?}{:?}{:?}{:?}{:?}",
+                c.resolution, c.size, c.origin, c.orientation, c.pin, c.pinned, c.pin_box, c.pin_motion
             )
         })
         .collect();
     let ropes: Vec<_> = s
         .ropes
         .iter()
-        .map(|r| format!("{}{:?}{:?}{:?}{:?}{:?}", r.nodes, r.start, r.end, r.pin, r.pinned, r.pin_motion))
+        .map(|r| {
+            format!(
+                "{}{:?}{:?}{:?}{:?}{:?}{:?}",
+                r.nodes, r.start, r.end, r.pin, r.pinned, r.pin_box, r.pin_motion
+            )
+        })
         .collect();
     // A collider's motion (and pins') is a function of the time since the start: changing it
     // restarts (a pin motion's pivot is where the pins have been carried since).
@@ -282,9 +287,11 @@ impl SimHost {
         let (col, row) = (index % cols, index / cols);
         if object < n_cloths {
             let cloth = &mut self.scene.cloths[object];
-            if !set_listed(&mut cloth.pinned, [col, row], pin) {
+            let by_rule = cloth.pinned_by_rule()[i];
+            if (!pin && by_rule) || !set_listed(&mut cloth.pinned, [col, row], pin) {
+                let also = if cloth.pin_box.is_some() { " or pin_box" } else { "" };
                 return Err(format!(
-                    "cloth '{}' particle [{col}, {row}] is pinned by pin = {:?} or pin_box: change the cloth's pin or pin_box to free it",
+                    "cloth '{}' particle [{col}, {row}] is pinned by pin = {:?}{also}: change the cloth's pin{also} to free it",
                     cloth.name, cloth.pin
                 ));
             }
@@ -293,9 +300,11 @@ impl SimHost {
             }
         } else {
             let rope = &mut self.scene.ropes[object - n_cloths];
-            if !set_listed(&mut rope.pinned, index, pin) {
+            let by_rule = rope.pinned_by_rule()[i];
+            if (!pin && by_rule) || !set_listed(&mut rope.pinned, index, pin) {
+                let also = if rope.pin_box.is_some() { " or pin_box" } else { "" };
                 return Err(format!(
-                    "rope '{}' node {index} is pinned by pin = {:?} or pin_box: change the rope's pin or pin_box to free it",
+                    "rope '{}' node {index} is pinned by pin = {:?}{also}: change the rope's pin{also} to free it",
                     rope.name, rope.pin
                 ));
             }

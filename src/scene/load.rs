@@ -589,6 +589,13 @@ stiffness = { structural = 1.0, shear = 1.0, bending = 1.0 }
         let model = crate::scene::build::to_model(&s);
         let pinned: Vec<usize> = (0..9).filter(|&i| model.objects[0].pinned[i]).collect();
         assert_eq!(pinned, vec![0, 1, 2, 3, 4, 5], "the top two rows");
+        let listed = with(&[
+            "cloth.a.pin_box={ min = [-0.1, -0.5, -0.1], max = [1.1, 0.1, 0.1] }",
+            "cloth.a.pinned=[[1, 2]]",
+        ])
+        .unwrap();
+        let by_rule: Vec<usize> = (0..9).filter(|&i| listed.cloths[0].pinned_by_rule()[i]).collect();
+        assert_eq!(by_rule, pinned, "the box's, not the list's");
         let e = with(&["cloth.a.pin_box={ min = [0, 0, 0], max = [1, -1, 0] }"]).unwrap_err().0;
         assert!(e.contains("cloth[0].pin_box: min [0.0, 0.0, 0.0] is past max [1.0, -1.0, 0.0]"), "{e}");
         let e = with(&["cloth.a.pin_box={ min = [5, 5, 5], max = [6, 6, 6] }"]).unwrap_err().0;

@@ -584,6 +584,11 @@ impl Cloth {
         self.pin != ClothPins::None || !self.pinned.is_empty() || self.pin_box.is_some()
     }
 
+    /// Each particle: whether `pin` or `pin_box` pins it (not the `pinned` list alone).
+    pub fn pinned_by_rule(&self) -> Vec<bool> {
+        build::cloth(&Cloth { pinned: Vec::new(), ..self.clone() }).pinned
+    }
+
     /// Rest distance between grid neighbours along columns and rows [m].
     pub fn spacing(&self) -> [f64; 2] {
         [self.size[0] / (self.resolution[0] - 1) as f64, self.size[1] / (self.resolution[1] - 1) as f64]
@@ -656,6 +661,11 @@ impl Rope {
     /// Whether a node is pinned (by `pin`, `pinned` or `pin_box`): what a `pin_motion` needs.
     pub fn has_pins(&self) -> bool {
         self.pin != RopePins::None || !self.pinned.is_empty() || self.pin_box.is_some()
+    }
+
+    /// Each node: whether `pin` or `pin_box` pins it (not the `pinned` list alone).
+    pub fn pinned_by_rule(&self) -> Vec<bool> {
+        build::rope(&Rope { pinned: Vec::new(), ..self.clone() }).pinned
     }
 
     /// Its springs' stiffness as a model's [structural, shear, bending]: a rope has no shear.

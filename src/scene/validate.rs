@@ -441,7 +441,7 @@ fn check_pin_motion(at: &str, m: &Option<super::Motion>, pins: bool) -> Check {
     let at = format!("{at}.pin_motion");
     if !pins {
         return Err(format!(
-            "{at}: no particle is pinned for it to move (set `pin` or `pinned`, or leave pin_motion out)"
+            "{at}: no particle is pinned for it to move (set `pin`, `pinned` or `pin_box`, or leave pin_motion out)"
         ));
     }
     if let Some(w) = motion.angular_velocity {

@@ -65,6 +65,8 @@ impl PinMotion {
             return self.spin;
         }
         let turn = self.orientation(t0 + frame_dt) * self.orientation(t0).inverse();
+        // (q and -q are one rotation; w >= 0 is the one of at most half a turn)
+        let turn = if turn.w < 0.0 { -turn } else { turn };
         turn.to_scaled_axis() / frame_dt
     }
 
