@@ -10,6 +10,10 @@ use crate::vk::GpuContext;
 use anyhow::Result;
 use std::path::{Path, PathBuf};
 
+/// Frames from which stopping a recording is announced before it writes (`long_write`): about
+/// 0.3 s of writing.
+const LONG_WRITE: u64 = 500;
+
 #[derive(Default)]
 pub struct AppRecorder {
     active: Option<(Recording, PathBuf)>,
@@ -19,6 +23,15 @@ impl AppRecorder {
     /// Frames recorded so far, while recording.
     pub fn frames(&self) -> Option<u64> {
         self.active.as_ref().map(|(r, _)| r.frames())
+    }
+
+    /// While recording into a file written when the recording stops (USD, glTF) with at least
+    /// `LONG_WRITE` frames: how many, and the file. Stopping it writes them all at once (about
+    /// 0.6 ms a frame: 5 s for 8,116), so the app says so a frame before (`edits_wait`).
+    pub fn long_write(&self) -> Option<(u64, PathBuf)> {
+        let (recording, path) = self.active.as_ref()?;
+        (recording.format().keeps_frames() && recording.frames() >= LONG_WRITE)
+            .then(|| (recording.frames(), path.clone()))
     }
 
     /// Frames recorded so far and the file's name, while recording.
@@ -78,5 +91,39 @@ impl AppRecorder {
                 .map_err(|e| anyhow::anyhow!("writing {}: {e}", path.display()))?;
         }
         Ok(recording.summary(&path))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A recording written when it stops is announced before it writes from `LONG_WRITE`
+    /// frames on, one written as it goes never.
+    #[test]
+    fn long_recordings_are_announced_before_they_write() {
+        let scene =
+            crate::scene::parse(include_str!("../../presets/curtain.toml"), "curtain.toml", &[]).unwrap();
+        let model = crate::scene::to_model(&scene);
+        let dir = tempfile::tempdir().unwrap();
+        let states: Vec<crate::sim::gpu::ObjectState> = model
+            .objects
+            .iter()
+            .map(|o| crate::sim::gpu::ObjectState {
+                particles: vec![Default::default(); o.particle_count()],
+                surface: vec![Default::default(); o.surface_count()],
+            })
+            .collect();
+        for (name, announced) in [("a.usda", true), ("a.pc2", false)] {
+            let path = dir.path().join(name);
+            let recording = Recording::new(&model, &record::colors(&scene), &path, None).unwrap();
+            let mut r = AppRecorder { active: Some((recording, path.clone())) };
+            for f in 0..LONG_WRITE {
+                assert!(r.long_write().is_none(), "{name}: announced at {f} frames");
+                let (recording, _) = r.active.as_mut().unwrap();
+                recording.add(&states, f as f64 / 60.0).unwrap();
+            }
+            assert_eq!(r.long_write().map(|(n, _)| n), announced.then_some(LONG_WRITE), "{name}");
+        }
     }
 }

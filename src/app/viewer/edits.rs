@@ -42,9 +42,10 @@ impl Viewer {
 
     /// Whether the pending edits and actions wait a frame, so that the frame before says in a
     /// notice that the window will wait: they calibrate `integrator = "auto"` (seconds; minutes
-    /// on a CPU driver), or build a new simulation where the last build took more than
-    /// `SLOW_REBUILD` (its pipelines compiled: seconds on a CPU driver). True once for them; the
-    /// next frame applies them.
+    /// on a CPU driver), build a new simulation where the last build took more than
+    /// `SLOW_REBUILD` (its pipelines compiled: seconds on a CPU driver), or stop a long
+    /// recording that is written when it stops (`AppRecorder::long_write`). True once for them;
+    /// the next frame applies them.
     pub(super) fn edits_wait(&mut self) -> bool {
         if std::mem::take(&mut self.wait_announced) {
             return false;
@@ -66,6 +67,8 @@ impl Viewer {
         }
         let calibrates = host.calibration_pending() || waits.iter().any(|w| w.0);
         let rebuilds = !calibrates && waits.iter().any(|w| w.1);
+        let stops = self.pending_actions.iter().any(|a| matches!(a, Action::ToggleRecording(_)));
+        let writes = self.recorder.long_write().filter(|_| stops);
         if calibrates {
             self.message(
                 "calibrating integrator = \"auto\": the window waits until it has picked a method",
@@ -77,9 +80,11 @@ impl Viewer {
                 format!("rebuilding the simulation: the window waits (the last build took {took:.1} s)"),
                 false,
             );
+        } else if let Some((frames, path)) = &writes {
+            self.message(format!("writing {frames} frames to {}: the window waits", path.display()), false);
         }
-        self.wait_announced = calibrates || rebuilds;
-        calibrates || rebuilds
+        self.wait_announced = calibrates || rebuilds || writes.is_some();
+        self.wait_announced
     }
 
     /// Calibrates a scene that started with `integrator = "auto"` (`SimHost::calibration_pending`:
