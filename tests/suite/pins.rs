@@ -230,3 +230,52 @@ fn keyed_turns_follow_their_keys() {
     }
     assert_clean(&ctx);
 }
+
+/// Ctrl + click (`SimHost::set_pinned`) frees a particle only where the preset's list alone
+/// pins it: one that `pin_box` holds is refused with a line naming the box, and stays pinned in
+/// the model and on the GPU (its place kept through a frame); one pinned by the list alone,
+/// outside the box, is freed and falls.
+#[test]
+fn ctrl_click_frees_only_what_the_list_alone_pins() {
+    use msdsim::app::SimHost;
+    use msdsim::render::SceneRenderer;
+    use msdsim::vk::Format;
+    let text = r#"
+[sim]
+substeps = 4
+[[cloth]]
+name = "boxed"
+resolution = [4, 4]
+size = [0.3, 0.3]
+origin = [0.0, 1.0, 0.0]
+mass = 0.01
+stiffness = { structural = 100.0, shear = 20.0, bending = 5.0 }
+pinned = [[0, 0], [3, 3]]
+pin_box = { min = [-0.01, 0.99, -0.01], max = [0.31, 1.01, 0.01] }
+"#;
+    let scene = msdsim::scene::parse(text, "test", &[]).expect("the test scene parses");
+    let ctx = gpu();
+    let mut shaders = msdsim::shaders::ShaderSet::embedded();
+    let mut renderer = SceneRenderer::new(&ctx, Format::Rgba8Unorm, Format::Depth32, &mut shaders).unwrap();
+    let mut host = SimHost::new(&ctx, scene, &mut renderer, &mut shaders).unwrap();
+    let (top, corner) = (0u32, 15u32);
+    let at = |p: [f32; 4]| [p[0], p[1], p[2]];
+    let (top_at, corner_at) = (at(host_place(&mut host, &ctx, 0)), at(host_place(&mut host, &ctx, 15)));
+    let e = host.set_pinned(&ctx, 0, top, false, top_at).unwrap_err();
+    assert!(e.contains("is pinned by pin = None or pin_box"), "{e}");
+    assert!(host.model().objects[0].pinned[0], "the box still pins it in the model");
+    host.set_pinned(&ctx, 0, corner, false, corner_at).expect("the list alone pins the far corner");
+    assert!(!host.model().objects[0].pinned[15]);
+    host.sim_mut().step_frame(&ctx).expect("GPU frame");
+    let (top_now, corner_now) = (host_place(&mut host, &ctx, 0), host_place(&mut host, &ctx, 15));
+    assert_eq!(at(top_now), top_at, "the boxed particle moved");
+    assert!(corner_now[1] < corner_at[1], "the freed corner did not fall: {corner_now:?}");
+    host.destroy(&ctx);
+    renderer.destroy(&ctx);
+    assert_clean(&ctx);
+}
+
+/// Particle `i` of the host's first object, as the GPU has it.
+fn host_place(host: &mut msdsim::app::SimHost, ctx: &msdsim::vk::GpuContext, i: usize) -> [f32; 4] {
+    host.sim_mut().read_states(ctx).expect("read back")[0].particles[i].pos
+}
