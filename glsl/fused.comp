@@ -404,7 +404,7 @@ void main() {
                     dy[s] += missed;
                     lost[s] = missed;
                     precise vec3 moved = start - x[s];  // x~ - x_n, exact
-                    dx[s] = ADAPTIVE_START ? adaptive_start(cells[s], dy[s], pull, hx[s], hv[s].w, -moved, pin_move(x[s], sub)) : dy[s];
+                    dx[s] = ADAPTIVE_START ? adaptive_start(cells[s], dy[s], pull, hx[s], hv[s].w, -moved, x[s], sub) : dy[s];
                     hx[s].xyz = moved;
                     x[s] = start;
                     continue;

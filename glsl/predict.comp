@@ -57,7 +57,7 @@ void main() {
         dy = predicted_displacement(cell, x, v, hx, hv.xyz, base, pull);
         bdf2_start(x, base, start, lost);
         dy += lost;
-        guess = ADAPTIVE_START ? adaptive_start(cell, dy, pull, hx, hv.w, lost - base, pin_move(x, pc.substep)) : dy;
+        guess = ADAPTIVE_START ? adaptive_start(cell, dy, pull, hx, hv.w, lost - base, x, pc.substep) : dy;
     }
     history[hist(i, H_DV)] = vec4(lost, 0.0);  // (v_n - v_{n-1} is read; finish_particle rewrites it)
     history[hist(i, H_BASE)] = vec4(start, 0.0);

@@ -280,17 +280,15 @@ pub fn check(scene: &Scene) -> Check {
     for (at, o) in moving {
         // A substep's turn is a rotation: past half a turn it would turn the other way; a keyed
         // turn is taken a frame at a time (`PinMotion::frame_spin`), so half a turn a frame.
-        let (keyed, step) = match o.pin_motion.rotation.is_moving() {
-            true => ("rotation_keyframes", scene.sim.frame_dt),
-            false => ("angular_velocity", substep),
+        let (key, per, step, or) = match o.pin_motion.rotation.is_moving() {
+            true => ("rotation_keyframes", "frame", scene.sim.frame_dt, ""),
+            false => ("angular_velocity", "substep", substep, " or more substeps"),
         };
         let turn = o.pin_motion.top_spin() * step;
         if turn >= 0.5 * std::f64::consts::TAU {
-            let per = if o.pin_motion.rotation.is_moving() { "frame" } else { "substep" };
             return Err(format!(
-                "{at}.pin_motion.{keyed}: up to {} degrees a {per}, half a turn or more (the {per}'s turn would go the other way): a slower turn{}",
-                num(turn.to_degrees()),
-                if per == "substep" { " or more substeps" } else { "" }
+                "{at}.pin_motion.{key}: up to {} degrees a {per}, half a turn or more (the {per}'s turn would go the other way): a slower turn{or}",
+                num(turn.to_degrees())
             ));
         }
         let pins: Vec<_> = o.positions.iter().zip(&o.pinned).filter(|(_, &p)| p).map(|(x, _)| *x).collect();
@@ -315,9 +313,7 @@ fn check_motion(at: &str, m: &Option<super::Motion>) -> Check {
             "{at}: colliders do not turn yet (angular_velocity, rotation_keyframes and pivot are for a cloth's or rope's pin_motion)"
         ));
     }
-    if m.interpolation != super::Interpolation::Linear && m.keyframes.is_empty() {
-        return Err(format!("{at}: interpolation joins keyframes; give keyframes or leave it out"));
-    }
+    check_interpolation(at, m)?;
     match (m.velocity, m.keyframes.is_empty()) {
         (Some(_), false) => return Err(format!("{at}: give a velocity or keyframes, not both")),
         (None, true) => return Err(format!("{at}: give a velocity or keyframes")),
@@ -464,12 +460,7 @@ fn check_pin_motion(at: &str, m: &Option<super::Motion>, pins: bool) -> Check {
         }
         vector(&format!("{at}.pivot"), p, MAX_COORDINATE, "m")?;
     }
-    if motion.interpolation != super::Interpolation::Linear
-        && motion.keyframes.is_empty()
-        && motion.rotation_keyframes.is_empty()
-    {
-        return Err(format!("{at}: interpolation joins keyframes; give keyframes or leave it out"));
-    }
+    check_interpolation(&at, motion)?;
     let translation = super::Motion {
         angular_velocity: None,
         pivot: None,
@@ -481,6 +472,18 @@ fn check_pin_motion(at: &str, m: &Option<super::Motion>, pins: bool) -> Check {
         return Ok(()); // (a turn alone)
     }
     check_motion(&at, &Some(translation))
+}
+
+/// A motion's `interpolation`: only where it has keyframes to join (a collider's; a pin
+/// motion's, of positions or angles).
+fn check_interpolation(at: &str, m: &super::Motion) -> Check {
+    if m.interpolation != super::Interpolation::Linear
+        && m.keyframes.is_empty()
+        && m.rotation_keyframes.is_empty()
+    {
+        return Err(format!("{at}: interpolation joins keyframes; give keyframes or leave it out"));
+    }
+    Ok(())
 }
 
 /// Keyframe rows [t, a, b, c] at `at`: times finite, at least 0 and increasing; the values

@@ -101,22 +101,32 @@ pub enum Motion {
 /// the keys on either side within a segment (no overshoot, as Blender's auto-clamped handles).
 /// Held before the first key and after the last.
 pub fn smooth_offset(keys: &[(f64, DVec3)], t: f64) -> DVec3 {
-    let Some(&(t0, first)) = keys.first() else { return DVec3::ZERO };
-    if t <= t0 {
-        return first;
-    }
-    let Some(k) = keys.windows(2).position(|w| t <= w[1].0) else {
-        return keys.last().map(|k| k.1).unwrap_or_default();
+    let (k, u) = match segment(keys, t) {
+        Ok(at) => at,
+        Err(held) => return held,
     };
     let ((ta, a), (tb, b)) = (keys[k], keys[k + 1]);
     let span = tb - ta;
     let (ma, mb) = (key_slope(keys, k), key_slope(keys, k + 1));
-    let u = (t - ta) / span;
     let (u2, u3) = (u * u, u * u * u);
     a * (2.0 * u3 - 3.0 * u2 + 1.0)
         + ma * (span * (u3 - 2.0 * u2 + u))
         + b * (-2.0 * u3 + 3.0 * u2)
         + mb * (span * (u3 - u2))
+}
+
+/// Where time `t` falls along `keys` (times increasing): in segment k (keys k and k + 1) at
+/// the fraction u of it, or held (`Err`) at the first key before it, at the last after it, at
+/// zero without keys. Linear and smooth keys share it.
+fn segment(keys: &[(f64, DVec3)], t: f64) -> Result<(usize, f64), DVec3> {
+    let Some(&(t0, first)) = keys.first() else { return Err(DVec3::ZERO) };
+    if t <= t0 {
+        return Err(first);
+    }
+    match keys.windows(2).position(|w| t <= w[1].0) {
+        Some(k) => Ok((k, (t - keys[k].0) / (keys[k + 1].0 - keys[k].0))),
+        None => Err(keys[keys.len() - 1].1),
+    }
 }
 
 /// The velocity at key `k` of `smooth_offset`: per component the mean of the two segments'
@@ -173,19 +183,10 @@ impl Motion {
         match self {
             Motion::Fixed => DVec3::ZERO,
             Motion::Velocity(v) => *v * t,
-            Motion::Keyframes(keys) => {
-                let Some(&(t0, first)) = keys.first() else { return DVec3::ZERO };
-                if t <= t0 {
-                    return first;
-                }
-                for w in keys.windows(2) {
-                    let ((ta, a), (tb, b)) = (w[0], w[1]);
-                    if t <= tb {
-                        return a.lerp(b, (t - ta) / (tb - ta));
-                    }
-                }
-                keys.last().map(|k| k.1).unwrap_or_default()
-            }
+            Motion::Keyframes(keys) => match segment(keys, t) {
+                Ok((k, u)) => keys[k].1.lerp(keys[k + 1].1, u),
+                Err(held) => held,
+            },
             Motion::Smooth(keys) => smooth_offset(keys, t),
         }
     }
