@@ -10,8 +10,8 @@ use crate::vk::GpuContext;
 use anyhow::Result;
 use std::path::{Path, PathBuf};
 
-/// Frames from which stopping a recording is announced before it writes (`long_write`): about
-/// 0.3 s of writing.
+/// Frames from which stopping a recording is announced before it writes (`long_write`): where
+/// the write starts to show as a stall (its rate: docs/guide/app.md, "Record (F9)").
 const LONG_WRITE: u64 = 500;
 
 #[derive(Default)]
@@ -26,8 +26,8 @@ impl AppRecorder {
     }
 
     /// While recording into a file written when the recording stops (USD, glTF) with at least
-    /// `LONG_WRITE` frames: how many, and the file. Stopping it writes them all at once (about
-    /// 0.6 ms a frame: 5 s for 8,116), so the app says so a frame before (`edits_wait`).
+    /// `LONG_WRITE` frames: how many, and the file. Stopping it writes them all at once, seconds
+    /// for a long one, so the app says so a frame before (`edits_wait`).
     pub fn long_write(&self) -> Option<(u64, PathBuf)> {
         let (recording, path) = self.active.as_ref()?;
         (recording.format().keeps_frames() && recording.frames() >= LONG_WRITE)

@@ -548,7 +548,7 @@ stiffness = { structural = 1.0, shear = 1.0, bending = 1.0 }
             .is_ok(),
             "a keyed turn alone, smooth, about a pivot"
         );
-        // (a frame of 1/60 s: 180 degrees in 0.1 s is 30 degrees a frame; 10 times that is past half a turn)
+        // (180 degrees in 0.01 s is 300 degrees a frame of 1/60 s: past half a turn)
         let e =
             with(&[corners, "cloth.a.pin_motion={ rotation_keyframes = [[0, 0, 0, 0], [0.01, 0, 180, 0]] }"])
                 .unwrap_err()

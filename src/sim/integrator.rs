@@ -333,8 +333,8 @@ pub const SPRING_CLASSES: [((i64, i64), usize); 6] =
 /// parity from 11 down to 0; `xpbd_class` in glsl/include/springs.glsl). The structural springs
 /// last: a weak spring with a heavy dashpot (its damping gamma = b / (k h) far past 1) swept
 /// after them undid their work every iteration, and a stiff cloth held at its corners rang at
-/// up to 1.3 m/s after 4 s at one substep; swept before them, every run of the large-step
-/// matrix comes to rest (docs/log.md, 2026-12-05).
+/// one substep; swept before them, every run of the large-step matrix comes to rest (docs/log.md,
+/// "XPBD's spring classes with the structural springs last").
 pub fn xpbd_class_order() -> impl Iterator<Item = (usize, u32)> {
     (0..2 * SPRING_CLASSES.len()).rev().map(|q| (q / 2, (q % 2) as u32))
 }

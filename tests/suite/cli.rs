@@ -249,7 +249,7 @@ fn an_unstable_scene_exits_3_with_advice() {
 /// self-contact hash, so each search walked all of them and the frame took 5 to 8 s on
 /// lavapipe alone; each now has a cell of its own and the run ends with the guard's exit 3 in
 /// about a second a frame alone (3 to 3.6 s for its 3 frames). With another test running
-/// beside it on 2 cores a frame took over 4 s and, once, over 6 s (2026-12-05): the timeout of
+/// beside it on 2 cores a frame took over 4 s and, once, over 6 s: the timeout of
 /// 10 s leaves that margin and still stops the old behaviour under the same load.
 #[test]
 fn a_blow_up_with_edge_contact_ends_within_its_frame() {
