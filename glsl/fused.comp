@@ -208,6 +208,62 @@ void set_stretched(uint k, uint count) {
 #define REDUCE_T float
 #define REDUCE_SLOTS (SOLVER == METHOD_IMPLICIT ? (THREADS + 3u) / 4u : 1u)
 #include "reduce.glsl"
+#include "rigid_start.glsl"
+
+// A free object's rigid start (rigid_start.glsl): the subgroups' 16 sums pass through the
+// positions and then scratch (free between the prediction and the solve), as many of each
+// subgroup's as fit a round (one round with subgroups of 8 lanes or more; the host keeps room
+// for one sum of every subgroup of 4 lanes, FusedShape::plan), their totals through
+// rigid_totals.
+shared float rigid_totals[ADAPTIVE_START ? 16 : 1];
+void set_rigid_word(uint w, float v) {
+    if (w < CAP) px[w] = v;
+    else if (w < 2u * CAP) py[w - CAP] = v;
+    else if (w < 3u * CAP) pz[w - 2u * CAP] = v;
+    else scratch[w - 3u * CAP] = floatBitsToUint(v);
+}
+float rigid_word(uint w) {
+    if (w < CAP) return px[w];
+    if (w < 2u * CAP) return py[w - CAP];
+    if (w < 3u * CAP) return pz[w - 2u * CAP];
+    return uintBitsToFloat(scratch[w - 3u * CAP]);
+}
+
+// The rigid start of a free object's slots (every invocation calls it): the guesses dx (from
+// the bases x; x_n = x - hx.xyz, the prediction's x~ - x_n) moved as rigid_start says.
+void rigid_start_slots(inout vec3 dx[MAX_SLOTS], vec3 x[MAX_SLOTS], vec4 hx[MAX_SLOTS], uvec2 cells[MAX_SLOTS],
+                       uint masks[MAX_SLOTS], uint own[MAX_SLOTS], bool pinned[MAX_SLOTS]) {
+    vec3 origin = p_in[0].pos.xyz;
+    mat4 mine = mat4(0.0);
+    [[unroll]] for (uint s = 0u; s < MAX_SLOTS; ++s) {
+        if (s < SLOTS && own[s] < CAP && !pinned[s]) mine += rigid_terms(x[s] - hx[s].xyz - origin, dx[s] + hx[s].xyz);
+    }
+    [[unroll]] for (int c = 0; c < 4; ++c) mine[c] = subgroupAdd(mine[c]);
+    uint t = gl_LocalInvocationID.x;
+    uint each = min(16u, (3u * CAP + SCRATCH) / gl_NumSubgroups);  // sums of a subgroup a round
+    for (uint first = 0u; first < 16u; first += each) {
+        uint last = min(first + each, 16u);
+        if (subgroupElect()) {
+            for (uint j = first; j < last; ++j) set_rigid_word(each * gl_SubgroupID + j - first, mine[j / 4u][j % 4u]);
+        }
+        barrier();
+        if (t >= first && t < last) {
+            float sum = 0.0;
+            for (uint q = 0u; q < gl_NumSubgroups; ++q) sum += rigid_word(each * q + t - first);
+            rigid_totals[t] = sum;
+        }
+        barrier();
+    }
+    mat4 sums;
+    [[unroll]] for (uint j = 0u; j < 16u; ++j) sums[j / 4u][j % 4u] = rigid_totals[j];
+    RigidMove move = rigid_fit(sums);
+    [[unroll]] for (uint s = 0u; s < MAX_SLOTS; ++s) {
+        if (s >= SLOTS || own[s] >= CAP || pinned[s]) continue;
+        spring_mask = masks[s];
+        vec3 moved = hx[s].xyz;
+        dx[s] = rigid_start(move, cells[s], x[s] - moved - origin, dx[s] + moved) - moved;
+    }
+}
 
 // The shared spatial hash: scratch[h] is the first particle of bucket h, scratch[BUCKETS + j]
 // the one after particle j (EMPTY ends a list) in its low bits (LINK_BITS; the top four may
@@ -423,6 +479,9 @@ void main() {
         barrier();  // every read of this substep's positions and velocities is done
 
         if (ITERATIVE) {
+            if (ADAPTIVE_START && (obj.flags & OBJ_RIGID_START) != 0u) {
+                rigid_start_slots(dx, x, hx, cells, masks, own, pinned);
+            }
             // The solve, from where the iterate starts (dx: the prediction dy, or VBD's
             // adaptive start); px/py/pz hold the bases x~ (COMPACT: the iterates x~ + dx).
             // XPBD: the multipliers of each particle's forward springs (by Jacobi: of its 12)

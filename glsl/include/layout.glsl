@@ -15,6 +15,7 @@
 #define OBJ_SELF_TRIANGLES 8u   // ... a cloth's particles against its triangles (self_contact.glsl)
 #define OBJ_ANCHORED      16u   // a particle is pinned (predict_body.glsl's adaptive_start)
 #define OBJ_LINE_SEARCH   32u   // the implicit method searches along its Newton steps
+#define OBJ_RIGID_START   64u   // a free object starts its solve from its rigid move (rigid_start.glsl)
 
 // Integrators, as sim::integrator::Integrator's discriminants (the fused kernel's SOLVER).
 #define METHOD_SYMPLECTIC_EULER 0u

@@ -87,6 +87,8 @@ pub const OBJ_SELF_TRIANGLES: u32 = 8;
 pub const OBJ_ANCHORED: u32 = 16;
 /// The implicit method searches along its Newton steps (`sim::cpu::implicit_searches`).
 pub const OBJ_LINE_SEARCH: u32 = 32;
+/// A free object starts its solve from its rigid move (`sim::cpu::integrators::rigid_starts`).
+pub const OBJ_RIGID_START: u32 = 64;
 /// Bits of the `FEATURES` specialization constant (`F_*` in `glsl/include/features.glsl`).
 pub const FEATURE_STRUCTURAL: u32 = 1;
 pub const FEATURE_SHEAR: u32 = 2;

@@ -116,6 +116,12 @@ pub const BDF2_STEP: f64 = 2.0 / 3.0;
 /// implicit method at 4 iterations fell to first order.
 pub const STIFF_START: f64 = 10.0;
 
+/// The turn of a free object's rigid move (`sim::cpu::integrators::RigidMove`) solves (I + e
+/// tr(S)) w = L with this e (S = sum r r^T, I = tr(S) - S): a straight rope's inertia tensor has no part about its axis, and
+/// there the turn is left at (nearly) zero, which moves no particle of it. Small enough that a
+/// cloth spinning in its plane keeps its spin (a share e of the turn a substep).
+pub const RIGID_REGULARISER: f64 = 1e-6;
+
 /// Conjugate-gradient iterations of one Newton step of the implicit method (`sim::cpu::integrators::implicit`): every
 /// `NEWTON_CG_ITERATIONS` iterations it linearises again at the iterate they reached. At one
 /// 1/60 s substep on a stiff cloth (docs/log.md, "The implicit method by Newton's method and

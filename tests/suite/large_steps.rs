@@ -593,7 +593,8 @@ fn the_implicit_methods_line_search_keeps_a_cut_short_solve_from_gaining_energy(
 /// free, its four corners pinned through the host before the first frame, then 30 frames: its
 /// particles end within 1e-5 m of the reference that had them pinned from the start (f32
 /// against f64; measured 1.4e-7), where the same pins set without the rewrite end farther than
-/// 1e-2 m from it (measured 2.5e-2: the solve starting from the prediction on a held cloth).
+/// 1e-3 m from it (measured 7.9e-3: the solve starting from the free object's rigid move on a
+/// held cloth; 2.5e-2 from the prediction, before free objects started so).
 #[test]
 fn pinning_in_the_app_rewrites_where_the_solve_starts() {
     use msdsim::app::SimHost;
@@ -658,7 +659,121 @@ pin = "none"
     assert_clean(&ctx);
     assert!(with < 1e-5, "pinned through the host: {with} m from the reference");
     assert!(
-        without > 1e-2,
+        without > 1e-3,
         "without the rewrite only {without} m from the reference: the test would not see it"
     );
+}
+
+/// The stiff cloth free in space (no pins, no gravity, no drag), its springs' rest lengths
+/// 1/1.05 of the grid (released stretched by 5%), bending a hundredth of the structural
+/// springs, at one 1/60 s substep, moving at `v(q)` (q: the particle's offset from the centre).
+fn free_stiff_cloth(k: f64, method: Integrator, iterations: u32, v: impl Fn(DVec3) -> DVec3) -> SimModel {
+    let mut m = stiff_cloth(k);
+    m.gravity = DVec3::ZERO;
+    m.integrator = method;
+    m.iterations = iterations;
+    let o = &mut m.objects[0];
+    o.pinned.iter_mut().for_each(|p| *p = false);
+    o.drag = 0.0;
+    o.stiffness = [k, k / 2.0, k / 100.0];
+    o.rest_scale = [1.0 / 1.05; 3];
+    let centre = mean(&o.positions);
+    o.velocities = o.positions.iter().map(|x| v(*x - centre)).collect();
+    m
+}
+
+/// Energy about the mean motion (the springs' at their stiffness and the kinetic energy less
+/// the mean velocity's) [J], and the angular momentum about the centre [kg m^2/s].
+fn internal_motion(m: &SimModel, x: &[DVec3], v: &[DVec3]) -> (f64, DVec3) {
+    let o = &m.objects[0];
+    let (c, u) = (mean(x), mean(v));
+    let total = msdsim::sim::cpu::energy(m, o, x, v);
+    let spin = x.iter().zip(v).map(|(x, v)| (*x - c).cross(*v - u) * o.mass).sum();
+    (total - 0.5 * o.mass * x.len() as f64 * u.length_squared(), spin)
+}
+
+/// A free stiff object at one large substep must not gain energy (issue 68): the free stiff
+/// cloth (`free_stiff_cloth`) thrown at 0.3 m/s with its particles' velocities scattered by
+/// up to 0.5 m/s, 1e4 and 1e6 N/m, VBD and the implicit method at 1, 2, 4 and 10 iterations,
+/// 4 s. On the f64 reference its energy about the mean motion never rises past its start (by
+/// 1e-6 of it: rounding; measured: never above it) and it ends below 1e-2 of it (measured at
+/// most 6.3e-4); the GPU paths end there too (measured at most 1.5e-3), but for the implicit
+/// method's one Newton step cut short (4 iterations) on the 1e6 N/m cloth, where f32 leaves
+/// motion that comes and goes (per stage 5.7e-2 at the end, up to 6.9 times the start on the
+/// way; docs/log.md): asserted below its start. Started from the guess (before `RigidMove`) the
+/// implicit method at one iteration ended with 2,300 times its starting energy, at 2 rose to
+/// 5.7 times, and VBD at one iteration to 3 times. And spun at 3 rad/s in its plane,
+/// unstretched, it keeps at least 90% of its angular momentum over 2 s on every path
+/// (measured 0.964 to 0.998: the start keeps the object's linearised rigid turn, `RigidMove`;
+/// with its translation alone it stopped). The default tier runs the GPU paths at 1 and 10
+/// iterations, the exhaustive tier at all four.
+#[test]
+fn a_free_stiff_cloth_gains_no_energy_at_a_large_step() {
+    free_stiff_cloths(&[1, 10]);
+}
+
+#[test]
+#[ignore = "exhaustive tier: every iteration count on the GPU"]
+fn a_free_stiff_cloth_gains_no_energy_at_a_large_step_at_every_iteration_count() {
+    free_stiff_cloths(&[1, 2, 4, 10]);
+}
+
+/// `a_free_stiff_cloth_gains_no_energy_at_a_large_step` with the GPU paths at `on_gpu`
+/// iterations (the reference at all).
+fn free_stiff_cloths(on_gpu: &[u32]) {
+    let ctx = gpu();
+    let scatter = |q: DVec3| {
+        let h = |a: f64| (a * 12.9898 + q.z * 78.233).sin() * 43758.5453 % 1.0;
+        DVec3::new(0.3 + 0.5 * h(q.x), 0.5 * h(q.x + 1.0), 0.5 * h(q.x + 2.0))
+    };
+    for (k, method) in [1e4, 1e6].into_iter().flat_map(|k| [(k, Integrator::Vbd), (k, Integrator::Implicit)])
+    {
+        for iterations in [1, 2, 4, 10] {
+            let m = free_stiff_cloth(k, method, iterations, scatter);
+            let o = &m.objects[0];
+            let (start, _) = internal_motion(&m, &o.positions, &o.velocities);
+            let mut cpu = CpuSim::new(&m);
+            let mut highest = start;
+            for _ in 0..240 {
+                cpu.step_frame();
+                let c = &cpu.objects()[0];
+                highest = highest.max(internal_motion(&m, &c.x, &c.v).0);
+            }
+            let case = format!("k = {k}, {method:?}, {iterations} iterations");
+            println!("{case}: cpu: start {start:.3e} J, highest {:.3e} of it", highest / start - 1.0);
+            assert!(
+                highest <= start * (1.0 + 1e-6),
+                "{case}: the energy rose to {:.3} times its start",
+                highest / start
+            );
+            let end = internal_motion(&m, &cpu.objects()[0].x, &cpu.objects()[0].v).0 / start;
+            assert!(end < 1e-2, "{case}, cpu: ends with {end:.3e} of its starting energy");
+            if !on_gpu.contains(&iterations) {
+                continue;
+            }
+            for (label, x, v) in every_path(&ctx, &m, 240).into_iter().skip(1) {
+                let end = internal_motion(&m, &x, &v).0 / start;
+                println!("{case}, {label}: ends with {end:.2e} of it");
+                // (f32: the implicit method's one Newton step cut short on the stiffest cloth)
+                let f32_case = method == Integrator::Implicit && iterations == 4 && k > 1e5;
+                let most = if f32_case { 1.0 } else { 1e-2 };
+                assert!(end < most, "{case}, {label}: ends with {end:.3e} of its starting energy");
+            }
+        }
+        for &iterations in on_gpu {
+            let mut m = free_stiff_cloth(k, method, iterations, |q| DVec3::Y.cross(q) * 3.0);
+            m.objects[0].rest_scale = [1.0; 3];
+            let o = &m.objects[0];
+            let (_, spin0) = internal_motion(&m, &o.positions, &o.velocities);
+            for (label, x, v) in every_path(&ctx, &m, 120) {
+                let kept = internal_motion(&m, &x, &v).1.dot(spin0) / spin0.length_squared();
+                println!("k = {k}, {method:?}, {iterations} iterations, {label}: spin kept {kept:.4}");
+                assert!(
+                    kept > 0.9,
+                    "k = {k}, {method:?}, {iterations} iterations, {label}: kept {kept:.4} of its spin"
+                );
+            }
+        }
+    }
+    assert_clean(&ctx);
 }

@@ -6,7 +6,7 @@
 use super::{air_force, rest_length, rest_lengths, springs, wind_at, Spring, SPRING_GROUPS};
 use crate::sim::integrator::{
     newton_steps, spring_class_parity, vertex_colour, vertex_colours, xpbd_class_order, BDF2_STEP,
-    SPRING_CLASSES, STIFF_START,
+    RIGID_REGULARISER, SPRING_CLASSES, STIFF_START,
 };
 use crate::sim::model::{Integrator, ObjectModel, SimModel};
 use crate::sim::pins::PinStep;
@@ -144,7 +144,8 @@ struct Inertial {
     /// y (x + d for a pinned particle: where it is at the substep's end).
     y: Vec<DVec3>,
     /// Where the solve's iterate starts: y, or with `adaptive` y less the part of the external
-    /// acceleration's pull h^2 F / m that the springs held last substep (`held_fraction`).
+    /// acceleration's pull h^2 F / m that the springs held last substep (`held_fraction`),
+    /// moved by `toward_rest`.
     start: Vec<DVec3>,
 }
 
@@ -178,7 +179,58 @@ fn inertial(s: &Substep<'_>, history: &[History]) -> Inertial {
             (base, y)
         })
         .unzip();
+    if rigid_starts(m, o) {
+        let rigid = RigidMove::fit(x, &start);
+        for (i, guess) in start.iter_mut().enumerate() {
+            *guess = toward_rest(o, i, h, rigid.of(x[i]), *guess);
+        }
+    }
     Inertial { h, base, y, start }
+}
+
+/// The rigid move that fits a free object's guessed displacements d_i = guess_i - x_i best in
+/// least squares, linearised: a translation t (their mean) and a turn w about the centre c
+/// (I w = sum r_i x (d_i - t), r_i = x_i - c, I the inertia tensor of unit masses), which
+/// moves x_i to x_i + t + w x r_i (`toward_rest` starts a stiff free object there). The sums
+/// are taken about the object's first particle, as the GPU takes them
+/// (glsl/include/rigid_start.glsl).
+struct RigidMove {
+    centre: DVec3,
+    t: DVec3,
+    w: DVec3,
+}
+
+impl RigidMove {
+    fn fit(x: &[DVec3], guess: &[DVec3]) -> Self {
+        let origin = x[0];
+        let n = x.len() as f64;
+        let (mut sq, mut sd, mut sqd, mut sqq) = (DVec3::ZERO, DVec3::ZERO, DVec3::ZERO, DMat3::ZERO);
+        for (x, g) in x.iter().zip(guess) {
+            let (q, d) = (*x - origin, *g - *x);
+            sq += q;
+            sd += d;
+            sqd += q.cross(d);
+            sqq += outer(q, q);
+        }
+        let (centre, t) = (sq / n, sd / n);
+        let moment = sqd - centre.cross(t) * n;
+        let spread = sqq - outer(centre, centre) * n;
+        let trace = spread.x_axis.x + spread.y_axis.y + spread.z_axis.z;
+        // I = tr(S) E - S for S = sum r r^T, regularised (RIGID_REGULARISER)
+        let inertia = DMat3::from_diagonal(DVec3::splat(trace * (1.0 + RIGID_REGULARISER))) - spread;
+        let w = if trace > 0.0 { inertia.inverse() * moment } else { DVec3::ZERO };
+        Self { centre: centre + origin, t, w }
+    }
+
+    /// Where the move takes a particle at x.
+    fn of(&self, x: DVec3) -> DVec3 {
+        x + self.t + self.w.cross(x - self.centre)
+    }
+}
+
+/// a b^T.
+fn outer(a: DVec3, b: DVec3) -> DMat3 {
+    DMat3::from_cols(a * b.x, a * b.y, a * b.z)
 }
 
 /// How stiff a particle's springs are against its inertia over the solve's step h:
@@ -187,19 +239,21 @@ fn stiffness_ratio(o: &ObjectModel, i: usize, h: f64) -> f64 {
     elastic_springs(o, i).map(|(_, k)| h * h * k + h * o.damping).sum::<f64>() / o.mass
 }
 
-/// Where the adaptive methods start particle i of an anchored object (a particle pinned):
-/// `guess` (the prediction less the pull its springs held), moved towards where the particle
-/// is (`x`, carried on by its pins' move over the substep: at rest with its pins, so that a
-/// carried cloth starts as a held one does) by the share kappa / (kappa + STIFF_START) of the
-/// way, kappa its
-/// `stiffness_ratio`. Where the springs are soft against the step a few iterations converge
-/// from the guess, which keeps the motion (second order); where they are stiff the sweeps
-/// cannot carry a correction across the object, and what they leave of the guess's distance
-/// from the solution becomes velocity: from the guess a stiff cloth held at its corners at one
-/// large substep never came to rest and gained energy; from where it is, what the solve leaves
-/// is motion not taken, which damps. An object with no pin keeps the guess: started from
-/// where it is, a stiff cloth in free fall did not fall (its sweeps cannot move it as a whole
-/// either) (docs/design/integrators.md, "Where the solve starts").
+/// Where the adaptive methods start particle i: `guess` (the prediction less the pull its
+/// springs held), moved towards `x` by the share kappa / (kappa + STIFF_START) of the way,
+/// kappa its `stiffness_ratio`. On an anchored object (a particle pinned) x is where the
+/// particle is, carried on by its pins' move over the substep (at rest with its pins, so that
+/// a carried cloth starts as a held one does); on a free object, where the rigid move that
+/// fits the guesses takes it (`RigidMove`). Where the springs are soft against the step a few
+/// iterations converge from the guess, which keeps the motion (second order); where they are
+/// stiff the sweeps cannot carry a correction across the object, and what they leave of the
+/// guess's distance from the solution becomes velocity: from the guess a stiff cloth held at
+/// its corners at one large substep never came to rest and gained energy, and a free one
+/// thrown stretched gained energy many times over; from x, what the solve leaves is
+/// deformation not taken, which damps. A free object keeps its rigid move: started from where
+/// it is, a stiff cloth in free fall did not fall (its sweeps cannot move it as a whole
+/// either), and without the turn a spinning one stopped (docs/design/integrators.md, "Where
+/// the solve starts").
 fn toward_rest(o: &ObjectModel, i: usize, h: f64, x: DVec3, guess: DVec3) -> DVec3 {
     let kappa = stiffness_ratio(o, i, h);
     x + (guess - x) * (STIFF_START / (STIFF_START + kappa))
@@ -427,8 +481,8 @@ pub(crate) fn xpbd_jacobi(s: &Substep<'_>, history: &mut [History]) -> State {
 /// on G as a function of its own position, with the 3x3 Hessian
 /// m / dt^2 I + sum k (n n^T + max(0, 1 - L / d) (I - n n^T)) + (b / dt) n n^T
 /// (the spring's transverse term clamped at compression keeps it positive definite).
-/// A held object settles at any stiffness (a free stiff one at few iterations can gain energy:
-/// docs/guide/limits.md); at convergence BDF2 with implicit dashpots.
+/// Settles at any stiffness, held or free (`toward_rest`); at convergence BDF2 with implicit
+/// dashpots.
 pub(crate) fn vbd(s: &Substep<'_>, history: &mut [History]) -> State {
     let mut solve = VbdSolve::new(s, history);
     for _ in 0..s.model.iterations {
@@ -665,17 +719,28 @@ pub(crate) fn implicit(s: &Substep<'_>, history: &mut [History]) -> State {
 /// `newton_descent` evaluates the same four).
 pub const LINE_SEARCH_STEPS: [f64; 4] = [1.0, 0.5, 0.25, 0.125];
 
-/// Whether the implicit method searches along its Newton steps on object `o`: where some
-/// particle's springs are stiffer than its inertia over the solve's step (`stiffness_ratio`
-/// above 1). Below that the incremental potential is close to its quadratic model and a
-/// Newton step close to exact, and a search would cost a pass over the springs for nothing.
-/// The GPU's per-stage path asks it as it records each frame: it tries the particles at and
-/// near the grid's corners, edges and middle, which have every set of springs a particle of
-/// the grid can have, not all of them.
+/// Whether the implicit method searches along its Newton steps on object `o`: where its
+/// springs are stiff against the step (`stiff_against_step`). Below that the incremental
+/// potential is close to its quadratic model and a Newton step close to exact, and a search
+/// would cost a pass over the springs for nothing.
 pub fn implicit_searches(m: &SimModel, o: &ObjectModel) -> bool {
-    if m.integrator != Integrator::Implicit {
-        return false;
-    }
+    m.integrator == Integrator::Implicit && stiff_against_step(m, o)
+}
+
+/// Whether a free object of a method that starts adaptively starts each solve from the rigid
+/// move that fits its guesses (`RigidMove`, `toward_rest`): where its springs are stiff
+/// against the step (`stiff_against_step`). A softer one converges from its guess (it would
+/// move at most a tenth of the way) and pays nothing for the sums the fit takes.
+pub fn rigid_starts(m: &SimModel, o: &ObjectModel) -> bool {
+    adaptive_start(m) && !o.anchored() && stiff_against_step(m, o)
+}
+
+/// Whether some particle of object `o` has springs stiffer than its inertia over the solve's
+/// step (`stiffness_ratio` above 1). The GPU's per-stage path asks it as it records each frame
+/// (through the parameters' flags): it tries the particles at and near the grid's corners,
+/// edges and middle, which have every set of springs a particle of the grid can have, not all
+/// of them.
+fn stiff_against_step(m: &SimModel, o: &ObjectModel) -> bool {
     let h = BDF2_STEP * m.dt();
     let near = |n: u32| {
         let n = n as i64;

@@ -34,7 +34,7 @@ pub(crate) mod integrators;
 mod inter_object;
 pub mod self_contact;
 
-pub use integrators::{energy, implicit_searches, max_strain, History};
+pub use integrators::{energy, implicit_searches, max_strain, rigid_starts, History};
 
 use super::gpu_types::ROPE_RING;
 use super::model::{ObjectKind, ObjectModel, SimModel, WindModel};

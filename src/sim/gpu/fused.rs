@@ -204,8 +204,9 @@ pub struct FusedShape {
     /// Workgroup size: a multiple of 32, at most 1024.
     pub threads: u32,
     pub particles: u32,
-    /// Words of scratch: the largest of the velocity window, the hash and an iterative method's
-    /// displacements (3 per particle; 2 when `compact`, 0 without dashpots).
+    /// Words of scratch: the largest of the velocity window, the hash, an iterative method's
+    /// displacements (3 per particle; 2 when `compact`, 0 without dashpots) and what a free
+    /// object's rigid start needs beyond the positions.
     pub scratch: u32,
     /// Shared hash buckets (a power of two; 1 without the hash).
     pub buckets: u32,
@@ -219,7 +220,8 @@ pub struct FusedShape {
     /// Entries of each particle's self-collision contact list (with the shared hash; else 0).
     pub list: u32,
     /// Words of the implicit method's dot products (`workgroup_sum`: two sets of a slot for
-    /// every four threads); 2 for the other methods (their placeholder).
+    /// every four threads; 2 for the other methods, their placeholder) and of a free object's
+    /// rigid start's totals (`RIGID_SUMS` for the methods that start adaptively; else 1).
     pub reduce: u32,
     /// VBD's compact solve (`COMPACT` in the kernel), taken only where the displacements do
     /// not fit beside the bases: shared memory holds the iterates p (the neighbours' springs
@@ -237,6 +239,9 @@ pub struct FusedShape {
     /// paper's curtain keeps its 2,048 buckets in 48 KiB.
     pub stretch_counts: u32,
 }
+
+/// The sums of a free object's rigid start (glsl/include/rigid_start.glsl's rigid_terms).
+const RIGID_SUMS: u32 = 16;
 
 /// The stretch limit's counts packed eight a word from scratch's start (fused.comp's
 /// STRETCH_PACKED).
@@ -265,7 +270,9 @@ impl FusedShape {
         let threads = n.div_ceil(slots).next_multiple_of(32);
         let halo = if o.dims[1] > 1 { 2 * o.dims[0] } else { 2 };
         let budget = limits.shared_bytes.saturating_sub(SHARED_MARGIN);
-        let reduce = if model.integrator == Integrator::Implicit { 2 * threads.div_ceil(4) } else { 2 };
+        let adaptive = solver.is_some_and(|s| s.adaptive_start);
+        let reduce = if model.integrator == Integrator::Implicit { 2 * threads.div_ceil(4) } else { 2 }
+            + if adaptive { RIGID_SUMS } else { 1 };
         // (a cloth's triangles and a rope's segments are searched before the constraints)
         let stretch_counts = match o.stretch_limit {
             None => 0,
@@ -295,7 +302,14 @@ impl FusedShape {
         } else {
             1
         };
+        // A free object's rigid start passes its sums through the positions and scratch
+        // (fused.comp's rigid_word): at least one of each subgroup (of 4 lanes or more).
+        let rigid = if adaptive { threads.div_ceil(4).saturating_sub(3 * n) } else { 0 };
+        if rigid > words {
+            return None;
+        }
         let scratch = [
+            rigid,
             if damped { window(pass_slots) } else { 0 },
             if hashed { buckets + n } else { 0 },
             displacements,

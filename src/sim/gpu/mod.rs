@@ -814,6 +814,7 @@ impl GpuSim {
             let params = object_params(o, model);
             gpu.params.write(0, &[params])?;
             gpu.searches = object::searches(&params);
+            gpu.rigid_start = object::rigid_start(&params);
         }
         self.history_stale |= model.dt() != self.model.dt();
         let now = self.time();

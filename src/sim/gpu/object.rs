@@ -5,8 +5,8 @@ use super::fused::ObjectPlan;
 use super::{BINDINGS, CLOTH_GROUP, ROPE_GROUP};
 use crate::error::UserError;
 use crate::sim::gpu_types::{
-    Globals, ObjectParams, Particle, SurfaceVertex, OBJ_ANCHORED, OBJ_LINE_SEARCH, OBJ_SELF_COLLISION,
-    OBJ_SELF_HASH, OBJ_SELF_TRIANGLES, OBJ_STRETCH_LIMIT,
+    Globals, ObjectParams, Particle, SurfaceVertex, OBJ_ANCHORED, OBJ_LINE_SEARCH, OBJ_RIGID_START,
+    OBJ_SELF_COLLISION, OBJ_SELF_HASH, OBJ_SELF_TRIANGLES, OBJ_STRETCH_LIMIT,
 };
 use crate::sim::integrator::{vertex_colours, BDF2_STEP};
 use crate::sim::model::{Integrator, ObjectKind, ObjectModel, ObjectShape, SelfCollisionMethod, SimModel};
@@ -134,11 +134,24 @@ pub(super) struct SolverBuffers {
 }
 
 impl SolverBuffers {
-    fn new(ctx: &GpuContext, name: &str, particles: u64, model: &SimModel) -> Result<Option<Self>, VkError> {
+    /// `groups`: the workgroups of a pass over every particle.
+    fn new(
+        ctx: &GpuContext,
+        name: &str,
+        particles: u64,
+        groups: u64,
+        model: &SimModel,
+    ) -> Result<Option<Self>, VkError> {
         let Some(solver) = model.integrator.solver() else { return Ok(None) };
         // With contact rounds a slice more: the colliders' moves within the solve
         // (glsl/vbd_iterate.comp); a scene without them does not pay for it.
-        let aux = solver.aux + (model.contact_rounds() > 1) as u64;
+        let slices = solver.aux + (model.contact_rounds() > 1) as u64;
+        let mut aux = slices * particles;
+        if solver.adaptive_start {
+            // A free object's rigid start: four sums a workgroup and their totals after the
+            // first slice (glsl/rigid_start.comp).
+            aux = aux.max(particles + 4 + 4 * groups);
+        }
         let slices = solver.slices;
         let (storage, gpu) = (BufferUsage::STORAGE, MemoryKind::GpuOnly);
         let cleared = storage | BufferUsage::TRANSFER_DST;
@@ -147,7 +160,7 @@ impl SolverBuffers {
             &format!("{name}.solver"),
             [
                 ("iter", 16 * slices * particles, storage, gpu),
-                ("aux", 16 * aux * particles, storage, gpu),
+                ("aux", 16 * aux, storage, gpu),
                 ("history", 16 * HISTORY_VEC4S * particles, cleared, gpu),
             ],
         )?;
@@ -194,6 +207,9 @@ pub(super) struct GpuObject {
     /// The implicit method searches along its Newton steps (the parameters' OBJ_LINE_SEARCH,
     /// `searches`; kept here so that recording a frame does not ask).
     pub searches: bool,
+    /// It starts each substep's solve from the rigid move that fits its guesses
+    /// (`rigid_start`).
+    pub rigid_start: bool,
     /// The features its step pipelines compile in and its fused layout.
     pub plan: ObjectPlan,
 }
@@ -258,7 +274,8 @@ impl GpuObject {
                     MemoryKind::GpuOnly,
                 )?);
             }
-            solver = SolverBuffers::new(ctx, &o.name, n, model)?;
+            let groups = step_groups(&o.shape()).iter().product::<u32>() as u64;
+            solver = SolverBuffers::new(ctx, &o.name, n, groups, model)?;
             if builds_hash(o, model) {
                 let fused = 4 * plan.fused.map_or(0, |f| f.list_words());
                 let name = format!("{}.self_list", o.name);
@@ -300,6 +317,7 @@ impl GpuObject {
             lists: Default::default(),
             pins_move: o.pin_motion.is_moving(),
             searches: searches(&parameters),
+            rigid_start: rigid_start(&parameters),
             plan,
         };
         let mut set = |direction| arena.allocate(ctx, layout, &object.bindings(shared, direction));
@@ -607,6 +625,9 @@ pub(super) fn object_params(o: &ObjectModel, model: &SimModel) -> ObjectParams {
     if crate::sim::cpu::implicit_searches(model, o) {
         flags |= OBJ_LINE_SEARCH;
     }
+    if crate::sim::cpu::rigid_starts(model, o) {
+        flags |= OBJ_RIGID_START;
+    }
     let buckets = hash_table_size(o.particle_count() as u64) as u32;
     let cell = 2.0 * o.self_reach().unwrap_or(1.0).max(1e-6);
     ObjectParams {
@@ -639,6 +660,12 @@ pub(super) fn object_params(o: &ObjectModel, model: &SimModel) -> ObjectParams {
 /// its OBJ_LINE_SEARCH, which the fused kernel reads, so the two paths cannot disagree.
 pub(super) fn searches(params: &ObjectParams) -> bool {
     params.flags & OBJ_LINE_SEARCH != 0
+}
+
+/// Whether the per-stage recording gives an object with `params` the rigid start's passes
+/// (glsl/rigid_start.comp): its OBJ_RIGID_START, which the fused kernel reads.
+pub(super) fn rigid_start(params: &ObjectParams) -> bool {
+    params.flags & OBJ_RIGID_START != 0
 }
 
 /// The parameters' `pin_velocity`, `pin_pivot` and `pin_turn` for the frame that starts at

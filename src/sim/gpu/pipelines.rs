@@ -33,6 +33,8 @@ pub(super) enum Stage {
     Physics(ObjectKind, bool, u32),
     /// The inertial prediction of an iterative integrator.
     Predict(ObjectKind, Integrator, u32),
+    /// A free object's rigid start (`rigid_start.comp`): the methods that start adaptively.
+    RigidStart(ObjectKind, u32),
     /// One iteration (or one colour of one) of an iterative integrator's solver.
     Iterate(ObjectKind, Integrator),
     /// The constraints (`lists`: with the self-collision contact lists on, `hash.rs`).
@@ -93,6 +95,7 @@ impl Stage {
         match self {
             Stage::Physics(..) => "physics.comp",
             Stage::Predict(..) => "predict.comp",
+            Stage::RigidStart(..) => "rigid_start.comp",
             Stage::Iterate(_, method) => solver(method).shader,
             Stage::Constraints(..) => "constraints.comp",
             Stage::StretchCount(..) => "stretch_count.comp",
@@ -116,6 +119,7 @@ impl Stage {
             self,
             Stage::Physics(..)
                 | Stage::Predict(..)
+                | Stage::RigidStart(..)
                 | Stage::Iterate(..)
                 | Stage::Constraints(..)
                 | Stage::StretchCount(..)
@@ -136,7 +140,7 @@ impl Stage {
                 [group(kind), vec![0, f, s.keeps_prediction as u32, s.adaptive_start as u32]].concat()
             }
             Stage::Constraints(kind, f, lists) => [group(kind), vec![lists as u32, f]].concat(),
-            Stage::StretchCount(kind, f) => [group(kind), vec![0, f]].concat(),
+            Stage::StretchCount(kind, f) | Stage::RigidStart(kind, f) => [group(kind), vec![0, f]].concat(),
             Stage::SelfPairs(f, lists, pass) => {
                 // (dispatched over the object's step groups: a rope's when its segments pair)
                 let rope = f & crate::sim::gpu_types::FEATURE_SEGMENT_PAIRS != 0;
@@ -164,6 +168,10 @@ impl Stage {
             Scheme::Explicit { verlet } => vec![Stage::Physics(kind, verlet, f)],
             Scheme::Iterative(_) => vec![Stage::Predict(kind, method, f), Stage::Iterate(kind, method)],
         };
+        // (for every object: pins may be taken off in the app)
+        if method.solver().is_some_and(|s| s.adaptive_start) {
+            stages.push(Stage::RigidStart(kind, f));
+        }
         stages.extend([
             Stage::Constraints(kind, f, false),
             Stage::Surface(kind, true),
@@ -185,6 +193,7 @@ impl Stage {
         match self {
             Stage::Physics(..)
             | Stage::Predict(..)
+            | Stage::RigidStart(..)
             | Stage::Iterate(..)
             | Stage::Constraints(..)
             | Stage::StretchCount(..)

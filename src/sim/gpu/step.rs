@@ -2,7 +2,8 @@
 //! model's integrator runs it (`sim::integrator`'s table):
 //! - explicit methods: one pass of `physics.comp`;
 //! - iterative methods: the prediction (`predict.comp`: y into the iterates and auxiliary
-//!   buffers), then `iterations` iterations of the solver, each one pass over every particle
+//!   buffers; on the free objects of the methods that start adaptively, three passes of
+//!   `rigid_start.comp` more), then `iterations` iterations of the solver, each one pass over every particle
 //!   (Jacobi), one pass per vertex colour or spring class (Gauss-Seidel), or for the implicit
 //!   method's conjugate gradients two passes and one more for each Newton step (and on an
 //!   object that searches along its steps two more: the search's sums and the move; with a
@@ -53,6 +54,22 @@ impl GpuSim {
                 o.scratch_barriers().into_iter().chain([rw(&o.state[1])]).chain(hash)
             })
             .collect();
+        // Free objects of the methods that start adaptively: the rigid start's sums, their
+        // totals and the moved iterates (glsl/rigid_start.comp).
+        let rigid: Vec<(usize, &GpuObject)> =
+            stepped.iter().copied().filter(|(_, o)| o.rigid_start).collect();
+        if !rigid.is_empty() {
+            for phase in [RIGID_PARTIAL, RIGID_TOTAL, RIGID_APPLY] {
+                rec.barrier(&between_passes);
+                let mut pass = Pass::new();
+                for &(k, o) in &rigid {
+                    let groups = if phase == RIGID_TOTAL { [1, 1, 1] } else { o.step_groups };
+                    let pipeline = self.pipelines.get(Stage::RigidStart(o.kind, o.plan.features));
+                    pass.add(k, pipeline, groups, &[phase]);
+                }
+                pass.record(rec, batches, 0);
+            }
+        }
         // Passes of one iteration of the methods that sweep (not the implicit method).
         let classes = 2 * SPRING_CLASSES.len() as u32;
         let passes = match solver.sweep {
@@ -168,6 +185,11 @@ impl GpuSim {
         self.cg_totals_above = groups;
     }
 }
+
+/// The rigid start's passes (glsl/rigid_start.comp's PHASE_*).
+const RIGID_PARTIAL: u32 = 0;
+const RIGID_TOTAL: u32 = 1;
+const RIGID_APPLY: u32 = 2;
 
 /// The implicit method's passes (glsl/implicit_iterate.comp's PHASE_*) and the bits of the
 /// pass word that hold them.
