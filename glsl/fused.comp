@@ -437,8 +437,9 @@ void main() {
                 if (pinned[s]) {
                     // Moved with its pins (physics_particle, predict.comp: the iterative
                     // methods' base of the pins' steady motion, displacement 2 d / 3).
-                    vec3 d = pin_move(x[s], sub);
-                    v_new[s] = pin_velocity_of(d);
+                    float pin_w = p_in[k].pos.w;  // (its pin group; the state is stored at the end)
+                    vec3 d = pin_move(x[s], sub, pin_w);
+                    v_new[s] = pin_velocity_of(d, pin_w);
                     if (ITERATIVE) {
                         x[s] += d * (1.0 / 3.0);
                         dy[s] = d * BDF2_STEP;
@@ -865,7 +866,7 @@ void main() {
     [[unroll]] for (uint s = 0u; s < MAX_SLOTS; ++s) {
         if (s >= SLOTS) break;
         uint k = own[s];
-        if (k < n) p_in[k] = Particle(vec4(x[s], pinned[s] ? 1.0 : 0.0), vec4(v[s], 0.0));
+        if (k < n) p_in[k] = Particle(vec4(x[s], pinned[s] ? p_in[k].pos.w : 0.0), vec4(v[s], 0.0));
         if (ITERATIVE && k < n) {
             history[hist(k, H_DX)] = pinned[s] ? vec4(0.0) : hx[s];
             history[hist(k, H_DV)] = pinned[s] ? vec4(0.0) : hv[s];

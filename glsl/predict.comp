@@ -45,7 +45,7 @@ void main() {
         // Moving pins (sim::cpu::integrators::inertial): a base of their steady motion (a
         // move of d a substep), so that y - x~ = 2 d / 3 is their velocity over h, as the free
         // particles' displacements are.
-        vec3 d = pin_move(x, pc.substep);
+        vec3 d = pin_move(x, pc.substep, p.pos.w);
         start = x + d * (1.0 / 3.0);
         dy = d * BDF2_STEP;
         guess = dy;

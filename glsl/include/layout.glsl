@@ -82,6 +82,9 @@ struct Globals {
 #define GUARD_FAST       4u   // a speed above Globals.contact_speed (a warning, not a stop)
 #define GUARD_STRAIN     8u   // a structural spring stretched past Globals.guard_strain
 
+// Pin groups of an object (sim::model::PIN_GROUPS): a pinned particle's pos.w is 1 + its group.
+#define PIN_GROUPS 8
+
 struct ObjectParams {
     uvec2 dims;            // grid columns, rows (a rope is nodes x 1)
     vec2 spacing;          // rest distance between grid neighbours along columns, rows [m]
@@ -105,9 +108,10 @@ struct ObjectParams {
     vec4 xpbd[3];          // XPBD per spring type, for the substep: alpha~ = 1 / (k dt^2),
                            // gamma = b / (k dt), and the correction's scale relaxation / denominator
                            // with the other end free (z) or pinned (w); zero for k = 0
-    vec4 pin_velocity;     // how the pinned particles move over this frame's substeps (pins.glsl):
-    vec4 pin_pivot;        // the translation's velocity [m/s]; the pivot at the frame's start [m]
-    vec4 pin_turn;         // (w: 1 where they turn); a substep's turn (unit quaternion, xyzw)
+    vec4 pins[3 * PIN_GROUPS]; // how each pin group's particles move over this frame's substeps
+                           // (pins.glsl), three a group: the translation's velocity [m/s]; the
+                           // pivot at the frame's start [m] (w: 1 where they turn); a substep's
+                           // turn (unit quaternion, xyzw)
 };
 
 // The spatial hash of a grid cell: Teschner et al.'s (2003) mix of y and z, plus x itself, so

@@ -36,9 +36,9 @@ void physics_particle(uvec2 cell, uint substep, bool lists) {
     uint i = cell.x + cell.y * obj.dims.x;
     Particle p = IN(i);
     if (p.pos.w > 0.5) {  // pinned: moved with its pins (pins.glsl; usually not at all)
-        vec3 d = pin_move(p.pos.xyz, substep);
+        vec3 d = pin_move(p.pos.xyz, substep, p.pos.w);
         vec3 x = p.pos.xyz + d;
-        OUT(i) = Particle(vec4(x, 1.0), vec4(pin_velocity_of(d), 0.0));
+        OUT(i) = Particle(vec4(x, p.pos.w), vec4(pin_velocity_of(d, p.pos.w), 0.0));
         note_position(i, x, true, substep, lists);
         return;
     }

@@ -57,13 +57,13 @@ float stiffness_ratio(uvec2 cell, float h) {
 // fraction of its `pull` that the springs held last substep (`held`, history H_DV's w; none
 // without history, hx.w = 0; sim::cpu::integrators::held_fraction says why); on an anchored
 // object, moved towards where the particle is (`here`, x - base), carried on by its pins'
-// move over the substep (pin_move at x, in substep `sub`), by the share of its stiffness
+// group 0's move over the substep (pin_move at x, in substep `sub`), by the share of its stiffness
 // ratio (sim::cpu::integrators::toward_rest says why).
 vec3 adaptive_start(uvec2 cell, vec3 dy, vec3 pull, vec4 hx, float held, vec3 here, vec3 x, uint sub) {
     vec3 guess = hx.w > 0.5 ? dy - pull * held : dy;
     if ((obj.flags & OBJ_ANCHORED) == 0u) return guess;
     float kappa = stiffness_ratio(cell, solve_dt());
-    vec3 rest = here + pin_move(x, sub);
+    vec3 rest = here + pin_move(x, sub, 0.0);
     return rest + (guess - rest) * (STIFF_START / (STIFF_START + kappa));
 }
 

@@ -40,8 +40,9 @@ void finish_particle_moved(uint i, vec3 dx, vec3 v, vec3 solved, bool pinned, fl
     vec3 lost = history[hist(i, H_DV)].xyz;  // (predict.comp)
     vec3 x = base + dx;
     vec3 solved_v = (solved - lost) * (1.0 / solve_dt());
-    vec3 pins = pinned ? pin_velocity_of(pin_move(start.pos.xyz, it.substep)) : vec3(0.0);
-    p_out[i] = Particle(vec4(x, pinned ? 1.0 : 0.0), vec4(pinned ? pins : v, 0.0));
+    float w = start.pos.w;
+    vec3 pins = pinned ? pin_velocity_of(pin_move(start.pos.xyz, it.substep, w), w) : vec3(0.0);
+    p_out[i] = Particle(vec4(x, pinned ? w : 0.0), vec4(pinned ? pins : v, 0.0));
     history[hist(i, H_DX)] = pinned ? vec4(0.0) : vec4((base - start.pos.xyz) + solved, 1.0);
     history[hist(i, H_DV)] = pinned ? vec4(0.0) : vec4(solved_v - start.vel.xyz, held);
     note_position(i, x, pinned, it.substep, (it.lists & 1u) != 0u);

@@ -74,8 +74,16 @@ fn layout_key(s: &Scene) -> String {
         .iter()
         .map(|c| {
             format!(
-                "{:?}{:?}{:?}{:?}{:?}{:?}{:?}{:?}",
-                c.resolution, c.size, c.origin, c.orientation, c.pin, c.pinned, c.pin_box, c.pin_motion
+                "{:?}{:?}{:?}{:?}{:?}{:?}{:?}{:?}{:?}",
+                c.resolution,
+                c.size,
+                c.origin,
+                c.orientation,
+                c.pin,
+                c.pinned,
+                c.pin_box,
+                c.pin_motion,
+                c.pin_groups
             )
         })
         .collect();
@@ -84,8 +92,8 @@ fn layout_key(s: &Scene) -> String {
         .iter()
         .map(|r| {
             format!(
-                "{}{:?}{:?}{:?}{:?}{:?}{:?}",
-                r.nodes, r.start, r.end, r.pin, r.pinned, r.pin_box, r.pin_motion
+                "{}{:?}{:?}{:?}{:?}{:?}{:?}{:?}",
+                r.nodes, r.start, r.end, r.pin, r.pinned, r.pin_box, r.pin_motion, r.pin_groups
             )
         })
         .collect();
@@ -285,6 +293,17 @@ impl SimHost {
         }
         let cols = o.dims[0];
         let (col, row) = (index % cols, index / cols);
+        let group = o.group_of(i);
+        if o.pinned[i] && group > 0 {
+            let (kind, name, which) = match object < n_cloths {
+                true => ("cloth", &self.scene.cloths[object].name, format!("particle [{col}, {row}]")),
+                false => ("rope", &self.scene.ropes[object - n_cloths].name, format!("node {index}")),
+            };
+            return Err(format!(
+                "{kind} '{name}' {which} is held by its pin_group[{}]: take it out of that group to free it",
+                group - 1
+            ));
+        }
         if object < n_cloths {
             let cloth = &mut self.scene.cloths[object];
             let by_rule = cloth.pinned_by_rule()[i];
@@ -352,7 +371,7 @@ impl SimHost {
             for (i, _) in o.pinned.iter().enumerate().filter(|(_, &p)| p) {
                 out.push(match self.pinned_at.get(&(k, i as u32)) {
                     Some(&at) => glam::Vec3::from(at),
-                    None => o.pin_motion.carried(o.positions[i], now).as_vec3(),
+                    None => o.pin_carried(i, o.positions[i], now).as_vec3(),
                 });
             }
         }

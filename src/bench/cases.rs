@@ -79,6 +79,7 @@ fn cloth(res: u32) -> Cloth {
         pinned: Vec::new(),
         pin_box: None,
         pin_motion: None,
+        pin_groups: Vec::new(),
         color: [0.7, 0.2, 0.2],
         back_color: [0.8, 0.7, 0.5],
     }
@@ -107,6 +108,7 @@ fn rope(nodes: u32) -> Rope {
         pinned: Vec::new(),
         pin_box: None,
         pin_motion: None,
+        pin_groups: Vec::new(),
         color: [0.7, 0.6, 0.4],
     }
 }

@@ -152,6 +152,9 @@ pub(super) fn cloth(c: &Cloth) -> ObjectModel {
         pinned[(p[0] + p[1] * cols) as usize] = true;
     }
     pin_inside(&c.pin_box, &positions, &mut pinned);
+    let own_motion = pin_motion(&c.pin_motion, &positions, &pinned);
+    let (pin_group, pin_groups) =
+        groups(&c.pin_groups, |p| (p[0] + p[1] * cols) as usize, &positions, &mut pinned);
     ObjectModel {
         kind: ObjectKind::Cloth,
         name: c.name.clone(),
@@ -173,10 +176,52 @@ pub(super) fn cloth(c: &Cloth) -> ObjectModel {
         rope_radius: 0.0,
         ring_weights: default_ring_weights(),
         velocities: vec![DVec3::ZERO; n],
-        pin_motion: pin_motion(&c.pin_motion, &positions, &pinned),
+        pin_motion: own_motion,
+        pin_groups,
+        pin_group,
         positions,
         pinned,
     }
+}
+
+/// Each particle's group of `groups` (1 + its index; 0 where none has it) and their motions,
+/// the particles they hold pinned too (where two hold one, the later: scene validation
+/// refuses it).
+fn groups<P>(
+    groups: &[super::PinGroup<P>],
+    index: impl Fn(&P) -> usize,
+    positions: &[DVec3],
+    pinned: &mut [bool],
+) -> (Vec<u8>, Vec<PinMotion>) {
+    if groups.is_empty() {
+        return (Vec::new(), Vec::new());
+    }
+    let mut of = vec![0u8; positions.len()];
+    let motions = (groups.iter().enumerate())
+        .map(|(g, group)| {
+            let held = group_mask(group, &index, positions);
+            for (i, _) in held.iter().enumerate().filter(|(_, &h)| h) {
+                pinned[i] = true;
+                of[i] = (g + 1) as u8;
+            }
+            pin_motion(&group.pin_motion, positions, &held)
+        })
+        .collect();
+    (of, motions)
+}
+
+/// The particles a pin group holds: those it lists (`index` of each) and those in its box.
+pub(super) fn group_mask<P>(
+    group: &super::PinGroup<P>,
+    index: impl Fn(&P) -> usize,
+    positions: &[DVec3],
+) -> Vec<bool> {
+    let mut held = vec![false; positions.len()];
+    for p in &group.pinned {
+        held[index(p)] = true;
+    }
+    pin_inside(&group.pin_box, positions, &mut held);
+    held
 }
 
 /// A validated `pin_motion` in the model: keyframes are already displacements; the turn in
@@ -237,6 +282,8 @@ pub(super) fn rope(r: &Rope) -> ObjectModel {
         pinned[p as usize] = true;
     }
     pin_inside(&r.pin_box, &positions, &mut pinned);
+    let own_motion = pin_motion(&r.pin_motion, &positions, &pinned);
+    let (pin_group, pin_groups) = groups(&r.pin_groups, |&p| p as usize, &positions, &mut pinned);
     let mut ring_weights = default_ring_weights();
     if let Some(w) = &r.ring_weights {
         for (dst, src) in ring_weights.iter_mut().zip(w) {
@@ -264,7 +311,9 @@ pub(super) fn rope(r: &Rope) -> ObjectModel {
         rope_radius: r.radius,
         ring_weights,
         velocities: vec![DVec3::ZERO; n],
-        pin_motion: pin_motion(&r.pin_motion, &positions, &pinned),
+        pin_motion: own_motion,
+        pin_groups,
+        pin_group,
         positions,
         pinned,
     }

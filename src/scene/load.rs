@@ -472,6 +472,44 @@ stiffness = { structural = 1.0, shear = 1.0, bending = 1.0 }
         assert!(e.contains("cloth[0].mass = NaN"), "{e}");
     }
 
+    /// Pin groups (`[[cloth.pin_group]]`): each must hold a particle, none that another group
+    /// or the object's own pins hold, its list inside the grid, at most seven; a valid one
+    /// pins its particles in a group of their own with its motion, and survives a save.
+    #[test]
+    fn pin_groups_are_checked_and_kept() {
+        let group = |g: &str| format!("cloth.a.pin_group=[{g}]");
+        let e = with(&[&group("{ pin_motion = { velocity = [0, 1, 0] } }")]).unwrap_err().0;
+        assert!(e.contains("cloth[0].pin_group[0]: holds no particle"), "{e}");
+        let e = with(&[&group("{ pinned = [[3, 0]] }")]).unwrap_err().0;
+        assert!(e.contains("cloth[0].pin_group[0].pinned[0] = [3, 0]: outside the 3 x 3 grid"), "{e}");
+        let e = with(&["cloth.a.pin=\"corners\"", &group("{ pinned = [[0, 0]] }")]).unwrap_err().0;
+        assert!(
+            e.contains("cloth[0].pin_group[0]: particle [0, 0] is pinned by its object's own pins"),
+            "{e}"
+        );
+        let e = with(&[&group("{ pinned = [[1, 1]] }, { pinned = [[1, 1], [2, 2]] }")]).unwrap_err().0;
+        assert!(
+            e.contains("cloth[0].pin_group[1]: particle [1, 1] is pinned by pin_group[0] already"),
+            "{e}"
+        );
+        let eight = ["{ pinned = [[0, 0]] }"; 8].join(", ");
+        let e = with(&[&group(&eight)]).unwrap_err().0;
+        assert!(e.contains("cloth[0].pin_group: 8 groups, at most 7"), "{e}");
+        let e =
+            with(&[&group("{ pinned = [[1, 1]], pin_motion = { velocity = [0, 500, 0] } }")]).unwrap_err().0;
+        assert!(e.contains("cloth[0].pin_group[0].pin_motion: its pins would move at up to 500 m/s"), "{e}");
+        let ok = group("{ pinned = [[1, 1]] }, { pin_box = { min = [0.9, -1.1, -1.0], max = [1.1, -0.4, 1.0] }, pin_motion = { angular_velocity = [0, 90, 0] } }");
+        let s = with(&["cloth.a.pin=\"top_corners\"", &ok]).unwrap();
+        let o = &crate::scene::build::to_model(&s).objects[0];
+        let groups: Vec<(usize, usize)> =
+            (0..9).filter(|&i| o.pinned[i]).map(|i| (i, o.group_of(i))).collect();
+        assert_eq!(groups, [(0, 0), (2, 0), (4, 1), (5, 2), (8, 2)], "{:?}", o.positions);
+        assert_eq!(o.pin_groups.len(), 2);
+        assert!(!o.pin_groups[0].is_moving() && o.pin_groups[1].turns());
+        let text = preset_text(&s).unwrap();
+        assert_eq!(parse(&text, "groups.toml", &[]).unwrap(), s, "{text}");
+    }
+
     /// A pin motion needs pins to move and exactly one way of moving, as a collider's; a valid
     /// one survives a save.
     #[test]

@@ -552,12 +552,31 @@ pub struct Cloth {
     /// How the pinned particles move together (absent: they stay put): `PinMotion`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub pin_motion: Option<Motion>,
+    /// Further groups of pinned particles, each with a motion of its own (`[[cloth.pin_group]]`).
+    #[serde(default, rename = "pin_group", skip_serializing_if = "Vec::is_empty")]
+    pub pin_groups: Vec<PinGroup<[u32; 2]>>,
     /// Linear RGB of the side the normals point to, 0..1 (drawing only).
     #[serde(default = "defaults::cloth_color")]
     pub color: [f64; 3],
     /// Linear RGB of the other side, 0..1 (drawing only).
     #[serde(default = "defaults::cloth_back_color")]
     pub back_color: [f64; 3],
+}
+
+/// A further group of an object's pinned particles that moves by a motion of its own (as
+/// Houdini Vellum's pin groups; two handles turning opposite ways twist a cloth): those listed
+/// (`P`: [column, row] on a cloth, a node index on a rope) and those inside `pin_box`. A
+/// particle follows one group: its object's own pins (`pin`, `pinned`, `pin_box`) or one entry.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct PinGroup<P> {
+    #[serde(default = "Vec::new", skip_serializing_if = "Vec::is_empty")]
+    pub pinned: Vec<P>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub pin_box: Option<PinBox>,
+    /// How they move (absent: they stay put), as the object's `pin_motion`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub pin_motion: Option<Motion>,
 }
 
 /// An axis-aligned box of a cloth's or rope's `pin_box`: the particles placed inside it (its
@@ -652,6 +671,9 @@ pub struct Rope {
     /// How the pinned nodes move together (absent: they stay put), as a cloth's `pin_motion`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub pin_motion: Option<Motion>,
+    /// Further groups of pinned nodes, each with a motion of its own (`[[rope.pin_group]]`).
+    #[serde(default, rename = "pin_group", skip_serializing_if = "Vec::is_empty")]
+    pub pin_groups: Vec<PinGroup<u32>>,
     /// Linear RGB, 0..1 (drawing only).
     #[serde(default = "defaults::rope_color")]
     pub color: [f64; 3],

@@ -268,37 +268,48 @@ pub fn check(scene: &Scene) -> Check {
             return Err(format!("rope[{i}].name = \"{}\": another object has this name", r.name));
         }
     }
+    let moves = |own: bool, groups: usize| own || groups > 0;
     let moving = (scene.cloths.iter().enumerate())
-        .filter(|(_, c)| c.pin_motion.is_some())
+        .filter(|(_, c)| moves(c.pin_motion.is_some(), c.pin_groups.len()))
         .map(|(i, c)| (format!("cloth[{i}]"), super::build::cloth(c)))
         .chain(
             (scene.ropes.iter().enumerate())
-                .filter(|(_, r)| r.pin_motion.is_some())
+                .filter(|(_, r)| moves(r.pin_motion.is_some(), r.pin_groups.len()))
                 .map(|(i, r)| (format!("rope[{i}]"), super::build::rope(r))),
         );
     let substep = scene.sim.frame_dt / scene.sim.substeps as f64;
-    for (at, o) in moving {
-        // A substep's turn is a rotation: past half a turn it would turn the other way; a keyed
-        // turn is taken a frame at a time (`PinMotion::frame_spin`), so half a turn a frame.
-        let (key, per, step, or) = match o.pin_motion.rotation.is_moving() {
-            true => ("rotation_keyframes", "frame", scene.sim.frame_dt, ""),
-            false => ("angular_velocity", "substep", substep, " or more substeps"),
-        };
-        let turn = o.pin_motion.top_spin() * step;
-        if turn >= 0.5 * std::f64::consts::TAU {
-            return Err(format!(
-                "{at}.pin_motion.{key}: up to {} degrees a {per}, half a turn or more (the {per}'s turn would go the other way): a slower turn{or}",
-                num(turn.to_degrees())
-            ));
-        }
-        let pins: Vec<_> = o.positions.iter().zip(&o.pinned).filter(|(_, &p)| p).map(|(x, _)| *x).collect();
-        let fastest = o.pin_motion.top_speed(&pins);
-        if fastest > scene.sim.max_speed {
-            return Err(format!(
-                "{at}.pin_motion: its pins would move at up to {} m/s, past sim.max_speed = {} m/s (the runtime guard would stop the run at once): raise sim.max_speed or slow the pins",
-                num(fastest),
-                num(scene.sim.max_speed)
-            ));
+    for (object, o) in moving {
+        for (g, motion) in o.pin_motions().enumerate() {
+            let at = match g {
+                0 => format!("{object}.pin_motion"),
+                g => format!("{object}.pin_group[{}].pin_motion", g - 1),
+            };
+            // A substep's turn is a rotation: past half a turn it would turn the other way; a
+            // keyed turn is taken a frame at a time (`PinMotion::frame_spin`), so half a turn
+            // a frame.
+            let (key, per, step, or) = match motion.rotation.is_moving() {
+                true => ("rotation_keyframes", "frame", scene.sim.frame_dt, ""),
+                false => ("angular_velocity", "substep", substep, " or more substeps"),
+            };
+            let turn = motion.top_spin() * step;
+            if turn >= 0.5 * std::f64::consts::TAU {
+                return Err(format!(
+                    "{at}.{key}: up to {} degrees a {per}, half a turn or more (the {per}'s turn would go the other way): a slower turn{or}",
+                    num(turn.to_degrees())
+                ));
+            }
+            let pins: Vec<_> = (0..o.positions.len())
+                .filter(|&i| o.pinned[i] && o.group_of(i) == g)
+                .map(|i| o.positions[i])
+                .collect();
+            let fastest = motion.top_speed(&pins);
+            if fastest > scene.sim.max_speed {
+                return Err(format!(
+                    "{at}: its pins would move at up to {} m/s, past sim.max_speed = {} m/s (the runtime guard would stop the run at once): raise sim.max_speed or slow the pins",
+                    num(fastest),
+                    num(scene.sim.max_speed)
+                ));
+            }
         }
     }
     Ok(())
@@ -409,7 +420,63 @@ fn check_cloth(at: &str, c: &Cloth) -> Check {
         }
     }
     check_pin_box(at, &c.pin_box, || super::build::cloth(c).positions)?;
-    check_pin_motion(at, &c.pin_motion, c.has_pins())
+    check_pin_motion(at, &c.pin_motion, c.has_pins())?;
+    if c.pin_groups.is_empty() {
+        return Ok(());
+    }
+    let own = super::build::cloth(&super::Cloth { pin_groups: Vec::new(), ..c.clone() });
+    let index = |p: [u32; 2]| match p[0] < cols && p[1] < rows {
+        true => Ok((p[0] + p[1] * cols) as usize),
+        false => Err(format!("[{}, {}]: outside the {cols} x {rows} grid", p[0], p[1])),
+    };
+    let name = |i: usize| format!("particle [{}, {}]", i as u32 % cols, i as u32 / cols);
+    check_pin_groups(at, &c.pin_groups, index, name, (&own.positions, &own.pinned))
+}
+
+/// An object's `pin_group` entries: at most `PIN_GROUPS` - 1; each holds a particle (its
+/// list in range, `index`; its box as a `pin_box`), none that its object's own pins
+/// (`pinned`, placed at `positions`) or an earlier entry hold, and moves by a pin motion.
+fn check_pin_groups<P: Copy>(
+    at: &str,
+    groups: &[super::PinGroup<P>],
+    index: impl Fn(P) -> Result<usize, String>,
+    name: impl Fn(usize) -> String,
+    (positions, pinned): (&[glam::DVec3], &[bool]),
+) -> Check {
+    let most = crate::sim::model::PIN_GROUPS - 1;
+    if groups.len() > most {
+        return Err(format!(
+            "{at}.pin_group: {} groups, at most {most} (and the object's own pins)",
+            groups.len()
+        ));
+    }
+    let mut held_by: Vec<Option<usize>> = pinned.iter().map(|&p| p.then_some(0)).collect();
+    for (g, group) in groups.iter().enumerate() {
+        let at = format!("{at}.pin_group[{g}]");
+        for (k, &p) in group.pinned.iter().enumerate() {
+            index(p).map_err(|e| format!("{at}.pinned[{k}] = {e}"))?;
+        }
+        check_pin_box(&at, &group.pin_box, || positions.to_vec())?;
+        let mask = super::build::group_mask(group, |&p| index(p).unwrap_or(0), positions);
+        if !mask.contains(&true) {
+            return Err(format!("{at}: holds no particle (give it `pinned` or a `pin_box`)"));
+        }
+        for (i, _) in mask.iter().enumerate().filter(|(_, &m)| m) {
+            if let Some(other) = held_by[i] {
+                let by = match other {
+                    0 => "its object's own pins (pin, pinned or pin_box)".to_string(),
+                    o => format!("pin_group[{}]", o - 1),
+                };
+                return Err(format!(
+                    "{at}: {} is pinned by {by} already: a particle follows one group",
+                    name(i)
+                ));
+            }
+            held_by[i] = Some(g + 1);
+        }
+        check_pin_motion(&at, &group.pin_motion, true)?;
+    }
+    Ok(())
 }
 
 /// An object's `pin_box`: its corners finite and in order, and some particle (at `positions`,
@@ -576,5 +643,16 @@ fn check_rope(at: &str, r: &Rope, between: bool) -> Check {
         }
     }
     check_pin_box(at, &r.pin_box, || super::build::rope(r).positions)?;
-    check_pin_motion(at, &r.pin_motion, r.has_pins())
+    check_pin_motion(at, &r.pin_motion, r.has_pins())?;
+    if r.pin_groups.is_empty() {
+        return Ok(());
+    }
+    let own = super::build::rope(&super::Rope { pin_groups: Vec::new(), ..r.clone() });
+    let nodes = r.nodes;
+    let index = |p: u32| match p < nodes {
+        true => Ok(p as usize),
+        false => Err(format!("{p}: a rope of {nodes} nodes has indices 0..{}", nodes - 1)),
+    };
+    let name = |i: usize| format!("node {i}");
+    check_pin_groups(at, &r.pin_groups, index, name, (&own.positions, &own.pinned))
 }

@@ -76,6 +76,8 @@ macro_rules! gpu_struct {
     };
 }
 
+use crate::sim::model::PIN_GROUPS;
+
 /// Tube vertices around each rope node (`ROPE_RING` in the header).
 pub const ROPE_RING: usize = 8;
 /// `ObjectParams::flags` bits (`OBJ_*` in the header).
@@ -180,7 +182,7 @@ pub const GUARD_STRAIN: u32 = 8;
 gpu_struct!(
     /// Per-object parameters (std430; every array is of 16-byte elements, so the layout is
     /// also valid std140, as a uniform buffer would need).
-    ObjectParams, size 304, {
+    ObjectParams, size 640, {
     dims: [u32; 2],
     spacing: [f32; 2],
     stiffness: [f32; 4],
@@ -206,13 +208,11 @@ gpu_struct!(
     /// XPBD per spring type for the substep: alpha~, gamma, relaxation over the denominator
     /// with the other end free, and with it pinned.
     xpbd: [[f32; 4]; 3],
-    /// How the pinned particles move over this frame's substeps (`sim::pins`, written each
-    /// frame where they move): the translation's velocity [m/s] (w unused), the pivot at the
-    /// frame's start [m] (w: 1 where the pins turn), and a substep's turn (a unit quaternion,
-    /// xyzw).
-    pin_velocity: [f32; 4],
-    pin_pivot: [f32; 4],
-    pin_turn: [f32; 4],
+    /// How each pin group's particles move over this frame's substeps (`sim::pins`, written
+    /// each frame where they move), three a group: the translation's velocity [m/s] (w
+    /// unused), the pivot at the frame's start [m] (w: 1 where the pins turn), and a
+    /// substep's turn (a unit quaternion, xyzw).
+    pins: [[f32; 4]; 3 * PIN_GROUPS],
 });
 
 gpu_struct!(

@@ -109,9 +109,18 @@ pub struct ObjectModel {
     pub positions: Vec<DVec3>,
     pub velocities: Vec<DVec3>,
     pub pinned: Vec<bool>,
-    /// How the pinned particles move, all together (`sim::pins`).
+    /// How the pinned particles of group 0 move, all together (`sim::pins`).
     pub pin_motion: crate::sim::pins::PinMotion,
+    /// How those of each further pin group move: group g >= 1 is `pin_groups[g - 1]`
+    /// (`PIN_GROUPS` in all).
+    pub pin_groups: Vec<crate::sim::pins::PinMotion>,
+    /// The pin group of each particle (empty: all 0; a free particle's is 0).
+    pub pin_group: Vec<u8>,
 }
+
+/// Pin groups an object may have: its own pins (group 0) and up to 7 `pin_group` entries
+/// (`PIN_GROUPS` in glsl/include/layout.glsl).
+pub const PIN_GROUPS: usize = 8;
 
 impl ObjectModel {
     pub fn shape(&self) -> ObjectShape {
@@ -120,6 +129,48 @@ impl ObjectModel {
 
     pub fn particle_count(&self) -> usize {
         self.shape().particle_count() as usize
+    }
+
+    /// Particle i's pin group (`pin_group`).
+    pub fn group_of(&self, i: usize) -> usize {
+        self.pin_group.get(i).map_or(0, |&g| g as usize)
+    }
+
+    /// How the pins of group g move.
+    pub fn pin_motion_of(&self, g: usize) -> &crate::sim::pins::PinMotion {
+        if g == 0 {
+            &self.pin_motion
+        } else {
+            &self.pin_groups[g - 1]
+        }
+    }
+
+    /// Every group's motion, group 0 first.
+    pub fn pin_motions(&self) -> impl Iterator<Item = &crate::sim::pins::PinMotion> {
+        std::iter::once(&self.pin_motion).chain(&self.pin_groups)
+    }
+
+    /// Some of its pins move.
+    pub fn pins_move(&self) -> bool {
+        self.pin_motions().any(|m| m.is_moving())
+    }
+
+    /// The pinned particles' motion over substep `s` of `dt` in the frame at `t0`, group by group.
+    pub fn pin_steps(&self, t0: f64, frame_dt: f64, s: u32, dt: f64) -> Vec<crate::sim::pins::PinStep> {
+        self.pin_motions().map(|m| m.step(t0, frame_dt, s, dt)).collect()
+    }
+
+    /// Where particle i (pinned) placed at `x` is at time `t` (`PinMotion::carried`).
+    pub fn pin_carried(&self, i: usize, x: DVec3, t: f64) -> DVec3 {
+        self.pin_motion_of(self.group_of(i)).carried(x, t)
+    }
+
+    /// Particle i's velocity at t = 0: its pins' where it is pinned.
+    pub fn initial_velocity(&self, i: usize, frame_dt: f64) -> DVec3 {
+        match self.pinned[i] {
+            true => self.pin_motion_of(self.group_of(i)).initial_velocity(self.positions[i], frame_dt),
+            false => self.velocities[i],
+        }
     }
 
     pub fn surface_count(&self) -> usize {
@@ -420,6 +471,8 @@ impl SimModel {
                     velocities: Vec::new(),
                     pinned: Vec::new(),
                     pin_motion: o.pin_motion.clone(),
+                    pin_groups: o.pin_groups.clone(),
+                    pin_group: Vec::new(),
                 })
                 .collect(),
             colliders: self.colliders.clone(),

@@ -22,6 +22,17 @@ fn pin_box_note(ui: &Ui, b: &Option<crate::scene::PinBox>) {
     }
 }
 
+/// Says how many further pin groups an object has, each moving by its own motion (edited in
+/// the preset).
+fn pin_groups_note(ui: &Ui, groups: usize) {
+    if groups > 0 {
+        let s = if groups == 1 { "" } else { "s" };
+        ui.text_disabled(format!(
+            "and {groups} pin group{s} with motions of their own (pin_group: edit in the preset)"
+        ));
+    }
+}
+
 /// How an object's pins move (`pin_motion`), while it has pins: with none it has no motion
 /// (a scene with one would be refused).
 fn pin_motion(ui: &Ui, m: &mut Option<crate::scene::Motion>, pins: bool) {
@@ -55,6 +66,7 @@ pub fn cloth_panel(ui: &Ui, c: &mut Cloth) {
     pin_box_note(ui, &c.pin_box);
     let pins = c.has_pins();
     pin_motion(ui, &mut c.pin_motion, pins);
+    pin_groups_note(ui, c.pin_groups.len());
     drag(ui, "mass [kg/particle]", &mut c.mass, 0.0005, 1e-6, 100.0);
     springs(ui, "stiffness [N/m]", &mut c.stiffness, 1.0, 0.0, 1e6);
     springs(ui, "rest length scale", &mut c.rest_scale, 0.005, 0.05, 10.0);
@@ -82,6 +94,7 @@ pub fn rope_panel(ui: &Ui, r: &mut Rope) {
     pin_box_note(ui, &r.pin_box);
     let pins = r.has_pins();
     pin_motion(ui, &mut r.pin_motion, pins);
+    pin_groups_note(ui, r.pin_groups.len());
     drag(ui, "mass [kg/node]", &mut r.mass, 0.0005, 1e-6, 100.0);
     drag(ui, "stiffness [N/m]", &mut r.stiffness, 1.0, 0.0, 1e6);
     drag(ui, "bending stiffness [N/m]", &mut r.bending_stiffness, 0.1, 0.0, 1e6);
@@ -127,6 +140,7 @@ pub fn new_cloth(name: String) -> Cloth {
         pinned: Vec::new(),
         pin_box: None,
         pin_motion: None,
+        pin_groups: Vec::new(),
         color: [0.2, 0.45, 0.75],
         back_color: [0.8, 0.8, 0.75],
     }
@@ -154,6 +168,7 @@ pub fn new_rope(name: String) -> Rope {
         pinned: Vec::new(),
         pin_box: None,
         pin_motion: None,
+        pin_groups: Vec::new(),
         color: [0.72, 0.58, 0.36],
     }
 }

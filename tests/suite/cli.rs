@@ -618,7 +618,9 @@ auto_preset_tests!(
     auto_preset_5_tablecloth: "tablecloth",
     #[ignore = "exhaustive tier: the calibration again on another preset"]
     auto_preset_6_rope: "rope",
-    auto_preset_7_curtain: "curtain"
+    #[ignore = "exhaustive tier: the calibration again on another preset"]
+    auto_preset_7_twist: "twist",
+    auto_preset_8_curtain: "curtain"
 );
 
 /// `bench --end-to-end` runs a case as the app does (simulation and drawing offscreen, frames

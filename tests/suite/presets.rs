@@ -81,6 +81,7 @@ fn the_preset_reference_lists_every_key_of_every_table() {
         ("motion", "[[sphere]]\ncenter = [0.0, 0.0, 0.0]\nradius = 1.0\nmotion = { zz_unknown = 0 }\n"),
         ("`[[cloth]]`", "[[cloth]]\nzz_unknown = 0\n"),
         ("`[[rope]]`", "[[rope]]\nzz_unknown = 0\n"),
+        ("pin groups", "[[cloth]]\n[[cloth.pin_group]]\nzz_unknown = 0\n"),
     ];
     let sections = reference_rows("presets.md");
     for (heading, probe) in probes {

@@ -96,24 +96,21 @@ impl Viewer {
                 Err(e) => self.message(format!("picking failed: {e:#}"), true),
             }
         }
-        let particle = |target: Vec3, pinned: bool| Particle {
-            pos: [target.x, target.y, target.z, pinned as u32 as f32],
-            vel: [0.0; 4],
-        };
+        // (w: 1 + its pin group where pinned, as `sim::gpu::particles` has it)
+        let particle =
+            |target: Vec3, w: f32| Particle { pos: [target.x, target.y, target.z, w], vel: [0.0; 4] };
         if let Some(grab) = self.input.grab.as_mut() {
             grab.target = origin + dir * grab.depth;
             let (object, index, target) = (grab.object, grab.index, grab.target);
             if let Some(host) = self.host.as_mut() {
-                host.sim_mut().set_particle(object, index, particle(target, true));
+                host.sim_mut().set_particle(object, index, particle(target, 1.0));
             }
         }
         if let Some(released) = self.input.released.take() {
             if let Some(host) = self.host.as_mut() {
-                host.sim_mut().set_particle(
-                    released.object,
-                    released.index,
-                    particle(released.target, released.was_pinned),
-                );
+                let group = host.model().objects[released.object].group_of(released.index as usize);
+                let w = if released.was_pinned { 1.0 + group as f32 } else { 0.0 };
+                host.sim_mut().set_particle(released.object, released.index, particle(released.target, w));
             }
         }
     }

@@ -42,9 +42,17 @@ pub struct Substep<'a> {
     pub v: &'a [DVec3],
     /// When the substep starts [s] (the wind's turbulence).
     pub time: f64,
-    /// How the pinned particles move over the substep (`sim::pins`); they keep the velocity
-    /// of that move.
-    pub pins: PinStep,
+    /// How the pinned particles of each pin group move over the substep (`sim::pins`,
+    /// `ObjectModel::pin_steps`); they keep the velocity of that move.
+    pub pins: &'a [PinStep],
+}
+
+impl Substep<'_> {
+    /// How particle i's pin group moves over the substep (a free particle's: group 0's, which
+    /// carries it in `toward_rest`).
+    pub fn pins_of(&self, i: usize) -> &PinStep {
+        &self.pins[self.object.group_of(i)]
+    }
 }
 
 /// One substep with the model's integrator; the position-based methods read and update each
@@ -104,13 +112,14 @@ fn spring_force(o: &ObjectModel, i: usize, x: &[DVec3], v: &[DVec3]) -> DVec3 {
 /// Symplectic Euler, or position Verlet (`verlet`): forces at the half-drifted positions
 /// x + v dt / 2, the kick, then the second half of the drift with the new velocity.
 fn explicit(s: &Substep<'_>, verlet: bool) -> State {
-    let Substep { model: m, object: o, dt, x, v, time, pins } = *s;
+    let Substep { model: m, object: o, dt, x, v, time, .. } = *s;
     let drift = if verlet { 0.5 * dt } else { 0.0 };
     let at: Vec<DVec3> = x.iter().zip(v).map(|(x, v)| *x + *v * drift).collect();
     let mut nx = x.to_vec();
     let mut nv = vec![DVec3::ZERO; x.len()];
     for i in 0..x.len() {
         if o.pinned[i] {
+            let pins = s.pins_of(i);
             let d = pins.move_of(x[i]);
             nx[i] = x[i] + d;
             nv[i] = pins.velocity_of(d);
@@ -150,7 +159,7 @@ struct Inertial {
 }
 
 fn inertial(s: &Substep<'_>, history: &[History]) -> Inertial {
-    let Substep { model: m, object: o, dt, x, v, time, pins } = *s;
+    let Substep { model: m, object: o, dt, x, v, time, .. } = *s;
     let h = BDF2_STEP * dt;
     let adaptive = adaptive_start(m);
     let anchored = adaptive && o.anchored();
@@ -161,7 +170,7 @@ fn inertial(s: &Substep<'_>, history: &[History]) -> Inertial {
                 // Moving pins: a base x~ of their steady motion (x_n - x_{n-1} = d, the move
                 // over the substep), so that the solve's displacement y - x~ = 2 d / 3 is
                 // their velocity over h, as its neighbours' are.
-                let d = pins.move_of(x[i]);
+                let d = s.pins_of(i).move_of(x[i]);
                 start.push(x[i] + d);
                 return (x[i] + d / 3.0, x[i] + d);
             }
@@ -172,7 +181,7 @@ fn inertial(s: &Substep<'_>, history: &[History]) -> Inertial {
             let y = base + v[i] * (2.0 / 3.0 * dt) + past.dv * (2.0 / 9.0 * dt) + pull;
             let guess = y - pull * past.held;
             start.push(match adaptive {
-                true if anchored => toward_rest(o, i, h, x[i] + pins.move_of(x[i]), guess),
+                true if anchored => toward_rest(o, i, h, x[i] + s.pins_of(i).move_of(x[i]), guess),
                 true => guess,
                 false => y,
             });
@@ -320,7 +329,8 @@ fn finish_moved(
         .map(|i| {
             if o.pinned[i] {
                 history[i] = None;
-                return s.pins.velocity_of(s.pins.move_of(x[i]));
+                let pins = s.pins_of(i);
+                return pins.velocity_of(pins.move_of(x[i]));
             }
             let held = if adaptive { held_fraction(s.model, start.h, p[i] - start.y[i]) } else { 0.0 };
             let solved = solved.map_or(p[i], |q| q[i]);

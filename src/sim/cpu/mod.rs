@@ -272,11 +272,7 @@ impl CpuSim {
             .map(|o| CpuObject {
                 x: o.positions.clone(),
                 // (a pinned particle: its pins' velocity at the start, as the GPU's `particles`)
-                v: (o.velocities.iter().zip(&o.pinned).zip(&o.positions))
-                    .map(
-                        |((v, &p), x)| if p { o.pin_motion.initial_velocity(*x, model.frame_dt) } else { *v },
-                    )
-                    .collect(),
+                v: (0..o.positions.len()).map(|i| o.initial_velocity(i, model.frame_dt)).collect(),
                 surface: vec![(DVec3::ZERO, DVec3::ZERO); o.surface_count()],
                 history: vec![None; o.particle_count()],
             })
@@ -347,6 +343,7 @@ impl CpuSim {
                 .iter()
                 .zip(&mut self.objects)
                 .map(|(o, state)| {
+                    let pins = o.pin_steps(frame_start, m.frame_dt, step, self.dt);
                     let s = integrators::Substep {
                         model: m,
                         object: o,
@@ -354,7 +351,7 @@ impl CpuSim {
                         x: &state.x,
                         v: &state.v,
                         time,
-                        pins: o.pin_motion.step(frame_start, m.frame_dt, step, self.dt),
+                        pins: &pins,
                     };
                     integrators::advance(&s, &mut state.history)
                 })
@@ -390,10 +387,17 @@ fn solve_with_contact_rounds(
     motions: &[(DVec3, DVec3)],
 ) -> Vec<(Vec<DVec3>, Vec<DVec3>)> {
     let mut histories: Vec<Vec<History>> = objects.iter().map(|o| o.history.clone()).collect();
-    let steps: Vec<integrators::Substep<'_>> = (m.objects.iter().zip(objects.iter()))
-        .map(|(o, state)| {
-            let pins = o.pin_motion.step(frame_start, m.frame_dt, step, dt);
-            integrators::Substep { model: m, object: o, dt, x: &state.x, v: &state.v, time, pins }
+    let pins: Vec<Vec<super::pins::PinStep>> =
+        m.objects.iter().map(|o| o.pin_steps(frame_start, m.frame_dt, step, dt)).collect();
+    let steps: Vec<integrators::Substep<'_>> = (m.objects.iter().zip(objects.iter()).zip(&pins))
+        .map(|((o, state), pins)| integrators::Substep {
+            model: m,
+            object: o,
+            dt,
+            x: &state.x,
+            v: &state.v,
+            time,
+            pins,
         })
         .collect();
     let mut solves: Vec<integrators::VbdSolve> =
@@ -711,6 +715,8 @@ mod tests {
             velocities: Vec::new(),
             pinned: Vec::new(),
             pin_motion: Default::default(),
+            pin_groups: Vec::new(),
+            pin_group: Vec::new(),
         };
         let straight = face_signs(&rope_surface(&o, &rope(0.0)), nodes);
         assert!(straight.iter().all(|&s| s == straight[0]), "a straight tube's faces agree");

@@ -114,7 +114,7 @@ impl GpuSim {
         self.model.max_energy_gain > 0.0
             && self.model.wind.is_none()
             && !self.model.colliders.iter().any(|c| c.motion.is_moving())
-            && !self.model.objects.iter().any(|o| o.pin_motion.is_moving())
+            && !self.model.objects.iter().any(|o| o.pins_move())
     }
 
     /// Starts the energy check from `states` (what the host wrote, or the first reading).

@@ -324,7 +324,7 @@ impl FusedShape {
         }
         let one_iteration = solver.is_some() && model.iterations == 1;
         // (moving pins keep the lists off, as per stage: `GpuObject::pins_move`)
-        let list = if hashed && !o.pin_motion.is_moving() { SELF_LIST_ENTRIES } else { 0 };
+        let list = if hashed && !o.pins_move() { SELF_LIST_ENTRIES } else { 0 };
         Some(Self {
             threads,
             particles: n,

@@ -689,10 +689,8 @@ impl GpuSim {
     /// written in the command stream (as the colliders' records) so frames in flight keep
     /// their own. Objects whose pins stay put record nothing.
     fn record_pin_motion(&self, rec: &mut Recorder<'_>) {
-        let moving: Vec<(&GpuObject, &crate::sim::model::ObjectModel)> = (self.objects.iter())
-            .zip(&self.model.objects)
-            .filter(|(_, o)| o.pin_motion.is_moving())
-            .collect();
+        let moving: Vec<(&GpuObject, &crate::sim::model::ObjectModel)> =
+            (self.objects.iter()).zip(&self.model.objects).filter(|(_, o)| o.pins_move()).collect();
         if moving.is_empty() {
             return;
         }
@@ -700,9 +698,9 @@ impl GpuSim {
             moving.iter().map(|(gpu, _)| BufferBarrier::new(&gpu.params, src, dst)).collect()
         };
         rec.barrier(&around(Access::ComputeRead, Access::TransferWrite));
-        let offset = std::mem::offset_of!(crate::sim::gpu_types::ObjectParams, pin_velocity) as u64;
+        let offset = std::mem::offset_of!(crate::sim::gpu_types::ObjectParams, pins) as u64;
         for (gpu, o) in &moving {
-            // (pin_velocity, pin_pivot and pin_turn, one after the other)
+            // (each group's velocity, pivot and turn, one after the other)
             let record = object::pin_record(o, &self.model, self.time());
             rec.update_buffer(&gpu.params, offset, bytemuck::cast_slice(&record));
         }
@@ -773,8 +771,9 @@ impl GpuSim {
             && model.substeps == self.model.substeps
             && model.integrator == self.model.integrator
             && model.self_collision == self.model.self_collision
-            && (model.objects.iter().zip(&self.model.objects))
-                .all(|(new, old)| new.pin_motion.is_moving() == old.pin_motion.is_moving())
+            && (model.objects.iter().zip(&self.model.objects)).all(|(new, old)| {
+                new.pins_move() == old.pins_move() && new.pin_groups.len() == old.pin_groups.len()
+            })
             && self.objects.iter().zip(&model.objects).all(|(gpu, o)| {
                 o.particle_count() as u32 == gpu.particles
                     && ObjectPlan::of(o, model, self.limits) == gpu.plan

@@ -315,7 +315,7 @@ impl GpuObject {
             self_pairs,
             sets: [BindingSet::default(); 2],
             lists: Default::default(),
-            pins_move: o.pin_motion.is_moving(),
+            pins_move: o.pins_move(),
             searches: searches(&parameters),
             rigid_start: rigid_start(&parameters),
             plan,
@@ -605,7 +605,6 @@ pub(super) fn builds_hash(o: &ObjectModel, model: &SimModel) -> bool {
 }
 
 pub(super) fn object_params(o: &ObjectModel, model: &SimModel) -> ObjectParams {
-    let pins = pin_record(o, model, 0.0);
     let mut flags = 0;
     if o.stretch_limit.is_some() {
         flags |= OBJ_STRETCH_LIMIT;
@@ -630,6 +629,10 @@ pub(super) fn object_params(o: &ObjectModel, model: &SimModel) -> ObjectParams {
     }
     let buckets = hash_table_size(o.particle_count() as u64) as u32;
     let cell = 2.0 * o.self_reach().unwrap_or(1.0).max(1e-6);
+    let mut pins = [[0.0; 4]; 3 * crate::sim::model::PIN_GROUPS];
+    for (dst, src) in pins.iter_mut().zip(pin_record(o, model, 0.0)) {
+        *dst = src;
+    }
     ObjectParams {
         dims: o.dims,
         spacing: o.spacing.map(|s| s as f32),
@@ -650,9 +653,7 @@ pub(super) fn object_params(o: &ObjectModel, model: &SimModel) -> ObjectParams {
         pad1: 0.0,
         rest: crate::sim::cpu::rest_lengths(o).map(|g| g.map(|l| l as f32)),
         xpbd: std::array::from_fn(|t| xpbd_constants(o.stiffness[t], o, model).map(|c| c as f32)),
-        pin_velocity: pins[0],
-        pin_pivot: pins[1],
-        pin_turn: pins[2],
+        pins,
     }
 }
 
@@ -668,19 +669,23 @@ pub(super) fn rigid_start(params: &ObjectParams) -> bool {
     params.flags & OBJ_RIGID_START != 0
 }
 
-/// The parameters' `pin_velocity`, `pin_pivot` and `pin_turn` for the frame that starts at
-/// `t0` (`sim::pins::PinMotion::step`: the substep's pivot is the frame's moved on by the
-/// velocity, as glsl/include/pins.glsl has it).
-pub(super) fn pin_record(o: &ObjectModel, model: &SimModel, t0: f64) -> [[f32; 4]; 3] {
+/// The parameters' `pins` for the frame that starts at `t0`: each group's translation
+/// velocity, pivot and turn (`sim::pins::PinMotion::step`: the substep's pivot is the frame's
+/// moved on by the velocity, as glsl/include/pins.glsl has it), three vec4s a group the
+/// object has (`ObjectModel::pin_motions`).
+pub(super) fn pin_record(o: &ObjectModel, model: &SimModel, t0: f64) -> Vec<[f32; 4]> {
     // (the substep as the shaders have it, in f32: `Globals::dt`)
-    let step = o.pin_motion.step(t0, model.frame_dt, 0, model.dt() as f32 as f64);
-    let (v, c) = (step.velocity, step.pivot);
-    let q = step.turn.unwrap_or(glam::DQuat::IDENTITY);
-    [
-        [v.x as f32, v.y as f32, v.z as f32, 0.0],
-        [c.x as f32, c.y as f32, c.z as f32, step.turn.is_some() as u32 as f32],
-        [q.x as f32, q.y as f32, q.z as f32, q.w as f32],
-    ]
+    let dt = model.dt() as f32 as f64;
+    let record = |step: crate::sim::pins::PinStep| {
+        let (v, c) = (step.velocity, step.pivot);
+        let q = step.turn.unwrap_or(glam::DQuat::IDENTITY);
+        [
+            [v.x as f32, v.y as f32, v.z as f32, 0.0],
+            [c.x as f32, c.y as f32, c.z as f32, step.turn.is_some() as u32 as f32],
+            [q.x as f32, q.y as f32, q.z as f32, q.w as f32],
+        ]
+    };
+    o.pin_steps(t0, model.frame_dt, 0, dt).into_iter().flat_map(record).collect()
 }
 
 /// XPBD's per-spring-type constants for the substep's solve (`obj.xpbd` in the shaders), with
@@ -709,18 +714,15 @@ pub(super) fn collider_data(model: &SimModel, t0: f64) -> Vec<[[f32; 4]; 4]> {
     data
 }
 
-/// The initial particles of an object (positions, velocities, pinned flags) in a model of
-/// frames `frame_dt` long: a pinned particle has its pins' velocity at the start
-/// (`PinMotion::initial_velocity`).
+/// The initial particles of an object (positions, velocities, pinned flags: pos.w is 1 + the
+/// pin group of a pinned particle, 0 for a free one) in a model of frames `frame_dt` long: a
+/// pinned particle has its pins' velocity at the start (`ObjectModel::initial_velocity`).
 pub fn particles(o: &ObjectModel, frame_dt: f64) -> Vec<Particle> {
-    o.positions
-        .iter()
-        .zip(&o.velocities)
-        .zip(&o.pinned)
-        .map(|((x, v), &pinned)| {
-            let v = if pinned { o.pin_motion.initial_velocity(*x, frame_dt).as_vec3() } else { v.as_vec3() };
-            let x = x.as_vec3();
-            Particle { pos: [x.x, x.y, x.z, pinned as u32 as f32], vel: [v.x, v.y, v.z, 0.0] }
+    (0..o.positions.len())
+        .map(|i| {
+            let (x, v) = (o.positions[i].as_vec3(), o.initial_velocity(i, frame_dt).as_vec3());
+            let w = if o.pinned[i] { 1.0 + o.group_of(i) as f32 } else { 0.0 };
+            Particle { pos: [x.x, x.y, x.z, w], vel: [v.x, v.y, v.z, 0.0] }
         })
         .collect()
 }

@@ -104,6 +104,8 @@ fn plain(kind: ObjectKind, name: String, dims: [u32; 2], spacing: f64, positions
         velocities: vec![DVec3::ZERO; n],
         pinned: vec![false; n],
         pin_motion: Default::default(),
+        pin_groups: Vec::new(),
+        pin_group: Vec::new(),
     }
 }
 
