@@ -230,7 +230,9 @@ float rigid_word(uint w) {
 }
 
 // The rigid start of a free object's slots (every invocation calls it): the guesses dx (from
-// the bases x; x_n = x - hx.xyz, the prediction's x~ - x_n) moved as rigid_start says.
+// the bases x; x_n = x - hx.xyz, the prediction's x~ - x_n) moved as rigid_start says. The
+// sums are taken about the first particle where the frame started (any point of the object
+// does: the fit does not depend on it).
 void rigid_start_slots(inout vec3 dx[MAX_SLOTS], vec3 x[MAX_SLOTS], vec4 hx[MAX_SLOTS], uvec2 cells[MAX_SLOTS],
                        uint masks[MAX_SLOTS], uint own[MAX_SLOTS], bool pinned[MAX_SLOTS]) {
     vec3 origin = p_in[0].pos.xyz;
@@ -240,7 +242,7 @@ void rigid_start_slots(inout vec3 dx[MAX_SLOTS], vec3 x[MAX_SLOTS], vec4 hx[MAX_
     }
     [[unroll]] for (int c = 0; c < 4; ++c) mine[c] = subgroupAdd(mine[c]);
     uint t = gl_LocalInvocationID.x;
-    uint each = min(16u, (3u * CAP + SCRATCH) / gl_NumSubgroups);  // sums of a subgroup a round
+    uint each = clamp((3u * CAP + SCRATCH) / gl_NumSubgroups, 1u, 16u);  // sums of a subgroup a round
     for (uint first = 0u; first < 16u; first += each) {
         uint last = min(first + each, 16u);
         if (subgroupElect()) {

@@ -72,7 +72,8 @@ void main() {
     vec3 q = x - p_in[0].pos.xyz;
     vec3 d = guess.xyz - here;
     if (pc.phase == PHASE_PARTIAL) {
-        mat4 total = group_sum(inside ? rigid_terms(q, d) : mat4(0.0));
+        // (pinned particles left out, as the fused kernel does: a particle dragged in the app)
+        mat4 total = group_sum(inside && guess.w < 0.5 ? rigid_terms(q, d) : mat4(0.0));
         uint w = gl_WorkGroupID.x + gl_WorkGroupID.y * grid.x;
         if (gl_LocalInvocationIndex == 0u) {
             [[unroll]] for (int c = 0; c < 4; ++c) aux[rigid_at() + 4u + 4u * w + uint(c)] = total[c];

@@ -153,8 +153,12 @@ pub(super) fn cloth(c: &Cloth) -> ObjectModel {
     }
     pin_inside(&c.pin_box, &positions, &mut pinned);
     let own_motion = pin_motion(&c.pin_motion, &positions, &pinned);
-    let (pin_group, pin_groups) =
-        groups(&c.pin_groups, |p| (p[0] + p[1] * cols) as usize, &positions, &mut pinned);
+    let (pin_group, pin_groups) = groups(
+        &c.pin_groups,
+        |p| (p[0] < cols && p[1] < rows).then(|| p[0] as usize + p[1] as usize * cols as usize),
+        &positions,
+        &mut pinned,
+    );
     ObjectModel {
         kind: ObjectKind::Cloth,
         name: c.name.clone(),
@@ -189,7 +193,7 @@ pub(super) fn cloth(c: &Cloth) -> ObjectModel {
 /// refuses it).
 fn groups<P>(
     groups: &[super::PinGroup<P>],
-    index: impl Fn(&P) -> usize,
+    index: impl Fn(&P) -> Option<usize>,
     positions: &[DVec3],
     pinned: &mut [bool],
 ) -> (Vec<u8>, Vec<PinMotion>) {
@@ -210,15 +214,19 @@ fn groups<P>(
     (of, motions)
 }
 
-/// The particles a pin group holds: those it lists (`index` of each) and those in its box.
+/// The particles a pin group holds: those it lists (`index` of each; `None` outside the object,
+/// which scene validation refuses: left out, so that an editor's scene not yet valid builds)
+/// and those in its box.
 pub(super) fn group_mask<P>(
     group: &super::PinGroup<P>,
-    index: impl Fn(&P) -> usize,
+    index: impl Fn(&P) -> Option<usize>,
     positions: &[DVec3],
 ) -> Vec<bool> {
     let mut held = vec![false; positions.len()];
-    for p in &group.pinned {
-        held[index(p)] = true;
+    for i in group.pinned.iter().filter_map(&index) {
+        if let Some(h) = held.get_mut(i) {
+            *h = true;
+        }
     }
     pin_inside(&group.pin_box, positions, &mut held);
     held
@@ -283,7 +291,8 @@ pub(super) fn rope(r: &Rope) -> ObjectModel {
     }
     pin_inside(&r.pin_box, &positions, &mut pinned);
     let own_motion = pin_motion(&r.pin_motion, &positions, &pinned);
-    let (pin_group, pin_groups) = groups(&r.pin_groups, |&p| p as usize, &positions, &mut pinned);
+    let (pin_group, pin_groups) =
+        groups(&r.pin_groups, |&p| (p < r.nodes).then_some(p as usize), &positions, &mut pinned);
     let mut ring_weights = default_ring_weights();
     if let Some(w) = &r.ring_weights {
         for (dst, src) in ring_weights.iter_mut().zip(w) {

@@ -482,6 +482,10 @@ stiffness = { structural = 1.0, shear = 1.0, bending = 1.0 }
         assert!(e.contains("cloth[0].pin_group[0]: holds no particle"), "{e}");
         let e = with(&[&group("{ pinned = [[3, 0]] }")]).unwrap_err().0;
         assert!(e.contains("cloth[0].pin_group[0].pinned[0] = [3, 0]: outside the 3 x 3 grid"), "{e}");
+        // (far outside, with a box of the object's own: it used to build the groups unchecked)
+        let own_box = "cloth.a.pin_box={ min = [-0.1, -0.1, -1.0], max = [0.1, 0.1, 1.0] }";
+        let e = with(&[own_box, &group("{ pinned = [[0, 4000000000]] }")]).unwrap_err().0;
+        assert!(e.contains("cloth[0].pin_group[0].pinned[0] = [0, 4000000000]: outside"), "{e}");
         let e = with(&["cloth.a.pin=\"corners\"", &group("{ pinned = [[0, 0]] }")]).unwrap_err().0;
         assert!(
             e.contains("cloth[0].pin_group[0]: particle [0, 0] is pinned by its object's own pins"),

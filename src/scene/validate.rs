@@ -419,12 +419,13 @@ fn check_cloth(at: &str, c: &Cloth) -> Check {
             return Err(format!("{at}.pinned[{k}] = [{}, {}]: outside the {cols} x {rows} grid", p[0], p[1]));
         }
     }
-    check_pin_box(at, &c.pin_box, || super::build::cloth(c).positions)?;
+    // (built without its groups, whose lists are checked below)
+    let own = super::build::cloth(&super::Cloth { pin_groups: Vec::new(), ..c.clone() });
+    check_pin_box(at, &c.pin_box, || own.positions.clone())?;
     check_pin_motion(at, &c.pin_motion, c.has_pins())?;
     if c.pin_groups.is_empty() {
         return Ok(());
     }
-    let own = super::build::cloth(&super::Cloth { pin_groups: Vec::new(), ..c.clone() });
     let index = |p: [u32; 2]| match p[0] < cols && p[1] < rows {
         true => Ok((p[0] + p[1] * cols) as usize),
         false => Err(format!("[{}, {}]: outside the {cols} x {rows} grid", p[0], p[1])),
@@ -457,7 +458,7 @@ fn check_pin_groups<P: Copy>(
             index(p).map_err(|e| format!("{at}.pinned[{k}] = {e}"))?;
         }
         check_pin_box(&at, &group.pin_box, || positions.to_vec())?;
-        let mask = super::build::group_mask(group, |&p| index(p).unwrap_or(0), positions);
+        let mask = super::build::group_mask(group, |&p| index(p).ok(), positions);
         if !mask.contains(&true) {
             return Err(format!("{at}: holds no particle (give it `pinned` or a `pin_box`)"));
         }
@@ -642,12 +643,12 @@ fn check_rope(at: &str, r: &Rope, between: bool) -> Check {
             ));
         }
     }
-    check_pin_box(at, &r.pin_box, || super::build::rope(r).positions)?;
+    let own = super::build::rope(&super::Rope { pin_groups: Vec::new(), ..r.clone() });
+    check_pin_box(at, &r.pin_box, || own.positions.clone())?;
     check_pin_motion(at, &r.pin_motion, r.has_pins())?;
     if r.pin_groups.is_empty() {
         return Ok(());
     }
-    let own = super::build::rope(&super::Rope { pin_groups: Vec::new(), ..r.clone() });
     let nodes = r.nodes;
     let index = |p: u32| match p < nodes {
         true => Ok(p as usize),

@@ -118,9 +118,11 @@ pub const STIFF_START: f64 = 10.0;
 
 /// The turn of a free object's rigid move (`sim::cpu::integrators::RigidMove`) solves (I + e
 /// tr(S)) w = L with this e (S = sum r r^T, I = tr(S) - S): a straight rope's inertia tensor has no part about its axis, and
-/// there the turn is left at (nearly) zero, which moves no particle of it. Small enough that a
-/// cloth spinning in its plane keeps its spin (a share e of the turn a substep).
-pub const RIGID_REGULARISER: f64 = 1e-6;
+/// there the turn is left at (nearly) zero, which moves no particle of it. Above the f32
+/// rounding of the GPU's sums (about log2(n) f32 epsilons of sum q q^T), so that a nearly
+/// straight rope's turn stays finite there; small enough that a cloth spinning in its plane
+/// keeps its spin (a share e of the turn a substep).
+pub const RIGID_REGULARISER: f64 = 1e-5;
 
 /// Conjugate-gradient iterations of one Newton step of the implicit method (`sim::cpu::integrators::implicit`): every
 /// `NEWTON_CG_ITERATIONS` iterations it linearises again at the iterate they reached. At one

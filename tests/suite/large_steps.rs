@@ -704,7 +704,7 @@ fn internal_motion(m: &SimModel, x: &[DVec3], v: &[DVec3]) -> (f64, DVec3) {
 /// implicit method at one iteration ended with 2,300 times its starting energy, at 2 rose to
 /// 5.7 times, and VBD at one iteration to 3 times. And spun at 3 rad/s in its plane,
 /// unstretched, it keeps at least 90% of its angular momentum over 2 s on every path
-/// (measured 0.964 to 0.998: the start keeps the object's linearised rigid turn, `RigidMove`;
+/// (measured 0.961 to 0.998: the start keeps the object's linearised rigid turn, `RigidMove`;
 /// with its translation alone it stopped). The default tier runs the GPU paths at 1 and 10
 /// iterations, the exhaustive tier at all four.
 #[test]

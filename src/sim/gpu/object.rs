@@ -9,7 +9,9 @@ use crate::sim::gpu_types::{
     OBJ_SELF_COLLISION, OBJ_SELF_HASH, OBJ_SELF_TRIANGLES, OBJ_STRETCH_LIMIT,
 };
 use crate::sim::integrator::{vertex_colours, BDF2_STEP};
-use crate::sim::model::{Integrator, ObjectKind, ObjectModel, ObjectShape, SelfCollisionMethod, SimModel};
+use crate::sim::model::{
+    Integrator, ObjectKind, ObjectModel, ObjectShape, SelfCollisionMethod, SimModel, PIN_GROUPS,
+};
 use crate::sim::turbulence::{Turbulence, TURBULENCE_MODES};
 use crate::vk::{
     Access, BindingSet, BindingSetLayout, Buffer, BufferBarrier, BufferUsage, DescriptorArena, DeviceInfo,
@@ -629,7 +631,7 @@ pub(super) fn object_params(o: &ObjectModel, model: &SimModel) -> ObjectParams {
     }
     let buckets = hash_table_size(o.particle_count() as u64) as u32;
     let cell = 2.0 * o.self_reach().unwrap_or(1.0).max(1e-6);
-    let mut pins = [[0.0; 4]; 3 * crate::sim::model::PIN_GROUPS];
+    let mut pins = [[0.0; 4]; 3 * PIN_GROUPS];
     for (dst, src) in pins.iter_mut().zip(pin_record(o, model, 0.0)) {
         *dst = src;
     }
@@ -685,7 +687,12 @@ pub(super) fn pin_record(o: &ObjectModel, model: &SimModel, t0: f64) -> Vec<[f32
             [q.x as f32, q.y as f32, q.z as f32, q.w as f32],
         ]
     };
-    o.pin_steps(t0, model.frame_dt, 0, dt).into_iter().flat_map(record).collect()
+    debug_assert!(
+        o.pin_groups.len() < PIN_GROUPS,
+        "{} pin groups: validation allows {PIN_GROUPS}",
+        o.pin_groups.len() + 1
+    );
+    o.pin_steps(t0, model.frame_dt, 0, dt).into_iter().take(PIN_GROUPS).flat_map(record).collect()
 }
 
 /// XPBD's per-spring-type constants for the substep's solve (`obj.xpbd` in the shaders), with
