@@ -698,9 +698,10 @@ fn internal_motion(m: &SimModel, x: &[DVec3], v: &[DVec3]) -> (f64, DVec3) {
 /// 4 s. On the f64 reference its energy about the mean motion never rises past its start (by
 /// 1e-6 of it: rounding; measured: never above it) and it ends below 1e-2 of it (measured at
 /// most 6.3e-4); the GPU paths end there too (measured at most 1.5e-3), but for the implicit
-/// method's one Newton step cut short (4 iterations) on the 1e6 N/m cloth, where f32 leaves
-/// motion that comes and goes (per stage 5.7e-2 at the end, up to 6.9 times the start on the
-/// way; docs/log.md): asserted below its start. Started from the guess (before `RigidMove`) the
+/// method's one Newton step of 4 CG iterations on the 1e6 N/m cloth, which settles and then
+/// moves again (on the reference from about 4.5 s, past this test's 4 s, up to 2.6 times its
+/// start; per stage f32 seeds it sooner: 5.7e-2 at the end; docs/guide/limits.md): asserted
+/// below its start. Started from the guess (before `RigidMove`) the
 /// implicit method at one iteration ended with 2,300 times its starting energy, at 2 rose to
 /// 5.7 times, and VBD at one iteration to 3 times. And spun at 3 rad/s in its plane,
 /// unstretched, it keeps at least 90% of its angular momentum over 2 s on every path
