@@ -233,8 +233,9 @@ fn keyed_turns_follow_their_keys() {
 
 /// Ctrl + click (`SimHost::set_pinned`) frees a particle only where the preset's list alone
 /// pins it: one that `pin_box` holds is refused with a line naming the box, and stays pinned in
-/// the model and on the GPU (its place kept through a frame); one pinned by the list alone,
-/// outside the box, is freed and falls.
+/// the model and on the GPU (its place kept through a frame); so is one a pin group holds
+/// (named, its group kept in pos.w); one pinned by the list alone, outside the box, is freed
+/// and falls.
 #[test]
 fn ctrl_click_frees_only_what_the_list_alone_pins() {
     use msdsim::app::SimHost;
@@ -252,6 +253,8 @@ mass = 0.01
 stiffness = { structural = 100.0, shear = 20.0, bending = 5.0 }
 pinned = [[0, 0], [3, 3]]
 pin_box = { min = [-0.01, 0.99, -0.01], max = [0.31, 1.01, 0.01] }
+[[cloth.pin_group]]
+pinned = [[0, 3]]
 "#;
     let scene = msdsim::scene::parse(text, "test", &[]).expect("the test scene parses");
     let ctx = gpu();
@@ -263,12 +266,19 @@ pin_box = { min = [-0.01, 0.99, -0.01], max = [0.31, 1.01, 0.01] }
     let (top_at, corner_at) = (at(host_place(&mut host, &ctx, 0)), at(host_place(&mut host, &ctx, 15)));
     let e = host.set_pinned(&ctx, 0, top, false, top_at).unwrap_err();
     assert!(e.contains("is pinned by pin = None or pin_box"), "{e}");
+    // (a pin group's particle: refused, naming the group; its place and group kept on the GPU)
+    let grouped = 12u32;
+    let grouped_at = host_place(&mut host, &ctx, 12);
+    assert_eq!(grouped_at[3], 2.0, "pos.w is 1 + its group");
+    let e = host.set_pinned(&ctx, 0, grouped, false, at(grouped_at)).unwrap_err();
+    assert!(e.contains("particle [0, 3] is held by its pin_group[0]"), "{e}");
     assert!(host.model().objects[0].pinned[0], "the box still pins it in the model");
     host.set_pinned(&ctx, 0, corner, false, corner_at).expect("the list alone pins the far corner");
     assert!(!host.model().objects[0].pinned[15]);
     host.sim_mut().step_frame(&ctx).expect("GPU frame");
     let (top_now, corner_now) = (host_place(&mut host, &ctx, 0), host_place(&mut host, &ctx, 15));
     assert_eq!(at(top_now), top_at, "the boxed particle moved");
+    assert_eq!(host_place(&mut host, &ctx, 12), grouped_at, "the grouped particle moved or left its group");
     assert!(corner_now[1] < corner_at[1], "the freed corner did not fall: {corner_now:?}");
     host.destroy(&ctx);
     renderer.destroy(&ctx);
