@@ -52,19 +52,24 @@ float stiffness_ratio(uvec2 cell, float h) {
     return sum / obj.mass;
 }
 
+// `guess` (a displacement) moved towards `rest` by the share kappa / (kappa + STIFF_START) of
+// the way, kappa the particle at `cell`'s stiffness ratio (sim::cpu::integrators::toward_rest
+// says why).
+vec3 toward_rest(uvec2 cell, vec3 rest, vec3 guess) {
+    float kappa = stiffness_ratio(cell, solve_dt());
+    return rest + (guess - rest) * (STIFF_START / (STIFF_START + kappa));
+}
+
 // Where a method with an adaptive start (sim::integrator's row) starts the iterate of the
 // particle at `cell`, as a displacement from the solve's base: the prediction `dy` less the
 // fraction of its `pull` that the springs held last substep (`held`, history H_DV's w; none
 // without history, hx.w = 0; sim::cpu::integrators::held_fraction says why); on an anchored
 // object, moved towards where the particle is (`here`, x - base), carried on by its pins'
-// group 0's move over the substep (pin_move at x, in substep `sub`), by the share of its stiffness
-// ratio (sim::cpu::integrators::toward_rest says why).
+// group 0's move over the substep (pin_move at x, in substep `sub`): `toward_rest`.
 vec3 adaptive_start(uvec2 cell, vec3 dy, vec3 pull, vec4 hx, float held, vec3 here, vec3 x, uint sub) {
     vec3 guess = hx.w > 0.5 ? dy - pull * held : dy;
     if ((obj.flags & OBJ_ANCHORED) == 0u) return guess;
-    float kappa = stiffness_ratio(cell, solve_dt());
-    vec3 rest = here + pin_move(x, sub, 0.0);
-    return rest + (guess - rest) * (STIFF_START / (STIFF_START + kappa));
+    return toward_rest(cell, here + pin_move(x, sub, 0.0), guess);
 }
 
 // The solve's base x~ = x + base rounded to f32 (`start`) and what the rounding left out

@@ -40,12 +40,10 @@ RigidMove rigid_fit(mat4 s) {
     return RigidMove(c, t, w);
 }
 
-// Where the particle at q = x - origin starts as a displacement from x, its guessed one `d`
-// moved towards the fitted move by the share of its stiffness ratio (toward_rest).
+// Where the particle at q = x - origin starts as a displacement from x: its guessed one `d`
+// moved towards the fitted move's (predict_body.glsl's toward_rest).
 vec3 rigid_start(RigidMove m, uvec2 cell, vec3 q, vec3 d) {
-    vec3 rest = m.t + cross(m.w, q - m.centre);
-    float kappa = stiffness_ratio(cell, solve_dt());
-    return rest + (d - rest) * (STIFF_START / (STIFF_START + kappa));
+    return toward_rest(cell, m.t + cross(m.w, q - m.centre), d);
 }
 
 #endif

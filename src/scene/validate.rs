@@ -268,13 +268,16 @@ pub fn check(scene: &Scene) -> Check {
             return Err(format!("rope[{i}].name = \"{}\": another object has this name", r.name));
         }
     }
-    let moves = |own: bool, groups: usize| own || groups > 0;
+    // (objects whose pins, or some group's, are given a motion)
+    fn moves<P>(own: &Option<super::Motion>, groups: &[super::PinGroup<P>]) -> bool {
+        own.is_some() || groups.iter().any(|g| g.pin_motion.is_some())
+    }
     let moving = (scene.cloths.iter().enumerate())
-        .filter(|(_, c)| moves(c.pin_motion.is_some(), c.pin_groups.len()))
+        .filter(|(_, c)| moves(&c.pin_motion, &c.pin_groups))
         .map(|(i, c)| (format!("cloth[{i}]"), super::build::cloth(c)))
         .chain(
             (scene.ropes.iter().enumerate())
-                .filter(|(_, r)| moves(r.pin_motion.is_some(), r.pin_groups.len()))
+                .filter(|(_, r)| moves(&r.pin_motion, &r.pin_groups))
                 .map(|(i, r)| (format!("rope[{i}]"), super::build::rope(r))),
         );
     let substep = scene.sim.frame_dt / scene.sim.substeps as f64;
@@ -419,13 +422,16 @@ fn check_cloth(at: &str, c: &Cloth) -> Check {
             return Err(format!("{at}.pinned[{k}] = [{}, {}]: outside the {cols} x {rows} grid", p[0], p[1]));
         }
     }
-    // (built without its groups, whose lists are checked below)
-    let own = super::build::cloth(&super::Cloth { pin_groups: Vec::new(), ..c.clone() });
-    check_pin_box(at, &c.pin_box, || own.positions.clone())?;
+    // (built where a box or a group asks, without its groups, whose lists are checked below)
+    let own = std::cell::OnceCell::new();
+    let own =
+        || own.get_or_init(|| super::build::cloth(&super::Cloth { pin_groups: Vec::new(), ..c.clone() }));
+    check_pin_box(at, &c.pin_box, || &own().positions)?;
     check_pin_motion(at, &c.pin_motion, c.has_pins())?;
     if c.pin_groups.is_empty() {
         return Ok(());
     }
+    let own = own();
     let index = |p: [u32; 2]| match p[0] < cols && p[1] < rows {
         true => Ok((p[0] + p[1] * cols) as usize),
         false => Err(format!("[{}, {}]: outside the {cols} x {rows} grid", p[0], p[1])),
@@ -457,7 +463,7 @@ fn check_pin_groups<P: Copy>(
         for (k, &p) in group.pinned.iter().enumerate() {
             index(p).map_err(|e| format!("{at}.pinned[{k}] = {e}"))?;
         }
-        check_pin_box(&at, &group.pin_box, || positions.to_vec())?;
+        check_pin_box(&at, &group.pin_box, || positions)?;
         let mask = super::build::group_mask(group, |&p| index(p).ok(), positions);
         if !mask.contains(&true) {
             return Err(format!("{at}: holds no particle (give it `pinned` or a `pin_box`)"));
@@ -482,7 +488,11 @@ fn check_pin_groups<P: Copy>(
 
 /// An object's `pin_box`: its corners finite and in order, and some particle (at `positions`,
 /// where the object places them) inside it.
-fn check_pin_box(at: &str, b: &Option<super::PinBox>, positions: impl FnOnce() -> Vec<glam::DVec3>) -> Check {
+fn check_pin_box<'a>(
+    at: &str,
+    b: &Option<super::PinBox>,
+    positions: impl FnOnce() -> &'a [glam::DVec3],
+) -> Check {
     let Some(b) = b else { return Ok(()) };
     vector(&format!("{at}.pin_box.min"), b.min, MAX_COORDINATE, "m")?;
     vector(&format!("{at}.pin_box.max"), b.max, MAX_COORDINATE, "m")?;
@@ -492,7 +502,7 @@ fn check_pin_box(at: &str, b: &Option<super::PinBox>, positions: impl FnOnce() -
             b.min, b.max
         ));
     }
-    if !positions().into_iter().any(|x| b.contains(x)) {
+    if !positions().iter().any(|&x| b.contains(x)) {
         return Err(format!("{at}.pin_box: no particle is placed inside it (leave it out, or move it)"));
     }
     Ok(())
@@ -643,12 +653,14 @@ fn check_rope(at: &str, r: &Rope, between: bool) -> Check {
             ));
         }
     }
-    let own = super::build::rope(&super::Rope { pin_groups: Vec::new(), ..r.clone() });
-    check_pin_box(at, &r.pin_box, || own.positions.clone())?;
+    let own = std::cell::OnceCell::new();
+    let own = || own.get_or_init(|| super::build::rope(&super::Rope { pin_groups: Vec::new(), ..r.clone() }));
+    check_pin_box(at, &r.pin_box, || &own().positions)?;
     check_pin_motion(at, &r.pin_motion, r.has_pins())?;
     if r.pin_groups.is_empty() {
         return Ok(());
     }
+    let own = own();
     let nodes = r.nodes;
     let index = |p: u32| match p < nodes {
         true => Ok(p as usize),
