@@ -443,8 +443,8 @@ void main() {
                     vec3 d = pin_move(x[s], sub, pin_w);
                     v_new[s] = pin_velocity_of(d, pin_w);
                     if (ITERATIVE) {
-                        x[s] += d * (1.0 / 3.0);
-                        dy[s] = d * BDF2_STEP;
+                        x[s] += d * (1.0 - solve_share());
+                        dy[s] = d * solve_share();
                         dx[s] = dy[s];
                     } else {
                         x[s] += d;

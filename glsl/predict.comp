@@ -44,10 +44,10 @@ void main() {
     if (p.pos.w > 0.5) {
         // Moving pins (sim::cpu::integrators::inertial): a base of their steady motion (a
         // move of d a substep), so that y - x~ = 2 d / 3 is their velocity over h, as the free
-        // particles' displacements are.
+        // particles' displacements are (implicit Euler: base x, y - x = d).
         vec3 d = pin_move(x, pc.substep, p.pos.w);
-        start = x + d * (1.0 / 3.0);
-        dy = d * BDF2_STEP;
+        start = x + d * (1.0 - solve_share());
+        dy = d * solve_share();
         guess = dy;
     } else {
         vec3 base;

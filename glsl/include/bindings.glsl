@@ -84,8 +84,12 @@ const uint H_DV = 1u;
 const uint H_BASE = 2u;
 // Must equal sim::integrator::BDF2_STEP.
 const float BDF2_STEP = 2.0 / 3.0;
-// The step of the iterative integrators' solve, h = 2 dt / 3.
-float solve_dt() { return BDF2_STEP * g.dt; }
+// The step of the iterative integrators' solve: h = 2 dt / 3 (BDF2), or dt (implicit Euler)
+// for a free object that starts from its rigid move (OBJ_RIGID_START;
+// sim::cpu::integrators::inertial says why).
+bool implicit_euler() { return (obj.flags & OBJ_RIGID_START) != 0u; }
+float solve_share() { return implicit_euler() ? 1.0 : BDF2_STEP; }
+float solve_dt() { return solve_share() * g.dt; }
 
 // Flags particle i when its state is non-finite or runs away (called once per frame). A
 // pinned particle's speed is its pins' (sim::pins), given, not a runaway.

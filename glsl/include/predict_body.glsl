@@ -8,7 +8,8 @@
 #include "air.glsl"
 #include "pins.glsl"
 
-// The BDF2 start of a substep (sim::cpu::integrators::inertial has the formulas) of a free
+// The BDF2 start of a substep (sim::cpu::integrators::inertial has the formulas; implicit
+// Euler's for an object with `implicit_euler()`) of a free
 // particle at grid `cell`, at x with velocity v and history `hx` (x_n - x_{n-1}, w valid) and
 // `hv` (v_n - v_{n-1}): returns the prediction y - x~ and sets `base` to x~ - x, where x~ =
 // x + (x_n - x_{n-1}) / 3 is what the solve's displacements are measured from. F is the
@@ -18,6 +19,12 @@
 vec3 predicted_displacement(uvec2 cell, vec3 x, vec3 v, vec4 hx, vec3 hv, out vec3 base, out vec3 pull) {
     vec3 force = external_force(x, v) + air_force(cell, x, v, 0.0);
     vec3 a = force / obj.mass;
+    if (implicit_euler()) {
+        // implicit Euler's start: base x_n, y = x_n + dt v_n + dt^2 F / m
+        base = vec3(0.0);
+        pull = a * (g.dt * g.dt);
+        return v * g.dt + pull;
+    }
     bool known = hx.w > 0.5;
     vec3 dx = hx.xyz;
     vec3 dv = hv;

@@ -19,7 +19,8 @@ mat4 rigid_terms(vec3 q, vec3 d) {
 }
 
 // The fitted move from the sums: the centre c (from the origin), the translation t and the
-// turn w, which move the particle at q by t + w x (q - c).
+// linearised turn w, which move the particle at q by t and turn it about c by asin |w| about w
+// (`rigid_move`).
 struct RigidMove {
     vec3 centre;
     vec3 t;
@@ -40,10 +41,20 @@ RigidMove rigid_fit(mat4 s) {
     return RigidMove(c, t, w);
 }
 
+// The fitted move's displacement of the particle at q: t plus the exact turn by asin |w|,
+// w x r + w x (w x r) / (1 + cos), r = q - c; a turn past a quarter is a quarter
+// (sim::cpu::integrators::RigidMove says why).
+vec3 rigid_move(RigidMove m, vec3 q) {
+    vec3 w = m.w / max(length(m.w), 1.0);
+    vec3 across = cross(w, q - m.centre);
+    float cosine = sqrt(max(1.0 - dot(w, w), 0.0));
+    return m.t + across + cross(w, across) / (1.0 + cosine);
+}
+
 // Where the particle at q = x - origin starts as a displacement from x: its guessed one `d`
 // moved towards the fitted move's (predict_body.glsl's toward_rest).
 vec3 rigid_start(RigidMove m, uvec2 cell, vec3 q, vec3 d) {
-    return toward_rest(cell, m.t + cross(m.w, q - m.centre), d);
+    return toward_rest(cell, rigid_move(m, q), d);
 }
 
 #endif

@@ -145,6 +145,16 @@ fn explicit(s: &Substep<'_>, verlet: bool) -> State {
 /// F / m alone, the springs act through the solve only, with weight h^2 = 4/9 dt^2 where
 /// implicit Euler gives them dt^2: a chain hanging still started to move at about g dt / 3,
 /// 7.9e-4 m/s at 64 substeps.)
+///
+/// A free object whose solve starts from its rigid move (`rigid_starts`: its springs stiff
+/// against the step) takes implicit Euler's step instead: h = dt from the base x~ = x_n towards
+/// y = x_n + dt v_n + dt^2 F / m, velocity (p - x_n) / dt. Its few iterations leave part of
+/// each solve undone, and BDF2's two-step history fed what they left back into the motion:
+/// with the implicit method's one Newton step of 3 to 5 CG iterations a free stiff cloth
+/// settled, then moved again and sped up as a whole, and BDF2's extrapolation of a rigid turn
+/// gained spin every substep. Implicit Euler lowers its incremental potential from where the
+/// object is, so whatever the solve leaves can only take energy out
+/// (docs/design/integrators.md, "Where the solve starts").
 struct Inertial {
     /// The solve's step h.
     h: f64,
@@ -160,7 +170,8 @@ struct Inertial {
 
 fn inertial(s: &Substep<'_>, history: &[History]) -> Inertial {
     let Substep { model: m, object: o, dt, x, v, time, .. } = *s;
-    let h = BDF2_STEP * dt;
+    let rigid = rigid_starts(m, o);
+    let h = if rigid { dt } else { BDF2_STEP * dt };
     let adaptive = adaptive_start(m);
     let anchored = adaptive && o.anchored();
     let mut start = Vec::with_capacity(x.len());
@@ -170,15 +181,24 @@ fn inertial(s: &Substep<'_>, history: &[History]) -> Inertial {
                 // Moving pins: a base x~ of their steady motion (x_n - x_{n-1} = d, the move
                 // over the substep), so that the solve's displacement y - x~ = 2 d / 3 is
                 // their velocity over h, as its neighbours' are.
+                // (implicit Euler's base is x_n: displacement d over h = dt)
                 let d = s.pins_of(i).move_of(x[i]);
                 start.push(x[i] + d);
-                return (x[i] + d / 3.0, x[i] + d);
+                return (x[i] + d * (1.0 - h / dt), x[i] + d);
             }
             let force = external(m, o, i, x, v[i], time);
             let pull = force / o.mass * (h * h);
-            let past = history[i].unwrap_or_else(|| restart(o, i, x, v[i], force, dt));
-            let base = x[i] + past.dx / 3.0;
-            let y = base + v[i] * (2.0 / 3.0 * dt) + past.dv * (2.0 / 9.0 * dt) + pull;
+            let past = match rigid {
+                true => Past { dx: DVec3::ZERO, dv: DVec3::ZERO, held: history[i].map_or(0.0, |p| p.held) },
+                false => history[i].unwrap_or_else(|| restart(o, i, x, v[i], force, dt)),
+            };
+            let (base, y) = match rigid {
+                true => (x[i], x[i] + v[i] * dt + pull),
+                false => {
+                    let base = x[i] + past.dx / 3.0;
+                    (base, base + v[i] * (2.0 / 3.0 * dt) + past.dv * (2.0 / 9.0 * dt) + pull)
+                }
+            };
             let guess = y - pull * past.held;
             start.push(match adaptive {
                 true if anchored => toward_rest(o, i, h, x[i] + s.pins_of(i).move_of(x[i]), guess),
@@ -188,7 +208,7 @@ fn inertial(s: &Substep<'_>, history: &[History]) -> Inertial {
             (base, y)
         })
         .unzip();
-    if rigid_starts(m, o) {
+    if rigid {
         let rigid = RigidMove::fit(x, &start);
         for (i, guess) in start.iter_mut().enumerate() {
             *guess = toward_rest(o, i, h, rigid.of(x[i]), *guess);
@@ -199,8 +219,15 @@ fn inertial(s: &Substep<'_>, history: &[History]) -> Inertial {
 
 /// The rigid move that fits a free object's guessed displacements d_i = guess_i - x_i best in
 /// least squares, linearised: a translation t (their mean) and a turn w about the centre c
-/// (I w = sum r_i x (d_i - t), r_i = x_i - c, I the inertia tensor of unit masses), which
-/// moves x_i to x_i + t + w x r_i (`toward_rest` starts a stiff free object there). The sums
+/// (I w = sum r_i x (d_i - t), r_i = x_i - c, I the inertia tensor of unit masses), and the
+/// exact turn it stands for: implicit Euler's guesses y - x = dt v_n of an object that turned
+/// by an angle a over the last substep move its particles by sin a across their radius (and
+/// 1 - cos a inwards, which the fit does not see), so |w| = sin a, and the move turns x_i by
+/// asin |w| about w: x_i + t + w x r_i + w x (w x r_i) / (1 + cos a) (`toward_rest` starts a
+/// stiff free object there). The linearised move w x r_i alone stretched every spring across
+/// the turn by its share of a^2 / 2, which the few iterations of a stiff solve left partly in
+/// place as velocity: a free stiff cloth gained energy; without the asin, a turn shrank by
+/// sin a / a each substep. A turn past a quarter a substep is taken as a quarter. The sums
 /// are taken about the object's first particle, as the GPU takes them
 /// (glsl/include/rigid_start.glsl).
 struct RigidMove {
@@ -233,7 +260,10 @@ impl RigidMove {
 
     /// Where the move takes a particle at x.
     fn of(&self, x: DVec3) -> DVec3 {
-        x + self.t + self.w.cross(x - self.centre)
+        let w = self.w / self.w.length().max(1.0);
+        let across = w.cross(x - self.centre);
+        let cos = (1.0 - w.length_squared()).max(0.0).sqrt();
+        x + self.t + across + w.cross(across) / (1.0 + cos)
     }
 }
 
@@ -738,9 +768,10 @@ pub fn implicit_searches(m: &SimModel, o: &ObjectModel) -> bool {
 }
 
 /// Whether a free object of a method that starts adaptively starts each solve from the rigid
-/// move that fits its guesses (`RigidMove`, `toward_rest`): where its springs are stiff
-/// against the step (`stiff_against_step`). A softer one converges from its guess (it would
-/// move at most a tenth of the way) and pays nothing for the sums the fit takes.
+/// move that fits its guesses (`RigidMove`, `toward_rest`), with implicit Euler's step
+/// (`Inertial`): where its springs are stiff against the step (`stiff_against_step`). A
+/// softer one converges from its guess (it would move at most a tenth of the way), keeps
+/// BDF2's second order and pays nothing for the sums the fit takes.
 pub fn rigid_starts(m: &SimModel, o: &ObjectModel) -> bool {
     adaptive_start(m) && !o.anchored() && stiff_against_step(m, o)
 }
