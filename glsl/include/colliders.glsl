@@ -67,6 +67,33 @@ float collider_distance(Collider c, vec3 x, out vec3 n) {
     return 1e30;  // a type compiled out
 }
 
+// The point collider c turns about, where it is at the frame's start: its centre, a
+// capsule's midpoint (sim::collider::Shape::reference_point).
+vec3 collider_centre(Collider c) {
+    return floatBitsToUint(c.a.w) == COLLIDER_CAPSULE ? 0.5 * (c.a.xyz + c.b.xyz) : c.a.xyz;
+}
+
+// Collider c `since` after the frame's start (moved by its velocity, turned by its spin about
+// its centre): the signed distance from x to its surface and the outward normal `n`, and the
+// velocity of its surface at x (sim::collider::ColliderModel::distance_at and
+// surface_velocity). The point is taken back into the frame's start, where the record places
+// the collider, and the normal forward; a collider that does not turn pays one compare.
+float collider_distance_since(Collider c, vec3 x, float since, out vec3 n, out vec3 surface) {
+    vec3 velocity = c.extra.yzw;
+    surface = velocity;
+    vec3 spin = c.spin.xyz;
+    if (spin == vec3(0.0)) return collider_distance(c, x - velocity * since, n);
+    vec3 centre = collider_centre(c);
+    vec3 r = x - velocity * since - centre;
+    vec3 turn = spin * since;
+    float angle = length(turn);
+    vec4 back = angle > 0.0 ? vec4(turn * (-sin(0.5 * angle) / angle), cos(0.5 * angle)) : vec4(0.0, 0.0, 0.0, 1.0);
+    float d = collider_distance(c, centre + rotate(back, r), n);
+    n = rotate(vec4(-back.xyz, back.w), n);
+    surface = velocity + cross(spin, r);
+    return d;
+}
+
 // A few f32 steps of a position near x [m]: 5e-7 (1 + its largest coordinate).
 float position_slack(vec3 x) {
     vec3 a = abs(x);
@@ -116,10 +143,9 @@ void contact_response(inout vec3 x, inout vec3 v, vec3 n, float depth, float mu,
 float collider_friction(Collider c) { return c.extra.x >= 0.0 ? c.extra.x : obj.friction; }
 
 // Colliders against the particle: each moves it out to the object's margin from its surface
-// (contact_response). A record holds where the collider is at the frame's start and its
-// velocity over the frame (extra.yzw): `since` is the time from the frame's start to the end
-// of this substep, so the collider is `since` times its velocity further on (the particle is
-// tested `since` times it back).
+// (contact_response, against the surface's velocity there). A record holds where the collider
+// is at the frame's start, its velocity over the frame (extra.yzw) and its spin: `since` is
+// the time from the frame's start to the end of this substep (collider_distance_since).
 // `touch`: how far past the margin a particle still counts as touching (its velocity answers
 // the collider, its position is not moved): 0 but for vbd_iterate.comp's last iteration, whose
 // particles the iterations before held at the margin exactly.
@@ -127,10 +153,10 @@ void collide_within(inout vec3 x, inout vec3 v, float since, float touch) {
     if (!has(F_COLLIDERS)) return;
     for (uint k = 0u; k < g.collider_count; ++k) {
         Collider c = colliders[k];
-        vec3 velocity = c.extra.yzw;
         vec3 n;
-        float d = collider_distance(c, x - velocity * since, n);
-        if (d < obj.margin + touch) contact_response(x, v, n, max(obj.margin - d, 0.0), collider_friction(c), velocity);
+        vec3 surface;
+        float d = collider_distance_since(c, x, since, n, surface);
+        if (d < obj.margin + touch) contact_response(x, v, n, max(obj.margin - d, 0.0), collider_friction(c), surface);
     }
 }
 

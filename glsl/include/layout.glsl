@@ -39,12 +39,14 @@ struct SurfaceVertex {
 // A collider (sim::collider::ColliderModel::gpu): a.xyz centre or point a, a.w the type id
 // (COLLIDER_*, as uint bits); b.xyz half extents or point b, b.w radius; rotation a unit
 // quaternion (xyzw); extra.x the friction, negative for the object's; extra.yzw its
-// velocity over the frame (positions are the frame's start).
+// velocity over the frame; spin.xyz its angular velocity [rad/s] about its centre (a
+// capsule's midpoint) (positions and rotation are the frame's start).
 struct Collider {
     vec4 a;
     vec4 b;
     vec4 rotation;
     vec4 extra;
+    vec4 spin;
 };
 
 // Fourier modes of the wind's turbulence (sim::turbulence::TURBULENCE_MODES).

@@ -69,7 +69,7 @@ pub fn pick_collider(scene: &Scene, time: f64, origin: Vec3, dir: Vec3) -> Optio
     let mut best: Option<(Selection, f32)> = None;
     let colliders = collider_selections(scene).zip(crate::scene::colliders(scene));
     for (target, c) in colliders.filter(|(s, _)| *s != Selection::Ground) {
-        let shape = c.shape.translated(c.motion.offset(time));
+        let shape = c.shape_at(time);
         let mut s = 0.0;
         let mut hit = None;
         for _ in 0..STEPS {

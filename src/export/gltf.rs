@@ -27,14 +27,17 @@ pub struct MeshFrames<'a> {
     pub normals: &'a [Vec<[f32; 3]>],
 }
 
-/// A collider's mesh where it is at the first frame, and its offset from there at each frame
-/// (None when it does not move).
+/// A collider's mesh where it is at the first frame, and its node's translation at each frame
+/// (None when it does not move) and rotation (a unit quaternion, xyzw; None when it does not
+/// turn): a turn about the collider's centre c by R is the rotation R with the translation
+/// c - R c besides the offset.
 pub struct ColliderMesh {
     pub name: String,
     pub points: Vec<[f32; 3]>,
     pub normals: Vec<[f32; 3]>,
     pub indices: Vec<u32>,
     pub offsets: Option<Vec<[f32; 3]>>,
+    pub turns: Option<Vec<[f32; 4]>>,
 }
 
 /// The binary buffer and the document that describes it.
@@ -100,6 +103,12 @@ impl Builder {
         let hi = (0..3).map(|k| values.iter().map(|v| v[k]).fold(f32::NEG_INFINITY, f32::max)).collect();
         let view = self.view(bytemuck::cast_slice(values), target);
         self.accessor(Some(view), values.len(), json::accessor::Type::Vec3, Some((lo, hi)))
+    }
+
+    /// An animation sampler's output of unit quaternions.
+    fn quaternions(&mut self, values: &[[f32; 4]]) -> json::Index<json::Accessor> {
+        let view = self.view(bytemuck::cast_slice(values), None);
+        self.accessor(Some(view), values.len(), json::accessor::Type::Vec4, None)
     }
 
     fn indices(&mut self, indices: &[u32]) -> json::Index<json::Accessor> {
@@ -240,6 +249,11 @@ pub fn glb(meshes: &[MeshFrames], colliders: &[ColliderMesh], times: &[f32]) -> 
                 channels.push((node, json::animation::Property::Translation, samplers.len()));
                 samplers.push(output);
             }
+            if let Some(turns) = c.turns.as_ref().filter(|o| frames > 1 && o.len() == frames) {
+                let output = b.quaternions(turns);
+                channels.push((node, json::animation::Property::Rotation, samplers.len()));
+                samplers.push(output);
+            }
         }
     }
     if !channels.is_empty() {
@@ -337,15 +351,18 @@ impl Recording {
             .map(|(c, name)| {
                 let (points, normals, triangles) = collider_mesh(c, first);
                 let start = c.motion.offset(first);
+                let centre = c.shape_at(first).reference_point();
+                let turn = |t: f64| c.turn_at(t) * c.turn_at(first).inverse();
+                let offset = |t: f64| c.motion.offset(t) - start + centre - turn(t) * centre;
                 ColliderMesh {
                     name: name.clone(),
                     points: points.into_iter().map(f32s).collect(),
                     normals: normals.into_iter().map(f32s).collect(),
                     indices: triangles.into_iter().flatten().collect(),
-                    offsets: c
-                        .motion
-                        .is_moving()
-                        .then(|| self.times.iter().map(|&t| f32s(c.motion.offset(t) - start)).collect()),
+                    offsets: c.is_moving().then(|| self.times.iter().map(|&t| f32s(offset(t))).collect()),
+                    turns: (c.spin != DVec3::ZERO).then(|| {
+                        self.times.iter().map(|&t| turn(t).as_quat().normalize().to_array()).collect()
+                    }),
                 }
             })
             .collect();
@@ -421,6 +438,7 @@ mod tests {
                 normals: up.to_vec(),
                 indices: vec![0, 1, 2],
                 offsets: Some(vec![[0.0; 3]; frames]),
+                turns: Some(vec![[0.0, 0.0, 0.0, 1.0]; frames]),
             };
             let bytes = glb(&[mesh], &[collider], &vec![0.0; frames]).unwrap();
             let text = u32::from_le_bytes(bytes[12..16].try_into().unwrap()) as usize;

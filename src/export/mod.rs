@@ -343,7 +343,7 @@ impl Recording {
     /// colliders that are fixed in this one (regular files `{stem}_{name}.pc2`), so that an
     /// importer that takes each mesh's cache where it finds one does not move them.
     fn remove_fixed_colliders_caches(&self) -> Result<()> {
-        let fixed = self.colliders.iter().zip(&self.collider_names).filter(|(c, _)| !c.motion.is_moving());
+        let fixed = self.colliders.iter().zip(&self.collider_names).filter(|(c, _)| !c.is_moving());
         for (_, name) in fixed {
             let path = self.cache_file(name);
             if std::fs::symlink_metadata(&path).is_ok_and(|m| m.is_file()) {
@@ -504,7 +504,7 @@ impl Recording {
 /// outside (the renderer's unit meshes, placed as the app draws them; the ground a
 /// `GROUND_HALF_SIZE` square facing up). Triangles of no area (a sphere's poles) are left out.
 fn collider_mesh(c: &ColliderModel, t: f64) -> (Vec<DVec3>, Vec<DVec3>, Vec<[u32; 3]>) {
-    let shape = c.shape.translated(c.motion.offset(t));
+    let shape = c.shape_at(t);
     if let Shape::Ground { height } = shape {
         let h = GROUND_HALF_SIZE;
         let points = [(-h, -h), (-h, h), (h, h), (h, -h)].map(|(x, z)| DVec3::new(x, height, z));

@@ -6,7 +6,7 @@ impl Recording {
     /// The names of the meshes a point cache animates: every object's, then every moving
     /// collider's (a fixed one stays where the OBJ has it).
     pub(super) fn cached_names(&self) -> Vec<&str> {
-        let moving = self.colliders.iter().zip(&self.collider_names).filter(|(c, _)| c.motion.is_moving());
+        let moving = self.colliders.iter().zip(&self.collider_names).filter(|(c, _)| c.is_moving());
         self.tracks.iter().map(|t| t.name.as_str()).chain(moving.map(|(_, name)| name.as_str())).collect()
     }
 
@@ -35,7 +35,7 @@ impl Recording {
             write_whole(&base, self.obj(states, time).as_bytes())
                 .map_err(|e| anyhow::anyhow!("recording the meshes to {}: {e}", base.display()))?;
         }
-        let moving = self.colliders.iter().filter(|c| c.motion.is_moving());
+        let moving = self.colliders.iter().filter(|c| c.is_moving());
         let collider_points =
             moving.map(|c| collider_mesh(c, time).0.iter().map(|p| p.as_vec3().to_array()).collect());
         let frames: Vec<Vec<[f32; 3]>> = (self.tracks.iter().zip(states))

@@ -125,7 +125,8 @@ impl Recording {
     /// capsule as a Capsule along its local z, a box as a Cube of size 2 scaled by its half
     /// extents and turned by its rotation, the ground as a 40 m square Mesh facing up at its
     /// height. A moving collider's translation is time-sampled at every frame, a fixed one's
-    /// constant.
+    /// constant; a turning one's orientation is time-sampled too (about its centre, where its
+    /// translation places it).
     pub(super) fn usda_colliders(&self, out: &mut String) {
         if self.colliders.is_empty() {
             return;
@@ -192,7 +193,16 @@ impl Recording {
                     place.x, place.y, place.z
                 );
             }
-            if let Some(q) = rotation {
+            if c.spin != DVec3::ZERO {
+                let _ = writeln!(out, "            quatd xformOp:orient.timeSamples = {{");
+                for (f, &t) in self.times.iter().enumerate() {
+                    let q = c.turn_at(t) * rotation.unwrap_or(DQuat::IDENTITY);
+                    let code = self.first_code + f as u64;
+                    let _ = writeln!(out, "                {code}: ({}, {}, {}, {}),", q.w, q.x, q.y, q.z);
+                }
+                let _ = writeln!(out, "            }}");
+                order.push("\"xformOp:orient\"");
+            } else if let Some(q) = rotation {
                 let _ =
                     writeln!(out, "            quatd xformOp:orient = ({}, {}, {}, {})", q.w, q.x, q.y, q.z);
                 order.push("\"xformOp:orient\"");

@@ -35,7 +35,7 @@ pub fn scene_items(scene: &Scene, time: f64, tinted: Option<usize>) -> Vec<DrawI
         items.push(DrawItem::solid(Shape::Surface(scene.cloths.len() + j), Mat4::IDENTITY, f(r.color), true));
     }
     for (k, c) in scene::colliders(scene).iter().enumerate() {
-        let mut shapes = collider_items(&c.shape.translated(c.motion.offset(time)));
+        let mut shapes = collider_items(&c.shape_at(time));
         if tinted == Some(k) {
             shapes.iter_mut().for_each(|item| (item.front, item.back) = (tint(item.front), tint(item.back)));
         }

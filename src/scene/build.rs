@@ -80,11 +80,13 @@ pub fn colliders(scene: &Scene) -> Vec<ColliderModel> {
         shape,
         friction: None,
         motion: motion(&shape, m),
+        spin: spin(m),
     };
     let ground = scene.ground.iter().map(|g| ColliderModel {
         shape: Shape::Ground { height: g.height },
         friction: g.friction,
         motion: Motion::Fixed,
+        spin: DVec3::ZERO,
     });
     let spheres = scene
         .spheres
@@ -100,6 +102,13 @@ pub fn colliders(scene: &Scene) -> Vec<ColliderModel> {
         .iter()
         .map(|c| moving(Shape::Capsule { a: v(c.start), b: v(c.end), radius: c.radius }, &c.motion));
     ground.chain(spheres).chain(boxes).chain(capsules).collect()
+}
+
+/// A validated preset motion's steady turn [rad/s] (its `angular_velocity` in degrees/s).
+fn spin(m: &Option<super::Motion>) -> DVec3 {
+    m.as_ref()
+        .and_then(|m| m.angular_velocity)
+        .map_or(DVec3::ZERO, |w| DVec3::from_array(w.map(f64::to_radians)))
 }
 
 /// A validated preset motion in the model: keyframes become offsets from the shape's placement.

@@ -598,10 +598,17 @@ stiffness = { structural = 1.0, shear = 1.0, bending = 1.0 }
         assert!(e.contains("rotation_keyframes: up to 300 degrees a frame, half a turn or more"), "{e}");
         let text = format!("{BASE}[[sphere]]\ncenter = [0, 0, 0]\nradius = 1\nmotion = {{ rotation_keyframes = [[0, 0, 0, 0]] }}\n");
         let e = parse(&text, "t.toml", &[]).unwrap_err().0;
-        assert!(e.contains("sphere[0].motion: colliders do not turn yet"), "{e}");
+        assert!(
+            e.contains("sphere[0].motion: a collider turns about its centre at a steady angular_velocity"),
+            "{e}"
+        );
         let text = format!("{BASE}[[sphere]]\ncenter = [0, 0, 0]\nradius = 1\nmotion = {{ angular_velocity = [0, 90, 0] }}\n");
+        assert!(parse(&text, "t.toml", &[]).is_ok(), "a turn alone");
+        let text = format!("{BASE}[[box]]\ncenter = [0, 0, 0]\nhalf_extents = [1, 1, 1]\nmotion = {{ velocity = [1, 0, 0], angular_velocity = [0, 90, 0] }}\n");
+        assert!(parse(&text, "t.toml", &[]).is_ok(), "a turn with a velocity");
+        let text = format!("{BASE}[[box]]\ncenter = [0, 0, 0]\nhalf_extents = [1, 1, 1]\nmotion = {{ angular_velocity = [0, 1e5, 0] }}\n");
         let e = parse(&text, "t.toml", &[]).unwrap_err().0;
-        assert!(e.contains("sphere[0].motion: colliders do not turn yet"), "{e}");
+        assert!(e.contains("box[0].motion.angular_velocity:") && e.contains("half a turn or more"), "{e}");
         let s = with(&[
             "cloth.b.pinned=[[1, 1]]",
             "cloth.b.pin_motion={ keyframes = [[0, 0, 0, 0], [2, 0, 0.5, 0]], interpolation = \"smooth\", rotation_keyframes = [[0, 0, 0, 0], [2, 0, 45, 0]] }",

@@ -337,8 +337,9 @@ pub struct Sphere {
     pub motion: Option<Motion>,
 }
 
-/// How a collider moves: a kinematic body, whose velocity its contacts' friction follows.
-/// Exactly one of `velocity` and `keyframes`. As an object's `pin_motion`, how its pinned
+/// How a collider moves: a kinematic body, whose surface's velocity its contacts' friction
+/// follows. At most one of `velocity` and `keyframes`, and a steady turn about its centre
+/// (`angular_velocity`), with either or alone. As an object's `pin_motion`, how its pinned
 /// particles move, all together: a velocity, or keyframes of their displacement [t, dx, dy,
 /// dz] (only its change counts: the pins start where they are placed), a turn about `pivot`
 /// (pins only: steady, `angular_velocity`, or keyed, `rotation_keyframes`), or a turn with
@@ -356,8 +357,9 @@ pub struct Motion {
     /// How the keyframes are joined: `Interpolation`.
     #[serde(default, skip_serializing_if = "Interpolation::is_linear")]
     pub interpolation: Interpolation,
-    /// Pins only: a steady turn about `pivot`, about the vector's direction at its length
-    /// [degrees/s].
+    /// A steady turn about the vector's direction at its length [degrees/s]: a collider's
+    /// about its centre (a capsule's midpoint; with or without a velocity or keyframes, which
+    /// carry the centre), pins' about `pivot`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub angular_velocity: Option<[f64; 3]>,
     /// Pins only: their turn over time about `pivot`, rows of [t (s), rx, ry, rz (degrees)]:

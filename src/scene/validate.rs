@@ -227,10 +227,11 @@ pub fn check(scene: &Scene) -> Check {
             scene.ropes.len()
         ));
     }
+    let substep = scene.sim.frame_dt / scene.sim.substeps as f64;
     for (i, sphere) in scene.spheres.iter().enumerate() {
         vector(&format!("sphere[{i}].center"), sphere.center, MAX_COORDINATE, "m")?;
         positive(&format!("sphere[{i}].radius"), sphere.radius, LENGTH, "m")?;
-        check_motion(&format!("sphere[{i}].motion"), &sphere.motion)?;
+        check_motion(&format!("sphere[{i}].motion"), &sphere.motion, substep)?;
     }
     if let Some(g) = &scene.ground {
         finite("ground.height", g.height, MAX_COORDINATE, "m")?;
@@ -244,13 +245,13 @@ pub fn check(scene: &Scene) -> Check {
             positive(&format!("box[{i}].half_extents.{axis}"), h, LENGTH, "m")?;
         }
         vector(&format!("box[{i}].rotation"), b.rotation, 360.0, "degrees")?;
-        check_motion(&format!("box[{i}].motion"), &b.motion)?;
+        check_motion(&format!("box[{i}].motion"), &b.motion, substep)?;
     }
     for (i, c) in scene.capsules.iter().enumerate() {
         vector(&format!("capsule[{i}].start"), c.start, MAX_COORDINATE, "m")?;
         vector(&format!("capsule[{i}].end"), c.end, MAX_COORDINATE, "m")?;
         positive(&format!("capsule[{i}].radius"), c.radius, LENGTH, "m")?;
-        check_motion(&format!("capsule[{i}].motion"), &c.motion)?;
+        check_motion(&format!("capsule[{i}].motion"), &c.motion, substep)?;
     }
 
     let mut names = std::collections::HashSet::new();
@@ -280,7 +281,6 @@ pub fn check(scene: &Scene) -> Check {
                 .filter(|(_, r)| moves(&r.pin_motion, &r.pin_groups))
                 .map(|(i, r)| (format!("rope[{i}]"), super::build::rope(r))),
         );
-    let substep = scene.sim.frame_dt / scene.sim.substeps as f64;
     for (object, o) in moving {
         for (g, motion) in o.pin_motions().enumerate() {
             let at = match g {
@@ -318,15 +318,34 @@ pub fn check(scene: &Scene) -> Check {
     Ok(())
 }
 
-/// A collider's motion (or an object's pins'): a velocity or keyframes (not both, not
-/// neither), keyframe times finite, at least 0 and increasing.
-fn check_motion(at: &str, m: &Option<super::Motion>) -> Check {
+/// A collider's motion: a translation (`check_translation`), a steady turn about its centre
+/// (`angular_velocity`, under half a turn a substep: past it the substep's turn would go the
+/// other way), or both.
+fn check_motion(at: &str, m: &Option<super::Motion>, substep: f64) -> Check {
     let Some(m) = m else { return Ok(()) };
-    if m.angular_velocity.is_some() || m.pivot.is_some() || !m.rotation_keyframes.is_empty() {
+    if m.pivot.is_some() || !m.rotation_keyframes.is_empty() {
         return Err(format!(
-            "{at}: colliders do not turn yet (angular_velocity, rotation_keyframes and pivot are for a cloth's or rope's pin_motion)"
+            "{at}: a collider turns about its centre at a steady angular_velocity (rotation_keyframes and pivot are for a cloth's or rope's pin_motion)"
         ));
     }
+    let Some(w) = m.angular_velocity else { return check_translation(at, m) };
+    vector(&format!("{at}.angular_velocity"), w, MAX_TURN, "degrees/s")?;
+    let turn = glam::DVec3::from_array(w).length() * substep;
+    if turn >= 180.0 {
+        return Err(format!(
+            "{at}.angular_velocity: {} degrees a substep, half a turn or more (the substep's turn would go the other way): a slower turn or more substeps",
+            num(turn)
+        ));
+    }
+    if m.velocity.is_none() && m.keyframes.is_empty() {
+        return check_interpolation(at, m); // (a turn alone)
+    }
+    check_translation(at, m)
+}
+
+/// A motion's translation (a collider's, or an object's pins'): a velocity or keyframes (not
+/// both, not neither), keyframe times finite, at least 0 and increasing.
+fn check_translation(at: &str, m: &super::Motion) -> Check {
     check_interpolation(at, m)?;
     match (m.velocity, m.keyframes.is_empty()) {
         (Some(_), false) => return Err(format!("{at}: give a velocity or keyframes, not both")),
@@ -549,7 +568,7 @@ fn check_pin_motion(at: &str, m: &Option<super::Motion>, pins: bool) -> Check {
     if turns && translation == super::Motion::default() {
         return Ok(()); // (a turn alone)
     }
-    check_motion(&at, &Some(translation))
+    check_translation(&at, &translation)
 }
 
 /// A motion's `interpolation`: only where it has keyframes to join (a collider's; a pin

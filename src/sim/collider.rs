@@ -73,12 +73,36 @@ pub enum Shape {
 }
 
 /// A collider of the model: its shape (where it is at t = 0), where it has its own its
-/// friction (else each object's applies), and how it moves.
+/// friction (else each object's applies), how it moves, and how it turns: a steady angular
+/// velocity `spin` [rad/s] about its reference point (`Shape::reference_point`, which the
+/// motion carries; zero for the ground).
 #[derive(Debug, Clone, PartialEq)]
 pub struct ColliderModel {
     pub shape: Shape,
     pub friction: Option<f64>,
     pub motion: Motion,
+    pub spin: DVec3,
+}
+
+/// A collider's GPU record (`ColliderModel::gpu`): five vec4s.
+pub type ColliderRecord = [[f32; 4]; 5];
+
+/// Where a collider is at one moment and how its surface moves there: offset by `shift` from
+/// its placement and turned by `turn` about its reference point (carried by the shift), moving
+/// at `velocity` and turning at `spin` [rad/s].
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Pose {
+    pub shift: DVec3,
+    pub velocity: DVec3,
+    pub turn: DQuat,
+    pub spin: DVec3,
+}
+
+impl Pose {
+    /// Offset by `shift`, moving at `velocity`, not turned.
+    pub fn moving(shift: DVec3, velocity: DVec3) -> Self {
+        Self { shift, velocity, turn: DQuat::IDENTITY, spin: DVec3::ZERO }
+    }
 }
 
 /// How a collider moves: a kinematic body, positioned by time; contacts use its velocity.
@@ -198,7 +222,52 @@ impl Motion {
 
 impl ColliderModel {
     pub fn sphere(center: DVec3, radius: f64) -> Self {
-        Self { shape: Shape::Sphere { center, radius }, friction: None, motion: Motion::Fixed }
+        Self {
+            shape: Shape::Sphere { center, radius },
+            friction: None,
+            motion: Motion::Fixed,
+            spin: DVec3::ZERO,
+        }
+    }
+
+    /// Whether it moves or turns.
+    pub fn is_moving(&self) -> bool {
+        self.motion.is_moving() || self.spin != DVec3::ZERO
+    }
+
+    /// Its turn at time `t`: `spin` t about the spin's axis.
+    pub fn turn_at(&self, t: f64) -> DQuat {
+        DQuat::from_scaled_axis(self.spin * t)
+    }
+
+    /// Its shape where it is at time `t`: turned about its reference point, then moved.
+    pub fn shape_at(&self, t: f64) -> Shape {
+        self.shape.turned(self.turn_at(t)).translated(self.motion.offset(t))
+    }
+
+    /// Where it is `since` after the start of the frame that starts at `t0` and lasts
+    /// `frame_dt` (`frame_motion`: moved at the frame's chord velocity; turned at its spin).
+    /// The CPU reference's; the GPU takes the same from the frame's record (`gpu`).
+    pub fn pose(&self, t0: f64, frame_dt: f64, since: f64) -> Pose {
+        let (start, velocity) = self.frame_motion(t0, frame_dt);
+        Pose { shift: start + velocity * since, velocity, turn: self.turn_at(t0 + since), spin: self.spin }
+    }
+
+    /// Signed distance from `x` to its surface at `pose` and the outward normal there
+    /// (`collider_distance_since` in colliders.glsl).
+    pub fn distance_at(&self, pose: &Pose, x: DVec3) -> (f64, DVec3) {
+        if pose.spin == DVec3::ZERO && pose.turn == DQuat::IDENTITY {
+            return self.shape.distance(x - pose.shift);
+        }
+        let centre = self.shape.reference_point();
+        let (d, n) = self.shape.distance(centre + pose.turn.inverse() * (x - pose.shift - centre));
+        (d, pose.turn * n)
+    }
+
+    /// The velocity of its surface at `x` at `pose`: its own plus its spin's about its
+    /// reference point.
+    pub fn surface_velocity(&self, pose: &Pose, x: DVec3) -> DVec3 {
+        pose.velocity + pose.spin.cross(x - pose.shift - self.shape.reference_point())
     }
 
     /// How the collider moves during the frame that starts at `t0` and lasts `frame_dt`: its
@@ -213,22 +282,22 @@ impl ColliderModel {
     /// The GPU record (`Collider` in colliders.glsl) for the frame that starts at `t0`: `a`
     /// xyz centre, point a or unused, w the type id; `b` xyz half extents or point b, w radius;
     /// `rotation` a unit quaternion (xyzw); `extra` x the friction (negative: the object's),
-    /// yzw the velocity over the frame. Positions are where the collider is at the frame's
-    /// start.
-    pub fn gpu(&self, t0: f64, frame_dt: f64) -> [[f32; 4]; 4] {
+    /// yzw the velocity over the frame; `spin` xyz the angular velocity. Positions and the
+    /// rotation are where the collider is at the frame's start.
+    pub fn gpu(&self, t0: f64, frame_dt: f64) -> ColliderRecord {
         self.gpu_dragged(t0, frame_dt, DVec3::ZERO)
     }
 
     /// `gpu` for a collider the user moved by `drag` since the last frame (the app's editor):
     /// it starts the frame where it was and covers the distance during the frame, so what it
     /// touches is pushed and dragged (by friction) as by a moving collider.
-    pub fn gpu_dragged(&self, t0: f64, frame_dt: f64, drag: DVec3) -> [[f32; 4]; 4] {
+    pub fn gpu_dragged(&self, t0: f64, frame_dt: f64, drag: DVec3) -> ColliderRecord {
         let (start, velocity) = self.frame_motion(t0, frame_dt);
         let (start, velocity) = (start - drag, velocity + drag / frame_dt);
         let v = |p: DVec3, w: f32| [p.x as f32, p.y as f32, p.z as f32, w];
         let id = f32::from_bits(self.shape.kind().row().glsl_id);
         let friction = self.friction.map(|f| f as f32).unwrap_or(-1.0);
-        let (a, b, q) = match self.shape.translated(start) {
+        let (a, b, q) = match self.shape.turned(self.turn_at(t0)).translated(start) {
             Shape::Sphere { center, radius } => {
                 (v(center, id), v(DVec3::ZERO, radius as f32), DQuat::IDENTITY)
             }
@@ -236,23 +305,29 @@ impl ColliderModel {
             Shape::Box { center, half_extents, rotation } => (v(center, id), v(half_extents, 0.0), rotation),
             Shape::Capsule { a, b, radius } => (v(a, id), v(b, radius as f32), DQuat::IDENTITY),
         };
-        let w = velocity.as_vec3();
-        [a, b, [q.x as f32, q.y as f32, q.z as f32, q.w as f32], [friction, w.x, w.y, w.z]]
+        let (w, s) = (velocity.as_vec3(), self.spin.as_vec3());
+        [
+            a,
+            b,
+            [q.x as f32, q.y as f32, q.z as f32, q.w as f32],
+            [friction, w.x, w.y, w.z],
+            [s.x, s.y, s.z, 0.0],
+        ]
     }
 
-    /// Moves a particle at `x` with velocity `v` out of the collider, offset by `shift` from
-    /// its placement and moving at `velocity`, to `margin` from its surface (`respond_along`
-    /// with the collider's friction, its own else `object_friction`). The CPU twin of
-    /// `collide` in colliders.glsl.
+    /// Moves a particle at `x` with velocity `v` out of the collider at `pose` to `margin`
+    /// from its surface (`respond_along` with the collider's friction, its own else
+    /// `object_friction`, against its surface's velocity there). The CPU twin of `collide` in
+    /// colliders.glsl.
     pub fn respond(
         &self,
         (margin, object_friction): (f64, f64),
-        (shift, velocity): (DVec3, DVec3),
+        pose: &Pose,
         (start, dt): (DVec3, f64),
         x: &mut DVec3,
         v: &mut DVec3,
     ) {
-        self.respond_within((margin, object_friction), (shift, velocity), (start, dt), 0.0, x, v);
+        self.respond_within((margin, object_friction), pose, (start, dt), 0.0, x, v);
     }
 
     /// `respond` with a particle within `touch` past the margin counted as touching (its
@@ -261,16 +336,17 @@ impl ColliderModel {
     pub fn respond_within(
         &self,
         (margin, object_friction): (f64, f64),
-        (shift, velocity): (DVec3, DVec3),
+        pose: &Pose,
         (start, dt): (DVec3, f64),
         touch: f64,
         x: &mut DVec3,
         v: &mut DVec3,
     ) {
-        let (d, n) = self.shape.distance(*x - shift);
+        let (d, n) = self.distance_at(pose, *x);
         if d < margin + touch {
             let mu = self.friction.unwrap_or(object_friction);
-            respond_along((n, (margin - d).max(0.0)), (mu, velocity), (start, dt), x, v);
+            let surface = self.surface_velocity(pose, *x);
+            respond_along((n, (margin - d).max(0.0)), (mu, surface), (start, dt), x, v);
         }
     }
 }
@@ -337,7 +413,7 @@ impl ColliderModel {
             Motion::Keyframes(k) => Motion::Keyframes(k.iter().map(|&(t, p)| (t, rv(p))).collect()),
             Motion::Smooth(k) => Motion::Smooth(k.iter().map(|&(t, p)| (t, rv(p))).collect()),
         };
-        Self { shape, friction: self.friction.map(r), motion }
+        Self { shape, friction: self.friction.map(r), motion, spin: rv(self.spin) }
     }
 }
 
@@ -401,6 +477,20 @@ impl Shape {
             Shape::Sphere { center, .. } | Shape::Box { center, .. } => center,
             Shape::Ground { height } => DVec3::new(0.0, height, 0.0),
             Shape::Capsule { a, b, .. } => (a + b) / 2.0,
+        }
+    }
+
+    /// The shape turned by `q` about its reference point (the ground does not turn).
+    pub fn turned(&self, q: DQuat) -> Shape {
+        match *self {
+            Shape::Sphere { .. } | Shape::Ground { .. } => *self,
+            Shape::Box { center, half_extents, rotation } => {
+                Shape::Box { center, half_extents, rotation: (q * rotation).normalize() }
+            }
+            Shape::Capsule { a, b, radius } => {
+                let mid = (a + b) / 2.0;
+                Shape::Capsule { a: mid + q * (a - mid), b: mid + q * (b - mid), radius }
+            }
         }
     }
 
@@ -613,13 +703,14 @@ mod tests {
             shape: Shape::Capsule { a: DVec3::ZERO, b: DVec3::X, radius: 0.2 },
             friction: Some(0.25),
             motion: Motion::Fixed,
+            spin: DVec3::ZERO,
         };
         let dt = 0.01;
         // Arriving at 2 m/s down and 1 m/s along: jn = 2 m/s, so friction takes 0.5 m/s.
         let mut x = DVec3::new(0.5, 0.2, 0.0);
         let start = x - DVec3::new(1.0, -2.0, 0.0) * dt;
         let mut v = DVec3::new(1.0, -2.0, 0.0);
-        c.respond((0.01, 0.9), (DVec3::ZERO, DVec3::ZERO), (start, dt), &mut x, &mut v);
+        c.respond((0.01, 0.9), &Pose::moving(DVec3::ZERO, DVec3::ZERO), (start, dt), &mut x, &mut v);
         assert!((c.shape.distance(x).0 - 0.01).abs() < 1e-12);
         assert!(v.y.abs() < 1e-12 && (v.x - 0.5).abs() < 1e-12, "{v}");
         assert!((x.x - (start.x + 0.5 * dt)).abs() < 1e-12, "slid by the kinetic share: {x}");
@@ -628,8 +719,8 @@ mod tests {
         let mut x = DVec3::new(0.5, 0.2, 0.0);
         let start = x - DVec3::new(1.0, -2.0, 0.0) * dt;
         let mut v = DVec3::new(1.0, -2.0, 0.0);
-        let moving = (DVec3::ZERO, DVec3::new(0.5, 2.0, 0.0));
-        c.respond((0.01, 0.9), moving, (start, dt), &mut x, &mut v);
+        let moving = Pose::moving(DVec3::ZERO, DVec3::new(0.5, 2.0, 0.0));
+        c.respond((0.01, 0.9), &moving, (start, dt), &mut x, &mut v);
         assert!((v.y - 2.0).abs() < 1e-12 && (v.x - 0.5).abs() < 1e-12, "{v}");
         assert!((x.x - (start.x + 0.5 * dt)).abs() < 1e-12, "stuck to the collider: {x}");
     }

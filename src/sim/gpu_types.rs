@@ -126,12 +126,13 @@ gpu_struct!(
 });
 
 gpu_struct!(
-    /// One collider as the shaders read it (`ColliderModel::gpu` packs these four in order).
-    Collider, size 64, {
+    /// One collider as the shaders read it (`ColliderModel::gpu` packs these five in order).
+    Collider, size 80, {
     a: [f32; 4],
     b: [f32; 4],
     rotation: [f32; 4],
     extra: [f32; 4],
+    spin: [f32; 4],
 });
 
 gpu_struct!(

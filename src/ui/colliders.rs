@@ -123,18 +123,13 @@ pub fn panel(ui: &Ui, scene: &mut Scene, selected: Selection) -> bool {
 /// A collider's motion: a constant velocity behind a checkbox; keyframes are shown, and edited
 /// in the preset.
 fn motion(ui: &Ui, m: &mut Option<Motion>) {
-    motion_with(ui, m, ["moves", "velocity [m/s]"], [0.2, 0.0, 0.0]);
+    motion_with(ui, m, ["moves", "velocity [m/s]", "turns", "angular velocity [degrees/s]"], [0.2, 0.0, 0.0]);
 }
 
-/// A motion (a collider's, or an object's pins'), its widgets labelled `[checkbox, velocity]`,
-/// starting at velocity `start` when ticked.
-pub(super) fn motion_with(ui: &Ui, m: &mut Option<Motion>, labels: [&str; 2], start: [f64; 3]) {
-    if let Some(w) = m.as_ref().and_then(|m| m.angular_velocity) {
-        ui.text_disabled(format!(
-            "turns at [{}, {}, {}] degrees/s (edit it in the preset)",
-            w[0], w[1], w[2]
-        ));
-    }
+/// A motion (a collider's, or an object's pins'), its widgets labelled `[checkbox, velocity,
+/// checkbox, angular velocity]`, starting at velocity `start` or a turn of 90 degrees/s about
+/// the vertical when ticked; the motion is dropped when neither is left.
+pub(super) fn motion_with(ui: &Ui, m: &mut Option<Motion>, labels: [&str; 4], start: [f64; 3]) {
     // (keyed motion is edited in the preset: no checkbox here to drop it)
     if let Some(keyed) = m.as_ref().filter(|m| !m.keyframes.is_empty() || !m.rotation_keyframes.is_empty()) {
         if !keyed.keyframes.is_empty() {
@@ -147,13 +142,33 @@ pub(super) fn motion_with(ui: &Ui, m: &mut Option<Motion>, labels: [&str; 2], st
             let n = keyed.rotation_keyframes.len();
             ui.text_disabled(format!("turns along {n} rotation keyframes (edit them in the preset)"));
         }
+        if let Some(w) = keyed.angular_velocity {
+            ui.text_disabled(format!(
+                "turns at [{}, {}, {}] degrees/s (edit it in the preset)",
+                w[0], w[1], w[2]
+            ));
+        }
         return;
     }
-    let mut moving = m.is_some();
+    let mut moving = m.as_ref().is_some_and(|m| m.velocity.is_some());
     if check(ui, labels[0], &mut moving) {
-        *m = moving.then(|| Motion { velocity: Some(start), ..Default::default() });
+        m.get_or_insert_with(Default::default).velocity = moving.then_some(start);
     }
     if let Some(Motion { velocity: Some(v), .. }) = m {
         drag3(ui, labels[1], v, 0.01);
+    }
+    let mut turning = m.as_ref().is_some_and(|m| m.angular_velocity.is_some());
+    if check(ui, labels[2], &mut turning) {
+        let motion = m.get_or_insert_with(Default::default);
+        motion.angular_velocity = turning.then_some([0.0, 90.0, 0.0]);
+        if !turning {
+            motion.pivot = None; // (what it turned about)
+        }
+    }
+    if let Some(Motion { angular_velocity: Some(w), .. }) = m {
+        drag3(ui, labels[3], w, 1.0);
+    }
+    if m.as_ref().is_some_and(|m| m.velocity.is_none() && m.angular_velocity.is_none()) {
+        *m = None;
     }
 }

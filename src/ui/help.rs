@@ -86,8 +86,12 @@ const HELP: &[(&str, &str)] = &[
     ("end [m]##capsule", "Centre of the capsule's second end cap [m]."),
     ("moves", "Move the collider at a constant velocity (it drags what it touches through friction)."),
     ("velocity [m/s]", "The collider's velocity [m/s]."),
+    ("turns", "Turn the collider steadily about its centre (a capsule's midpoint): what it touches is carried round by friction, as on a turntable."),
+    ("angular velocity [degrees/s]", "The collider's turn: about this vector's direction, at its length in degrees a second (e.g. [0, 90, 0]: a quarter turn a second about the vertical, anticlockwise seen from above)."),
     ("pins move", "Move the pinned particles together at a constant velocity: they carry the object (keyframes: `pin_motion` in the preset)."),
     ("pin velocity [m/s]", "The pinned particles' velocity [m/s]."),
+    ("pins turn", "Turn the pinned particles together steadily about their centre (or the preset's `pivot`): they twist or swing the object."),
+    ("pin angular velocity [degrees/s]", "The pins' turn: about this vector's direction, at its length in degrees a second."),
 ];
 
 /// The tooltip of the widget labelled `label`.

@@ -40,7 +40,12 @@ fn pin_motion(ui: &Ui, m: &mut Option<crate::scene::Motion>, pins: bool) {
         *m = None;
         return;
     }
-    super::colliders::motion_with(ui, m, ["pins move", "pin velocity [m/s]"], [0.0, 0.2, 0.0]);
+    super::colliders::motion_with(
+        ui,
+        m,
+        ["pins move", "pin velocity [m/s]", "pins turn", "pin angular velocity [degrees/s]"],
+        [0.0, 0.2, 0.0],
+    );
 }
 
 pub fn cloth_panel(ui: &Ui, c: &mut Cloth) {

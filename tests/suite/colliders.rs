@@ -67,7 +67,12 @@ fn cloth_on_ground(velocity: DVec3) -> msdsim::sim::model::SimModel {
     s.substeps = 16;
     let motion = if velocity == DVec3::ZERO { Motion::Fixed } else { Motion::Velocity(velocity) };
     s.colliders = vec![
-        ColliderModel { shape: Shape::Ground { height: 0.0 }, friction: Some(0.05), motion: Motion::Fixed },
+        ColliderModel {
+            shape: Shape::Ground { height: 0.0 },
+            friction: Some(0.05),
+            motion: Motion::Fixed,
+            spin: DVec3::ZERO,
+        },
         ColliderModel { motion, ..ColliderModel::sphere(DVec3::new(0.0, 0.165, 0.0), 0.15) },
     ];
     s
@@ -120,6 +125,7 @@ fn contact_speed_limit_holds_on_both_sides() {
                 },
                 friction: None,
                 motion: Motion::Fixed,
+                spin: DVec3::ZERO,
             }];
             let limit = msdsim::sim::collider::contact_speed(&s).expect("a capsule sets a limit");
             assert!((limit.speed - 0.03 / s.dt()).abs() < 1e-9, "{limit}");
@@ -186,6 +192,7 @@ fn a_rod_thinner_than_the_spacing_holds_a_cloth() {
         },
         friction: None,
         motion: Motion::Fixed,
+        spin: DVec3::ZERO,
     }];
     assert!(msdsim::sim::collider::edges_needed(&s.objects[0], &s.colliders));
     // The lowest crossing over the rod's axis, over every row, relative to the axis.

@@ -89,6 +89,7 @@ fn slopes(substeps: u32, integrator: Integrator) -> SimModel {
             shape: Shape::Box { center, half_extents: half, rotation },
             friction: None,
             motion: Motion::Fixed,
+            spin: DVec3::ZERO,
         });
     }
     let mut s = scene(objects);
@@ -327,5 +328,69 @@ fn friction_between_cloths(runs: &[(u32, bool)]) {
         }
     }
     assert!(failures.is_empty(), "{}", failures.join("\n"));
+    assert_clean(&ctx);
+}
+
+/// A 4 x 4 cloth of 2 cm spacing (its centre `r` from the axis) lying on a turntable: a box 1 m
+/// square turning about the vertical at `w` rad/s, friction 0.5, 16 substeps.
+fn turntable(w: f64, r: f64) -> SimModel {
+    let n = 4;
+    let mut c = cloth(n, n, 0.02);
+    for (i, p) in c.positions.iter_mut().enumerate() {
+        let (col, row) = ((i as u32 % n) as f64, (i as u32 / n) as f64);
+        *p = DVec3::new(r + (col - 1.5) * 0.02, 0.055, (row - 1.5) * 0.02);
+    }
+    c.stiffness = [200.0, 50.0, 0.0];
+    c.damping = 0.01;
+    c.margin = 0.005;
+    c.friction = 0.5;
+    let mut s = scene(vec![c]);
+    s.gravity = DVec3::new(0.0, -G, 0.0);
+    s.colliders = vec![ColliderModel {
+        shape: Shape::Box {
+            center: DVec3::ZERO,
+            half_extents: DVec3::new(0.5, 0.05, 0.5),
+            rotation: DQuat::IDENTITY,
+        },
+        friction: None,
+        motion: Motion::Fixed,
+        spin: DVec3::new(0.0, w, 0.0),
+    }];
+    s
+}
+
+/// The cloth's centre: its angle about the turntable's axis (from +x, turning as the table
+/// does) and its distance from the axis.
+fn on_turntable(x: &[DVec3]) -> (f64, f64) {
+    let c = x.iter().sum::<DVec3>() / x.len() as f64;
+    ((-c.z).atan2(c.x), c.x.hypot(c.z))
+}
+
+/// A cloth on a turntable goes round with it while friction can hold it there (w^2 r below
+/// mu g) and slides off where it cannot (issue 71: colliders that turn). At 1 rad/s, 0.3 m
+/// from the axis (w^2 r = 0.3 m/s^2 against mu g = 4.9), it starts at rest and slips until
+/// friction's mu g has brought it to the table's w r (t_s = w r / (mu g) = 61 ms), falling
+/// behind by w t_s / 2 = 0.031 rad, then goes round with the table: in 2 s it turns
+/// 2 - 0.031 rad, within 5e-3 rad (the substeps' start-up and the cloth's own stretch; measured
+/// 4e-4 on the reference), and stays within 5 mm of its radius. At 8 rad/s (19.2 m/s^2) it
+/// slides outwards, past 0.4 m within 0.5 s, and falls behind the table. CPU reference, both
+/// GPU paths.
+#[test]
+fn a_cloth_on_a_turntable_goes_round_while_friction_holds_it() {
+    let ctx = gpu();
+    let (w, r, mu) = (1.0, 0.3, 0.5);
+    let expected = 2.0 * w - w * (w * r / (mu * G)) / 2.0;
+    for (label, x, _) in every_path(&ctx, &turntable(w, r), 120) {
+        let (angle, radius) = on_turntable(&x);
+        println!("1 rad/s, {label}: turned {angle:.4} rad (closed form {expected:.4}), at {radius:.4} m");
+        assert!((angle - expected).abs() < 5e-3, "{label}: turned {angle:.4} rad in 2 s, not {expected:.4}");
+        assert!((radius - r).abs() < 5e-3, "{label}: at {radius:.4} m from the axis, not {r}");
+    }
+    for (label, x, _) in every_path(&ctx, &turntable(8.0, 0.3), 30) {
+        let (angle, radius) = on_turntable(&x);
+        println!("8 rad/s, {label}: turned {angle:.4} rad, at {radius:.4} m");
+        assert!(radius > 0.4, "{label}: still {radius:.4} m from the axis after 0.5 s");
+        assert!(angle < 0.9 * 8.0 * 0.5, "{label}: turned {angle:.4} rad, nearly as far as the table");
+    }
     assert_clean(&ctx);
 }

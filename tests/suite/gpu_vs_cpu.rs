@@ -335,6 +335,7 @@ fn ground_box_and_capsule() {
                 shape: Shape::Ground { height: 0.4 },
                 friction: Some(0.6),
                 motion: Motion::Fixed,
+                spin: DVec3::ZERO,
             },
         ),
         (
@@ -347,6 +348,7 @@ fn ground_box_and_capsule() {
                 },
                 friction: None,
                 motion: Motion::Fixed,
+                spin: DVec3::ZERO,
             },
         ),
         (
@@ -359,6 +361,7 @@ fn ground_box_and_capsule() {
                 },
                 friction: None,
                 motion: Motion::Fixed,
+                spin: DVec3::ZERO,
             },
         ),
     ];
@@ -406,6 +409,7 @@ fn moving_colliders() {
             },
             friction: Some(0.8),
             motion: Motion::Keyframes(keys),
+            spin: DVec3::ZERO,
         },
     ];
     assert_matters("motion", &s, |m| m.colliders.iter_mut().for_each(|c| c.motion = Motion::Fixed));
@@ -511,7 +515,8 @@ fn cloth_thrown_on_the_ground() -> SimModel {
         p.x += 5.0;
     }
     let ground = Shape::Ground { height: 0.485 };
-    s.colliders = vec![ColliderModel { shape: ground, friction: Some(0.5), motion: Motion::Fixed }];
+    s.colliders =
+        vec![ColliderModel { shape: ground, friction: Some(0.5), motion: Motion::Fixed, spin: DVec3::ZERO }];
     s.integrator = Integrator::Vbd;
     s.iterations = 4;
     s

@@ -329,7 +329,8 @@ fn iterative_methods_land_without_bouncing_and_keep_sliding() {
         let mut m = with(&scene(vec![c]), method, 16, users_iterations(method));
         m.gravity = DVec3::new(0.0, -9.81, 0.0);
         let ground = Shape::Ground { height: 0.0 };
-        m.colliders = vec![ColliderModel { shape: ground, friction: None, motion: Motion::Fixed }];
+        m.colliders =
+            vec![ColliderModel { shape: ground, friction: None, motion: Motion::Fixed, spin: DVec3::ZERO }];
         let mut sim = CpuSim::new(&m);
         let (mut touched, mut highest) = (false, 0.0f64);
         for _ in 0..90 {

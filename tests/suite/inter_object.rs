@@ -506,7 +506,8 @@ fn a_stack_of_thin_cloths_rests_without_passing() {
     s.gravity = DVec3::new(0.0, -9.81, 0.0);
     s.inter_object = true;
     let ground = Shape::Ground { height: 0.0 };
-    s.colliders = vec![ColliderModel { shape: ground, friction: None, motion: Motion::Fixed }];
+    s.colliders =
+        vec![ColliderModel { shape: ground, friction: None, motion: Motion::Fixed, spin: DVec3::ZERO }];
     stack_rests(&s, [n, n], 30, 2.0 * margin);
 }
 
@@ -640,7 +641,8 @@ fn a_stack_of_cards_stands_at_the_substeps_users_run() {
     s.substeps = 10;
     s.iterations = 10;
     let ground = Shape::Ground { height: 0.0 };
-    s.colliders = vec![ColliderModel { shape: ground, friction: Some(0.3), motion: Motion::Fixed }];
+    s.colliders =
+        vec![ColliderModel { shape: ground, friction: Some(0.3), motion: Motion::Fixed, spin: DVec3::ZERO }];
     stack_rests(&s, [cols, rows], 8, 2.0 * margin);
 }
 
@@ -671,7 +673,8 @@ fn a_cloth_thrown_on_the_ground_does_not_bounce_with_contact_rounds() {
     s.integrator = Integrator::Vbd;
     s.iterations = 10;
     let ground = Shape::Ground { height: 0.0 };
-    s.colliders = vec![ColliderModel { shape: ground, friction: None, motion: Motion::Fixed }];
+    s.colliders =
+        vec![ColliderModel { shape: ground, friction: None, motion: Motion::Fixed, spin: DVec3::ZERO }];
     assert_eq!(s.contact_rounds(), 10);
     let ctx = gpu();
     let (mut landed, mut rising, mut off) = (None, 0.0f64, 0.0f64);

@@ -167,7 +167,12 @@ fn no_particle_within_the_margin_of_a_ground_box_or_capsule() {
     s.gravity = DVec3::new(0.0, -9.81, 0.0);
     s.substeps = 16;
     s.colliders = vec![
-        ColliderModel { shape: Shape::Ground { height: 0.0 }, friction: Some(0.8), motion: Motion::Fixed },
+        ColliderModel {
+            shape: Shape::Ground { height: 0.0 },
+            friction: Some(0.8),
+            motion: Motion::Fixed,
+            spin: DVec3::ZERO,
+        },
         ColliderModel {
             shape: Shape::Box {
                 center: DVec3::new(-0.2, 0.1, 0.0),
@@ -176,6 +181,7 @@ fn no_particle_within_the_margin_of_a_ground_box_or_capsule() {
             },
             friction: None,
             motion: Motion::Fixed,
+            spin: DVec3::ZERO,
         },
         ColliderModel {
             shape: Shape::Capsule {
@@ -185,6 +191,7 @@ fn no_particle_within_the_margin_of_a_ground_box_or_capsule() {
             },
             friction: None,
             motion: Motion::Fixed,
+            spin: DVec3::ZERO,
         },
     ];
     for fused in [true, false] {

@@ -4,6 +4,7 @@
 //! the two agree to rounding.
 
 use super::{air_force, rest_length, rest_lengths, springs, wind_at, Spring, SPRING_GROUPS};
+use crate::sim::collider::Pose;
 use crate::sim::integrator::{
     newton_steps, spring_class_parity, vertex_colour, vertex_colours, xpbd_class_order, BDF2_STEP,
     RIGID_REGULARISER, SPRING_CLASSES, STIFF_START,
@@ -579,7 +580,7 @@ impl VbdSolve {
         &mut self,
         s: &Substep<'_>,
         moved: Option<&[DVec3]>,
-        colliders: Option<&[(DVec3, DVec3)]>,
+        colliders: Option<&[Pose]>,
         last: bool,
     ) {
         let o = s.object;
@@ -607,8 +608,8 @@ impl VbdSolve {
             // (the last: touching within a few f32 steps of the margin, where the iterations
             // before held it)
             let touch = if last { crate::sim::collider::position_slack(at) } else { 0.0 };
-            for (c, &motion) in s.model.colliders.iter().zip(motions) {
-                c.respond_within((o.margin, o.friction), motion, (s.x[i], s.dt), touch, &mut at, &mut v);
+            for (c, pose) in s.model.colliders.iter().zip(motions) {
+                c.respond_within((o.margin, o.friction), pose, (s.x[i], s.dt), touch, &mut at, &mut v);
             }
             let moved = at - self.p[i];
             self.kept_colliders[i] += moved;

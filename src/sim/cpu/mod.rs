@@ -36,6 +36,7 @@ pub mod self_contact;
 
 pub use integrators::{energy, implicit_searches, max_strain, rigid_starts, History};
 
+use super::collider::Pose;
 use super::gpu_types::ROPE_RING;
 use super::model::{ObjectKind, ObjectModel, SimModel, WindModel};
 use glam::{DQuat, DVec3};
@@ -325,14 +326,7 @@ impl CpuSim {
         // (the substep's start, as the GPU has it: the frame's start and whole substeps since)
         let time = frame_start + (self.substeps_done % substeps) as f64 * self.dt;
         let step = (self.substeps_done % substeps) as u32;
-        let motions: Vec<(DVec3, DVec3)> = m
-            .colliders
-            .iter()
-            .map(|c| {
-                let (start, velocity) = c.frame_motion(frame_start, m.frame_dt);
-                (start + velocity * since, velocity)
-            })
-            .collect();
+        let motions: Vec<Pose> = m.colliders.iter().map(|c| c.pose(frame_start, m.frame_dt, since)).collect();
         self.substeps_done += 1;
         // Every object's physics first: the constraints of one read the others' new positions
         // (inter-object contact), as the GPU's constraint stage follows all physics.
@@ -384,7 +378,7 @@ fn solve_with_contact_rounds(
     m: &SimModel,
     objects: &mut [CpuObject],
     (dt, time, frame_start, step): (f64, f64, f64, u32),
-    motions: &[(DVec3, DVec3)],
+    motions: &[Pose],
 ) -> Vec<(Vec<DVec3>, Vec<DVec3>)> {
     let mut histories: Vec<Vec<History>> = objects.iter().map(|o| o.history.clone()).collect();
     let pins: Vec<Vec<super::pins::PinStep>> =
@@ -430,7 +424,7 @@ fn constraints(
     m: &SimModel,
     o: &ObjectModel,
     dt: f64,
-    motions: &[(DVec3, DVec3)],
+    motions: &[Pose],
     contact: &[DVec3],
     start: &[DVec3],
     (x, v): (&[DVec3], &[DVec3]),
@@ -491,8 +485,8 @@ fn constraints(
             collide_edges(m, o, (i, x), motions, (start[i], dt), (&mut p, &mut vel));
         }
         let collide = |p: &mut DVec3, vel: &mut DVec3| {
-            for (c, &motion) in m.colliders.iter().zip(motions) {
-                c.respond((o.margin, o.friction), motion, (start[i], dt), p, vel);
+            for (c, pose) in m.colliders.iter().zip(motions) {
+                c.respond((o.margin, o.friction), pose, (start[i], dt), p, vel);
             }
         };
         collide(&mut p, &mut vel);
@@ -519,7 +513,7 @@ fn collide_edges(
     m: &SimModel,
     o: &ObjectModel,
     (i, x): (usize, &[DVec3]),
-    motions: &[(DVec3, DVec3)],
+    motions: &[Pose],
     (start, dt): (DVec3, f64),
     (p, vel): (&mut DVec3, &mut DVec3),
 ) {
@@ -527,16 +521,16 @@ fn collide_edges(
     let (c, r) = ((i % cols) as i64, (i / cols) as i64);
     // Farther than this, no midpoint of an edge up to twice its rest length is within the margin.
     let reach = o.margin + 2f64.sqrt() * o.spacing[0].max(o.spacing[1]);
-    for (collider, &(shift, velocity)) in m.colliders.iter().zip(motions) {
+    for (collider, pose) in m.colliders.iter().zip(motions) {
         if matches!(collider.shape, crate::sim::collider::Shape::Ground { .. })
-            || collider.shape.distance(x[i] - shift).0 >= reach
+            || collider.distance_at(pose, x[i]).0 >= reach
         {
             continue;
         }
         let (mut push, mut count) = (DVec3::ZERO, 0u32);
         for s in springs(o, c, r).iter().filter(|s| s.kind != SpringType::Bending) {
             let mid = (x[i] + x[s.other]) * 0.5;
-            let (d, n) = collider.shape.distance(mid - shift);
+            let (d, n) = collider.distance_at(pose, mid);
             if d < o.margin {
                 push += n * (o.margin - d) * if o.pinned[s.other] { 2.0 } else { 1.0 };
                 count += 1;
@@ -546,7 +540,8 @@ fn collide_edges(
         if depth > 0.0 {
             let mu = collider.friction.unwrap_or(o.friction);
             let along = (push / depth, depth / count as f64);
-            crate::sim::collider::respond_along(along, (mu, velocity), (start, dt), p, vel);
+            let surface = collider.surface_velocity(pose, x[i]);
+            crate::sim::collider::respond_along(along, (mu, surface), (start, dt), p, vel);
         }
     }
 }

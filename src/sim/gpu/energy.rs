@@ -113,7 +113,7 @@ impl GpuSim {
     fn energy_checked(&self) -> bool {
         self.model.max_energy_gain > 0.0
             && self.model.wind.is_none()
-            && !self.model.colliders.iter().any(|c| c.motion.is_moving())
+            && !self.model.colliders.iter().any(|c| c.is_moving())
             && !self.model.objects.iter().any(|o| o.pins_move())
     }
 

@@ -68,9 +68,9 @@ fn binding_kinds() -> Vec<BindingKind> {
         .collect()
 }
 /// Bytes of one collider record (`Collider` in layout.glsl).
-const COLLIDER_BYTES: u64 = 64;
+const COLLIDER_BYTES: u64 = std::mem::size_of::<crate::sim::collider::ColliderRecord>() as u64;
 /// Collider records per `vkCmdUpdateBuffer` (it takes at most 65,536 bytes).
-const UPDATE_RECORDS: usize = 1024;
+const UPDATE_RECORDS: usize = 65_536 / COLLIDER_BYTES as usize;
 /// Frames that may be in flight at once (each has its own timestamps).
 pub const FRAME_SLOTS: usize = 2;
 
@@ -668,7 +668,7 @@ impl GpuSim {
     /// over the frame), written in the command stream so frames in flight keep their own.
     /// Scenes whose colliders all stay put record nothing.
     fn record_collider_motion(&self, rec: &mut Recorder<'_>, dragged: &[glam::DVec3]) {
-        if !self.model.colliders.iter().any(|c| c.motion.is_moving())
+        if !self.model.colliders.iter().any(|c| c.is_moving())
             && dragged.iter().all(|d| *d == glam::DVec3::ZERO)
         {
             return;

@@ -713,10 +713,10 @@ fn xpbd_constants(k: f64, o: &ObjectModel, model: &SimModel) -> [f64; 4] {
 
 /// The colliders' GPU records for the frame that starts at `t0` (at least one, so the buffer
 /// is never empty).
-pub(super) fn collider_data(model: &SimModel, t0: f64) -> Vec<[[f32; 4]; 4]> {
+pub(super) fn collider_data(model: &SimModel, t0: f64) -> Vec<crate::sim::collider::ColliderRecord> {
     let mut data: Vec<_> = model.colliders.iter().map(|c| c.gpu(t0, model.frame_dt)).collect();
     if data.is_empty() {
-        data.push([[0.0; 4]; 4]);
+        data.push([[0.0; 4]; 5]);
     }
     data
 }
