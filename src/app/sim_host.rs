@@ -100,7 +100,7 @@ fn layout_key(s: &Scene) -> String {
     // A collider's motion (and pins') is a function of the time since the start: changing it
     // restarts (a pin motion's pivot is where the pins have been carried since).
     let kinds: Vec<_> =
-        crate::scene::colliders(s).into_iter().map(|c| (c.shape.kind(), c.motion, c.spin)).collect();
+        crate::scene::colliders(s).into_iter().map(|c| (c.shape.kind(), c.motion, c.turn)).collect();
     format!("{cloths:?}{ropes:?}{kinds:?}")
 }
 

@@ -4,6 +4,7 @@ use super::{Cloth, ClothPins, Orientation, Rope, RopePins, Scene, SelfContact};
 use crate::sim::collider::{ColliderModel, Motion, Shape};
 use crate::sim::model::{default_ring_weights, ObjectKind, ObjectModel, ObjectShape, SimModel, WindModel};
 use crate::sim::pins::PinMotion;
+use crate::sim::turn::Turn;
 use glam::{DQuat, DVec3, EulerRot};
 
 /// The size of every object of a validated scene, cloths first, without building particles.
@@ -80,13 +81,13 @@ pub fn colliders(scene: &Scene) -> Vec<ColliderModel> {
         shape,
         friction: None,
         motion: motion(&shape, m),
-        spin: spin(m),
+        turn: m.as_ref().map(turn).unwrap_or_default(),
     };
     let ground = scene.ground.iter().map(|g| ColliderModel {
         shape: Shape::Ground { height: g.height },
         friction: g.friction,
         motion: Motion::Fixed,
-        spin: DVec3::ZERO,
+        turn: Turn::default(),
     });
     let spheres = scene
         .spheres
@@ -102,13 +103,6 @@ pub fn colliders(scene: &Scene) -> Vec<ColliderModel> {
         .iter()
         .map(|c| moving(Shape::Capsule { a: v(c.start), b: v(c.end), radius: c.radius }, &c.motion));
     ground.chain(spheres).chain(boxes).chain(capsules).collect()
-}
-
-/// A validated preset motion's steady turn [rad/s] (its `angular_velocity` in degrees/s).
-fn spin(m: &Option<super::Motion>) -> DVec3 {
-    m.as_ref()
-        .and_then(|m| m.angular_velocity)
-        .map_or(DVec3::ZERO, |w| DVec3::from_array(w.map(f64::to_radians)))
 }
 
 /// A validated preset motion in the model: keyframes become offsets from the shape's placement.
@@ -252,6 +246,12 @@ fn pin_motion(m: &Option<super::Motion>, positions: &[DVec3], pinned: &[bool]) -
     };
     let held: Vec<DVec3> = positions.iter().zip(pinned).filter(|(_, &p)| p).map(|(x, _)| *x).collect();
     let centre = held.iter().sum::<DVec3>() / held.len().max(1) as f64;
+    PinMotion { translation, turn: turn(m), pivot: m.pivot.map_or(centre, DVec3::from_array) }
+}
+
+/// A validated motion's turn: steady (`angular_velocity`, degrees/s) or keyed
+/// (`rotation_keyframes`, degrees), in radians.
+pub(super) fn turn(m: &super::Motion) -> Turn {
     let rotation = if m.rotation_keyframes.is_empty() {
         Motion::Fixed
     } else {
@@ -265,12 +265,8 @@ fn pin_motion(m: &Option<super::Motion>, positions: &[DVec3], pinned: &[bool]) -
         };
         keyed(&angles, DVec3::ZERO)
     };
-    PinMotion {
-        translation,
-        spin: m.angular_velocity.map_or(DVec3::ZERO, |w| DVec3::from_array(w) * std::f64::consts::PI / 180.0),
-        rotation,
-        pivot: m.pivot.map_or(centre, DVec3::from_array),
-    }
+    let spin = m.angular_velocity.map_or(DVec3::ZERO, |w| DVec3::from_array(w.map(f64::to_radians)));
+    Turn { spin, rotation }
 }
 
 /// Pins the particles at `positions` inside `pin_box`, if any.

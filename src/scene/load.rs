@@ -596,10 +596,15 @@ stiffness = { structural = 1.0, shear = 1.0, bending = 1.0 }
                 .unwrap_err()
                 .0;
         assert!(e.contains("rotation_keyframes: up to 300 degrees a frame, half a turn or more"), "{e}");
-        let text = format!("{BASE}[[sphere]]\ncenter = [0, 0, 0]\nradius = 1\nmotion = {{ rotation_keyframes = [[0, 0, 0, 0]] }}\n");
+        let text = format!("{BASE}[[sphere]]\ncenter = [0, 0, 0]\nradius = 1\nmotion = {{ rotation_keyframes = [[0, 0, 0, 0]], pivot = [0, 1, 0] }}\n");
+        let e = parse(&text, "t.toml", &[]).unwrap_err().0;
+        assert!(e.contains("sphere[0].motion.pivot: a collider turns about its centre"), "{e}");
+        let text = format!("{BASE}[[box]]\ncenter = [0, 0, 0]\nhalf_extents = [1, 1, 1]\nmotion = {{ rotation_keyframes = [[0, 0, 0, 0], [1, 0, 90, 0]], interpolation = \"smooth\" }}\n");
+        assert!(parse(&text, "t.toml", &[]).is_ok(), "a keyed turn alone");
+        let text = format!("{BASE}[[box]]\ncenter = [0, 0, 0]\nhalf_extents = [1, 1, 1]\nmotion = {{ rotation_keyframes = [[0, 0, 0, 0], [0.01, 0, 180, 0]] }}\n");
         let e = parse(&text, "t.toml", &[]).unwrap_err().0;
         assert!(
-            e.contains("sphere[0].motion: a collider turns about its centre at a steady angular_velocity"),
+            e.contains("box[0].motion.rotation_keyframes: up to 300 degrees a frame, half a turn or more"),
             "{e}"
         );
         let text = format!("{BASE}[[sphere]]\ncenter = [0, 0, 0]\nradius = 1\nmotion = {{ angular_velocity = [0, 90, 0] }}\n");

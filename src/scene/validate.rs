@@ -231,7 +231,7 @@ pub fn check(scene: &Scene) -> Check {
     for (i, sphere) in scene.spheres.iter().enumerate() {
         vector(&format!("sphere[{i}].center"), sphere.center, MAX_COORDINATE, "m")?;
         positive(&format!("sphere[{i}].radius"), sphere.radius, LENGTH, "m")?;
-        check_motion(&format!("sphere[{i}].motion"), &sphere.motion, substep)?;
+        check_motion(&format!("sphere[{i}].motion"), &sphere.motion, (substep, scene.sim.frame_dt))?;
     }
     if let Some(g) = &scene.ground {
         finite("ground.height", g.height, MAX_COORDINATE, "m")?;
@@ -245,13 +245,13 @@ pub fn check(scene: &Scene) -> Check {
             positive(&format!("box[{i}].half_extents.{axis}"), h, LENGTH, "m")?;
         }
         vector(&format!("box[{i}].rotation"), b.rotation, 360.0, "degrees")?;
-        check_motion(&format!("box[{i}].motion"), &b.motion, substep)?;
+        check_motion(&format!("box[{i}].motion"), &b.motion, (substep, scene.sim.frame_dt))?;
     }
     for (i, c) in scene.capsules.iter().enumerate() {
         vector(&format!("capsule[{i}].start"), c.start, MAX_COORDINATE, "m")?;
         vector(&format!("capsule[{i}].end"), c.end, MAX_COORDINATE, "m")?;
         positive(&format!("capsule[{i}].radius"), c.radius, LENGTH, "m")?;
-        check_motion(&format!("capsule[{i}].motion"), &c.motion, substep)?;
+        check_motion(&format!("capsule[{i}].motion"), &c.motion, (substep, scene.sim.frame_dt))?;
     }
 
     let mut names = std::collections::HashSet::new();
@@ -288,13 +288,13 @@ pub fn check(scene: &Scene) -> Check {
                 g => format!("{object}.pin_group[{}].pin_motion", g - 1),
             };
             // A substep's turn is a rotation: past half a turn it would turn the other way; a
-            // keyed turn is taken a frame at a time (`PinMotion::frame_spin`), so half a turn
+            // keyed turn is taken a frame at a time (`Turn::frame_spin`), so half a turn
             // a frame.
-            let (key, per, step, or) = match motion.rotation.is_moving() {
+            let (key, per, step, or) = match motion.turn.rotation.is_moving() {
                 true => ("rotation_keyframes", "frame", scene.sim.frame_dt, ""),
                 false => ("angular_velocity", "substep", substep, " or more substeps"),
             };
-            let turn = motion.top_spin() * step;
+            let turn = motion.turn.top_spin() * step;
             if turn >= 0.5 * std::f64::consts::TAU {
                 return Err(format!(
                     "{at}.{key}: up to {} degrees a {per}, half a turn or more (the {per}'s turn would go the other way): a slower turn{or}",
@@ -318,29 +318,51 @@ pub fn check(scene: &Scene) -> Check {
     Ok(())
 }
 
-/// A collider's motion: a translation (`check_translation`), a steady turn about its centre
-/// (`angular_velocity`, under half a turn a substep: past it the substep's turn would go the
-/// other way), or both.
-fn check_motion(at: &str, m: &Option<super::Motion>, substep: f64) -> Check {
+/// A collider's motion: a translation (`check_translation`), a turn about its centre
+/// (`check_turn`; under half a turn a substep, a keyed one a frame, as the pins'), or both.
+fn check_motion(at: &str, m: &Option<super::Motion>, (substep, frame_dt): (f64, f64)) -> Check {
     let Some(m) = m else { return Ok(()) };
-    if m.pivot.is_some() || !m.rotation_keyframes.is_empty() {
+    if m.pivot.is_some() {
         return Err(format!(
-            "{at}: a collider turns about its centre at a steady angular_velocity (rotation_keyframes and pivot are for a cloth's or rope's pin_motion)"
+            "{at}.pivot: a collider turns about its centre (pivot is for a cloth's or rope's pin_motion)"
         ));
     }
-    let Some(w) = m.angular_velocity else { return check_translation(at, m) };
-    vector(&format!("{at}.angular_velocity"), w, MAX_TURN, "degrees/s")?;
-    let turn = glam::DVec3::from_array(w).length() * substep;
-    if turn >= 180.0 {
+    if !check_turn(at, m)? {
+        return check_translation(at, m);
+    }
+    let turn = super::build::turn(m);
+    let (key, per, step, or) = match turn.rotation.is_moving() {
+        true => ("rotation_keyframes", "frame", frame_dt, ""),
+        false => ("angular_velocity", "substep", substep, " or more substeps"),
+    };
+    let most = turn.top_spin() * step;
+    if most >= 0.5 * std::f64::consts::TAU {
         return Err(format!(
-            "{at}.angular_velocity: {} degrees a substep, half a turn or more (the substep's turn would go the other way): a slower turn or more substeps",
-            num(turn)
+            "{at}.{key}: up to {} degrees a {per}, half a turn or more (the {per}'s turn would go the other way): a slower turn{or}",
+            num(most.to_degrees())
         ));
     }
     if m.velocity.is_none() && m.keyframes.is_empty() {
         return check_interpolation(at, m); // (a turn alone)
     }
     check_translation(at, m)
+}
+
+/// A motion's turn (a collider's or pins'): `angular_velocity` or `rotation_keyframes`, not
+/// both, each in range. Whether it turns.
+fn check_turn(at: &str, m: &super::Motion) -> Result<bool, String> {
+    if let Some(w) = m.angular_velocity {
+        vector(&format!("{at}.angular_velocity"), w, MAX_TURN, "degrees/s")?;
+        if !m.rotation_keyframes.is_empty() {
+            return Err(format!("{at}: give angular_velocity or rotation_keyframes, not both"));
+        }
+    }
+    check_times(
+        &format!("{at}.rotation_keyframes"),
+        &m.rotation_keyframes,
+        ("angles", MAX_ANGLE, "degrees"),
+    )?;
+    Ok(m.angular_velocity.is_some() || !m.rotation_keyframes.is_empty())
 }
 
 /// A motion's translation (a collider's, or an object's pins'): a velocity or keyframes (not
@@ -537,18 +559,7 @@ fn check_pin_motion(at: &str, m: &Option<super::Motion>, pins: bool) -> Check {
             "{at}: no particle is pinned for it to move (set `pin`, `pinned` or `pin_box`, or leave pin_motion out)"
         ));
     }
-    if let Some(w) = motion.angular_velocity {
-        vector(&format!("{at}.angular_velocity"), w, MAX_TURN, "degrees/s")?;
-        if !motion.rotation_keyframes.is_empty() {
-            return Err(format!("{at}: give angular_velocity or rotation_keyframes, not both"));
-        }
-    }
-    check_times(
-        &format!("{at}.rotation_keyframes"),
-        &motion.rotation_keyframes,
-        ("angles", MAX_ANGLE, "degrees"),
-    )?;
-    let turns = motion.angular_velocity.is_some() || !motion.rotation_keyframes.is_empty();
+    let turns = check_turn(&at, motion)?;
     if let Some(p) = motion.pivot {
         if !turns {
             return Err(format!(

@@ -8,6 +8,7 @@
 
 use super::gpu_types::{FEATURE_BOX, FEATURE_CAPSULE, FEATURE_GROUND, FEATURE_SPHERES};
 use super::model::ObjectModel;
+use super::turn::Turn;
 use glam::{DQuat, DVec3};
 
 /// A collider type.
@@ -73,15 +74,15 @@ pub enum Shape {
 }
 
 /// A collider of the model: its shape (where it is at t = 0), where it has its own its
-/// friction (else each object's applies), how it moves, and how it turns: a steady angular
-/// velocity `spin` [rad/s] about its reference point (`Shape::reference_point`, which the
-/// motion carries; zero for the ground).
+/// friction (else each object's applies), how it moves, and how it turns (steady or keyed)
+/// about its reference point (`Shape::reference_point`, which the motion carries; the ground
+/// does not turn).
 #[derive(Debug, Clone, PartialEq)]
 pub struct ColliderModel {
     pub shape: Shape,
     pub friction: Option<f64>,
     pub motion: Motion,
-    pub spin: DVec3,
+    pub turn: Turn,
 }
 
 /// A collider's GPU record (`ColliderModel::gpu`): five vec4s.
@@ -226,18 +227,18 @@ impl ColliderModel {
             shape: Shape::Sphere { center, radius },
             friction: None,
             motion: Motion::Fixed,
-            spin: DVec3::ZERO,
+            turn: Turn::default(),
         }
     }
 
     /// Whether it moves or turns.
     pub fn is_moving(&self) -> bool {
-        self.motion.is_moving() || self.spin != DVec3::ZERO
+        self.motion.is_moving() || self.turn.turns()
     }
 
-    /// Its turn at time `t`: `spin` t about the spin's axis.
+    /// Its turn from t = 0 to `t`.
     pub fn turn_at(&self, t: f64) -> DQuat {
-        DQuat::from_scaled_axis(self.spin * t)
+        self.turn.orientation(t)
     }
 
     /// Its shape where it is at time `t`: turned about its reference point, then moved.
@@ -246,11 +247,13 @@ impl ColliderModel {
     }
 
     /// Where it is `since` after the start of the frame that starts at `t0` and lasts
-    /// `frame_dt` (`frame_motion`: moved at the frame's chord velocity; turned at its spin).
-    /// The CPU reference's; the GPU takes the same from the frame's record (`gpu`).
+    /// `frame_dt` (`frame_motion`: moved at the frame's chord velocity; turned at the frame's
+    /// steady rate, `Turn::within_frame`). The CPU reference's; the GPU takes the same from
+    /// the frame's record (`gpu`).
     pub fn pose(&self, t0: f64, frame_dt: f64, since: f64) -> Pose {
         let (start, velocity) = self.frame_motion(t0, frame_dt);
-        Pose { shift: start + velocity * since, velocity, turn: self.turn_at(t0 + since), spin: self.spin }
+        let (turn, spin) = (self.turn.within_frame(t0, frame_dt, since), self.turn.frame_spin(t0, frame_dt));
+        Pose { shift: start + velocity * since, velocity, turn, spin }
     }
 
     /// Signed distance from `x` to its surface at `pose` and the outward normal there
@@ -282,8 +285,8 @@ impl ColliderModel {
     /// The GPU record (`Collider` in colliders.glsl) for the frame that starts at `t0`: `a`
     /// xyz centre, point a or unused, w the type id; `b` xyz half extents or point b, w radius;
     /// `rotation` a unit quaternion (xyzw); `extra` x the friction (negative: the object's),
-    /// yzw the velocity over the frame; `spin` xyz the angular velocity. Positions and the
-    /// rotation are where the collider is at the frame's start.
+    /// yzw the velocity over the frame; `spin` xyz the angular velocity over the frame.
+    /// Positions and the rotation are where the collider is at the frame's start.
     pub fn gpu(&self, t0: f64, frame_dt: f64) -> ColliderRecord {
         self.gpu_dragged(t0, frame_dt, DVec3::ZERO)
     }
@@ -305,7 +308,7 @@ impl ColliderModel {
             Shape::Box { center, half_extents, rotation } => (v(center, id), v(half_extents, 0.0), rotation),
             Shape::Capsule { a, b, radius } => (v(a, id), v(b, radius as f32), DQuat::IDENTITY),
         };
-        let (w, s) = (velocity.as_vec3(), self.spin.as_vec3());
+        let (w, s) = (velocity.as_vec3(), self.turn.frame_spin(t0, frame_dt).as_vec3());
         [
             a,
             b,
@@ -407,13 +410,14 @@ impl ColliderModel {
             },
             Shape::Capsule { a, b, radius } => Shape::Capsule { a: rv(a), b: rv(b), radius: r(radius) },
         };
-        let motion = match &self.motion {
+        let motion = |m: &Motion| match m {
             Motion::Fixed => Motion::Fixed,
             Motion::Velocity(v) => Motion::Velocity(rv(*v)),
             Motion::Keyframes(k) => Motion::Keyframes(k.iter().map(|&(t, p)| (t, rv(p))).collect()),
             Motion::Smooth(k) => Motion::Smooth(k.iter().map(|&(t, p)| (t, rv(p))).collect()),
         };
-        Self { shape, friction: self.friction.map(r), motion, spin: rv(self.spin) }
+        let turn = Turn { spin: rv(self.turn.spin), rotation: motion(&self.turn.rotation) };
+        Self { shape, friction: self.friction.map(r), motion: motion(&self.motion), turn }
     }
 }
 
@@ -703,7 +707,7 @@ mod tests {
             shape: Shape::Capsule { a: DVec3::ZERO, b: DVec3::X, radius: 0.2 },
             friction: Some(0.25),
             motion: Motion::Fixed,
-            spin: DVec3::ZERO,
+            turn: Turn::default(),
         };
         let dt = 0.01;
         // Arriving at 2 m/s down and 1 m/s along: jn = 2 m/s, so friction takes 0.5 m/s.

@@ -10,3 +10,4 @@ pub mod model;
 pub mod pins;
 pub mod stability;
 pub mod turbulence;
+pub mod turn;

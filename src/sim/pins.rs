@@ -8,17 +8,15 @@
 //! arithmetic.
 
 use crate::sim::collider::Motion;
+use crate::sim::turn::Turn;
 use glam::{DQuat, DVec3};
 
 #[derive(Debug, Clone, PartialEq, Default)]
 pub struct PinMotion {
     /// The translation: a velocity, or keyframed displacements (only their change counts).
     pub translation: Motion,
-    /// The angular velocity about `pivot` [rad/s]; zero: the pins do not turn steadily.
-    pub spin: DVec3,
-    /// Or keyframed angles about x, then y, then z [rad] (`orientation`; only their change
-    /// counts); `Motion::Fixed` where the pins turn steadily or not at all.
-    pub rotation: Motion,
+    /// The turn about `pivot`: steady or keyed.
+    pub turn: Turn,
     /// What they turn about, where it is at t = 0 [m]; the translation carries it.
     pub pivot: DVec3,
 }
@@ -42,50 +40,7 @@ impl PinMotion {
     }
 
     pub fn turns(&self) -> bool {
-        self.spin != DVec3::ZERO || self.rotation.is_moving()
-    }
-
-    /// The pins' turn from t = 0 to `t`.
-    pub fn orientation(&self, t: f64) -> DQuat {
-        if self.spin != DVec3::ZERO {
-            return DQuat::from_scaled_axis(self.spin * t);
-        }
-        let at = |t: f64| {
-            let a = self.rotation.offset(t);
-            DQuat::from_euler(glam::EulerRot::XYZ, a.x, a.y, a.z)
-        };
-        (at(t) * at(0.0).inverse()).normalize()
-    }
-
-    /// The pins' angular velocity over the frame that starts at `t0` and lasts `frame_dt`
-    /// [rad/s]: the steady one, or the keyed turn over the frame at a steady rate (the
-    /// shorter way: a keyed turn stays under half a turn a frame, scene validation).
-    pub fn frame_spin(&self, t0: f64, frame_dt: f64) -> DVec3 {
-        if self.spin != DVec3::ZERO || !self.rotation.is_moving() {
-            return self.spin;
-        }
-        let turn = self.orientation(t0 + frame_dt) * self.orientation(t0).inverse();
-        // (q and -q are one rotation; w >= 0 is the one of at most half a turn)
-        let turn = if turn.w < 0.0 { -turn } else { turn };
-        turn.to_scaled_axis() / frame_dt
-    }
-
-    /// The fastest the pins turn [rad/s]: an upper bound (keyed angles: each angle's rate
-    /// adds, at most its rate about a unit axis).
-    pub fn top_spin(&self) -> f64 {
-        let rate = match &self.rotation {
-            Motion::Keyframes(keys) => keys
-                .windows(2)
-                .map(|w| {
-                    let r = (w[1].1 - w[0].1) / (w[1].0 - w[0].0);
-                    r.x.abs() + r.y.abs() + r.z.abs()
-                })
-                .fold(0.0, f64::max),
-            // (the components' fastest, each at most the bound's length)
-            Motion::Smooth(keys) => 3f64.sqrt() * crate::sim::collider::smooth_top_speed(keys),
-            Motion::Fixed | Motion::Velocity(_) => 0.0,
-        };
-        self.spin.length() + rate
+        self.turn.turns()
     }
 
     /// The frame that starts at `t0` and lasts `frame_dt`: where the pivot is at its start
@@ -102,7 +57,7 @@ impl PinMotion {
         PinStep {
             velocity,
             pivot: pivot + velocity * (s as f64 * dt),
-            turn: self.turns().then(|| DQuat::from_scaled_axis(self.frame_spin(t0, frame_dt) * dt)),
+            turn: self.turns().then(|| DQuat::from_scaled_axis(self.turn.frame_spin(t0, frame_dt) * dt)),
             dt,
         }
     }
@@ -111,7 +66,7 @@ impl PinMotion {
     /// the translation's chord meets it, exactly; the app's pin markers).
     pub fn carried(&self, x: DVec3, t: f64) -> DVec3 {
         let moved = self.translation.offset(t) - self.translation.offset(0.0);
-        let turned = if self.turns() { self.orientation(t) * (x - self.pivot) } else { x - self.pivot };
+        let turned = if self.turns() { self.turn.orientation(t) * (x - self.pivot) } else { x - self.pivot };
         self.pivot + moved + turned
     }
 
@@ -128,13 +83,13 @@ impl PinMotion {
             Motion::Smooth(keys) => crate::sim::collider::smooth_top_speed(keys),
         };
         let reach = at.iter().map(|x| x.distance(self.pivot)).fold(0.0, f64::max);
-        along + self.top_spin() * reach
+        along + self.turn.top_spin() * reach
     }
 
     /// The velocity of a pinned particle at `x` at t = 0 (its initial state).
     pub fn initial_velocity(&self, x: DVec3, frame_dt: f64) -> DVec3 {
         let (pivot, velocity) = self.frame(0.0, frame_dt);
-        velocity + self.frame_spin(0.0, frame_dt).cross(x - pivot)
+        velocity + self.turn.frame_spin(0.0, frame_dt).cross(x - pivot)
     }
 }
 
@@ -174,17 +129,18 @@ mod tests {
                 (0.11, DVec3::new(0.3, 0.0, 0.0)),
                 (0.5, DVec3::new(0.3, 0.2, -0.4)),
             ]),
-            spin: DVec3::new(0.3, 2.0, -0.5),
-            rotation: Motion::Fixed,
+            turn: Turn::steady(DVec3::new(0.3, 2.0, -0.5)),
             pivot: DVec3::new(0.1, 1.0, 0.2),
         };
         let keyed = PinMotion {
-            spin: DVec3::ZERO,
-            rotation: Motion::Smooth(vec![
-                (0.0, DVec3::new(0.1, 0.0, 0.0)),
-                (0.2, DVec3::new(0.4, 1.5, -0.2)),
-                (0.45, DVec3::new(0.3, 0.5, 0.6)),
-            ]),
+            turn: Turn {
+                spin: DVec3::ZERO,
+                rotation: Motion::Smooth(vec![
+                    (0.0, DVec3::new(0.1, 0.0, 0.0)),
+                    (0.2, DVec3::new(0.4, 1.5, -0.2)),
+                    (0.45, DVec3::new(0.3, 0.5, 0.6)),
+                ]),
+            },
             ..steady.clone()
         };
         let (frame_dt, substeps) = (1.0 / 60.0, 7);

@@ -8,6 +8,7 @@ use common::*;
 use glam::DVec3;
 use msdsim::sim::collider::{ColliderModel, Motion, Shape};
 use msdsim::sim::gpu::GpuSim;
+use msdsim::sim::turn::Turn;
 
 /// Mean particle position of object 0.
 fn centre(states: &[msdsim::sim::gpu::ObjectState]) -> DVec3 {
@@ -71,7 +72,7 @@ fn cloth_on_ground(velocity: DVec3) -> msdsim::sim::model::SimModel {
             shape: Shape::Ground { height: 0.0 },
             friction: Some(0.05),
             motion: Motion::Fixed,
-            spin: DVec3::ZERO,
+            turn: Turn::default(),
         },
         ColliderModel { motion, ..ColliderModel::sphere(DVec3::new(0.0, 0.165, 0.0), 0.15) },
     ];
@@ -125,7 +126,7 @@ fn contact_speed_limit_holds_on_both_sides() {
                 },
                 friction: None,
                 motion: Motion::Fixed,
-                spin: DVec3::ZERO,
+                turn: Turn::default(),
             }];
             let limit = msdsim::sim::collider::contact_speed(&s).expect("a capsule sets a limit");
             assert!((limit.speed - 0.03 / s.dt()).abs() < 1e-9, "{limit}");
@@ -192,7 +193,7 @@ fn a_rod_thinner_than_the_spacing_holds_a_cloth() {
         },
         friction: None,
         motion: Motion::Fixed,
-        spin: DVec3::ZERO,
+        turn: Turn::default(),
     }];
     assert!(msdsim::sim::collider::edges_needed(&s.objects[0], &s.colliders));
     // The lowest crossing over the rod's axis, over every row, relative to the axis.

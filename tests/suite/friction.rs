@@ -15,6 +15,7 @@ use msdsim::sim::cpu::CpuSim;
 use msdsim::sim::gpu::GpuSim;
 use msdsim::sim::integrator::Integrator;
 use msdsim::sim::model::SimModel;
+use msdsim::sim::turn::Turn;
 use msdsim::vk::GpuContext;
 
 const G: f64 = 9.81;
@@ -89,7 +90,7 @@ fn slopes(substeps: u32, integrator: Integrator) -> SimModel {
             shape: Shape::Box { center, half_extents: half, rotation },
             friction: None,
             motion: Motion::Fixed,
-            spin: DVec3::ZERO,
+            turn: Turn::default(),
         });
     }
     let mut s = scene(objects);
@@ -332,8 +333,8 @@ fn friction_between_cloths(runs: &[(u32, bool)]) {
 }
 
 /// A 4 x 4 cloth of 2 cm spacing (its centre `r` from the axis) lying on a turntable: a box 1 m
-/// square turning about the vertical at `w` rad/s, friction 0.5, 16 substeps.
-fn turntable(w: f64, r: f64) -> SimModel {
+/// square turning about the vertical by `turn`, friction 0.5, 16 substeps.
+fn turntable(turn: Turn, r: f64) -> SimModel {
     let n = 4;
     let mut c = cloth(n, n, 0.02);
     for (i, p) in c.positions.iter_mut().enumerate() {
@@ -354,7 +355,7 @@ fn turntable(w: f64, r: f64) -> SimModel {
         },
         friction: None,
         motion: Motion::Fixed,
-        spin: DVec3::new(0.0, w, 0.0),
+        turn,
     }];
     s
 }
@@ -372,21 +373,33 @@ fn on_turntable(x: &[DVec3]) -> (f64, f64) {
 /// friction's mu g has brought it to the table's w r (t_s = w r / (mu g) = 61 ms), falling
 /// behind by w t_s / 2 = 0.031 rad, then goes round with the table: in 2 s it turns
 /// 2 - 0.031 rad, within 5e-3 rad (the substeps' start-up and the cloth's own stretch; measured
-/// 4e-4 on the reference), and stays within 5 mm of its radius. At 8 rad/s (19.2 m/s^2) it
-/// slides outwards, past 0.4 m within 0.5 s, and falls behind the table. CPU reference, both
-/// GPU paths.
+/// 4e-4 on the reference), and stays within 5 mm of its radius; the same with the table's turn
+/// keyed (0 to 2 rad in 2 s, linear: each frame turns at the keys' steady rate). At 8 rad/s
+/// (19.2 m/s^2) it slides outwards, past 0.4 m within 0.5 s, and falls behind the table. CPU
+/// reference, both GPU paths.
 #[test]
 fn a_cloth_on_a_turntable_goes_round_while_friction_holds_it() {
     let ctx = gpu();
     let (w, r, mu) = (1.0, 0.3, 0.5);
     let expected = 2.0 * w - w * (w * r / (mu * G)) / 2.0;
-    for (label, x, _) in every_path(&ctx, &turntable(w, r), 120) {
-        let (angle, radius) = on_turntable(&x);
-        println!("1 rad/s, {label}: turned {angle:.4} rad (closed form {expected:.4}), at {radius:.4} m");
-        assert!((angle - expected).abs() < 5e-3, "{label}: turned {angle:.4} rad in 2 s, not {expected:.4}");
-        assert!((radius - r).abs() < 5e-3, "{label}: at {radius:.4} m from the axis, not {r}");
+    let keyed = Turn {
+        spin: DVec3::ZERO,
+        rotation: Motion::Keyframes(vec![(0.0, DVec3::ZERO), (2.0, DVec3::Y * 2.0 * w)]),
+    };
+    for (how, turn) in [("steady", Turn::steady(DVec3::Y * w)), ("keyed", keyed)] {
+        for (label, x, _) in every_path(&ctx, &turntable(turn.clone(), r), 120) {
+            let (angle, radius) = on_turntable(&x);
+            println!(
+                "1 rad/s {how}, {label}: turned {angle:.4} rad (closed form {expected:.4}), at {radius:.4} m"
+            );
+            assert!(
+                (angle - expected).abs() < 5e-3,
+                "{how}, {label}: turned {angle:.4} rad in 2 s, not {expected:.4}"
+            );
+            assert!((radius - r).abs() < 5e-3, "{how}, {label}: at {radius:.4} m from the axis, not {r}");
+        }
     }
-    for (label, x, _) in every_path(&ctx, &turntable(8.0, 0.3), 30) {
+    for (label, x, _) in every_path(&ctx, &turntable(Turn::steady(DVec3::Y * 8.0), 0.3), 30) {
         let (angle, radius) = on_turntable(&x);
         println!("8 rad/s, {label}: turned {angle:.4} rad, at {radius:.4} m");
         assert!(radius > 0.4, "{label}: still {radius:.4} m from the axis after 0.5 s");

@@ -27,6 +27,7 @@ use msdsim::sim::cpu::CpuSim;
 use msdsim::sim::gpu::{FusedLimits, FusedShape, GpuSim, FUSED_SLOTS};
 use msdsim::sim::gpu_types::Particle;
 use msdsim::sim::model::{Integrator, SelfCollisionMethod, SimModel};
+use msdsim::sim::turn::Turn;
 use msdsim::vk::GpuContext;
 
 const FRAMES: usize = 15;
@@ -335,7 +336,7 @@ fn ground_box_and_capsule() {
                 shape: Shape::Ground { height: 0.4 },
                 friction: Some(0.6),
                 motion: Motion::Fixed,
-                spin: DVec3::ZERO,
+                turn: Turn::default(),
             },
         ),
         (
@@ -348,7 +349,7 @@ fn ground_box_and_capsule() {
                 },
                 friction: None,
                 motion: Motion::Fixed,
-                spin: DVec3::ZERO,
+                turn: Turn::default(),
             },
         ),
         (
@@ -361,7 +362,7 @@ fn ground_box_and_capsule() {
                 },
                 friction: None,
                 motion: Motion::Fixed,
-                spin: DVec3::ZERO,
+                turn: Turn::default(),
             },
         ),
     ];
@@ -409,7 +410,7 @@ fn moving_colliders() {
             },
             friction: Some(0.8),
             motion: Motion::Keyframes(keys),
-            spin: DVec3::ZERO,
+            turn: Turn::default(),
         },
     ];
     assert_matters("motion", &s, |m| m.colliders.iter_mut().for_each(|c| c.motion = Motion::Fixed));
@@ -515,8 +516,12 @@ fn cloth_thrown_on_the_ground() -> SimModel {
         p.x += 5.0;
     }
     let ground = Shape::Ground { height: 0.485 };
-    s.colliders =
-        vec![ColliderModel { shape: ground, friction: Some(0.5), motion: Motion::Fixed, spin: DVec3::ZERO }];
+    s.colliders = vec![ColliderModel {
+        shape: ground,
+        friction: Some(0.5),
+        motion: Motion::Fixed,
+        turn: Turn::default(),
+    }];
     s.integrator = Integrator::Vbd;
     s.iterations = 4;
     s

@@ -315,6 +315,7 @@ fn iterative_methods_with_few_iterations_do_not_blow_up() {
 fn iterative_methods_land_without_bouncing_and_keep_sliding() {
     use msdsim::sim::collider::{ColliderModel, Motion, Shape};
     use msdsim::sim::cpu::CpuSim;
+    use msdsim::sim::turn::Turn;
     for method in Integrator::ALL {
         let n = 8;
         let mut c = cloth(n, n, 0.04);
@@ -329,8 +330,12 @@ fn iterative_methods_land_without_bouncing_and_keep_sliding() {
         let mut m = with(&scene(vec![c]), method, 16, users_iterations(method));
         m.gravity = DVec3::new(0.0, -9.81, 0.0);
         let ground = Shape::Ground { height: 0.0 };
-        m.colliders =
-            vec![ColliderModel { shape: ground, friction: None, motion: Motion::Fixed, spin: DVec3::ZERO }];
+        m.colliders = vec![ColliderModel {
+            shape: ground,
+            friction: None,
+            motion: Motion::Fixed,
+            turn: Turn::default(),
+        }];
         let mut sim = CpuSim::new(&m);
         let (mut touched, mut highest) = (false, 0.0f64);
         for _ in 0..90 {

@@ -10,6 +10,7 @@ use crate::common;
 use common::*;
 use glam::DVec3;
 use msdsim::sim::gpu::GpuSim;
+use msdsim::sim::turn::Turn;
 
 /// A 30 x 30 cloth (2.5 cm spacing, 0.73 m, 1.8 kg) pinned at its corners at y = 0.5 and a
 /// 0.5 m rope (radius 2 cm) dropped across its middle from `drop` metres above it (0.1 and 2 m:
@@ -507,7 +508,7 @@ fn a_stack_of_thin_cloths_rests_without_passing() {
     s.inter_object = true;
     let ground = Shape::Ground { height: 0.0 };
     s.colliders =
-        vec![ColliderModel { shape: ground, friction: None, motion: Motion::Fixed, spin: DVec3::ZERO }];
+        vec![ColliderModel { shape: ground, friction: None, motion: Motion::Fixed, turn: Turn::default() }];
     stack_rests(&s, [n, n], 30, 2.0 * margin);
 }
 
@@ -641,8 +642,12 @@ fn a_stack_of_cards_stands_at_the_substeps_users_run() {
     s.substeps = 10;
     s.iterations = 10;
     let ground = Shape::Ground { height: 0.0 };
-    s.colliders =
-        vec![ColliderModel { shape: ground, friction: Some(0.3), motion: Motion::Fixed, spin: DVec3::ZERO }];
+    s.colliders = vec![ColliderModel {
+        shape: ground,
+        friction: Some(0.3),
+        motion: Motion::Fixed,
+        turn: Turn::default(),
+    }];
     stack_rests(&s, [cols, rows], 8, 2.0 * margin);
 }
 
@@ -674,7 +679,7 @@ fn a_cloth_thrown_on_the_ground_does_not_bounce_with_contact_rounds() {
     s.iterations = 10;
     let ground = Shape::Ground { height: 0.0 };
     s.colliders =
-        vec![ColliderModel { shape: ground, friction: None, motion: Motion::Fixed, spin: DVec3::ZERO }];
+        vec![ColliderModel { shape: ground, friction: None, motion: Motion::Fixed, turn: Turn::default() }];
     assert_eq!(s.contact_rounds(), 10);
     let ctx = gpu();
     let (mut landed, mut rising, mut off) = (None, 0.0f64, 0.0f64);

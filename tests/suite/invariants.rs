@@ -153,6 +153,7 @@ fn mirror_symmetric_scene_stays_symmetric() {
 #[test]
 fn no_particle_within_the_margin_of_a_ground_box_or_capsule() {
     use msdsim::sim::collider::{ColliderModel, Motion, Shape};
+    use msdsim::sim::turn::Turn;
     let ctx = gpu();
     let mut c = cloth(20, 20, 0.05);
     for (i, p) in c.positions.iter_mut().enumerate() {
@@ -171,7 +172,7 @@ fn no_particle_within_the_margin_of_a_ground_box_or_capsule() {
             shape: Shape::Ground { height: 0.0 },
             friction: Some(0.8),
             motion: Motion::Fixed,
-            spin: DVec3::ZERO,
+            turn: Turn::default(),
         },
         ColliderModel {
             shape: Shape::Box {
@@ -181,7 +182,7 @@ fn no_particle_within_the_margin_of_a_ground_box_or_capsule() {
             },
             friction: None,
             motion: Motion::Fixed,
-            spin: DVec3::ZERO,
+            turn: Turn::default(),
         },
         ColliderModel {
             shape: Shape::Capsule {
@@ -191,7 +192,7 @@ fn no_particle_within_the_margin_of_a_ground_box_or_capsule() {
             },
             friction: None,
             motion: Motion::Fixed,
-            spin: DVec3::ZERO,
+            turn: Turn::default(),
         },
     ];
     for fused in [true, false] {

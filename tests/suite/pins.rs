@@ -6,6 +6,7 @@ use glam::DVec3;
 use msdsim::sim::collider::Motion;
 use msdsim::sim::cpu::CpuSim;
 use msdsim::sim::model::{Integrator, SimModel};
+use msdsim::sim::turn::Turn;
 
 /// A 6 x 6 cloth, 5 cm apart, lying flat and held at the two corners of one edge, swinging
 /// down under gravity: the curtain's springs and dashpots and no drag (Stokes drag acts on the
@@ -156,7 +157,7 @@ fn turning_pins_follow_their_turn_exactly() {
         let spin = DVec3::new(0.0, 90f64.to_radians(), 0.0);
         let lift = DVec3::new(0.0, 0.1, 0.0);
         m.objects[0].pin_motion =
-            PinMotion { translation: Motion::Velocity(lift), spin, rotation: Motion::Fixed, pivot };
+            PinMotion { translation: Motion::Velocity(lift), turn: Turn::steady(spin), pivot };
         // (the whole cloth turning with its pins from the start)
         for (v, x) in m.objects[0].velocities.iter_mut().zip(&start) {
             *v = lift + spin.cross(*x - pivot);
@@ -206,12 +207,14 @@ fn keyed_turns_follow_their_keys() {
         let start = m.objects[0].positions.clone();
         let pins = PinMotion {
             translation: Motion::Smooth(vec![(0.0, DVec3::ZERO), (0.5, DVec3::new(0.0, 0.2, 0.1))]),
-            spin: DVec3::ZERO,
-            rotation: Motion::Smooth(vec![
-                (0.0, DVec3::ZERO),
-                (0.3, DVec3::new(0.0, 120f64.to_radians(), 0.0)),
-                (0.55, DVec3::new(0.0, 30f64.to_radians(), 0.0)),
-            ]),
+            turn: Turn {
+                spin: DVec3::ZERO,
+                rotation: Motion::Smooth(vec![
+                    (0.0, DVec3::ZERO),
+                    (0.3, DVec3::new(0.0, 120f64.to_radians(), 0.0)),
+                    (0.55, DVec3::new(0.0, 30f64.to_radians(), 0.0)),
+                ]),
+            },
             pivot: (start[0] + start[5]) / 2.0,
         };
         m.objects[0].pin_motion = pins.clone();

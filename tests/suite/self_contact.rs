@@ -14,6 +14,7 @@ use msdsim::sim::collider::{ColliderModel, Motion, Shape};
 use msdsim::sim::cpu::CpuSim;
 use msdsim::sim::gpu::GpuSim;
 use msdsim::sim::model::{SelfCollisionMethod, SimModel};
+use msdsim::sim::turn::Turn;
 
 /// Edges of the cloth (positions `x`, `cols` x `rows`) through one of its triangles that does
 /// not share a vertex with them.
@@ -143,7 +144,7 @@ fn standing_strip(dims: [usize; 2], spacing: f64, top: f64, tilt: f64) -> SimMod
     s.gravity = DVec3::new(0.0, -9.81, 0.0);
     let ground = Shape::Ground { height: 0.0 };
     s.colliders =
-        vec![ColliderModel { shape: ground, friction: None, motion: Motion::Fixed, spin: DVec3::ZERO }];
+        vec![ColliderModel { shape: ground, friction: None, motion: Motion::Fixed, turn: Turn::default() }];
     s
 }
 
@@ -667,8 +668,12 @@ fn a_rope_piling_on_the_floor_never_passes_through_itself() {
         let mut s = scene(vec![r]);
         s.gravity = DVec3::new(0.0, -9.81, 0.0);
         let ground = Shape::Ground { height: 0.0 };
-        s.colliders =
-            vec![ColliderModel { shape: ground, friction: None, motion: Motion::Fixed, spin: DVec3::ZERO }];
+        s.colliders = vec![ColliderModel {
+            shape: ground,
+            friction: None,
+            motion: Motion::Fixed,
+            turn: Turn::default(),
+        }];
         s
     };
     let (frames, h) = (90, 0.01);
@@ -1020,7 +1025,7 @@ fn a_rising_box_carries_a_folded_cloth_with_edge_contact() {
     let shape =
         Shape::Box { center, half_extents: DVec3::new(0.3, 0.05, 0.3), rotation: glam::DQuat::IDENTITY };
     let motion = Motion::Velocity(DVec3::new(0.0, speed, 0.0));
-    s.colliders = vec![ColliderModel { shape, friction: None, motion, spin: DVec3::ZERO }];
+    s.colliders = vec![ColliderModel { shape, friction: None, motion, turn: Turn::default() }];
     let frames = 20;
     let below = |frame: usize, x: &[DVec3]| {
         let top = speed * (frame + 1) as f64 / 60.0;
