@@ -77,11 +77,12 @@ vec3 collider_centre(Collider c) {
 // its centre): the signed distance from x to its surface and the outward normal `n`, and the
 // velocity of its surface at x (sim::collider::ColliderModel::distance_at and
 // surface_velocity). The point is taken back into the frame's start, where the record places
-// the collider, and the normal forward; a collider that does not turn pays one compare.
+// the collider, and the normal forward. Compiled in only where some collider turns
+// (F_TURNING); there one that does not pays one compare.
 float collider_distance_since(Collider c, vec3 x, float since, out vec3 n, out vec3 surface) {
     vec3 velocity = c.extra.yzw;
     surface = velocity;
-    vec3 spin = c.spin.xyz;
+    vec3 spin = has(F_TURNING) ? c.spin.xyz : vec3(0.0);
     if (spin == vec3(0.0)) return collider_distance(c, x - velocity * since, n);
     vec3 centre = collider_centre(c);
     vec3 r = x - velocity * since - centre;

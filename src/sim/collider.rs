@@ -6,7 +6,7 @@
 //! normal velocity is removed, and Coulomb friction (`ColliderModel::respond`) bounds its
 //! tangential impulse by mu times the normal one, sticking within the cone.
 
-use super::gpu_types::{FEATURE_BOX, FEATURE_CAPSULE, FEATURE_GROUND, FEATURE_SPHERES};
+use super::gpu_types::{FEATURE_BOX, FEATURE_CAPSULE, FEATURE_GROUND, FEATURE_SPHERES, FEATURE_TURNING};
 use super::model::ObjectModel;
 use super::turn::Turn;
 use glam::{DQuat, DVec3};
@@ -590,9 +590,11 @@ pub fn contact_speed(model: &super::model::SimModel) -> Option<ContactSpeed> {
     limits.into_iter().min_by(|a, b| a.0.total_cmp(&b.0)).map(|(speed, what)| ContactSpeed { speed, what })
 }
 
-/// The feature bits of the collider types `colliders` use.
+/// The feature bits of the collider types `colliders` use, and whether any turns (a scene
+/// whose colliders do not turn compiles the turn out).
 pub fn features(colliders: &[ColliderModel]) -> u32 {
-    colliders.iter().fold(0, |f, c| f | c.shape.kind().row().feature)
+    let turning = |c: &ColliderModel| if c.turn.turns() { FEATURE_TURNING } else { 0 };
+    colliders.iter().fold(0, |f, c| f | c.shape.kind().row().feature | turning(c))
 }
 
 /// Whether object `o` needs its edges tested against `colliders` as well as its particles

@@ -134,6 +134,8 @@ fn header_constants_match_the_host() {
         ("F_GROUND", t::FEATURE_GROUND),
         ("F_BOX", t::FEATURE_BOX),
         ("F_CAPSULE", t::FEATURE_CAPSULE),
+        ("F_SEGMENT_PAIRS", t::FEATURE_SEGMENT_PAIRS),
+        ("F_TURNING", t::FEATURE_TURNING),
     ]
     .into_iter()
     .chain(msdsim::sim::model::Integrator::ALL.map(|m| (method_define(m), m as u32)))
