@@ -701,3 +701,46 @@ stiffness = { structural = 1.0, shear = 1.0, bending = 1.0 }
         assert_eq!(parse(&text, "round.toml", &[]).unwrap(), s);
     }
 }
+
+#[cfg(test)]
+mod pin_group_tests {
+    use super::*;
+
+    /// The editor's "add pin group" (`Cloth::add_pin_group`, `Rope::add_pin_group`) leaves a
+    /// scene that validates on every shipped preset's objects, each new group holding one
+    /// particle nothing else pins, until the object has its seven groups or no free particle.
+    #[test]
+    fn adding_pin_groups_keeps_every_preset_valid() {
+        for entry in std::fs::read_dir("presets").unwrap() {
+            let path = entry.unwrap().path();
+            let mut scene = load(&path, &[]).unwrap();
+            for k in 0..scene.cloths.len() {
+                let mut added = 0;
+                while scene.cloths[k].add_pin_group() {
+                    added += 1;
+                    super::super::validate::check(&scene)
+                        .unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+                }
+                assert_eq!(
+                    scene.cloths[k].pin_groups.len(),
+                    7,
+                    "{}: cloth {k} ({added} added)",
+                    path.display()
+                );
+            }
+            for k in 0..scene.ropes.len() {
+                while scene.ropes[k].add_pin_group() {
+                    super::super::validate::check(&scene)
+                        .unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+                }
+                let r = &scene.ropes[k];
+                let free = r.pinned_by_rule().iter().filter(|p| !**p).count();
+                assert!(
+                    r.pin_groups.len() == 7 || r.pin_groups.len() >= free,
+                    "{}: rope {k}",
+                    path.display()
+                );
+            }
+        }
+    }
+}

@@ -581,6 +581,19 @@ pub struct PinGroup<P> {
     pub pin_motion: Option<Motion>,
 }
 
+/// A box a quarter of `spacing` across about a particle of `o` that nothing pins: the first
+/// free one of `first`, else of all; none where the object has all its pin groups
+/// (`Cloth::add_pin_group`). Particles are at least `spacing` apart, so it holds that one.
+fn free_box(o: &crate::sim::model::ObjectModel, first: &[usize], spacing: f64) -> Option<PinBox> {
+    if o.pin_groups.len() + 1 >= crate::sim::model::PIN_GROUPS {
+        return None;
+    }
+    let free = |i: &usize| *i < o.positions.len() && !o.pinned[*i];
+    let i = first.iter().copied().find(free).or_else(|| (0..o.positions.len()).find(free))?;
+    let (x, r) = (o.positions[i], 0.125 * spacing);
+    Some(PinBox { min: (x - r).to_array(), max: (x + r).to_array() })
+}
+
 /// An axis-aligned box of a cloth's or rope's `pin_box`: the particles placed inside it (its
 /// faces included) are pinned.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
@@ -608,6 +621,19 @@ impl Cloth {
     /// Each particle: whether `pin` or `pin_box` pins it (not the `pinned` list alone).
     pub fn pinned_by_rule(&self) -> Vec<bool> {
         build::cloth(&Cloth { pinned: Vec::new(), ..self.clone() }).pinned
+    }
+
+    /// Adds a pin group (no motion yet) holding one particle that nothing pins, by a small box
+    /// about it: a corner where one is free (the last first), else the first free particle.
+    /// False where none is free or the object has all its groups
+    /// (`sim::model::PIN_GROUPS`).
+    pub fn add_pin_group(&mut self) -> bool {
+        let [cols, rows] = self.resolution.map(|n| n as usize);
+        let corners = [cols * rows - 1, cols - 1, cols * (rows - 1), 0];
+        let [x, y] = self.spacing();
+        let Some(pin_box) = free_box(&build::cloth(self), &corners, x.min(y)) else { return false };
+        self.pin_groups.push(PinGroup { pinned: Vec::new(), pin_box: Some(pin_box), pin_motion: None });
+        true
     }
 
     /// Rest distance between grid neighbours along columns and rows [m].
@@ -690,6 +716,16 @@ impl Rope {
     /// Each node: whether `pin` or `pin_box` pins it (not the `pinned` list alone).
     pub fn pinned_by_rule(&self) -> Vec<bool> {
         build::rope(&Rope { pinned: Vec::new(), ..self.clone() }).pinned
+    }
+
+    /// `Cloth::add_pin_group` for a rope: its last node where free, then its first, then any.
+    pub fn add_pin_group(&mut self) -> bool {
+        let n = self.nodes as usize;
+        let spacing = glam::DVec3::from_array(self.end).distance(glam::DVec3::from_array(self.start))
+            / (n - 1).max(1) as f64;
+        let Some(pin_box) = free_box(&build::rope(self), &[n - 1, 0], spacing) else { return false };
+        self.pin_groups.push(PinGroup { pinned: Vec::new(), pin_box: Some(pin_box), pin_motion: None });
+        true
     }
 
     /// Its springs' stiffness as a model's [structural, shear, bending]: a rope has no shear.

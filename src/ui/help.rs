@@ -90,6 +90,10 @@ const HELP: &[(&str, &str)] = &[
     ("angular velocity [degrees/s]", "The collider's turn: about this vector's direction, at its length in degrees a second (e.g. [0, 90, 0]: a quarter turn a second about the vertical, anticlockwise seen from above)."),
     ("pins move", "Move the pinned particles together at a constant velocity: they carry the object (keyframes: `pin_motion` in the preset)."),
     ("pin velocity [m/s]", "The pinned particles' velocity [m/s]."),
+    ("box min [m]", "The lowest corner of the box whose particles are pinned (as placed at the start) [m]."),
+    ("box max [m]", "The highest corner of the box whose particles are pinned (as placed at the start) [m]."),
+    ("add pin group", "Add a pin group: a few pinned particles with a motion of their own (it starts as a small box about a free corner; move the box, or Ctrl+click particles into the preset's list)."),
+    ("remove pin group", "Remove this pin group: its particles are free again (unless the object's own pins hold them)."),
     ("pins turn", "Turn the pinned particles together steadily about their centre (or the preset's `pivot`): they twist or swing the object."),
     ("pin angular velocity [degrees/s]", "The pins' turn: about this vector's direction, at its length in degrees a second."),
 ];
@@ -109,7 +113,7 @@ mod tests {
     #[test]
     fn every_editor_field_has_a_tooltip() {
         let sources = [include_str!("editor.rs"), include_str!("colliders.rs"), include_str!("objects.rs")];
-        let helpers = ["drag(", "drag3(", "int(", "optional(", "choice(", "color(", "check("];
+        let helpers = ["drag(", "drag3(", "int(", "optional(", "choice(", "color(", "check(", " button("];
         let mut labels = Vec::new();
         for source in sources {
             for (i, _) in source.match_indices("(ui,") {

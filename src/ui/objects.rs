@@ -1,8 +1,10 @@
 //! The editor's objects: the panel of a selected cloth or rope with every parameter, and the
 //! new cloth and rope the add buttons make.
 
-use super::widgets::{check, choice, color, drag, drag3, int, optional};
-use crate::scene::{Cloth, ClothPins, Orientation, PerSpring, Rope, RopePins, SelfContact, MAX_FRICTION};
+use super::widgets::{button, check, choice, color, drag, drag3, int, optional};
+use crate::scene::{
+    Cloth, ClothPins, Orientation, PerSpring, PinBox, PinGroup, Rope, RopePins, SelfContact, MAX_FRICTION,
+};
 use imgui::Ui;
 
 fn springs(ui: &Ui, label: &str, v: &mut PerSpring, speed: f32, min: f64, max: f64) {
@@ -12,25 +14,47 @@ fn springs(ui: &Ui, label: &str, v: &mut PerSpring, speed: f32, min: f64, max: f
     drag(ui, &format!("bending##{label}"), &mut v.bending, speed, min, max);
 }
 
-/// Says that an object's particles inside its `pin_box` are pinned too (edited in the preset).
-fn pin_box_note(ui: &Ui, b: &Option<crate::scene::PinBox>) {
+/// An object's `pin_box` (the particles inside it are pinned too), while it has one: its
+/// corners. `id` tells one box's fields from another's.
+fn pin_box(ui: &Ui, b: &mut Option<PinBox>, id: &str) {
     if let Some(b) = b {
-        ui.text_disabled(format!(
-            "and those inside the box {:?} to {:?} (pin_box: edit it in the preset)",
-            b.min, b.max
-        ));
+        ui.text_disabled("and those inside the box:");
+        drag3(ui, &format!("box min [m]##{id}"), &mut b.min, 0.005);
+        drag3(ui, &format!("box max [m]##{id}"), &mut b.max, 0.005);
     }
 }
 
-/// Says how many further pin groups an object has, each moving by its own motion (edited in
-/// the preset).
-fn pin_groups_note(ui: &Ui, groups: usize) {
-    if groups > 0 {
-        let s = if groups == 1 { "" } else { "s" };
-        ui.text_disabled(format!(
-            "and {groups} pin group{s} with motions of their own (pin_group: edit in the preset)"
+/// An object's further pin groups (`pin_group`), each with its listed particles (Ctrl+click
+/// and the preset edit the lists), its box and its own motion, and a button to remove it.
+/// Returns whether "add pin group" was pressed (the object adds one, `Cloth::add_pin_group`).
+fn pin_groups<P>(ui: &Ui, groups: &mut Vec<PinGroup<P>>) -> bool {
+    let mut remove = None;
+    for (g, group) in groups.iter_mut().enumerate() {
+        let _id = ui.push_id_usize(g);
+        ui.separator();
+        let listed = group.pinned.len();
+        ui.text(format!(
+            "pin group {}: {listed} listed particle{}",
+            g + 1,
+            if listed == 1 { "" } else { "s" }
         ));
+        pin_box(ui, &mut group.pin_box, "group");
+        super::colliders::motion_with(
+            ui,
+            &mut group.pin_motion,
+            ["pins move", "pin velocity [m/s]", "pins turn", "pin angular velocity [degrees/s]"],
+            [0.0, 0.2, 0.0],
+        );
+        if button(ui, "remove pin group") {
+            remove = Some(g);
+        }
     }
+    if let Some(g) = remove {
+        groups.remove(g);
+    }
+    ui.separator();
+    let full = groups.len() + 1 >= crate::sim::model::PIN_GROUPS;
+    !full && button(ui, "add pin group")
 }
 
 /// How an object's pins move (`pin_motion`), while it has pins: with none it has no motion
@@ -68,10 +92,12 @@ pub fn cloth_panel(ui: &Ui, c: &mut Cloth) {
             ClothPins::Corners,
         ],
     );
-    pin_box_note(ui, &c.pin_box);
+    pin_box(ui, &mut c.pin_box, "own");
     let pins = c.has_pins();
     pin_motion(ui, &mut c.pin_motion, pins);
-    pin_groups_note(ui, c.pin_groups.len());
+    if pin_groups(ui, &mut c.pin_groups) {
+        c.add_pin_group();
+    }
     drag(ui, "mass [kg/particle]", &mut c.mass, 0.0005, 1e-6, 100.0);
     springs(ui, "stiffness [N/m]", &mut c.stiffness, 1.0, 0.0, 1e6);
     springs(ui, "rest length scale", &mut c.rest_scale, 0.005, 0.05, 10.0);
@@ -96,10 +122,12 @@ pub fn rope_panel(ui: &Ui, r: &mut Rope) {
     drag3(ui, "start [m]", &mut r.start, 0.01);
     drag3(ui, "end [m]", &mut r.end, 0.01);
     choice(ui, "pins", &mut r.pin, &[RopePins::None, RopePins::First, RopePins::Last, RopePins::Both]);
-    pin_box_note(ui, &r.pin_box);
+    pin_box(ui, &mut r.pin_box, "own");
     let pins = r.has_pins();
     pin_motion(ui, &mut r.pin_motion, pins);
-    pin_groups_note(ui, r.pin_groups.len());
+    if pin_groups(ui, &mut r.pin_groups) {
+        r.add_pin_group();
+    }
     drag(ui, "mass [kg/node]", &mut r.mass, 0.0005, 1e-6, 100.0);
     drag(ui, "stiffness [N/m]", &mut r.stiffness, 1.0, 0.0, 1e6);
     drag(ui, "bending stiffness [N/m]", &mut r.bending_stiffness, 0.1, 0.0, 1e6);

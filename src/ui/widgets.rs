@@ -151,6 +151,13 @@ pub fn check(ui: &Ui, label: &str, value: &mut bool) -> bool {
     changed
 }
 
+/// A button with its tooltip; whether it was pressed.
+pub fn button(ui: &Ui, label: &str) -> bool {
+    let pressed = ui.button(label);
+    explain(ui, label);
+    pressed
+}
+
 /// The tooltip of `label` for the widget just drawn, when it has one.
 fn explain(ui: &Ui, label: &str) {
     if let Some(text) = help(label) {
