@@ -620,6 +620,8 @@ auto_preset_tests!(
     auto_preset_6_rope: "rope",
     #[ignore = "exhaustive tier: the calibration again on another preset"]
     auto_preset_7_twist: "twist",
+    #[ignore = "exhaustive tier: the calibration again on another preset"]
+    auto_preset_9_turntable: "turntable",
     auto_preset_8_curtain: "curtain"
 );
 
