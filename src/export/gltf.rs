@@ -360,7 +360,7 @@ impl Recording {
                     normals: normals.into_iter().map(f32s).collect(),
                     indices: triangles.into_iter().flatten().collect(),
                     offsets: c.is_moving().then(|| self.times.iter().map(|&t| f32s(offset(t))).collect()),
-                    turns: c.turn.turns().then(|| {
+                    turns: c.turns().then(|| {
                         self.times.iter().map(|&t| turn(t).as_quat().normalize().to_array()).collect()
                     }),
                 }

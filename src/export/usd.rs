@@ -193,7 +193,7 @@ impl Recording {
                     place.x, place.y, place.z
                 );
             }
-            if c.turn.turns() {
+            if c.turns() {
                 let _ = writeln!(out, "            quatd xformOp:orient.timeSamples = {{");
                 for (f, &t) in self.times.iter().enumerate() {
                     let q = c.turn_at(t) * rotation.unwrap_or(DQuat::IDENTITY);

@@ -233,12 +233,31 @@ impl ColliderModel {
 
     /// Whether it moves or turns.
     pub fn is_moving(&self) -> bool {
-        self.motion.is_moving() || self.turn.turns()
+        self.motion.is_moving() || self.turns()
+    }
+
+    /// Whether it turns (the ground never does, whatever its `turn`).
+    pub fn turns(&self) -> bool {
+        self.turn.turns() && !matches!(self.shape, Shape::Ground { .. })
     }
 
     /// Its turn from t = 0 to `t`.
     pub fn turn_at(&self, t: f64) -> DQuat {
-        self.turn.orientation(t)
+        if self.turns() {
+            self.turn.orientation(t)
+        } else {
+            DQuat::IDENTITY
+        }
+    }
+
+    /// Its angular velocity over the frame that starts at `t0` (`Turn::frame_spin`; zero where
+    /// it does not turn).
+    pub fn frame_spin(&self, t0: f64, frame_dt: f64) -> DVec3 {
+        if self.turns() {
+            self.turn.frame_spin(t0, frame_dt)
+        } else {
+            DVec3::ZERO
+        }
     }
 
     /// Its shape where it is at time `t`: turned about its reference point, then moved.
@@ -248,11 +267,12 @@ impl ColliderModel {
 
     /// Where it is `since` after the start of the frame that starts at `t0` and lasts
     /// `frame_dt` (`frame_motion`: moved at the frame's chord velocity; turned at the frame's
-    /// steady rate, `Turn::within_frame`). The CPU reference's; the GPU takes the same from
+    /// steady rate from where it is at the frame's start, `frame_spin`). The CPU reference's; the GPU takes the same from
     /// the frame's record (`gpu`).
     pub fn pose(&self, t0: f64, frame_dt: f64, since: f64) -> Pose {
         let (start, velocity) = self.frame_motion(t0, frame_dt);
-        let (turn, spin) = (self.turn.within_frame(t0, frame_dt, since), self.turn.frame_spin(t0, frame_dt));
+        let spin = self.frame_spin(t0, frame_dt);
+        let turn = DQuat::from_scaled_axis(spin * since) * self.turn_at(t0);
         Pose { shift: start + velocity * since, velocity, turn, spin }
     }
 
@@ -308,7 +328,7 @@ impl ColliderModel {
             Shape::Box { center, half_extents, rotation } => (v(center, id), v(half_extents, 0.0), rotation),
             Shape::Capsule { a, b, radius } => (v(a, id), v(b, radius as f32), DQuat::IDENTITY),
         };
-        let (w, s) = (velocity.as_vec3(), self.turn.frame_spin(t0, frame_dt).as_vec3());
+        let (w, s) = (velocity.as_vec3(), self.frame_spin(t0, frame_dt).as_vec3());
         [
             a,
             b,
@@ -593,7 +613,7 @@ pub fn contact_speed(model: &super::model::SimModel) -> Option<ContactSpeed> {
 /// The feature bits of the collider types `colliders` use, and whether any turns (a scene
 /// whose colliders do not turn compiles the turn out).
 pub fn features(colliders: &[ColliderModel]) -> u32 {
-    let turning = |c: &ColliderModel| if c.turn.turns() { FEATURE_TURNING } else { 0 };
+    let turning = |c: &ColliderModel| if c.turns() { FEATURE_TURNING } else { 0 };
     colliders.iter().fold(0, |f, c| f | c.shape.kind().row().feature | turning(c))
 }
 

@@ -53,12 +53,6 @@ impl Turn {
         turn.to_scaled_axis() / frame_dt
     }
 
-    /// The turn `since` into the frame that starts at `t0`: the frame's start turned on at
-    /// the frame's steady rate (exactly `orientation` at the frame's ends).
-    pub fn within_frame(&self, t0: f64, frame_dt: f64, since: f64) -> DQuat {
-        DQuat::from_scaled_axis(self.frame_spin(t0, frame_dt) * since) * self.orientation(t0)
-    }
-
     /// The fastest it turns [rad/s]: an upper bound (keyed angles: each angle's rate adds, at
     /// most its rate about a unit axis).
     pub fn top_spin(&self) -> f64 {

@@ -82,8 +82,9 @@ fn cloth_on_ground(velocity: DVec3) -> msdsim::sim::model::SimModel {
 /// Dragging a collider in the app: each frame the editor moves the sphere 0.5/60 m in x and
 /// the simulation takes the new parameters in place (`update_params`, as the app does). The
 /// sphere then moves during the frame rather than jumping, so the cloth under it is dragged as
-/// by the sphere moving at 0.5 m/s: by more than 5 cm in 1 s. (Jumping, friction would see a
-/// still sphere.)
+/// by the sphere moving at 0.5 m/s: by more than 5 cm in 1 s (jumping, friction would see a
+/// still sphere); let go, the cloth coasts to rest within 10 cm in the next second (measured
+/// 4.1 cm; while the buffer kept the last drag's move, the sphere went on sweeping it 0.50 m).
 #[test]
 fn dragging_a_collider_drags_what_it_touches() {
     let ctx = gpu();
@@ -98,9 +99,17 @@ fn dragging_a_collider_drags_what_it_touches() {
         gpu.step_frame(&ctx).unwrap();
     }
     let moved = centre(&gpu.read_states(&ctx).unwrap()) - start;
+    // Let go: the sphere stays where it was left, and so does what it touched (the frame after
+    // the last drag wrote the records at rest again; before, the last drag's move was kept and
+    // the sphere went on dragging the cloth at 0.5 m/s).
+    for _ in 0..60 {
+        gpu.step_frame(&ctx).unwrap();
+    }
+    let after = centre(&gpu.read_states(&ctx).unwrap()) - start - moved;
     gpu.destroy(&ctx);
-    eprintln!("dragged sphere: the cloth moved {moved}");
+    eprintln!("dragged sphere: the cloth moved {moved}, then {after} after it was let go");
     assert!(moved.x > 0.05 && moved.z.abs() < 0.02, "the cloth moved {moved}");
+    assert!(after.x.abs() < 0.1, "the cloth moved on by {after} after the drag ended");
     assert_clean(&ctx);
 }
 

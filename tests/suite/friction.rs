@@ -333,13 +333,14 @@ fn friction_between_cloths(runs: &[(u32, bool)]) {
 }
 
 /// A 4 x 4 cloth of 2 cm spacing (its centre `r` from the axis) lying on a turntable: a box 1 m
-/// square turning about the vertical by `turn`, friction 0.5, 16 substeps.
-fn turntable(turn: Turn, r: f64) -> SimModel {
+/// square centred at `centre` (on the ground plane) turning about the vertical through it by
+/// `turn`, friction 0.5, 16 substeps.
+fn turntable(turn: Turn, r: f64, centre: DVec3) -> SimModel {
     let n = 4;
     let mut c = cloth(n, n, 0.02);
     for (i, p) in c.positions.iter_mut().enumerate() {
         let (col, row) = ((i as u32 % n) as f64, (i as u32 / n) as f64);
-        *p = DVec3::new(r + (col - 1.5) * 0.02, 0.055, (row - 1.5) * 0.02);
+        *p = centre + DVec3::new(r + (col - 1.5) * 0.02, 0.055, (row - 1.5) * 0.02);
     }
     c.stiffness = [200.0, 50.0, 0.0];
     c.damping = 0.01;
@@ -349,7 +350,7 @@ fn turntable(turn: Turn, r: f64) -> SimModel {
     s.gravity = DVec3::new(0.0, -G, 0.0);
     s.colliders = vec![ColliderModel {
         shape: Shape::Box {
-            center: DVec3::ZERO,
+            center: centre,
             half_extents: DVec3::new(0.5, 0.05, 0.5),
             rotation: DQuat::IDENTITY,
         },
@@ -360,10 +361,10 @@ fn turntable(turn: Turn, r: f64) -> SimModel {
     s
 }
 
-/// The cloth's centre: its angle about the turntable's axis (from +x, turning as the table
-/// does) and its distance from the axis.
-fn on_turntable(x: &[DVec3]) -> (f64, f64) {
-    let c = x.iter().sum::<DVec3>() / x.len() as f64;
+/// The cloth's centre: its angle about the turntable's axis through `centre` (from +x, turning
+/// as the table does) and its distance from the axis.
+fn on_turntable(x: &[DVec3], centre: DVec3) -> (f64, f64) {
+    let c = x.iter().sum::<DVec3>() / x.len() as f64 - centre;
     ((-c.z).atan2(c.x), c.x.hypot(c.z))
 }
 
@@ -374,7 +375,8 @@ fn on_turntable(x: &[DVec3]) -> (f64, f64) {
 /// behind by w t_s / 2 = 0.031 rad, then goes round with the table: in 2 s it turns
 /// 2 - 0.031 rad, within 5e-3 rad (the substeps' start-up and the cloth's own stretch; measured
 /// 4e-4 on the reference), and stays within 5 mm of its radius; the same with the table's turn
-/// keyed (0 to 2 rad in 2 s, linear: each frame turns at the keys' steady rate). At 8 rad/s
+/// keyed (0 to 2 rad in 2 s, linear: each frame turns at the keys' steady rate), and with the
+/// table away from the origin (it turns about its own centre). At 8 rad/s
 /// (19.2 m/s^2) it slides outwards, past 0.4 m within 0.5 s, and falls behind the table. CPU
 /// reference, both GPU paths.
 #[test]
@@ -386,9 +388,11 @@ fn a_cloth_on_a_turntable_goes_round_while_friction_holds_it() {
         spin: DVec3::ZERO,
         rotation: Motion::Keyframes(vec![(0.0, DVec3::ZERO), (2.0, DVec3::Y * 2.0 * w)]),
     };
-    for (how, turn) in [("steady", Turn::steady(DVec3::Y * w)), ("keyed", keyed)] {
-        for (label, x, _) in every_path(&ctx, &turntable(turn.clone(), r), 120) {
-            let (angle, radius) = on_turntable(&x);
+    let away = DVec3::new(1.5, 0.0, -0.7);
+    let cases = [("steady", Turn::steady(DVec3::Y * w), DVec3::ZERO), ("keyed", keyed, DVec3::ZERO)];
+    for (how, turn, centre) in cases.into_iter().chain([("away", Turn::steady(DVec3::Y * w), away)]) {
+        for (label, x, _) in every_path(&ctx, &turntable(turn.clone(), r, centre), 120) {
+            let (angle, radius) = on_turntable(&x, centre);
             println!(
                 "1 rad/s {how}, {label}: turned {angle:.4} rad (closed form {expected:.4}), at {radius:.4} m"
             );
@@ -399,8 +403,8 @@ fn a_cloth_on_a_turntable_goes_round_while_friction_holds_it() {
             assert!((radius - r).abs() < 5e-3, "{how}, {label}: at {radius:.4} m from the axis, not {r}");
         }
     }
-    for (label, x, _) in every_path(&ctx, &turntable(Turn::steady(DVec3::Y * 8.0), 0.3), 30) {
-        let (angle, radius) = on_turntable(&x);
+    for (label, x, _) in every_path(&ctx, &turntable(Turn::steady(DVec3::Y * 8.0), 0.3, DVec3::ZERO), 30) {
+        let (angle, radius) = on_turntable(&x, DVec3::ZERO);
         println!("8 rad/s, {label}: turned {angle:.4} rad, at {radius:.4} m");
         assert!(radius > 0.4, "{label}: still {radius:.4} m from the axis after 0.5 s");
         assert!(angle < 0.9 * 8.0 * 0.5, "{label}: turned {angle:.4} rad, nearly as far as the table");

@@ -130,6 +130,9 @@ pub struct GpuSim {
     /// How far each collider was moved by `update_params` since the last frame (the app's
     /// editor dragging it): the next frame moves it there during the frame.
     dragged: Vec<glam::DVec3>,
+    /// The last frame recorded a dragged collider's move: the next writes its records again,
+    /// where it is (else the buffer kept the move, and it swept the same way every frame).
+    drag_recorded: bool,
     /// The state was uploaded after the last recorded frame (`take_surface_stale`).
     surface_stale: bool,
     /// Whether the contact-speed warning was given, and the warning not yet taken.
@@ -318,6 +321,7 @@ impl GpuSim {
             energy: Default::default(),
             surface_stale: false,
             dragged: Vec::new(),
+            drag_recorded: false,
             model: model.without_particles(),
         };
         // From here `sim` owns everything created; on error it is destroyed whole.
@@ -369,6 +373,8 @@ impl GpuSim {
     ) -> Result<()> {
         self.ensure_pipelines(rec.context())?;
         let dragged = std::mem::take(&mut self.dragged);
+        let after_drag =
+            std::mem::replace(&mut self.drag_recorded, dragged.iter().any(|d| *d != glam::DVec3::ZERO));
         let lists_stale = std::mem::take(&mut self.lists_stale) || !self.pending_writes.is_empty();
         if let Some(c) = self.contact.as_mut().filter(|_| lists_stale) {
             // (the frame clears the contact counters, `record_frame_start`)
@@ -424,7 +430,7 @@ impl GpuSim {
         if let Some(c) = &self.contact {
             c.record_frame_start(rec, lists_stale);
         }
-        self.record_collider_motion(rec, &dragged);
+        self.record_collider_motion(rec, &dragged, after_drag);
         self.record_wind_phases(rec);
         self.record_pin_motion(rec);
         let stages = self.stage_timing;
@@ -666,10 +672,12 @@ impl GpuSim {
 
     /// Moving colliders: this frame's records (where each is at the frame's start, its velocity
     /// over the frame), written in the command stream so frames in flight keep their own.
-    /// Scenes whose colliders all stay put record nothing.
-    fn record_collider_motion(&self, rec: &mut Recorder<'_>, dragged: &[glam::DVec3]) {
+    /// Scenes whose colliders all stay put record nothing, but in the frame after a drag
+    /// (`after_drag`), which puts the dragged ones back at rest where they are.
+    fn record_collider_motion(&self, rec: &mut Recorder<'_>, dragged: &[glam::DVec3], after_drag: bool) {
         if !self.model.colliders.iter().any(|c| c.is_moving())
             && dragged.iter().all(|d| *d == glam::DVec3::ZERO)
+            && !after_drag
         {
             return;
         }
