@@ -27,10 +27,9 @@ pub struct MeshFrames<'a> {
     pub normals: &'a [Vec<[f32; 3]>],
 }
 
-/// A collider's mesh where it is at the first frame, and its node's translation at each frame
-/// (None when it does not move) and rotation (a unit quaternion, xyzw; None when it does not
-/// turn): a turn about the collider's centre c by R is the rotation R with the translation
-/// c - R c besides the offset.
+/// A collider's mesh where it is at the first frame (a turning one's about its centre there),
+/// and its node's translation at each frame (None when it does not move: a turning one's is
+/// where its centre is) and rotation (a unit quaternion, xyzw; None when it does not turn).
 pub struct ColliderMesh {
     pub name: String,
     pub points: Vec<[f32; 3]>,
@@ -350,13 +349,16 @@ impl Recording {
         let colliders: Vec<ColliderMesh> = (self.colliders.iter().zip(&self.collider_names))
             .map(|(c, name)| {
                 let (points, normals, triangles) = collider_mesh(c, first);
+                // A turning one's mesh is placed about its centre at the first frame, and its
+                // node at the centre: the turn is then about the node's origin, and a viewer's
+                // interpolation between frames keeps the centre on its (linear) path.
                 let start = c.motion.offset(first);
-                let centre = c.shape_at(first).reference_point();
+                let centre = if c.turns() { c.shape_at(first).reference_point() } else { DVec3::ZERO };
                 let turn = |t: f64| c.turn_at(t) * c.turn_at(first).inverse();
-                let offset = |t: f64| c.motion.offset(t) - start + centre - turn(t) * centre;
+                let offset = |t: f64| c.motion.offset(t) - start + centre;
                 ColliderMesh {
                     name: name.clone(),
-                    points: points.into_iter().map(f32s).collect(),
+                    points: points.into_iter().map(|p| f32s(p - centre)).collect(),
                     normals: normals.into_iter().map(f32s).collect(),
                     indices: triangles.into_iter().flatten().collect(),
                     offsets: c.is_moving().then(|| self.times.iter().map(|&t| f32s(offset(t))).collect()),

@@ -287,20 +287,7 @@ pub fn check(scene: &Scene) -> Check {
                 0 => format!("{object}.pin_motion"),
                 g => format!("{object}.pin_group[{}].pin_motion", g - 1),
             };
-            // A substep's turn is a rotation: past half a turn it would turn the other way; a
-            // keyed turn is taken a frame at a time (`Turn::frame_spin`), so half a turn
-            // a frame.
-            let (key, per, step, or) = match motion.turn.rotation.is_moving() {
-                true => ("rotation_keyframes", "frame", scene.sim.frame_dt, ""),
-                false => ("angular_velocity", "substep", substep, " or more substeps"),
-            };
-            let turn = motion.turn.top_spin() * step;
-            if turn >= 0.5 * std::f64::consts::TAU {
-                return Err(format!(
-                    "{at}.{key}: up to {} degrees a {per}, half a turn or more (the {per}'s turn would go the other way): a slower turn{or}",
-                    num(turn.to_degrees())
-                ));
-            }
+            check_half_turn(&at, &motion.turn, (substep, scene.sim.frame_dt))?;
             let pins: Vec<_> = (0..o.positions.len())
                 .filter(|&i| o.pinned[i] && o.group_of(i) == g)
                 .map(|i| o.positions[i])
@@ -330,7 +317,17 @@ fn check_motion(at: &str, m: &Option<super::Motion>, (substep, frame_dt): (f64, 
     if !check_turn(at, m)? {
         return check_translation(at, m);
     }
-    let turn = super::build::turn(m);
+    check_half_turn(at, &super::build::turn(m), (substep, frame_dt))?;
+    if m.velocity.is_none() && m.keyframes.is_empty() {
+        return check_interpolation(at, m); // (a turn alone)
+    }
+    check_translation(at, m)
+}
+
+/// A turn (a collider's or pins') under half a turn a substep: a substep's turn is a rotation,
+/// and past half a turn it would turn the other way; a keyed turn is taken a frame at a time
+/// (`Turn::frame_spin`), so under half a turn a frame.
+fn check_half_turn(at: &str, turn: &crate::sim::turn::Turn, (substep, frame_dt): (f64, f64)) -> Check {
     let (key, per, step, or) = match turn.rotation.is_moving() {
         true => ("rotation_keyframes", "frame", frame_dt, ""),
         false => ("angular_velocity", "substep", substep, " or more substeps"),
@@ -342,10 +339,7 @@ fn check_motion(at: &str, m: &Option<super::Motion>, (substep, frame_dt): (f64, 
             num(most.to_degrees())
         ));
     }
-    if m.velocity.is_none() && m.keyframes.is_empty() {
-        return check_interpolation(at, m); // (a turn alone)
-    }
-    check_translation(at, m)
+    Ok(())
 }
 
 /// A motion's turn (a collider's or pins'): `angular_velocity` or `rotation_keyframes`, not
