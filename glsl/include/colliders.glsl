@@ -73,26 +73,51 @@ vec3 collider_centre(Collider c) {
     return floatBitsToUint(c.a.w) == COLLIDER_CAPSULE ? 0.5 * (c.a.xyz + c.b.xyz) : c.a.xyz;
 }
 
-// Collider c `since` after the frame's start (moved by its velocity, turned by its spin about
-// its centre): the signed distance from x to its surface and the outward normal `n`, and the
-// velocity of its surface at x (sim::collider::ColliderModel::distance_at and
-// surface_velocity). The point is taken back into the frame's start, where the record places
-// the collider, and the normal forward. Compiled in only where some collider turns
-// (F_TURNING); there one that does not pays one compare.
-float collider_distance_since(Collider c, vec3 x, float since, out vec3 n, out vec3 surface) {
-    vec3 velocity = c.extra.yzw;
-    surface = velocity;
-    vec3 spin = has(F_TURNING) ? c.spin.xyz : vec3(0.0);
-    if (spin == vec3(0.0)) return collider_distance(c, x - velocity * since, n);
-    vec3 centre = collider_centre(c);
-    vec3 r = x - velocity * since - centre;
-    vec3 turn = spin * since;
-    float angle = length(turn);
-    vec4 back = angle > 0.0 ? vec4(turn * (-sin(0.5 * angle) / angle), cos(0.5 * angle)) : vec4(0.0, 0.0, 0.0, 1.0);
-    float d = collider_distance(c, centre + rotate(back, r), n);
-    n = rotate(vec4(-back.xyz, back.w), n);
-    surface = velocity + cross(spin, r);
+// Where collider c is `since` after the frame's start (sim::collider::Pose): moved by its
+// velocity (`shift`) and turned by its spin about its centre (`centre`: where it is at the
+// frame's start), the turn kept as the rotation `back` that takes a point back into the
+// frame's start, where the record places the collider. Taken once a collider and substep;
+// the turn is compiled in only where some collider turns (F_TURNING), and there one that does
+// not pays one compare a test.
+struct ColliderPose {
+    vec3 velocity;
+    vec3 shift;
+    vec3 spin;
+    vec3 centre;
+    vec4 back;
+};
+
+ColliderPose collider_pose(Collider c, float since) {
+    ColliderPose p;
+    p.velocity = c.extra.yzw;
+    p.shift = p.velocity * since;
+    p.spin = has(F_TURNING) ? c.spin.xyz : vec3(0.0);
+    p.centre = vec3(0.0);
+    p.back = vec4(0.0, 0.0, 0.0, 1.0);
+    if (p.spin != vec3(0.0)) {
+        p.centre = collider_centre(c);
+        vec3 turn = p.spin * since;
+        float angle = length(turn);
+        if (angle > 0.0) p.back = vec4(turn * (-sin(0.5 * angle) / angle), cos(0.5 * angle));
+    }
+    return p;
+}
+
+// The signed distance from x to collider c's surface at pose `p` and the outward normal `n`
+// (sim::collider::ColliderModel::distance_at): the point taken back into the frame's start,
+// the normal forward.
+float collider_distance_at(Collider c, ColliderPose p, vec3 x, out vec3 n) {
+    if (p.spin == vec3(0.0)) return collider_distance(c, x - p.shift, n);
+    vec3 r = x - p.shift - p.centre;
+    float d = collider_distance(c, p.centre + rotate(p.back, r), n);
+    n = rotate(vec4(-p.back.xyz, p.back.w), n);
     return d;
+}
+
+// The velocity of collider c's surface at x at pose `p`: its own plus its spin's about its
+// centre (sim::collider::ColliderModel::surface_velocity).
+vec3 collider_surface_velocity(ColliderPose p, vec3 x) {
+    return p.spin == vec3(0.0) ? p.velocity : p.velocity + cross(p.spin, x - p.shift - p.centre);
 }
 
 // A few f32 steps of a position near x [m]: 5e-7 (1 + its largest coordinate).
@@ -146,7 +171,7 @@ float collider_friction(Collider c) { return c.extra.x >= 0.0 ? c.extra.x : obj.
 // Colliders against the particle: each moves it out to the object's margin from its surface
 // (contact_response, against the surface's velocity there). A record holds where the collider
 // is at the frame's start, its velocity over the frame (extra.yzw) and its spin: `since` is
-// the time from the frame's start to the end of this substep (collider_distance_since).
+// the time from the frame's start to the end of this substep (collider_pose).
 // `touch`: how far past the margin a particle still counts as touching (its velocity answers
 // the collider, its position is not moved): 0 but for vbd_iterate.comp's last iteration, whose
 // particles the iterations before held at the margin exactly.
@@ -154,10 +179,13 @@ void collide_within(inout vec3 x, inout vec3 v, float since, float touch) {
     if (!has(F_COLLIDERS)) return;
     for (uint k = 0u; k < g.collider_count; ++k) {
         Collider c = colliders[k];
+        ColliderPose pose = collider_pose(c, since);
         vec3 n;
-        vec3 surface;
-        float d = collider_distance_since(c, x, since, n, surface);
-        if (d < obj.margin + touch) contact_response(x, v, n, max(obj.margin - d, 0.0), collider_friction(c), surface);
+        float d = collider_distance_at(c, pose, x, n);
+        if (d < obj.margin + touch) {
+            vec3 surface = collider_surface_velocity(pose, x);
+            contact_response(x, v, n, max(obj.margin - d, 0.0), collider_friction(c), surface);
+        }
     }
 }
 

@@ -301,24 +301,26 @@ void collide_edges(uvec2 cell, inout vec3 x, inout vec3 v, float since) {
     for (uint k = 0u; k < g.collider_count; ++k) {
         Collider c = colliders[k];
         if (floatBitsToUint(c.a.w) == COLLIDER_GROUND) continue;
+        ColliderPose pose = collider_pose(c, since);
         vec3 n;
-        vec3 surface;  // (at the particle)
-        if (collider_distance_since(c, here, since, n, surface) >= reach) continue;
+        if (collider_distance_at(c, pose, here, n) >= reach) continue;
         vec3 push = vec3(0.0);
         uint edges = 0u;
         [[unroll]] for (int s = 0; s < 8; ++s) {
             int j = SPRING_NEIGHBOUR(cell, s);
             if (j < 0) continue;
             vec3 mid = 0.5 * (here + CPOS(j));
-            vec3 unused;
-            float d = collider_distance_since(c, mid, since, n, unused);
+            float d = collider_distance_at(c, pose, mid, n);
             if (d < obj.margin) {
                 push += n * ((obj.margin - d) * (CPINNED(j) ? 2.0 : 1.0));
                 edges += 1u;
             }
         }
         float depth = length(push);  // the mean move is push / edges
-        if (depth > 0.0) contact_response(x, v, push / depth, depth / float(edges), collider_friction(c), surface);
+        if (depth > 0.0) {
+            vec3 surface = collider_surface_velocity(pose, here);  // (at the particle)
+            contact_response(x, v, push / depth, depth / float(edges), collider_friction(c), surface);
+        }
     }
 }
 

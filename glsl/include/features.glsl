@@ -25,7 +25,7 @@
 #define F_TRIANGLES  8192u // a cloth's self-contact against its triangles (self_contact.glsl)
 #define F_EDGE_PAIRS 16384u // ... and of its edges against its edges (self_contact.glsl)
 #define F_SEGMENT_PAIRS 32768u // ... a rope's: its segments against its segments, no triangles
-#define F_TURNING    65536u // colliders that turn (colliders.glsl, collider_distance_since)
+#define F_TURNING    65536u // colliders that turn (colliders.glsl, collider_pose)
 
 layout(constant_id = 3) const uint FEATURES = 0x17FFFu;
 

@@ -9,13 +9,13 @@
 #include "pins.glsl"
 
 // The BDF2 start of a substep (sim::cpu::integrators::inertial has the formulas; implicit
-// Euler's for an object with `implicit_euler()`) of a free
-// particle at grid `cell`, at x with velocity v and history `hx` (x_n - x_{n-1}, w valid) and
-// `hv` (v_n - v_{n-1}): returns the prediction y - x~ and sets `base` to x~ - x, where x~ =
-// x + (x_n - x_{n-1}) / 3 is what the solve's displacements are measured from. F is the
-// external force (every method treats the dashpots in its solve). Without history the last substep is taken to have been one Jacobi step of
-// implicit Euler (sim::cpu::integrators::inertial and restart). `pull` is the prediction's
-// part h^2 F / m.
+// Euler's for an object with `implicit_euler()`) of a free particle at grid `cell`, at x with
+// velocity v and history `hx` (x_n - x_{n-1}, w valid) and `hv` (v_n - v_{n-1}): returns the
+// prediction y - x~ and sets `base` to x~ - x, where x~ = x + (x_n - x_{n-1}) / 3 is what the
+// solve's displacements are measured from. F is the external force (every method treats the
+// dashpots in its solve). Without history the last substep is taken to have been one Jacobi
+// step of implicit Euler (sim::cpu::integrators::inertial and restart). `pull` is the
+// prediction's part h^2 F / m.
 vec3 predicted_displacement(uvec2 cell, vec3 x, vec3 v, vec4 hx, vec3 hv, out vec3 base, out vec3 pull) {
     vec3 force = external_force(x, v) + air_force(cell, x, v, 0.0);
     vec3 a = force / obj.mass;

@@ -10,7 +10,8 @@
 const float RIGID_REGULARISER = 1e-5;
 
 // What a particle adds to the sums, at q = x - origin (any point of the object, the same for
-// all: the first particle's, where the substep or per stage the frame starts) with guessed displacement d = guess - x, in four vec4s:
+// all: the first particle's, where the substep or per stage the frame starts) with guessed
+// displacement d = guess - x, in four vec4s:
 // (sum q, sum d.x), (sum d.yz, sum (q x d).xy), (sum (q x d).z, sum q q^T's diagonal),
 // (its xy, xz and yz, the count).
 mat4 rigid_terms(vec3 q, vec3 d) {

@@ -267,8 +267,9 @@ impl ColliderModel {
 
     /// Where it is `since` after the start of the frame that starts at `t0` and lasts
     /// `frame_dt` (`frame_motion`: moved at the frame's chord velocity; turned at the frame's
-    /// steady rate from where it is at the frame's start, `frame_spin`). The CPU reference's; the GPU takes the same from
-    /// the frame's record (`gpu`).
+    /// steady rate from where it is at the frame's start, `frame_spin`). The CPU reference's;
+    /// the GPU takes the same from the frame's record (`gpu`, `collider_pose` in
+    /// colliders.glsl).
     pub fn pose(&self, t0: f64, frame_dt: f64, since: f64) -> Pose {
         let (start, velocity) = self.frame_motion(t0, frame_dt);
         let spin = self.frame_spin(t0, frame_dt);
@@ -277,7 +278,7 @@ impl ColliderModel {
     }
 
     /// Signed distance from `x` to its surface at `pose` and the outward normal there
-    /// (`collider_distance_since` in colliders.glsl).
+    /// (`collider_distance_at` in colliders.glsl).
     pub fn distance_at(&self, pose: &Pose, x: DVec3) -> (f64, DVec3) {
         if pose.spin == DVec3::ZERO && pose.turn == DQuat::IDENTITY {
             return self.shape.distance(x - pose.shift);

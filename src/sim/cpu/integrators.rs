@@ -189,18 +189,14 @@ fn inertial(s: &Substep<'_>, history: &[History]) -> Inertial {
             }
             let force = external(m, o, i, x, v[i], time);
             let pull = force / o.mass * (h * h);
-            let past = match rigid {
-                true => Past { dx: DVec3::ZERO, dv: DVec3::ZERO, held: history[i].map_or(0.0, |p| p.held) },
-                false => history[i].unwrap_or_else(|| restart(o, i, x, v[i], force, dt)),
+            let (base, y, held) = if rigid {
+                (x[i], x[i] + v[i] * dt + pull, history[i].map_or(0.0, |p| p.held))
+            } else {
+                let past = history[i].unwrap_or_else(|| restart(o, i, x, v[i], force, dt));
+                let base = x[i] + past.dx / 3.0;
+                (base, base + v[i] * (2.0 / 3.0 * dt) + past.dv * (2.0 / 9.0 * dt) + pull, past.held)
             };
-            let (base, y) = match rigid {
-                true => (x[i], x[i] + v[i] * dt + pull),
-                false => {
-                    let base = x[i] + past.dx / 3.0;
-                    (base, base + v[i] * (2.0 / 3.0 * dt) + past.dv * (2.0 / 9.0 * dt) + pull)
-                }
-            };
-            let guess = y - pull * past.held;
+            let guess = y - pull * held;
             start.push(match adaptive {
                 true if anchored => toward_rest(o, i, h, x[i] + s.pins_of(i).move_of(x[i]), guess),
                 true => guess,
