@@ -10,6 +10,9 @@
 // registers across the shaders' stores and barriers).
 layout(std140, set = 0, binding = 0) uniform GlobalsBuf { Globals g; };
 layout(std430, set = 0, binding = 4) restrict readonly buffer ColliderBuf { Collider colliders[]; };
+// The same buffer as vec4s: the mesh colliders' grids and triangles follow the records
+// (sim::gpu::object::mesh_words; read by mesh_distance in colliders.glsl).
+layout(std430, set = 0, binding = 4) restrict readonly buffer ColliderWords { vec4 collider_words[]; };
 #ifdef BATCHED
 #include "batch.glsl"
 #else

@@ -5,12 +5,14 @@
 #ifndef MSD_COLLIDERS_GLSL
 #define MSD_COLLIDERS_GLSL
 #include "features.glsl"
+#include "triangle.glsl"
 
 // Type ids (ColliderKind's glsl_id; checked by tests/suite/layout.rs).
 #define COLLIDER_SPHERE 0u
 #define COLLIDER_GROUND 1u
 #define COLLIDER_BOX 2u
 #define COLLIDER_CAPSULE 3u
+#define COLLIDER_MESH 4u
 
 // Rotates v by the unit quaternion q (xyz vector part, w scalar).
 vec3 rotate(vec4 q, vec3 v) {
@@ -19,6 +21,65 @@ vec3 rotate(vec4 q, vec3 v) {
 }
 
 float sign_of(float x) { return x >= 0.0 ? 1.0 : -1.0; }
+
+float position_slack(vec3 x);
+
+// Unsigned word k of the collider buffer's vec4s from vec4 `at` on.
+uint collider_word(uint at, uint k) { return floatBitsToUint(collider_words[at + (k >> 2u)][k & 3u]); }
+
+// Signed distance from x to mesh collider c's triangles and the outward normal, less its
+// thickness (sim::collider_mesh::ColliderMesh::distance, which says how): c.a xyz its centre,
+// c.rotation its turn, c.b x its first vec4 (a header: the grid's origin and cell; its dims
+// and reach), y and z where its items and triangles start from there (these offsets and the
+// dims as float values), w its thickness. Only
+// triangles within the reach count; where none is, a lower bound of at least the reach.
+float mesh_distance(Collider c, vec3 x, out vec3 n) {
+    vec3 p = rotate(vec4(-c.rotation.xyz, c.rotation.w), x - c.a.xyz);
+    uint base = uint(c.b.x);
+    vec4 h0 = collider_words[base];
+    vec4 h1 = collider_words[base + 1u];
+    uvec3 dims = uvec3(h1.xyz);
+    float reach = h1.w;
+    vec3 q = (p - h0.xyz) / h0.w;
+    n = rotate(c.rotation, vec3(0.0, 1.0, 0.0));
+    if (any(lessThan(q, vec3(0.0))) || any(greaterThanEqual(q, vec3(dims)))) {
+        vec3 out_of = max(max(h0.xyz - p, p - (h0.xyz + vec3(dims) * h0.w)), vec3(0.0));
+        return max(length(out_of), reach) - c.b.w;
+    }
+    uvec3 cq = uvec3(q);
+    uint cell = cq.x + dims.x * (cq.y + dims.y * cq.z);
+    uint items = base + uint(c.b.y);
+    uint triangles = base + uint(c.b.z);
+    uint last = collider_word(base + 2u, cell + 1u);
+    float best = reach;
+    float best_d = 1e30;
+    float best_square = 0.0;
+    vec3 best_n = vec3(0.0, 1.0, 0.0);
+    // Distances within a few f32 steps count as equal (the CPU twin's `tie`).
+    float tie = position_slack(p) + position_slack(c.a.xyz);
+    for (uint k = collider_word(base + 2u, cell); k < last; ++k) {
+        uint t = triangles + 3u * collider_word(items, k);
+        vec3 ta = collider_words[t].xyz;
+        vec3 tb = collider_words[t + 1u].xyz;
+        vec3 tc = collider_words[t + 2u].xyz;
+        vec3 w = triangle_nearest(p, ta, tb, tc);
+        vec3 off = p - (w.x * ta + w.y * tb + w.z * tc);
+        float d = length(off);
+        if (d > reach) continue;
+        vec3 face = normalize(cross(tb - ta, tc - ta));
+        // How squarely in front of (or behind) the triangle p is decides a tie.
+        float square = d > 0.0 ? abs(dot(off, face)) / d : 1.0;
+        if (d < best_d - tie || (d <= best_d + tie && square > best_square)) {
+            float side = dot(off, face) >= 0.0 ? 1.0 : -1.0;
+            best = side * d;
+            best_n = d > 1e-12 ? off * (side / d) : face;
+            best_d = d;
+            best_square = square;
+        }
+    }
+    n = rotate(c.rotation, best_n);
+    return best - c.b.w;
+}
 
 // Signed distance from x to collider c's surface (negative inside) and the outward normal.
 float collider_distance(Collider c, vec3 x, out vec3 n) {
@@ -64,6 +125,7 @@ float collider_distance(Collider c, vec3 x, out vec3 n) {
         }
         return d - c.b.w;
     }
+    if (has(F_MESH) && kind == COLLIDER_MESH) return mesh_distance(c, x, n);
     return 1e30;  // a type compiled out
 }
 

@@ -19,7 +19,8 @@
 #define F_GROUND     256u // the ground plane
 #define F_BOX        512u // box colliders
 #define F_CAPSULE    1024u // capsule colliders
-#define F_COLLIDERS  (F_SPHERES | F_GROUND | F_BOX | F_CAPSULE)
+#define F_MESH       131072u // mesh colliders (colliders.glsl, mesh_distance)
+#define F_COLLIDERS  (F_SPHERES | F_GROUND | F_BOX | F_CAPSULE | F_MESH)
 #define F_CONTACT    2048u // inter-object contact (the contact buffer, filled by contact.comp)
 #define F_EDGES      4096u // colliders against edges and faces too (constraints_body.glsl)
 #define F_TRIANGLES  8192u // a cloth's self-contact against its triangles (self_contact.glsl)
@@ -27,7 +28,7 @@
 #define F_SEGMENT_PAIRS 32768u // ... a rope's: its segments against its segments, no triangles
 #define F_TURNING    65536u // colliders that turn (colliders.glsl, collider_pose)
 
-layout(constant_id = 3) const uint FEATURES = 0x17FFFu;
+layout(constant_id = 3) const uint FEATURES = 0x37FFFu;
 
 bool has(uint feature) { return (FEATURES & feature) != 0u; }
 

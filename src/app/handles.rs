@@ -37,6 +37,7 @@ pub fn position(scene: &Scene, target: Selection) -> Option<Vec3> {
         Selection::Sphere(i) => scene.spheres.get(i).map(|s| v(s.center)),
         Selection::Box(i) => scene.boxes.get(i).map(|b| v(b.center)),
         Selection::Capsule(i) => scene.capsules.get(i).map(|c| (v(c.start) + v(c.end)) * 0.5),
+        Selection::Mesh(i) => scene.meshes.get(i).map(|m| v(m.center)),
         Selection::Wind => Some(v(scene.wind.origin)),
         Selection::Light => Some(v(scene.light.position)),
         _ => None,
@@ -44,12 +45,14 @@ pub fn position(scene: &Scene, target: Selection) -> Option<Vec3> {
 }
 
 /// The selection naming each of `scene::colliders`, in its order: the ground, then the
-/// spheres, boxes and capsules.
-fn collider_selections(scene: &Scene) -> impl Iterator<Item = Selection> {
+/// spheres, boxes, capsules and meshes (those whose file was read).
+fn collider_selections(scene: &Scene) -> impl Iterator<Item = Selection> + '_ {
     let ground = scene.ground.is_some().then_some(Selection::Ground).into_iter();
     let spheres = (0..scene.spheres.len()).map(Selection::Sphere);
     let boxes = (0..scene.boxes.len()).map(Selection::Box);
-    ground.chain(spheres).chain(boxes).chain((0..scene.capsules.len()).map(Selection::Capsule))
+    let capsules = (0..scene.capsules.len()).map(Selection::Capsule);
+    let meshes = (0..scene.meshes.len()).filter(|&i| scene.meshes[i].loaded.is_some()).map(Selection::Mesh);
+    ground.chain(spheres).chain(boxes).chain(capsules).chain(meshes)
 }
 
 /// The index of the collider a selection names among `scene::colliders`, for its tint in the
@@ -104,6 +107,7 @@ pub fn set_position(scene: &mut Scene, target: Selection, to: Vec3) {
     match target {
         Selection::Sphere(i) => shift(&mut scene.spheres[i].center),
         Selection::Box(i) => shift(&mut scene.boxes[i].center),
+        Selection::Mesh(i) => shift(&mut scene.meshes[i].center),
         Selection::Capsule(i) => {
             shift(&mut scene.capsules[i].start);
             shift(&mut scene.capsules[i].end);

@@ -114,7 +114,7 @@ pub fn measure(
     let mut sim = GpuSim::with_fused_limits(ctx, &model, limits, shaders)?;
     sim.set_stage_timing(false);
     let renderer = SceneRenderer::new(ctx, Format::Rgba8Unorm, Format::Depth32, shaders).and_then(|mut r| {
-        match r.set_objects(ctx, &scene::shapes(scene)) {
+        match r.set_objects(ctx, &scene::shapes(scene), &scene::colliders(scene)) {
             Ok(()) => Ok(r),
             Err(e) => {
                 r.destroy(ctx);

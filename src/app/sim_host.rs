@@ -101,7 +101,9 @@ fn layout_key(s: &Scene) -> String {
     // restarts (a pin motion's pivot is where the pins have been carried since).
     let kinds: Vec<_> =
         crate::scene::colliders(s).into_iter().map(|c| (c.shape.kind(), c.motion, c.turn)).collect();
-    format!("{cloths:?}{ropes:?}{kinds:?}")
+    // A mesh collider's triangles are uploaded with the simulation and the renderer's meshes.
+    let meshes: Vec<_> = s.meshes.iter().map(|m| (&m.file, m.scale, m.reach)).collect();
+    format!("{cloths:?}{ropes:?}{kinds:?}{meshes:?}")
 }
 
 impl SimHost {
@@ -117,7 +119,7 @@ impl SimHost {
         gpu::check_fits(ctx.info(), &scene::shapes(&scene))?;
         let model = scene::to_model(&scene);
         let sim = GpuSim::with_shaders(ctx, &model, shaders)?;
-        if let Err(e) = renderer.set_objects(ctx, &scene::shapes(&scene)) {
+        if let Err(e) = renderer.set_objects(ctx, &scene::shapes(&scene), &scene::colliders(&scene)) {
             sim.destroy(ctx);
             return Err(e);
         }
@@ -234,10 +236,10 @@ impl SimHost {
         ctx.wait_idle()?;
         let (model, auto_picked) = model_for(ctx, &edited)?;
         let sim = self.new_sim(ctx, &model, shaders, same_layout)?;
-        if let Err(e) = renderer.set_objects(ctx, &scene::shapes(&edited)) {
+        if let Err(e) = renderer.set_objects(ctx, &scene::shapes(&edited), &scene::colliders(&edited)) {
             sim.destroy(ctx);
             // The renderer's index buffers are gone: restore them for the old scene.
-            renderer.set_objects(ctx, &scene::shapes(&self.scene))?;
+            renderer.set_objects(ctx, &scene::shapes(&self.scene), &scene::colliders(&self.scene))?;
             return Err(e);
         }
         std::mem::replace(&mut self.sim, sim).destroy(ctx);

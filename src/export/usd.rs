@@ -144,6 +144,7 @@ impl Recording {
                 ),
                 Shape::Box { center, rotation, .. } => ("Cube", center, Some(rotation)),
                 Shape::Ground { height } => ("Mesh", DVec3::new(0.0, height, 0.0), None),
+                Shape::Mesh { center, rotation, .. } => ("Mesh", center, Some(rotation)),
             };
             let _ = writeln!(out, "        def {prim} \"{kind}_{i}\" (\n            prepend apiSchemas = [\"MaterialBindingAPI\"]\n        )\n        {{");
             let _ = writeln!(out, "            rel material:binding = </scene/materials/{material}>");
@@ -168,6 +169,28 @@ impl Recording {
                         "            normal3f[] normals = [(0, 1, 0), (0, 1, 0), (0, 1, 0), (0, 1, 0)]"
                     );
                     let _ = writeln!(out, "            float3[] extent = [(-{h}, 0, -{h}), ({h}, 0, {h})]");
+                }
+                Shape::Mesh { ref mesh, .. } => {
+                    // Its triangles in its own frame (the transform below places it); the
+                    // thickness is not drawn.
+                    let list = |items: Vec<String>| items.join(", ");
+                    let counts = list(vec!["3".to_string(); mesh.triangles.len()]);
+                    let indices = list(mesh.triangles.iter().flatten().map(|k| k.to_string()).collect());
+                    let points = list(
+                        mesh.vertices
+                            .iter()
+                            .map(|p| format!("({}, {}, {})", p.x as f32, p.y as f32, p.z as f32))
+                            .collect(),
+                    );
+                    let (lo, hi) = mesh.bounds();
+                    let _ = writeln!(out, "            uniform token subdivisionScheme = \"none\"");
+                    let _ = writeln!(out, "            int[] faceVertexCounts = [{counts}]\n            int[] faceVertexIndices = [{indices}]");
+                    let _ = writeln!(out, "            point3f[] points = [{points}]");
+                    let _ = writeln!(
+                        out,
+                        "            float3[] extent = [({}, {}, {}), ({}, {}, {})]",
+                        lo.x as f32, lo.y as f32, lo.z as f32, hi.x as f32, hi.y as f32, hi.z as f32
+                    );
                 }
             }
             let _ = writeln!(out, "            color3f[] primvars:displayColor = [({COLLIDER_GREY}, {COLLIDER_GREY}, {COLLIDER_GREY})]");

@@ -181,6 +181,20 @@ pub fn rope_cap_indices(first: u32, last: u32) -> Vec<u32> {
     out
 }
 
+/// A mesh collider's triangles with flat normals (each triangle its own three vertices), in
+/// the collider's frame.
+pub fn flat(mesh: &crate::sim::collider_mesh::ColliderMesh) -> MeshData {
+    let mut m = MeshData::default();
+    for t in &mesh.triangles {
+        let [a, b, c] = t.map(|k| mesh.vertices[k as usize].as_vec3());
+        let n = (b - a).cross(c - a).normalize_or_zero();
+        let base = m.vertices.len() as u32;
+        m.vertices.extend([vertex(a, n), vertex(b, n), vertex(c, n)]);
+        m.indices.extend_from_slice(&[base, base + 1, base + 2]);
+    }
+    m
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -13,6 +13,7 @@
 
 use super::mesh::{self, MeshData};
 use crate::shaders::ShaderSet;
+use crate::sim::collider::ColliderModel;
 use crate::sim::gpu::{GpuSim, FRAME_SLOTS};
 use crate::sim::gpu_types::{Camera, Draw, SurfaceVertex};
 use crate::sim::model::{ObjectKind, ObjectShape};
@@ -34,6 +35,13 @@ pub enum Shape {
     Tube,
     /// The surface of simulation object `i` (cloth mesh or rope tube).
     Surface(usize),
+    /// A mesh collider's triangles (`set_objects`), by `collider_mesh_key` of its mesh.
+    Mesh(usize),
+}
+
+/// The key a mesh collider's triangles are drawn by: the address of its shared mesh.
+pub fn collider_mesh_key(mesh: &std::sync::Arc<crate::sim::collider_mesh::ColliderMesh>) -> usize {
+    std::sync::Arc::as_ptr(mesh) as usize
 }
 
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -123,6 +131,8 @@ pub struct SceneRenderer {
     grid: GpuMesh,
     /// Index buffers of the simulation objects' surfaces, with their index counts.
     surfaces: Vec<(Buffer, u32)>,
+    /// Mesh colliders' triangles, by `collider_mesh_key`.
+    meshes: Vec<(usize, GpuMesh)>,
 }
 
 impl SceneRenderer {
@@ -161,6 +171,7 @@ impl SceneRenderer {
             cameras,
             sets,
             surfaces: Vec::new(),
+            meshes: Vec::new(),
         })
     }
 
@@ -238,9 +249,25 @@ impl SceneRenderer {
 
     /// Builds the index buffers for a simulation's objects (after it is created or rebuilt; the
     /// device must be idle).
-    pub fn set_objects(&mut self, ctx: &GpuContext, shapes: &[ObjectShape]) -> Result<()> {
+    pub fn set_objects(
+        &mut self,
+        ctx: &GpuContext,
+        shapes: &[ObjectShape],
+        colliders: &[ColliderModel],
+    ) -> Result<()> {
         for (b, _) in self.surfaces.drain(..) {
             b.destroy(ctx);
+        }
+        for (_, m) in self.meshes.drain(..) {
+            m.destroy(ctx);
+        }
+        for c in colliders {
+            if let crate::sim::collider::Shape::Mesh { mesh: ref m, .. } = c.shape {
+                let key = collider_mesh_key(m);
+                if !self.meshes.iter().any(|(k, _)| *k == key) {
+                    self.meshes.push((key, GpuMesh::new(ctx, "mesh collider", &mesh::flat(m))?));
+                }
+            }
         }
         for s in shapes {
             let indices = match s.kind {
@@ -292,6 +319,11 @@ impl SceneRenderer {
             Shape::Cone => rec.draw_indexed(&self.cone.vertices, &self.cone.indices, self.cone.count, 1),
             Shape::Cube => rec.draw_indexed(&self.cube.vertices, &self.cube.indices, self.cube.count, 1),
             Shape::Tube => rec.draw_indexed(&self.tube.vertices, &self.tube.indices, self.tube.count, 1),
+            Shape::Mesh(key) => {
+                if let Some((_, m)) = self.meshes.iter().find(|(k, _)| *k == key) {
+                    rec.draw_indexed(&m.vertices, &m.indices, m.count, 1);
+                }
+            }
             Shape::Surface(i) => {
                 if let Some((indices, count)) = self.surfaces.get(i) {
                     if i < sim.object_count() {
@@ -346,6 +378,9 @@ impl SceneRenderer {
     pub fn destroy(self, ctx: &GpuContext) {
         for (b, _) in self.surfaces {
             b.destroy(ctx);
+        }
+        for (_, m) in self.meshes {
+            m.destroy(ctx);
         }
         for m in [self.sphere, self.cone, self.cube, self.tube, self.grid] {
             m.destroy(ctx);

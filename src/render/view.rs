@@ -157,6 +157,10 @@ pub(crate) fn collider_items(shape: &collider::Shape) -> Vec<DrawItem> {
             let cap = |p| Mat4::from_scale_rotation_translation(Vec3::splat(r), Quat::IDENTITY, v(p));
             vec![solid(Shape::Tube, side), solid(Shape::Sphere, cap(a)), solid(Shape::Sphere, cap(b))]
         }
+        collider::Shape::Mesh { center, rotation, ref mesh, .. } => vec![solid(
+            Shape::Mesh(super::scene_renderer::collider_mesh_key(mesh)),
+            Mat4::from_rotation_translation(rotation.as_quat(), v(center)),
+        )],
     }
 }
 

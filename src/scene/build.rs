@@ -74,13 +74,13 @@ pub fn to_model(scene: &Scene) -> SimModel {
     }
 }
 
-/// The scene's colliders in the model: the ground, then spheres, boxes and capsules.
+/// The scene's colliders in the model: the ground, then spheres, boxes, capsules and meshes.
 pub fn colliders(scene: &Scene) -> Vec<ColliderModel> {
     let v = DVec3::from_array;
     let moving = |shape: Shape, m: &Option<super::Motion>| ColliderModel {
+        motion: motion(&shape, m),
         shape,
         friction: None,
-        motion: motion(&shape, m),
         turn: m.as_ref().map(turn).unwrap_or_default(),
     };
     let ground = scene.ground.iter().map(|g| ColliderModel {
@@ -102,7 +102,15 @@ pub fn colliders(scene: &Scene) -> Vec<ColliderModel> {
         .capsules
         .iter()
         .map(|c| moving(Shape::Capsule { a: v(c.start), b: v(c.end), radius: c.radius }, &c.motion));
-    ground.chain(spheres).chain(boxes).chain(capsules).collect()
+    // (a mesh whose file was not read, which `load_meshes` prevents, is left out)
+    let meshes = scene.meshes.iter().filter_map(|m| {
+        let file = m.loaded.as_ref()?;
+        let [x, y, z] = m.rotation.map(f64::to_radians);
+        let rotation = DQuat::from_euler(EulerRot::XYZ, x, y, z);
+        let mesh = file.built(m.scale, m.reach);
+        Some(moving(Shape::Mesh { center: v(m.center), rotation, thickness: m.thickness, mesh }, &m.motion))
+    });
+    ground.chain(spheres).chain(boxes).chain(capsules).chain(meshes).collect()
 }
 
 /// A validated preset motion in the model: keyframes become offsets from the shape's placement.

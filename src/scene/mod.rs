@@ -5,11 +5,12 @@
 
 mod build;
 mod load;
+pub mod mesh_file;
 pub mod place;
 mod validate;
 
 pub use build::{colliders, shapes, to_model, turbulence_of};
-pub use load::{apply_override, load, load_runnable, parse, save};
+pub use load::{apply_override, load, load_meshes, load_runnable, parse, save};
 pub use validate::{check as validate, MAX_FRICTION};
 
 use serde::{Deserialize, Serialize};
@@ -32,6 +33,8 @@ pub struct Scene {
     pub boxes: Vec<BoxCollider>,
     #[serde(default, rename = "capsule", skip_serializing_if = "Vec::is_empty")]
     pub capsules: Vec<Capsule>,
+    #[serde(default, rename = "mesh", skip_serializing_if = "Vec::is_empty")]
+    pub meshes: Vec<MeshCollider>,
     #[serde(default, rename = "cloth", skip_serializing_if = "Vec::is_empty")]
     pub cloths: Vec<Cloth>,
     #[serde(default, rename = "rope", skip_serializing_if = "Vec::is_empty")]
@@ -434,6 +437,47 @@ pub struct Capsule {
     pub motion: Option<Motion>,
 }
 
+/// A triangle mesh collider from a file (Wavefront OBJ, glTF 2.0 `.gltf` or `.glb`): its
+/// triangles (quads and polygons split into fans) placed by `center` and `rotation`, kept
+/// outside by the winding of its triangles (counter-clockwise seen from outside) where it is
+/// closed, on their front where it is open.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct MeshCollider {
+    /// The file; a relative path is the preset's folder's (made absolute when loaded).
+    pub file: String,
+    /// Where the file's origin goes [m].
+    #[serde(default)]
+    pub center: [f64; 3],
+    /// Rotation about x, then y, then z [degrees], about its origin.
+    #[serde(default, skip_serializing_if = "is_zero3")]
+    pub rotation: [f64; 3],
+    /// The file's units in metres (0.01 for a file in centimetres).
+    #[serde(default = "defaults::one", skip_serializing_if = "is_one")]
+    pub scale: f64,
+    /// Its surface offset outwards from the triangles [m].
+    #[serde(default, skip_serializing_if = "is_zero")]
+    pub thickness: f64,
+    /// How far from its triangles particles are found [m]: a particle more than this inside
+    /// a closed mesh is not pushed out. More than every object's margin.
+    #[serde(default = "defaults::mesh_reach")]
+    pub reach: f64,
+    /// How it moves (absent: it stays put).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub motion: Option<Motion>,
+    /// The file's triangles, read when the preset loads.
+    #[serde(skip)]
+    pub loaded: Option<std::sync::Arc<mesh_file::MeshFile>>,
+}
+
+fn is_one(x: &f64) -> bool {
+    *x == 1.0
+}
+
+fn is_zero(x: &f64) -> bool {
+    *x == 0.0
+}
+
 fn is_zero3(v: &[f64; 3]) -> bool {
     *v == [0.0; 3]
 }
@@ -445,6 +489,7 @@ impl Scene {
         self.spheres.clear();
         self.boxes.clear();
         self.capsules.clear();
+        self.meshes.clear();
     }
 }
 
@@ -755,6 +800,9 @@ mod defaults {
     }
     pub fn iterations() -> u32 {
         10
+    }
+    pub fn mesh_reach() -> f64 {
+        0.03
     }
     pub fn contact_iterations() -> u32 {
         crate::sim::model::DEFAULT_CONTACT_ITERATIONS

@@ -207,15 +207,19 @@ pub fn check(scene: &Scene) -> Check {
     color("light.color", scene.light.color)?;
     unit_interval("light.ambient", scene.light.ambient)?;
 
-    let colliders =
-        scene.spheres.len() + scene.boxes.len() + scene.capsules.len() + scene.ground.iter().count();
+    let colliders = scene.spheres.len()
+        + scene.boxes.len()
+        + scene.capsules.len()
+        + scene.meshes.len()
+        + scene.ground.iter().count();
     if colliders > MAX_COLLIDERS {
         return Err(format!(
-            "{colliders} colliders ({} spheres, {} boxes, {} capsules): a scene may have at most {MAX_COLLIDERS} \
+            "{colliders} colliders ({} spheres, {} boxes, {} capsules, {} meshes): a scene may have at most {MAX_COLLIDERS} \
              (every particle tests every collider each substep)",
             scene.spheres.len(),
             scene.boxes.len(),
-            scene.capsules.len()
+            scene.capsules.len(),
+            scene.meshes.len()
         ));
     }
     let objects = scene.cloths.len() + scene.ropes.len();
@@ -252,6 +256,36 @@ pub fn check(scene: &Scene) -> Check {
         vector(&format!("capsule[{i}].end"), c.end, MAX_COORDINATE, "m")?;
         positive(&format!("capsule[{i}].radius"), c.radius, LENGTH, "m")?;
         check_motion(&format!("capsule[{i}].motion"), &c.motion, (substep, scene.sim.frame_dt))?;
+    }
+    // A particle is found within a mesh's reach of its triangles: past every object's margin
+    // (a cloth's collision_margin, a rope's radius), or a resting one would not be.
+    let margins = scene.cloths.iter().map(|c| c.collision_margin).chain(scene.ropes.iter().map(|r| r.radius));
+    let widest = margins.fold(0.0, f64::max);
+    for (i, m) in scene.meshes.iter().enumerate() {
+        if m.file.trim().is_empty() {
+            return Err(format!("mesh[{i}].file is empty: name an .obj, .gltf or .glb file"));
+        }
+        vector(&format!("mesh[{i}].center"), m.center, MAX_COORDINATE, "m")?;
+        vector(&format!("mesh[{i}].rotation"), m.rotation, 360.0, "degrees")?;
+        positive(&format!("mesh[{i}].scale"), m.scale, (1e-6, 1e6), "")?;
+        non_negative(&format!("mesh[{i}].thickness"), m.thickness, LENGTH.1, "m")?;
+        positive(&format!("mesh[{i}].reach"), m.reach, LENGTH, "m")?;
+        if m.reach <= m.thickness + widest {
+            return Err(format!(
+                "mesh[{i}].reach = {} m: must be more than its thickness ({} m) plus the widest margin of an object ({} m)",
+                m.reach, m.thickness, widest
+            ));
+        }
+        check_motion(&format!("mesh[{i}].motion"), &m.motion, (substep, scene.sim.frame_dt))?;
+        if let Some(file) = &m.loaded {
+            let far = file.vertices.iter().fold(0.0, |a: f64, v| a.max(v.abs().max_element())) * m.scale;
+            if far > MAX_COORDINATE {
+                return Err(format!(
+                    "mesh[{i}].scale = {}: its vertices reach {far:.3e} m from its origin, past {MAX_COORDINATE} m",
+                    m.scale
+                ));
+            }
+        }
     }
 
     let mut names = std::collections::HashSet::new();

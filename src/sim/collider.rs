@@ -6,7 +6,10 @@
 //! normal velocity is removed, and Coulomb friction (`ColliderModel::respond`) bounds its
 //! tangential impulse by mu times the normal one, sticking within the cone.
 
-use super::gpu_types::{FEATURE_BOX, FEATURE_CAPSULE, FEATURE_GROUND, FEATURE_SPHERES, FEATURE_TURNING};
+use super::collider_mesh::ColliderMesh;
+use super::gpu_types::{
+    FEATURE_BOX, FEATURE_CAPSULE, FEATURE_GROUND, FEATURE_MESH, FEATURE_SPHERES, FEATURE_TURNING,
+};
 use super::model::ObjectModel;
 use super::turn::Turn;
 use glam::{DQuat, DVec3};
@@ -18,6 +21,7 @@ pub enum ColliderKind {
     Ground,
     Box,
     Capsule,
+    Mesh,
 }
 
 /// What the rest of the code looks up about a collider type.
@@ -31,11 +35,12 @@ pub struct KindRow {
     pub glsl_id: u32,
 }
 
-pub const KINDS: [KindRow; 4] = [
+pub const KINDS: [KindRow; 5] = [
     KindRow { kind: ColliderKind::Sphere, label: "sphere", feature: FEATURE_SPHERES, glsl_id: 0 },
     KindRow { kind: ColliderKind::Ground, label: "ground", feature: FEATURE_GROUND, glsl_id: 1 },
     KindRow { kind: ColliderKind::Box, label: "box", feature: FEATURE_BOX, glsl_id: 2 },
     KindRow { kind: ColliderKind::Capsule, label: "capsule", feature: FEATURE_CAPSULE, glsl_id: 3 },
+    KindRow { kind: ColliderKind::Mesh, label: "mesh", feature: FEATURE_MESH, glsl_id: 4 },
 ];
 
 impl ColliderKind {
@@ -49,7 +54,7 @@ impl ColliderKind {
 }
 
 /// A collider's shape in world space.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, PartialEq)]
 pub enum Shape {
     Sphere {
         center: DVec3,
@@ -70,6 +75,14 @@ pub enum Shape {
         a: DVec3,
         b: DVec3,
         radius: f64,
+    },
+    /// A triangle mesh (`ColliderMesh`, in its own frame) placed at `center` and turned by
+    /// `rotation`, its surface offset outwards by `thickness`.
+    Mesh {
+        center: DVec3,
+        rotation: DQuat,
+        thickness: f64,
+        mesh: std::sync::Arc<ColliderMesh>,
     },
 }
 
@@ -328,6 +341,12 @@ impl ColliderModel {
             Shape::Ground { height } => (v(DVec3::new(0.0, height, 0.0), id), [0.0; 4], DQuat::IDENTITY),
             Shape::Box { center, half_extents, rotation } => (v(center, id), v(half_extents, 0.0), rotation),
             Shape::Capsule { a, b, radius } => (v(a, id), v(b, radius as f32), DQuat::IDENTITY),
+            Shape::Mesh { center, rotation, thickness, ref mesh } => {
+                // (offsets as float values, exact below 2^24: bit patterns of small integers are
+                // denormal floats, which a device may flush to zero)
+                let [_, items, triangles] = mesh.layout();
+                (v(center, id), [0.0, items as f32, triangles as f32, thickness as f32], rotation)
+            }
         };
         let (w, s) = (velocity.as_vec3(), self.frame_spin(t0, frame_dt).as_vec3());
         [
@@ -430,6 +449,12 @@ impl ColliderModel {
                 rotation: DQuat::from_xyzw(r(rotation.x), r(rotation.y), r(rotation.z), r(rotation.w)),
             },
             Shape::Capsule { a, b, radius } => Shape::Capsule { a: rv(a), b: rv(b), radius: r(radius) },
+            Shape::Mesh { center, rotation, thickness, ref mesh } => Shape::Mesh {
+                center: rv(center),
+                rotation: DQuat::from_xyzw(r(rotation.x), r(rotation.y), r(rotation.z), r(rotation.w)),
+                thickness: r(thickness),
+                mesh: std::sync::Arc::new(mesh.rounded_to_f32()),
+            },
         };
         let motion = |m: &Motion| match m {
             Motion::Fixed => Motion::Fixed,
@@ -449,6 +474,7 @@ impl Shape {
             Shape::Ground { .. } => ColliderKind::Ground,
             Shape::Box { .. } => ColliderKind::Box,
             Shape::Capsule { .. } => ColliderKind::Capsule,
+            Shape::Mesh { .. } => ColliderKind::Mesh,
         }
     }
 
@@ -492,6 +518,10 @@ impl Shape {
                 let n = if d > 0.0 { from / d } else { ab.any_orthonormal_vector() };
                 (d - radius, n)
             }
+            Shape::Mesh { center, rotation, thickness, ref mesh } => {
+                let (d, n) = mesh.distance_placed(rotation.inverse() * (p - center), center);
+                (d - thickness, rotation * n)
+            }
         }
     }
 
@@ -499,7 +529,7 @@ impl Shape {
     /// ground's point above the origin.
     pub fn reference_point(&self) -> DVec3 {
         match *self {
-            Shape::Sphere { center, .. } | Shape::Box { center, .. } => center,
+            Shape::Sphere { center, .. } | Shape::Box { center, .. } | Shape::Mesh { center, .. } => center,
             Shape::Ground { height } => DVec3::new(0.0, height, 0.0),
             Shape::Capsule { a, b, .. } => (a + b) / 2.0,
         }
@@ -508,9 +538,12 @@ impl Shape {
     /// The shape turned by `q` about its reference point (the ground does not turn).
     pub fn turned(&self, q: DQuat) -> Shape {
         match *self {
-            Shape::Sphere { .. } | Shape::Ground { .. } => *self,
+            Shape::Sphere { .. } | Shape::Ground { .. } => self.clone(),
             Shape::Box { center, half_extents, rotation } => {
                 Shape::Box { center, half_extents, rotation: (q * rotation).normalize() }
+            }
+            Shape::Mesh { center, rotation, thickness, ref mesh } => {
+                Shape::Mesh { center, rotation: (q * rotation).normalize(), thickness, mesh: mesh.clone() }
             }
             Shape::Capsule { a, b, radius } => {
                 let mid = (a + b) / 2.0;
@@ -528,6 +561,9 @@ impl Shape {
                 Shape::Box { center: center + d, half_extents, rotation }
             }
             Shape::Capsule { a, b, radius } => Shape::Capsule { a: a + d, b: b + d, radius },
+            Shape::Mesh { center, rotation, thickness, ref mesh } => {
+                Shape::Mesh { center: center + d, rotation, thickness, mesh: mesh.clone() }
+            }
         }
     }
 
@@ -544,6 +580,22 @@ impl Shape {
                 Some((center - reach, center + reach))
             }
             Shape::Capsule { a, b, radius } => Some((a.min(b) - radius, a.max(b) + radius)),
+            Shape::Mesh { center, rotation, thickness, ref mesh } => {
+                let (lo, hi) = mesh.bounds();
+                let corners = (0..8).map(|i| {
+                    let c = DVec3::new(
+                        if i & 1 == 0 { lo.x } else { hi.x },
+                        if i & 2 == 0 { lo.y } else { hi.y },
+                        if i & 4 == 0 { lo.z } else { hi.z },
+                    );
+                    center + rotation * c
+                });
+                let (lo, hi) = corners
+                    .fold((DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY)), |(a, b), c| {
+                        (a.min(c), b.max(c))
+                    });
+                Some((lo - thickness, hi + thickness))
+            }
         }
     }
 }
@@ -591,6 +643,8 @@ pub fn contact_speed(model: &super::model::SimModel) -> Option<ContactSpeed> {
             let half = match c.shape {
                 Shape::Sphere { radius, .. } | Shape::Capsule { radius, .. } => radius,
                 Shape::Box { half_extents, .. } => half_extents.min_element(),
+                // Found down to its reach from its triangles.
+                Shape::Mesh { thickness, ref mesh, .. } => (mesh.reach - thickness).max(0.0),
                 Shape::Ground { .. } => continue,
             };
             limits.push(((half + o.margin) / dt, format!("{} {i} against {name}", c.shape.kind().label())));
@@ -620,14 +674,14 @@ pub fn features(colliders: &[ColliderModel]) -> u32 {
 
 /// Whether object `o` needs its edges tested against `colliders` as well as its particles
 /// (`collide_edges` in glsl/include/constraints_body.glsl): when a collider could pass between
-/// its particles or poke through a face: a box (its edges and corners are sharp) or a sphere
+/// its particles or poke through a face: a box or a mesh (their edges and corners are sharp) or a sphere
 /// or capsule of radius under two grid spacings. A ground never does, nor larger round shapes
 /// (a face between particles 2.5 spacings apart sags into a sphere of radius 2 spacings by an
 /// eighth of a spacing).
 pub fn edges_needed(o: &ObjectModel, colliders: &[ColliderModel]) -> bool {
     let spacing = o.spacing[0].max(o.spacing[1]);
     colliders.iter().any(|c| match c.shape {
-        Shape::Box { .. } => true,
+        Shape::Box { .. } | Shape::Mesh { .. } => true,
         Shape::Sphere { radius, .. } | Shape::Capsule { radius, .. } => radius < 2.0 * spacing,
         Shape::Ground { .. } => false,
     })

@@ -109,6 +109,7 @@ pub const FEATURE_TRIANGLES: u32 = 8192;
 pub const FEATURE_EDGE_PAIRS: u32 = 16384;
 pub const FEATURE_SEGMENT_PAIRS: u32 = 32768;
 pub const FEATURE_TURNING: u32 = 65536;
+pub const FEATURE_MESH: u32 = 131072;
 
 /// Whether an object of `FEATURES` `f` keeps a cloth's edges from its edges (edge pairs that
 /// are not a rope's segment pairs): its search loops over six ring edges a candidate and reads

@@ -2,6 +2,7 @@
 //! simulation (`gpu`) and the f64 CPU reference (`cpu`).
 
 pub mod collider;
+pub mod collider_mesh;
 pub mod cpu;
 pub mod gpu;
 pub mod gpu_types;

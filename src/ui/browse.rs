@@ -44,9 +44,10 @@ pub fn resolve_preset(typed: &str, beside: &str) -> PathBuf {
     own.into_iter().chain([shipped]).find(|p| p.is_file()).unwrap_or(path)
 }
 
-/// The entries of `dir`: the folder above, then its folders and its `.toml` files, each by
-/// name; hidden ones (a leading dot) left out. An unreadable folder lists only the way up.
-pub fn entries(dir: &Path) -> Vec<Entry> {
+/// The entries of `dir`: the folder above, then its folders and its files of extensions
+/// `exts` (compared ignoring case), each by name; hidden ones (a leading dot) left out. An
+/// unreadable folder lists only the way up.
+pub fn entries_of(dir: &Path, exts: &[&str]) -> Vec<Entry> {
     let mut folders = Vec::new();
     let mut files = Vec::new();
     for e in std::fs::read_dir(dir).into_iter().flatten().flatten() {
@@ -57,7 +58,7 @@ pub fn entries(dir: &Path) -> Vec<Entry> {
         let path = e.path();
         if path.is_dir() {
             folders.push(name);
-        } else if path.extension().is_some_and(|x| x.eq_ignore_ascii_case("toml")) {
+        } else if path.extension().is_some_and(|x| exts.iter().any(|e| x.eq_ignore_ascii_case(e))) {
             files.push(name);
         }
     }
@@ -102,6 +103,11 @@ pub fn pick(dir: &Path, entry: &Entry) -> String {
 /// so the user sees where a relative path goes) and its entries; clicking a folder opens it,
 /// a file puts its path in the field. Returns true when the field changed.
 pub fn browse_button(ui: &Ui, id: &str, path: &mut String) -> bool {
+    browse_files(ui, id, path, &["toml"])
+}
+
+/// `browse_button` listing the files of extensions `exts`.
+pub fn browse_files(ui: &Ui, id: &str, path: &mut String, exts: &[&str]) -> bool {
     let popup = format!("browse##{id}");
     if ui.button(format!("Browse##{id}")) {
         ui.open_popup(&popup);
@@ -112,7 +118,7 @@ pub fn browse_button(ui: &Ui, id: &str, path: &mut String) -> bool {
         let shown = std::fs::canonicalize(&dir).unwrap_or_else(|_| dir.clone());
         ui.text_disabled(format!("in {}", shown.display()));
         ui.separator();
-        for entry in entries(&dir) {
+        for entry in entries_of(&dir, exts) {
             let label = match &entry {
                 Entry::Up => "../".to_string(),
                 Entry::Folder(name) => format!("{name}/"),
@@ -164,11 +170,11 @@ mod tests {
         for f in ["presets/b.toml", "presets/a.TOML", "presets/notes.txt", "top.toml", ".hidden.toml"] {
             std::fs::write(root.join(f), "").unwrap();
         }
-        let top = entries(root);
+        let top = entries_of(root, &["toml"]);
         assert_eq!(top, vec![Entry::Up, Entry::Folder("presets".into()), Entry::File("top.toml".into())]);
         let presets = root.join("presets");
         assert_eq!(
-            entries(&presets),
+            entries_of(&presets, &["toml"]),
             vec![Entry::Up, Entry::File("a.TOML".into()), Entry::File("b.toml".into())]
         );
         let root_text = root.display().to_string();
@@ -187,6 +193,9 @@ mod tests {
         assert_eq!(pick(Path::new("presets"), &Entry::Up), "./");
         assert_eq!(pick(Path::new("."), &Entry::Up), "../");
         assert_eq!(pick(Path::new(".."), &Entry::Up), "../../");
-        assert!(entries(&root.join("missing")) == vec![Entry::Up], "an unreadable folder lists the way up");
+        assert!(
+            entries_of(&root.join("missing"), &["toml"]) == vec![Entry::Up],
+            "an unreadable folder lists the way up"
+        );
     }
 }

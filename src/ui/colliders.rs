@@ -4,7 +4,7 @@
 
 use super::editor::Selection;
 use super::widgets::{check, drag, drag3, optional};
-use crate::scene::{BoxCollider, Capsule, Ground, Motion, Scene, Sphere, MAX_FRICTION};
+use crate::scene::{BoxCollider, Capsule, Ground, MeshCollider, Motion, Scene, Sphere, MAX_FRICTION};
 use imgui::Ui;
 
 /// The list entries of the scene's colliders, with what selecting each selects.
@@ -23,7 +23,60 @@ pub fn entries(scene: &Scene) -> Vec<(String, Selection)> {
     for (i, c) in scene.capsules.iter().enumerate() {
         out.push((format!("capsule {i} (r {:.2} m)##k{i}", c.radius), Selection::Capsule(i)));
     }
+    for (i, m) in scene.meshes.iter().enumerate() {
+        let name = std::path::Path::new(&m.file).file_name().map(|n| n.to_string_lossy().into_owned());
+        let triangles = m.loaded.as_ref().map_or(0, |f| f.triangles.len());
+        let name = name.unwrap_or_default();
+        out.push((format!("mesh {i} ({name}, {triangles} triangles)##m{i}"), Selection::Mesh(i)));
+    }
     out
+}
+
+/// The mesh file field, its Browse button and "+ mesh", which reads the file and adds it as a
+/// collider where the camera looks (`look_at`), its lowest point on the ground or at the
+/// point; an unreadable or bad mesh is the error's one line.
+pub fn add_mesh(
+    ui: &Ui,
+    scene: &mut Scene,
+    path: &mut String,
+    look_at: [f64; 3],
+) -> Result<Option<Selection>, String> {
+    ui.set_next_item_width(ui.content_region_avail()[0] * 0.5);
+    ui.input_text("##mesh file", path).hint("mesh file (.obj, .gltf, .glb)").build();
+    ui.same_line();
+    super::browse::browse_files(ui, "mesh", path, &["obj", "gltf", "glb"]);
+    ui.same_line();
+    if !ui.button("+ mesh") {
+        return Ok(None);
+    }
+    let file = std::path::absolute(path.trim()).map_err(|e| format!("{}: {e}", path.trim()))?;
+    let read = crate::scene::mesh_file::read(&file).map_err(|e| format!("{}: {e}", file.display()))?;
+    // Scaled to fit a metre if it is far larger (a file in millimetres or centimetres).
+    let (lo, hi) =
+        read.vertices.iter().fold(
+            (glam::DVec3::splat(f64::INFINITY), glam::DVec3::splat(f64::NEG_INFINITY)),
+            |(a, b), &v| (a.min(v), b.max(v)),
+        );
+    let size = (hi - lo).max_element();
+    let scale = if size > 10.0 { 10f64.powf(-(size / 2.0).log10().ceil()) } else { 1.0 };
+    let at = glam::DVec3::from_array(look_at);
+    let floor = scene.ground.as_ref().map_or(at.y, |g| g.height.max(at.y - 1.0));
+    let center = glam::DVec3::new(
+        at.x - 0.5 * (lo.x + hi.x) * scale,
+        floor - lo.y * scale,
+        at.z - 0.5 * (lo.z + hi.z) * scale,
+    );
+    scene.meshes.push(MeshCollider {
+        file: file.display().to_string(),
+        center: center.to_array(),
+        rotation: [0.0; 3],
+        scale,
+        thickness: 0.0,
+        reach: 0.03,
+        motion: None,
+        loaded: Some(std::sync::Arc::new(read)),
+    });
+    Ok(Some(Selection::Mesh(scene.meshes.len() - 1)))
 }
 
 /// The add buttons (on the current line); returns what was added. A new collider is placed
@@ -62,10 +115,12 @@ pub fn add_buttons(ui: &Ui, scene: &mut Scene, look_at: [f64; 3]) -> Option<Sele
         });
         added = Some(Selection::Capsule(scene.capsules.len() - 1));
     }
-    ui.same_line();
-    if scene.ground.is_none() && ui.button("+ ground") {
-        scene.ground = Some(Ground::default());
-        added = Some(Selection::Ground);
+    if scene.ground.is_none() {
+        ui.same_line();
+        if ui.button("+ ground") {
+            scene.ground = Some(Ground::default());
+            added = Some(Selection::Ground);
+        }
     }
     added
 }
@@ -77,6 +132,7 @@ pub fn remove(scene: &mut Scene, selected: Selection) -> bool {
         Selection::Sphere(i) if i < scene.spheres.len() => drop(scene.spheres.remove(i)),
         Selection::Box(i) if i < scene.boxes.len() => drop(scene.boxes.remove(i)),
         Selection::Capsule(i) if i < scene.capsules.len() => drop(scene.capsules.remove(i)),
+        Selection::Mesh(i) if i < scene.meshes.len() => drop(scene.meshes.remove(i)),
         _ => return false,
     }
     true
@@ -114,6 +170,17 @@ pub fn panel(ui: &Ui, scene: &mut Scene, selected: Selection) -> bool {
             drag3(ui, "end [m]##capsule", &mut c.end, 0.01);
             drag(ui, "radius [m]##collider", &mut c.radius, 0.005, 0.001, 100.0);
             motion(ui, &mut c.motion);
+        }
+        Selection::Mesh(i) if i < scene.meshes.len() => {
+            let m = &mut scene.meshes[i];
+            ui.text_disabled(&m.file);
+            drag3(ui, "centre [m]", &mut m.center, 0.01);
+            drag3(ui, "rotation x, y, z [deg]", &mut m.rotation, 0.5);
+            m.rotation = m.rotation.map(|a| a.clamp(-360.0, 360.0));
+            drag(ui, "scale##mesh", &mut m.scale, 0.001, 1e-6, 1e6);
+            drag(ui, "thickness [m]##mesh", &mut m.thickness, 0.001, 0.0, 1.0);
+            drag(ui, "reach [m]##mesh", &mut m.reach, 0.001, 0.001, 1.0);
+            motion(ui, &mut m.motion);
         }
         _ => return false,
     }

@@ -37,6 +37,7 @@ pub enum Selection {
     Sphere(usize),
     Box(usize),
     Capsule(usize),
+    Mesh(usize),
     /// The wind cone and the light: selected for their translate handles in the view.
     Wind,
     Light,
@@ -108,6 +109,8 @@ pub struct EditorState {
     pub unsaved: bool,
     /// A field or other widget is being edited (a drag in progress): its edits are one step.
     pub ui_active: bool,
+    /// The mesh file the "+ mesh" button adds as a collider.
+    pub mesh_path: String,
 }
 
 /// What pressing Save on the file field's `path` does: a file that does not exist yet is
@@ -485,6 +488,11 @@ fn object_list(ui: &Ui, state: &mut EditorState, scene: &mut Scene) {
     }
     if let Some(added) = colliders::add_buttons(ui, scene, state.look_at) {
         state.selected = added;
+    }
+    match colliders::add_mesh(ui, scene, &mut state.mesh_path, state.look_at) {
+        Ok(Some(added)) => state.selected = added,
+        Ok(None) => {}
+        Err(e) => state.notices.push(&e, true),
     }
 }
 

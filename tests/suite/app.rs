@@ -195,7 +195,9 @@ fn first_frame(path: &Path, shot: &Path) -> (u32, u32, Vec<(f32, f32, f32)>) {
 #[test]
 fn every_shipped_preset_draws_its_objects() {
     let presets = Path::new(env!("CARGO_MANIFEST_DIR")).join("presets");
-    let mut paths: Vec<_> = std::fs::read_dir(&presets).unwrap().map(|e| e.unwrap().path()).collect();
+    let mut paths: Vec<_> = (std::fs::read_dir(&presets).unwrap().map(|e| e.unwrap().path()))
+        .filter(|p| p.extension().is_some_and(|x| x == "toml"))
+        .collect();
     paths.sort();
     for path in paths {
         let name = path.file_stem().unwrap().to_string_lossy().to_string();

@@ -622,6 +622,8 @@ auto_preset_tests!(
     auto_preset_7_twist: "twist",
     #[ignore = "exhaustive tier: the calibration again on another preset"]
     auto_preset_9_turntable: "turntable",
+    #[ignore = "exhaustive tier: the calibration again on another preset"]
+    auto_preset_10_drape: "drape",
     auto_preset_8_curtain: "curtain"
 );
 
@@ -964,4 +966,38 @@ fn contact_reach_of_many_spacings_is_refused() {
         &["simulate", "--preset", &curtain, "--set", "cloth.0.self_collision_distance=1"],
         &["self_collision_distance = 1 m", "at most 16 spacings"],
     );
+}
+
+/// A mesh collider's file that is missing, of an unknown format, not a mesh or a bad one (a
+/// triangle of no area, a vertex that is not a number, an index past the vertices) stops a
+/// run with exit code 2 and one line naming the file and what is wrong; a good one runs, read
+/// from beside the preset.
+#[test]
+fn bad_mesh_files_are_refused_in_one_line() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let preset = |file: &str| {
+        let text = format!(
+            "[[mesh]]\nfile = \"{file}\"\n[[rope]]\nname = \"r\"\nnodes = 4\nstart = [0.0, 2.0, 0.0]\nend = [0.3, 2.0, 0.0]\nmass = 0.01\nstiffness = 100.0\nradius = 0.01\n"
+        );
+        write(d, "scene.toml", &text)
+    };
+    let run = |file: &str, needles: &[&str]| {
+        let p = preset(file);
+        rejects(&["simulate", "--preset", &p, "--frames", "1"], needles);
+    };
+    run("missing.obj", &["mesh[0].file", "missing.obj", "cannot read"]);
+    write(d, "shape.stl", "solid x\n");
+    run("shape.stl", &["shape.stl", ".obj, .gltf or .glb"]);
+    write(d, "flat.obj", "v 0 0 0\nv 1 0 0\nv 2 0 0\nf 1 2 3\n");
+    run("flat.obj", &["flat.obj", "triangle 0", "no area"]);
+    write(d, "nan.obj", "v 0 0 nan\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+    run("nan.obj", &["nan.obj", "vertex 0"]);
+    write(d, "past.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 7\n");
+    run("past.obj", &["past.obj"]);
+    write(d, "broken.gltf", "{ not json");
+    run("broken.gltf", &["broken.gltf", "glTF"]);
+    write(d, "good.obj", "v -1 0 -1\nv 1 0 -1\nv 1 0 1\nv -1 0 1\nf 1 4 3 2\n");
+    let good = msdsim(&["simulate", "--preset", &preset("good.obj"), "--frames", "2", "--quiet"]);
+    assert!(good.status.success(), "{}", String::from_utf8_lossy(&good.stderr));
 }

@@ -136,6 +136,7 @@ fn header_constants_match_the_host() {
         ("F_CAPSULE", t::FEATURE_CAPSULE),
         ("F_SEGMENT_PAIRS", t::FEATURE_SEGMENT_PAIRS),
         ("F_TURNING", t::FEATURE_TURNING),
+        ("F_MESH", t::FEATURE_MESH),
     ]
     .into_iter()
     .chain(msdsim::sim::model::Integrator::ALL.map(|m| (method_define(m), m as u32)))

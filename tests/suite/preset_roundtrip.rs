@@ -22,6 +22,9 @@ fn every_preset_survives_save_and_load() {
     let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("presets");
     for entry in std::fs::read_dir(dir).unwrap() {
         let path = entry.unwrap().path();
+        if path.extension().is_none_or(|x| x != "toml") {
+            continue; // (the meshes some presets read)
+        }
         let scene = scene::load(&path, &[]).unwrap();
         round_trip(&scene, path.file_name().unwrap().to_str().unwrap());
     }

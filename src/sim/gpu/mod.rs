@@ -192,7 +192,9 @@ impl Parts {
         // (each frame writes the turbulence's phases in its commands: `record_wind_phases`)
         let globals_usage = BufferUsage::UNIFORM | BufferUsage::TRANSFER_DST;
         self.globals = Some(Buffer::new(ctx, "globals", globals_size, globals_usage, MemoryKind::Upload)?);
-        let colliders_size = COLLIDER_BYTES * model.colliders.len().max(1) as u64;
+        // The records, then the mesh colliders' triangles (`object::mesh_words`).
+        let mesh_bytes = 16 * object::mesh_words(model).len() as u64;
+        let colliders_size = COLLIDER_BYTES * model.colliders.len().max(1) as u64 + mesh_bytes;
         self.colliders = Some(Buffer::new(
             ctx,
             "colliders",
@@ -338,6 +340,10 @@ impl GpuSim {
     fn populate(&mut self, ctx: &GpuContext, model: &SimModel, plans: &[ObjectPlan]) -> Result<()> {
         self.globals.write(0, &[globals(model, 0.0)])?;
         self.colliders.write(0, &collider_data(model, 0.0))?;
+        let meshes = object::mesh_words(model);
+        if !meshes.is_empty() {
+            self.colliders.write(COLLIDER_BYTES * model.colliders.len().max(1) as u64, &meshes)?;
+        }
         for (o, &plan) in model.objects.iter().zip(plans) {
             let shared = [&self.globals, &self.colliders];
             let obj = GpuObject::new(ctx, &self.layout, &mut self.arena, shared, o, model, plan)
@@ -682,9 +688,10 @@ impl GpuSim {
             return;
         }
         let t0 = self.time();
-        let data: Vec<_> = (self.model.colliders.iter().enumerate())
+        let mut data: Vec<_> = (self.model.colliders.iter().enumerate())
             .map(|(i, c)| c.gpu_dragged(t0, self.model.frame_dt, dragged.get(i).copied().unwrap_or_default()))
             .collect();
+        object::place_meshes(&self.model, &mut data);
         rec.barrier(&[BufferBarrier::new(&self.colliders, Access::ComputeRead, Access::TransferWrite)]);
         for (i, chunk) in data.chunks(UPDATE_RECORDS).enumerate() {
             let offset = (i * UPDATE_RECORDS) as u64 * COLLIDER_BYTES;
@@ -776,6 +783,7 @@ impl GpuSim {
             && edges(model) == edges(&self.model)
             && (model.contact_iterations > 1) == (self.model.contact_iterations > 1)
             && model.colliders.len() <= self.collider_capacity()
+            && same_meshes(model, &self.model)
             && model.substeps == self.model.substeps
             && model.integrator == self.model.integrator
             && model.self_collision == self.model.self_collision
@@ -832,6 +840,10 @@ impl GpuSim {
     }
 
     fn collider_capacity(&self) -> usize {
+        if has_meshes(&self.model) {
+            // (the meshes follow the records: the records' count is the model's)
+            return self.model.colliders.len();
+        }
         (self.colliders.size() / COLLIDER_BYTES) as usize
     }
 
@@ -897,4 +909,24 @@ impl GpuSim {
         }
         .destroy(ctx);
     }
+}
+
+fn has_meshes(model: &SimModel) -> bool {
+    model.colliders.iter().any(|c| matches!(c.shape, crate::sim::collider::Shape::Mesh { .. }))
+}
+
+/// Whether two models have the same mesh colliders (the same shared meshes at the same
+/// places among their colliders, so that the collider buffer's triangles serve both).
+fn same_meshes(a: &SimModel, b: &SimModel) -> bool {
+    use crate::sim::collider::Shape;
+    let meshes = |m: &SimModel| -> Vec<(usize, usize)> {
+        (m.colliders.iter().enumerate())
+            .filter_map(|(i, c)| match c.shape {
+                Shape::Mesh { ref mesh, .. } => Some((i, std::sync::Arc::as_ptr(mesh) as usize)),
+                _ => None,
+            })
+            .collect()
+    };
+    let (ma, mb) = (meshes(a), meshes(b));
+    ma == mb && (ma.is_empty() || a.colliders.len() == b.colliders.len())
 }

@@ -4,6 +4,8 @@
 use super::fused::ObjectPlan;
 use super::{BINDINGS, CLOTH_GROUP, ROPE_GROUP};
 use crate::error::UserError;
+use crate::sim::collider::Shape;
+use crate::sim::collider_mesh::ColliderMesh;
 use crate::sim::gpu_types::{
     Globals, ObjectParams, Particle, SurfaceVertex, OBJ_ANCHORED, OBJ_LINE_SEARCH, OBJ_RIGID_START,
     OBJ_SELF_COLLISION, OBJ_SELF_HASH, OBJ_SELF_TRIANGLES, OBJ_STRETCH_LIMIT,
@@ -718,7 +720,36 @@ pub(super) fn collider_data(model: &SimModel, t0: f64) -> Vec<crate::sim::collid
     if data.is_empty() {
         data.push([[0.0; 4]; 5]);
     }
+    place_meshes(model, &mut data);
     data
+}
+
+/// The mesh colliders' triangles in the collider buffer after the records: each mesh's first
+/// vec4 (`mesh_distance` in colliders.glsl reads it from its record's b.x).
+fn mesh_firsts(model: &SimModel) -> impl Iterator<Item = (usize, &ColliderMesh, u32)> + '_ {
+    let records = model.colliders.len().max(1) as u32;
+    let meshes = model.colliders.iter().enumerate().filter_map(|(i, c)| match c.shape {
+        Shape::Mesh { ref mesh, .. } => Some((i, &**mesh)),
+        _ => None,
+    });
+    meshes.scan(5 * records, |next, (i, mesh)| {
+        let first = *next;
+        *next += mesh.words();
+        Some((i, mesh, first))
+    })
+}
+
+/// Writes each mesh collider's first vec4 into its record (`collider_data`, and the records
+/// of a frame whose colliders move).
+pub(super) fn place_meshes(model: &SimModel, records: &mut [crate::sim::collider::ColliderRecord]) {
+    for (i, _, first) in mesh_firsts(model) {
+        records[i][1][0] = first as f32;
+    }
+}
+
+/// The mesh colliders' vec4s, as they follow the records in the collider buffer.
+pub(super) fn mesh_words(model: &SimModel) -> Vec<[f32; 4]> {
+    mesh_firsts(model).flat_map(|(_, mesh, _)| mesh.pack()).collect()
 }
 
 /// The initial particles of an object (positions, velocities, pinned flags: pos.w is 1 + the
