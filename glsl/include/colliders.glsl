@@ -42,7 +42,8 @@ float mesh_distance(Collider c, vec3 x, out vec3 n) {
     float reach = h1.w;
     vec3 q = (p - h0.xyz) / h0.w;
     n = rotate(c.rotation, vec3(0.0, 1.0, 0.0));
-    if (any(lessThan(q, vec3(0.0))) || any(greaterThanEqual(q, vec3(dims)))) {
+    // (written so that a NaN position is outside: its cell would be any)
+    if (!(all(greaterThanEqual(q, vec3(0.0))) && all(lessThan(q, vec3(dims))))) {
         vec3 out_of = max(max(h0.xyz - p, p - (h0.xyz + vec3(dims) * h0.w)), vec3(0.0));
         return max(length(out_of), reach) - c.b.w;
     }

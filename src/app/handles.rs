@@ -61,9 +61,10 @@ pub fn collider_index(scene: &Scene, target: Selection) -> Option<usize> {
     collider_selections(scene).position(|s| s == target)
 }
 
-/// The sphere, box or capsule that the ray from `origin` along the unit vector `dir` meets
-/// first, where they are at `time`, and how far along the ray [m]; found by sphere tracing
-/// their signed distances (each is convex, so the march only approaches it). Not the ground,
+/// The sphere, box, capsule or mesh that the ray from `origin` along the unit vector `dir`
+/// meets first, where they are at `time`, and how far along the ray [m]; found by sphere
+/// tracing their signed distances (each a lower bound of the distance to the surface, a
+/// mesh's far from its triangles too, so the march never passes it). Not the ground,
 /// on which a click orbits the camera, nor one the eye is inside.
 pub fn pick_collider(scene: &Scene, time: f64, origin: Vec3, dir: Vec3) -> Option<(Selection, f32)> {
     const STEPS: usize = 256;

@@ -131,8 +131,9 @@ pub struct SceneRenderer {
     grid: GpuMesh,
     /// Index buffers of the simulation objects' surfaces, with their index counts.
     surfaces: Vec<(Buffer, u32)>,
-    /// Mesh colliders' triangles, by `collider_mesh_key`.
-    meshes: Vec<(usize, GpuMesh)>,
+    /// Mesh colliders' triangles, by `collider_mesh_key` (each mesh held, so that its address
+    /// is not another's while it is drawn).
+    meshes: Vec<(std::sync::Arc<crate::sim::collider_mesh::ColliderMesh>, GpuMesh)>,
 }
 
 impl SceneRenderer {
@@ -263,9 +264,8 @@ impl SceneRenderer {
         }
         for c in colliders {
             if let crate::sim::collider::Shape::Mesh { mesh: ref m, .. } = c.shape {
-                let key = collider_mesh_key(m);
-                if !self.meshes.iter().any(|(k, _)| *k == key) {
-                    self.meshes.push((key, GpuMesh::new(ctx, "mesh collider", &mesh::flat(m))?));
+                if !self.meshes.iter().any(|(k, _)| std::sync::Arc::ptr_eq(k, m)) {
+                    self.meshes.push((m.clone(), GpuMesh::new(ctx, "mesh collider", &mesh::flat(m))?));
                 }
             }
         }
@@ -320,7 +320,7 @@ impl SceneRenderer {
             Shape::Cube => rec.draw_indexed(&self.cube.vertices, &self.cube.indices, self.cube.count, 1),
             Shape::Tube => rec.draw_indexed(&self.tube.vertices, &self.tube.indices, self.tube.count, 1),
             Shape::Mesh(key) => {
-                if let Some((_, m)) = self.meshes.iter().find(|(k, _)| *k == key) {
+                if let Some((_, m)) = self.meshes.iter().find(|(k, _)| collider_mesh_key(k) == key) {
                     rec.draw_indexed(&m.vertices, &m.indices, m.count, 1);
                 }
             }

@@ -198,6 +198,8 @@ fn parse_in(text: &str, origin: &str, overrides: &[String], folder: &Path) -> Re
     validate::check(&scene).map_err(|e| UserError(format!("{origin}: {e}")))?;
     let mut scene = scene;
     load_meshes(&mut scene, &origin, folder)?;
+    // (again, with the meshes read: how far their vertices reach once scaled)
+    validate::check(&scene).map_err(|e| UserError(format!("{origin}: {e}")))?;
     Ok(scene)
 }
 

@@ -3,7 +3,7 @@
 //! Polygons are split into fans; a glTF scene's nodes place their meshes. The result is
 //! checked (`ColliderMesh::check`), and every error is one line naming the file.
 
-use crate::sim::collider_mesh::ColliderMesh;
+use crate::sim::collider_mesh::{ColliderMesh, MAX_TRIANGLES};
 use glam::{DMat4, DVec3, Mat4};
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
@@ -19,7 +19,7 @@ pub struct MeshFile {
     pub path: PathBuf,
     pub vertices: Vec<DVec3>,
     pub triangles: Vec<[u32; 3]>,
-    built: std::sync::Mutex<Option<(f64, f64, Arc<ColliderMesh>)>>,
+    built: std::sync::Mutex<Vec<(f64, f64, Arc<ColliderMesh>)>>,
 }
 
 impl PartialEq for MeshFile {
@@ -32,17 +32,21 @@ impl PartialEq for MeshFile {
 }
 
 impl MeshFile {
-    /// The collider of its triangles scaled by `scale`, found within `reach` of them.
+    /// The collider of its triangles scaled by `scale`, found within `reach` of them: the same
+    /// one while those stay (the last few kept: an edit and its undo, the scene before and
+    /// after an edit that is refused).
     pub fn built(&self, scale: f64, reach: f64) -> Arc<ColliderMesh> {
+        const KEPT: usize = 4;
         let mut built = self.built.lock().unwrap_or_else(|e| e.into_inner());
-        if let Some((s, r, mesh)) = built.as_ref() {
-            if (*s, *r) == (scale, reach) {
-                return mesh.clone();
-            }
+        if let Some((_, _, mesh)) = built.iter().find(|(s, r, _)| (*s, *r) == (scale, reach)) {
+            return mesh.clone();
         }
         let vertices = self.vertices.iter().map(|&p| p * scale).collect();
         let mesh = Arc::new(ColliderMesh::new(vertices, self.triangles.clone(), reach));
-        *built = Some((scale, reach, mesh.clone()));
+        if built.len() == KEPT {
+            built.remove(0);
+        }
+        built.push((scale, reach, mesh.clone()));
         mesh
     }
 }
@@ -109,18 +113,27 @@ fn read_gltf(path: &Path) -> Result<(Vec<DVec3>, Vec<[u32; 3]>), String> {
     }
     let mut vertices = Vec::new();
     let mut triangles = Vec::new();
-    let scene = gltf.document.default_scene().or_else(|| gltf.document.scenes().next());
-    let roots: Vec<gltf::Node> = match scene {
+    // The scene's nodes, or without one every node that is no node's child.
+    let roots: Vec<gltf::Node> = match gltf.document.default_scene().or_else(|| gltf.document.scenes().next())
+    {
         Some(s) => s.nodes().collect(),
-        None => gltf.document.nodes().collect(),
-    };
-    let mut stack: Vec<(gltf::Node, DMat4)> = roots.into_iter().map(|n| (n, DMat4::IDENTITY)).collect();
-    let mut visited = 0usize;
-    while let Some((node, parent)) = stack.pop() {
-        visited += 1;
-        if visited > 1 << 20 {
-            return Err("its nodes form a cycle".into());
+        None => {
+            let children: std::collections::HashSet<usize> = gltf
+                .document
+                .nodes()
+                .flat_map(|n| n.children().map(|c| c.index()).collect::<Vec<_>>())
+                .collect();
+            gltf.document.nodes().filter(|n| !children.contains(&n.index())).collect()
         }
+    };
+    // Depth first, the path from the root kept: a node that is its own ancestor is a cycle.
+    let mut stack: Vec<(gltf::Node, DMat4, Vec<usize>)> =
+        roots.into_iter().map(|n| (n, DMat4::IDENTITY, Vec::new())).collect();
+    while let Some((node, parent, mut path)) = stack.pop() {
+        if path.contains(&node.index()) {
+            return Err(format!("node {} is its own ancestor (a cycle)", node.index()));
+        }
+        path.push(node.index());
         let world = parent * Mat4::from_cols_array_2d(&node.transform().matrix()).as_dmat4();
         if let Some(mesh) = node.mesh() {
             for p in mesh.primitives() {
@@ -130,6 +143,12 @@ fn read_gltf(path: &Path) -> Result<(Vec<DVec3>, Vec<[u32; 3]>), String> {
                         mesh.index(),
                         p.mode()
                     ));
+                }
+                let positions = p
+                    .get(&gltf::Semantic::Positions)
+                    .ok_or(format!("mesh {} has no positions", mesh.index()))?;
+                for a in std::iter::once(&positions).chain(p.indices().as_ref()) {
+                    accessor_fits(a, &buffers)?;
                 }
                 let reader = p.reader(|b| buffers.get(b.index()).map(Vec::as_slice));
                 let positions =
@@ -154,11 +173,35 @@ fn read_gltf(path: &Path) -> Result<(Vec<DVec3>, Vec<[u32; 3]>), String> {
                         [a, b, c]
                     }
                 }));
+                if triangles.len() > MAX_TRIANGLES || vertices.len() > 3 * MAX_TRIANGLES {
+                    return Err(format!("more than {MAX_TRIANGLES} triangles"));
+                }
             }
         }
-        stack.extend(node.children().map(|c| (c, world)));
+        stack.extend(node.children().map(|c| (c, world, path.clone())));
     }
     Ok((vertices, triangles))
+}
+
+/// Whether accessor `a` (positions as three f32s, or indices) lies within its buffer view and
+/// that within its buffer, and holds something: the reader assumes so.
+fn accessor_fits(a: &gltf::Accessor, buffers: &[Vec<u8>]) -> Result<(), String> {
+    let bad = |why: &str| Err(format!("accessor {} {why}", a.index()));
+    if a.count() == 0 {
+        return bad("is empty");
+    }
+    let Some(view) = a.view() else { return bad("has no buffer view (sparse accessors are not read)") };
+    let size = a.size();
+    let stride = view.stride().unwrap_or(size);
+    let need = a.offset() + stride * (a.count() - 1) + size;
+    if need > view.length() {
+        return bad("reaches past its buffer view");
+    }
+    let have = buffers.get(view.buffer().index()).map_or(0, Vec::len);
+    if view.offset() + view.length() > have {
+        return bad("'s buffer view reaches past its buffer");
+    }
+    Ok(())
 }
 
 /// A glTF buffer's bytes from its URI: embedded base64 data, or a file beside the glTF.
@@ -209,5 +252,39 @@ mod tests {
         std::fs::write(&stl, "solid").unwrap();
         assert!(read(&stl).unwrap_err().contains(".obj, .gltf or .glb"));
         assert!(read(dir.path()).unwrap_err().contains("folder"));
+    }
+    /// A glTF with an embedded buffer reads as its triangle, moved by its node's translation
+    /// (a child under it, mirrored, wound back); a node cycle, an empty accessor and one
+    /// reaching past its buffer are named, not followed or read.
+    #[test]
+    fn gltf_nodes_place_their_meshes_and_bad_files_are_named() {
+        use base64::Engine as _;
+        let floats: Vec<u8> =
+            [0.0f32, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0, 0.0].iter().flat_map(|f| f.to_le_bytes()).collect();
+        let data = base64::engine::general_purpose::STANDARD.encode(&floats);
+        let gltf = |nodes: &str, count: usize, length: usize| {
+            format!(
+                r#"{{"asset":{{"version":"2.0"}},"scenes":[{{"nodes":[0]}}],"scene":0,"nodes":{nodes},
+                "meshes":[{{"primitives":[{{"attributes":{{"POSITION":0}}}}]}}],
+                "accessors":[{{"bufferView":0,"componentType":5126,"count":{count},"type":"VEC3","min":[0,0,0],"max":[1,1,0]}}],
+                "bufferViews":[{{"buffer":0,"byteLength":{length}}}],
+                "buffers":[{{"byteLength":36,"uri":"data:application/octet-stream;base64,{data}"}}]}}"#
+            )
+        };
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("t.gltf");
+        let nodes = r#"[{"mesh":0,"translation":[0,2,0],"children":[1]},{"mesh":0,"scale":[-1,1,1]}]"#;
+        std::fs::write(&path, gltf(nodes, 3, 36)).unwrap();
+        let m = read(&path).unwrap();
+        assert_eq!(m.triangles, vec![[3, 5, 4], [0, 1, 2]].into_iter().rev().collect::<Vec<_>>());
+        assert_eq!(m.vertices[1], DVec3::new(1.0, 2.0, 0.0));
+        assert_eq!(m.vertices[4], DVec3::new(-1.0, 2.0, 0.0));
+        let cycle = r#"[{"mesh":0,"children":[1]},{"children":[0]}]"#;
+        std::fs::write(&path, gltf(cycle, 3, 36)).unwrap();
+        assert!(read(&path).unwrap_err().contains("ancestor"), "{:?}", read(&path));
+        std::fs::write(&path, gltf(r#"[{"mesh":0}]"#, 0, 36)).unwrap();
+        assert!(read(&path).is_err());
+        std::fs::write(&path, gltf(r#"[{"mesh":0}]"#, 3, 24)).unwrap();
+        assert!(read(&path).is_err());
     }
 }

@@ -342,8 +342,8 @@ impl ColliderModel {
             Shape::Box { center, half_extents, rotation } => (v(center, id), v(half_extents, 0.0), rotation),
             Shape::Capsule { a, b, radius } => (v(a, id), v(b, radius as f32), DQuat::IDENTITY),
             Shape::Mesh { center, rotation, thickness, ref mesh } => {
-                // (offsets as float values, exact below 2^24: bit patterns of small integers are
-                // denormal floats, which a device may flush to zero)
+                // (offsets as float values, exact below 2^24 vec4s: `collider_mesh::MAX_WORDS`,
+                // which the GPU's check_meshes holds a scene to)
                 let [_, items, triangles] = mesh.layout();
                 (v(center, id), [0.0, items as f32, triangles as f32, thickness as f32], rotation)
             }

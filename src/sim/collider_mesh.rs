@@ -1,5 +1,5 @@
-//! A triangle mesh collider's geometry: its triangles in the collider's own frame (about its
-//! centre) and a uniform grid over them, built once on the host, which both the CPU twin and
+//! A triangle mesh collider's geometry: its triangles in the collider's own frame (the file's
+//! origin, scaled) and a uniform grid over them, built once on the host, which both the CPU twin and
 //! the GPU (`mesh_distance` in glsl/include/colliders.glsl, from the words `pack` writes) walk.
 //! Each cell lists every triangle within `reach` of some point of the cell, so a query visits
 //! one cell and finds every triangle within `reach` of the point. The signed distance is to the
@@ -11,8 +11,11 @@
 
 use glam::DVec3;
 
-/// Cells along the grid's longest side at most (the grid's words stay within a few MiB).
+/// Cells along the grid's longest side at most (its starts stay within about a MiB).
 const MAX_CELLS_ALONG: f64 = 64.0;
+/// The vec4s a mesh collider may take on the GPU: the record's offsets are float values,
+/// exact below 2^24.
+pub const MAX_WORDS: u64 = 1 << 24;
 /// Triangles a mesh collider may have (a query walks one cell's list; the whole mesh goes
 /// into the GPU's collider buffer).
 pub const MAX_TRIANGLES: usize = 1 << 20;
@@ -41,9 +44,9 @@ struct Grid {
 }
 
 impl ColliderMesh {
-    /// Checks a mesh read from a file before it is built: triangles to take, vertices finite
-    /// and within 10 km, every triangle naming vertices it has and with an area. The error
-    /// names the first bad triangle or vertex.
+    /// Checks a mesh read from a file before it is built: triangles to take, vertices finite,
+    /// every triangle naming vertices it has and with an area (the scene checks how far its
+    /// vertices reach once scaled). The error names the first bad triangle or vertex.
     pub fn check(vertices: &[DVec3], triangles: &[[u32; 3]]) -> Result<(), String> {
         if triangles.is_empty() {
             return Err("it has no triangles".into());
@@ -54,8 +57,8 @@ impl ColliderMesh {
                 triangles.len()
             ));
         }
-        if let Some(i) = vertices.iter().position(|v| !v.is_finite() || v.abs().max_element() > 1e4) {
-            return Err(format!("vertex {i} is at {:?}: not a finite coordinate within 10 km", vertices[i]));
+        if let Some(i) = vertices.iter().position(|v| !v.is_finite()) {
+            return Err(format!("vertex {i} is at {:?}: not a finite coordinate", vertices[i]));
         }
         for (i, t) in triangles.iter().enumerate() {
             if let Some(&k) = t.iter().find(|&&k| k as usize >= vertices.len()) {
@@ -89,7 +92,9 @@ impl ColliderMesh {
         let reach = reach.max(1e-6);
         let (lo, hi) = (lo - DVec3::splat(reach), hi + DVec3::splat(reach));
         let extent = (hi - lo).max_element();
-        let cell = (2.0 * edge_sum / triangles.len() as f64).max(extent / MAX_CELLS_ALONG);
+        // At least the reach, so that a triangle is listed in a few cells around it (its box
+        // grown by the reach), whatever the reach asked.
+        let cell = (2.0 * edge_sum / triangles.len() as f64).max(extent / MAX_CELLS_ALONG).max(reach);
         let dims = ((hi - lo) / cell).ceil().max(DVec3::ONE).as_uvec3().to_array();
         let mut lists = vec![Vec::new(); (dims[0] * dims[1] * dims[2]) as usize];
         for (i, t) in triangles.iter().enumerate() {
@@ -128,6 +133,7 @@ impl ColliderMesh {
         }
         m.grid.origin = m.grid.origin.as_vec3().as_dvec3();
         m.grid.cell = m.grid.cell as f32 as f64;
+        m.reach = m.reach as f32 as f64;
         m
     }
 
@@ -159,7 +165,9 @@ impl ColliderMesh {
         let g = &self.grid;
         let q = (p - g.origin) / g.cell;
         let hi = DVec3::new(g.dims[0] as f64, g.dims[1] as f64, g.dims[2] as f64);
-        if q.min_element() < 0.0 || q.x >= hi.x || q.y >= hi.y || q.z >= hi.z {
+        // (written so that a NaN is outside, as on the GPU)
+        let within = (0..3).all(|k| q[k] >= 0.0 && q[k] < hi[k]);
+        if !within {
             let out = (g.origin - p).max(p - (g.origin + hi * g.cell)).max(DVec3::ZERO);
             return (out.length().max(self.reach), DVec3::Y);
         }

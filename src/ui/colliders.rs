@@ -72,7 +72,14 @@ pub fn add_mesh(
         rotation: [0.0; 3],
         scale,
         thickness: 0.0,
-        reach: 0.03,
+        // (more than every object's margin, as validation asks)
+        reach: scene
+            .cloths
+            .iter()
+            .map(|c| c.collision_margin)
+            .chain(scene.ropes.iter().map(|r| r.radius))
+            .fold(0.015, f64::max)
+            * 2.0,
         motion: None,
         loaded: Some(std::sync::Arc::new(read)),
     });

@@ -84,7 +84,7 @@ const HELP: &[(&str, &str)] = &[
     ("scale##mesh", "The mesh file's units in metres: 1 for a file in metres, 0.01 for centimetres, 0.001 for millimetres. Its origin stays at the centre."),
     ("thickness [m]##mesh", "How far out from the mesh's triangles its surface is [m]: 0 keeps particles their margin from the triangles themselves."),
     ("reach [m]##mesh", "How far from its triangles particles are found [m], inside and out: a particle deeper than this inside a closed mesh is not pushed out. More than its thickness plus every object's margin; more costs more."),
-    ("rotation x, y, z [deg]", "The box's rotation about x, then y, then z [degrees]."),
+    ("rotation x, y, z [deg]", "The box's or mesh's rotation about x, then y, then z [degrees] (a mesh's about its origin)."),
     ("start [m]##capsule", "Centre of the capsule's first end cap [m]."),
     ("end [m]##capsule", "Centre of the capsule's second end cap [m]."),
     ("moves", "Move the collider at a constant velocity (it drags what it touches through friction)."),

@@ -276,6 +276,7 @@ impl GpuSim {
     ) -> Result<Self> {
         check_fits(ctx.info(), &model.objects.iter().map(ObjectModel::shape).collect::<Vec<_>>())?;
         contact::check_scene(model, ctx.info().max_storage_buffer_range)?;
+        object::check_meshes(model, ctx.info().max_storage_buffer_range)?;
         let plans: Vec<ObjectPlan> = model.objects.iter().map(|o| ObjectPlan::of(o, model, limits)).collect();
         let mut parts = Parts::default();
         if let Err(e) = parts.create(ctx, model, shaders, &plans) {

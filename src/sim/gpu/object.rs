@@ -734,7 +734,7 @@ fn mesh_firsts(model: &SimModel) -> impl Iterator<Item = (usize, &ColliderMesh, 
     });
     meshes.scan(5 * records, |next, (i, mesh)| {
         let first = *next;
-        *next += mesh.words();
+        *next = next.saturating_add(mesh.words());
         Some((i, mesh, first))
     })
 }
@@ -745,6 +745,22 @@ pub(super) fn place_meshes(model: &SimModel, records: &mut [crate::sim::collider
     for (i, _, first) in mesh_firsts(model) {
         records[i][1][0] = first as f32;
     }
+}
+
+/// Refuses a scene whose mesh colliders take more of the collider buffer than the records'
+/// float offsets reach exactly (`collider_mesh::MAX_WORDS`) or than the device binds.
+pub(super) fn check_meshes(model: &SimModel, max_buffer: u64) -> Result<(), UserError> {
+    let words: u64 = mesh_firsts(model).map(|(_, mesh, _)| mesh.words() as u64).sum();
+    let records = model.colliders.len().max(1) as u64 * 5;
+    let most = crate::sim::collider_mesh::MAX_WORDS.min(max_buffer / 16);
+    if words + records > most {
+        return Err(UserError(format!(
+            "the mesh colliders take {:.0} MiB with their grids; a scene's may take at most {:.0} MiB on this device (fewer triangles, or a smaller reach)",
+            (16 * (words + records)) as f64 / (1 << 20) as f64,
+            (16 * most) as f64 / (1 << 20) as f64
+        )));
+    }
+    Ok(())
 }
 
 /// The mesh colliders' vec4s, as they follow the records in the collider buffer.
