@@ -92,9 +92,10 @@ impl ColliderMesh {
         let reach = reach.max(1e-6);
         let (lo, hi) = (lo - DVec3::splat(reach), hi + DVec3::splat(reach));
         let extent = (hi - lo).max_element();
-        // At least the reach, so that a triangle is listed in a few cells around it (its box
-        // grown by the reach), whatever the reach asked.
-        let cell = (2.0 * edge_sum / triangles.len() as f64).max(extent / MAX_CELLS_ALONG).max(reach);
+        // Half the mean longest edge (shorter lists: each particle walks one), at least the
+        // reach, so that a triangle is listed in a few cells around it (its box grown by the
+        // reach), and no more than MAX_CELLS_ALONG along a side.
+        let cell = (0.5 * edge_sum / triangles.len() as f64).max(extent / MAX_CELLS_ALONG).max(reach);
         let dims = ((hi - lo) / cell).ceil().max(DVec3::ONE).as_uvec3().to_array();
         let mut lists = vec![Vec::new(); (dims[0] * dims[1] * dims[2]) as usize];
         for (i, t) in triangles.iter().enumerate() {
