@@ -267,9 +267,11 @@ pub fn check(scene: &Scene) -> Check {
         }
         vector(&format!("mesh[{i}].center"), m.center, MAX_COORDINATE, "m")?;
         vector(&format!("mesh[{i}].rotation"), m.rotation, 360.0, "degrees")?;
-        positive(&format!("mesh[{i}].scale"), m.scale, (1e-6, 1e6), "")?;
+        positive(&format!("mesh[{i}].scale"), m.scale, (1e-6, 1e6), "m per file unit")?;
         non_negative(&format!("mesh[{i}].thickness"), m.thickness, LENGTH.1, "m")?;
-        positive(&format!("mesh[{i}].reach"), m.reach, LENGTH, "m")?;
+        // (a reach wider than the mesh puts every triangle in every cell: each particle would
+        // walk them all)
+        positive(&format!("mesh[{i}].reach"), m.reach, (LENGTH.0, 10.0), "m")?;
         if m.reach <= m.thickness + widest {
             return Err(format!(
                 "mesh[{i}].reach = {} m: must be more than its thickness ({} m) plus the widest margin of an object ({} m)",
