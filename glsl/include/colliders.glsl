@@ -31,8 +31,8 @@ uint collider_word(uint at, uint k) { return floatBitsToUint(collider_words[at +
 // thickness (sim::collider_mesh::ColliderMesh::distance, which says how): c.a xyz its centre,
 // c.rotation its turn, c.b x its first vec4 (a header: the grid's origin and cell; its dims
 // and reach), y and z where its items and triangles start from there (these offsets and the
-// dims as float values), w its thickness. Only
-// triangles within the reach count; where none is, a lower bound of at least the reach.
+// dims as float values), w its thickness. Only triangles within the reach count; where none
+// is, a lower bound of at least the reach.
 float mesh_distance(Collider c, vec3 x, out vec3 n) {
     vec3 p = rotate(vec4(-c.rotation.xyz, c.rotation.w), x - c.a.xyz);
     uint base = uint(c.b.x);
