@@ -58,14 +58,21 @@ pub struct AppArgs {
 
 pub use crate::ui::Selection;
 
-/// `--select`'s value: `cloth:N` or `rope:N`.
+/// `--select`'s value: `cloth:N`, `rope:N` or a collider, `sphere:N`, `box:N`, `capsule:N`,
+/// `mesh:N`.
 pub fn parse_selection(s: &str) -> Result<Selection, String> {
-    let usage = || format!("'{s}': expected cloth:N or rope:N (N from 0), e.g. cloth:0");
+    let usage = || {
+        format!("'{s}': expected cloth:N or rope:N, or sphere:N, box:N, capsule:N or mesh:N (N from 0), e.g. cloth:0")
+    };
     let (kind, n) = s.split_once(':').ok_or_else(usage)?;
     let n: usize = n.trim().parse().map_err(|_| usage())?;
     match kind.trim() {
         "cloth" => Ok(Selection::Cloth(n)),
         "rope" => Ok(Selection::Rope(n)),
+        "sphere" => Ok(Selection::Sphere(n)),
+        "box" => Ok(Selection::Box(n)),
+        "capsule" => Ok(Selection::Capsule(n)),
+        "mesh" => Ok(Selection::Mesh(n)),
         _ => Err(usage()),
     }
 }
@@ -75,6 +82,10 @@ pub fn check_selection(select: Selection, scene: &Scene) -> Result<(), UserError
     let (kind, n, count) = match select {
         Selection::Cloth(n) => ("cloth", n, scene.cloths.len()),
         Selection::Rope(n) => ("rope", n, scene.ropes.len()),
+        Selection::Sphere(n) => ("sphere", n, scene.spheres.len()),
+        Selection::Box(n) => ("box", n, scene.boxes.len()),
+        Selection::Capsule(n) => ("capsule", n, scene.capsules.len()),
+        Selection::Mesh(n) => ("mesh", n, scene.meshes.len()),
         _ => return Ok(()),
     };
     if n < count {
@@ -251,6 +262,7 @@ mod tests {
     fn select_takes_a_kind_and_an_index_the_scene_has() {
         assert_eq!(parse_selection("cloth:0"), Ok(Selection::Cloth(0)));
         assert_eq!(parse_selection("rope: 2"), Ok(Selection::Rope(2)));
+        assert_eq!(parse_selection("mesh:1"), Ok(Selection::Mesh(1)));
         for bad in ["cloth", "towel:0", "cloth:-1", "cloth:x", ""] {
             let e = parse_selection(bad).unwrap_err();
             assert!(e.contains("expected cloth:N or rope:N"), "{bad}: {e}");
@@ -259,5 +271,7 @@ mod tests {
         assert!(check_selection(Selection::Cloth(0), &scene).is_ok());
         let e = check_selection(Selection::Rope(scene.ropes.len()), &scene).unwrap_err();
         assert!(e.0.contains("numbered from 0"), "{}", e.0);
+        let e = check_selection(Selection::Mesh(0), &scene).unwrap_err();
+        assert!(e.0.contains("mesh(s)"), "{}", e.0);
     }
 }

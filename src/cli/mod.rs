@@ -139,7 +139,8 @@ pub struct AppCommand {
     #[arg(long)]
     pub no_stats: bool,
     /// Open with an object selected, its editor panel shown: `cloth:N` or `rope:N` (the N-th
-    /// cloth or rope of the scene, from 0; for screenshots of a panel).
+    /// cloth or rope of the scene, from 0), or a collider, `sphere:N`, `box:N`, `capsule:N` or
+    /// `mesh:N` (for screenshots of a panel).
     #[arg(long, value_name = "KIND:N", value_parser = crate::app::parse_selection)]
     pub select: Option<crate::app::Selection>,
     /// Hide every window of the UI (pictures of the scene alone; the camera fits the whole
