@@ -483,6 +483,14 @@ fn is_zero3(v: &[f64; 3]) -> bool {
 }
 
 impl Scene {
+    /// The widest margin any object keeps from colliders: a cloth's `collision_margin`, a
+    /// rope's `radius` (0 without objects).
+    pub fn widest_margin(&self) -> f64 {
+        let margins =
+            self.cloths.iter().map(|c| c.collision_margin).chain(self.ropes.iter().map(|r| r.radius));
+        margins.fold(0.0, f64::max)
+    }
+
     /// Removes every collider: the ground, spheres, boxes and capsules.
     pub fn clear_colliders(&mut self) {
         self.ground = None;

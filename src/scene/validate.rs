@@ -259,8 +259,7 @@ pub fn check(scene: &Scene) -> Check {
     }
     // A particle is found within a mesh's reach of its triangles: past every object's margin
     // (a cloth's collision_margin, a rope's radius), or a resting one would not be.
-    let margins = scene.cloths.iter().map(|c| c.collision_margin).chain(scene.ropes.iter().map(|r| r.radius));
-    let widest = margins.fold(0.0, f64::max);
+    let widest = scene.widest_margin();
     for (i, m) in scene.meshes.iter().enumerate() {
         if m.file.trim().is_empty() {
             return Err(format!("mesh[{i}].file is empty: name an .obj, .gltf or .glb file"));
@@ -280,7 +279,8 @@ pub fn check(scene: &Scene) -> Check {
         }
         check_motion(&format!("mesh[{i}].motion"), &m.motion, (substep, scene.sim.frame_dt))?;
         if let Some(file) = &m.loaded {
-            let far = file.vertices.iter().fold(0.0, |a: f64, v| a.max(v.abs().max_element())) * m.scale;
+            let (lo, hi) = crate::sim::collider_mesh::bounds(&file.vertices);
+            let far = lo.abs().max(hi.abs()).max_element() * m.scale;
             if far > MAX_COORDINATE {
                 return Err(format!(
                     "mesh[{i}].scale = {}: its vertices reach {far:.3e} m from its origin, past {MAX_COORDINATE} m",

@@ -581,20 +581,12 @@ impl Shape {
             }
             Shape::Capsule { a, b, radius } => Some((a.min(b) - radius, a.max(b) + radius)),
             Shape::Mesh { center, rotation, thickness, ref mesh } => {
+                // The box around its vertices in its frame, placed and turned as it is.
                 let (lo, hi) = mesh.bounds();
-                let corners = (0..8).map(|i| {
-                    let c = DVec3::new(
-                        if i & 1 == 0 { lo.x } else { hi.x },
-                        if i & 2 == 0 { lo.y } else { hi.y },
-                        if i & 4 == 0 { lo.z } else { hi.z },
-                    );
-                    center + rotation * c
-                });
-                let (lo, hi) = corners
-                    .fold((DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY)), |(a, b), c| {
-                        (a.min(c), b.max(c))
-                    });
-                Some((lo - thickness, hi + thickness))
+                let half_extents = (hi - lo) / 2.0;
+                let placed =
+                    Shape::Box { center: center + rotation * ((lo + hi) / 2.0), half_extents, rotation };
+                placed.bounds().map(|(lo, hi)| (lo - thickness, hi + thickness))
             }
         }
     }

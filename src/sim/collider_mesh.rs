@@ -138,19 +138,9 @@ impl ColliderMesh {
         m
     }
 
-    /// The centre of its vertices' bounds, in its frame.
-    pub fn centre(&self) -> DVec3 {
-        let (lo, hi) = self.bounds();
-        0.5 * (lo + hi)
-    }
-
     /// Its vertices' bounds in its frame.
     pub fn bounds(&self) -> (DVec3, DVec3) {
-        self.vertices
-            .iter()
-            .fold((DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY)), |(lo, hi), &v| {
-                (lo.min(v), hi.max(v))
-            })
+        bounds(&self.vertices)
     }
 
     /// Signed distance from `p` (in its frame) to the nearest triangle within `reach` and the
@@ -240,6 +230,11 @@ impl ColliderMesh {
         let triangles = items + self.grid.items.len().div_ceil(4) as u32;
         [starts, items, triangles]
     }
+}
+
+/// The corners (least, greatest) of the box around `points`.
+pub fn bounds(points: &[DVec3]) -> (DVec3, DVec3) {
+    points.iter().fold((DVec3::INFINITY, DVec3::NEG_INFINITY), |(lo, hi), &v| (lo.min(v), hi.max(v)))
 }
 
 fn cell_of(origin: DVec3, cell: f64, dims: [u32; 3], p: DVec3) -> [u32; 3] {

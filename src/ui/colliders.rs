@@ -52,11 +52,7 @@ pub fn add_mesh(
     let file = std::path::absolute(path.trim()).map_err(|e| format!("{}: {e}", path.trim()))?;
     let read = crate::scene::mesh_file::read(&file).map_err(|e| format!("{}: {e}", file.display()))?;
     // Scaled to fit a metre if it is far larger (a file in millimetres or centimetres).
-    let (lo, hi) =
-        read.vertices.iter().fold(
-            (glam::DVec3::splat(f64::INFINITY), glam::DVec3::splat(f64::NEG_INFINITY)),
-            |(a, b), &v| (a.min(v), b.max(v)),
-        );
+    let (lo, hi) = crate::sim::collider_mesh::bounds(&read.vertices);
     let size = (hi - lo).max_element();
     let scale = if size > 10.0 { 10f64.powf(-(size / 2.0).log10().ceil()) } else { 1.0 };
     let at = glam::DVec3::from_array(look_at);
@@ -73,13 +69,7 @@ pub fn add_mesh(
         scale,
         thickness: 0.0,
         // (more than every object's margin, as validation asks)
-        reach: scene
-            .cloths
-            .iter()
-            .map(|c| c.collision_margin)
-            .chain(scene.ropes.iter().map(|r| r.radius))
-            .fold(0.015, f64::max)
-            * 2.0,
+        reach: 2.0 * scene.widest_margin().max(0.015),
         motion: None,
         loaded: Some(std::sync::Arc::new(read)),
     });

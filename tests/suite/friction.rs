@@ -422,16 +422,8 @@ fn a_mesh_turntable_carries_a_cloth_round() {
     let (w, r, mu) = (1.0, 0.3, 0.5);
     let expected = 2.0 * w - w * (w * r / (mu * G)) / 2.0;
     let half = DVec3::new(0.5, 0.05, 0.5);
-    let vertices: Vec<DVec3> = (0..8)
-        .map(|i| {
-            let s = |bit: i32| if i & bit == 0 { -1.0 } else { 1.0 };
-            DVec3::new(s(1), s(2), s(4)) * half
-        })
-        .collect();
-    let quads = [[0, 4, 6, 2], [1, 3, 7, 5], [0, 1, 5, 4], [2, 6, 7, 3], [0, 2, 3, 1], [4, 5, 7, 6]];
-    let triangles: Vec<[u32; 3]> =
-        quads.iter().flat_map(|q| [[q[0], q[1], q[2]], [q[0], q[2], q[3]]]).collect();
-    let mesh = std::sync::Arc::new(ColliderMesh::new(vertices, triangles, 0.03));
+    let triangles = block_triangles(0).iter().map(|t| t.map(|k| k as u32)).collect();
+    let mesh = std::sync::Arc::new(ColliderMesh::new(block(-half, half).0, triangles, 0.03));
     let mut m = turntable(Turn::steady(DVec3::Y * w), r, DVec3::ZERO);
     m.colliders[0].shape =
         Shape::Mesh { center: DVec3::ZERO, rotation: DQuat::IDENTITY, thickness: 0.0, mesh };

@@ -12,16 +12,12 @@ use std::path::Path;
 /// The 8 corners and 6 faces (quads wound counter-clockwise from outside) of the block from
 /// `lo` to `hi` as OBJ lines, its vertices numbered from `first` (1-based).
 fn block_obj(lo: DVec3, hi: DVec3, first: usize) -> String {
+    let (corners, quads) = block(lo, hi);
     let mut out = String::new();
-    for i in 0..8 {
-        let p = DVec3::new(
-            if i & 1 == 0 { lo.x } else { hi.x },
-            if i & 2 == 0 { lo.y } else { hi.y },
-            if i & 4 == 0 { lo.z } else { hi.z },
-        );
+    for p in corners {
         out += &format!("v {} {} {}\n", p.x, p.y, p.z);
     }
-    for q in [[0, 4, 6, 2], [1, 3, 7, 5], [0, 1, 5, 4], [2, 6, 7, 3], [0, 2, 3, 1], [4, 5, 7, 6]] {
+    for q in quads {
         out += &format!("f {} {} {} {}\n", q[0] + first, q[1] + first, q[2] + first, q[3] + first);
     }
     out
@@ -121,19 +117,8 @@ fn a_cloth_on_a_step_mesh_stays_outside_it() {
     let mut vertices = Vec::new();
     let mut triangles = Vec::new();
     for (lo, hi) in [(lo1, hi1), (lo2, hi2)] {
-        let base = vertices.len();
-        let (lo, hi) = (lo + slack, hi - slack);
-        for i in 0..8 {
-            vertices.push(DVec3::new(
-                if i & 1 == 0 { lo.x } else { hi.x },
-                if i & 2 == 0 { lo.y } else { hi.y },
-                if i & 4 == 0 { lo.z } else { hi.z },
-            ));
-        }
-        for q in [[0, 4, 6, 2], [1, 3, 7, 5], [0, 1, 5, 4], [2, 6, 7, 3], [0, 2, 3, 1], [4, 5, 7, 6]] {
-            triangles.push([q[0] + base, q[1] + base, q[2] + base]);
-            triangles.push([q[0] + base, q[2] + base, q[3] + base]);
-        }
+        triangles.extend(block_triangles(vertices.len()));
+        vertices.extend(block(lo + slack, hi - slack).0);
     }
     let ctx = gpu();
     for (label, frames) in every_path_each_frame(&ctx, &m, 90) {

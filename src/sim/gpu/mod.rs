@@ -193,7 +193,7 @@ impl Parts {
         let globals_usage = BufferUsage::UNIFORM | BufferUsage::TRANSFER_DST;
         self.globals = Some(Buffer::new(ctx, "globals", globals_size, globals_usage, MemoryKind::Upload)?);
         // The records, then the mesh colliders' triangles (`object::mesh_words`).
-        let mesh_bytes = 16 * object::mesh_words(model).len() as u64;
+        let mesh_bytes = 16 * object::mesh_word_count(model);
         let colliders_size = COLLIDER_BYTES * model.colliders.len().max(1) as u64 + mesh_bytes;
         self.colliders = Some(Buffer::new(
             ctx,
@@ -840,11 +840,9 @@ impl GpuSim {
         Ok(())
     }
 
+    /// Records the collider buffer holds (with mesh colliders it holds their triangles too,
+    /// and `same_meshes` keeps the count of records as it is).
     fn collider_capacity(&self) -> usize {
-        if has_meshes(&self.model) {
-            // (the meshes follow the records: the records' count is the model's)
-            return self.model.colliders.len();
-        }
         (self.colliders.size() / COLLIDER_BYTES) as usize
     }
 
@@ -910,10 +908,6 @@ impl GpuSim {
         }
         .destroy(ctx);
     }
-}
-
-fn has_meshes(model: &SimModel) -> bool {
-    model.colliders.iter().any(|c| matches!(c.shape, crate::sim::collider::Shape::Mesh { .. }))
 }
 
 /// Whether two models have the same mesh colliders (the same shared meshes at the same

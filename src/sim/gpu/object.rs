@@ -750,7 +750,7 @@ pub(super) fn place_meshes(model: &SimModel, records: &mut [crate::sim::collider
 /// Refuses a scene whose mesh colliders take more of the collider buffer than the records'
 /// float offsets reach exactly (`collider_mesh::MAX_WORDS`) or than the device binds.
 pub(super) fn check_meshes(model: &SimModel, max_buffer: u64) -> Result<(), UserError> {
-    let words: u64 = mesh_firsts(model).map(|(_, mesh, _)| mesh.words() as u64).sum();
+    let words = mesh_word_count(model);
     let records = model.colliders.len().max(1) as u64 * 5;
     let most = crate::sim::collider_mesh::MAX_WORDS.min(max_buffer / 16);
     if words + records > most {
@@ -761,6 +761,11 @@ pub(super) fn check_meshes(model: &SimModel, max_buffer: u64) -> Result<(), User
         )));
     }
     Ok(())
+}
+
+/// How many vec4s `mesh_words` gives (without packing them).
+pub(super) fn mesh_word_count(model: &SimModel) -> u64 {
+    mesh_firsts(model).map(|(_, mesh, _)| mesh.words() as u64).sum()
 }
 
 /// The mesh colliders' vec4s, as they follow the records in the collider buffer.

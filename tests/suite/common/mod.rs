@@ -540,3 +540,28 @@ pub fn segments_through(
         })
         .count()
 }
+
+/// The block from `lo` to `hi`: its 8 corners (corner i at the high side in x, y, z by bits 0,
+/// 1, 2 of i) and its 6 faces, quads wound counter-clockwise seen from outside.
+pub fn block(lo: DVec3, hi: DVec3) -> (Vec<DVec3>, [[usize; 4]; 6]) {
+    let corners = (0..8)
+        .map(|i| {
+            DVec3::new(
+                if i & 1 == 0 { lo.x } else { hi.x },
+                if i & 2 == 0 { lo.y } else { hi.y },
+                if i & 4 == 0 { lo.z } else { hi.z },
+            )
+        })
+        .collect();
+    (corners, [[0, 4, 6, 2], [1, 3, 7, 5], [0, 1, 5, 4], [2, 6, 7, 3], [0, 2, 3, 1], [4, 5, 7, 6]])
+}
+
+/// `block`'s faces as triangles (each quad split along its first diagonal), its corners
+/// numbered from `first`.
+pub fn block_triangles(first: usize) -> Vec<[usize; 3]> {
+    let (_, quads) = block(DVec3::ZERO, DVec3::ONE);
+    quads
+        .iter()
+        .flat_map(|q| [[q[0], q[1], q[2]], [q[0], q[2], q[3]]].map(|t| t.map(|k| k + first)))
+        .collect()
+}
