@@ -21,6 +21,18 @@ void main() {
     if (i == 0u) report_lists();
     if (!DRAWN) return;
     vec3 x = p_in[i].pos.xyz;
+    if (is_mesh()) {
+        // A mesh cloth's: its triangles' normals about it, weighted by their areas.
+        vec3 sum = vec3(0.0);
+        for (uint k = mesh_ring_first(i); k < mesh_ring_first(i + 1u); ++k) {
+            uvec3 t = mesh_triangle(mesh_ring_triangle(k));
+            vec3 a = p_in[t.x].pos.xyz;
+            sum += cross(p_in[t.y].pos.xyz - a, p_in[t.z].pos.xyz - a);
+        }
+        float len = length(sum);
+        surface[i] = SurfaceVertex(vec4(x, 1.0), vec4(len > 0.0 ? sum / len : vec3(0.0, 0.0, 1.0), 0.0));
+        return;
+    }
 
     // Edges to the structural neighbours in turning order (+column, -row, -column, +row); each
     // consecutive pair that exists contributes its unit cross product weighted by the angle

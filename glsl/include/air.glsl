@@ -8,7 +8,9 @@
 // none once it moves with the air; plus the lift wind_lift |u| (u.n) (n - (u.n) u / |u|^2),
 // across u in the plane of u and n: a flat plate's 1/2 rho C_L sin(2 alpha) |u|^2 at an angle
 // of attack alpha, none face-on or edge-on. A rope node's area is the diameter times half its
-// two segments, the drag across the rope (normal) and along it (tangent). The CPU twin is sim::cpu::air_force.
+// two segments, the drag across the rope (normal) and along it (tangent). A mesh cloth
+// particle's area is a third of each of its triangles' area vectors. The CPU twin is
+// sim::cpu::air_force.
 // Neighbours are read through NPOS(j) with `drift`, as the springs read them.
 // Include after spring_forces.glsl.
 #ifndef MSD_AIR_GLSL
@@ -37,12 +39,24 @@ vec3 air_force(uvec2 cell, vec3 x, vec3 v, float drift) {
     vec3 u = (g.wind_dir * g.wind_speed + turbulence(x, drift)) * wind_strength(x) - v;
     uint cols = obj.dims.x;
     uint i = cell.x + cell.y * cols;
-    if (obj.dims.y > 1u) {
-        vec3 left = cell.x > 0u ? NPOS(i - 1u) : x;
-        vec3 right = cell.x + 1u < cols ? NPOS(i + 1u) : x;
-        vec3 up = cell.y > 0u ? NPOS(i - cols) : x;
-        vec3 down = cell.y + 1u < obj.dims.y ? NPOS(i + cols) : x;
-        vec3 area = 0.25 * cross(right - left, down - up);
+    if (obj.dims.y > 1u || is_mesh()) {
+        vec3 area = vec3(0.0);
+        if (is_mesh()) {
+            // (a mesh cloth's: a third of each of its triangles' area vectors)
+            for (uint k = mesh_ring_first(i); k < mesh_ring_first(i + 1u); ++k) {
+                uvec3 t = mesh_triangle(mesh_ring_triangle(k));
+                vec3 a = t.x == i ? x : NPOS(t.x);
+                vec3 b = t.y == i ? x : NPOS(t.y);
+                vec3 c = t.z == i ? x : NPOS(t.z);
+                area += cross(b - a, c - a) * (1.0 / 6.0);
+            }
+        } else {
+            vec3 left = cell.x > 0u ? NPOS(i - 1u) : x;
+            vec3 right = cell.x + 1u < cols ? NPOS(i + 1u) : x;
+            vec3 up = cell.y > 0u ? NPOS(i - cols) : x;
+            vec3 down = cell.y + 1u < obj.dims.y ? NPOS(i + cols) : x;
+            area = 0.25 * cross(right - left, down - up);
+        }
         float a = length(area);
         if (a <= 0.0) return vec3(0.0);
         vec3 n = area / a;

@@ -11,7 +11,7 @@
 
 #include "batch_chunk.glsl"
 
-layout(std430, set = 0, binding = 1) restrict readonly buffer ObjectBuf { ObjectParams v; } b_obj[BATCH_CHUNK];
+layout(std430, set = 0, binding = 1) restrict readonly buffer ObjectBuf { ObjectParams v; uint words[]; } b_obj[BATCH_CHUNK];
 // (the state's qualifiers as bindings.glsl gives the single bindings)
 #ifdef STATE_IN_WRITE
 layout(std430, set = 0, binding = 2) buffer StateIn { Particle v[]; } b_in[BATCH_CHUNK];
@@ -39,6 +39,7 @@ layout(std430, set = 0, binding = 16) buffer SolverHistory { vec4 v[]; } b_histo
 layout(std430, set = 0, binding = 17) coherent buffer SelfPairsBuf { int v[]; } b_self_pairs[BATCH_CHUNK];
 
 #define obj b_obj[MSD_Z].v
+#define obj_words b_obj[MSD_Z].words
 #define p_in b_in[MSD_Z].v
 #define p_out b_out[MSD_Z].v
 #define cell_rank b_cell_rank[MSD_Z].v

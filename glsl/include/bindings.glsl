@@ -18,10 +18,11 @@ layout(std430, set = 0, binding = 4) restrict readonly buffer ColliderWords { ve
 #else
 #ifdef OBJ_COPY
 // The fused kernel reads a copy of the parameters (registers), taken at its start.
-layout(std430, set = 0, binding = 1) restrict readonly buffer ObjectBuf { ObjectParams obj_buffer; };
+layout(std430, set = 0, binding = 1) restrict readonly buffer ObjectBuf { ObjectParams obj_buffer; uint obj_words[]; };
 ObjectParams obj;
 #else
-layout(std430, set = 0, binding = 1) restrict readonly buffer ObjectBuf { ObjectParams obj; };
+// (a mesh cloth's lists follow the parameters: mesh_springs.glsl)
+layout(std430, set = 0, binding = 1) restrict readonly buffer ObjectBuf { ObjectParams obj; uint obj_words[]; };
 #endif
 // The fused shader loads its state from p_in and stores it back there (each thread its own
 // particles); the per-stage shaders read one buffer and write the other.

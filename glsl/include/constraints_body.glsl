@@ -280,6 +280,17 @@ vec3 constraint_correction(uvec2 cell, vec3 x) {
     return correction;
 }
 
+// The edge from the particle at `here` to particle j against collider c: where its midpoint
+// is within the margin, its move out (twice that where j is pinned) into push, one more edge.
+void edge_push(Collider c, ColliderPose pose, vec3 here, int j, inout vec3 push, inout uint edges) {
+    vec3 n;
+    float d = collider_distance_at(c, pose, 0.5 * (here + CPOS(j)), n);
+    if (d < obj.margin) {
+        push += n * ((obj.margin - d) * (CPINNED(j) ? 2.0 : 1.0));
+        edges += 1u;
+    }
+}
+
 // Colliders against the object's edges as well as its particles (F_EDGES: a collider thinner
 // than a couple of grid spacings, or a box's edges and corners, could otherwise pass between
 // the particles or poke through a face). The midpoints of the particle's structural edges and
@@ -293,7 +304,8 @@ vec3 constraint_correction(uvec2 cell, vec3 x) {
 // particle than the margin plus half a shear diagonal stretched to twice its rest length is
 // skipped without reading the neighbours: a signed distance changes no faster than the
 // distance along it, so no midpoint of an edge up to twice its rest length is within the
-// margin. The CPU twin is sim::cpu::collide_edges.
+// margin. A mesh cloth's edges are its structural and shear springs. The CPU twin is
+// sim::cpu::collide_edges.
 void collide_edges(uvec2 cell, inout vec3 x, inout vec3 v, float since) {
     if (!has(F_EDGES)) return;
     vec3 here = CPOS(cell.x + cell.y * obj.dims.x);
@@ -306,14 +318,19 @@ void collide_edges(uvec2 cell, inout vec3 x, inout vec3 v, float since) {
         if (collider_distance_at(c, pose, here, n) >= reach) continue;
         vec3 push = vec3(0.0);
         uint edges = 0u;
-        [[unroll]] for (int s = 0; s < 8; ++s) {
-            int j = SPRING_NEIGHBOUR(cell, s);
-            if (j < 0) continue;
-            vec3 mid = 0.5 * (here + CPOS(j));
-            float d = collider_distance_at(c, pose, mid, n);
-            if (d < obj.margin) {
-                push += n * ((obj.margin - d) * (CPINNED(j) ? 2.0 : 1.0));
-                edges += 1u;
+        if (is_mesh()) {
+            // (a mesh cloth: its structural and shear springs from its list)
+            for (uint e = mesh_first(cell.x); e < mesh_first(cell.x + 1u); ++e) {
+                int j;
+                uint type;
+                float rest;
+                mesh_spring(e, j, type, rest);
+                if (type != SPRING_BENDING) edge_push(c, pose, here, j, push, edges);
+            }
+        } else {
+            [[unroll]] for (int s = 0; s < 8; ++s) {
+                int j = SPRING_NEIGHBOUR(cell, s);
+                if (j >= 0) edge_push(c, pose, here, j, push, edges);
             }
         }
         float depth = length(push);  // the mean move is push / edges

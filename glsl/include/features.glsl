@@ -27,6 +27,7 @@
 #define F_EDGE_PAIRS 16384u // ... and of its edges against its edges (self_contact.glsl)
 #define F_SEGMENT_PAIRS 32768u // ... a rope's: its segments against its segments, no triangles
 #define F_TURNING    65536u // colliders that turn (colliders.glsl, collider_pose)
+#define F_CLOTH_MESH 262144u // a cloth made from a mesh: its lists, not a grid (mesh_springs.glsl)
 
 layout(constant_id = 3) const uint FEATURES = 0x37FFFu;
 

@@ -49,6 +49,17 @@ const float STIFF_START = 10.0;
 // (sim::cpu::integrators::stiffness_ratio).
 float stiffness_ratio(uvec2 cell, float h) {
     float sum = 0.0;
+    if (is_mesh()) {
+        for (uint e = mesh_first(cell.x); e < mesh_first(cell.x + 1u); ++e) {
+            int j;
+            uint type;
+            float rest;
+            mesh_spring(e, j, type, rest);
+            float k = obj.stiffness[type];
+            if (k != 0.0) sum += h * (h * k + obj.stiffness.w);
+        }
+        return sum / obj.mass;
+    }
     [[unroll]] for (int s = 0; s < 12; ++s) {
         ivec3 spring = SPRINGS[s];
         if (!has(1u << spring.z)) continue;

@@ -22,6 +22,7 @@
 #ifndef MSD_SOLVER_BODIES_GLSL
 #define MSD_SOLVER_BODIES_GLSL
 #include "features.glsl"
+#include "mesh_springs.glsl"
 #ifndef SELECT_SPRINGS
 #define SELECT_SPRINGS false
 #endif
@@ -111,6 +112,31 @@ vec3 newton_particle(uvec2 cell, vec3 x, vec3 dx, vec3 dy, out Sym3 hessian) {
     float iso = inertia;
     vec3 diag = vec3(0.0);
     vec3 off = vec3(0.0);
+    if (is_mesh()) {
+        // (a mesh cloth: its list, as the grid's loop below with branches)
+        for (uint e = mesh_first(cell.x); e < mesh_first(cell.x + 1u); ++e) {
+            int j;
+            uint type;
+            float rest;
+            mesh_spring(e, j, type, rest);
+            float k = obj.stiffness[type];
+            vec3 dj = SD(j);
+            vec3 delta = SPRING_DELTA(x, dx, j, dj);
+            float dd = dot(delta, delta);
+            if (dd <= 0.0) continue;
+            float inv = inversesqrt(dd);
+            float inv2 = inv * inv;
+            float stretch = k - (k * rest) * inv;
+            float kt = max(stretch, 0.0);
+            force -= delta * (stretch + (damp * inv2) * dot(delta, dx - dj));
+            vec3 cd = ((k + damp - kt) * inv2) * delta;
+            iso += kt;
+            diag += cd * delta;
+            off += cd.xxy * delta.yzz;
+        }
+        hessian = Sym3(iso, diag, off);
+        return force;
+    }
     int self_index = int(cell.x + cell.y * obj.dims.x);
     [[unroll]] for (int s = 0; s < 12; ++s) {
         ivec3 spring = SPRINGS[s];

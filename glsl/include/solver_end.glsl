@@ -8,6 +8,7 @@
 #ifndef MSD_SOLVER_END_GLSL
 #define MSD_SOLVER_END_GLSL
 #include "hash_count.glsl"
+#include "mesh_springs.glsl"
 #include "pins.glsl"
 
 // k: 0-based iteration of this substep; colour: the vertex colour of a Gauss-Seidel pass;
@@ -23,7 +24,13 @@ bool last_iteration() { return it.k + 1u == g.iterations; }
 // The grid cell of invocation `id` in a pass over vertex colour it.colour (springs.glsl): the
 // pass dispatches ceil(columns / C) x rows invocations and id.x counts the row's cells of that
 // colour.
+// A mesh cloth's pass dispatches its largest colour's count and id.x counts that colour's
+// particles (past them: a cell outside the object).
 uvec2 coloured_cell(uvec2 id) {
+    if (is_mesh()) {
+        uint c = it.colour;
+        return uvec2(c < mesh_colour_count() && id.x < mesh_colour_size(c) ? mesh_coloured(c, id.x) : obj.dims.x, 0u);
+    }
     uint colours = vertex_colours(obj.dims);
     return uvec2(colour_first(it.colour, id.y, colours) + colours * id.x, id.y);
 }

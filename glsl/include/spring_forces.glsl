@@ -8,6 +8,7 @@
 #ifndef MSD_SPRING_FORCES_GLSL
 #define MSD_SPRING_FORCES_GLSL
 #include "features.glsl"
+#include "mesh_springs.glsl"
 
 #ifndef NPOS
 #define NPOS(j) (IN(j).pos.xyz + drift * IN(j).vel.xyz)
@@ -21,6 +22,24 @@
 // branches; solver_bodies.glsl's SELECT_SPRINGS is the same choice the other way round
 // (docs/PERFORMANCE.md, "Branch-free spring loops").
 void add_spring_forces(uvec2 cell, vec3 x, vec3 v, float drift, inout vec3 force) {
+    if (is_mesh()) {
+        // (a mesh cloth: its list, each spring's type and rest length in it)
+        for (uint e = mesh_first(cell.x); e < mesh_first(cell.x + 1u); ++e) {
+            int j;
+            uint type;
+            float rest;
+            mesh_spring(e, j, type, rest);
+            float k = obj.stiffness[type];
+            vec3 to_j = NPOS(j) - x;
+            float d = length(to_j);
+            if (d <= 0.0) continue;
+            vec3 dir = to_j / d;
+            float f = k * (d - rest);
+            if (has(F_DAMPING)) f += obj.stiffness.w * dot(NVEL(j) - v, dir);
+            force += f * dir;
+        }
+        return;
+    }
 #ifndef STATE_FUSED
     int self_index = int(cell.x + cell.y * obj.dims.x);
 #endif
@@ -57,6 +76,21 @@ vec3 elastic_spring_force(uvec2 cell, vec3 x, out float stiffness) {
     const float drift = 0.0;
     vec3 force = vec3(0.0);
     stiffness = 0.0;
+    if (is_mesh()) {
+        for (uint e = mesh_first(cell.x); e < mesh_first(cell.x + 1u); ++e) {
+            int j;
+            uint type;
+            float rest;
+            mesh_spring(e, j, type, rest);
+            float k = obj.stiffness[type];
+            vec3 to_j = NPOS(j) - x;
+            float d = length(to_j);
+            if (k == 0.0 || d <= 0.0) continue;
+            force += to_j * (k * (d - rest) / d);
+            stiffness += k;
+        }
+        return force;
+    }
     [[unroll]] for (int s = 0; s < 12; ++s) {
         ivec3 spring = SPRINGS[s];
         if (!has(1u << spring.z)) continue;

@@ -29,6 +29,8 @@ int neighbour(ivec2 cell, ivec2 offset, uvec2 dims) {
 #define SPRING_NEIGHBOUR(cell, s) neighbour(ivec2(cell), SPRINGS[s].xy, obj.dims)
 #endif
 
+#include "mesh_springs.glsl"
+
 // Rest length of spring s (an index into SPRINGS; a constant in the unrolled spring loops),
 // computed on the host. Include after bindings.glsl.
 float rest_length(int s) { return obj.rest[s >> 2][s & 3]; }
@@ -41,6 +43,20 @@ void guard_strain(uvec2 cell) {
     if (!(most > 0.0) || obj.stiffness[SPRING_STRUCTURAL] == 0.0) return;
     uint i = cell.x + cell.y * obj.dims.x;
     vec3 x = p_in[i].pos.xyz;
+    if (is_mesh()) {
+        for (uint e = mesh_first(i); e < mesh_first(i + 1u); ++e) {
+            int j;
+            uint type;
+            float rest;
+            mesh_spring(e, j, type, rest);
+            if (type == SPRING_STRUCTURAL && distance(p_in[j].pos.xyz, x) > (1.0 + most) * rest) {
+                atomicOr(guard_flags, GUARD_STRAIN);
+                atomicMin(guard_first, i);
+                return;
+            }
+        }
+        return;
+    }
     [[unroll]] for (int s = 0; s < 4; ++s) {
         int j = neighbour(ivec2(cell), SPRINGS[s].xy, obj.dims);
         if (j < 0) continue;

@@ -58,6 +58,7 @@ fn calibrated_part(s: &Scene) -> Scene {
     s.light = Default::default();
     s.cloths.iter_mut().for_each(|c| (c.color, c.back_color) = ([0.0; 3], [0.0; 3]));
     s.ropes.iter_mut().for_each(|r| r.color = [0.0; 3]);
+    s.mesh_cloths.iter_mut().for_each(|c| (c.color, c.back_color) = ([0.0; 3], [0.0; 3]));
     s.spheres.iter_mut().for_each(|c| c.center = [0.0; 3]);
     s.boxes.iter_mut().for_each(|c| c.center = [0.0; 3]);
     for c in &mut s.capsules {
@@ -297,7 +298,29 @@ impl SimHost {
         let cols = o.dims[0];
         let (col, row) = (index % cols, index / cols);
         let group = o.group_of(i);
-        if o.pinned[i] && group > 0 {
+        let n_grids = n_cloths + self.scene.ropes.len();
+        if object >= n_grids {
+            // A mesh cloth's particles by vertex index.
+            let (rest, held) = (o.positions[i], o.pinned[i] && group > 0);
+            let c = self.scene.mesh_cloths.get_mut(object - n_grids).ok_or("no such object")?;
+            if held {
+                return Err(format!(
+                    "mesh cloth '{}' vertex {index} is held by its pin_group[{}]: take it out of that group to free it",
+                    c.name,
+                    group - 1
+                ));
+            }
+            let boxed = c.pin_box.is_some_and(|b| b.contains(rest));
+            if (!pin && boxed) || !set_listed(&mut c.pinned, index, pin) {
+                return Err(format!(
+                    "mesh cloth '{}' vertex {index} is pinned by its pin_box: change the pin_box to free it",
+                    c.name
+                ));
+            }
+            if !c.has_pins() {
+                c.pin_motion = None;
+            }
+        } else if o.pinned[i] && group > 0 {
             let (kind, name, which) = match object < n_cloths {
                 true => ("cloth", &self.scene.cloths[object].name, format!("particle [{col}, {row}]")),
                 false => ("rope", &self.scene.ropes[object - n_cloths].name, format!("node {index}")),
@@ -307,7 +330,9 @@ impl SimHost {
                 group - 1
             ));
         }
-        if object < n_cloths {
+        if object >= n_grids {
+            // (done above)
+        } else if object < n_cloths {
             let cloth = &mut self.scene.cloths[object];
             let by_rule = cloth.pinned_by_rule()[i];
             if (!pin && by_rule) || !set_listed(&mut cloth.pinned, [col, row], pin) {

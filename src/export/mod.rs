@@ -37,12 +37,13 @@ use usd::usd_name;
 /// Half the side of the square that stands for the ground in a USD recording [m].
 const GROUND_HALF_SIZE: f64 = 20.0;
 
-/// Each object's front and back colours (the cloths', then the ropes', whose back is their
-/// front), as the recordings write them.
+/// Each object's front and back colours (the cloths', the ropes', whose back is their front,
+/// then the mesh cloths'), as the recordings write them.
 pub fn colors(scene: &crate::scene::Scene) -> Vec<[[f32; 3]; 2]> {
     let cloths = scene.cloths.iter().map(|c| [c.color, c.back_color]);
     let ropes = scene.ropes.iter().map(|r| [r.color, r.color]);
-    cloths.chain(ropes).map(|c| c.map(|c| c.map(|x| x as f32))).collect()
+    let meshes = scene.mesh_cloths.iter().map(|c| [c.color, c.back_color]);
+    cloths.chain(ropes).chain(meshes).map(|c| c.map(|c| c.map(|x| x as f32))).collect()
 }
 
 /// The scopes a USD recording keeps under /scene beside the objects' meshes: the colliders'
@@ -273,8 +274,14 @@ impl Recording {
             .iter()
             .zip(colors)
             .map(|(o, &[color, back])| {
-                let (st, st_indices) = texture_coordinates(o.kind, o.dims);
+                let (st, st_indices) = match &o.mesh {
+                    Some(m) => mesh_texture_coordinates(m),
+                    None => texture_coordinates(o.kind, o.dims),
+                };
                 let (indices, rope_nodes) = match o.kind {
+                    ObjectKind::Cloth if o.mesh.is_some() => {
+                        (o.mesh.iter().flat_map(|m| m.triangles.iter().flatten().copied()).collect(), None)
+                    }
                     ObjectKind::Cloth => (mesh::cloth_indices(o.dims[0], o.dims[1]), None),
                     ObjectKind::Rope => {
                         // The caps on copies of the end rings after the tube's vertices.
@@ -629,6 +636,26 @@ impl Track {
         }
         (points, normals)
     }
+}
+
+/// A mesh cloth's texture coordinates as its file gives them, each one once, and the one each
+/// triangle corner takes (all at the origin where the file has none): a vertex whose corners
+/// agree keeps one, so a glTF recording splits vertices along the texture's seams only.
+fn mesh_texture_coordinates(m: &crate::sim::cloth_mesh::ClothMesh) -> (Vec<[f32; 2]>, Vec<u32>) {
+    if m.corner_uvs.is_empty() {
+        return (vec![[0.0; 2]], vec![0; 3 * m.triangles.len()]);
+    }
+    let mut index: std::collections::HashMap<[u32; 2], u32> = std::collections::HashMap::new();
+    let mut st = Vec::new();
+    let corners = (m.corner_uvs.iter())
+        .map(|uv| {
+            *index.entry(uv.map(f32::to_bits)).or_insert_with(|| {
+                st.push(*uv);
+                st.len() as u32 - 1
+            })
+        })
+        .collect();
+    (st, corners)
 }
 
 /// Texture coordinates of an object's recorded mesh, and the one each triangle corner takes

@@ -271,6 +271,9 @@ impl SceneRenderer {
         }
         for s in shapes {
             let indices = match s.kind {
+                ObjectKind::Cloth if s.mesh.is_some() => {
+                    s.mesh.iter().flat_map(|m| m.triangles.iter().flatten().copied()).collect()
+                }
                 ObjectKind::Cloth => mesh::cloth_indices(s.dims[0], s.dims[1]),
                 ObjectKind::Rope => mesh::rope_indices(s.dims[0]),
             };

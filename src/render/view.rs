@@ -34,6 +34,17 @@ pub fn scene_items(scene: &Scene, time: f64, tinted: Option<usize>) -> Vec<DrawI
     for (j, r) in scene.ropes.iter().enumerate() {
         items.push(DrawItem::solid(Shape::Surface(scene.cloths.len() + j), Mat4::IDENTITY, f(r.color), true));
     }
+    let grids = scene.cloths.len() + scene.ropes.len();
+    for (k, c) in scene.mesh_cloths.iter().enumerate() {
+        let (front, back) = (f(c.color), f(c.back_color));
+        items.push(DrawItem {
+            shape: Shape::Surface(grids + k),
+            model: Mat4::IDENTITY,
+            front,
+            back,
+            lit: true,
+        });
+    }
     for (k, c) in scene::colliders(scene).iter().enumerate() {
         let mut shapes = collider_items(&c.shape_at(time));
         if tinted == Some(k) {

@@ -13,13 +13,18 @@ pub fn shapes(scene: &Scene) -> Vec<ObjectShape> {
         kind: ObjectKind::Cloth,
         name: c.name.clone(),
         dims: c.resolution,
+        mesh: None,
     });
     let ropes = scene.ropes.iter().map(|r| ObjectShape {
         kind: ObjectKind::Rope,
         name: r.name.clone(),
         dims: [r.nodes, 1],
+        mesh: None,
     });
-    cloths.chain(ropes).collect()
+    // (a mesh cloth's particles are its vertices once welded: built, as `to_model` leaves
+    // out one that does not build)
+    let meshes = scene.mesh_cloths.iter().filter_map(|c| Some(mesh_cloth(c).ok()?.shape()));
+    cloths.chain(ropes).chain(meshes).collect()
 }
 
 /// The turbulence of an aerodynamic wind `w`, if it has any (the simulation's, and the gusts
@@ -59,7 +64,11 @@ pub fn to_model(scene: &Scene) -> SimModel {
         substeps: scene.sim.substeps,
         wind,
         colliders: colliders(scene),
-        objects: scene.cloths.iter().map(cloth).chain(scene.ropes.iter().map(rope)).collect(),
+        // (a mesh cloth that does not build, which validation prevents, is left out)
+        objects: (scene.cloths.iter().map(cloth))
+            .chain(scene.ropes.iter().map(rope))
+            .chain(scene.mesh_cloths.iter().filter_map(|c| mesh_cloth(c).ok()))
+            .collect(),
         self_collision: scene.sim.self_collision,
         max_speed: scene.sim.max_speed,
         max_strain: scene.sim.max_strain,
@@ -196,6 +205,7 @@ pub(super) fn cloth(c: &Cloth) -> ObjectModel {
         pin_group,
         positions,
         pinned,
+        mesh: None,
     }
 }
 
@@ -286,6 +296,55 @@ fn pin_inside(pin_box: &Option<super::PinBox>, positions: &[DVec3], pinned: &mut
     }
 }
 
+/// A mesh cloth's model: its file's vertices welded and placed, its springs and triangles
+/// (`sim::cloth_mesh`). The error says what is wrong with the mesh or the pins.
+pub(super) fn mesh_cloth(c: &super::MeshCloth) -> Result<ObjectModel, String> {
+    let file = c.loaded.as_ref().ok_or("its file is not read")?;
+    let [x, y, z] = c.rotation.map(f64::to_radians);
+    let rotation = DQuat::from_euler(EulerRot::XYZ, x, y, z);
+    let center = DVec3::from_array(c.center);
+    let placed: Vec<DVec3> = file.vertices.iter().map(|&p| center + rotation * (p * c.scale)).collect();
+    let (positions, faces) = crate::sim::cloth_mesh::weld(&placed, &file.faces, c.weld);
+    let mesh = crate::sim::cloth_mesh::ClothMesh::new(&positions, &faces, &file.uvs)?;
+    let n = positions.len();
+    let mut pinned = vec![false; n];
+    for (k, &i) in c.pinned.iter().enumerate() {
+        *pinned.get_mut(i as usize).ok_or(format!("pinned[{k}] = {i}: past its {n} vertices"))? = true;
+    }
+    pin_inside(&c.pin_box, &positions, &mut pinned);
+    let own_motion = pin_motion(&c.pin_motion, &positions, &pinned);
+    let (pin_group, pin_groups) =
+        groups(&c.pin_groups, |&i| (i < n as u32).then_some(i as usize), &positions, &mut pinned);
+    Ok(ObjectModel {
+        kind: ObjectKind::Cloth,
+        name: c.name.clone(),
+        dims: [n as u32, 1],
+        // (what a grid's spacing bounds: a shear diagonal, sqrt 2 spacings, is its longest
+        // edge; `collide_edges` reaches that far)
+        spacing: [mesh.longest / std::f64::consts::SQRT_2; 2],
+        stiffness: c.stiffness.to_array(),
+        rest_scale: c.rest_scale.to_array(),
+        damping: c.damping,
+        mass: c.density * mesh.area / n as f64,
+        drag: c.drag,
+        friction: c.friction,
+        margin: c.collision_margin,
+        stretch_limit: None,
+        self_distance: None,
+        triangle_contact: false,
+        edge_contact: false,
+        rope_radius: 0.0,
+        ring_weights: default_ring_weights(),
+        velocities: vec![DVec3::ZERO; n],
+        pin_motion: own_motion,
+        pin_groups,
+        pin_group,
+        positions,
+        pinned,
+        mesh: Some(std::sync::Arc::new(mesh)),
+    })
+}
+
 pub(super) fn rope(r: &Rope) -> ObjectModel {
     let n = r.nodes as usize;
     let (start, end) = (DVec3::from_array(r.start), DVec3::from_array(r.end));
@@ -338,5 +397,6 @@ pub(super) fn rope(r: &Rope) -> ObjectModel {
         pin_group,
         positions,
         pinned,
+        mesh: None,
     }
 }

@@ -65,7 +65,7 @@ pub fn load(path: &Path, overrides: &[String]) -> Result<Scene, UserError> {
 /// of it would report success for nothing.
 pub fn load_runnable(path: &Path, overrides: &[String]) -> Result<Scene, UserError> {
     let scene = load(path, overrides)?;
-    if scene.cloths.is_empty() && scene.ropes.is_empty() {
+    if scene.cloths.is_empty() && scene.ropes.is_empty() && scene.mesh_cloths.is_empty() {
         return Err(UserError(format!(
             "{}: the scene has no cloth or rope: nothing to simulate",
             path.display()
@@ -135,8 +135,8 @@ pub fn parse(text: &str, origin: &str, overrides: &[String]) -> Result<Scene, Us
     parse_in(text, origin, overrides, Path::new("."))
 }
 
-/// Reads each mesh collider's file (a relative path is `folder`'s; it is made absolute, so
-/// that the scene saved elsewhere still finds it).
+/// Reads each mesh collider's and mesh cloth's file (a relative path is `folder`'s; it is made
+/// absolute, so that the scene saved elsewhere still finds it).
 pub fn load_meshes(scene: &mut Scene, origin: &str, folder: &Path) -> Result<(), UserError> {
     for (i, m) in scene.meshes.iter_mut().enumerate() {
         if m.loaded.is_some() {
@@ -149,6 +149,18 @@ pub fn load_meshes(scene: &mut Scene, origin: &str, folder: &Path) -> Result<(),
             .map_err(|e| UserError(format!("{origin}: mesh[{i}].file {}: {e}", path.display())))?;
         m.file = path.display().to_string();
         m.loaded = Some(std::sync::Arc::new(file));
+    }
+    for (i, c) in scene.mesh_cloths.iter_mut().enumerate() {
+        if c.loaded.is_some() {
+            continue;
+        }
+        let given = Path::new(&c.file);
+        let path = if given.is_absolute() { given.to_path_buf() } else { folder.join(given) };
+        let path = std::path::absolute(&path).unwrap_or(path);
+        let file = super::mesh_file::read_faces(&path)
+            .map_err(|e| UserError(format!("{origin}: mesh_cloth[{i}].file {}: {e}", path.display())))?;
+        c.file = path.display().to_string();
+        c.loaded = Some(std::sync::Arc::new(file));
     }
     Ok(())
 }

@@ -53,6 +53,49 @@ impl MeshFile {
 
 /// Reads and checks the mesh at `path`.
 pub fn read(path: &Path) -> Result<MeshFile, String> {
+    let (vertices, triangles) = match extension(path)?.as_str() {
+        "obj" => read_obj(path)?,
+        _ => {
+            let (vertices, triangles, _) = read_gltf(path)?;
+            (vertices, triangles)
+        }
+    };
+    ColliderMesh::check(&vertices, &triangles)?;
+    Ok(MeshFile { path: path.to_path_buf(), vertices, triangles, built: Default::default() })
+}
+
+/// A mesh as read from its file for a mesh cloth: vertices in the file's units and frame,
+/// faces as polygons (an OBJ file's quads kept), and each face corner's texture coordinates
+/// in face order (empty where the file has none). Checked as a cloth when the scene builds.
+#[derive(Debug, PartialEq)]
+pub struct FaceFile {
+    pub path: PathBuf,
+    pub vertices: Vec<DVec3>,
+    pub faces: Vec<Vec<u32>>,
+    pub uvs: Vec<[f32; 2]>,
+}
+
+/// Reads the mesh at `path` for a mesh cloth, its faces and texture coordinates.
+pub fn read_faces(path: &Path) -> Result<FaceFile, String> {
+    let (vertices, faces, uvs) = match extension(path)?.as_str() {
+        "obj" => read_obj_faces(path)?,
+        _ => {
+            let (vertices, triangles, vertex_uvs) = read_gltf(path)?;
+            let uvs = match vertex_uvs.is_empty() {
+                true => Vec::new(),
+                false => triangles.iter().flatten().map(|&k| vertex_uvs[k as usize]).collect(),
+            };
+            (vertices, triangles.iter().map(|t| t.to_vec()).collect(), uvs)
+        }
+    };
+    if faces.len() > crate::sim::cloth_mesh::MAX_FACES {
+        return Err(format!("more than {} faces", crate::sim::cloth_mesh::MAX_FACES));
+    }
+    Ok(FaceFile { path: path.to_path_buf(), vertices, faces, uvs })
+}
+
+/// The file's size checked and its kind by extension: "obj", "gltf" or "glb".
+fn extension(path: &Path) -> Result<String, String> {
     let size = std::fs::metadata(path).map_err(|e| format!("cannot read the mesh: {e}"))?;
     if size.is_dir() {
         return Err("a folder, not a mesh".into());
@@ -61,13 +104,90 @@ pub fn read(path: &Path) -> Result<MeshFile, String> {
         return Err(format!("larger than {} MiB", MAX_MESH_BYTES >> 20));
     }
     let ext = path.extension().and_then(|e| e.to_str()).map(str::to_ascii_lowercase).unwrap_or_default();
-    let (vertices, triangles) = match ext.as_str() {
-        "obj" => read_obj(path)?,
-        "gltf" | "glb" => read_gltf(path)?,
-        _ => return Err("not a mesh file msdsim reads (.obj, .gltf or .glb)".into()),
-    };
-    ColliderMesh::check(&vertices, &triangles)?;
-    Ok(MeshFile { path: path.to_path_buf(), vertices, triangles, built: Default::default() })
+    match ext.as_str() {
+        "obj" | "gltf" | "glb" => Ok(ext),
+        _ => Err("not a mesh file msdsim reads (.obj, .gltf or .glb)".into()),
+    }
+}
+
+type Faces = (Vec<DVec3>, Vec<Vec<u32>>, Vec<[f32; 2]>);
+type Triangles = (Vec<DVec3>, Vec<[u32; 3]>, Vec<[f32; 2]>);
+
+fn read_obj_faces(path: &Path) -> Result<Faces, String> {
+    let options = tobj::LoadOptions { ignore_points: true, ignore_lines: true, ..Default::default() };
+    let (models, _materials) =
+        tobj::load_obj(path, &options).map_err(|e| format!("not a readable OBJ file: {e}"))?;
+    let mut vertices = Vec::new();
+    let mut faces = Vec::new();
+    let mut uvs = Vec::new();
+    let with_uvs = models.iter().all(|m| m.mesh.texcoord_indices.len() == m.mesh.indices.len());
+    for m in models {
+        let mesh = &m.mesh;
+        let base = vertices.len() as u32;
+        vertices.extend(mesh.positions.chunks_exact(3).map(|p| DVec3::new(p[0], p[1], p[2])));
+        let arities: Vec<u32> = match mesh.face_arities.is_empty() {
+            true => vec![3; mesh.indices.len() / 3],
+            false => mesh.face_arities.clone(),
+        };
+        let mut corner = 0;
+        for arity in arities {
+            let range = corner..corner + arity as usize;
+            let face = mesh.indices.get(range.clone()).ok_or("a face past its indices")?;
+            faces.push(face.iter().map(|k| k + base).collect());
+            if with_uvs {
+                for &t in &mesh.texcoord_indices[range] {
+                    let uv = mesh
+                        .texcoords
+                        .get(2 * t as usize..2 * t as usize + 2)
+                        .ok_or("a texture coordinate past its list")?;
+                    uvs.push([uv[0] as f32, uv[1] as f32]);
+                }
+            }
+            corner += arity as usize;
+        }
+    }
+    let (vertices, faces) = in_file_order(path, vertices, faces)?;
+    Ok((vertices, faces, uvs))
+}
+
+/// `vertices` (as `tobj` numbers them: in order of first use by the faces) renumbered in the
+/// file's order, the order its `v` lines give and a user's tool shows (where two lines give
+/// the same place, the first's: welding joins them anyway), so that pins by vertex index
+/// name the vertices the user sees. The faces follow.
+fn in_file_order(
+    path: &Path,
+    vertices: Vec<DVec3>,
+    faces: Vec<Vec<u32>>,
+) -> Result<(Vec<DVec3>, Vec<Vec<u32>>), String> {
+    let text = std::fs::read_to_string(path).map_err(|e| format!("cannot read the mesh: {e}"))?;
+    let key = |p: DVec3| p.to_array().map(f64::to_bits);
+    let mut line_of: std::collections::HashMap<[u64; 3], usize> = std::collections::HashMap::new();
+    let lines = text
+        .lines()
+        .filter_map(|l| l.trim_start().strip_prefix("v ").or_else(|| l.trim_start().strip_prefix("v\t")));
+    for (k, rest) in lines.enumerate() {
+        let c: Vec<f64> = rest.split_whitespace().take(3).filter_map(|w| w.parse().ok()).collect();
+        if let [x, y, z] = c[..] {
+            line_of.entry(key(DVec3::new(x, y, z))).or_insert(k);
+        }
+    }
+    // (a place no line gives, which should not be, keeps tobj's order after the others)
+    let rank: Vec<usize> = vertices
+        .iter()
+        .enumerate()
+        .map(|(i, &p)| line_of.get(&key(p)).copied().unwrap_or(usize::MAX - vertices.len() + i))
+        .collect();
+    let mut order: Vec<usize> = (0..vertices.len()).collect();
+    order.sort_by_key(|&i| rank[i]);
+    let mut to = vec![0u32; vertices.len()];
+    for (new, &old) in order.iter().enumerate() {
+        to[old] = new as u32;
+    }
+    let faces = faces
+        .into_iter()
+        .map(|f| f.into_iter().map(|k| to.get(k as usize).copied().unwrap_or(k)).collect())
+        .collect();
+    Ok((order.iter().map(|&i| vertices[i]).collect(), faces))
 }
 
 fn read_obj(path: &Path) -> Result<(Vec<DVec3>, Vec<[u32; 3]>), String> {
@@ -83,15 +203,15 @@ fn read_obj(path: &Path) -> Result<(Vec<DVec3>, Vec<[u32; 3]>), String> {
     let mut triangles = Vec::new();
     for m in models {
         let base = vertices.len() as u32;
-        vertices.extend(
-            m.mesh.positions.chunks_exact(3).map(|p| DVec3::new(p[0] as f64, p[1] as f64, p[2] as f64)),
-        );
+        vertices.extend(m.mesh.positions.chunks_exact(3).map(|p| DVec3::new(p[0], p[1], p[2])));
         triangles.extend(m.mesh.indices.chunks_exact(3).map(|t| [t[0] + base, t[1] + base, t[2] + base]));
     }
     Ok((vertices, triangles))
 }
 
-fn read_gltf(path: &Path) -> Result<(Vec<DVec3>, Vec<[u32; 3]>), String> {
+/// A glTF file's triangles, and each vertex's texture coordinates (empty unless every
+/// primitive has them).
+fn read_gltf(path: &Path) -> Result<Triangles, String> {
     let bytes = std::fs::read(path).map_err(|e| format!("cannot read the mesh: {e}"))?;
     let gltf = gltf::Gltf::from_slice(&bytes).map_err(|e| format!("not a readable glTF file: {e}"))?;
     let folder = path.parent().unwrap_or(Path::new("."));
@@ -113,6 +233,8 @@ fn read_gltf(path: &Path) -> Result<(Vec<DVec3>, Vec<[u32; 3]>), String> {
     }
     let mut vertices = Vec::new();
     let mut triangles = Vec::new();
+    let mut uvs = Vec::new();
+    let mut all_uvs = true;
     // The scene's nodes, or without one every node that is no node's child.
     let roots: Vec<gltf::Node> = match gltf.document.default_scene().or_else(|| gltf.document.scenes().next())
     {
@@ -159,6 +281,16 @@ fn read_gltf(path: &Path) -> Result<(Vec<DVec3>, Vec<[u32; 3]>), String> {
                         .map(|q| world.transform_point3(DVec3::new(q[0] as f64, q[1] as f64, q[2] as f64))),
                 );
                 let count = vertices.len() as u32 - base;
+                // (read only where the accessor fits its buffer: the reader assumes so)
+                let texcoords =
+                    p.get(&gltf::Semantic::TexCoords(0)).filter(|a| accessor_fits(a, &buffers).is_ok());
+                match texcoords.and_then(|_| reader.read_tex_coords(0)) {
+                    Some(t) if all_uvs => {
+                        uvs.extend(t.into_f32().take(count as usize));
+                        all_uvs = uvs.len() == vertices.len();
+                    }
+                    _ => all_uvs = false,
+                }
                 let indices: Vec<u32> = match reader.read_indices() {
                     Some(i) => i.into_u32().collect(),
                     None => (0..count).collect(),
@@ -180,7 +312,10 @@ fn read_gltf(path: &Path) -> Result<(Vec<DVec3>, Vec<[u32; 3]>), String> {
         }
         stack.extend(node.children().map(|c| (c, world, path.clone())));
     }
-    Ok((vertices, triangles))
+    if !all_uvs {
+        uvs.clear();
+    }
+    Ok((vertices, triangles, uvs))
 }
 
 /// Whether accessor `a` (positions as three f32s, or indices) lies within its buffer view and

@@ -39,6 +39,8 @@ pub struct Scene {
     pub cloths: Vec<Cloth>,
     #[serde(default, rename = "rope", skip_serializing_if = "Vec::is_empty")]
     pub ropes: Vec<Rope>,
+    #[serde(default, rename = "mesh_cloth", skip_serializing_if = "Vec::is_empty")]
+    pub mesh_cloths: Vec<MeshCloth>,
 }
 
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -616,6 +618,79 @@ pub struct Cloth {
     /// Linear RGB of the other side, 0..1 (drawing only).
     #[serde(default = "defaults::cloth_back_color")]
     pub back_color: [f64; 3],
+}
+
+/// A cloth made from a mesh file (Wavefront OBJ, glTF 2.0 `.gltf` or `.glb`): a particle at
+/// each vertex, springs along its edges, across its quads and across its shared edges
+/// (`sim::cloth_mesh`), placed by `center`, `rotation` and `scale` as a mesh collider is. Its
+/// mass is spread evenly over its vertices, as a grid's is over its particles.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct MeshCloth {
+    pub name: String,
+    /// The file; a relative path is the preset's folder's (made absolute when loaded).
+    pub file: String,
+    /// Where the file's origin goes [m].
+    #[serde(default)]
+    pub center: [f64; 3],
+    /// Rotation about x, then y, then z [degrees], about its origin.
+    #[serde(default, skip_serializing_if = "is_zero3")]
+    pub rotation: [f64; 3],
+    /// The file's units in metres (0.01 for a file in centimetres).
+    #[serde(default = "defaults::one", skip_serializing_if = "is_one")]
+    pub scale: f64,
+    /// Vertices closer than this are one particle (a file that repeats its vertices along its
+    /// texture seams, as glTF does) [m]; 0: those at the same place.
+    #[serde(default, skip_serializing_if = "is_zero")]
+    pub weld: f64,
+    /// Areal density [kg/m^2]: the cloth's mass is this times its area.
+    pub density: f64,
+    /// Spring stiffness per type [N/m].
+    pub stiffness: PerSpring,
+    /// Rest length per type as a multiple of its length in the mesh.
+    #[serde(default = "defaults::rest_scale")]
+    pub rest_scale: PerSpring,
+    /// Dashpot along every spring [N s/m].
+    #[serde(default)]
+    pub damping: f64,
+    /// Stokes drag coefficient [N s/m].
+    #[serde(default)]
+    pub drag: f64,
+    /// Coulomb friction coefficient mu against colliders.
+    #[serde(default)]
+    pub friction: f64,
+    /// Distance kept from collider surfaces [m].
+    #[serde(default = "defaults::margin")]
+    pub collision_margin: f64,
+    /// Pinned particles by vertex index (after welding: the file's order, less the vertices
+    /// merged into earlier ones).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub pinned: Vec<u32>,
+    /// Further pinned particles: those placed inside this box.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub pin_box: Option<PinBox>,
+    /// How the pinned particles move together (absent: they stay put).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub pin_motion: Option<Motion>,
+    /// Further groups of pinned particles, each with a motion of its own.
+    #[serde(default, rename = "pin_group", skip_serializing_if = "Vec::is_empty")]
+    pub pin_groups: Vec<PinGroup<u32>>,
+    /// Linear RGB of the side the normals point to, 0..1 (drawing only).
+    #[serde(default = "defaults::cloth_color")]
+    pub color: [f64; 3],
+    /// Linear RGB of the other side, 0..1 (drawing only).
+    #[serde(default = "defaults::cloth_back_color")]
+    pub back_color: [f64; 3],
+    /// The file's faces, read when the preset loads.
+    #[serde(skip)]
+    pub loaded: Option<std::sync::Arc<mesh_file::FaceFile>>,
+}
+
+impl MeshCloth {
+    /// Whether a particle is pinned (by `pinned` or `pin_box`): what a `pin_motion` needs.
+    pub fn has_pins(&self) -> bool {
+        !self.pinned.is_empty() || self.pin_box.is_some()
+    }
 }
 
 /// A further group of an object's pinned particles that moves by a motion of its own (as

@@ -222,13 +222,14 @@ pub fn check(scene: &Scene) -> Check {
             scene.meshes.len()
         ));
     }
-    let objects = scene.cloths.len() + scene.ropes.len();
+    let objects = scene.cloths.len() + scene.ropes.len() + scene.mesh_cloths.len();
     if objects > MAX_OBJECTS {
         return Err(format!(
-            "{objects} objects ({} cloths, {} ropes): a scene may have at most {MAX_OBJECTS} \
+            "{objects} objects ({} cloths, {} ropes, {} mesh cloths): a scene may have at most {MAX_OBJECTS} \
              (each has its own buffers and takes part in every pass; a larger cloth costs far less)",
             scene.cloths.len(),
-            scene.ropes.len()
+            scene.ropes.len(),
+            scene.mesh_cloths.len()
         ));
     }
     let substep = scene.sim.frame_dt / scene.sim.substeps as f64;
@@ -305,6 +306,12 @@ pub fn check(scene: &Scene) -> Check {
             return Err(format!("rope[{i}].name = \"{}\": another object has this name", r.name));
         }
     }
+    for (i, c) in scene.mesh_cloths.iter().enumerate() {
+        check_mesh_cloth(&format!("mesh_cloth[{i}]"), c, scene)?;
+        if !names.insert(c.name.as_str()) {
+            return Err(format!("mesh_cloth[{i}].name = \"{}\": another object has this name", c.name));
+        }
+    }
     // (objects whose pins, or some group's, are given a motion)
     fn moves<P>(own: &Option<super::Motion>, groups: &[super::PinGroup<P>]) -> bool {
         own.is_some() || groups.iter().any(|g| g.pin_motion.is_some())
@@ -316,6 +323,11 @@ pub fn check(scene: &Scene) -> Check {
             (scene.ropes.iter().enumerate())
                 .filter(|(_, r)| moves(&r.pin_motion, &r.pin_groups))
                 .map(|(i, r)| (format!("rope[{i}]"), super::build::rope(r))),
+        )
+        .chain(
+            (scene.mesh_cloths.iter().enumerate())
+                .filter(|(_, c)| moves(&c.pin_motion, &c.pin_groups))
+                .filter_map(|(i, c)| Some((format!("mesh_cloth[{i}]"), super::build::mesh_cloth(c).ok()?))),
         );
     for (object, o) in moving {
         for (g, motion) in o.pin_motions().enumerate() {
@@ -508,6 +520,69 @@ fn check_cloth(at: &str, c: &Cloth) -> Check {
         false => Err(format!("[{}, {}]: outside the {cols} x {rows} grid", p[0], p[1])),
     };
     let name = |i: usize| format!("particle [{}, {}]", i as u32 % cols, i as u32 / cols);
+    check_pin_groups(at, &c.pin_groups, index, name, (&own.positions, &own.pinned))
+}
+
+fn check_mesh_cloth(at: &str, c: &super::MeshCloth, scene: &Scene) -> Check {
+    check_name(at, &c.name)?;
+    if c.file.trim().is_empty() {
+        return Err(format!("{at}.file is empty: name an .obj, .gltf or .glb file"));
+    }
+    vector(&format!("{at}.center"), c.center, MAX_COORDINATE, "m")?;
+    vector(&format!("{at}.rotation"), c.rotation, 360.0, "degrees")?;
+    positive(&format!("{at}.scale"), c.scale, (1e-6, 1e6), "m per file unit")?;
+    non_negative(&format!("{at}.weld"), c.weld, LENGTH.1, "m")?;
+    positive(&format!("{at}.density"), c.density, (1e-6, 1e3), "kg/m^2")?;
+    for (name, k) in [
+        ("structural", c.stiffness.structural),
+        ("shear", c.stiffness.shear),
+        ("bending", c.stiffness.bending),
+    ] {
+        non_negative(&format!("{at}.stiffness.{name}"), k, MAX_STIFFNESS, "N/m")?;
+    }
+    for (name, k) in [
+        ("structural", c.rest_scale.structural),
+        ("shear", c.rest_scale.shear),
+        ("bending", c.rest_scale.bending),
+    ] {
+        positive(&format!("{at}.rest_scale.{name}"), k, (1e-3, 1e3), "multiple of the mesh's length")?;
+    }
+    non_negative(&format!("{at}.damping"), c.damping, MAX_DAMPING, "N s/m")?;
+    non_negative(&format!("{at}.drag"), c.drag, MAX_DAMPING, "N s/m")?;
+    friction(&format!("{at}.friction"), c.friction)?;
+    non_negative(&format!("{at}.collision_margin"), c.collision_margin, LENGTH.1, "m")?;
+    color(&format!("{at}.color"), c.color)?;
+    color(&format!("{at}.back_color"), c.back_color)?;
+    if let Some(m) = scene.sim.integrator.method().filter(|m| !crate::sim::cloth_mesh::METHODS.contains(m)) {
+        return Err(format!(
+            "{at}: a mesh cloth runs with sim.integrator = \"symplectic_euler\", \"verlet\" or \"vbd\" for now, not \"{}\"",
+            m.label()
+        ));
+    }
+    if scene.sim.inter_object && scene.cloths.len() + scene.ropes.len() + scene.mesh_cloths.len() > 1 {
+        return Err(format!(
+            "{at}: a mesh cloth does not take part in contact between objects yet; set sim.inter_object = false or leave the other objects out"
+        ));
+    }
+    let Some(file) = &c.loaded else { return Ok(()) };
+    let (lo, hi) = crate::sim::collider_mesh::bounds(&file.vertices);
+    let far = lo.abs().max(hi.abs()).max_element() * c.scale;
+    if far > MAX_COORDINATE {
+        return Err(format!(
+            "{at}.scale = {}: its vertices reach {far:.3e} m from its origin, past {MAX_COORDINATE} m",
+            c.scale
+        ));
+    }
+    let own = super::build::mesh_cloth(&super::MeshCloth { pin_groups: Vec::new(), ..c.clone() })
+        .map_err(|e| format!("{at}: {} {e}", file.path.display()))?;
+    check_pin_box(at, &c.pin_box, || &own.positions)?;
+    check_pin_motion(at, &c.pin_motion, c.has_pins())?;
+    let n = own.positions.len();
+    let index = |i: u32| match (i as usize) < n {
+        true => Ok(i as usize),
+        false => Err(format!("{i}: past its {n} vertices")),
+    };
+    let name = |i: usize| format!("vertex {i}");
     check_pin_groups(at, &c.pin_groups, index, name, (&own.positions, &own.pinned))
 }
 

@@ -110,6 +110,11 @@ pub const FEATURE_EDGE_PAIRS: u32 = 16384;
 pub const FEATURE_SEGMENT_PAIRS: u32 = 32768;
 pub const FEATURE_TURNING: u32 = 65536;
 pub const FEATURE_MESH: u32 = 131072;
+/// The features a shader created without the constant has (glsl/include/features.glsl's
+/// default: all but a rope's segment pairs and a mesh cloth's lists).
+pub const FEATURES_DEFAULT: u32 = 0x37FFF;
+/// A cloth made from a mesh: its lists after its parameters (glsl/include/mesh_springs.glsl).
+pub const FEATURE_CLOTH_MESH: u32 = 262144;
 
 /// Whether an object of `FEATURES` `f` keeps a cloth's edges from its edges (edge pairs that
 /// are not a rope's segment pairs): its search loops over six ring edges a candidate and reads

@@ -1,6 +1,7 @@
 //! The simulation: the model (`model`), the integrators (`integrator`), the GPU struct mirrors (`gpu_types`), the Vulkan compute
 //! simulation (`gpu`) and the f64 CPU reference (`cpu`).
 
+pub mod cloth_mesh;
 pub mod collider;
 pub mod collider_mesh;
 pub mod cpu;

@@ -50,9 +50,16 @@ pub struct ObjectShape {
     pub kind: ObjectKind,
     pub name: String,
     pub dims: [u32; 2],
+    /// A mesh cloth's topology (its triangles drawn).
+    pub mesh: Option<std::sync::Arc<crate::sim::cloth_mesh::ClothMesh>>,
 }
 
 impl ObjectShape {
+    /// Whether it is a cloth made from a mesh: a cloth of one row (a grid has two at least).
+    pub fn is_mesh(&self) -> bool {
+        self.kind == ObjectKind::Cloth && self.dims[1] == 1
+    }
+
     pub fn particle_count(&self) -> u64 {
         self.dims[0] as u64 * self.dims[1] as u64
     }
@@ -116,6 +123,9 @@ pub struct ObjectModel {
     pub pin_groups: Vec<crate::sim::pins::PinMotion>,
     /// The pin group of each particle (empty: all 0; a free particle's is 0).
     pub pin_group: Vec<u8>,
+    /// A cloth made from a mesh (`dims` [particles, 1]): its springs, triangles and colouring
+    /// instead of the grid's (`sim::cloth_mesh`); none for a grid or a rope.
+    pub mesh: Option<std::sync::Arc<crate::sim::cloth_mesh::ClothMesh>>,
 }
 
 /// Pin groups an object may have: its own pins (group 0) and up to 7 `pin_group` entries
@@ -124,7 +134,7 @@ pub const PIN_GROUPS: usize = 8;
 
 impl ObjectModel {
     pub fn shape(&self) -> ObjectShape {
-        ObjectShape { kind: self.kind, name: self.name.clone(), dims: self.dims }
+        ObjectShape { kind: self.kind, name: self.name.clone(), dims: self.dims, mesh: self.mesh.clone() }
     }
 
     pub fn particle_count(&self) -> usize {
@@ -473,6 +483,7 @@ impl SimModel {
                     pin_motion: o.pin_motion.clone(),
                     pin_groups: o.pin_groups.clone(),
                     pin_group: Vec::new(),
+                    mesh: o.mesh.clone(),
                 })
                 .collect(),
             colliders: self.colliders.clone(),

@@ -155,7 +155,9 @@ pub fn calibrate(
     };
     let reference: Samples = vec![fine];
     let mut curves: Vec<(Integrator, u32)> = Vec::new();
-    for m in Integrator::ALL {
+    // (a mesh cloth runs with some methods only)
+    let meshes = model.objects.iter().any(|o| o.mesh.is_some());
+    for m in Integrator::ALL.into_iter().filter(|m| !meshes || crate::sim::cloth_mesh::METHODS.contains(m)) {
         if m.iterative() {
             curves.extend(ITERATIONS.iter().map(|&i| (m, i)));
         } else {

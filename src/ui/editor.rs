@@ -455,6 +455,10 @@ fn object_list(ui: &Ui, state: &mut EditorState, scene: &mut Scene) {
     for (i, r) in scene.ropes.iter().enumerate() {
         pick(format!("rope   {}##r{i}", r.name), Selection::Rope(i));
     }
+    // (a mesh cloth is edited in its preset for now)
+    for m in &scene.mesh_cloths {
+        ui.text_disabled(format!("mesh cloth {} (edit its preset)", m.name));
+    }
     for (label, sel) in colliders::entries(scene) {
         pick(label, sel);
     }
@@ -498,7 +502,11 @@ fn object_list(ui: &Ui, state: &mut EditorState, scene: &mut Scene) {
 
 /// A name not used by any object, from `base`.
 pub fn unique_name(scene: &Scene, base: &str) -> String {
-    let taken = |n: &str| scene.cloths.iter().any(|c| c.name == n) || scene.ropes.iter().any(|r| r.name == n);
+    let taken = |n: &str| {
+        scene.cloths.iter().any(|c| c.name == n)
+            || scene.ropes.iter().any(|r| r.name == n)
+            || scene.mesh_cloths.iter().any(|m| m.name == n)
+    };
     (1..).map(|i| format!("{base}{i}")).find(|n| !taken(n)).unwrap_or_else(|| base.to_string())
 }
 

@@ -624,6 +624,8 @@ auto_preset_tests!(
     auto_preset_9_turntable: "turntable",
     #[ignore = "exhaustive tier: the calibration again on another preset"]
     auto_preset_10_drape: "drape",
+    #[ignore = "exhaustive tier: the calibration again on another preset"]
+    auto_preset_11_holed_flag: "holed_flag",
     auto_preset_8_curtain: "curtain"
 );
 
@@ -999,5 +1001,45 @@ fn bad_mesh_files_are_refused_in_one_line() {
     run("broken.gltf", &["broken.gltf", "glTF"]);
     write(d, "good.obj", "v -1 0 -1\nv 1 0 -1\nv 1 0 1\nv -1 0 1\nf 1 4 3 2\n");
     let good = msdsim(&["simulate", "--preset", &preset("good.obj"), "--frames", "2", "--quiet"]);
+    assert!(good.status.success(), "{}", String::from_utf8_lossy(&good.stderr));
+}
+
+/// A mesh cloth's file that is missing or bad (a face of no area, a vertex that is not a
+/// number, a face naming a vertex twice), a pin past its vertices, or a method it does not run
+/// with stops a run with exit code 2 and one line naming the object and what is wrong; a good
+/// one runs.
+#[test]
+fn bad_mesh_cloths_are_refused_in_one_line() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let preset = |file: &str, more: &str| {
+        let text = format!(
+            "{more}[[mesh_cloth]]\nname = \"m\"\nfile = \"{file}\"\ndensity = 0.1\n\
+             stiffness = {{ structural = 100.0, shear = 10.0, bending = 1.0 }}\npinned = [0]\n"
+        );
+        write(d, "scene.toml", &text)
+    };
+    let run = |file: &str, more: &str, needles: &[&str]| {
+        let p = preset(file, more);
+        rejects(&["simulate", "--preset", &p, "--frames", "1"], needles);
+    };
+    run("missing.obj", "", &["mesh_cloth[0].file", "missing.obj", "cannot read"]);
+    write(d, "flat.obj", "v 0 0 0\nv 1 0 0\nv 2 0 0\nf 1 2 3\n");
+    run("flat.obj", "", &["mesh_cloth[0]", "flat.obj", "face 0", "no area"]);
+    write(d, "nan.obj", "v 0 0 nan\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+    run("nan.obj", "", &["mesh_cloth[0]", "vertex 0", "finite"]);
+    write(d, "twice.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 1 0\nf 1 2 3 4\n");
+    run("twice.obj", "", &["mesh_cloth[0]", "face 0", "twice"]);
+    write(
+        d,
+        "good.obj",
+        "v -1 0 -1\nv 1 0 -1\nv 1 0 1\nv -1 0 1\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\nf 1/1 4/4 3/3 2/2\n",
+    );
+    run("good.obj", "[sim]\nintegrator = \"xpbd\"\n", &["mesh_cloth[0]", "\"xpbd\"", "vbd"]);
+    let past =
+        std::fs::read_to_string(preset("good.obj", "")).unwrap().replace("pinned = [0]", "pinned = [9]");
+    let past = write(d, "past.toml", &past);
+    rejects(&["simulate", "--preset", &past, "--frames", "1"], &["pinned[0] = 9", "4 vertices"]);
+    let good = msdsim(&["simulate", "--preset", &preset("good.obj", ""), "--frames", "2", "--quiet"]);
     assert!(good.status.success(), "{}", String::from_utf8_lossy(&good.stderr));
 }

@@ -19,6 +19,7 @@ mod inter_object;
 mod invariants;
 mod large_steps;
 mod layout;
+mod mesh_cloth;
 mod mesh_colliders;
 mod output;
 mod pins;

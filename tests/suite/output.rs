@@ -1249,3 +1249,46 @@ fn record_refusals_name_record() {
         assert!(err.starts_with("msdsim: error: --record /nonexistent-folder/"), "{file}: {err}");
     }
 }
+
+/// A mesh cloth's recording keeps its file's topology and texture coordinates: from an OBJ of
+/// two quads with a texture seam between them (the middle edge's vertices take u = 0.5 on one
+/// side, 0.6 on the other), the USD mesh has the file's 6 points and 4 triangles, its
+/// face-varying `primvars:st` the file's 8 distinct coordinates, and the glTF recording splits
+/// the vertices along the seam only (6 + 2 = 8 vertices).
+#[test]
+fn a_mesh_cloth_records_its_topology_and_texture_coordinates() {
+    let dir = tempfile::tempdir().unwrap();
+    let obj = "v 0 1 0\nv 0.5 1 0\nv 1 1 0\nv 0 0.5 0\nv 0.5 0.5 0\nv 1 0.5 0\n\
+               vt 0 1\nvt 0.5 1\nvt 0 0.5\nvt 0.5 0.5\nvt 0.6 1\nvt 1 1\nvt 0.6 0.5\nvt 1 0.5\n\
+               f 1/1 4/3 5/4 2/2\nf 2/5 5/7 6/8 3/6\n";
+    std::fs::write(dir.path().join("panel.obj"), obj).unwrap();
+    let preset = dir.path().join("panel.toml");
+    std::fs::write(
+        &preset,
+        "[[mesh_cloth]]\nname = \"panel\"\nfile = \"panel.obj\"\ndensity = 0.2\npinned = [0, 2]\n\
+         stiffness = { structural = 100.0, shear = 20.0, bending = 1.0 }\n",
+    )
+    .unwrap();
+    let preset = preset.display().to_string();
+    let (usda, glb, json) = (dir.path().join("p.usda"), dir.path().join("p.glb"), dir.path().join("s.json"));
+    record(&preset, 2, &usda, &json);
+    let text = std::fs::read_to_string(&usda).unwrap();
+    let at = &text[text.find("def Mesh \"panel\"").unwrap()..];
+    let list = |key: &str| -> Vec<String> {
+        let line = at.lines().find(|l| l.contains(key)).unwrap_or_else(|| panic!("no {key}"));
+        let inside = &line[line.find('[').unwrap() + 1..line.rfind(']').unwrap()];
+        inside.split("), (").map(str::to_string).collect()
+    };
+    assert_eq!(list("faceVertexCounts")[0].split(',').count(), 4, "4 triangles");
+    assert_eq!(list("texCoord2f[] primvars:st =").len(), 8, "the file's 8 coordinates");
+    assert!(at.contains("interpolation = \"faceVarying\""));
+    assert_eq!(list("primvars:st:indices")[0].split(',').count(), 12, "a coordinate a corner");
+    assert_eq!(cloth_positions(&json).len(), 6 * 3, "the file's 6 vertices");
+    record(&preset, 2, &glb, &json);
+    let bytes = std::fs::read(&glb).unwrap();
+    let length = u32::from_le_bytes(bytes[12..16].try_into().unwrap()) as usize;
+    let doc: serde_json::Value = serde_json::from_slice(&bytes[20..20 + length]).unwrap();
+    let mesh = doc["meshes"].as_array().unwrap().iter().find(|m| m["name"] == "panel").unwrap();
+    let position = mesh["primitives"][0]["attributes"]["POSITION"].as_u64().unwrap() as usize;
+    assert_eq!(doc["accessors"][position]["count"], 8, "split along the seam only");
+}

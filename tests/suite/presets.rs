@@ -18,7 +18,8 @@ fn every_preset_loads_and_runs() {
     for path in &names {
         let scene = scene::load(path, &["sim.substeps=2".to_string()])
             .unwrap_or_else(|e| panic!("{} does not load: {e}", path.display()));
-        assert!(!scene.cloths.is_empty() || !scene.ropes.is_empty(), "{} is empty", path.display());
+        let objects = scene.cloths.len() + scene.ropes.len() + scene.mesh_cloths.len();
+        assert!(objects > 0, "{} is empty", path.display());
         let model = scene::to_model(&scene);
         let mut sim = GpuSim::new(&ctx, &model).unwrap();
         sim.step_frame(&ctx).unwrap();
@@ -85,6 +86,7 @@ fn the_preset_reference_lists_every_key_of_every_table() {
         ("motion", "[[sphere]]\ncenter = [0.0, 0.0, 0.0]\nradius = 1.0\nmotion = { zz_unknown = 0 }\n"),
         ("`[[cloth]]`", "[[cloth]]\nzz_unknown = 0\n"),
         ("`[[rope]]`", "[[rope]]\nzz_unknown = 0\n"),
+        ("`[[mesh_cloth]]`", "[[mesh_cloth]]\nzz_unknown = 0\n"),
         ("pin groups", "[[cloth]]\n[[cloth.pin_group]]\nzz_unknown = 0\n"),
     ];
     let sections = reference_rows("presets.md");

@@ -3,7 +3,7 @@
 //! runs the same iterations (Jacobi, colour or spring-class order, the same Newton steps), so
 //! the two agree to rounding.
 
-use super::{air_force, rest_length, rest_lengths, springs, wind_at, Spring, SPRING_GROUPS};
+use super::{air_force, rest_lengths, springs, wind_at, Spring, SpringType, SPRING_GROUPS};
 use crate::sim::collider::Pose;
 use crate::sim::integrator::{
     newton_steps, spring_class_parity, vertex_colour, vertex_colours, xpbd_class_order, BDF2_STEP,
@@ -77,8 +77,7 @@ fn grid(o: &ObjectModel, i: usize) -> (i64, i64) {
 
 /// The springs of particle i that have a stiffness, with it (the solvers' constraints).
 fn elastic_springs(o: &ObjectModel, i: usize) -> impl Iterator<Item = (Spring, f64)> + '_ {
-    let (c, r) = grid(o, i);
-    springs(o, c, r).into_iter().filter_map(move |s| {
+    springs(o, i).into_iter().filter_map(move |s| {
         let k = o.stiffness[s.kind as usize];
         (k != 0.0).then_some((s, k))
     })
@@ -92,9 +91,8 @@ fn external(m: &SimModel, o: &ObjectModel, i: usize, x: &[DVec3], v: DVec3, time
 
 /// The springs' force on particle i: elastic and dashpot parts [N].
 fn spring_force(o: &ObjectModel, i: usize, x: &[DVec3], v: &[DVec3]) -> DVec3 {
-    let (c, r) = grid(o, i);
     let mut force = DVec3::ZERO;
-    for s in springs(o, c, r) {
+    for s in springs(o, i) {
         let k = o.stiffness[s.kind as usize];
         if k == 0.0 && o.damping == 0.0 {
             continue;
@@ -105,7 +103,7 @@ fn spring_force(o: &ObjectModel, i: usize, x: &[DVec3], v: &[DVec3]) -> DVec3 {
             continue;
         }
         let u = delta / d;
-        force += u * (k * (d - rest_length(o, &s)) + o.damping * (v[s.other] - v[i]).dot(u));
+        force += u * (k * (d - s.rest) + o.damping * (v[s.other] - v[i]).dot(u));
     }
     force
 }
@@ -325,7 +323,7 @@ fn restart(o: &ObjectModel, i: usize, x: &[DVec3], v: DVec3, force: DVec3, dt: f
         if d <= 0.0 {
             continue;
         }
-        elastic += delta / d * (k * (d - rest_length(o, &s)));
+        elastic += delta / d * (k * (d - s.rest));
         stiffness += k;
     }
     let a = (force + elastic) / (o.mass + dt * dt * stiffness);
@@ -496,7 +494,7 @@ pub(crate) fn xpbd_jacobi(s: &Substep<'_>, history: &mut [History]) -> State {
                 }
                 let normal = delta / d;
                 let moved = normal.dot((p[i] - x[i]) - (p[j] - x[j]));
-                let dl = scale * (rest_length(o, &s) - d - alpha * lambda[i][s.slot] - gamma * moved);
+                let dl = scale * (s.rest - d - alpha * lambda[i][s.slot] - gamma * moved);
                 updates[s.slot] = dl;
                 moved_by += normal * (w * dl);
             }
@@ -649,7 +647,7 @@ fn spring_newton(
     }
     let normal = delta / d;
     let nn = DMat3::from_cols(normal * normal.x, normal * normal.y, normal * normal.z);
-    let rest = rest_length(o, s);
+    let rest = s.rest;
     let transverse = (1.0 - rest / d).max(0.0);
     let damp = o.damping / dt;
     let moved = normal.dot((p[i] - x[i]) - (p[s.other] - x[s.other]));
@@ -666,8 +664,7 @@ fn newton_springs<'a>(
     x: &'a [DVec3],
     i: usize,
 ) -> impl Iterator<Item = (usize, DVec3, DMat3)> + 'a {
-    let (c, r) = grid(o, i);
-    springs(o, c, r).into_iter().filter_map(move |s| {
+    springs(o, i).into_iter().filter_map(move |s| {
         let k = o.stiffness[s.kind as usize];
         if k == 0.0 && o.damping == 0.0 {
             return None;
@@ -820,13 +817,12 @@ fn descent(o: &ObjectModel, h: f64, p: &[DVec3], dp: &[DVec3], r0: &[DVec3]) -> 
     let damp = o.damping / h;
     let mut change = [0.0; 4];
     for i in 0..p.len() {
-        let (c, r) = grid(o, i);
         let first = -r0[i].dot(dp[i]);
         let second = inertia * dp[i].length_squared();
         for (t, &a) in LINE_SEARCH_STEPS.iter().enumerate() {
             change[t] += a * first + 0.5 * a * a * second;
         }
-        for s in springs(o, c, r).iter().filter(|s| counted_once(s)) {
+        for s in springs(o, i).iter().filter(|s| s.once) {
             let k = o.stiffness[s.kind as usize];
             if k == 0.0 && o.damping == 0.0 {
                 continue;
@@ -839,7 +835,7 @@ fn descent(o: &ObjectModel, h: f64, p: &[DVec3], dp: &[DVec3], r0: &[DVec3]) -> 
             let d = dd.sqrt();
             let e = dp[i] - dp[s.other];
             let ne = delta.dot(e) / d;
-            let stretch = d - rest_length(o, s);
+            let stretch = d - s.rest;
             for (t, &a) in LINE_SEARCH_STEPS.iter().enumerate() {
                 let grown = a * e.dot(2.0 * delta + a * e);
                 let d2 = (dd + grown).max(0.0).sqrt(); // (as the GPU's, newton_descent)
@@ -861,6 +857,15 @@ pub fn energy(m: &SimModel, o: &ObjectModel, x: &[DVec3], v: &[DVec3]) -> f64 {
     let mut e = 0.0;
     for i in 0..x.len() {
         e += 0.5 * o.mass * v[i].length_squared() - o.mass * m.gravity.dot(x[i]);
+        if let Some(mesh) = &o.mesh {
+            // (each spring once, from its lower end)
+            for s in mesh.springs_of(i).iter().filter(|s| s.other as usize > i) {
+                let k = o.stiffness[s.kind as usize];
+                let stretch = (x[s.other as usize] - x[i]).length() - s.rest * o.rest_scale[s.kind as usize];
+                e += 0.5 * k * stretch * stretch;
+            }
+            continue;
+        }
         let (c, r) = grid(o, i);
         for (g, (kind, offsets)) in SPRING_GROUPS.iter().enumerate() {
             let k = o.stiffness[*kind as usize];
@@ -881,17 +886,11 @@ pub fn energy(m: &SimModel, o: &ObjectModel, x: &[DVec3], v: &[DVec3]) -> f64 {
 pub fn max_strain(o: &ObjectModel, x: &[DVec3]) -> f64 {
     let mut worst = 0.0f64;
     for i in 0..x.len() {
-        let (c, r) = grid(o, i);
-        for s in springs(o, c, r).iter().filter(|s| counted_once(s) && s.slot < 4) {
-            worst = worst.max(((x[s.other] - x[i]).length() / rest_length(o, s) - 1.0).abs());
+        for s in springs(o, i).iter().filter(|s| s.once && s.kind == SpringType::Structural) {
+            worst = worst.max(((x[s.other] - x[i]).length() / s.rest - 1.0).abs());
         }
     }
     worst
-}
-
-/// Each spring appears from both ends; the even slots are the forward direction.
-fn counted_once(s: &Spring) -> bool {
-    s.slot % 2 == 0
 }
 
 #[cfg(test)]
@@ -914,9 +913,8 @@ mod tests {
         let mut expected = 0.0;
         for i in 0..x.len() {
             expected += 0.5 * o.mass * v[i].length_squared() - o.mass * m.gravity.dot(x[i]);
-            let (c, r) = grid(o, i);
-            for s in springs(o, c, r) {
-                let stretch = (x[s.other] - x[i]).length() - rest_length(o, &s);
+            for s in springs(o, i) {
+                let stretch = (x[s.other] - x[i]).length() - s.rest;
                 expected += 0.25 * o.stiffness[s.kind as usize] * stretch * stretch;
             }
         }

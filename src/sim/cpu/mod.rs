@@ -120,13 +120,15 @@ enum SpringType {
     Bending = 2,
 }
 
-/// A spring from one particle: the neighbour's index, the type, the grid offset, and its slot
-/// in the full list of 12 (the order of `glsl/include/springs.glsl`).
+/// A spring from one particle: the neighbour's index, the type, its rest length, its slot in
+/// a grid particle's full list of 12 (the order of `glsl/include/springs.glsl`; 0 in a mesh
+/// cloth) and whether this end counts it where each spring is counted once.
 struct Spring {
     other: usize,
     kind: SpringType,
-    offset: (i64, i64),
+    rest: f64,
     slot: usize,
+    once: bool,
 }
 
 /// The 12 springs of a grid particle by type, as grid offsets to the other end, in slot order
@@ -137,10 +139,25 @@ const SPRING_GROUPS: [(SpringType, [(i64, i64); 4]); 3] = [
     (SpringType::Bending, [(2, 0), (-2, 0), (0, 2), (0, -2)]),
 ];
 
-/// The springs of particle (c, r): structural to the 4 direct neighbours, shear to the 4
-/// diagonal ones, bending to the 4 at distance two; only those inside the grid.
-fn springs(o: &ObjectModel, c: i64, r: i64) -> Vec<Spring> {
+/// The springs of particle i. In a grid: structural to the 4 direct neighbours, shear to the 4
+/// diagonal ones, bending to the 4 at distance two, only those inside the grid, each counted
+/// once from its even slot (the forward direction). In a mesh cloth: its list
+/// (`sim::cloth_mesh`), each counted once from its lower end.
+fn springs(o: &ObjectModel, i: usize) -> Vec<Spring> {
+    const KINDS: [SpringType; 3] = [SpringType::Structural, SpringType::Shear, SpringType::Bending];
+    if let Some(mesh) = &o.mesh {
+        return (mesh.springs_of(i).iter())
+            .map(|s| Spring {
+                other: s.other as usize,
+                kind: KINDS[s.kind as usize],
+                rest: s.rest * o.rest_scale[s.kind as usize],
+                slot: 0,
+                once: (s.other as usize) > i,
+            })
+            .collect();
+    }
     let (cols, rows) = (o.dims[0] as i64, o.dims[1] as i64);
+    let (c, r) = ((i as i64) % cols, (i as i64) / cols);
     let mut out = Vec::with_capacity(12);
     for (g, (kind, offsets)) in SPRING_GROUPS.into_iter().enumerate() {
         for (k, (dc, dr)) in offsets.into_iter().enumerate() {
@@ -149,8 +166,9 @@ fn springs(o: &ObjectModel, c: i64, r: i64) -> Vec<Spring> {
                 out.push(Spring {
                     other: (nc + nr * cols) as usize,
                     kind,
-                    offset: (dc, dr),
+                    rest: offset_rest_length(o, kind, (dc, dr)),
                     slot: 4 * g + k,
+                    once: k % 2 == 0,
                 });
             }
         }
@@ -166,18 +184,13 @@ fn overstretched<'a>(
     i: usize,
     limit: f64,
 ) -> impl Iterator<Item = (usize, f64)> + 'a {
-    let cols = o.dims[0] as usize;
-    springs(o, (i % cols) as i64, (i / cols) as i64).into_iter().filter_map(move |s| {
+    springs(o, i).into_iter().filter_map(move |s| {
         if s.kind == SpringType::Bending || o.stiffness[s.kind as usize] == 0.0 {
             return None;
         }
-        let excess = (x[s.other] - x[i]).length() - rest_length(o, &s) * (1.0 + limit);
+        let excess = (x[s.other] - x[i]).length() - s.rest * (1.0 + limit);
         (excess > 0.0).then_some((s.other, excess))
     })
-}
-
-fn rest_length(o: &ObjectModel, s: &Spring) -> f64 {
-    offset_rest_length(o, s.kind, s.offset)
 }
 
 fn offset_rest_length(o: &ObjectModel, kind: SpringType, (dc, dr): (i64, i64)) -> f64 {
@@ -223,7 +236,8 @@ fn wind_at(wind: &Option<WindModel>, x: DVec3) -> DVec3 {
 /// x_left) x (x_down - x_up) / 4 (a missing neighbour replaced by the particle itself: half the
 /// share on an edge, a quarter at a corner), its normal n = a / |a|; the force is |a| (normal
 /// |u.n| (u.n) n + tangent |u_t| u_t). A rope node's is the diameter times half its two
-/// segments, drag across the rope (normal) and along it (tangent).
+/// segments, drag across the rope (normal) and along it (tangent). A mesh cloth particle's
+/// area is a third of each of its triangles' area vectors.
 pub(crate) fn air_force(m: &SimModel, o: &ObjectModel, i: usize, x: &[DVec3], v: DVec3, time: f64) -> DVec3 {
     let Some(w) = &m.wind else { return DVec3::ZERO };
     let Some(air) = w.air else { return DVec3::ZERO };
@@ -232,11 +246,22 @@ pub(crate) fn air_force(m: &SimModel, o: &ObjectModel, i: usize, x: &[DVec3], v:
     let cols = o.dims[0] as usize;
     let (c, r) = (i % cols, i / cols);
     let at = |ok: bool, j: usize| if ok { x[j] } else { x[i] };
-    if o.dims[1] > 1 {
-        let rows = o.dims[1] as usize;
-        let (left, right) = (at(c > 0, i.wrapping_sub(1)), at(c + 1 < cols, i + 1));
-        let (up, down) = (at(r > 0, i.wrapping_sub(cols)), at(r + 1 < rows, i + cols));
-        let area = (right - left).cross(down - up) * 0.25;
+    if o.dims[1] > 1 || o.mesh.is_some() {
+        let area = match &o.mesh {
+            // (a mesh cloth's: a third of each of its triangles' area vectors)
+            Some(mesh) => (mesh.ring_of(i))
+                .map(|t| {
+                    let [a, b, c] = t.map(|k| x[k as usize]);
+                    (b - a).cross(c - a) / 6.0
+                })
+                .sum(),
+            None => {
+                let rows = o.dims[1] as usize;
+                let (left, right) = (at(c > 0, i.wrapping_sub(1)), at(c + 1 < cols, i + 1));
+                let (up, down) = (at(r > 0, i.wrapping_sub(cols)), at(r + 1 < rows, i + cols));
+                (right - left).cross(down - up) * 0.25
+            }
+        };
         let a = area.length();
         if a <= 0.0 {
             return DVec3::ZERO;
@@ -517,8 +542,6 @@ fn collide_edges(
     (start, dt): (DVec3, f64),
     (p, vel): (&mut DVec3, &mut DVec3),
 ) {
-    let cols = o.dims[0] as usize;
-    let (c, r) = ((i % cols) as i64, (i / cols) as i64);
     // Farther than this, no midpoint of an edge up to twice its rest length is within the margin.
     let reach = o.margin + 2f64.sqrt() * o.spacing[0].max(o.spacing[1]);
     for (collider, pose) in m.colliders.iter().zip(motions) {
@@ -528,7 +551,7 @@ fn collide_edges(
             continue;
         }
         let (mut push, mut count) = (DVec3::ZERO, 0u32);
-        for s in springs(o, c, r).iter().filter(|s| s.kind != SpringType::Bending) {
+        for s in springs(o, i).iter().filter(|s| s.kind != SpringType::Bending) {
             let mid = (x[i] + x[s.other]) * 0.5;
             let (d, n) = collider.distance_at(pose, mid);
             if d < o.margin {
@@ -548,6 +571,21 @@ fn collide_edges(
 
 /// Angle-weighted normals from the (up to) four structural edges around each particle.
 fn cloth_surface(o: &ObjectModel, x: &[DVec3]) -> Vec<(DVec3, DVec3)> {
+    if let Some(mesh) = &o.mesh {
+        // A mesh cloth's: its triangles' normals about each particle, weighted by their areas.
+        return (0..x.len())
+            .map(|i| {
+                let sum: DVec3 = mesh
+                    .ring_of(i)
+                    .map(|[a, b, c]| {
+                        let [a, b, c] = [a, b, c].map(|k| x[k as usize]);
+                        (b - a).cross(c - a)
+                    })
+                    .sum();
+                (x[i], if sum.length() > 0.0 { sum.normalize() } else { DVec3::Z })
+            })
+            .collect();
+    }
     let (cols, rows) = (o.dims[0] as i64, o.dims[1] as i64);
     let around = [(1, 0), (0, -1), (-1, 0), (0, 1)];
     (0..x.len())
@@ -712,6 +750,7 @@ mod tests {
             pin_motion: Default::default(),
             pin_groups: Vec::new(),
             pin_group: Vec::new(),
+            mesh: None,
         };
         let straight = face_signs(&rope_surface(&o, &rope(0.0)), nodes);
         assert!(straight.iter().all(|&s| s == straight[0]), "a straight tube's faces agree");

@@ -177,6 +177,7 @@ pub fn features(o: &ObjectModel, model: &SimModel) -> u32 {
     } else {
         f
     };
+    let f = if o.mesh.is_some() { f | crate::sim::gpu_types::FEATURE_CLOTH_MESH } else { f };
     f | crate::sim::collider::features(&model.colliders)
 }
 
@@ -262,8 +263,13 @@ impl FusedShape {
             Some(s) => limits.solver_slots.unwrap_or(solver_slots(s.sweep)),
             None => limits.slots,
         };
-        // Objects that touch each other meet every substep: they run per stage.
-        if n == 0 || n > most.min(FUSED_SLOTS) * MAX_THREADS || model.inter_object_contact() {
+        // Objects that touch each other meet every substep: they run per stage, as a mesh
+        // cloth does (the fused kernel reads a grid's neighbours).
+        if n == 0
+            || o.mesh.is_some()
+            || n > most.min(FUSED_SLOTS) * MAX_THREADS
+            || model.inter_object_contact()
+        {
             return None;
         }
         let slots = n.div_ceil(MAX_THREADS);

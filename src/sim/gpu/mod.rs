@@ -643,10 +643,11 @@ impl GpuSim {
         };
         rec.barrier(&surfaces(surface_consumer, Access::ComputeWrite));
         for o in &self.objects {
-            let (stage, groups) = if self.drawn {
-                (Stage::Surface(o.kind, true), o.surface_groups)
+            // (a mesh cloth's normals' workgroups are not its steps')
+            let (stage, groups) = if self.drawn || o.mesh {
+                (Stage::Surface(o.kind, self.drawn, o.mesh), o.surface_groups)
             } else {
-                (Stage::Surface(o.kind, false), o.step_groups)
+                (Stage::Surface(o.kind, false, false), o.step_groups)
             };
             rec.dispatch(self.pipelines.get(stage), o.sets[0], groups);
         }
@@ -789,7 +790,10 @@ impl GpuSim {
             && model.integrator == self.model.integrator
             && model.self_collision == self.model.self_collision
             && (model.objects.iter().zip(&self.model.objects)).all(|(new, old)| {
-                new.pins_move() == old.pins_move() && new.pin_groups.len() == old.pin_groups.len()
+                new.pins_move() == old.pins_move()
+                    && new.pin_groups.len() == old.pin_groups.len()
+                    // (a mesh cloth's rest lengths are in its lists)
+                    && (new.mesh == old.mesh && (new.mesh.is_none() || new.rest_scale == old.rest_scale))
             })
             && self.objects.iter().zip(&model.objects).all(|(gpu, o)| {
                 o.particle_count() as u32 == gpu.particles

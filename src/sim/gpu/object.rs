@@ -180,6 +180,8 @@ pub(super) struct GpuObject {
     /// Vertex colours and the workgroups of a pass over one colour (`vertex_colours`).
     pub colours: u32,
     pub colour_groups: [u32; 3],
+    /// A cloth made from a mesh (`sim::cloth_mesh`).
+    pub mesh: bool,
     pub surface_groups: [u32; 3],
     pub params: Buffer,
     pub state: [Buffer; 2],
@@ -234,13 +236,16 @@ impl GpuObject {
         let state_usage = BufferUsage::STORAGE | BufferUsage::TRANSFER_SRC | BufferUsage::TRANSFER_DST;
         let surface_bytes = o.surface_count() as u64 * std::mem::size_of::<SurfaceVertex>() as u64;
         let parameters = object_params(o, model);
+        // A mesh cloth's lists follow its parameters (glsl/include/mesh_springs.glsl): one
+        // buffer, so that every stage that binds the parameters reads them.
+        let words = o.mesh.as_ref().map_or(Vec::new(), |m| m.pack(o.rest_scale));
         let [mut params, a, b, surface, mut guard, placeholder] = buffers(
             ctx,
             &o.name,
             [
                 (
                     "params",
-                    std::mem::size_of::<ObjectParams>() as u64,
+                    (std::mem::size_of::<ObjectParams>() + 4 * words.len()) as u64,
                     // (how moving pins move is written each frame: `record_pin_motion`)
                     BufferUsage::STORAGE | BufferUsage::TRANSFER_DST,
                     MemoryKind::Upload,
@@ -265,6 +270,9 @@ impl GpuObject {
         let made = (|| -> Result<(), VkError> {
             guard.write(0, &GUARD_CLEAR)?;
             params.write(0, &[parameters])?;
+            if !words.is_empty() {
+                params.write(std::mem::size_of::<ObjectParams>() as u64, &words)?;
+            }
             if builds_hash(o, model) {
                 hash = Some(Box::new(HashBuffers::new(ctx, &o.name, n)?));
             }
@@ -304,8 +312,15 @@ impl GpuObject {
             particles: n as u32,
             surface_len: o.surface_count() as u32,
             step_groups: step_groups(&o.shape()),
-            colours: vertex_colours(o.dims),
-            colour_groups: colour_groups(&o.shape()),
+            colours: o.mesh.as_ref().map_or(vertex_colours(o.dims), |m| m.colour_count() as u32),
+            colour_groups: match &o.mesh {
+                Some(m) => {
+                    let most = (0..m.colour_count()).map(|c| m.colour(c).len() as u32).max().unwrap_or(1);
+                    [most.div_ceil(ROPE_GROUP), 1, 1]
+                }
+                None => colour_groups(&o.shape()),
+            },
+            mesh: o.mesh.is_some(),
             surface_groups: surface_groups(&o.shape()),
             params,
             state: [a, b],
@@ -516,6 +531,7 @@ pub fn check_fits(info: &DeviceInfo, shapes: &[ObjectShape]) -> Result<(), UserE
 
 fn step_groups(o: &ObjectShape) -> [u32; 3] {
     match o.kind {
+        ObjectKind::Cloth if o.is_mesh() => [o.dims[0].div_ceil(ROPE_GROUP), 1, 1],
         ObjectKind::Cloth => [o.dims[0].div_ceil(CLOTH_GROUP[0]), o.dims[1].div_ceil(CLOTH_GROUP[1]), 1],
         ObjectKind::Rope => [o.dims[0].div_ceil(ROPE_GROUP), 1, 1],
     }
@@ -533,6 +549,8 @@ fn colour_groups(o: &ObjectShape) -> [u32; 3] {
 
 fn surface_groups(o: &ObjectShape) -> [u32; 3] {
     match o.kind {
+        // (cloth_normals.comp's workgroups are squares: a mesh cloth's row takes their first)
+        ObjectKind::Cloth if o.is_mesh() => [o.dims[0].div_ceil(CLOTH_GROUP[0]), 1, 1],
         ObjectKind::Cloth => step_groups(o),
         // One workgroup walks the rope (the frames are a running product, rope_vertices.comp).
         ObjectKind::Rope => [1, 1, 1],

@@ -36,7 +36,8 @@ pub(super) enum Stage {
     /// A free object's rigid start (`rigid_start.comp`): the methods that start adaptively.
     RigidStart(ObjectKind, u32),
     /// One iteration (or one colour of one) of an iterative integrator's solver.
-    Iterate(ObjectKind, Integrator),
+    /// (`bool`: a mesh cloth's, which reads its lists.)
+    Iterate(ObjectKind, Integrator, bool),
     /// The constraints (`lists`: with the self-collision contact lists on, `hash.rs`).
     Constraints(ObjectKind, u32, bool),
     /// The stretch limit's counts, before the constraints (objects with a stretch limit).
@@ -45,7 +46,7 @@ pub(super) enum Stage {
     /// lists on, which only the find and apply passes read; `self_pairs.comp`).
     SelfPairs(u32, bool, SelfPass),
     /// Cloth normals or rope tube vertices and the runtime guard (`drawn`), or the guard alone.
-    Surface(ObjectKind, bool),
+    Surface(ObjectKind, bool, bool),
     HashCount,
     HashScan,
     /// The hash's scatter (`creases`: a cloth with edge-edge contact also notes how creased
@@ -83,10 +84,12 @@ pub(super) fn has_creases(features: u32) -> bool {
     crate::sim::gpu_types::has_cloth_edge_pairs(features)
 }
 
-fn group(kind: ObjectKind) -> Vec<u32> {
+/// The workgroup shape of a step stage: a grid cloth's cells in squares, a rope's nodes and a
+/// mesh cloth's particles (features `f`) in a row.
+fn group(kind: ObjectKind, f: u32) -> Vec<u32> {
     match kind {
-        ObjectKind::Cloth => CLOTH_GROUP.to_vec(),
-        ObjectKind::Rope => vec![ROPE_GROUP, 1],
+        ObjectKind::Cloth if f & crate::sim::gpu_types::FEATURE_CLOTH_MESH == 0 => CLOTH_GROUP.to_vec(),
+        _ => vec![ROPE_GROUP, 1],
     }
 }
 
@@ -96,12 +99,12 @@ impl Stage {
             Stage::Physics(..) => "physics.comp",
             Stage::Predict(..) => "predict.comp",
             Stage::RigidStart(..) => "rigid_start.comp",
-            Stage::Iterate(_, method) => solver(method).shader,
+            Stage::Iterate(_, method, _) => solver(method).shader,
             Stage::Constraints(..) => "constraints.comp",
             Stage::StretchCount(..) => "stretch_count.comp",
             Stage::SelfPairs(..) => "self_pairs.comp",
-            Stage::Surface(ObjectKind::Cloth, _) => "cloth_normals.comp",
-            Stage::Surface(ObjectKind::Rope, _) => "rope_vertices.comp",
+            Stage::Surface(ObjectKind::Cloth, ..) => "cloth_normals.comp",
+            Stage::Surface(ObjectKind::Rope, ..) => "rope_vertices.comp",
             Stage::HashCount => "hash_count.comp",
             Stage::HashScan => "hash_scan.comp",
             Stage::HashScatter(_) => "hash_scatter.comp",
@@ -134,21 +137,34 @@ impl Stage {
     /// its layout (`FusedShape::specialization`).
     fn specialization(self) -> Vec<u32> {
         match self {
-            Stage::Physics(kind, verlet, f) => [group(kind), vec![verlet as u32, f]].concat(),
+            Stage::Physics(kind, verlet, f) => [group(kind, f), vec![verlet as u32, f]].concat(),
             Stage::Predict(kind, method, f) => {
                 let s = solver(method);
-                [group(kind), vec![0, f, s.keeps_prediction as u32, s.adaptive_start as u32]].concat()
+                [group(kind, f), vec![0, f, s.keeps_prediction as u32, s.adaptive_start as u32]].concat()
             }
-            Stage::Constraints(kind, f, lists) => [group(kind), vec![lists as u32, f]].concat(),
-            Stage::StretchCount(kind, f) | Stage::RigidStart(kind, f) => [group(kind), vec![0, f]].concat(),
+            Stage::Constraints(kind, f, lists) => [group(kind, f), vec![lists as u32, f]].concat(),
+            Stage::StretchCount(kind, f) | Stage::RigidStart(kind, f) => {
+                [group(kind, f), vec![0, f]].concat()
+            }
             Stage::SelfPairs(f, lists, pass) => {
                 // (dispatched over the object's step groups: a rope's when its segments pair)
                 let rope = f & crate::sim::gpu_types::FEATURE_SEGMENT_PAIRS != 0;
                 let kind = if rope { ObjectKind::Rope } else { ObjectKind::Cloth };
-                [group(kind), vec![lists as u32, f, pass as u32]].concat()
+                [group(kind, f), vec![lists as u32, f, pass as u32]].concat()
             }
-            Stage::Iterate(kind, _) => group(kind),
-            Stage::Surface(_, drawn) => vec![drawn as u32],
+            // (compiled for every feature but a rope's segment pairs, as the shader's default;
+            // a mesh cloth's with its lists)
+            Stage::Iterate(_, _, true) => {
+                let f = crate::sim::gpu_types::FEATURES_DEFAULT | crate::sim::gpu_types::FEATURE_CLOTH_MESH;
+                [group(ObjectKind::Cloth, f), vec![0, f]].concat()
+            }
+            Stage::Iterate(kind, _, false) => group(kind, 0),
+            // (a mesh cloth's with its lists: FEATURES, id 3)
+            Stage::Surface(_, drawn, true) => {
+                let f = crate::sim::gpu_types::FEATURES_DEFAULT | crate::sim::gpu_types::FEATURE_CLOTH_MESH;
+                vec![drawn as u32, 0, 0, f]
+            }
+            Stage::Surface(_, drawn, false) => vec![drawn as u32],
             Stage::HashScatter(creases) => vec![creases as u32],
             Stage::Contact { segments, cloth_edges, pair_max } => {
                 vec![segments as u32, cloth_edges as u32, pair_max]
@@ -163,10 +179,13 @@ impl Stage {
     /// features it uses.
     pub(super) fn of_object(kind: ObjectKind, model: &SimModel, plan: ObjectPlan) -> Vec<Stage> {
         let f = plan.features;
+        let mesh = f & crate::sim::gpu_types::FEATURE_CLOTH_MESH != 0;
         let method = model.integrator;
         let mut stages = match method.method().scheme {
             Scheme::Explicit { verlet } => vec![Stage::Physics(kind, verlet, f)],
-            Scheme::Iterative(_) => vec![Stage::Predict(kind, method, f), Stage::Iterate(kind, method)],
+            Scheme::Iterative(_) => {
+                vec![Stage::Predict(kind, method, f), Stage::Iterate(kind, method, mesh)]
+            }
         };
         // (for every object: pins may be taken off in the app)
         if method.solver().is_some_and(|s| s.adaptive_start) {
@@ -174,8 +193,8 @@ impl Stage {
         }
         stages.extend([
             Stage::Constraints(kind, f, false),
-            Stage::Surface(kind, true),
-            Stage::Surface(kind, false),
+            Stage::Surface(kind, true, mesh),
+            Stage::Surface(kind, false, mesh),
         ]);
         if f & crate::sim::gpu_types::FEATURE_STRETCH != 0 {
             stages.push(Stage::StretchCount(kind, f));

@@ -87,7 +87,7 @@ impl GpuSim {
                 if word == SKIP {
                     continue;
                 }
-                let pipeline = self.pipelines.get(Stage::Iterate(o.kind, method));
+                let pipeline = self.pipelines.get(Stage::Iterate(o.kind, method, o.mesh));
                 let flags = self.lists_on(o) as u32 | if rounds > 1 { CONTACT_ROUNDS } else { 0 };
                 pass.add(i, pipeline, groups, &[k, word, substep, flags]);
             }

@@ -106,6 +106,7 @@ fn plain(kind: ObjectKind, name: String, dims: [u32; 2], spacing: f64, positions
         pin_motion: Default::default(),
         pin_groups: Vec::new(),
         pin_group: Vec::new(),
+        mesh: None,
     }
 }
 

@@ -1,0 +1,54 @@
+// A cloth made from a mesh (F_CLOTH_MESH; sim::cloth_mesh): its springs, colours, triangles
+// and each particle's ring of triangles as lists, in the words after the object's parameters
+// (obj_words; ClothMesh::pack writes them). A mesh cloth's dims are (particles, 1), so a
+// particle's "cell" is (i, 0). The grid's loops stay as they are; each has a mesh branch that
+// the feature bit compiles out of a grid's pipelines.
+// Include after bindings.glsl.
+#ifndef MSD_MESH_SPRINGS_GLSL
+#define MSD_MESH_SPRINGS_GLSL
+#include "features.glsl"
+
+bool is_mesh() { return has(F_CLOTH_MESH); }
+
+// Where the lists start: the header's four words.
+uint mesh_springs_at() { return obj_words[0]; }
+uint mesh_colours_at() { return obj_words[1]; }
+uint mesh_triangles_at() { return obj_words[2]; }
+uint mesh_rings_at() { return obj_words[3]; }
+
+// Particle i's springs are entries [mesh_first(i), mesh_first(i + 1)).
+uint mesh_first(uint i) { return obj_words[4u + i]; }
+
+// Entry e: the other end, the type (SPRING_STRUCTURAL, _SHEAR, _BENDING) and the rest length
+// (the object's rest_scale in it).
+void mesh_spring(uint e, out int other, out uint type, out float rest) {
+    uint at = mesh_springs_at() + 2u * e;
+    uint a = obj_words[at];
+    other = int(a & 0x3FFFFFFFu);
+    type = a >> 30;
+    rest = uintBitsToFloat(obj_words[at + 1u]);
+}
+
+// The colouring the Gauss-Seidel sweeps take: its count, and the k-th particle of colour c
+// (k < mesh_colour_size(c)).
+uint mesh_colour_count() { return obj_words[mesh_colours_at()]; }
+uint mesh_colour_size(uint c) {
+    uint at = mesh_colours_at() + 1u;
+    return obj_words[at + c + 1u] - obj_words[at + c];
+}
+uint mesh_coloured(uint c, uint k) {
+    uint at = mesh_colours_at() + 1u;
+    return obj_words[at + mesh_colour_count() + 1u + obj_words[at + c] + k];
+}
+
+// Triangle t's corners.
+uvec3 mesh_triangle(uint t) {
+    uint at = mesh_triangles_at() + 3u * t;
+    return uvec3(obj_words[at], obj_words[at + 1u], obj_words[at + 2u]);
+}
+// Particle i's triangles are mesh_ring_triangle(k) for k in [mesh_ring_first(i),
+// mesh_ring_first(i + 1)).
+uint mesh_ring_first(uint i) { return obj_words[mesh_rings_at() + i]; }
+uint mesh_ring_triangle(uint k) { return obj_words[mesh_rings_at() + particle_count() + 1u + k]; }
+
+#endif

@@ -1,0 +1,432 @@
+//! A cloth made from a mesh (`[[mesh_cloth]]`): its springs, triangles and vertex colouring,
+//! built once on the host from the mesh's faces (triangles, quads and polygons, the last split
+//! into fans). The springs follow the mesh as a grid's follow its cells, so that a grid written
+//! as a quad mesh makes the grid's springs:
+//! - structural: one along each edge;
+//! - shear: a quad's two diagonals (a triangle's shear is its edges');
+//! - bending: across each edge that two faces share, from each end's neighbour in one face
+//!   to its neighbour in the other (for two triangles the two opposite vertices; for two quads
+//!   the springs that skip a vertex, as a grid's bending springs do). An edge of three or more
+//!   faces (non-manifold) has no bending spring across it (`unbent_edges` counts them).
+//!
+//! A pair joined twice keeps its first kind in that order. Both simulators read a particle's
+//! springs as a list (`springs_of`); the GPU reads the same lists from the words `pack` writes
+//! after the object's parameters (glsl/include/mesh_springs.glsl).
+
+use glam::DVec3;
+use std::collections::HashMap;
+
+/// Vertices a mesh cloth may have (a particle's index and its spring's kind share a word).
+pub const MAX_VERTICES: usize = 1 << 22;
+/// Faces a mesh cloth may have.
+pub const MAX_FACES: usize = 1 << 23;
+
+/// The integrators a mesh cloth runs with (the others sweep a grid's spring classes or
+/// assemble its springs by grid offsets, and come later).
+pub const METHODS: [crate::sim::model::Integrator; 3] = {
+    use crate::sim::model::Integrator::*;
+    [SymplecticEuler, Verlet, Vbd]
+};
+
+/// A spring of a mesh cloth, seen from one end.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct MeshSpring {
+    /// The particle at the other end.
+    pub other: u32,
+    /// 0 structural, 1 shear, 2 bending (the grid's spring types).
+    pub kind: u8,
+    /// Its rest length in the mesh as placed, before the object's `rest_scale` [m].
+    pub rest: f64,
+}
+
+/// A mesh cloth's topology and what both simulators walk.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ClothMesh {
+    /// Faces as triangles (quads split along their first diagonal, polygons into fans),
+    /// counter-clockwise seen from the side the normals point to.
+    pub triangles: Vec<[u32; 3]>,
+    /// The texture coordinates of each triangle's corners (empty where the file has none).
+    pub corner_uvs: Vec<[f32; 2]>,
+    /// Per particle, its first entry in `springs`; one more at the end.
+    pub spring_first: Vec<u32>,
+    pub springs: Vec<MeshSpring>,
+    /// A colouring of the particles in which no spring joins two of one colour (the
+    /// Gauss-Seidel sweeps'): the particles by colour, and each colour's first entry there,
+    /// one more at the end.
+    pub colour_order: Vec<u32>,
+    pub colour_first: Vec<u32>,
+    /// Per particle, its first entry in `ring` (its triangles); one more at the end.
+    pub ring_first: Vec<u32>,
+    pub ring: Vec<u32>,
+    /// The mesh's area as placed [m^2].
+    pub area: f64,
+    /// The mean length of its edges [m].
+    pub mean_edge: f64,
+    /// The longest of its structural and shear springs [m].
+    pub longest: f64,
+    /// Edges shared by three or more faces (no bending spring across them).
+    pub unbent_edges: usize,
+}
+
+impl ClothMesh {
+    /// The mesh of particles at `rest` (placed) and `faces` (each a polygon of vertex
+    /// indices, counter-clockwise), with each face corner's texture coordinates (`uvs`, one
+    /// per corner in face order, or empty). The error names the first bad face or vertex.
+    pub fn new(rest: &[DVec3], faces: &[Vec<u32>], uvs: &[[f32; 2]]) -> Result<Self, String> {
+        check(rest, faces)?;
+        let n = rest.len();
+        let mut kinds: HashMap<(u32, u32), u8> = HashMap::new();
+        let mut order: Vec<(u32, u32, u8)> = Vec::new();
+        let mut join = |a: u32, b: u32, kind: u8| {
+            let key = (a.min(b), a.max(b));
+            if a != b && !kinds.contains_key(&key) {
+                kinds.insert(key, kind);
+                order.push((key.0, key.1, kind));
+            }
+        };
+        // Structural first, then shear, then bending: a pair keeps its first kind.
+        let mut edge_faces: HashMap<(u32, u32), Vec<usize>> = HashMap::new();
+        for (f, face) in faces.iter().enumerate() {
+            for (k, &a) in face.iter().enumerate() {
+                let b = face[(k + 1) % face.len()];
+                join(a, b, 0);
+                edge_faces.entry((a.min(b), a.max(b))).or_default().push(f);
+            }
+        }
+        for face in faces.iter().filter(|f| f.len() == 4) {
+            join(face[0], face[2], 1);
+            join(face[1], face[3], 1);
+        }
+        let mut unbent_edges = 0;
+        let mut shared: Vec<_> = edge_faces.iter().filter(|(_, f)| f.len() >= 2).collect();
+        shared.sort_unstable_by_key(|(e, _)| **e);
+        for (&(a, b), fs) in shared {
+            if fs.len() > 2 {
+                unbent_edges += 1;
+                continue;
+            }
+            let (f, g) = (&faces[fs[0]], &faces[fs[1]]);
+            join(beside(f, a, b), beside(g, a, b), 2);
+            join(beside(f, b, a), beside(g, b, a), 2);
+        }
+        let mut lists: Vec<Vec<MeshSpring>> = vec![Vec::new(); n];
+        for (a, b, kind) in order {
+            let rest_length = (rest[a as usize] - rest[b as usize]).length();
+            lists[a as usize].push(MeshSpring { other: b, kind, rest: rest_length });
+            lists[b as usize].push(MeshSpring { other: a, kind, rest: rest_length });
+        }
+        let mut spring_first = Vec::with_capacity(n + 1);
+        let mut springs = Vec::new();
+        for list in &mut lists {
+            spring_first.push(springs.len() as u32);
+            list.sort_by_key(|s| (s.kind, s.other));
+            springs.append(list);
+        }
+        spring_first.push(springs.len() as u32);
+        let mut triangles = Vec::new();
+        let mut corner_uvs = Vec::new();
+        let mut corner = 0;
+        for face in faces {
+            for k in 1..face.len() - 1 {
+                triangles.push([face[0], face[k], face[k + 1]]);
+                if !uvs.is_empty() {
+                    corner_uvs.extend([uvs[corner], uvs[corner + k], uvs[corner + k + 1]]);
+                }
+            }
+            corner += face.len();
+        }
+        let area = triangles
+            .iter()
+            .map(|t| {
+                let [a, b, c] = t.map(|k| rest[k as usize]);
+                0.5 * (b - a).cross(c - a).length()
+            })
+            .sum();
+        let edges: Vec<f64> = springs.iter().filter(|s| s.kind == 0).map(|s| s.rest).collect();
+        let mean_edge = edges.iter().sum::<f64>() / edges.len().max(1) as f64;
+        let longest = springs.iter().filter(|s| s.kind < 2).map(|s| s.rest).fold(0.0, f64::max);
+        let (colour_order, colour_first) = colouring(&spring_first, &springs);
+        let mut rings: Vec<Vec<u32>> = vec![Vec::new(); n];
+        for (t, tri) in triangles.iter().enumerate() {
+            tri.iter().for_each(|&k| rings[k as usize].push(t as u32));
+        }
+        let ring_first = std::iter::once(0)
+            .chain(rings.iter().scan(0u32, |at, r| {
+                *at += r.len() as u32;
+                Some(*at)
+            }))
+            .collect();
+        Ok(Self {
+            ring_first,
+            ring: rings.into_iter().flatten().collect(),
+            triangles,
+            corner_uvs,
+            spring_first,
+            springs,
+            colour_order,
+            colour_first,
+            area,
+            mean_edge,
+            longest,
+            unbent_edges,
+        })
+    }
+
+    /// Particle i's springs.
+    pub fn springs_of(&self, i: usize) -> &[MeshSpring] {
+        &self.springs[self.spring_first[i] as usize..self.spring_first[i + 1] as usize]
+    }
+
+    pub fn colour_count(&self) -> usize {
+        self.colour_first.len() - 1
+    }
+
+    /// The triangles about particle i.
+    pub fn ring_of(&self, i: usize) -> impl Iterator<Item = [u32; 3]> + '_ {
+        let ring = &self.ring[self.ring_first[i] as usize..self.ring_first[i + 1] as usize];
+        ring.iter().map(|&t| self.triangles[t as usize])
+    }
+
+    /// The particles of colour c.
+    pub fn colour(&self, c: usize) -> &[u32] {
+        &self.colour_order[self.colour_first[c] as usize..self.colour_first[c + 1] as usize]
+    }
+
+    /// The words the GPU reads after the object's parameters (glsl/include/mesh_springs.glsl):
+    /// a header of where the spring entries, colours, triangles and rings start; the n + 1
+    /// spring firsts; a spring as two words (other end | kind << 30, its rest length scaled by
+    /// `rest_scale` as f32 bits); the colour count C, the C + 1 colour firsts and the
+    /// particles by colour; the triangles' corners; each particle's n + 1 ring firsts and
+    /// then its triangles.
+    pub fn pack(&self, rest_scale: [f64; 3]) -> Vec<u32> {
+        let mut w = vec![0u32; 4];
+        w.extend(&self.spring_first);
+        w[0] = w.len() as u32;
+        for s in &self.springs {
+            w.push(s.other | (s.kind as u32) << 30);
+            w.push(((s.rest * rest_scale[s.kind as usize]) as f32).to_bits());
+        }
+        w[1] = w.len() as u32;
+        w.push(self.colour_count() as u32);
+        w.extend(&self.colour_first);
+        w.extend(&self.colour_order);
+        w[2] = w.len() as u32;
+        w.extend(self.triangles.iter().flatten());
+        w[3] = w.len() as u32;
+        w.extend(&self.ring_first);
+        w.extend(&self.ring);
+        w
+    }
+}
+
+/// The vertices of `faces` with those within `tolerance` of an earlier one merged into it
+/// (0: those at the very same place), renumbered in order of their first appearance.
+pub fn weld(vertices: &[DVec3], faces: &[Vec<u32>], tolerance: f64) -> (Vec<DVec3>, Vec<Vec<u32>>) {
+    let cell = |p: DVec3| match tolerance > 0.0 {
+        true => (p / tolerance).floor().as_i64vec3().to_array(),
+        false => p.to_array().map(|c| (c + 0.0).to_bits() as i64),
+    };
+    let mut grid: HashMap<[i64; 3], Vec<u32>> = HashMap::new();
+    let mut kept: Vec<DVec3> = Vec::new();
+    let mut to: Vec<u32> = Vec::with_capacity(vertices.len());
+    for &p in vertices {
+        let c = cell(p);
+        let near = |c: [i64; 3]| {
+            grid.get(&c).into_iter().flatten().copied().find(|&k| kept[k as usize].distance(p) <= tolerance)
+        };
+        let found = match tolerance > 0.0 {
+            true => (0..27).find_map(|n| near([c[0] + n % 3 - 1, c[1] + n / 3 % 3 - 1, c[2] + n / 9 - 1])),
+            false => near(c),
+        };
+        to.push(found.unwrap_or_else(|| {
+            grid.entry(c).or_default().push(kept.len() as u32);
+            kept.push(p);
+            kept.len() as u32 - 1
+        }));
+    }
+    let faces =
+        faces.iter().map(|f| f.iter().map(|&k| to.get(k as usize).copied().unwrap_or(k)).collect()).collect();
+    (kept, faces)
+}
+
+/// The vertex of `face` next to `a` that is not `b` (`a` and `b` an edge of it).
+fn beside(face: &[u32], a: u32, b: u32) -> u32 {
+    let k = face.iter().position(|&v| v == a).expect("an edge's end is in its face");
+    let (prev, next) = (face[(k + face.len() - 1) % face.len()], face[(k + 1) % face.len()]);
+    if next == b {
+        prev
+    } else {
+        next
+    }
+}
+
+/// Checks a mesh before its springs are built: faces to take, vertices finite and used, every
+/// face of three or more distinct vertices it has, with an area.
+fn check(rest: &[DVec3], faces: &[Vec<u32>]) -> Result<(), String> {
+    if faces.is_empty() {
+        return Err("it has no faces".into());
+    }
+    if faces.len() > MAX_FACES || rest.len() > MAX_VERTICES {
+        return Err(format!(
+            "it has {} vertices and {} faces; a mesh cloth takes at most {MAX_VERTICES} and {MAX_FACES}",
+            rest.len(),
+            faces.len()
+        ));
+    }
+    if let Some(i) = rest.iter().position(|v| !v.is_finite()) {
+        return Err(format!("vertex {i} is at {:?}: not a finite coordinate", rest[i]));
+    }
+    let mut used = vec![false; rest.len()];
+    for (i, f) in faces.iter().enumerate() {
+        if f.len() < 3 {
+            return Err(format!("face {i} has {} vertices; a face has three or more", f.len()));
+        }
+        if let Some(&k) = f.iter().find(|&&k| k as usize >= rest.len()) {
+            return Err(format!("face {i} names vertex {k}, past its {} vertices", rest.len()));
+        }
+        let mut distinct = f.clone();
+        distinct.sort_unstable();
+        distinct.dedup();
+        if distinct.len() < f.len() {
+            return Err(format!("face {i} names a vertex twice {f:?} (welded together?)"));
+        }
+        let p: Vec<DVec3> = f.iter().map(|&k| rest[k as usize]).collect();
+        let longest = (0..p.len()).map(|k| (p[(k + 1) % p.len()] - p[k]).length()).fold(0.0, f64::max);
+        let normal = (1..p.len() - 1).fold(DVec3::ZERO, |s, k| s + (p[k] - p[0]).cross(p[k + 1] - p[0]));
+        let area = 0.5 * normal.length();
+        if area.is_nan() || area <= 1e-12 * longest * longest {
+            return Err(format!("face {i} (vertices {f:?}) has no area"));
+        }
+        f.iter().for_each(|&k| used[k as usize] = true);
+    }
+    if let Some(i) = used.iter().position(|u| !u) {
+        return Err(format!("vertex {i} belongs to no face (it would fall on its own)"));
+    }
+    Ok(())
+}
+
+/// A greedy colouring of the spring graph, the particles with most springs first (Welsh and
+/// Powell): the particles by colour and the colours' firsts.
+fn colouring(first: &[u32], springs: &[MeshSpring]) -> (Vec<u32>, Vec<u32>) {
+    let n = first.len() - 1;
+    let mut by_degree: Vec<u32> = (0..n as u32).collect();
+    by_degree.sort_by_key(|&i| std::cmp::Reverse(first[i as usize + 1] - first[i as usize]));
+    let mut colour = vec![u32::MAX; n];
+    let mut taken: Vec<bool> = Vec::new();
+    for i in by_degree {
+        taken.iter_mut().for_each(|t| *t = false);
+        for s in &springs[first[i as usize] as usize..first[i as usize + 1] as usize] {
+            let c = colour[s.other as usize];
+            if c != u32::MAX {
+                if taken.len() <= c as usize {
+                    taken.resize(c as usize + 1, false);
+                }
+                taken[c as usize] = true;
+            }
+        }
+        colour[i as usize] = taken.iter().position(|t| !t).unwrap_or(taken.len()) as u32;
+    }
+    let count = colour.iter().max().map_or(0, |c| c + 1) as usize;
+    let mut colour_first = vec![0u32; count + 1];
+    for &c in &colour {
+        colour_first[c as usize + 1] += 1;
+    }
+    for c in 0..count {
+        colour_first[c + 1] += colour_first[c];
+    }
+    let mut next = colour_first.clone();
+    let mut colour_order = vec![0u32; n];
+    for (i, &c) in colour.iter().enumerate() {
+        colour_order[next[c as usize] as usize] = i as u32;
+        next[c as usize] += 1;
+    }
+    (colour_order, colour_first)
+}
+
+/// A grid of `cols x rows` particles at `positions` as quads (column-major within a row as
+/// the grid's particles are), for tests and the grid's export as a mesh.
+pub fn grid_quads(cols: u32, rows: u32) -> Vec<Vec<u32>> {
+    let mut faces = Vec::new();
+    for r in 0..rows - 1 {
+        for c in 0..cols - 1 {
+            let i = c + r * cols;
+            faces.push(vec![i, i + 1, i + 1 + cols, i + cols]);
+        }
+    }
+    faces
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A grid written as quads makes the grid's springs: each particle's springs are those
+    /// of its 12 grid offsets inside the grid, of the same types; the colouring is proper.
+    #[test]
+    fn a_quad_grid_makes_the_grids_springs() {
+        let (cols, rows) = (6u32, 5u32);
+        let rest: Vec<DVec3> = (0..cols * rows)
+            .map(|i| DVec3::new((i % cols) as f64 * 0.1, 0.0, (i / cols) as f64 * 0.2))
+            .collect();
+        let m = ClothMesh::new(&rest, &grid_quads(cols, rows), &[]).unwrap();
+        let offsets: [(i64, i64, u8); 12] = [
+            (1, 0, 0),
+            (-1, 0, 0),
+            (0, 1, 0),
+            (0, -1, 0),
+            (1, 1, 1),
+            (-1, -1, 1),
+            (1, -1, 1),
+            (-1, 1, 1),
+            (2, 0, 2),
+            (-2, 0, 2),
+            (0, 2, 2),
+            (0, -2, 2),
+        ];
+        for i in 0..(cols * rows) as usize {
+            let (c, r) = ((i as u32 % cols) as i64, (i as u32 / cols) as i64);
+            let mut want: Vec<(u32, u8)> = offsets
+                .iter()
+                .filter(|(dc, dr, _)| {
+                    (0..cols as i64).contains(&(c + dc)) && (0..rows as i64).contains(&(r + dr))
+                })
+                .map(|(dc, dr, k)| (((c + dc) + (r + dr) * cols as i64) as u32, *k))
+                .collect();
+            let mut got: Vec<(u32, u8)> = m.springs_of(i).iter().map(|s| (s.other, s.kind)).collect();
+            want.sort_unstable();
+            got.sort_unstable();
+            assert_eq!(got, want, "particle {i}");
+            for s in m.springs_of(i) {
+                assert!((s.rest - (rest[s.other as usize] - rest[i]).length()).abs() < 1e-15);
+            }
+        }
+        assert_eq!(m.triangles.len(), 2 * 5 * 4);
+        assert!((m.area - 0.5 * 0.8).abs() < 1e-12);
+        assert_eq!(m.colour_order.len(), 30);
+        for c in 0..m.colour_count() {
+            for &i in m.colour(c) {
+                assert!(m.springs_of(i as usize).iter().all(|s| !m.colour(c).contains(&s.other)));
+            }
+        }
+    }
+
+    /// Two triangles make 5 structural springs and one bending spring between their opposite
+    /// vertices; an edge of three triangles bends nothing and is counted; bad faces are named.
+    #[test]
+    fn triangles_bend_across_shared_edges_and_bad_faces_are_named() {
+        let p = [DVec3::ZERO, DVec3::X, DVec3::Y, DVec3::new(1.0, 1.0, 0.0), DVec3::new(0.5, 0.5, 1.0)];
+        let m = ClothMesh::new(&p[..4], &[vec![0, 1, 2], vec![1, 3, 2]], &[]).unwrap();
+        let kinds: Vec<u8> = m.springs.iter().map(|s| s.kind).collect();
+        assert_eq!(kinds.iter().filter(|&&k| k == 0).count(), 10);
+        assert_eq!(m.springs_of(0).last().map(|s| (s.other, s.kind)), Some((3, 2)));
+        let fan = ClothMesh::new(&p, &[vec![0, 1, 2], vec![1, 3, 2], vec![1, 4, 2]], &[]).unwrap();
+        assert_eq!((fan.unbent_edges, fan.springs.iter().filter(|s| s.kind == 2).count()), (1, 0));
+        let err = |faces: &[Vec<u32>]| ClothMesh::new(&p, faces, &[]).unwrap_err();
+        assert!(err(&[vec![0, 1, 7]]).contains("past its"));
+        assert!(err(&[vec![0, 1, 1]]).contains("twice"));
+        assert!(err(&[vec![0, 1]]).contains("three or more"));
+        assert!(err(&[vec![0, 1, 2]]).contains("belongs to no face"));
+        let line = [DVec3::ZERO, DVec3::X, 2.0 * DVec3::X];
+        assert!(ClothMesh::new(&line, &[vec![0, 1, 2]], &[]).unwrap_err().contains("no area"));
+    }
+}
