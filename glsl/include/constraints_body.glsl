@@ -113,6 +113,9 @@ void visit_bucket(uint h, uvec2 cell, vec3 x, float reach, inout vec3 correction
 void visit_range(uint from, uint to, uvec2 cell, vec3 x, float reach, inout vec3 correction, inout uint n_active);
 #endif
 void visit_cells(uvec2 cell, vec3 x, float reach, inout vec3 correction, inout uint n_active) {
+    // A particle absurdly far (hash_cell's rule: a blow-up) has no contact to find, and the
+    // cells about it, converted to integers, would be anyone's.
+    if (!all(lessThan(abs(floor(x * CELL_INV)), vec3(HASH_FAR_CELLS)))) return;
     ivec3 base = ivec3(floor(x * CELL_INV - 0.5));
     // The buckets (fused) or runs of sorted candidates (per stage) are gathered first and
     // visited in one loop, so that the visit, with every contact test in it, is compiled once
@@ -325,7 +328,7 @@ void collide_edges(uvec2 cell, inout vec3 x, inout vec3 v, float since) {
                 uint type;
                 float rest;
                 mesh_spring(e, j, type, rest);
-                if (type != SPRING_BENDING) edge_push(c, pose, here, j, push, edges);
+                if (type <= uint(SPRING_SHEAR)) edge_push(c, pose, here, j, push, edges);
             }
         } else {
             [[unroll]] for (int s = 0; s < 8; ++s) {

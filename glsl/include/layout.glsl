@@ -105,7 +105,7 @@ struct ObjectParams {
     uint hash_mask;        // spatial hash table size - 1 (a power of two minus one)
     float cell_inv;        // 1 / hash cell edge [1/m]; the edge is twice self_distance
     uint contact_iterations; // passes over a cloth's self-contacts a substep (SimModel's)
-    float pad1;            // unused (keeps rest at its 16-byte alignment)
+    float seam;            // a mesh cloth's seam springs' stiffness [N/m] (0 without seams)
     vec4 rest[3];          // rest length of spring s (SPRINGS order) in rest[s / 4][s % 4] [m]
     vec4 xpbd[3];          // XPBD per spring type, for the substep: alpha~ = 1 / (k dt^2),
                            // gamma = b / (k dt), and the correction's scale relaxation / denominator
@@ -129,11 +129,16 @@ uint cell_hash(ivec3 c, uint mask) {
 // absurdly far (a blow-up, which the guard stops at the frame's end) goes to a cell of the
 // particle's own `index` instead: converting it to integers gives every such particle the same
 // cell, and every search there would walk all of them (a blown-up towel with edge contact took
-// 8 s a frame on lavapipe instead of 1).
+// 8 s a frame on lavapipe instead of 1). Absurdly far is HASH_FAR_CELLS cells (2^22) or more
+// from the origin: there a float's spacing is at least half a cell, itself at least the
+// contact distance, so no contact can be told apart, and a blown-up cloth's particles round
+// onto a few points; a cell holding hundreds of them, each within reach of all the others,
+// made every search walk them all (the bound was 1e9 cells: docs/PERFORMANCE.md).
+const float HASH_FAR_CELLS = 4194304.0;
 ivec3 hash_cell(vec3 x, float inv, uint index) {
     vec3 c = floor(x * inv);
     // (NaN fails the comparison)
-    if (all(lessThan(abs(c), vec3(1e9)))) return ivec3(c);
+    if (all(lessThan(abs(c), vec3(HASH_FAR_CELLS)))) return ivec3(c);
     return ivec3(int(index), 1 << 30, -(1 << 30));
 }
 

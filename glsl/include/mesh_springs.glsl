@@ -16,11 +16,16 @@ uint mesh_colours_at() { return obj_words[1]; }
 uint mesh_triangles_at() { return obj_words[2]; }
 uint mesh_rings_at() { return obj_words[3]; }
 
+// The stiffness of a spring of `type`: the grid's three types, or 3 a seam (rest length zero,
+// sim::cloth_mesh::SEAM) [N/m].
+const uint SPRING_SEAM = 3u;
+float mesh_stiffness(uint type) { return type == SPRING_SEAM ? obj.seam : obj.stiffness[type]; }
+
 // Particle i's springs are entries [mesh_first(i), mesh_first(i + 1)).
 uint mesh_first(uint i) { return obj_words[4u + i]; }
 
-// Entry e: the other end, the type (SPRING_STRUCTURAL, _SHEAR, _BENDING) and the rest length
-// (the object's rest_scale in it).
+// Entry e: the other end, the type (SPRING_STRUCTURAL, _SHEAR, _BENDING, SPRING_SEAM) and the
+// rest length (the object's rest_scale in it).
 void mesh_spring(uint e, out int other, out uint type, out float rest) {
     uint at = mesh_springs_at() + 2u * e;
     uint a = obj_words[at];

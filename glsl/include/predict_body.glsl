@@ -55,7 +55,7 @@ float stiffness_ratio(uvec2 cell, float h) {
             uint type;
             float rest;
             mesh_spring(e, j, type, rest);
-            float k = obj.stiffness[type];
+            float k = mesh_stiffness(type);
             if (k != 0.0) sum += h * (h * k + obj.stiffness.w);
         }
         return sum / obj.mass;

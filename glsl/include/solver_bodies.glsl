@@ -119,7 +119,7 @@ vec3 newton_particle(uvec2 cell, vec3 x, vec3 dx, vec3 dy, out Sym3 hessian) {
             uint type;
             float rest;
             mesh_spring(e, j, type, rest);
-            float k = obj.stiffness[type];
+            float k = mesh_stiffness(type);
             vec3 dj = SD(j);
             vec3 delta = SPRING_DELTA(x, dx, j, dj);
             float dd = dot(delta, delta);

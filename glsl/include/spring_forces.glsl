@@ -29,7 +29,7 @@ void add_spring_forces(uvec2 cell, vec3 x, vec3 v, float drift, inout vec3 force
             uint type;
             float rest;
             mesh_spring(e, j, type, rest);
-            float k = obj.stiffness[type];
+            float k = mesh_stiffness(type);
             vec3 to_j = NPOS(j) - x;
             float d = length(to_j);
             if (d <= 0.0) continue;
@@ -82,7 +82,7 @@ vec3 elastic_spring_force(uvec2 cell, vec3 x, out float stiffness) {
             uint type;
             float rest;
             mesh_spring(e, j, type, rest);
-            float k = obj.stiffness[type];
+            float k = mesh_stiffness(type);
             vec3 to_j = NPOS(j) - x;
             float d = length(to_j);
             if (k == 0.0 || d <= 0.0) continue;

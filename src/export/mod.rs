@@ -170,8 +170,9 @@ struct Track {
     name: String,
     /// The object's own name, as glTF keeps it (UTF-8, any characters).
     label: String,
-    /// The object's kind and grid: a recording keeps one set of meshes.
-    shape: (ObjectKind, [u32; 2]),
+    /// The object's kind and grid (and a mesh cloth's topology): a recording keeps one set of
+    /// meshes.
+    shape: (ObjectKind, [u32; 2], Option<std::sync::Arc<crate::sim::cloth_mesh::ClothMesh>>),
     counts: usize,
     /// Surface vertices a frame (the simulation's; a rope's recording adds its two cap rings).
     vertices: usize,
@@ -295,7 +296,7 @@ impl Recording {
                     name: unique_name(&mut taken, usd_name(&o.name)),
                     label: o.name.clone(),
                     rope_nodes,
-                    shape: (o.kind, o.dims),
+                    shape: (o.kind, o.dims, o.mesh.clone()),
                     counts: indices.len() / 3,
                     vertices: o.surface_count(),
                     indices,
@@ -366,7 +367,8 @@ impl Recording {
     pub fn matches(&self, model: &SimModel) -> bool {
         (1e3 / model.frame_dt).round() / 1e3 == self.fps
             && model.objects.len() == self.tracks.len()
-            && self.tracks.iter().zip(&model.objects).all(|(t, o)| t.shape == (o.kind, o.dims))
+            && (self.tracks.iter().zip(&model.objects))
+                .all(|(t, o)| (t.shape.0, t.shape.1, &t.shape.2) == (o.kind, o.dims, &o.mesh))
     }
 
     pub fn format(&self) -> Format {

@@ -186,6 +186,7 @@ pub(super) fn cloth(c: &Cloth) -> ObjectModel {
         spacing,
         stiffness: c.stiffness.to_array(),
         rest_scale: c.rest_scale.to_array(),
+        seam: 0.0,
         damping: c.damping,
         mass: c.mass,
         drag: c.drag,
@@ -300,12 +301,17 @@ fn pin_inside(pin_box: &Option<super::PinBox>, positions: &[DVec3], pinned: &mut
 /// (`sim::cloth_mesh`). The error says what is wrong with the mesh or the pins.
 pub(super) fn mesh_cloth(c: &super::MeshCloth) -> Result<ObjectModel, String> {
     let file = c.loaded.as_ref().ok_or("its file is not read")?;
-    let [x, y, z] = c.rotation.map(f64::to_radians);
-    let rotation = DQuat::from_euler(EulerRot::XYZ, x, y, z);
-    let center = DVec3::from_array(c.center);
-    let placed: Vec<DVec3> = file.vertices.iter().map(|&p| center + rotation * (p * c.scale)).collect();
-    let (positions, faces) = crate::sim::cloth_mesh::weld(&placed, &file.faces, c.weld);
-    let mesh = crate::sim::cloth_mesh::ClothMesh::new(&positions, &faces, &file.uvs)?;
+    for (k, seam) in c.seams.iter().enumerate() {
+        if seam.from.len() != seam.to.len() || seam.from.is_empty() {
+            return Err(format!(
+                "seam[{k}]: from has {} vertices and to {}: a seam pairs as many, at least one",
+                seam.from.len(),
+                seam.to.len()
+            ));
+        }
+    }
+    let placed = file.built(c)?;
+    let (positions, mesh) = (placed.0.clone(), placed.1.clone());
     let n = positions.len();
     let mut pinned = vec![false; n];
     for (k, &i) in c.pinned.iter().enumerate() {
@@ -324,6 +330,7 @@ pub(super) fn mesh_cloth(c: &super::MeshCloth) -> Result<ObjectModel, String> {
         spacing: [mesh.longest / std::f64::consts::SQRT_2; 2],
         stiffness: c.stiffness.to_array(),
         rest_scale: c.rest_scale.to_array(),
+        seam: c.seam_stiffness,
         damping: c.damping,
         mass: c.density * mesh.area / n as f64,
         drag: c.drag,
@@ -341,7 +348,7 @@ pub(super) fn mesh_cloth(c: &super::MeshCloth) -> Result<ObjectModel, String> {
         pin_group,
         positions,
         pinned,
-        mesh: Some(std::sync::Arc::new(mesh)),
+        mesh: Some(mesh),
     })
 }
 
@@ -378,6 +385,7 @@ pub(super) fn rope(r: &Rope) -> ObjectModel {
         spacing: [segment, segment],
         stiffness: r.stiffness_array(),
         rest_scale: [r.rest_scale, 1.0, r.rest_scale],
+        seam: 0.0,
         damping: r.damping,
         mass: r.mass,
         drag: r.drag,

@@ -67,12 +67,58 @@ pub fn read(path: &Path) -> Result<MeshFile, String> {
 /// A mesh as read from its file for a mesh cloth: vertices in the file's units and frame,
 /// faces as polygons (an OBJ file's quads kept), and each face corner's texture coordinates
 /// in face order (empty where the file has none). Checked as a cloth when the scene builds.
-#[derive(Debug, PartialEq)]
+#[derive(Debug)]
 pub struct FaceFile {
     pub path: PathBuf,
     pub vertices: Vec<DVec3>,
     pub faces: Vec<Vec<u32>>,
     pub uvs: Vec<[f32; 2]>,
+    built: std::sync::Mutex<Vec<(ClothKey, Arc<Placed>)>>,
+}
+
+/// What a mesh cloth's build depends on besides its file: centre, rotation, scale, weld, and
+/// its seams.
+type ClothKey = ([f64; 8], Vec<[u32; 2]>);
+/// A mesh cloth as built: its particles placed and welded, and its topology.
+pub type Placed = (Vec<DVec3>, Arc<crate::sim::cloth_mesh::ClothMesh>);
+
+impl PartialEq for FaceFile {
+    fn eq(&self, other: &Self) -> bool {
+        std::ptr::eq(self, other)
+            || (self.path == other.path
+                && self.vertices == other.vertices
+                && self.faces == other.faces
+                && self.uvs == other.uvs)
+    }
+}
+
+impl FaceFile {
+    /// The cloth `c` makes of its faces: placed by its `center`, `rotation` and `scale`,
+    /// welded within its `weld`, with its seams: the same one while those stay (the last few
+    /// kept, as `MeshFile::built`'s), since the scene is built again on every edit.
+    pub fn built(&self, c: &super::MeshCloth) -> Result<Arc<Placed>, String> {
+        const KEPT: usize = 4;
+        let (center, rotation, scale) = (c.center, c.rotation, c.scale);
+        let seams = c.seam_pairs();
+        let key =
+            ([center[0], center[1], center[2], rotation[0], rotation[1], rotation[2], scale, c.weld], seams);
+        let mut built = self.built.lock().unwrap_or_else(|e| e.into_inner());
+        if let Some((_, placed)) = built.iter().find(|(k, _)| *k == key) {
+            return Ok(placed.clone());
+        }
+        let [x, y, z] = rotation.map(f64::to_radians);
+        let turn = glam::DQuat::from_euler(glam::EulerRot::XYZ, x, y, z);
+        let at = DVec3::from_array(center);
+        let placed: Vec<DVec3> = self.vertices.iter().map(|&p| at + turn * (p * scale)).collect();
+        let (positions, faces) = crate::sim::cloth_mesh::weld(&placed, &self.faces, c.weld);
+        let mesh = crate::sim::cloth_mesh::ClothMesh::new(&positions, &faces, &self.uvs, &key.1)?;
+        let placed = Arc::new((positions, Arc::new(mesh)));
+        if built.len() == KEPT {
+            built.remove(0);
+        }
+        built.push((key, placed.clone()));
+        Ok(placed)
+    }
 }
 
 /// Reads the mesh at `path` for a mesh cloth, its faces and texture coordinates.
@@ -83,7 +129,11 @@ pub fn read_faces(path: &Path) -> Result<FaceFile, String> {
             let (vertices, triangles, vertex_uvs) = read_gltf(path)?;
             let uvs = match vertex_uvs.is_empty() {
                 true => Vec::new(),
-                false => triangles.iter().flatten().map(|&k| vertex_uvs[k as usize]).collect(),
+                false => triangles
+                    .iter()
+                    .flatten()
+                    .map(|&k| vertex_uvs.get(k as usize).copied().unwrap_or_default())
+                    .collect(),
             };
             (vertices, triangles.iter().map(|t| t.to_vec()).collect(), uvs)
         }
@@ -91,7 +141,7 @@ pub fn read_faces(path: &Path) -> Result<FaceFile, String> {
     if faces.len() > crate::sim::cloth_mesh::MAX_FACES {
         return Err(format!("more than {} faces", crate::sim::cloth_mesh::MAX_FACES));
     }
-    Ok(FaceFile { path: path.to_path_buf(), vertices, faces, uvs })
+    Ok(FaceFile { path: path.to_path_buf(), vertices, faces, uvs, built: Default::default() })
 }
 
 /// The file's size checked and its kind by extension: "obj", "gltf" or "glb".
@@ -281,9 +331,14 @@ fn read_gltf(path: &Path) -> Result<Triangles, String> {
                         .map(|q| world.transform_point3(DVec3::new(q[0] as f64, q[1] as f64, q[2] as f64))),
                 );
                 let count = vertices.len() as u32 - base;
-                // (read only where the accessor fits its buffer: the reader assumes so)
-                let texcoords =
-                    p.get(&gltf::Semantic::TexCoords(0)).filter(|a| accessor_fits(a, &buffers).is_ok());
+                // (read only where the accessor fits its buffer and is of a kind the reader
+                // takes, two floats or normalised unsigned integers: it assumes so)
+                let texcoords = p.get(&gltf::Semantic::TexCoords(0)).filter(|a| {
+                    use gltf::accessor::{DataType, Dimensions};
+                    accessor_fits(a, &buffers).is_ok()
+                        && a.dimensions() == Dimensions::Vec2
+                        && matches!(a.data_type(), DataType::F32 | DataType::U8 | DataType::U16)
+                });
                 match texcoords.and_then(|_| reader.read_tex_coords(0)) {
                     Some(t) if all_uvs => {
                         uvs.extend(t.into_f32().take(count as usize));
@@ -295,6 +350,9 @@ fn read_gltf(path: &Path) -> Result<Triangles, String> {
                     Some(i) => i.into_u32().collect(),
                     None => (0..count).collect(),
                 };
+                if let Some(k) = indices.iter().find(|&&k| k >= count) {
+                    return Err(format!("mesh {} names vertex {k}, past its {count} vertices", mesh.index()));
+                }
                 // A mirroring transform turns the winding over.
                 let flip = world.determinant() < 0.0;
                 triangles.extend(indices.chunks_exact(3).map(|t| {

@@ -675,6 +675,12 @@ pub struct MeshCloth {
     /// Further groups of pinned particles, each with a motion of its own.
     #[serde(default, rename = "pin_group", skip_serializing_if = "Vec::is_empty")]
     pub pin_groups: Vec<PinGroup<u32>>,
+    /// Seams (`[[mesh_cloth.seam]]`): pairs of vertex runs sewn together.
+    #[serde(default, rename = "seam", skip_serializing_if = "Vec::is_empty")]
+    pub seams: Vec<Seam>,
+    /// The seams' springs' stiffness [N/m] (rest length zero): how fast they close.
+    #[serde(default, skip_serializing_if = "is_zero")]
+    pub seam_stiffness: f64,
     /// Linear RGB of the side the normals point to, 0..1 (drawing only).
     #[serde(default = "defaults::cloth_color")]
     pub color: [f64; 3],
@@ -686,7 +692,23 @@ pub struct MeshCloth {
     pub loaded: Option<std::sync::Arc<mesh_file::FaceFile>>,
 }
 
+/// A seam of a mesh cloth, as Marvelous Designer's: vertex `from[k]` is sewn to vertex `to[k]`
+/// by a spring of rest length zero, so flat panels close into a garment.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Seam {
+    /// One side's vertices (indices, in order along the seam).
+    pub from: Vec<u32>,
+    /// The other side's, as many, in the order they meet `from`'s.
+    pub to: Vec<u32>,
+}
+
 impl MeshCloth {
+    /// Its seams as vertex pairs.
+    pub fn seam_pairs(&self) -> Vec<[u32; 2]> {
+        self.seams.iter().flat_map(|s| s.from.iter().zip(&s.to).map(|(&a, &b)| [a, b])).collect()
+    }
+
     /// Whether a particle is pinned (by `pinned` or `pin_box`): what a `pin_motion` needs.
     pub fn has_pins(&self) -> bool {
         !self.pinned.is_empty() || self.pin_box.is_some()

@@ -553,6 +553,10 @@ fn check_mesh_cloth(at: &str, c: &super::MeshCloth, scene: &Scene) -> Check {
     non_negative(&format!("{at}.collision_margin"), c.collision_margin, LENGTH.1, "m")?;
     color(&format!("{at}.color"), c.color)?;
     color(&format!("{at}.back_color"), c.back_color)?;
+    non_negative(&format!("{at}.seam_stiffness"), c.seam_stiffness, MAX_STIFFNESS, "N/m")?;
+    if !c.seams.is_empty() && c.seam_stiffness == 0.0 {
+        return Err(format!("{at}.seam: its seams need a seam_stiffness (N/m) to close"));
+    }
     if let Some(m) = scene.sim.integrator.method().filter(|m| !crate::sim::cloth_mesh::METHODS.contains(m)) {
         return Err(format!(
             "{at}: a mesh cloth runs with sim.integrator = \"symplectic_euler\", \"verlet\" or \"vbd\" for now, not \"{}\"",

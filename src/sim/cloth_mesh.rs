@@ -28,12 +28,40 @@ pub const METHODS: [crate::sim::model::Integrator; 3] = {
     [SymplecticEuler, Verlet, Vbd]
 };
 
+/// Whether both simulators run object `o` of `model` as it asks: a mesh cloth with one of
+/// `METHODS` and without self-collision, a stretch limit or contact between objects (what
+/// scene validation keeps a preset to, checked again for a model built otherwise). The error
+/// names the object and what it lacks.
+pub fn check_model(
+    o: &crate::sim::model::ObjectModel,
+    model: &crate::sim::model::SimModel,
+) -> Result<(), String> {
+    if o.mesh.is_none() {
+        return Ok(());
+    }
+    let lacks = if !METHODS.contains(&model.integrator) {
+        format!("the integrator \"{}\"", model.integrator.label())
+    } else if model.inter_object_contact() {
+        "contact between objects".into()
+    } else if o.self_distance.is_some() {
+        "self-collision".into()
+    } else if o.stretch_limit.is_some() {
+        "a stretch limit".into()
+    } else {
+        return Ok(());
+    };
+    Err(format!("mesh cloth '{}' does not run with {lacks} yet", o.name))
+}
+
+/// The kind of a seam's spring: rest length zero, the object's seam stiffness.
+pub const SEAM: u8 = 3;
+
 /// A spring of a mesh cloth, seen from one end.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct MeshSpring {
     /// The particle at the other end.
     pub other: u32,
-    /// 0 structural, 1 shear, 2 bending (the grid's spring types).
+    /// 0 structural, 1 shear, 2 bending (the grid's spring types), 3 a seam (`SEAM`).
     pub kind: u8,
     /// Its rest length in the mesh as placed, before the object's `rest_scale` [m].
     pub rest: f64,
@@ -72,9 +100,21 @@ impl ClothMesh {
     /// The mesh of particles at `rest` (placed) and `faces` (each a polygon of vertex
     /// indices, counter-clockwise), with each face corner's texture coordinates (`uvs`, one
     /// per corner in face order, or empty). The error names the first bad face or vertex.
-    pub fn new(rest: &[DVec3], faces: &[Vec<u32>], uvs: &[[f32; 2]]) -> Result<Self, String> {
+    pub fn new(
+        rest: &[DVec3],
+        faces: &[Vec<u32>],
+        uvs: &[[f32; 2]],
+        seams: &[[u32; 2]],
+    ) -> Result<Self, String> {
         check(rest, faces)?;
         let n = rest.len();
+        for (k, &[a, b]) in seams.iter().enumerate() {
+            if a as usize >= n || b as usize >= n || a == b {
+                return Err(format!(
+                    "seam pair {k} ({a}, {b}): a seam joins two different vertices of its {n}"
+                ));
+            }
+        }
         let mut kinds: HashMap<(u32, u32), u8> = HashMap::new();
         let mut order: Vec<(u32, u32, u8)> = Vec::new();
         let mut join = |a: u32, b: u32, kind: u8| {
@@ -109,9 +149,13 @@ impl ClothMesh {
             join(beside(f, a, b), beside(g, a, b), 2);
             join(beside(f, b, a), beside(g, b, a), 2);
         }
+        // Seams last: a pair the mesh joins already keeps its spring.
+        for &[a, b] in seams {
+            join(a, b, SEAM);
+        }
         let mut lists: Vec<Vec<MeshSpring>> = vec![Vec::new(); n];
         for (a, b, kind) in order {
-            let rest_length = (rest[a as usize] - rest[b as usize]).length();
+            let rest_length = if kind == SEAM { 0.0 } else { (rest[a as usize] - rest[b as usize]).length() };
             lists[a as usize].push(MeshSpring { other: b, kind, rest: rest_length });
             lists[b as usize].push(MeshSpring { other: a, kind, rest: rest_length });
         }
@@ -192,6 +236,15 @@ impl ClothMesh {
         &self.colour_order[self.colour_first[c] as usize..self.colour_first[c + 1] as usize]
     }
 
+    /// How many words `pack` writes.
+    pub fn word_count(&self) -> u64 {
+        let n = self.spring_first.len() as u64 - 1;
+        let lists =
+            2 * self.springs.len() + self.colour_first.len() + 3 * self.triangles.len() + self.ring.len();
+        // (header, spring firsts, colour count, colour order, ring firsts; then the lists)
+        4 + (n + 1) + 1 + n + (n + 1) + lists as u64
+    }
+
     /// The words the GPU reads after the object's parameters (glsl/include/mesh_springs.glsl):
     /// a header of where the spring entries, colours, triangles and rings start; the n + 1
     /// spring firsts; a spring as two words (other end | kind << 30, its rest length scaled by
@@ -204,7 +257,7 @@ impl ClothMesh {
         w[0] = w.len() as u32;
         for s in &self.springs {
             w.push(s.other | (s.kind as u32) << 30);
-            w.push(((s.rest * rest_scale[s.kind as usize]) as f32).to_bits());
+            w.push(((s.rest * rest_scale.get(s.kind as usize).unwrap_or(&1.0)) as f32).to_bits());
         }
         w[1] = w.len() as u32;
         w.push(self.colour_count() as u32);
@@ -368,7 +421,7 @@ mod tests {
         let rest: Vec<DVec3> = (0..cols * rows)
             .map(|i| DVec3::new((i % cols) as f64 * 0.1, 0.0, (i / cols) as f64 * 0.2))
             .collect();
-        let m = ClothMesh::new(&rest, &grid_quads(cols, rows), &[]).unwrap();
+        let m = ClothMesh::new(&rest, &grid_quads(cols, rows), &[], &[]).unwrap();
         let offsets: [(i64, i64, u8); 12] = [
             (1, 0, 0),
             (-1, 0, 0),
@@ -401,6 +454,7 @@ mod tests {
             }
         }
         assert_eq!(m.triangles.len(), 2 * 5 * 4);
+        assert_eq!(m.word_count(), m.pack([1.0; 3]).len() as u64);
         assert!((m.area - 0.5 * 0.8).abs() < 1e-12);
         assert_eq!(m.colour_order.len(), 30);
         for c in 0..m.colour_count() {
@@ -415,18 +469,18 @@ mod tests {
     #[test]
     fn triangles_bend_across_shared_edges_and_bad_faces_are_named() {
         let p = [DVec3::ZERO, DVec3::X, DVec3::Y, DVec3::new(1.0, 1.0, 0.0), DVec3::new(0.5, 0.5, 1.0)];
-        let m = ClothMesh::new(&p[..4], &[vec![0, 1, 2], vec![1, 3, 2]], &[]).unwrap();
+        let m = ClothMesh::new(&p[..4], &[vec![0, 1, 2], vec![1, 3, 2]], &[], &[]).unwrap();
         let kinds: Vec<u8> = m.springs.iter().map(|s| s.kind).collect();
         assert_eq!(kinds.iter().filter(|&&k| k == 0).count(), 10);
         assert_eq!(m.springs_of(0).last().map(|s| (s.other, s.kind)), Some((3, 2)));
-        let fan = ClothMesh::new(&p, &[vec![0, 1, 2], vec![1, 3, 2], vec![1, 4, 2]], &[]).unwrap();
+        let fan = ClothMesh::new(&p, &[vec![0, 1, 2], vec![1, 3, 2], vec![1, 4, 2]], &[], &[]).unwrap();
         assert_eq!((fan.unbent_edges, fan.springs.iter().filter(|s| s.kind == 2).count()), (1, 0));
-        let err = |faces: &[Vec<u32>]| ClothMesh::new(&p, faces, &[]).unwrap_err();
+        let err = |faces: &[Vec<u32>]| ClothMesh::new(&p, faces, &[], &[]).unwrap_err();
         assert!(err(&[vec![0, 1, 7]]).contains("past its"));
         assert!(err(&[vec![0, 1, 1]]).contains("twice"));
         assert!(err(&[vec![0, 1]]).contains("three or more"));
         assert!(err(&[vec![0, 1, 2]]).contains("belongs to no face"));
         let line = [DVec3::ZERO, DVec3::X, 2.0 * DVec3::X];
-        assert!(ClothMesh::new(&line, &[vec![0, 1, 2]], &[]).unwrap_err().contains("no area"));
+        assert!(ClothMesh::new(&line, &[vec![0, 1, 2]], &[], &[]).unwrap_err().contains("no area"));
     }
 }

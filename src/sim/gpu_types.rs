@@ -209,8 +209,8 @@ gpu_struct!(
     cell_inv: f32,
     /// Passes over a cloth's contacts with its own triangles a substep.
     contact_iterations: u32,
-    /// Unused (keeps `rest` at its 16-byte alignment).
-    pad1: f32,
+    /// A mesh cloth's seam springs' stiffness [N/m] (0 without seams; glsl/include/mesh_springs.glsl).
+    seam: f32,
     /// Rest length of each spring, in the shaders' SPRINGS order [m].
     rest: [[f32; 4]; 3],
     /// XPBD per spring type for the substep: alpha~, gamma, relaxation over the denominator

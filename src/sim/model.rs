@@ -86,6 +86,8 @@ pub struct ObjectModel {
     pub stiffness: [f64; 3],
     /// Rest length of each spring type as a multiple of its grid distance.
     pub rest_scale: [f64; 3],
+    /// A mesh cloth's seam springs' stiffness [N/m] (rest length zero; 0 without seams).
+    pub seam: f64,
     /// Dashpot along every spring [N s/m].
     pub damping: f64,
     /// Mass of each particle [kg].
@@ -181,6 +183,12 @@ impl ObjectModel {
             true => self.pin_motion_of(self.group_of(i)).initial_velocity(self.positions[i], frame_dt),
             false => self.velocities[i],
         }
+    }
+
+    /// The stiffness of a spring of `kind` (0 structural, 1 shear, 2 bending, 3 a mesh cloth's
+    /// seam) [N/m].
+    pub fn stiffness_of(&self, kind: usize) -> f64 {
+        self.stiffness.get(kind).copied().unwrap_or(self.seam)
     }
 
     pub fn surface_count(&self) -> usize {
@@ -466,6 +474,7 @@ impl SimModel {
                     spacing: o.spacing,
                     stiffness: o.stiffness,
                     rest_scale: o.rest_scale,
+                    seam: o.seam,
                     damping: o.damping,
                     mass: o.mass,
                     drag: o.drag,

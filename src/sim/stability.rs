@@ -108,7 +108,24 @@ pub fn predict_object(
 }
 
 pub fn predict(model: &SimModel) -> Vec<Prediction> {
-    model.objects.iter().map(|o| predict_object(&o.name, o.kind, o.dims, o.stiffness, o.mass)).collect()
+    (model.objects.iter())
+        .map(|o| match &o.mesh {
+            // A mesh cloth's best-connected particle, from its lists (seams among them).
+            Some(mesh) => {
+                let sum = (0..o.particle_count())
+                    .map(|i| mesh.springs_of(i).iter().map(|s| o.stiffness_of(s.kind as usize)).sum::<f64>())
+                    .fold(0.0, f64::max);
+                let omega_max = (2.0 * sum / o.mass).sqrt();
+                Prediction {
+                    name: o.name.clone(),
+                    kind: o.kind,
+                    omega_max,
+                    dt_max: if omega_max > 0.0 { 2.0 / omega_max } else { f64::INFINITY },
+                }
+            }
+            None => predict_object(&o.name, o.kind, o.dims, o.stiffness, o.mass),
+        })
+        .collect()
 }
 
 /// The runtime guard caught an object's state going non-finite or running away.

@@ -58,8 +58,14 @@ pub fn cpu_run(model: &SimModel, times: &[f64]) -> CpuRun {
     CpuRun { samples, max_strain, energy: (start, end), finite }
 }
 
-/// The size an object's errors are normalised by: the diagonal of its rest grid [m].
+/// The size an object's errors are normalised by: the diagonal of its rest grid (of a mesh
+/// cloth's box) [m].
 pub fn object_size(o: &ObjectModel) -> f64 {
+    // (a mesh cloth: the diagonal of its placed vertices' box)
+    if o.mesh.is_some() {
+        let (lo, hi) = crate::sim::collider_mesh::bounds(&o.positions);
+        return (hi - lo).length().max(1e-9);
+    }
     let w = (o.dims[0].max(1) - 1) as f64 * o.spacing[0];
     let h = (o.dims[1].max(1) - 1) as f64 * o.spacing[1];
     w.hypot(h).max(1e-9)

@@ -87,6 +87,7 @@ fn the_preset_reference_lists_every_key_of_every_table() {
         ("`[[cloth]]`", "[[cloth]]\nzz_unknown = 0\n"),
         ("`[[rope]]`", "[[rope]]\nzz_unknown = 0\n"),
         ("`[[mesh_cloth]]`", "[[mesh_cloth]]\nzz_unknown = 0\n"),
+        ("seams", "[[mesh_cloth]]\n[[mesh_cloth.seam]]\nzz_unknown = 0\n"),
         ("pin groups", "[[cloth]]\n[[cloth.pin_group]]\nzz_unknown = 0\n"),
     ];
     let sections = reference_rows("presets.md");

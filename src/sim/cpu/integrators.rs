@@ -78,7 +78,7 @@ fn grid(o: &ObjectModel, i: usize) -> (i64, i64) {
 /// The springs of particle i that have a stiffness, with it (the solvers' constraints).
 fn elastic_springs(o: &ObjectModel, i: usize) -> impl Iterator<Item = (Spring, f64)> + '_ {
     springs(o, i).into_iter().filter_map(move |s| {
-        let k = o.stiffness[s.kind as usize];
+        let k = o.stiffness_of(s.kind as usize);
         (k != 0.0).then_some((s, k))
     })
 }
@@ -93,7 +93,7 @@ fn external(m: &SimModel, o: &ObjectModel, i: usize, x: &[DVec3], v: DVec3, time
 fn spring_force(o: &ObjectModel, i: usize, x: &[DVec3], v: &[DVec3]) -> DVec3 {
     let mut force = DVec3::ZERO;
     for s in springs(o, i) {
-        let k = o.stiffness[s.kind as usize];
+        let k = o.stiffness_of(s.kind as usize);
         if k == 0.0 && o.damping == 0.0 {
             continue;
         }
@@ -371,6 +371,10 @@ fn finish_moved(
 /// the order the Gauss-Seidel methods sweep (within a colour no two particles share a spring,
 /// so the order inside it does not matter).
 fn colour_order(o: &ObjectModel) -> Vec<usize> {
+    // (a mesh cloth: its colouring's order, as the GPU's passes take it)
+    if let Some(mesh) = &o.mesh {
+        return mesh.colour_order.iter().map(|&i| i as usize).collect();
+    }
     let colours = vertex_colours(o.dims);
     let cols = o.dims[0];
     let mut order: Vec<usize> = (0..o.particle_count()).collect();
@@ -665,7 +669,7 @@ fn newton_springs<'a>(
     i: usize,
 ) -> impl Iterator<Item = (usize, DVec3, DMat3)> + 'a {
     springs(o, i).into_iter().filter_map(move |s| {
-        let k = o.stiffness[s.kind as usize];
+        let k = o.stiffness_of(s.kind as usize);
         if k == 0.0 && o.damping == 0.0 {
             return None;
         }
@@ -774,9 +778,13 @@ pub fn rigid_starts(m: &SimModel, o: &ObjectModel) -> bool {
 /// step (`stiffness_ratio` above 1). The GPU's per-stage path asks it as it records each frame
 /// (through the parameters' flags): it tries the particles at and near the grid's corners,
 /// edges and middle, which have every set of springs a particle of the grid can have, not all
-/// of them.
+/// of them (a mesh cloth's: all).
 fn stiff_against_step(m: &SimModel, o: &ObjectModel) -> bool {
     let h = BDF2_STEP * m.dt();
+    // (a mesh cloth's particles differ each: all of them)
+    if o.mesh.is_some() {
+        return (0..o.particle_count()).any(|i| stiffness_ratio(o, i, h) > 1.0);
+    }
     let near = |n: u32| {
         let n = n as i64;
         let mut at: Vec<i64> =
@@ -823,7 +831,7 @@ fn descent(o: &ObjectModel, h: f64, p: &[DVec3], dp: &[DVec3], r0: &[DVec3]) -> 
             change[t] += a * first + 0.5 * a * a * second;
         }
         for s in springs(o, i).iter().filter(|s| s.once) {
-            let k = o.stiffness[s.kind as usize];
+            let k = o.stiffness_of(s.kind as usize);
             if k == 0.0 && o.damping == 0.0 {
                 continue;
             }
@@ -860,8 +868,9 @@ pub fn energy(m: &SimModel, o: &ObjectModel, x: &[DVec3], v: &[DVec3]) -> f64 {
         if let Some(mesh) = &o.mesh {
             // (each spring once, from its lower end)
             for s in mesh.springs_of(i).iter().filter(|s| s.other as usize > i) {
-                let k = o.stiffness[s.kind as usize];
-                let stretch = (x[s.other as usize] - x[i]).length() - s.rest * o.rest_scale[s.kind as usize];
+                let k = o.stiffness_of(s.kind as usize);
+                let stretch = (x[s.other as usize] - x[i]).length()
+                    - s.rest * o.rest_scale.get(s.kind as usize).unwrap_or(&1.0);
                 e += 0.5 * k * stretch * stretch;
             }
             continue;
@@ -915,7 +924,7 @@ mod tests {
             expected += 0.5 * o.mass * v[i].length_squared() - o.mass * m.gravity.dot(x[i]);
             for s in springs(o, i) {
                 let stretch = (x[s.other] - x[i]).length() - s.rest;
-                expected += 0.25 * o.stiffness[s.kind as usize] * stretch * stretch;
+                expected += 0.25 * o.stiffness_of(s.kind as usize) * stretch * stretch;
             }
         }
         let e = energy(&m, o, &x, &v);

@@ -99,6 +99,7 @@ fn rounded(model: &SimModel) -> SimModel {
         o.spacing = o.spacing.map(r32);
         o.stiffness = o.stiffness.map(r32);
         o.rest_scale = o.rest_scale.map(r32);
+        o.seam = r32(o.seam);
         for v in
             [&mut o.damping, &mut o.mass, &mut o.drag, &mut o.friction, &mut o.margin, &mut o.rope_radius]
         {
@@ -118,6 +119,8 @@ enum SpringType {
     Structural = 0,
     Shear = 1,
     Bending = 2,
+    /// A mesh cloth's seam (`sim::cloth_mesh::SEAM`).
+    Seam = 3,
 }
 
 /// A spring from one particle: the neighbour's index, the type, its rest length, its slot in
@@ -144,13 +147,14 @@ const SPRING_GROUPS: [(SpringType, [(i64, i64); 4]); 3] = [
 /// once from its even slot (the forward direction). In a mesh cloth: its list
 /// (`sim::cloth_mesh`), each counted once from its lower end.
 fn springs(o: &ObjectModel, i: usize) -> Vec<Spring> {
-    const KINDS: [SpringType; 3] = [SpringType::Structural, SpringType::Shear, SpringType::Bending];
+    const KINDS: [SpringType; 4] =
+        [SpringType::Structural, SpringType::Shear, SpringType::Bending, SpringType::Seam];
     if let Some(mesh) = &o.mesh {
         return (mesh.springs_of(i).iter())
             .map(|s| Spring {
                 other: s.other as usize,
                 kind: KINDS[s.kind as usize],
-                rest: s.rest * o.rest_scale[s.kind as usize],
+                rest: s.rest * o.rest_scale.get(s.kind as usize).unwrap_or(&1.0),
                 slot: 0,
                 once: (s.other as usize) > i,
             })
@@ -185,7 +189,7 @@ fn overstretched<'a>(
     limit: f64,
 ) -> impl Iterator<Item = (usize, f64)> + 'a {
     springs(o, i).into_iter().filter_map(move |s| {
-        if s.kind == SpringType::Bending || o.stiffness[s.kind as usize] == 0.0 {
+        if s.kind == SpringType::Bending || o.stiffness_of(s.kind as usize) == 0.0 {
             return None;
         }
         let excess = (x[s.other] - x[i]).length() - s.rest * (1.0 + limit);
@@ -551,7 +555,8 @@ fn collide_edges(
             continue;
         }
         let (mut push, mut count) = (DVec3::ZERO, 0u32);
-        for s in springs(o, i).iter().filter(|s| s.kind != SpringType::Bending) {
+        for s in springs(o, i).iter().filter(|s| matches!(s.kind, SpringType::Structural | SpringType::Shear))
+        {
             let mid = (x[i] + x[s.other]) * 0.5;
             let (d, n) = collider.distance_at(pose, mid);
             if d < o.margin {
@@ -733,6 +738,7 @@ mod tests {
             spacing: [0.025, 0.025],
             stiffness: [0.0; 3],
             rest_scale: [1.0; 3],
+            seam: 0.0,
             damping: 0.0,
             mass: 0.01,
             drag: 0.0,

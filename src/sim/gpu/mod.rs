@@ -277,6 +277,9 @@ impl GpuSim {
         check_fits(ctx.info(), &model.objects.iter().map(ObjectModel::shape).collect::<Vec<_>>())?;
         contact::check_scene(model, ctx.info().max_storage_buffer_range)?;
         object::check_meshes(model, ctx.info().max_storage_buffer_range)?;
+        for o in &model.objects {
+            crate::sim::cloth_mesh::check_model(o, model).map_err(crate::error::UserError)?;
+        }
         let plans: Vec<ObjectPlan> = model.objects.iter().map(|o| ObjectPlan::of(o, model, limits)).collect();
         let mut parts = Parts::default();
         if let Err(e) = parts.create(ctx, model, shaders, &plans) {

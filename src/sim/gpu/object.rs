@@ -466,6 +466,7 @@ fn object_bytes(o: &ObjectShape) -> u64 {
     2 * n * std::mem::size_of::<Particle>() as u64
         + o.surface_count() * std::mem::size_of::<SurfaceVertex>() as u64
         + std::mem::size_of::<ObjectParams>() as u64
+        + o.mesh.as_ref().map_or(0, |m| 4 * m.word_count())
         + 24 * n
         + 8 * hash_table_size(n)
         + 4
@@ -506,7 +507,10 @@ pub fn check_fits(info: &DeviceInfo, shapes: &[ObjectShape]) -> Result<(), UserE
         let state = n * std::mem::size_of::<Particle>() as u64;
         let surface = o.surface_count() * std::mem::size_of::<SurfaceVertex>() as u64;
         let contact = self_list_bytes(n).max(self_pairs_bytes(n, true));
-        let largest = state.max(surface).max(solver_vec4s().0 * 16 * n).max(contact);
+        // (a mesh cloth's parameters carry its lists)
+        let params =
+            std::mem::size_of::<ObjectParams>() as u64 + o.mesh.as_ref().map_or(0, |m| 4 * m.word_count());
+        let largest = state.max(surface).max(solver_vec4s().0 * 16 * n).max(contact).max(params);
         if largest > info.max_storage_buffer_range {
             return Err(UserError(format!(
                 "{what} is too large for the device: one buffer would be {}, {} binds at most {}",
@@ -672,7 +676,7 @@ pub(super) fn object_params(o: &ObjectModel, model: &SimModel) -> ObjectParams {
         hash_mask: buckets - 1,
         cell_inv: (1.0 / cell) as f32,
         contact_iterations: model.contact_iterations,
-        pad1: 0.0,
+        seam: o.seam as f32,
         rest: crate::sim::cpu::rest_lengths(o).map(|g| g.map(|l| l as f32)),
         xpbd: std::array::from_fn(|t| xpbd_constants(o.stiffness[t], o, model).map(|c| c as f32)),
         pins,

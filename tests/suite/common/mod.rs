@@ -89,6 +89,7 @@ fn plain(kind: ObjectKind, name: String, dims: [u32; 2], spacing: f64, positions
         spacing: [spacing, spacing],
         stiffness: [0.0; 3],
         rest_scale: [1.0; 3],
+        seam: 0.0,
         damping: 0.0,
         mass: 0.01,
         drag: 0.0,
