@@ -324,11 +324,8 @@ void collide_edges(uvec2 cell, inout vec3 x, inout vec3 v, float since) {
         if (is_mesh()) {
             // (a mesh cloth: its structural and shear springs from its list)
             for (uint e = mesh_first(cell.x); e < mesh_first(cell.x + 1u); ++e) {
-                int j;
-                uint type;
-                float rest;
-                mesh_spring(e, j, type, rest);
-                if (type <= uint(SPRING_SHEAR)) edge_push(c, pose, here, j, push, edges);
+                MeshSpring s = mesh_spring(e);
+                if (s.type <= uint(SPRING_SHEAR)) edge_push(c, pose, here, s.other, push, edges);
             }
         } else {
             [[unroll]] for (int s = 0; s < 8; ++s) {

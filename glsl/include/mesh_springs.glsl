@@ -16,22 +16,27 @@ uint mesh_colours_at() { return obj_words[1]; }
 uint mesh_triangles_at() { return obj_words[2]; }
 uint mesh_rings_at() { return obj_words[3]; }
 
+// Particle i's springs are entries [mesh_first(i), mesh_first(i + 1)).
+uint mesh_first(uint i) { return obj_words[4u + i]; }
+
 // The stiffness of a spring of `type`: the grid's three types, or 3 a seam (rest length zero,
 // sim::cloth_mesh::SEAM) [N/m].
 const uint SPRING_SEAM = 3u;
 float mesh_stiffness(uint type) { return type == SPRING_SEAM ? obj.seam : obj.stiffness[type]; }
 
-// Particle i's springs are entries [mesh_first(i), mesh_first(i + 1)).
-uint mesh_first(uint i) { return obj_words[4u + i]; }
-
-// Entry e: the other end, the type (SPRING_STRUCTURAL, _SHEAR, _BENDING, SPRING_SEAM) and the
-// rest length (the object's rest_scale in it).
-void mesh_spring(uint e, out int other, out uint type, out float rest) {
+// Entry e of the lists: the other end, the type (SPRING_STRUCTURAL, _SHEAR, _BENDING,
+// SPRING_SEAM), the rest length (the object's rest_scale in it) and the stiffness.
+struct MeshSpring {
+    int other;
+    uint type;
+    float rest;
+    float k;
+};
+MeshSpring mesh_spring(uint e) {
     uint at = mesh_springs_at() + 2u * e;
     uint a = obj_words[at];
-    other = int(a & 0x3FFFFFFFu);
-    type = a >> 30;
-    rest = uintBitsToFloat(obj_words[at + 1u]);
+    uint type = a >> 30;
+    return MeshSpring(int(a & 0x3FFFFFFFu), type, uintBitsToFloat(obj_words[at + 1u]), mesh_stiffness(type));
 }
 
 // The colouring the Gauss-Seidel sweeps take: its count, and the k-th particle of colour c

@@ -51,11 +51,7 @@ float stiffness_ratio(uvec2 cell, float h) {
     float sum = 0.0;
     if (is_mesh()) {
         for (uint e = mesh_first(cell.x); e < mesh_first(cell.x + 1u); ++e) {
-            int j;
-            uint type;
-            float rest;
-            mesh_spring(e, j, type, rest);
-            float k = mesh_stiffness(type);
+            float k = mesh_spring(e).k;
             if (k != 0.0) sum += h * (h * k + obj.stiffness.w);
         }
         return sum / obj.mass;

@@ -115,18 +115,16 @@ vec3 newton_particle(uvec2 cell, vec3 x, vec3 dx, vec3 dy, out Sym3 hessian) {
     if (is_mesh()) {
         // (a mesh cloth: its list, as the grid's loop below with branches)
         for (uint e = mesh_first(cell.x); e < mesh_first(cell.x + 1u); ++e) {
-            int j;
-            uint type;
-            float rest;
-            mesh_spring(e, j, type, rest);
-            float k = mesh_stiffness(type);
+            MeshSpring s = mesh_spring(e);
+            int j = s.other;
+            float k = s.k;
             vec3 dj = SD(j);
             vec3 delta = SPRING_DELTA(x, dx, j, dj);
             float dd = dot(delta, delta);
             if (dd <= 0.0) continue;
             float inv = inversesqrt(dd);
             float inv2 = inv * inv;
-            float stretch = k - (k * rest) * inv;
+            float stretch = k - (k * s.rest) * inv;
             float kt = max(stretch, 0.0);
             force -= delta * (stretch + (damp * inv2) * dot(delta, dx - dj));
             vec3 cd = ((k + damp - kt) * inv2) * delta;

@@ -25,16 +25,14 @@ void add_spring_forces(uvec2 cell, vec3 x, vec3 v, float drift, inout vec3 force
     if (is_mesh()) {
         // (a mesh cloth: its list, each spring's type and rest length in it)
         for (uint e = mesh_first(cell.x); e < mesh_first(cell.x + 1u); ++e) {
-            int j;
-            uint type;
-            float rest;
-            mesh_spring(e, j, type, rest);
-            float k = mesh_stiffness(type);
+            MeshSpring s = mesh_spring(e);
+            int j = s.other;
+            float k = s.k;
             vec3 to_j = NPOS(j) - x;
             float d = length(to_j);
             if (d <= 0.0) continue;
             vec3 dir = to_j / d;
-            float f = k * (d - rest);
+            float f = k * (d - s.rest);
             if (has(F_DAMPING)) f += obj.stiffness.w * dot(NVEL(j) - v, dir);
             force += f * dir;
         }
@@ -78,15 +76,13 @@ vec3 elastic_spring_force(uvec2 cell, vec3 x, out float stiffness) {
     stiffness = 0.0;
     if (is_mesh()) {
         for (uint e = mesh_first(cell.x); e < mesh_first(cell.x + 1u); ++e) {
-            int j;
-            uint type;
-            float rest;
-            mesh_spring(e, j, type, rest);
-            float k = mesh_stiffness(type);
+            MeshSpring s = mesh_spring(e);
+            int j = s.other;
+            float k = s.k;
             vec3 to_j = NPOS(j) - x;
             float d = length(to_j);
             if (k == 0.0 || d <= 0.0) continue;
-            force += to_j * (k * (d - rest) / d);
+            force += to_j * (k * (d - s.rest) / d);
             stiffness += k;
         }
         return force;

@@ -45,11 +45,8 @@ void guard_strain(uvec2 cell) {
     vec3 x = p_in[i].pos.xyz;
     if (is_mesh()) {
         for (uint e = mesh_first(i); e < mesh_first(i + 1u); ++e) {
-            int j;
-            uint type;
-            float rest;
-            mesh_spring(e, j, type, rest);
-            if (type == SPRING_STRUCTURAL && distance(p_in[j].pos.xyz, x) > (1.0 + most) * rest) {
+            MeshSpring s = mesh_spring(e);
+            if (s.type == SPRING_STRUCTURAL && distance(p_in[s.other].pos.xyz, x) > (1.0 + most) * s.rest) {
                 atomicOr(guard_flags, GUARD_STRAIN);
                 atomicMin(guard_first, i);
                 return;

@@ -142,9 +142,7 @@ pub fn load_meshes(scene: &mut Scene, origin: &str, folder: &Path) -> Result<(),
         if m.loaded.is_some() {
             continue;
         }
-        let given = Path::new(&m.file);
-        let path = if given.is_absolute() { given.to_path_buf() } else { folder.join(given) };
-        let path = std::path::absolute(&path).unwrap_or(path);
+        let path = beside(folder, &m.file);
         let file = super::mesh_file::read(&path)
             .map_err(|e| UserError(format!("{origin}: mesh[{i}].file {}: {e}", path.display())))?;
         m.file = path.display().to_string();
@@ -154,15 +152,20 @@ pub fn load_meshes(scene: &mut Scene, origin: &str, folder: &Path) -> Result<(),
         if c.loaded.is_some() {
             continue;
         }
-        let given = Path::new(&c.file);
-        let path = if given.is_absolute() { given.to_path_buf() } else { folder.join(given) };
-        let path = std::path::absolute(&path).unwrap_or(path);
+        let path = beside(folder, &c.file);
         let file = super::mesh_file::read_faces(&path)
             .map_err(|e| UserError(format!("{origin}: mesh_cloth[{i}].file {}: {e}", path.display())))?;
         c.file = path.display().to_string();
         c.loaded = Some(std::sync::Arc::new(file));
     }
     Ok(())
+}
+
+/// A file named in a preset: as given where absolute, else `folder`'s; made absolute.
+fn beside(folder: &Path, file: &str) -> std::path::PathBuf {
+    let given = Path::new(file);
+    let path = if given.is_absolute() { given.to_path_buf() } else { folder.join(given) };
+    std::path::absolute(&path).unwrap_or(path)
 }
 
 fn parse_in(text: &str, origin: &str, overrides: &[String], folder: &Path) -> Result<Scene, UserError> {

@@ -446,6 +446,25 @@ fn check_name(at: &str, name: &str) -> Check {
 /// over 60 s a frame on lavapipe), for a result no finer than at the bound.
 const MAX_CONTACT_SPAN: f64 = 16.0;
 
+/// A cloth's springs: stiffness per type, rest lengths (`rest_unit`: what they multiply), the
+/// dashpots and the drag.
+fn check_springs(
+    at: &str,
+    (stiffness, rest_scale, rest_unit): (super::PerSpring, super::PerSpring, &str),
+    damping: f64,
+    drag: f64,
+) -> Check {
+    let names = ["structural", "shear", "bending"];
+    for (name, k) in names.iter().zip(stiffness.to_array()) {
+        non_negative(&format!("{at}.stiffness.{name}"), k, MAX_STIFFNESS, "N/m")?;
+    }
+    for (name, k) in names.iter().zip(rest_scale.to_array()) {
+        positive(&format!("{at}.rest_scale.{name}"), k, (1e-3, 1e3), rest_unit)?;
+    }
+    non_negative(&format!("{at}.damping"), damping, MAX_DAMPING, "N s/m")?;
+    non_negative(&format!("{at}.drag"), drag, MAX_DAMPING, "N s/m")
+}
+
 fn check_cloth(at: &str, c: &Cloth) -> Check {
     check_name(at, &c.name)?;
     let [cols, rows] = c.resolution;
@@ -462,22 +481,7 @@ fn check_cloth(at: &str, c: &Cloth) -> Check {
     positive(&format!("{at}.size[1]"), c.size[1], LENGTH, "m")?;
     vector(&format!("{at}.origin"), c.origin, MAX_COORDINATE, "m")?;
     positive(&format!("{at}.mass"), c.mass, MASS, "kg per particle")?;
-    for (name, k) in [
-        ("structural", c.stiffness.structural),
-        ("shear", c.stiffness.shear),
-        ("bending", c.stiffness.bending),
-    ] {
-        non_negative(&format!("{at}.stiffness.{name}"), k, MAX_STIFFNESS, "N/m")?;
-    }
-    for (name, k) in [
-        ("structural", c.rest_scale.structural),
-        ("shear", c.rest_scale.shear),
-        ("bending", c.rest_scale.bending),
-    ] {
-        positive(&format!("{at}.rest_scale.{name}"), k, (1e-3, 1e3), "multiple of the grid distance")?;
-    }
-    non_negative(&format!("{at}.damping"), c.damping, MAX_DAMPING, "N s/m")?;
-    non_negative(&format!("{at}.drag"), c.drag, MAX_DAMPING, "N s/m")?;
+    check_springs(at, (c.stiffness, c.rest_scale, "multiple of the grid distance"), c.damping, c.drag)?;
     if let Some(l) = c.stretch_limit {
         non_negative(&format!("{at}.stretch_limit"), l, 1e3, "fraction of rest length")?;
     }
@@ -533,22 +537,7 @@ fn check_mesh_cloth(at: &str, c: &super::MeshCloth, scene: &Scene) -> Check {
     positive(&format!("{at}.scale"), c.scale, (1e-6, 1e6), "m per file unit")?;
     non_negative(&format!("{at}.weld"), c.weld, LENGTH.1, "m")?;
     positive(&format!("{at}.density"), c.density, (1e-6, 1e3), "kg/m^2")?;
-    for (name, k) in [
-        ("structural", c.stiffness.structural),
-        ("shear", c.stiffness.shear),
-        ("bending", c.stiffness.bending),
-    ] {
-        non_negative(&format!("{at}.stiffness.{name}"), k, MAX_STIFFNESS, "N/m")?;
-    }
-    for (name, k) in [
-        ("structural", c.rest_scale.structural),
-        ("shear", c.rest_scale.shear),
-        ("bending", c.rest_scale.bending),
-    ] {
-        positive(&format!("{at}.rest_scale.{name}"), k, (1e-3, 1e3), "multiple of the mesh's length")?;
-    }
-    non_negative(&format!("{at}.damping"), c.damping, MAX_DAMPING, "N s/m")?;
-    non_negative(&format!("{at}.drag"), c.drag, MAX_DAMPING, "N s/m")?;
+    check_springs(at, (c.stiffness, c.rest_scale, "multiple of the mesh's length"), c.damping, c.drag)?;
     friction(&format!("{at}.friction"), c.friction)?;
     non_negative(&format!("{at}.collision_margin"), c.collision_margin, LENGTH.1, "m")?;
     color(&format!("{at}.color"), c.color)?;
