@@ -53,6 +53,7 @@ bool triangle_contact() { return has(F_TRIANGLES); }
 // its triangles are left out; with edge contact, whether j is that particle (the visit of a
 // vertex in its one-ring finds edge pairs only).
 bool rest_neighbour(uvec2 cell, uint j, float reach) {
+    if (triangle_contact() && is_mesh()) return mesh_linked(cell.x, j);
     if (triangle_contact()) return edge_contact() ? j == cell.x + cell.y * obj.dims.x : in_one_ring(cell, j);
     ivec2 other = ivec2(int(j % obj.dims.x), int(j / obj.dims.x));
     vec2 rest = vec2(other - ivec2(cell)) * obj.spacing;

@@ -39,6 +39,18 @@ MeshSpring mesh_spring(uint e) {
     return MeshSpring(int(a & 0x3FFFFFFFu), type, uintBitsToFloat(obj_words[at + 1u]), mesh_stiffness(type));
 }
 
+// Whether mesh vertex j is particle p or joined to it by a structural, shear or seam spring:
+// p's one-ring, as a grid's eight neighbours are (self-contact leaves out the triangles it
+// touches).
+bool mesh_linked(uint p, uint j) {
+    if (j == p) return true;
+    for (uint e = mesh_first(p); e < mesh_first(p + 1u); ++e) {
+        uint a = obj_words[mesh_springs_at() + 2u * e];
+        if ((a & 0x3FFFFFFFu) == j && (a >> 30) != SPRING_BENDING) return true;
+    }
+    return false;
+}
+
 // The colouring the Gauss-Seidel sweeps take: its count, and the k-th particle of colour c
 // (k < mesh_colour_size(c)).
 uint mesh_colour_count() { return obj_words[mesh_colours_at()]; }

@@ -11,6 +11,9 @@
 // no triangles: its segments, capsules of thickness h, are kept apart by the edge pairs alone
 // (rope_segments), which count there wherever their nearest points lie (edge_pair_part; a
 // node's two segments against one segment are two contacts, which the mass splitting shares).
+// A mesh cloth (F_CLOTH_MESH) keeps its particles from the triangles of its lists
+// (mesh_springs.glsl; a triangle's number is its index there), leaving out those a vertex of the
+// particle's one-ring touches (mesh_self_triangles); it has no edge pairs.
 //
 // A pair (particle p, triangle t) is left out when a vertex of t is p or one of its 8 grid
 // neighbours (its own triangles and the next ring: folds sharper than a grid cell are left to the
@@ -102,6 +105,7 @@ void set_pair_start(uint i, vec3 x) {
 float pair_fix() { return 67108864.0 / obj.self_distance; }
 
 uvec3 triangle_vertices(uint t) {
+    if (is_mesh()) return mesh_triangle(t);
     uint a = t >> 1u;
     uint cols = obj.dims.x;
     return (t & 1u) == 0u ? uvec3(a, a + cols, a + 1u) : uvec3(a + 1u, a + cols, a + cols + 1u);
@@ -506,6 +510,47 @@ void self_triangles_of(uvec2 cell, vec3 x, uint j, ivec2 at, vec3 xj, float d2j,
     }
 }
 
+// A mesh cloth's find pass (F_CLOTH_MESH; the grid's self_triangles_of): each triangle of
+// candidate j's ring whose vertex nearest x is j (ties by index: each triangle is visited
+// once) and that no vertex of the particle's one-ring touches (mesh_linked) is kept when a
+// contact and recorded in the list when nearer than list_reach. (j itself is outside the
+// one-ring: rest_neighbour.) The thickness is below every vertex's distance from the triangles
+// outside its one-ring at rest (sim::cloth_mesh::ClothMesh::rest_clearance, checked on load),
+// so no other pair is left out.
+void mesh_self_triangles(vec3 x, uint j, float list_reach) {
+    uint p = pair_particle;
+    vec3 xj = CPOS(j);
+    vec3 dj = x - xj;
+    float d2j = dot(dj, dj);
+    float farthest = max(obj.self_distance, list_reach);
+    for (uint k = mesh_ring_first(j); k < mesh_ring_first(j + 1u); ++k) {
+        uint t = mesh_ring_triangle(k);
+        uvec3 tv = mesh_triangle(t);
+        vec3 a = CPOS(tv.x);
+        vec3 b = CPOS(tv.y);
+        vec3 c = CPOS(tv.z);
+        vec3 ea = x - a;
+        vec3 eb = x - b;
+        vec3 ec = x - c;
+        if (tv.x != j && nearer(dot(ea, ea), tv.x, d2j, j) || tv.y != j && nearer(dot(eb, eb), tv.y, d2j, j)
+            || tv.z != j && nearer(dot(ec, ec), tv.z, d2j, j)) {
+            continue;
+        }
+        vec3 lo = min(a, min(b, c)) - farthest;
+        vec3 hi = max(a, max(b, c)) + farthest;
+        if (any(lessThan(x, lo)) || any(greaterThan(x, hi))) continue;
+        if (mesh_linked(p, tv.x) || mesh_linked(p, tv.y) || mesh_linked(p, tv.z)) continue;
+        vec3 w;
+        vec3 n;
+        float d = triangle_distance(x, a, b, c, w, n);
+        if (d < obj.self_distance) test_pair(x, t);
+        if (d < list_reach) {
+            if (list_len < LIST_ENTRIES) self_list[list_entry(list_len, list_particle, particle_count())] = t;
+            list_len += 1u;  // past LIST_ENTRIES the list is full: it is rebuilt the next substep
+        }
+    }
+}
+
 // The find pass's visit of candidate vertex j (not the particle at `cell`, at x): when j is
 // outside the particle's one-ring, each triangle around j whose vertex nearest x is j (so each
 // triangle is visited once) and that is not left out is kept when a contact and, while the
@@ -513,6 +558,10 @@ void self_triangles_of(uvec2 cell, vec3 x, uint j, ivec2 at, vec3 xj, float d2j,
 // particle's list when nearer than that; then, for j past the particle, their edge pairs
 // (self_edges). The ring's positions are read once.
 void self_triangles(uvec2 cell, vec3 x, uint j, float list_reach) {
+    if (is_mesh()) {
+        mesh_self_triangles(x, j, list_reach);
+        return;
+    }
     ivec2 at = ivec2(int(j % obj.dims.x), int(j / obj.dims.x));
     vec3 xj = CPOS(j);
     vec3 dj = x - xj;

@@ -662,6 +662,13 @@ pub struct MeshCloth {
     /// Distance kept from collider surfaces [m].
     #[serde(default = "defaults::margin")]
     pub collision_margin: f64,
+    /// Keeps its particles from its own triangles (a grid cloth's "triangles" self-contact).
+    #[serde(default, skip_serializing_if = "std::ops::Not::not")]
+    pub self_collision: bool,
+    /// Self-collision distance, a thickness [m]; default half the mean edge, and below every
+    /// vertex's distance at rest from the triangles outside its one-ring.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub self_collision_distance: Option<f64>,
     /// Pinned particles by vertex index (after welding: the file's order, less the vertices
     /// merged into earlier ones).
     #[serde(default, skip_serializing_if = "Vec::is_empty")]

@@ -557,6 +557,9 @@ fn check_mesh_cloth(at: &str, c: &super::MeshCloth, scene: &Scene) -> Check {
             "{at}: a mesh cloth does not take part in contact between objects yet; set sim.inter_object = false or leave the other objects out"
         ));
     }
+    if let Some(h) = c.self_collision_distance {
+        positive(&format!("{at}.self_collision_distance"), h, LENGTH, "m")?;
+    }
     let Some(file) = &c.loaded else { return Ok(()) };
     let (lo, hi) = crate::sim::collider_mesh::bounds(&file.vertices);
     let far = lo.abs().max(hi.abs()).max_element() * c.scale;
@@ -568,6 +571,9 @@ fn check_mesh_cloth(at: &str, c: &super::MeshCloth, scene: &Scene) -> Check {
     }
     let own = super::build::mesh_cloth(&super::MeshCloth { pin_groups: Vec::new(), ..c.clone() })
         .map_err(|e| format!("{at}: {} {e}", file.path.display()))?;
+    if let (Some(mesh), Some(h)) = (&own.mesh, own.self_distance) {
+        crate::sim::cloth_mesh::thin_enough(mesh, &own.positions, h).map_err(|e| format!("{at}: {e}"))?;
+    }
     check_pin_box(at, &c.pin_box, || &own.positions)?;
     check_pin_motion(at, &c.pin_motion, c.has_pins())?;
     let n = own.positions.len();

@@ -29,8 +29,10 @@ pub const METHODS: [crate::sim::model::Integrator; 3] = {
 };
 
 /// Whether both simulators run object `o` of `model` as it asks: a mesh cloth with one of
-/// `METHODS` and without self-collision, a stretch limit or contact between objects (what
-/// scene validation keeps a preset to, checked again for a model built otherwise). The error
+/// `METHODS`, without a stretch limit or contact between objects, and with self-contact, if
+/// any, of its particles against its triangles (what scene validation keeps a preset to,
+/// checked again for a model built otherwise; validation also checks the thickness against
+/// the rest shape, `thin_enough`, which a model's current positions need not be). The error
 /// names the object and what it lacks.
 pub fn check_model(
     o: &crate::sim::model::ObjectModel,
@@ -43,14 +45,29 @@ pub fn check_model(
         format!("the integrator \"{}\"", model.integrator.label())
     } else if model.inter_object_contact() {
         "contact between objects".into()
-    } else if o.self_distance.is_some() {
-        "self-collision".into()
+    } else if o.self_distance.is_some() && !o.has_triangles() {
+        "self-collision of particles against particles".into()
+    } else if o.has_edge_pairs() {
+        "self-collision of edges against edges".into()
     } else if o.stretch_limit.is_some() {
         "a stretch limit".into()
     } else {
         return Ok(());
     };
     Err(format!("mesh cloth '{}' does not run with {lacks} yet", o.name))
+}
+
+/// Whether a mesh cloth at `rest` can keep its particles `h` from its triangles: no vertex is
+/// nearer than that to a triangle outside its one-ring at rest (those pairs would push apart
+/// from the start). The error says which and how near.
+pub fn thin_enough(mesh: &ClothMesh, rest: &[DVec3], h: f64) -> Result<(), String> {
+    match mesh.rest_clearance(rest, h) {
+        None => Ok(()),
+        Some((d, v, t)) => Err(format!(
+            "its self-collision distance {h} m is more than the mesh allows: vertex {v} is {d:.3e} m from \
+             triangle {t} at rest, outside its one-ring; set self_collision_distance below that"
+        )),
+    }
 }
 
 /// The kind of a seam's spring: rest length zero, the object's seam stiffness.
@@ -219,6 +236,61 @@ impl ClothMesh {
     /// Particle i's springs.
     pub fn springs_of(&self, i: usize) -> &[MeshSpring] {
         &self.springs[self.spring_first[i] as usize..self.spring_first[i + 1] as usize]
+    }
+
+    /// Whether vertex j is particle p or joined to it by a structural, shear or seam spring:
+    /// p's one-ring, as a grid's eight neighbours are (self-contact leaves out the triangles it
+    /// touches; `mesh_linked` in glsl/include/mesh_springs.glsl).
+    pub fn linked(&self, p: usize, j: usize) -> bool {
+        p == j || self.springs_of(p).iter().any(|s| s.other as usize == j && s.kind != 2)
+    }
+
+    /// A vertex nearer than `within` at `rest` to a triangle outside its one-ring (`linked`),
+    /// as (the distance, the vertex, the triangle): self-contact of that thickness would push
+    /// them apart from the start, so a mesh cloth's thickness must stay below the distance.
+    /// The first such vertex in index order, with its nearest triangle.
+    pub fn rest_clearance(&self, rest: &[DVec3], within: f64) -> Option<(f64, usize, usize)> {
+        // Triangles by the cells (as wide as `within` or the longest edge) their boxes touch:
+        // a triangle within `within` of a vertex touches one of the 27 cells about it.
+        let cell = within.max(self.longest).max(f64::MIN_POSITIVE);
+        let key = |x: DVec3| (x / cell).floor().as_ivec3().to_array();
+        let mut cells: HashMap<[i32; 3], Vec<u32>> = HashMap::new();
+        for (t, tri) in self.triangles.iter().enumerate() {
+            let [a, b, c] = tri.map(|k| rest[k as usize]);
+            let (lo, hi) = (key(a.min(b).min(c)), key(a.max(b).max(c)));
+            for x in lo[0]..=hi[0] {
+                for y in lo[1]..=hi[1] {
+                    for z in lo[2]..=hi[2] {
+                        cells.entry([x, y, z]).or_default().push(t as u32);
+                    }
+                }
+            }
+        }
+        for (p, &x) in rest.iter().enumerate() {
+            let at = key(x);
+            let mut nearest: Option<(f64, usize, usize)> = None;
+            let near =
+                (-1..=1).flat_map(|dx| (-1..=1).flat_map(move |dy| (-1..=1).map(move |dz| [dx, dy, dz])));
+            for d in near {
+                let Some(ts) = cells.get(&[at[0] + d[0], at[1] + d[1], at[2] + d[2]]) else { continue };
+                for &t in ts {
+                    let tri = self.triangles[t as usize];
+                    if tri.iter().any(|&k| self.linked(p, k as usize)) {
+                        continue;
+                    }
+                    let [a, b, c] = tri.map(|k| rest[k as usize]);
+                    let w = crate::sim::cpu::self_contact::triangle_nearest(x, a, b, c);
+                    let dist = (x - (a * w.x + b * w.y + c * w.z)).length();
+                    if dist < within && nearest.is_none_or(|n| dist < n.0) {
+                        nearest = Some((dist, p, t as usize));
+                    }
+                }
+            }
+            if nearest.is_some() {
+                return nearest;
+            }
+        }
+        None
     }
 
     pub fn colour_count(&self) -> usize {
@@ -412,6 +484,30 @@ pub fn grid_quads(cols: u32, rows: u32) -> Vec<Vec<u32>> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// A flat grid of quads, whose one-rings are a grid's eight neighbours (a quad's diagonals
+    /// are shear springs), has its nearest pair outside a one-ring two spacings apart at rest,
+    /// as a grid has (a thickness below it passes, one above it is refused); a seam joins its
+    /// two ends' rings; two squares 1 cm apart are 1 cm apart.
+    #[test]
+    fn the_rest_clearance_is_the_nearest_pair_outside_a_one_ring() {
+        let (cols, rows) = (5u32, 4u32);
+        let rest: Vec<DVec3> =
+            (0..cols * rows).map(|i| DVec3::new((i % cols) as f64 * 0.1, 0.0, (i / cols) as f64 * 0.1)).collect();
+        let m = ClothMesh::new(&rest, &grid_quads(cols, rows), &[], &[[0, 4]]).unwrap();
+        let linked = [1, 5, 6, 4, 10, 2].map(|j| m.linked(0, j));
+        assert_eq!(linked, [true, true, true, true, false, false]);
+        assert_eq!(m.rest_clearance(&rest, 0.199), None);
+        let (d, v, t) = m.rest_clearance(&rest, 0.25).unwrap();
+        assert!((d - 0.2).abs() < 1e-12 && v == 0, "{d} {v} {t}");
+        assert!(!m.triangles[t].iter().any(|&k| m.linked(v, k as usize)));
+        let square = [rest[0], rest[1], rest[5], rest[6]];
+        let mut two = square.to_vec();
+        two.extend(square.iter().map(|p| *p + DVec3::new(0.0, 0.01, 0.0)));
+        let m = ClothMesh::new(&two, &[vec![0, 1, 3, 2], vec![4, 5, 7, 6]], &[], &[]).unwrap();
+        let (d, v, _) = m.rest_clearance(&two, 0.05).unwrap();
+        assert!((d - 0.01).abs() < 1e-12 && v == 0, "{d} {v}");
+    }
 
     /// A grid written as quads makes the grid's springs: each particle's springs are those
     /// of its 12 grid offsets inside the grid, of the same types; the colouring is proper.

@@ -55,9 +55,9 @@ pub struct ObjectShape {
 }
 
 impl ObjectShape {
-    /// Whether it is a cloth made from a mesh: a cloth of one row (a grid has two at least).
+    /// Whether it is a cloth made from a mesh.
     pub fn is_mesh(&self) -> bool {
-        self.kind == ObjectKind::Cloth && self.dims[1] == 1
+        self.mesh.is_some()
     }
 
     pub fn particle_count(&self) -> u64 {
@@ -203,10 +203,11 @@ impl ObjectModel {
 
     /// Whether self-contact is between the pieces of the surface, equal and opposite
     /// (`sim::cpu::self_contact`; the GPU's F_TRIANGLES): a cloth's particles against its
-    /// triangles, asked for, on a grid of at least 2 x 2; a rope's segments against its
+    /// triangles, asked for, on a grid of at least 2 x 2 or a mesh; a rope's segments against its
     /// segments, as capsules (`has_segment_pairs`). Else particle against particle.
     pub fn has_triangles(&self) -> bool {
-        self.triangle_contact && self.dims[0] > 1 && (self.dims[1] > 1 || self.kind == ObjectKind::Rope)
+        let surface = self.dims[1] > 1 || self.kind == ObjectKind::Rope || self.mesh.is_some();
+        self.triangle_contact && self.dims[0] > 1 && surface
     }
 
     /// Whether self-contact keeps the grid's edges from its edges too: with triangles, or a

@@ -1010,8 +1010,8 @@ fn bad_mesh_files_are_refused_in_one_line() {
 }
 
 /// A mesh cloth's file that is missing or bad (a face of no area, a vertex that is not a
-/// number, a face naming a vertex twice), a pin past its vertices, or a method it does not run
-/// with stops a run with exit code 2 and one line naming the object and what is wrong; a good
+/// number, a face naming a vertex twice), a pin past its vertices, a method it does not run
+/// with, or a self-collision thickness its rest shape does not leave room for stops a run with exit code 2 and one line naming the object and what is wrong; a good
 /// one runs.
 #[test]
 fn bad_mesh_cloths_are_refused_in_one_line() {
@@ -1041,6 +1041,25 @@ fn bad_mesh_cloths_are_refused_in_one_line() {
         "v -1 0 -1\nv 1 0 -1\nv 1 0 1\nv -1 0 1\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\nf 1/1 4/4 3/3 2/2\n",
     );
     run("good.obj", "[sim]\nintegrator = \"xpbd\"\n", &["mesh_cloth[0]", "\"xpbd\"", "vbd"]);
+    // Two squares 1 cm apart: half the mean edge, the default thickness, would push them apart.
+    write(
+        d,
+        "two.obj",
+        "v -1 0 -1\nv 1 0 -1\nv 1 0 1\nv -1 0 1\nv -1 0.01 -1\nv 1 0.01 -1\nv 1 0.01 1\nv -1 0.01 1\n\
+         f 1 4 3 2\nf 5 8 7 6\n",
+    );
+    let thick = std::fs::read_to_string(preset("two.obj", "")).unwrap() + "self_collision = true\n";
+    let thick = write(d, "thick.toml", &thick);
+    rejects(
+        &["simulate", "--preset", &thick, "--frames", "1"],
+        &[
+            "mesh_cloth[0]",
+            "self-collision distance 1 m",
+            "vertex 0",
+            "1.000e-2 m",
+            "self_collision_distance",
+        ],
+    );
     let past =
         std::fs::read_to_string(preset("good.obj", "")).unwrap().replace("pinned = [0]", "pinned = [9]");
     let past = write(d, "past.toml", &past);

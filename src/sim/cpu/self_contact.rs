@@ -179,6 +179,11 @@ pub(super) fn friction_correction(moved: DVec3, n: DVec3, normal: f64, mu: f64) 
 /// Whether pair (particle p, triangle `tv`) of cloth `o` is left out: a vertex of the triangle
 /// in p's one-ring, or the triangle nearer than h to p at rest.
 fn left_out(o: &ObjectModel, h: f64, p: usize, tv: [usize; 3]) -> bool {
+    if let Some(mesh) = &o.mesh {
+        // (its thickness is below every rest distance outside the one-ring:
+        // `ClothMesh::rest_clearance`)
+        return tv.iter().any(|&k| mesh.linked(p, k));
+    }
     let cols = o.dims[0] as usize;
     let cell = |k: usize| ((k % cols) as i64, (k / cols) as i64);
     let (pc, pr) = cell(p);
@@ -429,7 +434,13 @@ pub fn contacts(o: &ObjectModel, x: &[DVec3]) -> Vec<Contact> {
     let mut contacts = Vec::new();
     let Some(h) = o.self_distance.filter(|_| o.has_triangles()) else { return contacts };
     let pinned = |m: &[usize]| m.iter().all(|&k| o.pinned[k]);
-    for (_, tv) in cloth_triangles(o.dims[0] as usize, o.dims[1] as usize) {
+    let triangles: Vec<[usize; 3]> = match &o.mesh {
+        Some(mesh) => mesh.triangles.iter().map(|t| t.map(|k| k as usize)).collect(),
+        None => {
+            cloth_triangles(o.dims[0] as usize, o.dims[1] as usize).into_iter().map(|(_, tv)| tv).collect()
+        }
+    };
+    for tv in triangles {
         let (lo, hi) = tv
             .iter()
             .fold((DVec3::INFINITY, DVec3::NEG_INFINITY), |(lo, hi), &k| (lo.min(x[k]), hi.max(x[k])));
