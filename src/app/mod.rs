@@ -58,17 +58,18 @@ pub struct AppArgs {
 
 pub use crate::ui::Selection;
 
-/// `--select`'s value: `cloth:N`, `rope:N` or a collider, `sphere:N`, `box:N`, `capsule:N`,
-/// `mesh:N`.
+/// `--select`'s value: `cloth:N`, `rope:N`, `mesh_cloth:N` or a collider, `sphere:N`,
+/// `box:N`, `capsule:N`, `mesh:N`.
 pub fn parse_selection(s: &str) -> Result<Selection, String> {
     let usage = || {
-        format!("'{s}': expected cloth:N or rope:N, or sphere:N, box:N, capsule:N or mesh:N (N from 0), e.g. cloth:0")
+        format!("'{s}': expected cloth:N, rope:N or mesh_cloth:N, or sphere:N, box:N, capsule:N or mesh:N (N from 0), e.g. cloth:0")
     };
     let (kind, n) = s.split_once(':').ok_or_else(usage)?;
     let n: usize = n.trim().parse().map_err(|_| usage())?;
     match kind.trim() {
         "cloth" => Ok(Selection::Cloth(n)),
         "rope" => Ok(Selection::Rope(n)),
+        "mesh_cloth" => Ok(Selection::MeshCloth(n)),
         "sphere" => Ok(Selection::Sphere(n)),
         "box" => Ok(Selection::Box(n)),
         "capsule" => Ok(Selection::Capsule(n)),
@@ -82,6 +83,7 @@ pub fn check_selection(select: Selection, scene: &Scene) -> Result<(), UserError
     let (kind, n, count) = match select {
         Selection::Cloth(n) => ("cloth", n, scene.cloths.len()),
         Selection::Rope(n) => ("rope", n, scene.ropes.len()),
+        Selection::MeshCloth(n) => ("mesh_cloth", n, scene.mesh_cloths.len()),
         Selection::Sphere(n) => ("sphere", n, scene.spheres.len()),
         Selection::Box(n) => ("box", n, scene.boxes.len()),
         Selection::Capsule(n) => ("capsule", n, scene.capsules.len()),
@@ -263,9 +265,10 @@ mod tests {
         assert_eq!(parse_selection("cloth:0"), Ok(Selection::Cloth(0)));
         assert_eq!(parse_selection("rope: 2"), Ok(Selection::Rope(2)));
         assert_eq!(parse_selection("mesh:1"), Ok(Selection::Mesh(1)));
+        assert_eq!(parse_selection("mesh_cloth:0"), Ok(Selection::MeshCloth(0)));
         for bad in ["cloth", "towel:0", "cloth:-1", "cloth:x", ""] {
             let e = parse_selection(bad).unwrap_err();
-            assert!(e.contains("expected cloth:N or rope:N"), "{bad}: {e}");
+            assert!(e.contains("expected cloth:N, rope:N or mesh_cloth:N"), "{bad}: {e}");
         }
         let scene = load_scene(None, &[]).unwrap();
         assert!(check_selection(Selection::Cloth(0), &scene).is_ok());

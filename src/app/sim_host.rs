@@ -104,7 +104,27 @@ fn layout_key(s: &Scene) -> String {
         crate::scene::colliders(s).into_iter().map(|c| (c.shape.kind(), c.motion, c.turn)).collect();
     // A mesh collider's triangles are uploaded with the simulation and the renderer's meshes.
     let meshes: Vec<_> = s.meshes.iter().map(|m| (&m.file, m.scale, m.reach)).collect();
-    format!("{cloths:?}{ropes:?}{kinds:?}{meshes:?}")
+    // A mesh cloth's particles and topology come from its file as placed and welded.
+    let mesh_cloths: Vec<_> = s
+        .mesh_cloths
+        .iter()
+        .map(|c| {
+            format!(
+                "{}{:?}{:?}{:?}{:?}{:?}{:?}{:?}{:?}{:?}",
+                c.file,
+                c.center,
+                c.rotation,
+                c.scale,
+                c.weld,
+                c.seams,
+                c.pinned,
+                c.pin_box,
+                c.pin_motion,
+                c.pin_groups
+            )
+        })
+        .collect();
+    format!("{cloths:?}{ropes:?}{kinds:?}{meshes:?}{mesh_cloths:?}")
 }
 
 impl SimHost {
@@ -426,6 +446,27 @@ fn set_listed<T: PartialEq>(list: &mut Vec<T>, item: T, pin: bool) -> bool {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// A mesh cloth placed, welded or pinned otherwise, or another one added, is a new layout
+    /// (its particles come anew from its file; the running state is not carried into it); its
+    /// material is not.
+    #[test]
+    fn a_mesh_cloths_placement_is_part_of_the_layout() {
+        let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("presets/skirt.toml");
+        let base = scene::load(&path, &[]).unwrap();
+        let same = |edit: fn(&mut Scene)| {
+            let mut s = base.clone();
+            edit(&mut s);
+            layout_key(&s) == layout_key(&base)
+        };
+        assert!(same(|s| s.mesh_cloths[0].stiffness.structural *= 2.0));
+        assert!(same(|s| s.mesh_cloths[0].self_collision = false));
+        assert!(!same(|s| s.mesh_cloths[0].center[1] += 0.1));
+        assert!(!same(|s| s.mesh_cloths[0].rotation[1] = 90.0));
+        assert!(!same(|s| s.mesh_cloths[0].weld = 0.01));
+        assert!(!same(|s| s.mesh_cloths[0].pinned.push(3)));
+        assert!(!same(|s| s.mesh_cloths.push(s.mesh_cloths[0].clone())));
+    }
 
     /// `auto` keeps its pick for the light, colours and what the handles drag (a sphere, a
     /// capsule moved whole, the wind's cone), and calibrates again for a material, a

@@ -138,9 +138,9 @@ pub struct AppCommand {
     /// Hide the stats window (for screenshots that must not change from run to run).
     #[arg(long)]
     pub no_stats: bool,
-    /// Open with an object selected, its editor panel shown: `cloth:N` or `rope:N` (the N-th
-    /// cloth or rope of the scene, from 0), or a collider, `sphere:N`, `box:N`, `capsule:N` or
-    /// `mesh:N` (for screenshots of a panel).
+    /// Open with an object selected, its editor panel shown: `cloth:N`, `rope:N` or
+    /// `mesh_cloth:N` (the N-th of the scene's objects of that kind, from 0), or a collider,
+    /// `sphere:N`, `box:N`, `capsule:N` or `mesh:N` (for screenshots of a panel).
     #[arg(long, value_name = "KIND:N", value_parser = crate::app::parse_selection)]
     pub select: Option<crate::app::Selection>,
     /// Hide every window of the UI (pictures of the scene alone; the camera fits the whole

@@ -720,6 +720,36 @@ impl MeshCloth {
     pub fn has_pins(&self) -> bool {
         !self.pinned.is_empty() || self.pin_box.is_some()
     }
+
+    /// Its model: the file's vertices welded and placed, its springs and triangles; the error
+    /// says what is wrong with the mesh or the pins.
+    pub fn build(&self) -> Result<crate::sim::model::ObjectModel, String> {
+        build::mesh_cloth(self)
+    }
+
+    /// Adds a pin group holding one free particle (a small box about it; first a corner of its
+    /// bounding box's, else any), as `Cloth::add_pin_group` does; false where it has all its
+    /// groups or does not build.
+    pub fn add_pin_group(&mut self) -> bool {
+        let Ok(o) = self.build() else { return false };
+        let Some(mesh) = o.mesh.as_ref() else { return false };
+        // (its particles are at least its shortest edge apart, unless welded closer)
+        let shortest =
+            mesh.springs.iter().filter(|s| s.kind == 0).map(|s| s.rest).fold(f64::INFINITY, f64::min);
+        let (lo, hi) = crate::sim::collider_mesh::bounds(&o.positions);
+        let nearest = |corner: glam::DVec3| {
+            (0..o.positions.len())
+                .min_by(|&a, &b| o.positions[a].distance(corner).total_cmp(&o.positions[b].distance(corner)))
+        };
+        let corners: Vec<usize> =
+            [lo, hi, glam::DVec3::new(lo.x, hi.y, lo.z), glam::DVec3::new(hi.x, lo.y, hi.z)]
+                .into_iter()
+                .filter_map(nearest)
+                .collect();
+        let Some(pin_box) = free_box(&o, &corners, shortest) else { return false };
+        self.pin_groups.push(PinGroup { pinned: Vec::new(), pin_box: Some(pin_box), pin_motion: None });
+        true
+    }
 }
 
 /// A further group of an object's pinned particles that moves by a motion of its own (as

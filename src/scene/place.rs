@@ -2,7 +2,7 @@
 //! ground, and raised above every object or collider its box would meet, so that it does not
 //! start inside anything.
 
-use super::{Cloth, Rope, Scene};
+use super::{Cloth, MeshCloth, Rope, Scene};
 use glam::DVec3;
 
 /// Space kept between a new object's box and the ground or another box [m].
@@ -48,6 +48,15 @@ pub fn place_cloth(scene: &Scene, cloth: &mut Cloth, look_at: DVec3) {
     let alone = Scene { cloths: vec![cloth.clone()], ..Scene::default() };
     let d = offset(scene, boxes(&alone)[0], look_at);
     cloth.origin = (DVec3::from_array(cloth.origin) + d).to_array();
+}
+
+/// Places a new mesh cloth (not yet in `scene`; its file read) by `offset`.
+pub fn place_mesh_cloth(scene: &Scene, cloth: &mut MeshCloth, look_at: DVec3) {
+    let alone = Scene { mesh_cloths: vec![cloth.clone()], ..Scene::default() };
+    if let Some(&b) = boxes(&alone).first() {
+        let d = offset(scene, b, look_at);
+        cloth.center = (DVec3::from_array(cloth.center) + d).to_array();
+    }
 }
 
 /// Places a new rope (not yet in `scene`) by `offset`.

@@ -492,8 +492,9 @@ mod tests {
     #[test]
     fn the_rest_clearance_is_the_nearest_pair_outside_a_one_ring() {
         let (cols, rows) = (5u32, 4u32);
-        let rest: Vec<DVec3> =
-            (0..cols * rows).map(|i| DVec3::new((i % cols) as f64 * 0.1, 0.0, (i / cols) as f64 * 0.1)).collect();
+        let rest: Vec<DVec3> = (0..cols * rows)
+            .map(|i| DVec3::new((i % cols) as f64 * 0.1, 0.0, (i / cols) as f64 * 0.1))
+            .collect();
         let m = ClothMesh::new(&rest, &grid_quads(cols, rows), &[], &[[0, 4]]).unwrap();
         let linked = [1, 5, 6, 4, 10, 2].map(|j| m.linked(0, j));
         assert_eq!(linked, [true, true, true, true, false, false]);

@@ -32,29 +32,32 @@ pub fn entries(scene: &Scene) -> Vec<(String, Selection)> {
     out
 }
 
-/// The mesh file field, its Browse button and "+ mesh", which reads the file and adds it as a
+/// The mesh file field, its Browse button, "+ mesh", which reads the file and adds it as a
 /// collider where the camera looks (`look_at`), its lowest point on the ground or at the
-/// point; an unreadable or bad mesh is the error's one line.
+/// point, and "+ mesh cloth", which adds it as a cloth (`objects::add_mesh_cloth`); an
+/// unreadable or bad mesh is the error's one line.
 pub fn add_mesh(
     ui: &Ui,
     scene: &mut Scene,
     path: &mut String,
     look_at: [f64; 3],
 ) -> Result<Option<Selection>, String> {
-    ui.set_next_item_width(ui.content_region_avail()[0] * 0.5);
+    ui.set_next_item_width(ui.content_region_avail()[0] * 0.7);
     ui.input_text("##mesh file", path).hint("mesh file (.obj, .gltf, .glb)").build();
     ui.same_line();
     super::browse::browse_files(ui, "mesh", path, &["obj", "gltf", "glb"]);
+    let collider = ui.button("+ mesh");
     ui.same_line();
-    if !ui.button("+ mesh") {
+    if ui.button("+ mesh cloth") {
+        return super::objects::add_mesh_cloth(scene, path, look_at).map(Some);
+    }
+    if !collider {
         return Ok(None);
     }
     let file = std::path::absolute(path.trim()).map_err(|e| format!("{}: {e}", path.trim()))?;
     let read = crate::scene::mesh_file::read(&file).map_err(|e| format!("{}: {e}", file.display()))?;
-    // Scaled to fit a metre if it is far larger (a file in millimetres or centimetres).
+    let scale = fitting_scale(&read.vertices);
     let (lo, hi) = crate::sim::collider_mesh::bounds(&read.vertices);
-    let size = (hi - lo).max_element();
-    let scale = if size > 10.0 { 10f64.powf(-(size / 2.0).log10().ceil()) } else { 1.0 };
     let at = glam::DVec3::from_array(look_at);
     let floor = scene.ground.as_ref().map_or(at.y, |g| g.height.max(at.y - 1.0));
     let center = glam::DVec3::new(
@@ -74,6 +77,18 @@ pub fn add_mesh(
         loaded: Some(std::sync::Arc::new(read)),
     });
     Ok(Some(Selection::Mesh(scene.meshes.len() - 1)))
+}
+
+/// The scale that fits a mesh file of `vertices` to a few metres if it is far larger (a file
+/// in millimetres or centimetres): a power of ten.
+pub(super) fn fitting_scale(vertices: &[glam::DVec3]) -> f64 {
+    let (lo, hi) = crate::sim::collider_mesh::bounds(vertices);
+    let size = (hi - lo).max_element();
+    if size > 10.0 {
+        10f64.powf(-(size / 2.0).log10().ceil())
+    } else {
+        1.0
+    }
 }
 
 /// The add buttons (on the current line); returns what was added. A new collider is placed

@@ -2,7 +2,7 @@
 //! the selected object's panel (`objects`, `colliders`), preset load/save, and stats.
 
 use super::colliders;
-use super::objects::{cloth_panel, new_cloth, new_rope, rope_panel};
+use super::objects::{cloth_panel, mesh_cloth_panel, new_cloth, new_rope, rope_panel};
 use super::widgets::{check, choice, color, drag, drag3, int, tip};
 use super::wind;
 use crate::scene::Scene;
@@ -33,6 +33,7 @@ pub enum Selection {
     None,
     Cloth(usize),
     Rope(usize),
+    MeshCloth(usize),
     Ground,
     Sphere(usize),
     Box(usize),
@@ -44,22 +45,24 @@ pub enum Selection {
 }
 
 impl Selection {
-    /// Object `object` of the simulation (the cloths, then the ropes) in a scene of `cloths`
-    /// cloths.
-    pub fn of_object(object: usize, cloths: usize) -> Self {
-        if object < cloths {
-            Selection::Cloth(object)
-        } else {
-            Selection::Rope(object - cloths)
+    /// Object `object` of `scene`'s simulation (its cloths, then its ropes, then its mesh
+    /// cloths).
+    pub fn of_object(object: usize, scene: &Scene) -> Self {
+        let (cloths, ropes) = (scene.cloths.len(), scene.ropes.len());
+        match object {
+            i if i < cloths => Selection::Cloth(i),
+            i if i < cloths + ropes => Selection::Rope(i - cloths),
+            i => Selection::MeshCloth(i - cloths - ropes),
         }
     }
 
-    /// The simulation's object this selects in a scene of `cloths` cloths (None: a collider,
-    /// the wind, the light or nothing).
-    pub fn object(self, cloths: usize) -> Option<usize> {
+    /// The simulation's object this selects in `scene` (None: a collider, the wind, the light
+    /// or nothing).
+    pub fn object(self, scene: &Scene) -> Option<usize> {
         match self {
             Selection::Cloth(i) => Some(i),
-            Selection::Rope(j) => Some(cloths + j),
+            Selection::Rope(j) => Some(scene.cloths.len() + j),
+            Selection::MeshCloth(k) => Some(scene.cloths.len() + scene.ropes.len() + k),
             _ => None,
         }
     }
@@ -455,9 +458,8 @@ fn object_list(ui: &Ui, state: &mut EditorState, scene: &mut Scene) {
     for (i, r) in scene.ropes.iter().enumerate() {
         pick(format!("rope   {}##r{i}", r.name), Selection::Rope(i));
     }
-    // (a mesh cloth is edited in its preset for now)
-    for m in &scene.mesh_cloths {
-        ui.text_disabled(format!("mesh cloth {} (edit its preset)", m.name));
+    for (i, m) in scene.mesh_cloths.iter().enumerate() {
+        pick(format!("mesh cloth  {}##mc{i}", m.name), Selection::MeshCloth(i));
     }
     for (label, sel) in colliders::entries(scene) {
         pick(label, sel);
@@ -486,6 +488,7 @@ fn object_list(ui: &Ui, state: &mut EditorState, scene: &mut Scene) {
         match state.selected {
             Selection::Cloth(i) if i < scene.cloths.len() => drop(scene.cloths.remove(i)),
             Selection::Rope(i) if i < scene.ropes.len() => drop(scene.ropes.remove(i)),
+            Selection::MeshCloth(i) if i < scene.mesh_cloths.len() => drop(scene.mesh_cloths.remove(i)),
             other => drop(colliders::remove(scene, other)),
         }
         state.selected = Selection::None;
@@ -555,6 +558,9 @@ fn selected_panel(ui: &Ui, state: &EditorState, scene: &mut Scene) {
     match state.selected {
         Selection::Cloth(i) if i < scene.cloths.len() => cloth_panel(ui, &mut scene.cloths[i]),
         Selection::Rope(i) if i < scene.ropes.len() => rope_panel(ui, &mut scene.ropes[i]),
+        Selection::MeshCloth(i) if i < scene.mesh_cloths.len() => {
+            mesh_cloth_panel(ui, &mut scene.mesh_cloths[i])
+        }
         Selection::Wind | Selection::Light => ui.text_wrapped(
             "drag the arrows in the view to move it (its other settings are under Wind and Light above)",
         ),
@@ -611,7 +617,11 @@ fn stats_window(ui: &Ui, stats: &Stats, state: &mut EditorState, scene: &Scene) 
         let gpu = stats.sim.map(|s| s.total_ms).unwrap_or(0.0)
             + stats.render_ms.unwrap_or(0.0)
             + stats.ui_ms.unwrap_or(0.0);
-        ui.text(format!("GPU {} per frame ({:.0} fps GPU-only)", ms(Some(gpu)), 1e3 / gpu.max(1e-6)));
+        match gpu > 0.0 {
+            true => ui.text(format!("GPU {} per frame ({:.0} fps GPU-only)", ms(Some(gpu)), 1e3 / gpu)),
+            // (no frame timed yet)
+            false => ui.text("GPU - per frame"),
+        }
         ui.separator();
         ui.text("GPU time per frame (timestamps):");
         let row = |label: &str, v: Option<f64>| ui.text(format!("  {label:<26} {}", ms(v)));

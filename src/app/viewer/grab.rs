@@ -83,8 +83,7 @@ impl Viewer {
                         self.input.grab =
                             Some(Grab { object, index, depth, was_pinned, target: origin + dir * depth });
                         // Clicking an object also selects it (its parameters in the panel).
-                        self.editor.selected =
-                            crate::ui::Selection::of_object(object, host.scene().cloths.len());
+                        self.editor.selected = crate::ui::Selection::of_object(object, host.scene());
                     }
                     None => {
                         if let Some((target, _)) = collider {

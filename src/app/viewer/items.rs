@@ -12,7 +12,7 @@ impl Viewer {
         let host = self.host();
         let tinted = handles::collider_index(host.scene(), self.editor.selected);
         let mut items = view::scene_items(host.scene(), host.sim().time(), tinted);
-        if let Some(object) = self.editor.selected.object(host.scene().cloths.len()) {
+        if let Some(object) = self.editor.selected.object(host.scene()) {
             view::mark_selected(&mut items, object);
         }
         items.extend(view::pin_items(&host.pin_markers(), host.model(), self.camera.eye()));
