@@ -84,6 +84,14 @@ pub struct MeshSpring {
     pub rest: f64,
 }
 
+impl MeshSpring {
+    /// Its rest length with the object's `rest_scale` of its kind (a seam's, zero, unscaled)
+    /// [m]: what both simulators and the energy take.
+    pub fn scaled_rest(&self, rest_scale: [f64; 3]) -> f64 {
+        self.rest * rest_scale.get(self.kind as usize).unwrap_or(&1.0)
+    }
+}
+
 /// A mesh cloth's topology and what both simulators walk.
 #[derive(Debug, Clone, PartialEq)]
 pub struct ClothMesh {
@@ -329,7 +337,7 @@ impl ClothMesh {
         w[0] = w.len() as u32;
         for s in &self.springs {
             w.push(s.other | (s.kind as u32) << 30);
-            w.push(((s.rest * rest_scale.get(s.kind as usize).unwrap_or(&1.0)) as f32).to_bits());
+            w.push((s.scaled_rest(rest_scale) as f32).to_bits());
         }
         w[1] = w.len() as u32;
         w.push(self.colour_count() as u32);

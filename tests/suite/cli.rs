@@ -282,6 +282,7 @@ fn a_blow_up_with_edge_contact_ends_within_its_frame() {
 /// finest one stable; the implicit method is stable in every cell, four decades of stiffness
 /// at 1 to 64 substeps.
 #[test]
+#[ignore = "exhaustive tier: kept out of the default tier's 10-minute budget"]
 fn stability_map_writes_csv_and_svg() {
     let dir = tempfile::tempdir().unwrap();
     let out_dir = dir.path().join("map");
@@ -432,6 +433,7 @@ fn chart_contact_scene_converges_with_substeps() {
 /// the tolerance) and simulates with it; a tolerance finer than its reference can certify is
 /// refused with exit code 2 and the reason, before any simulation.
 #[test]
+#[ignore = "exhaustive tier: kept out of the default tier's 10-minute budget"]
 fn auto_integrator_picks_a_method_within_the_tolerance() {
     let args = |tol: &str| {
         msdsim(&[
@@ -465,6 +467,7 @@ fn auto_integrator_picks_a_method_within_the_tolerance() {
 /// still calibrates: the reference then starts at 128 against 256 (the cheaper 64 against 128
 /// pair, tried first, used to end the calibration with the guard's report).
 #[test]
+#[ignore = "exhaustive tier: kept out of the default tier's 10-minute budget"]
 fn auto_calibrates_a_scene_too_stiff_for_the_cheaper_reference() {
     let out = msdsim(&[
         "simulate",

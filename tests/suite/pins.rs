@@ -101,6 +101,7 @@ fn moving_pins_follow_their_keys_exactly() {
 /// a move a substep in the same direction: measured 2e-4 and 4e-4 at 16 substeps, 6e-6 to
 /// 3.5e-5 for the iterative methods at 4).
 #[test]
+#[ignore = "exhaustive tier: kept out of the default tier's 10-minute budget"]
 fn a_cloth_carried_at_a_steady_velocity_swings_as_a_held_one() {
     let ctx = gpu();
     let u = DVec3::new(0.4, 0.25, -0.1);
@@ -196,6 +197,7 @@ fn turning_pins_follow_their_turn_exactly() {
 /// frame is shared by; measured 1.6e-8) and both GPU paths (to 5e-5 m, as the steady turn's;
 /// measured 7.3e-6 at 16 substeps, 4.3e-7 at 4).
 #[test]
+#[ignore = "exhaustive tier: kept out of the default tier's 10-minute budget"]
 fn keyed_turns_follow_their_keys() {
     let ctx = gpu();
     use msdsim::sim::pins::PinMotion;

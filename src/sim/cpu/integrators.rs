@@ -869,8 +869,7 @@ pub fn energy(m: &SimModel, o: &ObjectModel, x: &[DVec3], v: &[DVec3]) -> f64 {
             // (each spring once, from its lower end)
             for s in mesh.springs_of(i).iter().filter(|s| s.other as usize > i) {
                 let k = o.stiffness_of(s.kind as usize);
-                let stretch = (x[s.other as usize] - x[i]).length()
-                    - s.rest * o.rest_scale.get(s.kind as usize).unwrap_or(&1.0);
+                let stretch = (x[s.other as usize] - x[i]).length() - s.scaled_rest(o.rest_scale);
                 e += 0.5 * k * stretch * stretch;
             }
             continue;

@@ -154,7 +154,7 @@ fn springs(o: &ObjectModel, i: usize) -> Vec<Spring> {
             .map(|s| Spring {
                 other: s.other as usize,
                 kind: KINDS[s.kind as usize],
-                rest: s.rest * o.rest_scale.get(s.kind as usize).unwrap_or(&1.0),
+                rest: s.scaled_rest(o.rest_scale),
                 slot: 0,
                 once: (s.other as usize) > i,
             })
