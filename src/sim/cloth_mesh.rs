@@ -9,6 +9,9 @@
 //!   the springs that skip a vertex, as a grid's bending springs do). An edge of three or more
 //!   faces (non-manifold) has no bending spring across it (`unbent_edges` counts them).
 //!
+//! - across a seam (`[[mesh_cloth.seam]]`) as across a shared edge, where two of its pairs in a
+//!   row sew a border edge to a border edge, at the length the pair has with the seam flat.
+//!
 //! A pair joined twice keeps its first kind in that order. Both simulators read a particle's
 //! springs as a list (`springs_of`); the GPU reads the same lists from the words `pack` writes
 //! after the object's parameters (glsl/include/mesh_springs.glsl).
@@ -141,12 +144,13 @@ impl ClothMesh {
             }
         }
         let mut kinds: HashMap<(u32, u32), u8> = HashMap::new();
-        let mut order: Vec<(u32, u32, u8)> = Vec::new();
-        let mut join = |a: u32, b: u32, kind: u8| {
+        // (a pair, its kind, and its rest length where it is not the pair's distance at rest)
+        let mut order: Vec<(u32, u32, u8, Option<f64>)> = Vec::new();
+        let mut join = |a: u32, b: u32, kind: u8, rest_length: Option<f64>| {
             let key = (a.min(b), a.max(b));
             if a != b && !kinds.contains_key(&key) {
                 kinds.insert(key, kind);
-                order.push((key.0, key.1, kind));
+                order.push((key.0, key.1, kind, rest_length));
             }
         };
         // Structural first, then shear, then bending: a pair keeps its first kind.
@@ -154,13 +158,13 @@ impl ClothMesh {
         for (f, face) in faces.iter().enumerate() {
             for (k, &a) in face.iter().enumerate() {
                 let b = face[(k + 1) % face.len()];
-                join(a, b, 0);
+                join(a, b, 0, None);
                 edge_faces.entry((a.min(b), a.max(b))).or_default().push(f);
             }
         }
         for face in faces.iter().filter(|f| f.len() == 4) {
-            join(face[0], face[2], 1);
-            join(face[1], face[3], 1);
+            join(face[0], face[2], 1, None);
+            join(face[1], face[3], 1, None);
         }
         let mut unbent_edges = 0;
         let mut shared: Vec<_> = edge_faces.iter().filter(|(_, f)| f.len() >= 2).collect();
@@ -171,16 +175,39 @@ impl ClothMesh {
                 continue;
             }
             let (f, g) = (&faces[fs[0]], &faces[fs[1]]);
-            join(beside(f, a, b), beside(g, a, b), 2);
-            join(beside(f, b, a), beside(g, b, a), 2);
+            join(beside(f, a, b), beside(g, a, b), 2, None);
+            join(beside(f, b, a), beside(g, b, a), 2, None);
         }
         // Seams last: a pair the mesh joins already keeps its spring.
         for &[a, b] in seams {
-            join(a, b, SEAM);
+            join(a, b, SEAM, None);
+        }
+        // Bending across a seam as across an edge two faces share: where two pairs in a row
+        // sew a border edge of one side to a border edge of the other, from each end's
+        // neighbour in the one's face to its neighbour in the other's, at the length it has
+        // with the seam sewn flat (so that the cloth beside a seam bends as elsewhere, not as
+        // a hinge; an open seam's bending springs also pull it closed, at their stiffness).
+        let border_face = |a: u32, b: u32| match edge_faces.get(&(a.min(b), a.max(b))) {
+            Some(fs) if fs.len() == 1 => Some(&faces[fs[0]]),
+            _ => None,
+        };
+        for w in seams.windows(2) {
+            let ([a0, b0], [a1, b1]) = (w[0], w[1]);
+            let (Some(f), Some(g)) = (border_face(a0, a1), border_face(b0, b1)) else { continue };
+            for ((a, a_next), (b, b_next)) in [((a0, a1), (b0, b1)), ((a1, a0), (b1, b0))] {
+                let (p, q) = (beside(f, a, a_next), beside(g, b, b_next));
+                let flat = (rest[p as usize] - rest[a as usize]).length()
+                    + (rest[q as usize] - rest[b as usize]).length();
+                join(p, q, 2, Some(flat));
+            }
         }
         let mut lists: Vec<Vec<MeshSpring>> = vec![Vec::new(); n];
-        for (a, b, kind) in order {
-            let rest_length = if kind == SEAM { 0.0 } else { (rest[a as usize] - rest[b as usize]).length() };
+        for (a, b, kind, given) in order {
+            let rest_length = match given {
+                Some(length) => length,
+                None if kind == SEAM => 0.0,
+                None => (rest[a as usize] - rest[b as usize]).length(),
+            };
             lists[a as usize].push(MeshSpring { other: b, kind, rest: rest_length });
             lists[b as usize].push(MeshSpring { other: a, kind, rest: rest_length });
         }
@@ -492,6 +519,30 @@ pub fn grid_quads(cols: u32, rows: u32) -> Vec<Vec<u32>> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Two 3 x 3 panels of quads sewn along a border (A's last column to B's first) bend across
+    /// the seam as one grid of 5 columns does across its middle column: a bending spring from
+    /// A's middle column to B's in every row, of two spacings (the seam sewn flat), though the
+    /// panels lie apart.
+    #[test]
+    fn a_seam_bends_as_the_grid_it_sews() {
+        let s = 0.1;
+        let mut rest = Vec::new();
+        for x0 in [0.0, 2.0 * s + 0.3] {
+            rest.extend((0..9).map(|i| DVec3::new(x0 + (i % 3) as f64 * s, 0.0, (i / 3) as f64 * s)));
+        }
+        let mut faces = grid_quads(3, 3);
+        faces.extend(grid_quads(3, 3).into_iter().map(|f| f.into_iter().map(|v| v + 9).collect()));
+        let seams: Vec<[u32; 2]> = (0..3).map(|r| [3 * r + 2, 9 + 3 * r]).collect();
+        let m = ClothMesh::new(&rest, &faces, &[], &seams).unwrap();
+        for r in 0..3u32 {
+            let across: Vec<&MeshSpring> =
+                m.springs_of((3 * r + 1) as usize).iter().filter(|s| s.other >= 9).collect();
+            assert_eq!(across.len(), 1, "row {r}: {across:?}");
+            assert_eq!((across[0].other, across[0].kind), (9 + 3 * r + 1, 2), "row {r}");
+            assert!((across[0].rest - 2.0 * s).abs() < 1e-12, "row {r}: {}", across[0].rest);
+        }
+    }
 
     /// A flat grid of quads, whose one-rings are a grid's eight neighbours (a quad's diagonals
     /// are shear springs), has its nearest pair outside a one-ring two spacings apart at rest,
