@@ -211,6 +211,9 @@ pub fn run(args: &SimulateArgs, options: &ContextOptions) -> Result<()> {
     if let Some(limit) = crate::sim::collider::contact_speed(&model) {
         say!(out, "contact: {limit}")?;
     }
+    for note in crate::sim::cloth_mesh::notes(&model) {
+        say!(out, "mesh: {note}")?;
+    }
     let recording = match &args.record {
         Some(path) => {
             let colors = crate::export::colors(&scene);

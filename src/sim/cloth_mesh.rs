@@ -73,6 +73,23 @@ pub fn thin_enough(mesh: &ClothMesh, rest: &[DVec3], h: f64) -> Result<(), Strin
     }
 }
 
+/// What a user should know of `model`'s mesh cloths that is not an error: edges shared by
+/// three or more faces (allowed; no bending spring crosses them), a line each.
+pub fn notes(model: &crate::sim::model::SimModel) -> Vec<String> {
+    let meshes = model.objects.iter().filter_map(|o| Some((&o.name, o.mesh.as_ref()?)));
+    meshes
+        .filter(|(_, m)| m.unbent_edges > 0)
+        .map(|(name, m)| {
+            format!(
+                "mesh cloth '{name}': {} edge{} shared by three or more faces (non-manifold): no bending spring crosses {}",
+                m.unbent_edges,
+                if m.unbent_edges == 1 { " is" } else { "s are" },
+                if m.unbent_edges == 1 { "it" } else { "them" }
+            )
+        })
+        .collect()
+}
+
 /// The kind of a seam's spring: rest length zero, the object's seam stiffness.
 pub const SEAM: u8 = 3;
 

@@ -1014,8 +1014,9 @@ fn bad_mesh_files_are_refused_in_one_line() {
 
 /// A mesh cloth's file that is missing or bad (a face of no area, a vertex that is not a
 /// number, a face naming a vertex twice), a pin past its vertices, a method it does not run
-/// with, or a self-collision thickness its rest shape does not leave room for stops a run with exit code 2 and one line naming the object and what is wrong; a good
-/// one runs.
+/// with, or a self-collision thickness its rest shape does not leave room for stops a run with
+/// exit code 2 and one line naming the object and what is wrong; a good one runs, and a
+/// non-manifold one runs and says where no bending spring crosses.
 #[test]
 fn bad_mesh_cloths_are_refused_in_one_line() {
     let dir = tempfile::tempdir().unwrap();
@@ -1069,4 +1070,10 @@ fn bad_mesh_cloths_are_refused_in_one_line() {
     rejects(&["simulate", "--preset", &past, "--frames", "1"], &["pinned[0] = 9", "4 vertices"]);
     let good = msdsim(&["simulate", "--preset", &preset("good.obj", ""), "--frames", "2", "--quiet"]);
     assert!(good.status.success(), "{}", String::from_utf8_lossy(&good.stderr));
+    // Three triangles on one edge: allowed, and said.
+    write(d, "fan.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nv 0 -1 0\nf 1 2 3\nf 1 2 4\nf 1 2 5\n");
+    let fan = msdsim(&["simulate", "--preset", &preset("fan.obj", ""), "--frames", "1"]);
+    let said = String::from_utf8_lossy(&fan.stdout);
+    assert!(fan.status.success(), "{}", String::from_utf8_lossy(&fan.stderr));
+    assert!(said.contains("1 edge is shared by three or more faces (non-manifold)"), "{said}");
 }
