@@ -1,7 +1,9 @@
 #!/usr/bin/env python3
 """Writes presets/meshes/skirt.obj: a flared skirt as two panels (front and back) of quads, each
 half an elliptic cone around the dress form of scripts/dress-form.py, open at the sides by a
-gap that the preset's seams close; texture coordinates per panel, in metres with y up. Prints
+gap that the preset's seams close; texture coordinates as a sewing pattern, each panel its own
+island in half of the unit square (front left, back right), u running left to right and v up as
+seen from outside, so that a texture reads unmirrored and the UV winding is the faces'. Prints
 the seams' vertex runs (1-based OBJ numbers less one: the preset's indices). Generated here, so
 the repository ships no third-party mesh.
 
@@ -12,6 +14,7 @@ import sys
 
 COLUMNS, ROWS = 22, 26   # vertices across a panel, and down it
 GAP = 0.03               # radians left open at each side seam, each side of it
+PAD = 0.02               # of a panel's half of the texture left empty at each side
 # (height [m], half width along x [m], half depth along z [m]) from the waistband down.
 PROFILE = [(1.00, 0.170, 0.135), (0.93, 0.205, 0.165), (0.45, 0.300, 0.260)]
 
@@ -37,7 +40,9 @@ def main():
             for c in range(COLUMNS):
                 angle = start + (math.pi - 2 * GAP) * c / (COLUMNS - 1)
                 vertices.append((a * math.cos(angle), y, b * math.sin(angle)))
-                uvs.append((c / (COLUMNS - 1), 1 - r / (ROWS - 1)))
+                # (c runs right to left seen from outside: u runs the other way)
+                u = 1 - c / (COLUMNS - 1)
+                uvs.append(((panel + PAD + (1 - 2 * PAD) * u) / 2, 1 - r / (ROWS - 1)))
         for r in range(ROWS - 1):
             for c in range(COLUMNS - 1):
                 i = base + c + r * COLUMNS
