@@ -39,14 +39,35 @@ MeshSpring mesh_spring(uint e) {
     return MeshSpring(int(a & 0x3FFFFFFFu), type, uintBitsToFloat(obj_words[at + 1u]), mesh_stiffness(type));
 }
 
-// Whether mesh vertex j is particle p or joined to it by a structural, shear or seam spring:
-// p's one-ring, as a grid's eight neighbours are (self-contact leaves out the triangles it
-// touches).
+// Whether mesh vertex w is u or joined to it by a structural, shear or seam spring.
+bool mesh_joined(uint u, uint w) {
+    if (w == u) return true;
+    for (uint e = mesh_first(u); e < mesh_first(u + 1u); ++e) {
+        uint a = obj_words[mesh_springs_at() + 2u * e];
+        if ((a & 0x3FFFFFFFu) == w && (a >> 30) != SPRING_BENDING) return true;
+    }
+    return false;
+}
+
+// Whether mesh vertex j is in particle p's one-ring, as a grid's eight neighbours are: joined
+// to it by a structural, shear or seam spring, vertices a seam sews together counting as one
+// (the one-ring of either is both's; sim::cloth_mesh::ClothMesh::linked). Self-contact leaves
+// out the triangles it touches.
 bool mesh_linked(uint p, uint j) {
-    if (j == p) return true;
+    if (mesh_joined(p, j)) return true;
     for (uint e = mesh_first(p); e < mesh_first(p + 1u); ++e) {
         uint a = obj_words[mesh_springs_at() + 2u * e];
-        if ((a & 0x3FFFFFFFu) == j && (a >> 30) != SPRING_BENDING) return true;
+        if ((a >> 30) != SPRING_SEAM) continue;
+        uint u = a & 0x3FFFFFFFu;
+        if (mesh_joined(u, j)) return true;
+        for (uint f = mesh_first(j); f < mesh_first(j + 1u); ++f) {
+            uint b = obj_words[mesh_springs_at() + 2u * f];
+            if ((b >> 30) == SPRING_SEAM && mesh_joined(u, b & 0x3FFFFFFFu)) return true;
+        }
+    }
+    for (uint f = mesh_first(j); f < mesh_first(j + 1u); ++f) {
+        uint b = obj_words[mesh_springs_at() + 2u * f];
+        if ((b >> 30) == SPRING_SEAM && mesh_joined(p, b & 0x3FFFFFFFu)) return true;
     }
     return false;
 }

@@ -337,6 +337,7 @@ impl Viewer {
                     for mut c in from.cloths {
                         if edited.cloths.iter().any(|o| o.name == c.name)
                             || edited.ropes.iter().any(|o| o.name == c.name)
+                            || edited.mesh_cloths.iter().any(|o| o.name == c.name)
                         {
                             c.name = crate::ui::unique_name(&edited, &c.name);
                         }

@@ -135,10 +135,22 @@ pub struct ClothMesh {
     pub area: f64,
     /// The mean length of its edges [m].
     pub mean_edge: f64,
-    /// The longest of its structural and shear springs [m].
+    /// The longest of its structural and shear springs and its triangles' edges [m].
     pub longest: f64,
     /// Edges shared by three or more faces (no bending spring across them).
     pub unbent_edges: usize,
+    /// `rest_clearance`'s nearest pair, once found.
+    nearest_at_rest: Kept<Option<(f64, usize, usize)>>,
+}
+
+/// A value computed once from what holds it: no part of what it is equal to.
+#[derive(Debug, Clone, Default)]
+struct Kept<T>(std::sync::OnceLock<T>);
+
+impl<T> PartialEq for Kept<T> {
+    fn eq(&self, _: &Self) -> bool {
+        true
+    }
 }
 
 impl ClothMesh {
@@ -213,8 +225,13 @@ impl ClothMesh {
             let (Some(f), Some(g)) = (border_face(a0, a1), border_face(b0, b1)) else { continue };
             for ((a, a_next), (b, b_next)) in [((a0, a1), (b0, b1)), ((a1, a0), (b1, b0))] {
                 let (p, q) = (beside(f, a, a_next), beside(g, b, b_next));
-                let flat = (rest[p as usize] - rest[a as usize]).length()
-                    + (rest[q as usize] - rest[b as usize]).length();
+                // Unfolded flat, p and q lie either side of the seam edge, at angles tp and tq
+                // from it at its end a = b: |p - q|^2 = lp^2 + lq^2 - 2 lp lq cos(tp + tq).
+                let at = |v: u32| rest[v as usize];
+                let (ep, eq) = (at(p) - at(a), at(q) - at(b));
+                let angle = ep.angle_between(at(a_next) - at(a)) + eq.angle_between(at(b_next) - at(b));
+                let (lp, lq) = (ep.length(), eq.length());
+                let flat = (lp * lp + lq * lq - 2.0 * lp * lq * angle.cos()).max(0.0).sqrt();
                 join(p, q, 2, Some(flat));
             }
         }
@@ -257,7 +274,12 @@ impl ClothMesh {
             .sum();
         let edges: Vec<f64> = springs.iter().filter(|s| s.kind == 0).map(|s| s.rest).collect();
         let mean_edge = edges.iter().sum::<f64>() / edges.len().max(1) as f64;
-        let longest = springs.iter().filter(|s| s.kind < 2).map(|s| s.rest).fold(0.0, f64::max);
+        // (a polygon's fan diagonals are no springs, but its triangles reach that far)
+        let fan = triangles.iter().flat_map(|t| {
+            let [a, b, c] = t.map(|k| rest[k as usize]);
+            [(a - b).length(), (b - c).length(), (c - a).length()]
+        });
+        let longest = springs.iter().filter(|s| s.kind < 2).map(|s| s.rest).chain(fan).fold(0.0, f64::max);
         let (colour_order, colour_first) = colouring(&spring_first, &springs);
         let mut rings: Vec<Vec<u32>> = vec![Vec::new(); n];
         for (t, tri) in triangles.iter().enumerate() {
@@ -282,6 +304,7 @@ impl ClothMesh {
             mean_edge,
             longest,
             unbent_edges,
+            nearest_at_rest: Kept::default(),
         })
     }
 
@@ -293,20 +316,38 @@ impl ClothMesh {
     /// Whether vertex j is particle p or joined to it by a structural, shear or seam spring:
     /// p's one-ring, as a grid's eight neighbours are (self-contact leaves out the triangles it
     /// touches; `mesh_linked` in glsl/include/mesh_springs.glsl).
+    /// Vertices a seam sews together count as one: the one-ring of either is both's.
     pub fn linked(&self, p: usize, j: usize) -> bool {
-        p == j || self.springs_of(p).iter().any(|s| s.other as usize == j && s.kind != 2)
+        let direct = |u: usize, w: usize| {
+            u == w || self.springs_of(u).iter().any(|s| s.other as usize == w && s.kind != 2)
+        };
+        let sewn = |u: usize| self.springs_of(u).iter().filter(|s| s.kind == SEAM).map(|s| s.other as usize);
+        direct(p, j)
+            || sewn(p).any(|u| direct(u, j) || sewn(j).any(|w| direct(u, w)))
+            || sewn(j).any(|w| direct(p, w))
     }
 
-    /// A vertex nearer than `within` at `rest` to a triangle outside its one-ring (`linked`),
-    /// as (the distance, the vertex, the triangle): self-contact of that thickness would push
-    /// them apart from the start, so a mesh cloth's thickness must stay below the distance.
-    /// The first such vertex in index order, with its nearest triangle.
+    /// A vertex nearer than `within` at `rest` (the positions it was built at) to a triangle
+    /// outside its one-ring (`linked`), as (the distance, the vertex, the triangle): self-contact
+    /// of that thickness would push them apart from the start, so a mesh cloth's thickness must
+    /// stay below the distance. The nearest such pair within the longest edge is found once and
+    /// kept (validation asks again at every edit); a thickness past that edge searches again,
+    /// for the first vertex in index order with a pair within it.
     pub fn rest_clearance(&self, rest: &[DVec3], within: f64) -> Option<(f64, usize, usize)> {
+        if within > self.longest {
+            return self.nearest_pair(rest, within, true);
+        }
+        let nearest = *self.nearest_at_rest.0.get_or_init(|| self.nearest_pair(rest, self.longest, false));
+        nearest.filter(|n| n.0 < within)
+    }
+
+    /// The nearest pair of `rest_clearance` within `within`, or with `first` the first vertex's.
+    fn nearest_pair(&self, rest: &[DVec3], within: f64, first: bool) -> Option<(f64, usize, usize)> {
         // Triangles by the cells (as wide as `within` or the longest edge) their boxes touch:
         // a triangle within `within` of a vertex touches one of the 27 cells about it.
         let cell = within.max(self.longest).max(f64::MIN_POSITIVE);
-        let key = |x: DVec3| (x / cell).floor().as_ivec3().to_array();
-        let mut cells: HashMap<[i32; 3], Vec<u32>> = HashMap::new();
+        let key = |x: DVec3| (x / cell).floor().as_i64vec3().to_array();
+        let mut cells: HashMap<[i64; 3], Vec<u32>> = HashMap::new();
         for (t, tri) in self.triangles.iter().enumerate() {
             let [a, b, c] = tri.map(|k| rest[k as usize]);
             let (lo, hi) = (key(a.min(b).min(c)), key(a.max(b).max(c)));
@@ -318,13 +359,14 @@ impl ClothMesh {
                 }
             }
         }
+        let mut nearest: Option<(f64, usize, usize)> = None;
         for (p, &x) in rest.iter().enumerate() {
             let at = key(x);
-            let mut nearest: Option<(f64, usize, usize)> = None;
             let near =
                 (-1..=1).flat_map(|dx| (-1..=1).flat_map(move |dy| (-1..=1).map(move |dz| [dx, dy, dz])));
             for d in near {
-                let Some(ts) = cells.get(&[at[0] + d[0], at[1] + d[1], at[2] + d[2]]) else { continue };
+                let c = [0, 1, 2].map(|k| at[k].saturating_add(d[k]));
+                let Some(ts) = cells.get(&c) else { continue };
                 for &t in ts {
                     let tri = self.triangles[t as usize];
                     if tri.iter().any(|&k| self.linked(p, k as usize)) {
@@ -338,11 +380,11 @@ impl ClothMesh {
                     }
                 }
             }
-            if nearest.is_some() {
-                return nearest;
+            if first && nearest.is_some() {
+                break;
             }
         }
-        None
+        nearest
     }
 
     pub fn colour_count(&self) -> usize {
@@ -559,6 +601,36 @@ mod tests {
             assert_eq!((across[0].other, across[0].kind), (9 + 3 * r + 1, 2), "row {r}");
             assert!((across[0].rest - 2.0 * s).abs() < 1e-12, "row {r}: {}", across[0].rest);
         }
+    }
+
+    /// The same panels as triangles (each quad split along its first diagonal, so the seam's
+    /// ends meet their faces at 45 and 90 degrees): every bending spring across the seam is as
+    /// long as its ends are apart with the second panel moved flat onto the first (the seam
+    /// sewn flat); and a seamed vertex's one-ring holds its partner's neighbours.
+    #[test]
+    fn a_seam_of_triangles_bends_at_its_flat_length() {
+        let (s, gap) = (0.1, 0.3);
+        let mut rest = Vec::new();
+        for x0 in [0.0, 2.0 * s + gap] {
+            rest.extend((0..9).map(|i| DVec3::new(x0 + (i % 3) as f64 * s, 0.0, (i / 3) as f64 * s)));
+        }
+        let split = |q: Vec<u32>| [vec![q[0], q[1], q[2]], vec![q[0], q[2], q[3]]];
+        let mut faces: Vec<Vec<u32>> = grid_quads(3, 3).into_iter().flat_map(split).collect();
+        let second = grid_quads(3, 3).into_iter().map(|f| f.into_iter().map(|v| v + 9).collect());
+        faces.extend(second.flat_map(split));
+        let seams: Vec<[u32; 2]> = (0..3).map(|r| [3 * r + 2, 9 + 3 * r]).collect();
+        let m = ClothMesh::new(&rest, &faces, &[], &seams).unwrap();
+        let mut across = 0;
+        for p in 0..9 {
+            for sp in m.springs_of(p).iter().filter(|sp| sp.other >= 9 && sp.kind == 2) {
+                let flat = (rest[p] - (rest[sp.other as usize] - DVec3::new(gap, 0.0, 0.0))).length();
+                assert!((sp.rest - flat).abs() < 1e-12, "{p}-{}: {} against {flat}", sp.other, sp.rest);
+                across += 1;
+            }
+        }
+        assert!(across >= 2, "{across} bending springs across the seam");
+        // Vertex 2 (sewn to 9) has 9's neighbours 10 and 12 in its one-ring, and they its.
+        assert!(m.linked(2, 10) && m.linked(2, 12) && m.linked(10, 2) && !m.linked(2, 11));
     }
 
     /// A flat grid of quads, whose one-rings are a grid's eight neighbours (a quad's diagonals

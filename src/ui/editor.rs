@@ -424,7 +424,8 @@ fn simulation_panel(ui: &Ui, state: &mut EditorState, scene: &mut Scene, actions
     if scene.sim.inter_object && scene.cloths.len() > 1 {
         check(ui, "cloths keep their edges apart", &mut scene.sim.inter_object_edges);
     }
-    if scene.cloths.iter().any(|c| c.self_collision && c.self_contact.triangles()) {
+    let triangles = scene.cloths.iter().any(|c| c.self_collision && c.self_contact.triangles());
+    if triangles || scene.mesh_cloths.iter().any(|c| c.self_collision) {
         int(ui, "contact iterations", &mut scene.sim.contact_iterations, 1, 64);
     }
     use crate::scene::IntegratorChoice as I;

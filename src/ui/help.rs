@@ -66,7 +66,7 @@ const HELP: &[(&str, &str)] = &[
     ("collision margin [m]", "Distance kept from colliders, and the cloth's contact radius against other objects [m]."),
     ("self-collision", "The object keeps apart from itself: a cloth's particles from its triangles (or, with self-contact particles, from each other), a rope's nodes from each other (grid neighbours excepted)."),
     ("self-contact", "What a cloth's self-collision keeps apart. triangles (the default): its particles from its triangles, the distance a thickness, every contact equal and opposite (no layer passes through another at normal speeds; several times the cost). particles: its particles, the self-collision distance apart (the paper's; fast, but layers can pass between particles)."),
-    ("self-collision distance [m]", "With triangle self-contact the cloth's thickness: how far its particles keep from its triangles; else the distance below which two particles push apart (ticked: set here; else half the spacing, or a rope's diameter) [m]."),
+    ("self-collision distance [m]", "With triangle self-contact the cloth's thickness: how far its particles keep from its triangles; else the distance below which two particles push apart (ticked: set here; else half the spacing, a mesh cloth's half its mean edge, or a rope's diameter) [m]."),
     ("front colour", "Colour of the cloth's front side (linear RGB)."),
     ("back colour", "Colour of the cloth's back side (linear RGB)."),
     // Rope
