@@ -58,6 +58,31 @@ fn pin_groups<P>(ui: &Ui, groups: &mut Vec<PinGroup<P>>) -> bool {
     !full && button(ui, "add pin group")
 }
 
+/// An object's own pin box and how its pins (`pins`: it has some) move, then its pin groups;
+/// whether "add pin group" was pressed.
+fn own_pins<P>(
+    ui: &Ui,
+    (own_box, motion, pins): (&mut Option<PinBox>, &mut Option<crate::scene::Motion>, bool),
+    groups: &mut Vec<PinGroup<P>>,
+) -> bool {
+    pin_box(ui, own_box, "own");
+    pin_motion(ui, motion, pins);
+    pin_groups(ui, groups)
+}
+
+/// A cloth's springs: stiffness and rest length scale per spring type, damping and drag.
+fn cloth_springs(
+    ui: &Ui,
+    (stiffness, rest_scale): (&mut PerSpring, &mut PerSpring),
+    damping: &mut f64,
+    drag_: &mut f64,
+) {
+    springs(ui, "stiffness [N/m]", stiffness, 1.0, 0.0, 1e6);
+    springs(ui, "rest length scale", rest_scale, 0.005, 0.05, 10.0);
+    drag(ui, "spring damping [N s/m]", damping, 0.0005, 0.0, 100.0);
+    drag(ui, "drag [N s/m]", drag_, 0.0005, 0.0, 100.0);
+}
+
 /// How an object's pins move (`pin_motion`), while it has pins: with none it has no motion
 /// (a scene with one would be refused).
 fn pin_motion(ui: &Ui, m: &mut Option<crate::scene::Motion>, pins: bool) {
@@ -93,17 +118,12 @@ pub fn cloth_panel(ui: &Ui, c: &mut Cloth) {
             ClothPins::Corners,
         ],
     );
-    pin_box(ui, &mut c.pin_box, "own");
     let pins = c.has_pins();
-    pin_motion(ui, &mut c.pin_motion, pins);
-    if pin_groups(ui, &mut c.pin_groups) {
+    if own_pins(ui, (&mut c.pin_box, &mut c.pin_motion, pins), &mut c.pin_groups) {
         c.add_pin_group();
     }
     drag(ui, "mass [kg/particle]", &mut c.mass, 0.0005, 1e-6, 100.0);
-    springs(ui, "stiffness [N/m]", &mut c.stiffness, 1.0, 0.0, 1e6);
-    springs(ui, "rest length scale", &mut c.rest_scale, 0.005, 0.05, 10.0);
-    drag(ui, "spring damping [N s/m]", &mut c.damping, 0.0005, 0.0, 100.0);
-    drag(ui, "drag [N s/m]", &mut c.drag, 0.0005, 0.0, 100.0);
+    cloth_springs(ui, (&mut c.stiffness, &mut c.rest_scale), &mut c.damping, &mut c.drag);
     optional(ui, "stretch limit", &mut c.stretch_limit, 0.1, 0.005, 10.0);
     drag(ui, "friction", &mut c.friction, 0.01, 0.0, MAX_FRICTION);
     drag(ui, "collision margin [m]", &mut c.collision_margin, 0.001, 0.0, 10.0);
@@ -123,10 +143,8 @@ pub fn rope_panel(ui: &Ui, r: &mut Rope) {
     drag3(ui, "start [m]", &mut r.start, 0.01);
     drag3(ui, "end [m]", &mut r.end, 0.01);
     choice(ui, "pins", &mut r.pin, &[RopePins::None, RopePins::First, RopePins::Last, RopePins::Both]);
-    pin_box(ui, &mut r.pin_box, "own");
     let pins = r.has_pins();
-    pin_motion(ui, &mut r.pin_motion, pins);
-    if pin_groups(ui, &mut r.pin_groups) {
+    if own_pins(ui, (&mut r.pin_box, &mut r.pin_motion, pins), &mut r.pin_groups) {
         r.add_pin_group();
     }
     drag(ui, "mass [kg/node]", &mut r.mass, 0.0005, 1e-6, 100.0);
@@ -166,17 +184,12 @@ pub fn mesh_cloth_panel(ui: &Ui, c: &mut MeshCloth) {
     c.rotation = c.rotation.map(|a| a.clamp(-360.0, 360.0));
     drag(ui, "scale##mesh cloth", &mut c.scale, 0.001, 1e-6, 1e6);
     drag(ui, "weld [m]", &mut c.weld, 0.0001, 0.0, 1.0);
-    pin_box(ui, &mut c.pin_box, "own");
     let pins = c.has_pins();
-    pin_motion(ui, &mut c.pin_motion, pins);
-    if pin_groups(ui, &mut c.pin_groups) {
+    if own_pins(ui, (&mut c.pin_box, &mut c.pin_motion, pins), &mut c.pin_groups) {
         c.add_pin_group();
     }
     drag(ui, "density [kg/m^2]", &mut c.density, 0.005, 1e-6, 1e3);
-    springs(ui, "stiffness [N/m]", &mut c.stiffness, 1.0, 0.0, 1e6);
-    springs(ui, "rest length scale", &mut c.rest_scale, 0.005, 0.05, 10.0);
-    drag(ui, "spring damping [N s/m]", &mut c.damping, 0.0005, 0.0, 100.0);
-    drag(ui, "drag [N s/m]", &mut c.drag, 0.0005, 0.0, 100.0);
+    cloth_springs(ui, (&mut c.stiffness, &mut c.rest_scale), &mut c.damping, &mut c.drag);
     drag(ui, "friction", &mut c.friction, 0.01, 0.0, MAX_FRICTION);
     drag(ui, "collision margin [m]", &mut c.collision_margin, 0.001, 0.0, 10.0);
     check(ui, "self-collision", &mut c.self_collision);
