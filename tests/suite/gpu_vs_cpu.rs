@@ -1532,6 +1532,7 @@ fn bdf2_start_rounding(paths: &[(Integrator, bool)]) {
 /// The default tier runs VBD through the spatial hash (what users run); the exhaustive tier
 /// the other iterative methods, and each by brute force too.
 #[test]
+#[ignore = "exhaustive tier: kept out of the default tier's 10-minute budget"]
 fn everything_with_the_iterative_integrators() {
     everything_iterative(&[Integrator::Vbd], &[SelfCollisionMethod::Hash]);
 }

@@ -305,6 +305,7 @@ fn host_place(host: &mut msdsim::app::SimHost, ctx: &msdsim::vk::GpuContext, i: 
 /// mean of the two, none, within 10 degrees, where each handle has turned 60; measured -2.4 to
 /// 4.0).
 #[test]
+#[ignore = "exhaustive tier: kept out of the default tier's 10-minute budget"]
 fn pin_groups_each_follow_their_own_motion() {
     let text = r#"
 [sim]

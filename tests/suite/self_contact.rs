@@ -1012,6 +1012,7 @@ fn the_fused_lists_follow_edges_that_crease() {
 /// passed through the cloth (2.9 m below its top after 20 frames). Tolerance 1 mm, a fifth of
 /// the margin that keeps the cloth above the box.
 #[test]
+#[ignore = "exhaustive tier: kept out of the default tier's 10-minute budget"]
 fn a_rising_box_carries_a_folded_cloth_with_edge_contact() {
     let (cols, rows, spacing, speed) = (6usize, 12usize, 0.02, 8.0);
     let mut c = soft_cloth_spaced(cols as u32, rows as u32, spacing);

@@ -314,6 +314,7 @@ struct Flutter {
 /// measured -2.11, -1.74, -1.56, -1.22 rad), and the guard never stops it. (The flutter is not
 /// one tone: over 15 to 21 s the same band holds 23 to 29%.)
 #[test]
+#[ignore = "exhaustive tier: kept out of the default tier's 10-minute budget"]
 fn the_flag_flutters_with_waves_running_to_its_free_edge() {
     let Flutter { amplitude, frequency, share, phases } = flag_flutter(&[], 480);
     println!("amplitude {amplitude:.3} m, {frequency:.2} Hz, share {share:.2}, phases {phases:.2?} rad");
