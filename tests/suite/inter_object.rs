@@ -617,6 +617,7 @@ fn a_cloth_thrown_faster_than_the_reach_a_substep_stays_on_its_side() {
 /// settling); with one contact round a substep (`SimModel::contact_rounds`) 17 edges
 /// through, gaps -12% to 42%.
 #[test]
+#[ignore = "exhaustive tier: kept out of the default tier's 10-minute budget"]
 fn a_stack_of_cards_stands_at_the_substeps_users_run() {
     use msdsim::sim::collider::{ColliderModel, Motion, Shape};
     use msdsim::sim::integrator::Integrator;

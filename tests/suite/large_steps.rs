@@ -194,6 +194,7 @@ fn fastest(v: &[DVec3]) -> f64 {
 /// VBD's unconverged solve settles the sag mode more slowly than the converged one (the
 /// fastest particle at 3 s: 8.9e-4 m/s, at 4 s 2.4e-4).
 #[test]
+#[ignore = "exhaustive tier: kept out of the default tier's 10-minute budget"]
 fn the_large_step_methods_settle_at_the_equilibrium_sag_at_one_substep() {
     let ctx = gpu();
     for (k, method) in [1e4, 1e5].into_iter().flat_map(|k| [(k, Integrator::Vbd), (k, Integrator::Implicit)])
