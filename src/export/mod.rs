@@ -519,17 +519,16 @@ fn collider_mesh(c: &ColliderModel, t: f64) -> (Vec<DVec3>, Vec<DVec3>, Vec<[u32
         let points = [(-h, -h), (-h, h), (h, h), (h, -h)].map(|(x, z)| DVec3::new(x, height, z));
         return (points.to_vec(), vec![DVec3::Y; 4], vec![[0, 1, 2], [0, 2, 3]]);
     }
-    if let Shape::Mesh { center, rotation, ref mesh, .. } = shape {
+    if let Some((points, triangles)) = shape.placed_mesh() {
         // Its own triangles, placed; each vertex's normal the mean of its triangles'.
-        let points: Vec<DVec3> = mesh.vertices.iter().map(|&p| center + rotation * p).collect();
         let mut normals = vec![DVec3::ZERO; points.len()];
-        for t in &mesh.triangles {
+        for t in triangles {
             let [a, b, c] = t.map(|k| points[k as usize]);
             let n = (b - a).cross(c - a);
             t.iter().for_each(|&k| normals[k as usize] += n);
         }
         let normals = normals.into_iter().map(|n| n.normalize_or(DVec3::Y)).collect();
-        return (points, normals, mesh.triangles.clone());
+        return (points, normals, triangles.to_vec());
     }
     let (mut points, mut normals, mut triangles) = (Vec::new(), Vec::new(), Vec::new());
     for item in crate::render::view::collider_items(&shape) {

@@ -78,7 +78,7 @@ pub struct FaceFile {
 
 /// What a mesh cloth's build depends on besides its file: centre, rotation, scale, weld, and
 /// its seams.
-type ClothKey = ([f64; 8], Vec<[u32; 2]>);
+type ClothKey = ([f64; 8], Vec<Vec<[u32; 2]>>);
 /// A mesh cloth as built: its particles placed and welded, and its topology.
 pub type Placed = (Vec<DVec3>, Arc<crate::sim::cloth_mesh::ClothMesh>);
 

@@ -711,9 +711,9 @@ pub struct Seam {
 }
 
 impl MeshCloth {
-    /// Its seams as vertex pairs.
-    pub fn seam_pairs(&self) -> Vec<[u32; 2]> {
-        self.seams.iter().flat_map(|s| s.from.iter().zip(&s.to).map(|(&a, &b)| [a, b])).collect()
+    /// Its seams, each as its vertex pairs in order along it.
+    pub fn seam_pairs(&self) -> Vec<Vec<[u32; 2]>> {
+        self.seams.iter().map(|s| s.from.iter().zip(&s.to).map(|(&a, &b)| [a, b]).collect()).collect()
     }
 
     /// Whether a particle is pinned (by `pinned` or `pin_box`): what a `pin_motion` needs.

@@ -156,20 +156,23 @@ impl<T> PartialEq for Kept<T> {
 impl ClothMesh {
     /// The mesh of particles at `rest` (placed) and `faces` (each a polygon of vertex
     /// indices, counter-clockwise), with each face corner's texture coordinates (`uvs`, one
-    /// per corner in face order, or empty). The error names the first bad face or vertex.
+    /// per corner in face order, or empty), sewn by `seams` (each seam its pairs in order
+    /// along it). The error names the first bad face, vertex or seam pair.
     pub fn new(
         rest: &[DVec3],
         faces: &[Vec<u32>],
         uvs: &[[f32; 2]],
-        seams: &[[u32; 2]],
+        seams: &[Vec<[u32; 2]>],
     ) -> Result<Self, String> {
         check(rest, faces)?;
         let n = rest.len();
-        for (k, &[a, b]) in seams.iter().enumerate() {
-            if a as usize >= n || b as usize >= n || a == b {
-                return Err(format!(
-                    "seam pair {k} ({a}, {b}): a seam joins two different vertices of its {n}"
-                ));
+        for (s, seam) in seams.iter().enumerate() {
+            for (k, &[a, b]) in seam.iter().enumerate() {
+                if a as usize >= n || b as usize >= n || a == b {
+                    return Err(format!(
+                        "seam[{s}] pair {k} ({a}, {b}): a seam joins two different vertices of its {n}"
+                    ));
+                }
             }
         }
         let mut kinds: HashMap<(u32, u32), u8> = HashMap::new();
@@ -208,7 +211,7 @@ impl ClothMesh {
             join(beside(f, b, a), beside(g, b, a), 2, None);
         }
         // Seams last: a pair the mesh joins already keeps its spring.
-        for &[a, b] in seams {
+        for &[a, b] in seams.iter().flatten() {
             join(a, b, SEAM, None);
         }
         // Bending across a seam as across an edge two faces share: where two pairs in a row
@@ -220,7 +223,7 @@ impl ClothMesh {
             Some(fs) if fs.len() == 1 => Some(&faces[fs[0]]),
             _ => None,
         };
-        for w in seams.windows(2) {
+        for w in seams.iter().flat_map(|seam| seam.windows(2)) {
             let ([a0, b0], [a1, b1]) = (w[0], w[1]);
             let (Some(f), Some(g)) = (border_face(a0, a1), border_face(b0, b1)) else { continue };
             for ((a, a_next), (b, b_next)) in [((a0, a1), (b0, b1)), ((a1, a0), (b1, b0))] {
@@ -588,20 +591,26 @@ pub fn grid_quads(cols: u32, rows: u32) -> Vec<Vec<u32>> {
 mod tests {
     use super::*;
 
+    /// A flat grid of `cols` x `rows` rest positions in the x-z plane, `dx` and `dz` apart,
+    /// from x = `x0`, in grid_quads' order.
+    fn flat_grid(cols: u32, rows: u32, x0: f64, dx: f64, dz: f64) -> Vec<DVec3> {
+        (0..cols * rows)
+            .map(|i| DVec3::new(x0 + (i % cols) as f64 * dx, 0.0, (i / cols) as f64 * dz))
+            .collect()
+    }
+
     /// Two 3 x 3 panels of quads sewn along a border (A's last column to B's first) bend across
     /// the seam as one grid of 5 columns does across its middle column: a bending spring from
     /// A's middle column to B's in every row, of two spacings (the seam sewn flat), though the
-    /// panels lie apart.
+    /// panels lie apart; not where the pairs are seams of their own.
     #[test]
     fn a_seam_bends_as_the_grid_it_sews() {
         let s = 0.1;
-        let mut rest = Vec::new();
-        for x0 in [0.0, 2.0 * s + 0.3] {
-            rest.extend((0..9).map(|i| DVec3::new(x0 + (i % 3) as f64 * s, 0.0, (i / 3) as f64 * s)));
-        }
+        let mut rest = flat_grid(3, 3, 0.0, s, s);
+        rest.extend(flat_grid(3, 3, 2.0 * s + 0.3, s, s));
         let mut faces = grid_quads(3, 3);
         faces.extend(grid_quads(3, 3).into_iter().map(|f| f.into_iter().map(|v| v + 9).collect()));
-        let seams: Vec<[u32; 2]> = (0..3).map(|r| [3 * r + 2, 9 + 3 * r]).collect();
+        let seams: [Vec<[u32; 2]>; 1] = [(0..3).map(|r| [3 * r + 2, 9 + 3 * r]).collect()];
         let m = ClothMesh::new(&rest, &faces, &[], &seams).unwrap();
         for r in 0..3u32 {
             let across: Vec<&MeshSpring> =
@@ -610,6 +619,11 @@ mod tests {
             assert_eq!((across[0].other, across[0].kind), (9 + 3 * r + 1, 2), "row {r}");
             assert!((across[0].rest - 2.0 * s).abs() < 1e-12, "row {r}: {}", across[0].rest);
         }
+        // The same pairs as three seams of one pair each: no two pairs of one seam in a row,
+        // so no bending spring crosses.
+        let single: Vec<Vec<[u32; 2]>> = seams[0].iter().map(|&p| vec![p]).collect();
+        let m = ClothMesh::new(&rest, &faces, &[], &single).unwrap();
+        assert!((0..9).all(|p| m.springs_of(p).iter().all(|s| s.other < 9 || s.kind != 2)));
     }
 
     /// The same panels as triangles (each quad split along its first diagonal, so the seam's
@@ -619,15 +633,13 @@ mod tests {
     #[test]
     fn a_seam_of_triangles_bends_at_its_flat_length() {
         let (s, gap) = (0.1, 0.3);
-        let mut rest = Vec::new();
-        for x0 in [0.0, 2.0 * s + gap] {
-            rest.extend((0..9).map(|i| DVec3::new(x0 + (i % 3) as f64 * s, 0.0, (i / 3) as f64 * s)));
-        }
+        let mut rest = flat_grid(3, 3, 0.0, s, s);
+        rest.extend(flat_grid(3, 3, 2.0 * s + gap, s, s));
         let split = |q: Vec<u32>| [vec![q[0], q[1], q[2]], vec![q[0], q[2], q[3]]];
         let mut faces: Vec<Vec<u32>> = grid_quads(3, 3).into_iter().flat_map(split).collect();
         let second = grid_quads(3, 3).into_iter().map(|f| f.into_iter().map(|v| v + 9).collect());
         faces.extend(second.flat_map(split));
-        let seams: Vec<[u32; 2]> = (0..3).map(|r| [3 * r + 2, 9 + 3 * r]).collect();
+        let seams: [Vec<[u32; 2]>; 1] = [(0..3).map(|r| [3 * r + 2, 9 + 3 * r]).collect()];
         let m = ClothMesh::new(&rest, &faces, &[], &seams).unwrap();
         let mut across = 0;
         for p in 0..9 {
@@ -649,10 +661,8 @@ mod tests {
     #[test]
     fn the_rest_clearance_is_the_nearest_pair_outside_a_one_ring() {
         let (cols, rows) = (5u32, 4u32);
-        let rest: Vec<DVec3> = (0..cols * rows)
-            .map(|i| DVec3::new((i % cols) as f64 * 0.1, 0.0, (i / cols) as f64 * 0.1))
-            .collect();
-        let m = ClothMesh::new(&rest, &grid_quads(cols, rows), &[], &[[0, 4]]).unwrap();
+        let rest = flat_grid(cols, rows, 0.0, 0.1, 0.1);
+        let m = ClothMesh::new(&rest, &grid_quads(cols, rows), &[], &[vec![[0, 4]]]).unwrap();
         let linked = [1, 5, 6, 4, 10, 2].map(|j| m.linked(0, j));
         assert_eq!(linked, [true, true, true, true, false, false]);
         assert_eq!(m.rest_clearance(&rest, 0.199), None);
@@ -672,9 +682,7 @@ mod tests {
     #[test]
     fn a_quad_grid_makes_the_grids_springs() {
         let (cols, rows) = (6u32, 5u32);
-        let rest: Vec<DVec3> = (0..cols * rows)
-            .map(|i| DVec3::new((i % cols) as f64 * 0.1, 0.0, (i / cols) as f64 * 0.2))
-            .collect();
+        let rest = flat_grid(cols, rows, 0.0, 0.1, 0.2);
         let m = ClothMesh::new(&rest, &grid_quads(cols, rows), &[], &[]).unwrap();
         let offsets: [(i64, i64, u8); 12] = [
             (1, 0, 0),

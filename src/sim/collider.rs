@@ -567,6 +567,17 @@ impl Shape {
         }
     }
 
+    /// A mesh collider's vertices where its centre and rotation place them, and its triangles
+    /// (`None` for the analytic shapes).
+    pub fn placed_mesh(&self) -> Option<(Vec<DVec3>, &[[u32; 3]])> {
+        match *self {
+            Shape::Mesh { center, rotation, ref mesh, .. } => {
+                Some((mesh.vertices.iter().map(|&p| center + rotation * p).collect(), &mesh.triangles))
+            }
+            _ => None,
+        }
+    }
+
     /// The corners of a box around the shape (`None` for the unbounded ground).
     pub fn bounds(&self) -> Option<(DVec3, DVec3)> {
         match *self {

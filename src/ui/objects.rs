@@ -198,7 +198,7 @@ pub fn mesh_cloth_panel(ui: &Ui, c: &mut MeshCloth) {
         optional(ui, "self-collision distance [m]", &mut c.self_collision_distance, default, 0.001, 10.0);
     }
     if !c.seams.is_empty() {
-        let pairs = c.seam_pairs().len();
+        let pairs = c.seam_pairs().iter().map(Vec::len).sum::<usize>();
         ui.text_disabled(format!("{} seams, {pairs} vertex pairs (edit them in the preset)", c.seams.len()));
         drag(ui, "seam stiffness [N/m]", &mut c.seam_stiffness, 1.0, 0.0, 1e6);
     }

@@ -406,29 +406,7 @@ fn mesh_crossings(o: &msdsim::sim::model::ObjectModel, x: &[DVec3]) -> usize {
                 .iter()
                 .any(|s| s.kind == msdsim::sim::cloth_mesh::SEAM && s.other as usize == b)
     };
-    // Triangles by their boxes' low x, each edge against those that begin before it ends.
-    let bounds: Vec<(DVec3, DVec3)> = tris
-        .iter()
-        .map(|t| {
-            let p = t.map(|k| x[k]);
-            (p[0].min(p[1]).min(p[2]), p[0].max(p[1]).max(p[2]))
-        })
-        .collect();
-    let mut order: Vec<usize> = (0..tris.len()).collect();
-    order.sort_by(|&a, &b| bounds[a].0.x.total_cmp(&bounds[b].0.x));
-    edges
-        .iter()
-        .filter(|&&[i, j]| {
-            let (lo, hi) = (x[i].min(x[j]), x[i].max(x[j]));
-            order.iter().take_while(|&&t| bounds[t].0.x <= hi.x).any(|&t| {
-                let (tlo, thi) = bounds[t];
-                lo.cmple(thi).all()
-                    && tlo.cmple(hi).all()
-                    && !tris[t].iter().any(|&k| sewn(i, k) || sewn(j, k))
-                    && segment_through(x[i], x[j], tris[t].map(|k| x[k]))
-            })
-        })
-        .count()
+    segments_through_except(x, &edges, x, &tris, |i, j, t| t.iter().any(|&k| sewn(i, k) || sewn(j, k)))
 }
 
 /// A 21 x 21 cloth of quads (2.5 cm apart, thickness 1.25 cm, half the spacing as a grid's
@@ -579,13 +557,9 @@ fn the_skirt_never_passes_through_itself_or_the_form_and_its_seams_lie_flat() {
     let form = model
         .colliders
         .iter()
-        .find_map(|c| match &c.shape {
-            msdsim::sim::collider::Shape::Mesh { center, rotation, mesh, .. } => {
-                let vertices: Vec<DVec3> = mesh.vertices.iter().map(|&v| *center + *rotation * v).collect();
-                let tris: Vec<[usize; 3]> = mesh.triangles.iter().map(|t| t.map(|k| k as usize)).collect();
-                Some((vertices, tris))
-            }
-            _ => None,
+        .find_map(|c| {
+            let (vertices, tris) = c.shape.placed_mesh()?;
+            Some((vertices, tris.iter().map(|t| t.map(|k| k as usize)).collect::<Vec<_>>()))
         })
         .expect("the dress form");
     let (edges, _) = mesh_edges(&model.objects[0]);

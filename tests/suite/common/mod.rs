@@ -522,6 +522,20 @@ pub fn segments_through(
     tris: &[[usize; 3]],
     same: bool,
 ) -> usize {
+    segments_through_except(ex, edges, tx, tris, |i, j, t| same && (t.contains(&i) || t.contains(&j)))
+}
+
+/// Segments (`edges` of positions `ex`) through a triangle (`tris` of positions `tx`) other
+/// than those `skip(i, j, triangle)` leaves out for the segment from i to j, tested exactly
+/// after a bounding box check: the triangles sorted by their boxes' low x, each segment against
+/// those that begin before it ends.
+pub fn segments_through_except(
+    ex: &[DVec3],
+    edges: &[[usize; 2]],
+    tx: &[DVec3],
+    tris: &[[usize; 3]],
+    skip: impl Fn(usize, usize, &[usize; 3]) -> bool,
+) -> usize {
     let bounds: Vec<(DVec3, DVec3)> = tris
         .iter()
         .map(|t| {
@@ -529,15 +543,18 @@ pub fn segments_through(
             (p[0].min(p[1]).min(p[2]), p[0].max(p[1]).max(p[2]))
         })
         .collect();
+    let mut order: Vec<usize> = (0..tris.len()).collect();
+    order.sort_by(|&a, &b| bounds[a].0.x.total_cmp(&bounds[b].0.x));
     edges
         .iter()
         .filter(|&&[i, j]| {
             let (lo, hi) = (ex[i].min(ex[j]), ex[i].max(ex[j]));
-            tris.iter().zip(&bounds).any(|(t, &(tlo, thi))| {
-                !(same && (t.contains(&i) || t.contains(&j)))
-                    && lo.cmple(thi).all()
+            order.iter().take_while(|&&t| bounds[t].0.x <= hi.x).any(|&t| {
+                let (tlo, thi) = bounds[t];
+                lo.cmple(thi).all()
                     && tlo.cmple(hi).all()
-                    && segment_through(ex[i], ex[j], t.map(|k| tx[k]))
+                    && !skip(i, j, &tris[t])
+                    && segment_through(ex[i], ex[j], tris[t].map(|k| tx[k]))
             })
         })
         .count()
