@@ -39,6 +39,13 @@ MeshSpring mesh_spring(uint e) {
     return MeshSpring(int(a & 0x3FFFFFFFu), type, uintBitsToFloat(obj_words[at + 1u]), mesh_stiffness(type));
 }
 
+// The hot loops (forces, VBD's Newton step) walk a particle's list in batches of MESH_BATCH
+// entries: a batch's records, then its neighbours' positions, are read before any is used, so
+// that their loads are in flight together rather than one dependent pair a spring. Entry e of
+// a batch past the list's end (< end) reads the last entry again; the loop skips it.
+const uint MESH_BATCH = 4u;
+MeshSpring mesh_batch(uint e, uint end) { return mesh_spring(min(e, end - 1u)); }
+
 // Whether mesh vertex w is u or joined to it by a structural, shear or seam spring.
 bool mesh_joined(uint u, uint w) {
     if (w == u) return true;
@@ -82,6 +89,14 @@ uint mesh_colour_size(uint c) {
 uint mesh_coloured(uint c, uint k) {
     uint at = mesh_colours_at() + 1u;
     return obj_words[at + mesh_colour_count() + 1u + obj_words[at + c] + k];
+}
+
+// The colour of the particle at place r of the colour order (mesh_coloured(0, r)).
+uint mesh_colour_of_rank(uint r) {
+    uint at = mesh_colours_at() + 1u;
+    uint c = 0u;
+    while (c + 1u < mesh_colour_count() && obj_words[at + c + 1u] <= r) ++c;
+    return c;
 }
 
 // Triangle t's corners.

@@ -113,24 +113,32 @@ vec3 newton_particle(uvec2 cell, vec3 x, vec3 dx, vec3 dy, out Sym3 hessian) {
     vec3 diag = vec3(0.0);
     vec3 off = vec3(0.0);
     if (is_mesh()) {
-        // (a mesh cloth: its list, as the grid's loop below with branches)
-        for (uint e = mesh_first(cell.x); e < mesh_first(cell.x + 1u); ++e) {
-            MeshSpring s = mesh_spring(e);
-            int j = s.other;
-            float k = s.k;
-            vec3 dj = SD(j);
-            vec3 delta = SPRING_DELTA(x, dx, j, dj);
-            float dd = dot(delta, delta);
-            if (dd <= 0.0) continue;
-            float inv = inversesqrt(dd);
-            float inv2 = inv * inv;
-            float stretch = k - (k * s.rest) * inv;
-            float kt = max(stretch, 0.0);
-            force -= delta * (stretch + (damp * inv2) * dot(delta, dx - dj));
-            vec3 cd = ((k + damp - kt) * inv2) * delta;
-            iso += kt;
-            diag += cd * delta;
-            off += cd.xxy * delta.yzz;
+        // (a mesh cloth: its list, as the grid's loop below with branches, a batch's loads
+        // issued together: mesh_batch)
+        uint end = mesh_first(cell.x + 1u);
+        for (uint e = mesh_first(cell.x); e < end; e += MESH_BATCH) {
+            MeshSpring s[MESH_BATCH];
+            vec3 dj[MESH_BATCH];
+            vec3 delta[MESH_BATCH];
+            [[unroll]] for (uint q = 0u; q < MESH_BATCH; ++q) s[q] = mesh_batch(e + q, end);
+            [[unroll]] for (uint q = 0u; q < MESH_BATCH; ++q) {
+                dj[q] = SD(s[q].other);
+                delta[q] = SPRING_DELTA(x, dx, s[q].other, dj[q]);
+            }
+            [[unroll]] for (uint q = 0u; q < MESH_BATCH; ++q) {
+                float dd = dot(delta[q], delta[q]);
+                if (e + q >= end || dd <= 0.0) continue;
+                float k = s[q].k;
+                float inv = inversesqrt(dd);
+                float inv2 = inv * inv;
+                float stretch = k - (k * s[q].rest) * inv;
+                float kt = max(stretch, 0.0);
+                force -= delta[q] * (stretch + (damp * inv2) * dot(delta[q], dx - dj[q]));
+                vec3 cd = ((k + damp - kt) * inv2) * delta[q];
+                iso += kt;
+                diag += cd * delta[q];
+                off += cd.xxy * delta[q].yzz;
+            }
         }
         hessian = Sym3(iso, diag, off);
         return force;

@@ -23,18 +23,25 @@
 // (docs/PERFORMANCE.md, "Branch-free spring loops").
 void add_spring_forces(uvec2 cell, vec3 x, vec3 v, float drift, inout vec3 force) {
     if (is_mesh()) {
-        // (a mesh cloth: its list, each spring's type and rest length in it)
-        for (uint e = mesh_first(cell.x); e < mesh_first(cell.x + 1u); ++e) {
-            MeshSpring s = mesh_spring(e);
-            int j = s.other;
-            float k = s.k;
-            vec3 to_j = NPOS(j) - x;
-            float d = length(to_j);
-            if (d <= 0.0) continue;
-            vec3 dir = to_j / d;
-            float f = k * (d - s.rest);
-            if (has(F_DAMPING)) f += obj.stiffness.w * dot(NVEL(j) - v, dir);
-            force += f * dir;
+        // (a mesh cloth: its list, each spring's type and rest length in it, in batches)
+        uint end = mesh_first(cell.x + 1u);
+        for (uint e = mesh_first(cell.x); e < end; e += MESH_BATCH) {
+            MeshSpring s[MESH_BATCH];
+            vec3 to_j[MESH_BATCH];
+            vec3 vel_j[MESH_BATCH];
+            [[unroll]] for (uint q = 0u; q < MESH_BATCH; ++q) s[q] = mesh_batch(e + q, end);
+            [[unroll]] for (uint q = 0u; q < MESH_BATCH; ++q) {
+                to_j[q] = NPOS(s[q].other) - x;
+                vel_j[q] = has(F_DAMPING) ? NVEL(s[q].other) : vec3(0.0);
+            }
+            [[unroll]] for (uint q = 0u; q < MESH_BATCH; ++q) {
+                float d = length(to_j[q]);
+                if (e + q >= end || d <= 0.0) continue;
+                vec3 dir = to_j[q] / d;
+                float f = s[q].k * (d - s[q].rest);
+                if (has(F_DAMPING)) f += obj.stiffness.w * dot(vel_j[q] - v, dir);
+                force += f * dir;
+            }
         }
         return;
     }
