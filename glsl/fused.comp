@@ -312,6 +312,7 @@ uint colour_before_row(uint c, uint y, uint cols, uint C) {
 // each pass runs every warp at a fifth of its lanes).
 uint particle_of_rank(uint r) {
     if (!COLOURED || r >= CAP) return r;
+    if (is_mesh()) return mesh_coloured(0u, r);  // (the host's colour order: all colours in turn)
     uint cols = obj.dims.x;
     uint rows = obj.dims.y;
     uint C = vertex_colours(obj.dims);
@@ -347,7 +348,7 @@ void main() {
     // The physics reads the neighbours' velocities for the dashpots (the iterative methods
     // treat them in their solve).
     bool stage_velocities = has(F_DAMPING) && !ITERATIVE;
-    uint colours = vertex_colours(obj.dims);
+    uint colours = is_mesh() ? mesh_colour_count() : vertex_colours(obj.dims);
 
     vec3 x[MAX_SLOTS];
     vec3 v[MAX_SLOTS];
@@ -396,7 +397,7 @@ void main() {
                 hv[s] = history[hist(k, H_DV)];
             }
         }
-        colour[s] = pinned[s] ? NO_COLOUR : vertex_colour(cells[s], colours);
+        colour[s] = pinned[s] ? NO_COLOUR : is_mesh() ? mesh_colour_of_rank(t + s * THREADS) : vertex_colour(cells[s], colours);
     }
     for (uint w = t; w < (CAP + 31u) / 32u; w += THREADS) pin_bits[w] = 0u;
     if (t < 2u) list_flag[t] = 0u;

@@ -74,8 +74,8 @@ fn furthest(a: &[DVec3], b: &[DVec3]) -> f64 {
 /// Euler (the same springs with the same rest lengths, summed in another order) and to 1e-5 of
 /// it with VBD (6 iterations: its Gauss-Seidel sweeps the mesh's colours, five as the grid's
 /// formula has but not the same classes, and stops short of the solve by a different amount;
-/// measured 3.3e-8 m, 1e-7 of it; 8e-6 with the greedy colouring's seven colours). The GPU (per
-/// stage: a mesh cloth does not run fused) follows the reference's mesh run frame by frame, each frame from the
+/// measured 3.3e-8 m, 1e-7 of it; 8e-6 with the greedy colouring's seven colours). The GPU, per
+/// stage and fused, follows the reference's mesh run frame by frame, each frame from the
 /// reference's state (the swing folds the cloth, whose f32 and f64 runs part by centimetres
 /// over 2 s, the grid's as much), to 1e-5 of the size, positions and normals. Then the same with
 /// the aerodynamic wind, whose push on a mesh cloth's particle comes from its triangles (the
@@ -107,14 +107,21 @@ fn a_grid_read_as_a_mesh_moves_as_the_grid() {
                 "{name}: the reference's mesh run is {apart:.2e} m from its grid run"
             );
         }
-        let (d, _) = compare_path(&ctx, &mesh, FRAMES, Mode::Resync, false);
-        println!("{name}: the GPU's mesh run against the reference's, a frame at a time: {d:?}");
-        assert!(
-            d.position <= 1e-5 * size,
-            "{name}: the GPU's mesh run is {:.2e} m from the reference's",
-            d.position
-        );
-        assert!(d.surface <= 1e-5 * size && d.normal <= 1e-3, "{name}: the surfaces differ: {d:?}");
+        for fused in [false, true] {
+            let (d, _) = compare_with(&ctx, &mesh, FRAMES, Mode::Resync, &|gpu| {
+                gpu.set_fused(&ctx, fused).expect("the fused kernels");
+                assert_eq!(gpu.runs_fused(0), fused, "{name}: the mesh cloth runs fused: {fused}");
+            });
+            let path = if fused { "fused" } else { "per stage" };
+            println!("{name}, {path}: the GPU's mesh run against the reference's, a frame at a time: {d:?}");
+            assert!(
+                d.position <= 1e-5 * size,
+                "{name}, {path}: the GPU's mesh run is {:.2e} m from the reference's",
+                d.position
+            );
+            let surfaces = d.surface <= 1e-5 * size && d.normal <= 1e-3;
+            assert!(surfaces, "{name}, {path}: the surfaces differ: {d:?}");
+        }
     }
     assert_clean(&ctx);
 }
@@ -413,10 +420,11 @@ fn mesh_crossings(o: &msdsim::sim::model::ObjectModel, x: &[DVec3]) -> usize {
 /// default) hanging in a vertical plane as a mesh cloth with self-collision, held along its
 /// middle row: the upper flap, nudged, falls over the held row and swings down through where
 /// the lower flap hangs, the two swinging face to face (the grid's folding test of
-/// tests/suite/self_contact.rs). No edge passes through a triangle over 90 frames on the GPU
-/// with the contact lists on, and without self-collision edges do pass (so the scene tests
-/// it); the GPU follows the reference a frame at a time to 1e-5 of the cloth's size (f32
-/// against f64 over a frame of contacts; measured 3.8e-7 m, 8e-7 of it). The exhaustive tier
+/// tests/suite/self_contact.rs). No edge passes through a triangle over 90 frames on the GPU,
+/// per stage with the contact lists on and fused, and without self-collision edges do pass
+/// (so the scene tests it); the GPU, per stage and fused, follows the reference a frame at a
+/// time to 1e-5 of the cloth's size (f32 against f64 over a frame of contacts; measured 3.8e-7
+/// m on both paths, 8e-7 of it). The exhaustive tier
 /// runs the lists off and the f64 reference's own run (30 frames, its contacts found by brute
 /// force): no edge through either.
 #[test]
@@ -451,8 +459,11 @@ fn mesh_cloth_folding(every_path: bool) {
     s.gravity = DVec3::new(0.0, -9.81, 0.0);
     s.integrator = msdsim::sim::model::Integrator::Verlet;
     let ctx = gpu();
+    // (lists: the per-stage path's contact lists on or off; None: fused)
     let gpu_worst = |s: &SimModel, lists: Option<bool>, frames: u32| {
         let mut g = msdsim::sim::gpu::GpuSim::new(&ctx, s).unwrap();
+        g.set_fused(&ctx, lists.is_none()).unwrap();
+        assert_eq!(g.runs_fused(0), lists.is_none());
         g.force_contact_lists(lists);
         let mut worst = 0;
         for _ in 0..frames {
@@ -475,16 +486,20 @@ fn mesh_cloth_folding(every_path: bool) {
     } else {
         let mut without = s.clone();
         without.objects[0].self_distance = None;
-        let passing = gpu_worst(&without, None, 90);
+        let passing = gpu_worst(&without, Some(true), 90);
         let on = gpu_worst(&s, Some(true), 90);
+        let fused = gpu_worst(&s, None, 90);
         let (d, _) = compare_path(&ctx, &s, 30, Mode::Resync, false);
+        let (d_fused, _) = compare_path(&ctx, &s, 30, Mode::Resync, true);
         println!(
-            "crossing edges at worst: GPU lists on {on}; without self-collision {passing}; GPU against \
-             the reference a frame at a time {d:?}"
+            "crossing edges at worst: GPU lists on {on}, fused {fused}; without self-collision {passing}; \
+             GPU against the reference a frame at a time {d:?} per stage, {d_fused:?} fused"
         );
         assert!(passing > 0, "without self-collision no edge passed: the scene does not test it");
-        assert_eq!(on, 0, "edges through the mesh cloth's own triangles");
-        assert!(d.position <= 1e-5 * 0.5, "the GPU is {:.2e} m from the reference", d.position);
+        assert_eq!((on, fused), (0, 0), "edges through the mesh cloth's own triangles");
+        for d in [d, d_fused] {
+            assert!(d.position <= 1e-5 * 0.5, "the GPU is {:.2e} m from the reference", d.position);
+        }
     }
     assert_clean(&ctx);
 }

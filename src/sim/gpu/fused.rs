@@ -125,10 +125,17 @@ impl FusedLimits {
     /// Substeps one dispatch runs for fused objects whose `FEATURES` are `features`, in a frame
     /// of `substeps`: `substeps_per_dispatch`, one on a device with a loop limit where a
     /// cloth keeps edges from edges (a rope's segment pairs search two edges a candidate, not
-    /// six).
+    /// six) or a mesh cloth keeps particles from its triangles (each candidate triangle walks
+    /// its corners' spring lists, `mesh_linked`: at 8 substeps a dispatch the folding mesh of
+    /// tests/suite/mesh_cloth.rs lost a dispatch's writes on lavapipe).
     pub fn chunk(&self, mut features: impl Iterator<Item = u32>, substeps: u32) -> u32 {
         let limited = self.substeps_per_dispatch != u32::MAX;
-        let most = if limited && features.any(crate::sim::gpu_types::has_cloth_edge_pairs) {
+        let long_loops = |f: u32| {
+            use crate::sim::gpu_types::{has_cloth_edge_pairs, FEATURE_CLOTH_MESH, FEATURE_TRIANGLES};
+            has_cloth_edge_pairs(f)
+                || f & (FEATURE_CLOTH_MESH | FEATURE_TRIANGLES) == FEATURE_CLOTH_MESH | FEATURE_TRIANGLES
+        };
+        let most = if limited && features.any(long_loops) {
             self.substeps_per_dispatch.min(LIMITED_EDGE_PAIR_SUBSTEPS_PER_DISPATCH)
         } else {
             self.substeps_per_dispatch
@@ -263,18 +270,22 @@ impl FusedShape {
             Some(s) => limits.solver_slots.unwrap_or(solver_slots(s.sweep)),
             None => limits.slots,
         };
-        // Objects that touch each other meet every substep: they run per stage, as a mesh
-        // cloth does (the fused kernel reads a grid's neighbours).
-        if n == 0
-            || o.mesh.is_some()
-            || n > most.min(FUSED_SLOTS) * MAX_THREADS
-            || model.inter_object_contact()
-        {
+        // Objects that touch each other meet every substep: they run per stage.
+        if n == 0 || n > most.min(FUSED_SLOTS) * MAX_THREADS || model.inter_object_contact() {
             return None;
         }
         let slots = n.div_ceil(MAX_THREADS);
         let threads = n.div_ceil(slots).next_multiple_of(32);
-        let halo = if o.dims[1] > 1 { 2 * o.dims[0] } else { 2 };
+        // A mesh's spring may join any two particles: its velocity window (the dashpots')
+        // must hold them all, in one pass.
+        let mesh = o.mesh.is_some();
+        let halo = if mesh {
+            0
+        } else if o.dims[1] > 1 {
+            2 * o.dims[0]
+        } else {
+            2
+        };
         let budget = limits.shared_bytes.saturating_sub(SHARED_MARGIN);
         let adaptive = solver.is_some_and(|s| s.adaptive_start);
         let reduce = if model.integrator == Integrator::Implicit { 2 * threads.div_ceil(4) } else { 2 }
@@ -301,6 +312,9 @@ impl FusedShape {
         };
         let window = |q: u32| 3 * (threads * q + 2 * halo);
         let pass_slots = if damped { (1..=slots).rev().find(|&q| window(q) <= words)? } else { slots };
+        if mesh && pass_slots < slots {
+            return None;
+        }
         let buckets = if hashed {
             let most = words.checked_sub(n)?;
             let b = (2 * n).next_power_of_two().min(1 << most.max(1).ilog2());
