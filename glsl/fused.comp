@@ -17,7 +17,7 @@
 //   pin_bits   which particles are pinned;
 //   scratch    during physics: the velocities (for the spring dashpots) of the particles one
 //              pass computes plus HALO on each side, in passes of PASS_SLOTS slots when not all
-//              fit; during the constraints: the spatial hash, bucket heads and a linked list,
+//              fit (a mesh cloth's in one pass, HALO 0); during the constraints: the spatial hash, bucket heads and a linked list,
 //              and the stretch limit's counts (STRETCH_AT).
 // Registers also hold a copy of the object's parameters (`obj`, taken from the buffer at the
 // start: reading them from the storage buffer in every spring loop cost 15 to 25%), each owned
@@ -62,6 +62,7 @@ layout(constant_id = 5) const uint SCRATCH = 1u;     // words of scratch
 layout(constant_id = 6) const uint BUCKETS = 1u;     // hash buckets (a power of two)
 layout(constant_id = 7) const uint PASS_SLOTS = 1u;  // slots whose physics one pass computes
 layout(constant_id = 8) const uint HALO = 2u;        // largest index distance to a spring neighbour
+                                                     // (0 for a mesh cloth: one pass holds all)
 layout(constant_id = 9) const uint SOLVER = 0u;      // the integrator (METHOD_*, layout.glsl)
 layout(constant_id = 10) const uint LIST_MAX = 0u;   // contact list entries a particle (0: none)
 // VBD on an object whose displacements do not fit beside the bases (sim::gpu::FusedShape's
@@ -397,7 +398,8 @@ void main() {
                 hv[s] = history[hist(k, H_DV)];
             }
         }
-        colour[s] = pinned[s] ? NO_COLOUR : is_mesh() ? mesh_colour_of_rank(t + s * THREADS) : vertex_colour(cells[s], colours);
+        colour[s] = NO_COLOUR;
+        if (COLOURED && !pinned[s]) colour[s] = is_mesh() ? mesh_colour_of_rank(t + s * THREADS) : vertex_colour(cells[s], colours);
     }
     for (uint w = t; w < (CAP + 31u) / 32u; w += THREADS) pin_bits[w] = 0u;
     if (t < 2u) list_flag[t] = 0u;

@@ -41,8 +41,9 @@ MeshSpring mesh_spring(uint e) {
 
 // The hot loops (forces, VBD's Newton step) walk a particle's list in batches of MESH_BATCH
 // entries: a batch's records, then its neighbours' positions, are read before any is used, so
-// that their loads are in flight together rather than one dependent pair a spring. Entry e of
-// a batch past the list's end (< end) reads the last entry again; the loop skips it.
+// that their loads are in flight together rather than one dependent pair a spring. An entry
+// at or past the list's end (e >= end; the loops run only over a list of one entry or more)
+// reads the last entry again, which the loop skips.
 const uint MESH_BATCH = 4u;
 MeshSpring mesh_batch(uint e, uint end) { return mesh_spring(min(e, end - 1u)); }
 

@@ -528,10 +528,9 @@ fn check(rest: &[DVec3], faces: &[Vec<u32>]) -> Result<(), String> {
 }
 
 /// A colouring of the spring graph: the particles by colour and the colours' firsts. Each
-/// colour is a dependent pass of VBD's sweep, so the fewer the better: the fewer of DSatur's
-/// (a grid of quads takes the 5 of a grid's formula, evenly, where greedy by degree takes 7)
-/// and greedy by degree's (a grid of triangles split along alternating diagonals takes 6,
-/// where DSatur takes 7, the last of 69 particles out of 65,536).
+/// colour is a dependent pass of VBD's sweep, so the fewer the better: the fewer-coloured of
+/// DSatur's and greedy by degree's, neither of which is best on every mesh (a quad grid and a
+/// grid of alternating triangles: docs/design/mesh-cloth.md).
 fn colouring(first: &[u32], springs: &[MeshSpring]) -> (Vec<u32>, Vec<u32>) {
     let n = first.len() - 1;
     let neighbours =

@@ -70,10 +70,11 @@ pub struct FusedLimits {
 /// and cost nothing measurable, where a dispatch a substep does (docs/design/fused.md, "Devices
 /// with a loop limit", has the figures).
 const LIMITED_SUBSTEPS_PER_DISPATCH: u32 = 8;
-/// ... for an object with edge-edge self-contact: one (its edge pairs' search runs two loops of
-/// six a candidate, glsl/include/self_contact.glsl, and reaches the limit within a few
-/// substeps of a dense fold).
-const LIMITED_EDGE_PAIR_SUBSTEPS_PER_DISPATCH: u32 = 1;
+/// ... for an object whose contact search runs long loops: one. Edge-edge self-contact (its
+/// edge pairs' search runs two loops of six a candidate, glsl/include/self_contact.glsl, and
+/// reaches the limit within a few substeps of a dense fold) and a mesh cloth's self-collision
+/// (each candidate triangle walks its corners' spring lists, `mesh_linked`).
+const LIMITED_LONG_LOOP_SUBSTEPS_PER_DISPATCH: u32 = 1;
 
 impl FusedLimits {
     /// `slots` particles per thread at most for every object.
@@ -126,8 +127,8 @@ impl FusedLimits {
     /// of `substeps`: `substeps_per_dispatch`, one on a device with a loop limit where a
     /// cloth keeps edges from edges (a rope's segment pairs search two edges a candidate, not
     /// six) or a mesh cloth keeps particles from its triangles (each candidate triangle walks
-    /// its corners' spring lists, `mesh_linked`: at 8 substeps a dispatch the folding mesh of
-    /// tests/suite/mesh_cloth.rs lost a dispatch's writes on lavapipe).
+    /// its corners' spring lists, `mesh_linked`; the limit counts a loop's iterations over the
+    /// whole invocation).
     pub fn chunk(&self, mut features: impl Iterator<Item = u32>, substeps: u32) -> u32 {
         let limited = self.substeps_per_dispatch != u32::MAX;
         let long_loops = |f: u32| {
@@ -136,7 +137,7 @@ impl FusedLimits {
                 || f & (FEATURE_CLOTH_MESH | FEATURE_TRIANGLES) == FEATURE_CLOTH_MESH | FEATURE_TRIANGLES
         };
         let most = if limited && features.any(long_loops) {
-            self.substeps_per_dispatch.min(LIMITED_EDGE_PAIR_SUBSTEPS_PER_DISPATCH)
+            self.substeps_per_dispatch.min(LIMITED_LONG_LOOP_SUBSTEPS_PER_DISPATCH)
         } else {
             self.substeps_per_dispatch
         };
@@ -220,7 +221,8 @@ pub struct FusedShape {
     pub buckets: u32,
     /// Slots per physics pass (the velocity window covers `threads * pass_slots` particles).
     pub pass_slots: u32,
-    /// Largest index distance from a particle to a spring neighbour.
+    /// Largest index distance from a particle to a spring neighbour (0 for a mesh cloth, whose
+    /// one pass's window holds every particle).
     pub halo: u32,
     /// An iterative method at one iteration: the loop and XPBD's multipliers compiled out
     /// (`ONE_ITERATION`; another iteration count is another pipeline).
@@ -618,6 +620,14 @@ mod tests {
         m.integrator = Integrator::Vbd;
         assert!(FusedShape::plan(&m.objects[0], &m, gpu).is_some_and(|s| s.compact));
         assert_eq!(FusedShape::plan(&m.objects[0], &m, FusedLimits { shared_bytes: 48 * 1024, ..cpu }), None);
+        // Substeps a dispatch: all of a frame's on a GPU; 8 under a loop limit, one where an
+        // object's contact search runs long loops (edge pairs, a mesh cloth's triangles).
+        use crate::sim::gpu_types::{FEATURE_CLOTH_MESH, FEATURE_EDGE_PAIRS, FEATURE_TRIANGLES};
+        let mesh_contact = FEATURE_CLOTH_MESH | FEATURE_TRIANGLES;
+        assert_eq!(gpu.chunk([mesh_contact].into_iter(), 16), 16);
+        assert_eq!(cpu.chunk([FEATURE_CLOTH_MESH, FEATURE_TRIANGLES].into_iter(), 16), 8);
+        assert_eq!(cpu.chunk([0, mesh_contact].into_iter(), 16), 1);
+        assert_eq!(cpu.chunk([FEATURE_EDGE_PAIRS].into_iter(), 16), 1);
     }
 
     /// One iteration of an iterative method is a layout of its own (another pipeline; the

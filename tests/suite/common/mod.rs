@@ -536,6 +536,8 @@ pub fn segments_through_except(
     tris: &[[usize; 3]],
     skip: impl Fn(usize, usize, &[usize; 3]) -> bool,
 ) -> usize {
+    // (a NaN would sort before every box and end the sweep at once: none counted)
+    assert!(ex.iter().chain(tx).all(|p| p.is_finite()), "positions that are not finite");
     let bounds: Vec<(DVec3, DVec3)> = tris
         .iter()
         .map(|t| {
