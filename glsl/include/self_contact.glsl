@@ -539,10 +539,13 @@ void mesh_self_triangles(vec3 x, uint j, float list_reach) {
         vec3 lo = min(a, min(b, c)) - farthest;
         vec3 hi = max(a, max(b, c)) + farthest;
         if (any(lessThan(x, lo)) || any(greaterThan(x, hi))) continue;
-        if (mesh_linked(p, tv.x) || mesh_linked(p, tv.y) || mesh_linked(p, tv.z)) continue;
         vec3 w;
         vec3 n;
         float d = triangle_distance(x, a, b, c, w, n);
+        // (the distance before the one-ring: mesh_linked walks three spring lists, the
+        // distance is a few dozen flops, and most boxes within reach hold no point within it)
+        if (!(d < farthest)) continue;
+        if (mesh_linked(p, tv.x) || mesh_linked(p, tv.y) || mesh_linked(p, tv.z)) continue;
         if (d < obj.self_distance) test_pair(x, t);
         if (d < list_reach) {
             if (list_len < LIST_ENTRIES) self_list[list_entry(list_len, list_particle, particle_count())] = t;
