@@ -17,8 +17,8 @@
 //   pin_bits   which particles are pinned;
 //   scratch    during physics: the velocities (for the spring dashpots) of the particles one
 //              pass computes plus HALO on each side, in passes of PASS_SLOTS slots when not all
-//              fit (a mesh cloth's in one pass, HALO 0); during the constraints: the spatial hash, bucket heads and a linked list,
-//              and the stretch limit's counts (STRETCH_AT).
+//              fit (a mesh cloth's in one pass, HALO 0); during the constraints: the spatial
+//              hash, bucket heads and a linked list, and the stretch limit's counts (STRETCH_AT).
 // Registers also hold a copy of the object's parameters (`obj`, taken from the buffer at the
 // start: reading them from the storage buffer in every spring loop cost 15 to 25%), each owned
 // particle's grid cell and the mask of its springs that have another end (SPRING_NEIGHBOUR).
