@@ -583,81 +583,20 @@ fn colliding_mesh_layers_slide_as_coulomb_says_on_every_path() {
 }
 
 fn mesh_layers_friction(substep_counts: &[u32], paths: &[bool]) {
-    let (cols, rows) = (13usize, 20usize);
-    let (vn, vt) = (2.0, 1.0);
-    let drift = DVec3::new(0.0, 0.5, 0.0);
-    let layers = |mu: f64, substeps: u32| {
-        let mut c = cloth(cols as u32, rows as u32, 0.05);
+    use crate::self_contact::{fold_into_layers, layers_slide_as_coulomb_says, LAYERS_DIMS};
+    let layers = |mu: f64, substeps: u32, _edges: bool| {
+        let mut c = cloth(LAYERS_DIMS.0 as u32, LAYERS_DIMS.1 as u32, 0.05);
         c.stiffness = [50.0, 10.0, 1.0];
         c.self_distance = Some(0.03);
         c.friction = mu;
+        // Folded after the rest shape is taken from the flat cloth.
         let mut m = as_mesh(c);
-        // Folded after the rest shape is taken from the flat cloth; the front layer half a
-        // cell across, so that its particles meet the back layer's triangles inside.
-        for (i, p) in m.positions.iter_mut().enumerate() {
-            let (col, row) = ((i % cols) as f64, i / cols);
-            let (down, shift, z) =
-                if row < rows / 2 { (row, 0.0, 0.0) } else { (rows - 1 - row, 0.025, 0.035) };
-            *p = DVec3::new(col * 0.05 + shift, 1.0 - down as f64 * 0.05 - shift, z);
-        }
-        for (i, v) in m.velocities.iter_mut().enumerate() {
-            let side = if i / cols < rows / 2 { -0.5 } else { 0.5 };
-            *v = drift + DVec3::new(vt * side, 0.0, -vn * side);
-        }
+        fold_into_layers(&mut m);
         let mut s = scene(vec![m]);
         s.substeps = substeps;
         s
     };
-    // Relative sliding and approaching speeds of the layers' middles (front minus back).
-    let relative = |v: &[DVec3]| {
-        let mean = |rows: std::ops::RangeInclusive<usize>| {
-            let picked: Vec<DVec3> = rows.flat_map(|r| (4..=8).map(move |c| v[c + r * cols])).collect();
-            picked.iter().sum::<DVec3>() / picked.len() as f64
-        };
-        let d = mean(rows - 5..=rows - 3) - mean(2..=4);
-        (d.x, -d.z)
-    };
-    let momentum = |v: &[DVec3]| v.iter().sum::<DVec3>();
-    let ctx = gpu();
-    let mut failures = Vec::new();
-    for (mu, expected) in [(0.0, 1.0), (0.25, 0.5), (0.8, 0.0)] {
-        for &substeps in substep_counts {
-            let s = layers(mu, substeps);
-            let start = momentum(&s.objects[0].velocities);
-            let mut runs = Vec::new();
-            for &fused in paths {
-                let mut g = msdsim::sim::gpu::GpuSim::new(&ctx, &s).unwrap();
-                g.set_fused(&ctx, fused).unwrap();
-                assert_eq!(g.runs_fused(0), fused);
-                g.step_frame(&ctx).unwrap();
-                g.step_frame(&ctx).unwrap();
-                let path = if fused { "fused" } else { "per stage" };
-                runs.push((path, g.read_states(&ctx).unwrap()[0].velocities()));
-                g.destroy(&ctx);
-            }
-            if substeps == 8 {
-                let mut cpu = CpuSim::new(&s);
-                cpu.step_frame();
-                cpu.step_frame();
-                runs.push(("reference", cpu.objects()[0].v.clone()));
-            }
-            for (path, v) in runs {
-                let (slide, approach) = relative(&v);
-                let change = (momentum(&v) - start).length() / start.length();
-                println!(
-                    "mu {mu}, {substeps} substeps, {path}: sliding {slide:.4} m/s (closed form \
-                     {expected}), approaching {approach:.4} m/s, momentum {change:e}"
-                );
-                if (slide - expected).abs() > 0.1 || approach.abs() > 0.05 || change > 1e-5 {
-                    failures.push(format!(
-                        "mu {mu}, {substeps} substeps, {path}: {slide}, {approach}, {change:e}"
-                    ));
-                }
-            }
-        }
-    }
-    assert_clean(&ctx);
-    assert!(failures.is_empty(), "sliding speed (m/s), approach (m/s), momentum: {failures:#?}");
+    layers_slide_as_coulomb_says(&[false], substep_counts, &|_| paths.to_vec(), &layers);
 }
 
 /// The skirt preset as shipped (two panels of 22 x 26 vertices sewn at the sides, draped on

@@ -539,23 +539,9 @@ fn friction_between_layers_at_more_substeps() {
 }
 
 fn friction_between_layers(substep_counts: &[u32]) {
-    let (cols, rows) = (13usize, 20usize);
-    let (vn, vt) = (2.0, 1.0);
-    let drift = DVec3::new(0.0, 0.5, 0.0);
     let layers = |mu: f64, substeps: u32, edges: bool| {
-        let mut c = cloth(cols as u32, rows as u32, 0.05);
-        for (i, p) in c.positions.iter_mut().enumerate() {
-            let (col, row) = ((i % cols) as f64, i / cols);
-            // The front layer lies half a cell across, so that its particles meet the back
-            // layer's triangles inside, where the surface is flat, not at its vertices.
-            let (down, shift, z) =
-                if row < rows / 2 { (row, 0.0, 0.0) } else { (rows - 1 - row, 0.025, 0.035) };
-            *p = DVec3::new(col * 0.05 + shift, 1.0 - down as f64 * 0.05 - shift, z);
-        }
-        for (i, v) in c.velocities.iter_mut().enumerate() {
-            let side = if i / cols < rows / 2 { -0.5 } else { 0.5 };
-            *v = drift + DVec3::new(vt * side, 0.0, -vn * side);
-        }
+        let mut c = cloth(LAYERS_DIMS.0 as u32, LAYERS_DIMS.1 as u32, 0.05);
+        fold_into_layers(&mut c);
         c.stiffness = [50.0, 10.0, 1.0];
         c.self_distance = Some(0.03);
         c.triangle_contact = true;
@@ -565,6 +551,49 @@ fn friction_between_layers(substep_counts: &[u32]) {
         s.substeps = substeps;
         s
     };
+    // ... and with edge contact (per stage, its default path), whose over-relaxed shares may
+    // bounce (see above).
+    let paths = |edges: bool| if edges { vec![false] } else { vec![true, false] };
+    layers_slide_as_coulomb_says(&[false, true], substep_counts, &paths, &layers);
+}
+
+/// The cloth of the friction tests between layers: columns, rows.
+pub const LAYERS_DIMS: (usize, usize) = (13, 20);
+/// Their layers' approaching and sliding speeds (m/s).
+const LAYERS_VN: f64 = 2.0;
+const LAYERS_VT: f64 = 1.0;
+
+/// Folds object `c` (LAYERS_DIMS, 5 cm apart, its rest shape taken already) in two along its
+/// middle, its layers 3.5 cm apart and moving as the friction tests between layers have it:
+/// approaching at LAYERS_VN, sliding past each other at LAYERS_VT along the fold, the whole
+/// drifting at 0.5 m/s. The front layer lies half a cell across, so that its particles meet
+/// the back layer's triangles inside, where the surface is flat, not at its vertices.
+pub fn fold_into_layers(c: &mut msdsim::sim::model::ObjectModel) {
+    let (cols, rows) = LAYERS_DIMS;
+    for (i, p) in c.positions.iter_mut().enumerate() {
+        let (col, row) = ((i % cols) as f64, i / cols);
+        let (down, shift, z) = if row < rows / 2 { (row, 0.0, 0.0) } else { (rows - 1 - row, 0.025, 0.035) };
+        *p = DVec3::new(col * 0.05 + shift, 1.0 - down as f64 * 0.05 - shift, z);
+    }
+    for (i, v) in c.velocities.iter_mut().enumerate() {
+        let side = if i / cols < rows / 2 { -0.5 } else { 0.5 };
+        *v = DVec3::new(0.0, 0.5, 0.0) + DVec3::new(LAYERS_VT * side, 0.0, -LAYERS_VN * side);
+    }
+}
+
+/// The friction tests between layers: for mu 0, 0.25 and 0.8 (each with edge contact and
+/// without, as `edge_cases` lists), at each of `substep_counts`, the scene `layers(mu,
+/// substeps, edges)` (object 0 folded by `fold_into_layers`) run two frames on each GPU path of
+/// `paths(edges)` (fused or not) and, at 8 substeps, on the reference: the relative sliding
+/// speed of the layers' middles (rows 2 to 4 from the far edges, columns 4 to 8) within 0.1 m/s
+/// of max(0, vt - mu vn), their approach within 0.05 m/s of 0, the momentum within 1e-5.
+pub fn layers_slide_as_coulomb_says(
+    edge_cases: &[bool],
+    substep_counts: &[u32],
+    paths: &dyn Fn(bool) -> Vec<bool>,
+    layers: &dyn Fn(f64, u32, bool) -> SimModel,
+) {
+    let (cols, rows) = LAYERS_DIMS;
     // Relative sliding and approaching speeds of the layers' middles (front minus back).
     let relative = |v: &[DVec3]| {
         let mean = |rows: std::ops::RangeInclusive<usize>| {
@@ -577,44 +606,44 @@ fn friction_between_layers(substep_counts: &[u32]) {
     let momentum = |v: &[DVec3]| v.iter().sum::<DVec3>();
     let ctx = gpu();
     let mut failures = Vec::new();
-    // ... and with edge contact (per stage, its default path), whose over-relaxed shares may
-    // bounce (see above).
-    for (mu, expected, edges) in
-        (0..6).map(|k| ([(0.0, 1.0), (0.25, 0.5), (0.8, 0.0)][k % 3], k >= 3)).map(|(m, e)| (m.0, m.1, e))
-    {
-        for &substeps in substep_counts {
-            let s = layers(mu, substeps, edges);
-            let start = momentum(&s.objects[0].velocities);
-            let mut runs = Vec::new();
-            for fused in [true, false].into_iter().filter(|&f| !(edges && f)) {
-                let mut g = GpuSim::new(&ctx, &s).unwrap();
-                g.set_fused(&ctx, fused).unwrap();
-                g.step_frame(&ctx).unwrap();
-                g.step_frame(&ctx).unwrap();
-                runs.push((
-                    if fused { "fused" } else { "per stage" },
-                    g.read_states(&ctx).unwrap()[0].velocities(),
-                ));
-                g.destroy(&ctx);
-            }
-            if substeps == 8 {
-                let mut cpu = CpuSim::new(&s);
-                cpu.step_frame();
-                cpu.step_frame();
-                runs.push(("reference", cpu.objects()[0].v.clone()));
-            }
-            for (path, v) in runs {
-                let (slide, approach) = relative(&v);
-                let change = (momentum(&v) - start).length() / start.length();
-                let path = if edges { format!("{path}, edges") } else { path.to_string() };
-                println!(
-                    "mu {mu}, {substeps} substeps, {path}: sliding {slide:.4} m/s (closed form {expected}), \
-                     approaching {approach:.4} m/s, momentum {change:e}"
-                );
-                if (slide - expected).abs() > 0.1 || approach.abs() > 0.05 || change > 1e-5 {
-                    failures.push(format!(
-                        "mu {mu}, {substeps} substeps, {path}: {slide}, {approach}, {change:e}"
+    for &edges in edge_cases {
+        for mu in [0.0, 0.25, 0.8] {
+            let expected = f64::max(0.0, LAYERS_VT - mu * LAYERS_VN);
+            for &substeps in substep_counts {
+                let s = layers(mu, substeps, edges);
+                let start = momentum(&s.objects[0].velocities);
+                let mut runs = Vec::new();
+                for fused in paths(edges) {
+                    let mut g = GpuSim::new(&ctx, &s).unwrap();
+                    g.set_fused(&ctx, fused).unwrap();
+                    assert_eq!(g.runs_fused(0), fused);
+                    g.step_frame(&ctx).unwrap();
+                    g.step_frame(&ctx).unwrap();
+                    runs.push((
+                        if fused { "fused" } else { "per stage" },
+                        g.read_states(&ctx).unwrap()[0].velocities(),
                     ));
+                    g.destroy(&ctx);
+                }
+                if substeps == 8 {
+                    let mut cpu = CpuSim::new(&s);
+                    cpu.step_frame();
+                    cpu.step_frame();
+                    runs.push(("reference", cpu.objects()[0].v.clone()));
+                }
+                for (path, v) in runs {
+                    let (slide, approach) = relative(&v);
+                    let change = (momentum(&v) - start).length() / start.length();
+                    let path = if edges { format!("{path}, edges") } else { path.to_string() };
+                    println!(
+                        "mu {mu}, {substeps} substeps, {path}: sliding {slide:.4} m/s (closed form \
+                         {expected}), approaching {approach:.4} m/s, momentum {change:e}"
+                    );
+                    if (slide - expected).abs() > 0.1 || approach.abs() > 0.05 || change > 1e-5 {
+                        failures.push(format!(
+                            "mu {mu}, {substeps} substeps, {path}: {slide}, {approach}, {change:e}"
+                        ));
+                    }
                 }
             }
         }
