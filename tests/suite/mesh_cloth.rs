@@ -564,13 +564,14 @@ fn contact_between_a_mesh_cloths_layers_conserves_momentum() {
 /// of two equal layers takes a normal impulse of half a layer's mass times vn, friction at
 /// most mu times that, so their relative sliding speed after it is max(0, vt - mu vn): 1 (mu
 /// 0), 0.5 (mu 0.25), 0 (mu 0.8: they stick). Measured on the layers' middles (rows 2 to 4
-/// from the far edges, columns 4 to 8) after two frames at 8 substeps, on the mesh cloth's
-/// default path (fused) and the reference (the exhaustive tier: per stage, and 32 substeps),
+/// from the far edges, columns 4 to 8) after two frames at 8 substeps, on the fused path (a
+/// mesh cloth's where it fits a workgroup on a GPU) and the reference (the exhaustive tier: per
+/// stage, and 32 substeps),
 /// within 0.1 m/s as for the grid (a particle sliding across the rounded edge between two
 /// flat triangles is pushed along by the one it left: the grid's layers gain 4 to 7% without
 /// friction); approaching within 0.05 m/s after (no bounce); momentum kept to 1e-5. Measured:
-/// 1.069 / 0.571 / -0.004 at 8 substeps on every path, 1.042 / 0.542 / -0.006 at 32, as the
-/// grid's; approaching -0.010 to -0.005; momentum 4.1e-6 at worst.
+/// 1.069 / 0.571 / -0.004 at 8 substeps on every path, 1.042 / 0.542 / -0.006 at 32 (the
+/// grid's within rounding); approaching -0.010 to -0.005; momentum 4.1e-6 at worst.
 #[test]
 fn colliding_mesh_layers_slide_as_coulomb_says() {
     mesh_layers_friction(&[8], &[true]);

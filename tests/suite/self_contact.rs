@@ -525,7 +525,8 @@ fn a_fused_frame_of_many_substeps_equals_the_per_stage_path() {
 /// contact too (per stage and the reference; each contact's share over-relaxed by 1.5, which
 /// the branch measured bouncing 0.15 m/s at 32 substeps before edge pairs were gated on a
 /// crease): 1.067 / 1.046, 0.571 / 0.539, -0.007 / -0.022, the layers parting at 0.011 to
-/// 0.034 m/s, within the same bounds. The default tier runs 8 substeps, the exhaustive tier 32.
+/// 0.034 m/s, within the same bounds. One test runs 8 substeps, the other 32 (both in the
+/// exhaustive tier).
 #[test]
 #[ignore = "exhaustive tier: kept out of the default tier's 10-minute budget"]
 fn friction_between_layers_takes_at_most_mu_times_the_normal_impulse() {
