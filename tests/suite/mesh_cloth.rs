@@ -566,8 +566,7 @@ fn contact_between_a_mesh_cloths_layers_conserves_momentum() {
 /// 0), 0.5 (mu 0.25), 0 (mu 0.8: they stick). Measured on the layers' middles (rows 2 to 4
 /// from the far edges, columns 4 to 8) after two frames at 8 substeps, on the fused path (a
 /// mesh cloth's where it fits a workgroup on a GPU) and the reference (the exhaustive tier: per
-/// stage, and 32 substeps),
-/// within 0.1 m/s as for the grid (a particle sliding across the rounded edge between two
+/// stage, and 32 substeps), within 0.1 m/s as for the grid (a particle sliding across the rounded edge between two
 /// flat triangles is pushed along by the one it left: the grid's layers gain 4 to 7% without
 /// friction); approaching within 0.05 m/s after (no bounce); momentum kept to 1e-5. Measured:
 /// 1.069 / 0.571 / -0.004 at 8 substeps on every path, 1.042 / 0.542 / -0.006 at 32 (the
@@ -584,20 +583,8 @@ fn colliding_mesh_layers_slide_as_coulomb_says_on_every_path() {
 }
 
 fn mesh_layers_friction(substep_counts: &[u32], paths: &[bool]) {
-    use crate::self_contact::{fold_into_layers, layers_slide_as_coulomb_says, LAYERS_DIMS};
-    let layers = |mu: f64, substeps: u32, _edges: bool| {
-        let mut c = cloth(LAYERS_DIMS.0 as u32, LAYERS_DIMS.1 as u32, 0.05);
-        c.stiffness = [50.0, 10.0, 1.0];
-        c.self_distance = Some(0.03);
-        c.friction = mu;
-        // Folded after the rest shape is taken from the flat cloth.
-        let mut m = as_mesh(c);
-        fold_into_layers(&mut m);
-        let mut s = scene(vec![m]);
-        s.substeps = substeps;
-        s
-    };
-    layers_slide_as_coulomb_says(&[false], substep_counts, &|_| paths.to_vec(), &layers);
+    // (as_mesh takes the rest shape from the flat cloth; the helper folds it after)
+    crate::self_contact::layers_slide_as_coulomb_says(&[(false, paths)], substep_counts, &as_mesh);
 }
 
 /// The skirt preset as shipped (two panels of 22 x 26 vertices sewn at the sides, draped on

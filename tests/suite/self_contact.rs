@@ -13,7 +13,7 @@ use glam::DVec3;
 use msdsim::sim::collider::{ColliderModel, Motion, Shape};
 use msdsim::sim::cpu::CpuSim;
 use msdsim::sim::gpu::GpuSim;
-use msdsim::sim::model::{SelfCollisionMethod, SimModel};
+use msdsim::sim::model::{ObjectModel, SelfCollisionMethod, SimModel};
 use msdsim::sim::turn::Turn;
 
 /// Edges of the cloth (positions `x`, `cols` x `rows`) through one of its triangles that does
@@ -540,26 +540,14 @@ fn friction_between_layers_at_more_substeps() {
 }
 
 fn friction_between_layers(substep_counts: &[u32]) {
-    let layers = |mu: f64, substeps: u32, edges: bool| {
-        let mut c = cloth(LAYERS_DIMS.0 as u32, LAYERS_DIMS.1 as u32, 0.05);
-        fold_into_layers(&mut c);
-        c.stiffness = [50.0, 10.0, 1.0];
-        c.self_distance = Some(0.03);
-        c.triangle_contact = true;
-        c.edge_contact = edges;
-        c.friction = mu;
-        let mut s = scene(vec![c]);
-        s.substeps = substeps;
-        s
-    };
     // ... and with edge contact (per stage, its default path), whose over-relaxed shares may
     // bounce (see above).
-    let paths = |edges: bool| if edges { vec![false] } else { vec![true, false] };
-    layers_slide_as_coulomb_says(&[false, true], substep_counts, &paths, &layers);
+    let cases: [(bool, &[bool]); 2] = [(false, &[true, false]), (true, &[false])];
+    layers_slide_as_coulomb_says(&cases, substep_counts, &|c| c);
 }
 
 /// The cloth of the friction tests between layers: columns, rows.
-pub const LAYERS_DIMS: (usize, usize) = (13, 20);
+const LAYERS_DIMS: (usize, usize) = (13, 20);
 /// Their layers' approaching and sliding speeds (m/s).
 const LAYERS_VN: f64 = 2.0;
 const LAYERS_VT: f64 = 1.0;
@@ -569,7 +557,7 @@ const LAYERS_VT: f64 = 1.0;
 /// approaching at LAYERS_VN, sliding past each other at LAYERS_VT along the fold, the whole
 /// drifting at 0.5 m/s. The front layer lies half a cell across, so that its particles meet
 /// the back layer's triangles inside, where the surface is flat, not at its vertices.
-pub fn fold_into_layers(c: &mut msdsim::sim::model::ObjectModel) {
+fn fold_into_layers(c: &mut ObjectModel) {
     let (cols, rows) = LAYERS_DIMS;
     for (i, p) in c.positions.iter_mut().enumerate() {
         let (col, row) = ((i % cols) as f64, i / cols);
@@ -582,19 +570,33 @@ pub fn fold_into_layers(c: &mut msdsim::sim::model::ObjectModel) {
     }
 }
 
-/// The friction tests between layers: for mu 0, 0.25 and 0.8 (each with edge contact and
-/// without, as `edge_cases` lists), at each of `substep_counts`, the scene `layers(mu,
-/// substeps, edges)` (object 0 folded by `fold_into_layers`) run two frames on each GPU path of
-/// `paths(edges)` (fused or not) and, at 8 substeps, on the reference: the relative sliding
-/// speed of the layers' middles (rows 2 to 4 from the far edges, columns 4 to 8) within 0.1 m/s
-/// of max(0, vt - mu vn), their approach within 0.05 m/s of 0, the momentum within 1e-5.
+/// The friction tests between layers: for each case (edge contact or not, the GPU paths to run:
+/// fused or not), mu 0, 0.25 and 0.8 and each of `substep_counts`, a LAYERS_DIMS cloth (soft
+/// springs, contact with its triangles at 3 cm) made into the object tested by `object`, then
+/// folded by `fold_into_layers`, run two frames on each path and, at 8 substeps, on the
+/// reference: the relative sliding speed of the layers' middles (rows 2 to 4 from the far
+/// edges, columns 4 to 8) within 0.1 m/s of max(0, vt - mu vn), their approach within 0.05 m/s
+/// of 0, the momentum within 1e-5.
 pub fn layers_slide_as_coulomb_says(
-    edge_cases: &[bool],
+    cases: &[(bool, &[bool])],
     substep_counts: &[u32],
-    paths: &dyn Fn(bool) -> Vec<bool>,
-    layers: &dyn Fn(f64, u32, bool) -> SimModel,
+    object: &dyn Fn(ObjectModel) -> ObjectModel,
 ) {
     let (cols, rows) = LAYERS_DIMS;
+    // (folded after `object`, which may take the rest shape from the flat cloth)
+    let layers = |mu: f64, substeps: u32, edges: bool| {
+        let mut c = cloth(cols as u32, rows as u32, 0.05);
+        c.stiffness = [50.0, 10.0, 1.0];
+        c.self_distance = Some(0.03);
+        c.triangle_contact = true;
+        c.edge_contact = edges;
+        c.friction = mu;
+        let mut c = object(c);
+        fold_into_layers(&mut c);
+        let mut s = scene(vec![c]);
+        s.substeps = substeps;
+        s
+    };
     // Relative sliding and approaching speeds of the layers' middles (front minus back).
     let relative = |v: &[DVec3]| {
         let mean = |rows: std::ops::RangeInclusive<usize>| {
@@ -607,14 +609,14 @@ pub fn layers_slide_as_coulomb_says(
     let momentum = |v: &[DVec3]| v.iter().sum::<DVec3>();
     let ctx = gpu();
     let mut failures = Vec::new();
-    for &edges in edge_cases {
+    for &(edges, paths) in cases {
         for mu in [0.0, 0.25, 0.8] {
             let expected = f64::max(0.0, LAYERS_VT - mu * LAYERS_VN);
             for &substeps in substep_counts {
                 let s = layers(mu, substeps, edges);
                 let start = momentum(&s.objects[0].velocities);
                 let mut runs = Vec::new();
-                for fused in paths(edges) {
+                for &fused in paths {
                     let mut g = GpuSim::new(&ctx, &s).unwrap();
                     g.set_fused(&ctx, fused).unwrap();
                     assert_eq!(g.runs_fused(0), fused);
