@@ -171,6 +171,7 @@ void listed_candidates(uvec2 cell, vec3 x, float reach, inout vec3 correction, i
 #define NVEL(j) wvel(uint(j))
 #define CPOS(j) spos(uint(j))
 #define CPINNED(j) spinned(uint(j))
+#define TRUNC_POS(j) p_out[j].pos.xyz
 #define HASH_MASK (BUCKETS - 1u)
 // The stretch limit's counts (stretch.glsl), and the hash's links below them (visit_bucket).
 const uint LINK_BITS = 0x0FFFFFFFu;
@@ -276,7 +277,7 @@ uint next_in_bucket(uint j) {
     return next == LINK_BITS ? EMPTY : next;
 }
 void visit_bucket(uint h, uvec2 cell, vec3 x, float reach, inout vec3 correction, inout uint n_active) {
-    float listed = LISTED && list_build ? list_reach() : reach;
+    float listed = list_build ? list_reach() : reach;
     for (uint j = scratch[h]; j != EMPTY; j = next_in_bucket(j)) {
         float d = distance(spos(j), x);
         if (d < listed && !rest_neighbour(cell, j, obj.self_distance)) {
@@ -855,12 +856,57 @@ void main() {
             visiting_start = began[s];
             float since = float(sub + 1u) * g.dt;
             collide_all(cells[s], xs, vs, since);
-            // (see constraints_particle)
-            if (neighbours && self_triangles_on && bound_move(k, xs, vs)) collide(xs, vs, since);
             x[s] = xs;
             v[s] = vs;
         }
         if (neighbours) barrier();  // every read of the shared positions and hash is done
+        if (neighbours && self_triangles_on && cloth_edge_pairs()) {
+            // Each particle's move truncated by the pairs near where the particles began the
+            // substep (self_contact.glsl's note_truncation): the constraints' results into
+            // p_out (TRUNC_POS), the starts into the shared positions, the shared hash built
+            // from there with cells of the search's reach and each particle's ring creases
+            // there, each particle's pairs noted, then each move truncated.
+            [[unroll]] for (uint s = 0u; s < MAX_SLOTS; ++s) {
+                if (s >= SLOTS) break;
+                uint k = own[s];
+                if (k >= n) continue;
+                p_out[k].pos.xyz = x[s];
+                set_spos(k, began[s]);
+            }
+            if (hashed) {
+                obj.cell_inv = cell_inv;
+                for (uint b = t; b < BUCKETS; b += THREADS) scratch[b] = EMPTY;
+            }
+            memoryBarrierBuffer();
+            barrier();
+            if (hashed) {
+                [[unroll]] for (uint s = 0u; s < MAX_SLOTS; ++s) {
+                    if (s >= SLOTS) break;
+                    uint k = own[s];
+                    if (k >= n) continue;
+                    uint h = cell_hash(hash_cell(began[s], obj.cell_inv, k), BUCKETS - 1u);
+                    scratch[BUCKETS + k] = atomicExchange(scratch[h], k);
+                    uint word = listed_crease_word(ring_crease_masks(k, began[s]), uint(self_pairs[creases_word(k)]), false);
+                    self_pairs[creases_word(k)] = int(word);
+                }
+                memoryBarrierBuffer();
+                barrier();
+            }
+            [[unroll]] for (uint s = 0u; s < MAX_SLOTS; ++s) {
+                if (s >= SLOTS) break;
+                uint k = own[s];
+                if (k < n) note_truncation(k);
+            }
+            memoryBarrierBuffer();
+            barrier();
+            [[unroll]] for (uint s = 0u; s < MAX_SLOTS; ++s) {
+                if (s >= SLOTS) break;
+                uint k = own[s];
+                if (k >= n || pinned[s]) continue;
+                visiting_start = began[s];
+                if (truncate_move(k, began[s], x[s], v[s])) collide(x[s], v[s], float(sub + 1u) * g.dt);
+            }
+        }
         [[unroll]] for (uint s = 0u; s < MAX_SLOTS; ++s) {
             if (s >= SLOTS) break;
             uint k = own[s];

@@ -11,7 +11,11 @@
 // output by the sums and the kept contacts' application from there. The work is in
 // self_contact.glsl and constraints_body.glsl, shared with fused.comp; the constraint stage
 // adds the last pass's sums. The find and apply passes read the contact lists' state (LISTS:
-// the pipelines with lists on).
+// the pipelines with lists on). With a cloth's edge pairs two passes follow the constraint
+// stage (after truncation_hash.comp's hash of where the particles began the substep): each
+// particle's pairs near there noted in their particles' truncations (note_truncation: CPOS
+// reads the start in that pass), then each particle's move truncated (truncate_move), on the
+// stage's result in p_out.
 #define STATE_OUT_READ
 #define STATE_IN_WRITE
 #include "bindings.glsl"
@@ -24,6 +28,8 @@ const uint PASS_FIND = 0u;
 const uint PASS_APPLY = 1u;
 const uint PASS_MOVE = 2u;
 const uint PASS_REAPPLY = 3u;
+const uint PASS_NOTE = 4u;
+const uint PASS_TRUNCATE = 5u;
 layout(constant_id = 4) const uint PASS = PASS_FIND;
 const bool APPLY = PASS == PASS_APPLY;
 layout(push_constant) uniform Push {
@@ -31,12 +37,22 @@ layout(push_constant) uniform Push {
 } pc;
 
 #define IN(i) p_in[i]
+#include "self_pairs_layout.glsl"
+// (the truncation's passes search where the particles began the substep)
+#define CPOS(j) (PASS == PASS_NOTE ? start_position(uint(j)) : p_in[j].pos.xyz)
+#define CPINNED(j) (p_in[j].pos.w > 0.5)
+#define TRUNC_POS(j) p_out[j].pos.xyz
 #include "hash_count.glsl"
 #define CELL_INV hash_cell_inv(LISTS)
 void listed_candidates(uvec2 cell, vec3 x, float reach, inout vec3 correction, inout uint n_active);
 #define SELF_CANDIDATES listed_candidates
 #define SELF_APPLY_FOUND APPLY
 #include "constraints_body.glsl"
+
+// The particle the truncation pass moves (`substep_start`, which the colliders' friction asks
+// for).
+uint visiting = 0u;
+vec3 substep_start() { return pair_start(visiting); }
 
 void main() {
     uvec2 cell = gl_GlobalInvocationID.xy;
@@ -55,6 +71,21 @@ void main() {
     }
     if (PASS == PASS_REAPPLY) {
         self_reapply(i, x);
+        return;
+    }
+    if (PASS == PASS_NOTE) {
+        note_truncation(i);
+        return;
+    }
+    if (PASS == PASS_TRUNCATE) {
+        Particle q = p_out[i];
+        if (q.pos.w > 0.5) return;  // (pinned: nothing noted)
+        vec3 v = q.vel.xyz;
+        x = q.pos.xyz;
+        visiting = i;
+        if (!truncate_move(i, pair_start(i), x, v)) return;
+        collide(x, v, float(pc.substep + 1u) * g.dt);
+        p_out[i] = Particle(vec4(x, 0.0), vec4(v, 0.0));
         return;
     }
     list_state(i, pc.substep, self_hashed(), LISTS);

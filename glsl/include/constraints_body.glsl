@@ -78,9 +78,7 @@ void self_candidate(uvec2 cell, vec3 x, uint j, float d, float reach, inout vec3
         // (By brute force every particle is a candidate; with edge pairs only those within the
         // hash's reach are visited, so that both find the same pairs and the search's loops
         // stay within lavapipe's limit.)
-        if (!edge_contact() || d < (list_build ? list_reach() : reach)) {
-            self_triangles(cell, x, j, list_build ? list_within() : 0.0);
-        }
+        if (!edge_contact() || d < (list_build ? list_reach() : reach)) self_triangles(cell, x, j, recorded_within());
         return;
     }
     if (d < reach) self_push(x, j, reach, correction, n_active);
@@ -362,7 +360,7 @@ void visit_range(uint from, uint end, uvec2 cell, vec3 x, float reach, inout vec
         uint j = floatBitsToUint(e.w);
         if (d < listed && !rest_neighbour(cell, j, obj.self_distance)) {
             if (triangle_contact()) {
-                self_triangles(cell, x, j, list_build ? list_within() : 0.0);
+                self_triangles(cell, x, j, recorded_within());
                 continue;
             }
             if (d < reach) self_push(x, j, reach, correction, n_active);
@@ -396,6 +394,26 @@ void list_state(uint i, uint substep, bool listed, bool lists) {
 }
 #endif
 
+// The truncation's search for particle p (self_contact.glsl's note_truncation): the search of
+// the find pass, from where p began the substep, noting the pairs within h it finds instead of
+// keeping contacts. The includer has CPOS read where each particle began the substep and the
+// hash, where there is one, built from there with cells of the search's reach.
+void truncation_search(uint p) {
+    noting = true;
+    pair_particle = p;
+    list_particle = p;
+    list_build = false;
+    list_rebuild = true;  // (the hash, not the list)
+    list_len = 0u;
+    uvec2 cell = uvec2(p % obj.dims.x, p / obj.dims.x);
+    vec3 x = CPOS(p);
+    own_creases = crease_mask(ring_creases(p, x), false);
+    vec3 unused = vec3(0.0);
+    uint unused_count = 0u;
+    self_search(cell, x, unused, unused_count);
+    noting = false;
+}
+
 #ifdef OUT
 uint visiting;  // the particle whose constraints run
 vec3 substep_start() { return START(visiting); }
@@ -421,9 +439,6 @@ void constraints_particle(uvec2 cell, uint substep, bool lists) {
     visiting = i;
     float since = float(substep + 1u) * g.dt;
     collide_all(cell, x, v, since);
-    // With a cloth's edge pairs, its move within what its contacts allow, the colliders' part
-    // too (a pile's bottom layer pushed up by the ground must not pass the layer on it).
-    if (bound_move(i, x, v)) collide(x, v, since);
     OUT(i) = Particle(vec4(x, 0.0), vec4(v, 0.0));
 }
 #endif

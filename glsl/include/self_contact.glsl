@@ -73,7 +73,9 @@
 //    others takes a share of each contact a pass (mass splitting), so one pass stops it only
 //    over several substeps, deeper than the thickness;
 // 3. the constraint stage adds its particle's sum to its correction whole and clears it
-//    (self_take).
+//    (self_take);
+// 4. with a cloth's edge pairs, after the constraint stage: each particle's pairs near at the
+//    substep's start noted and each move truncated (TRUNCATION_GAP below).
 // The CPU twin is sim::cpu::self_contact; the buffer's layout is in self_pairs_layout.glsl.
 // Include in constraints_body.glsl (CPOS, CPINNED defined).
 #ifndef MSD_SELF_CONTACT_GLSL
@@ -85,15 +87,12 @@
 // without it none of the edge-pair code is compiled in).
 bool edge_contact() { return has(F_EDGE_PAIRS); }
 
-// Whether those edges are a cloth's (creased, with the bound on each particle's move), not a
-// rope's segments (sim::model::ObjectModel::has_cloth_edge_pairs).
+// Whether those edges are a cloth's (creased, each particle's move truncated), not a rope's
+// segments (sim::model::ObjectModel::has_cloth_edge_pairs).
 bool cloth_edge_pairs() { return edge_contact() && !has(F_SEGMENT_PAIRS); }
 
 // Where particle i began the substep, as the find pass noted it.
-vec3 pair_start(uint i) {
-    uint w = start_word(i);
-    return vec3(intBitsToFloat(self_pairs[w]), intBitsToFloat(self_pairs[w + 1u]), intBitsToFloat(self_pairs[w + 2u]));
-}
+vec3 pair_start(uint i) { return start_position(i); }
 void set_pair_start(uint i, vec3 x) {
     uint w = start_word(i);
     self_pairs[w] = floatBitsToInt(x.x);
@@ -137,26 +136,31 @@ bool in_one_ring(uvec2 cell, uint j) {
     return max(d.x, d.y) <= 1;
 }
 
-// Whether triangle t is left out for the particle at `cell` (see the top): a vertex of t is in
-// the particle's one-ring, or t is nearer than h to it at rest.
-bool pair_left_out(uvec2 cell, uint t) {
+// Whether a vertex of triangle t is in the one-ring of the particle at `cell`.
+bool touches_one_ring(uvec2 cell, uint t) {
+    uvec3 tv = triangle_vertices(t);
+    bool touches = false;
+    [[unroll]] for (int k = 0; k < 3; ++k) touches = touches || in_one_ring(cell, tv[k]);
+    return touches;
+}
+
+// Whether triangle t is nearer than h at rest to the particle at `cell` (possible only for a
+// thickness of 0.7 grid spacings or more: a cell's diagonal and the vertex next to it are
+// sx sy / |s| apart; past the one-ring, two spacings).
+bool near_at_rest(uvec2 cell, uint t) {
+    if (obj.self_distance < 0.7 * min(obj.spacing.x, obj.spacing.y)) return false;
     uvec3 tv = triangle_vertices(t);
     uint cols = obj.dims.x;
-    ivec2 p = ivec2(cell);
-    vec2 rest[3];
+    vec3 rest[3];
     [[unroll]] for (int k = 0; k < 3; ++k) {
         ivec2 q = ivec2(int(tv[k] % cols), int(tv[k] / cols));
-        ivec2 d = abs(q - p);
-        if (max(d.x, d.y) <= 1) return true;
-        rest[k] = vec2(q - p) * obj.spacing;
+        rest[k] = vec3(vec2(q - ivec2(cell)) * obj.spacing, 0.0);
     }
-    // A triangle with no vertex in the one-ring is nearer than h at rest only for a thickness
-    // of about two grid spacings or more.
-    if (obj.self_distance < 1.99 * min(obj.spacing.x, obj.spacing.y)) return false;
-    vec3 w = triangle_nearest(vec3(0.0), vec3(rest[0], 0.0), vec3(rest[1], 0.0), vec3(rest[2], 0.0));
-    vec2 q = w.x * rest[0] + w.y * rest[1] + w.z * rest[2];
+    vec3 w = triangle_nearest(vec3(0.0), rest[0], rest[1], rest[2]);
+    vec3 q = w.x * rest[0] + w.y * rest[1] + w.z * rest[2];
     return dot(q, q) < obj.self_distance * obj.self_distance;
 }
+
 
 // x against triangle (a, b, c): the weights w of its nearest point, the unit vector n from
 // there to x, and the distance. One function wherever a contact is found or applied, so that
@@ -210,28 +214,38 @@ uint ring_creases(uint j, vec3 xj) {
 // The ring creases of the particle whose contacts the search collects (set by self_pass).
 uint own_creases;
 
+// Contact `code` of particle p: its particles, p first (see pair_geometry).
+uvec4 pair_members(uint p, uint code) {
+    if (!is_edge_pair(code)) return uvec4(p, triangle_vertices(code));
+    uint e2 = code & 0x0FFFFFFFu;
+    uint j = e2 / 6u;
+    return uvec4(p, ring_vertex(p, (code >> 28u) & 7u), j, ring_vertex(j, e2 % 6u));
+}
+
+// A contact's offset from side b's nearest point to side a's with its particles at x0 to x3,
+// and its signed weights c (see pair_geometry).
+vec3 pair_offset(bool edges, vec3 x0, vec3 x1, vec3 x2, vec3 x3, out vec4 c) {
+    if (edges) {
+        vec2 st;
+        vec3 off = edge_offset(x0, x1, x2, x3, st);
+        c = vec4(1.0 - st.x, st.x, st.y - 1.0, -st.y);
+        return off;
+    }
+    vec3 w = triangle_nearest(x0, x1, x2, x3);
+    c = vec4(1.0, -w);
+    return x0 - (w.x * x1 + w.y * x2 + w.z * x3);
+}
+
 // Contact `code` of particle p at x: its particles m (p first) and signed weights c, so that
 // sum c_k x_k is the offset from side b's nearest point to side a's (a triangle: m = (p, its
 // vertices), c = (1, -w), w the weights of its point nearest p; an edge pair: m = (p, a, j,
 // b), c = (1 - s, s, t - 1, -t)), the unit normal n along it; returns its length, as the find
 // pass computed it.
 float pair_geometry(uint p, vec3 x, uint code, out uvec4 m, out vec4 c, out vec3 n) {
-    if (is_edge_pair(code)) {
-        uint e2 = code & 0x0FFFFFFFu;
-        uint j = e2 / 6u;
-        m = uvec4(p, ring_vertex(p, (code >> 28u) & 7u), j, ring_vertex(j, e2 % 6u));
-        vec2 st;
-        vec3 off = edge_offset(x, CPOS(m.y), CPOS(j), CPOS(m.w), st);
-        c = vec4(1.0 - st.x, st.x, st.y - 1.0, -st.y);
-        float d = length(off);
-        n = off / d;
-        return d;
-    }
-    uvec3 tv = triangle_vertices(code);
-    m = uvec4(p, tv);
-    vec3 w;
-    float d = triangle_distance(x, CPOS(tv.x), CPOS(tv.y), CPOS(tv.z), w, n);
-    c = vec4(1.0, -w);
+    m = pair_members(p, code);
+    vec3 off = pair_offset(is_edge_pair(code), x, CPOS(m.y), CPOS(m.z), CPOS(m.w), c);
+    float d = length(off);
+    n = off / d;
     return d;
 }
 
@@ -242,6 +256,12 @@ uint pair_particle;
 vec3 pair_x;
 uint pair_len;
 bool apply_pass = false;
+// The search runs for the truncation (note_truncation): it notes the pairs within h it finds
+// and keeps no contact.
+bool noting = false;
+// How near a pair the search records: in the contact list while the lists are built, the
+// lists' reach; in the truncation, h; else none.
+float recorded_within() { return list_build ? list_within() : noting ? obj.self_distance : 0.0; }
 // In the apply pass's search, the contacts before pair_skip were applied already: the next
 // PAIR_MAX are noted in the particle's slots.
 uint pair_skip = 0u;
@@ -292,7 +312,19 @@ void keep_pair(uint code, uvec4 m, float d, float fade) {
 // Keeps contact `code` of pair_particle (not left out; its particles m, at distance d, taking
 // part by `fade`) when it is one.
 void test_contact(uint code, uvec4 m, float d, float fade) {
-    if (d < obj.self_distance && d > 0.0 && fade > 0.0) keep_pair(code, m, d, fade);
+    if (d < obj.self_distance && d > 0.0 && fade > 0.0 && !noting) keep_pair(code, m, d, fade);
+}
+
+// Records the find pass's pair `code` (its particles m) in the particle's contact list, or
+// in the truncation's search (`noting`) notes it there (note_start_pair).
+void note_start_pair(uvec4 m, bool edges);
+void list_record(uint code, uvec4 m) {
+    if (noting) {
+        note_start_pair(m, is_edge_pair(code));
+        return;
+    }
+    if (list_len < LIST_ENTRIES) self_list[list_entry(list_len, list_particle, particle_count())] = code;
+    list_len += 1u;  // past LIST_ENTRIES the list is full: it is rebuilt the next substep
 }
 
 // A contact list's entry `code` (not left out) for the particle at x: a triangle, or an edge
@@ -369,10 +401,7 @@ bool edge_pair_culled(uvec4 m, vec3 x, vec3 xa, vec3 xj, vec3 xb, float d2j, vec
 // list_reach.
 void keep_edge_pair(uint code, uvec4 m, float d, float part, float list_reach) {
     test_contact(code, m, d, part);
-    if (d < list_reach) {
-        if (list_len < LIST_ENTRIES) self_list[list_entry(list_len, list_particle, particle_count())] = code;
-        list_len += 1u;  // past LIST_ENTRIES the list is full: it is rebuilt the next substep
-    }
+    if (d < list_reach) list_record(code, m);
 }
 
 // The find pass's edge pairs of the particle p (pair_particle, at `cell`, at x) with vertex
@@ -387,7 +416,7 @@ void self_edges(uvec2 cell, vec3 x, uint j, ivec2 at, vec3 xj, float d2j, float 
     ivec2 qp = ivec2(cell);
     ivec2 dims = ivec2(obj.dims);
     bool rest_check = edges_near_at_rest_possible();
-    uint j_creases = crease_mask(ring_creases(j, xj), list_reach > 0.0);
+    uint j_creases = crease_mask(ring_creases(j, xj), list_reach > 0.0 && !noting);
     if ((own_creases | j_creases) == 0u) return;
     [[dont_unroll]] for (int k1 = 0; k1 < 6; ++k1) {
         bool own_creased = ((own_creases >> uint(k1)) & 1u) != 0u;
@@ -458,14 +487,19 @@ void rope_segments(vec3 x, uint j, vec3 xj, float d2j, float farthest, float lis
 // d2j from x) outside the particle's one-ring.
 void self_triangles_of(uvec2 cell, vec3 x, uint j, ivec2 at, vec3 xj, float d2j, float farthest, float list_reach) {
     ivec2 dims = ivec2(obj.dims);
+    bool unfiltered = noting;  // (the truncation's search: a fold's pairs too)
     bool usable[6];
+    bool far[6];  // (outside the particle's one-ring)
     uint ring[6];
     vec3 at_ring[6];
     float d2[6];
+    ivec2 from_j = abs(at - ivec2(cell));
+    bool j_far = max(from_j.x, from_j.y) > 1;
     [[unroll]] for (int r = 0; r < 6; ++r) {
         ivec2 q = at + VERTEX_RING[r];
         ivec2 off = abs(q - ivec2(cell));
-        usable[r] = in_grid(q) && max(off.x, off.y) > 1;
+        far[r] = max(off.x, off.y) > 1;
+        usable[r] = in_grid(q) && (unfiltered ? max(off.x, off.y) > 0 : far[r]);
         ring[r] = usable[r] ? uint(q.x + q.y * dims.x) : j;
         at_ring[r] = CPOS(ring[r]);
         vec3 e = x - at_ring[r];
@@ -487,7 +521,10 @@ void self_triangles_of(uvec2 cell, vec3 x, uint j, ivec2 at, vec3 xj, float d2j,
         vec3 hi = max(xj, max(at_ring[k], at_ring[k1])) + farthest;
         if (any(lessThan(x, lo)) || any(greaterThan(x, hi))) continue;
         uint t = vertex_triangle(at, k);
-        if (thick && pair_left_out(cell, t)) continue;
+        if ((thick || unfiltered) && near_at_rest(cell, t)) continue;
+        // (a fold's pair: no contact, but the truncation's)
+        bool left_out = !j_far || !far[k] || !far[k1];
+        if (left_out && !unfiltered) continue;
         // The exact test from the positions read above, the vertices in the triangle's own
         // order (triangle_vertices), as pair_geometry computes it.
         uvec3 tv = triangle_vertices(t);
@@ -496,10 +533,9 @@ void self_triangles_of(uvec2 cell, vec3 x, uint j, ivec2 at, vec3 xj, float d2j,
         vec3 w;
         vec3 n;
         float d = triangle_distance(x, p[0], p[1], p[2], w, n);
-        if (d < obj.self_distance) hits |= 1u << uint(k);
+        if (d < obj.self_distance && !left_out) hits |= 1u << uint(k);
         if (d < list_reach) {
-            if (list_len < LIST_ENTRIES) self_list[list_entry(list_len, list_particle, particle_count())] = t;
-            list_len += 1u;  // past LIST_ENTRIES the list is full: it is rebuilt the next substep
+            list_record(t, uvec4(pair_particle, tv));
         }
     }
     // (A contact's distance computed again from the same positions: the same value.)
@@ -548,8 +584,7 @@ void mesh_self_triangles(vec3 x, uint j, float list_reach) {
         if (mesh_linked(p, tv.x) || mesh_linked(p, tv.y) || mesh_linked(p, tv.z)) continue;
         if (d < obj.self_distance) test_pair(x, t);
         if (d < list_reach) {
-            if (list_len < LIST_ENTRIES) self_list[list_entry(list_len, list_particle, particle_count())] = t;
-            list_len += 1u;  // past LIST_ENTRIES the list is full: it is rebuilt the next substep
+            list_record(t, uvec4(pair_particle, tv));
         }
     }
 }
@@ -579,7 +614,9 @@ void self_triangles(uvec2 cell, vec3 x, uint j, float list_reach) {
         return;
     }
     ivec2 from_p = abs(at - ivec2(cell));
-    if (max(from_p.x, from_p.y) > 1) self_triangles_of(cell, x, j, at, xj, d2j, farthest, list_reach);
+    if (max(from_p.x, from_p.y) > 1 || noting) {
+        self_triangles_of(cell, x, j, at, xj, d2j, farthest, list_reach);
+    }
     if (edge_contact() && j > pair_particle) self_edges(cell, x, j, at, xj, d2j, farthest, list_reach);
 }
 
@@ -605,52 +642,102 @@ void add_move(uint i, vec3 move, vec3 rest) {
 // 0.010 m/s after, against 0.011 to 0.034 with it and 1.5; tests/suite/self_contact.rs).
 float pair_relaxation() { return edge_contact() ? 1.5 : 1.0; }
 
-// With a cloth's edge pairs, how far a particle may move in a substep, as a fraction of the
-// distance at the substep's start of the contacts it takes part in
-// (sim::cpu::self_contact::BOUND_FRACTION): two sides that each move less than half their
-// distance cannot pass through each other within the substep, so a pile's layers landing
-// faster than the contacts found once a substep can stop do not cross (Offset Geometric
-// Contact bounds each vertex's move the same way). Never below BOUND_FLOOR h, so that a pair
-// already through each other can still part.
-const float BOUND_FRACTION = 0.4;
-const float BOUND_FLOOR = 0.05;
+// With a cloth's edge pairs, every pair (particle and triangle, edge and edge) nearer than h at
+// the substep's start keeps its two sides apart over the whole substep, whatever moved them
+// (the solve, the contacts' passes, the colliders): each free particle's move from where it
+// began is cut short (scaled, velocity too) where it would come nearer than TRUNCATION_GAP h / 2
+// to the plane halfway between the pair's nearest points at the substep's start, square to
+// their offset. Each side then stays in its own half-space for the whole substep (a move along
+// a segment, and the sides convex), so no particle passes through a triangle and no edge
+// through an edge among those pairs, at any speed; the contacts' response still pushes the
+// sides out to h. Moving away or along the plane is never cut. The pairs (note_truncation)
+// include a fold's, which contacts leave out: a cloth wrung by kinematic handles squeezes
+// exactly those through; edge pairs count where one edge is creased. A plain fraction of the gap (no floor), as Newton's VBD truncation has it, lets a pair
+// squeezed without limit close it geometrically until rounding passes one side through; a
+// fixed gap instead stops the squeeze where it is. (Offset Geometric Contact and Newton's
+// planar truncation bound each vertex this way; the response there is inside the solve.)
+// Twin: sim::cpu::self_contact's truncation.
+const float TRUNCATION_GAP = 0.5;
 
-// Notes contact (particles m, weights c) in its free particles' bounds on their moves: the
-// distance at the substep's start of its two sides' points that are nearest now, times
-// BOUND_FRACTION. Kept as 0x7f800000 minus the float's bits, the largest kept (atomicMax: the
-// least distance), so that 0, as the buffer is cleared, is no bound. Twin:
-// sim::cpu::self_contact's apply.
-void note_bound(uvec4 m, vec4 c) {
-    vec3 off = c.x * pair_start(m.x) + c.y * pair_start(m.y) + c.z * pair_start(m.z) + c.w * pair_start(m.w);
-    float bound = max(BOUND_FRACTION * length(off), BOUND_FLOOR * obj.self_distance);
-    int word = 0x7f800000 - floatBitsToInt(bound);
-    [[unroll]] for (int q = 0; q < 4; ++q) {
-        if (!CPINNED(m[q])) atomicMax(self_pairs[bound_word(m[q])], word);
+// The truncation holds every pair nearer than h at a substep's start, but a pair a little
+// farther can still cross within the substep where its sides close more than that gap (a cloth's free
+// border snapping through a crumple at 4 m/s). Each free particle's move in a substep is also
+// held to TRUNCATION_MOVE h (scaled as the truncation scales it), so that no two sides close
+// more than h: past (h / 2) / dt a particle is slowed, which `simulate` states as its contact
+// speed (sim::collider::contact_speed). Twin: sim::cpu::self_contact::TRUNCATION_MOVE.
+const float TRUNCATION_MOVE = 0.5;
+
+// TRUNC_POS(j): particle j's position after the constraint stage (defined by the includer
+// where it is not CPOS).
+#ifndef TRUNC_POS
+#define TRUNC_POS(j) CPOS(j)
+#endif
+
+// Notes contact m (an edge pair or not, its particles at the substep's start at s) in the
+// truncations of its free particles, where its sides were nearer than `within` then: the
+// smallest fraction of each one's move that keeps it out of the gap, kept as 0x7f800000 minus
+// the float's bits, the largest kept (atomicMax: the least fraction), so that 0, as the buffer
+// is cleared, is none. Twin: sim::cpu::self_contact's truncation.
+void note_pair(uvec4 m, bool edges, vec3 s[4], float within) {
+    vec4 c;
+    vec3 off = pair_offset(edges, s[0], s[1], s[2], s[3], c);
+    float d = length(off);
+    if (!(d > 0.0 && d < within)) return;
+    vec3 n = off / d;
+    uint a_side = edges ? 2u : 1u;
+    // (side a's nearest point, less half the offset)
+    vec3 middle = c.x * s[0] + (edges ? c.y * s[1] : vec3(0.0)) - 0.5 * off;
+    float half_gap = 0.5 * TRUNCATION_GAP * obj.self_distance;
+    [[unroll]] for (uint q = 0u; q < 4u; ++q) {
+        if (CPINNED(m[q])) continue;
+        float side = q < a_side ? 1.0 : -1.0;
+        float room = max(side * dot(n, s[q] - middle) - half_gap, 0.0);
+        float approach = -side * dot(n, TRUNC_POS(m[q]) - s[q]);
+        if (approach > room) atomicMax(self_pairs[truncation_word(m[q])], 0x7f800000 - floatBitsToInt(room / approach));
     }
 }
 
-// Particle i at x with velocity v after its constraints and its colliders: moved back towards
-// where it began the substep so that its move is within the bound its contacts noted
-// (note_bound), which it clears, and its velocity scaled as its move is (moving the velocity by
-// the position's change instead would leave a particle pushed out of an old overlap, a move
-// its velocity does not follow, moving back into it). The colliders' moves are bounded too: the
-// ground pushing a pile's bottom layer up must not carry it through the layer lying on it.
+// The truncation's search for particle p (constraints_body.glsl).
+void truncation_search(uint p);
+
+// Pair m (an edge pair or not) in the truncations of its free particles where it was nearer
+// than h at the substep's start.
+void note_start_pair(uvec4 m, bool edges) {
+    vec3 s[4] = vec3[4](pair_start(m.x), pair_start(m.y), pair_start(m.z), pair_start(m.w));
+    note_pair(m, edges, s, obj.self_distance);
+}
+
+// Particle p's pairs in the truncations: those nearer than h at the substep's start, found by
+// a search of the positions there (CPOS reads them, and the hash, where there is one, holds
+// them: truncation_search), none left out as the contacts leave a fold's out, but the pairs
+// near at rest and pairs of edges neither of which is creased (crease_weight) at the start.
+void note_truncation(uint p) {
+    if (cloth_edge_pairs()) truncation_search(p);
+}
+
+// Particle i at x with velocity v, which began the substep at `start`: moved back towards there
+// by the fraction its pairs noted (note_truncation), which it clears, or less where its move
+// passes TRUNCATION_MOVE h, and its velocity scaled as its move is (moving the velocity by the
+// position's change instead would leave a particle held out of an overlap, a move its velocity
+// does not follow, moving back into it).
 // Returns whether it moved the particle (then the caller runs its colliders again, so that a
 // moving collider still wins: against a fixed convex one, which the particle began outside,
-// the clamp keeps it outside and that changes nothing).
-bool bound_move(uint i, inout vec3 x, inout vec3 v) {
+// the cut keeps it outside and that changes nothing).
+bool truncate_move(uint i, vec3 start, inout vec3 x, inout vec3 v) {
     if (!cloth_edge_pairs()) return false;
-    uint w = bound_word(i);
+    uint w = truncation_word(i);
     int word = self_pairs[w];
-    if (word == 0) return false;
-    self_pairs[w] = 0;
-    float bound = intBitsToFloat(0x7f800000 - word);
-    vec3 start = pair_start(i);
-    float len = length(x - start);
-    if (len <= bound) return false;
-    float s = bound / len;
-    x = start + (x - start) * s;
-    v *= s;
+    float t = 1.0;
+    if (word != 0) {
+        self_pairs[w] = 0;
+        t = intBitsToFloat(0x7f800000 - word);
+    }
+    float moved = length(x - start);
+    float most = TRUNCATION_MOVE * obj.self_distance;
+    if (moved > most) t = min(t, most / moved);
+    if (!(t < 1.0)) return false;
+    x = start + (x - start) * t;
+    v *= t;
     return true;
 }
 
@@ -663,7 +750,6 @@ void apply_contact(uint p, vec3 x, uint code) {
     float d = pair_geometry(p, x, code, m, c, n);
     // (A further pass: the pair may have parted, or, moved, lost its normal.)
     if (!(d > 0.0 && d < obj.self_distance)) return;
-    if (cloth_edge_pairs()) note_bound(m, c);
     vec4 free_m = vec4(CPINNED(m.x) ? 0.0 : 1.0, CPINNED(m.y) ? 0.0 : 1.0, CPINNED(m.z) ? 0.0 : 1.0,
                        CPINNED(m.w) ? 0.0 : 1.0);
     // Each free particle's count of contacts.

@@ -7,7 +7,8 @@
 // particle found a contact: the find pass writes it, the constraint stage zeroes it); with
 // edge contact, (11 + PAIR_MAX) n + 3 + i the creases of particle i's ring edges
 // (creases.glsl), written where the spatial hash is built, and (12 + PAIR_MAX) n + 3 + i the
-// bound on its move in the substep (self_contact.glsl's note_bound; 0 for none).
+// fraction of its move in the substep it keeps (self_contact.glsl's note_truncation; 0 for
+// none).
 // sim::gpu::object mirrors the sizes.
 // Include after bindings.glsl.
 #ifndef MSD_SELF_PAIRS_LAYOUT_GLSL
@@ -22,6 +23,11 @@ uint start_word(uint i) { return (5u + PAIR_MAX) * particle_count() + 3u * i; }
 uint rest_word(uint i) { return (8u + PAIR_MAX) * particle_count() + 3u * i; }
 uint further_passes_word() { return (11u + PAIR_MAX) * particle_count(); }
 uint creases_word(uint i) { return further_passes_word() + 3u + i; }
-uint bound_word(uint i) { return creases_word(i) + particle_count(); }
+uint truncation_word(uint i) { return creases_word(i) + particle_count(); }
+// Where particle i began the substep, as the find pass noted it.
+vec3 start_position(uint i) {
+    uint w = start_word(i);
+    return vec3(intBitsToFloat(self_pairs[w]), intBitsToFloat(self_pairs[w + 1u]), intBitsToFloat(self_pairs[w + 2u]));
+}
 
 #endif

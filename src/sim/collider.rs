@@ -653,7 +653,17 @@ pub fn contact_speed(model: &super::model::SimModel) -> Option<ContactSpeed> {
             limits.push(((half + o.margin) / dt, format!("{} {i} against {name}", c.shape.kind().label())));
         }
         if let Some(s) = o.self_distance {
-            limits.push((s / dt, format!("the self-collision distance of {name}")));
+            // (a cloth that keeps its edges apart holds each move to a fraction of it instead:
+            // faster, its particles are slowed, not passed through)
+            if o.has_cloth_edge_pairs() {
+                let most = crate::sim::cpu::self_contact::TRUNCATION_MOVE;
+                let why = format!(
+                    "the self-collision distance of {name}, its moves held to {most} of it a substep"
+                );
+                limits.push((most * s / dt, why));
+            } else {
+                limits.push((s / dt, format!("the self-collision distance of {name}")));
+            }
         }
         if model.inter_object_contact() {
             for other in &model.objects[k + 1..] {

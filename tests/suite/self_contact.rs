@@ -399,7 +399,7 @@ fn most_contacts(s: &SimModel) -> usize {
 /// (every pair, the hash; per stage with contact lists on and off) and
 /// both paths; the thrown and the dense fold also with edges kept from edges (`edge_contact`).
 /// Within 1e-4 m a frame (f32 against f64; the contacts' sums are exact integers on the GPU,
-/// so every GPU path gives the same state).
+/// so every GPU path gives the same state, to 1e-6 m, 2e-5 with edges: below).
 /// The default tier runs the hash fused; the exhaustive tier per stage with the lists and
 /// without, and brute force.
 #[test]
@@ -460,9 +460,14 @@ fn gpu_finds_the_contacts(paths: &[(SelfCollisionMethod, bool, Option<bool>)]) {
             states.push(g.read_states(&ctx).unwrap()[0].positions());
             g.destroy(&ctx);
         }
+        // (With edges each move is truncated, scaled whole by the fraction that keeps its
+        // normal approach out of the gap: the kernels' f32 rounding, about 1e-7 m apart, moves
+        // that fraction by its ratio to the approach, so the paths part by up to 7e-6 m in 8
+        // frames of the thrown fold.)
+        let paths_within = if s.objects[0].edge_contact { 2e-5 } else { 1e-6 };
         for x in &states[1..] {
             let d = x.iter().zip(&states[0]).map(|(a, b)| a.distance(*b)).fold(0.0, f64::max);
-            assert!(d <= 1e-6, "{name}: GPU paths part by {d} m");
+            assert!(d <= paths_within, "{name}: GPU paths part by {d} m");
         }
     }
     assert_clean(&ctx);
@@ -1087,4 +1092,44 @@ fn a_rising_box_carries_a_folded_cloth_with_edge_contact() {
         reference < 0.001 && gpu_worst < 0.001,
         "below the box's top: {reference} (reference), {gpu_worst} (GPU) m"
     );
+}
+
+/// The twist preset (NVIDIA Newton's cloth_twist set-up: 1 m wide, 1.5 m between handles that
+/// turn 300 degrees each, opposite ways, over 5 s) over its whole run (300 frames): the cloth is
+/// wrung into a rope lying on itself, its layers squeezed together without limit, and no edge
+/// passes through one of its triangles at any frame's end (the exact test, every frame), on
+/// the path the preset runs (per stage, with contact lists: 2,500 particles are past one
+/// workgroup). Before each move was truncated by the pairs near at a substep's start, its
+/// layers crossed from frame 82 (1,988 edges at worst; docs/records/accuracy/lavapipe/
+/// twist-truncation/).
+#[test]
+#[ignore = "exhaustive tier: 300 frames of a 50 x 50 cloth wrung onto itself"]
+fn the_twist_preset_never_passes_through_itself() {
+    let runs = worst_crossings(&twist_preset(), 300, &[("per stage", false, None)]);
+    println!("{runs:?}");
+    assert!(runs.iter().all(|r| r.1 == 0), "edges through the twisted cloth's triangles: {runs:?}");
+}
+
+/// The same on the f64 reference, whose pairs near at a substep's start are found by a search
+/// of its own (`near_pairs` in sim::cpu::self_contact), not from contact lists.
+#[test]
+#[ignore = "exhaustive tier: 300 frames of a 50 x 50 cloth wrung onto itself, on the reference"]
+fn the_twist_preset_never_passes_through_itself_on_the_reference() {
+    let s = twist_preset();
+    let mut cpu = CpuSim::new(&s);
+    let (mut worst, mut at) = (0, 0);
+    for f in 0..300 {
+        cpu.step_frame();
+        let n = crossings(&cpu.objects()[0].x, 50, 50);
+        if n > worst {
+            (worst, at) = (n, f);
+        }
+    }
+    assert_eq!(worst, 0, "edges through the twisted cloth's triangles: {worst} at frame {at}");
+}
+
+fn twist_preset() -> SimModel {
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("presets/twist.toml");
+    let scene = msdsim::scene::load(&path, &[]).expect("the twist preset loads");
+    msdsim::scene::to_model(&scene)
 }

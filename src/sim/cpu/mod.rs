@@ -513,20 +513,25 @@ fn constraints(
         if edges {
             collide_edges(m, o, (i, x), motions, (start[i], dt), (&mut p, &mut vel));
         }
-        let collide = |p: &mut DVec3, vel: &mut DVec3| {
-            for (c, pose) in m.colliders.iter().zip(motions) {
-                c.respond((o.margin, o.friction), pose, (start[i], dt), p, vel);
-            }
-        };
-        collide(&mut p, &mut vel);
-        // With a cloth's edge pairs, the move over the substep within what its contacts allow,
-        // the colliders' part too, and where that moved it its colliders again (bound_move in
-        // glsl/include/self_contact.glsl says why).
-        if self_contact::bound(&mut p, &mut vel, start[i], own.bounds[i]) {
-            collide(&mut p, &mut vel);
+        for (c, pose) in m.colliders.iter().zip(motions) {
+            c.respond((o.margin, o.friction), pose, (start[i], dt), &mut p, &mut vel);
         }
         nx[i] = p;
         nv[i] = vel;
+    }
+    // With a cloth's edge pairs, each move over the substep truncated so that no particle
+    // passes the planes between the sides of the pairs near at its start, the colliders' part
+    // too, and where that moved it its colliders again (note_truncation in
+    // glsl/include/self_contact.glsl).
+    if o.has_cloth_edge_pairs() && o.self_distance.is_some() {
+        let t = self_contact::truncation(o, start, &nx);
+        for (i, t) in t.into_iter().enumerate() {
+            if self_contact::truncate(&mut nx[i], &mut nv[i], start[i], t) {
+                for (c, pose) in m.colliders.iter().zip(motions) {
+                    c.respond((o.margin, o.friction), pose, (start[i], dt), &mut nx[i], &mut nv[i]);
+                }
+            }
+        }
     }
     (nx, nv)
 }

@@ -34,11 +34,13 @@ pub const PAIR_MAX: usize = 16;
 /// past the contact's whole (`pair_relaxation` in the shaders, which say why); 1 without.
 pub const RELAXATION: f64 = 1.5;
 
-/// With a cloth's edge pairs, how far a particle may move in a substep: this fraction of the
-/// distance at the substep's start of its contacts' nearest points, never below BOUND_FLOOR h
-/// (`BOUND_FRACTION`, `BOUND_FLOOR` in the shaders, which say why).
-pub const BOUND_FRACTION: f64 = 0.4;
-pub const BOUND_FLOOR: f64 = 0.05;
+/// With a cloth's edge pairs, the gap (a fraction of h) that the two sides of a contact keep
+/// at least from the planes between them (`TRUNCATION_GAP` in the shaders, which say why).
+pub const TRUNCATION_GAP: f64 = 0.5;
+
+/// With a cloth's edge pairs, the most a particle moves in a substep, in h (`TRUNCATION_MOVE`
+/// in the shaders, which say why).
+pub const TRUNCATION_MOVE: f64 = 0.5;
 
 /// A cloth's edge pairs nearer than this many times h at rest are left out (`EDGE_REST_MARGIN`
 /// in the shaders, which say why).
@@ -187,11 +189,19 @@ fn left_out(o: &ObjectModel, h: f64, p: usize, tv: [usize; 3]) -> bool {
     let cols = o.dims[0] as usize;
     let cell = |k: usize| ((k % cols) as i64, (k / cols) as i64);
     let (pc, pr) = cell(p);
-    if tv.iter().any(|&k| (cell(k).0 - pc).abs() <= 1 && (cell(k).1 - pr).abs() <= 1) {
-        return true;
-    }
-    if h < 1.99 * o.spacing[0].min(o.spacing[1]) {
-        return false; // no triangle without a vertex in the one-ring is nearer at rest
+    tv.iter().any(|&k| (cell(k).0 - pc).abs() <= 1 && (cell(k).1 - pr).abs() <= 1)
+        || near_at_rest(o, h, p, tv)
+}
+
+/// Whether triangle `tv` of grid cloth `o` is nearer than h to particle p at rest (possible
+/// only for a thickness of 0.7 grid spacings or more: a cell's diagonal and the vertex next to
+/// it are sx sy / |s| apart; past the one-ring, two spacings).
+fn near_at_rest(o: &ObjectModel, h: f64, p: usize, tv: [usize; 3]) -> bool {
+    let cols = o.dims[0] as usize;
+    let cell = |k: usize| ((k % cols) as i64, (k / cols) as i64);
+    let (pc, pr) = cell(p);
+    if h < 0.7 * o.spacing[0].min(o.spacing[1]) {
+        return false;
     }
     let rest = |k: usize| {
         let (c, r) = cell(k);
@@ -489,15 +499,14 @@ pub fn contacts(o: &ObjectModel, x: &[DVec3]) -> Vec<Contact> {
 /// positions the passes before moved (a pair separated by then takes no part; the contacts of
 /// a particle that found more than PAIR_MAX, the first pass only). Returns the
 /// positions after all passes but the last, and the last pass's moves (the constraint stage
-/// adds those, as the GPU's takes the last pass's sums), and with a cloth's edge pairs each
-/// particle's bound on its move over the substep (infinite where none: `bound`).
+/// adds those, as the GPU's takes the last pass's sums), and with a cloth's edge pairs the
+/// contacts (`truncation`).
 pub(super) fn self_contact(o: &ObjectModel, x: &[DVec3], start: &[DVec3], iterations: u32) -> SelfContact {
     let mut xk = x.to_vec();
     let mut vk_shift = vec![DVec3::ZERO; x.len()];
-    let mut bounds = vec![f64::INFINITY; x.len()];
     let Some(h) = o.self_distance.filter(|_| o.has_triangles()) else {
         let zero = vec![DVec3::ZERO; x.len()];
-        return SelfContact { moved: xk, shift: vk_shift, last: zero.clone(), last_rest: zero, bounds };
+        return SelfContact { moved: xk, shift: vk_shift, last: zero.clone(), last_rest: zero };
     };
     let found = contacts(o, x);
     let mut count = vec![0.0; x.len()];
@@ -514,15 +523,15 @@ pub(super) fn self_contact(o: &ObjectModel, x: &[DVec3], start: &[DVec3], iterat
         found_by[c.owner()] += 1;
     }
     let again: Vec<Contact> = found.iter().filter(|c| found_by[c.owner()] <= PAIR_MAX).copied().collect();
-    let mut last = apply(o, h, &found, &count, (x, start), &mut bounds);
+    let mut last = apply(o, h, &found, &count, (x, start));
     for _ in 1..iterations {
         for i in 0..x.len() {
             xk[i] += last.0[i];
             vk_shift[i] += last.0[i] - last.1[i];
         }
-        last = apply(o, h, &again, &count, (&xk, start), &mut bounds);
+        last = apply(o, h, &again, &count, (&xk, start));
     }
-    SelfContact { moved: xk, shift: vk_shift, last: last.0, last_rest: last.1, bounds }
+    SelfContact { moved: xk, shift: vk_shift, last: last.0, last_rest: last.1 }
 }
 
 /// What a cloth's contact with itself gives the constraint stage (`self_contact`).
@@ -533,38 +542,124 @@ pub(super) struct SelfContact {
     /// The last pass's moves, and their position-only parts.
     pub last: Vec<DVec3>,
     pub last_rest: Vec<DVec3>,
-    /// Each particle's bound on its move over the substep (infinite: none).
-    pub bounds: Vec<f64>,
+}
+
+/// With a cloth's edge pairs, each particle's fraction of its move over the substep (from
+/// `start` to `x`, the constraint stage's result) that keeps it on its side of the plane
+/// between the two sides of each pair nearer than h at the start (`near_pairs`;
+/// `note_truncation` in glsl/include/self_contact.glsl, which says why): 1 where nothing
+/// truncates it.
+pub(super) fn truncation(o: &ObjectModel, start: &[DVec3], x: &[DVec3]) -> Vec<f64> {
+    let mut t = vec![1.0f64; x.len()];
+    let Some(h) = o.self_distance else { return t };
+    for (k, t) in t.iter_mut().enumerate() {
+        let moved = (x[k] - start[k]).length();
+        if moved > TRUNCATION_MOVE * h && !o.pinned[k] {
+            *t = TRUNCATION_MOVE * h / moved;
+        }
+    }
+    for contact in near_pairs(o, start, h) {
+        let (c, off) = contact.geometry(start);
+        let d = off.length();
+        let n = off / d;
+        // Side a: the particle (against a triangle) or the first edge; the plane halfway.
+        let a_side = if contact.edges { 2 } else { 1 };
+        let m = contact.particles;
+        let middle = (0..a_side).map(|q| start[m[q]] * c[q]).sum::<DVec3>() - off * 0.5;
+        for (q, &k) in m.iter().enumerate() {
+            if o.pinned[k] {
+                continue;
+            }
+            let side = if q < a_side { 1.0 } else { -1.0 };
+            let room = (side * n.dot(start[k] - middle) - 0.5 * TRUNCATION_GAP * h).max(0.0);
+            let approach = -side * n.dot(x[k] - start[k]);
+            if approach > room {
+                t[k] = t[k].min(room / approach);
+            }
+        }
+    }
+    t
+}
+
+/// The pairs of grid cloth `o` at positions `x` nearer than h that the truncation keeps apart
+/// (`note_truncation` in glsl/include/self_contact.glsl): (particle p, triangle t) with p not
+/// a vertex of t, a fold's pairs too, which the contacts leave out; and pairs of edges that
+/// share no vertex, one of them creased (`crease_weight`), wherever their nearest points lie;
+/// none near at rest. Found by sweeping boxes along x.
+fn near_pairs(o: &ObjectModel, x: &[DVec3], h: f64) -> Vec<Contact> {
+    let r = h;
+    let boxed = |k: &[usize]| {
+        k.iter().fold((DVec3::INFINITY, DVec3::NEG_INFINITY), |(lo, hi), &q| (lo.min(x[q]), hi.max(x[q])))
+    };
+    let apart =
+        |a: (DVec3, DVec3), b: (DVec3, DVec3)| (a.0 - r).cmpgt(b.1).any() || (b.0 - r).cmpgt(a.1).any();
+    let mut out = Vec::new();
+    let mut tris: Vec<([usize; 3], (DVec3, DVec3))> = cloth_triangles(o.dims[0] as usize, o.dims[1] as usize)
+        .into_iter()
+        .map(|(_, tv)| (tv, boxed(&tv)))
+        .collect();
+    tris.sort_by(|a, b| a.1 .0.x.total_cmp(&b.1 .0.x));
+    let mut points: Vec<usize> = (0..x.len()).collect();
+    points.sort_by(|&a, &b| x[a].x.total_cmp(&x[b].x));
+    // (each triangle against the points from its box's low x less r to its high x plus r)
+    for (tv, bx) in &tris {
+        let from = points.partition_point(|&p| x[p].x < bx.0.x - r);
+        for &p in points[from..].iter().take_while(|&&p| x[p].x <= bx.1.x + r) {
+            if tv.contains(&p) || apart((x[p], x[p]), *bx) || near_at_rest(o, h, p, *tv) {
+                continue;
+            }
+            out.extend(Contact::at([p, tv[0], tv[1], tv[2]], (false, false), [NONE; 4], 0.0, x, r));
+        }
+    }
+    // (an edge's crease weight, 1 on the border: `crease_sag`)
+    let chord = 0.5 * o.spacing[0].hypot(o.spacing[1]) / h;
+    let creased = |e: [usize; 2]| match edge_opposite(o, e[0], e[1]) {
+        [q1, q2] if q1 != NONE && q2 != NONE => {
+            crease_weight(crease_sag(x[e[0]], x[e[1]], x[q1], x[q2], chord))
+        }
+        _ => 1.0,
+    };
+    let mut edges: Vec<([usize; 2], (DVec3, DVec3))> =
+        grid_edges(o).into_iter().map(|e| (e, boxed(&e))).collect();
+    edges.sort_by(|a, b| a.1 .0.x.total_cmp(&b.1 .0.x));
+    for (i, &(e1, b1)) in edges.iter().enumerate() {
+        for &(e2, b2) in &edges[i + 1..] {
+            if b2.0.x > b1.1.x + r {
+                break;
+            }
+            if apart(b1, b2) || edges_left_out(o, h, e1, e2) {
+                continue;
+            }
+            if creased(e1) <= 0.0 && creased(e2) <= 0.0 {
+                continue;
+            }
+            out.extend(Contact::at([e1[0], e1[1], e2[0], e2[1]], (true, true), [NONE; 4], 0.0, x, r));
+        }
+    }
+    out
 }
 
 /// A particle at `p` with velocity `vel` that began the substep at `start`, moved back towards
-/// it so that it moved at most `bound`, its velocity scaled as its move is; whether it moved it
-/// (`bound_move` in glsl/include/self_contact.glsl, which says why).
-pub(super) fn bound(p: &mut DVec3, vel: &mut DVec3, start: DVec3, bound: f64) -> bool {
-    let len = (*p - start).length();
-    if len <= bound {
+/// it by fraction `t` of its move, its velocity scaled as its move is; whether it moved it
+/// (`truncate` in glsl/include/self_contact.glsl, which says why).
+pub(super) fn truncate(p: &mut DVec3, vel: &mut DVec3, start: DVec3, t: f64) -> bool {
+    if t >= 1.0 {
         return false;
     }
-    let s = bound / len;
-    *p = start + (*p - start) * s;
-    *vel *= s;
+    *p = start + (*p - start) * t;
+    *vel *= t;
     true
 }
 
 /// One pass over cloth `o`'s contacts `found` (particles' counts `count`) at positions `x`:
-/// each particle's summed moves and their position-only parts. With a cloth's edge pairs each
-/// contact also lowers its free particles' `bounds` to BOUND_FRACTION of the distance at the
-/// substep's `start` of its sides' points nearest at `x` (at least BOUND_FLOOR h; the GPU's
-/// `note_bound`).
+/// each particle's summed moves and their position-only parts.
 fn apply(
     o: &ObjectModel,
     h: f64,
     found: &[Contact],
     count: &[f64],
     (x, start): (&[DVec3], &[DVec3]),
-    bounds: &mut [f64],
 ) -> (Vec<DVec3>, Vec<DVec3>) {
-    let bound_moves = o.has_cloth_edge_pairs();
     let mut moves = vec![DVec3::ZERO; x.len()];
     let mut rests = vec![DVec3::ZERO; x.len()];
     let free = |k: usize| if o.pinned[k] { 0.0 } else { 1.0 };
@@ -578,13 +673,6 @@ fn apply(
         }
         let (n, overlap) = (off / d, h - d);
         let m = contact.particles;
-        if bound_moves {
-            let apart = (0..4).map(|q| start[m[q]] * c[q]).sum::<DVec3>().length();
-            let bound = f64::max(BOUND_FRACTION * apart, BOUND_FLOOR * h);
-            for &k in m.iter().filter(|&&k| !o.pinned[k]) {
-                bounds[k] = bounds[k].min(bound);
-            }
-        }
         let free_m = DVec4::from_array(m.map(free));
         // Each free particle's mass split among its contacts.
         let split_m = DVec4::from_array(m.map(|k| free(k) * f64::max(1.0, count[k])));

@@ -500,6 +500,7 @@ impl GpuSim {
                 constraints.add(k, self.pipelines.get(stage), o.step_groups, &[s]);
             }
             constraints.record(rec, &self.batches, 1);
+            self.record_truncation(rec, s);
             if let Some(pool) = ts.filter(|_| stages) {
                 rec.timestamp(pool, 2 + 2 * s);
             }
@@ -602,6 +603,51 @@ impl GpuSim {
             }
             rec.barrier(&barriers);
         }
+    }
+
+    /// The passes after the constraint stage of the cloths that keep their edges apart
+    /// (`self_pairs.comp`'s, glsl/include/self_contact.glsl's note_truncation): with the
+    /// spatial hash, the hash built again from where the particles began the substep (count,
+    /// scan, scatter), then the note and truncate passes; each ordered after the writes before
+    /// it and before the reads after it by a barrier on the state, the scratch and the hash
+    /// buffers.
+    fn record_truncation(&self, rec: &mut Recorder<'_>, substep: u32) {
+        let cloths: Vec<&GpuObject> = (self.objects.iter())
+            .filter(|o| !self.is_fused(o) && o.self_pairs.is_some())
+            .filter(|o| crate::sim::gpu_types::has_cloth_edge_pairs(o.plan.features))
+            .collect();
+        if cloths.is_empty() {
+            return;
+        }
+        let barriers: Vec<BufferBarrier<'_>> = (cloths.iter())
+            .flat_map(|o| o.scratch())
+            // (the passes' shader may write the physics output too, as validation sees it)
+            .chain(cloths.iter().flat_map(|o| &o.state))
+            .chain(cloths.iter().filter_map(|o| o.hash.as_deref()).flat_map(|h| h.buffers()))
+            .map(|b| BufferBarrier::new(b, Access::ComputeReadWrite, Access::ComputeReadWrite))
+            .collect();
+        // (the hash of the starts: count, scan, scatter)
+        let hashed: Vec<(&GpuObject, u32)> =
+            cloths.iter().filter_map(|o| o.hash.as_deref().map(|h| (*o, h.buckets))).collect();
+        let per_particle = |o: &GpuObject| [o.particles.div_ceil(256), 1, 1];
+        for stage in [Stage::TruncationHash(false), Stage::HashScan, Stage::TruncationHash(true)] {
+            rec.barrier(&barriers);
+            for &(o, buckets) in &hashed {
+                let groups = match stage {
+                    Stage::HashScan => [buckets.div_ceil(object::SCAN_BLOCK as u32), 1, 1],
+                    _ => per_particle(o),
+                };
+                rec.dispatch(self.pipelines.get(stage), o.sets[1], groups);
+            }
+        }
+        for pass in [SelfPass::Note, SelfPass::Truncate] {
+            rec.barrier(&barriers);
+            for o in &cloths {
+                let pipeline = self.pipelines.get(Stage::SelfPairs(o.plan.features, false, pass));
+                rec.dispatch_with(pipeline, o.sets[1], o.step_groups, &[substep]);
+            }
+        }
+        rec.barrier(&barriers);
     }
 
     /// The stretch limit's counts of the objects with one on the per-stage path

@@ -85,7 +85,7 @@ impl HashBuffers {
         Ok(Self { cell_rank, counts, starts, sorted, block_sums, buckets: buckets as u32 })
     }
 
-    fn buffers(&self) -> [&Buffer; 5] {
+    pub(super) fn buffers(&self) -> [&Buffer; 5] {
         [&self.cell_rank, &self.counts, &self.starts, &self.sorted, &self.block_sums]
     }
 

@@ -23,6 +23,12 @@ pub(super) enum SelfPass {
     Move,
     /// The kept contacts applied again from the moved positions.
     Reapply,
+    /// After the constraint stage, with a cloth's edge pairs (and the spatial hash built again
+    /// from where the particles began the substep: `Stage::TruncationHash`): each particle's pairs near where they began the substep noted in their particles'
+    /// truncations.
+    Note,
+    /// Each particle's move over the substep truncated as noted.
+    Truncate,
 }
 
 /// One compute pipeline: a shader with its specialization constants. `u32` fields are the
@@ -52,6 +58,9 @@ pub(super) enum Stage {
     /// The hash's scatter (`creases`: a cloth with edge-edge contact also notes how creased
     /// each particle's ring edges are, glsl/include/creases.glsl).
     HashScatter(bool),
+    /// The hash built again from where the particles began the substep, for a cloth's
+    /// truncation (`truncation_hash.comp`): the count, or (`true`) the scatter.
+    TruncationHash(bool),
     /// Contact between objects (`contact.rs`): one object's entries, the scene hash's count
     /// and scatter, and its query.
     ContactBegin,
@@ -108,6 +117,7 @@ impl Stage {
             Stage::HashCount => "hash_count.comp",
             Stage::HashScan => "hash_scan.comp",
             Stage::HashScatter(_) => "hash_scatter.comp",
+            Stage::TruncationHash(_) => "truncation_hash.comp",
             Stage::ContactBegin => "contact_begin.comp",
             Stage::ContactHash => "contact_hash.comp",
             Stage::Contact { .. } => "contact.comp",
@@ -166,6 +176,7 @@ impl Stage {
             }
             Stage::Surface(_, drawn, false) => vec![drawn as u32],
             Stage::HashScatter(creases) => vec![creases as u32],
+            Stage::TruncationHash(scatter) => vec![scatter as u32],
             Stage::Contact { segments, cloth_edges, pair_max } => {
                 vec![segments as u32, cloth_edges as u32, pair_max]
             }
@@ -218,6 +229,7 @@ impl Stage {
             | Stage::StretchCount(..)
             | Stage::SelfPairs(..)
             | Stage::HashScatter(_)
+            | Stage::TruncationHash(_)
             | Stage::HashCount
             | Stage::Fused(..) => true,
             Stage::HashScan => !model.inter_object_contact(),
@@ -252,6 +264,13 @@ impl Stage {
                 }
                 if model.contact_iterations > 1 {
                     stages.extend([SelfPass::Move, SelfPass::Reapply].map(|p| Stage::SelfPairs(f, false, p)));
+                }
+                if o.has_cloth_edge_pairs() {
+                    stages
+                        .extend([SelfPass::Note, SelfPass::Truncate].map(|p| Stage::SelfPairs(f, false, p)));
+                    if super::object::builds_hash(o, model) {
+                        stages.extend([Stage::TruncationHash(false), Stage::TruncationHash(true)]);
+                    }
                 }
             }
         }
