@@ -25,7 +25,9 @@ ObjectParams obj;
 layout(std430, set = 0, binding = 1) restrict readonly buffer ObjectBuf { ObjectParams obj; uint obj_words[]; };
 #endif
 // The fused shader loads its state from p_in and stores it back there (each thread its own
-// particles); the per-stage shaders read one buffer and write the other.
+// particles; with a cloth's edge pairs it also writes each substep's constraint results into
+// p_out for the truncation to read, fused.comp); the per-stage shaders read one buffer and
+// write the other.
 #ifdef STATE_FUSED
 layout(std430, set = 0, binding = 2) buffer StateIn { Particle p_in[]; };
 layout(std430, set = 0, binding = 3) buffer StateOut { Particle p_out[]; };

@@ -51,7 +51,8 @@ bool triangle_contact() { return has(F_TRIANGLES); }
 // such pairs never push, the springs keep them apart. In a cloth (whose candidates are the
 // vertices of its triangles, self_contact.glsl), whether j is in the particle's one-ring: all
 // its triangles are left out; with edge contact, whether j is that particle (the visit of a
-// vertex in its one-ring finds edge pairs only).
+// vertex in its one-ring finds edge pairs only, and in the truncation's search a fold's
+// triangles too).
 bool rest_neighbour(uvec2 cell, uint j, float reach) {
     if (triangle_contact() && is_mesh()) return mesh_linked(cell.x, j);
     if (triangle_contact()) return edge_contact() ? j == cell.x + cell.y * obj.dims.x : in_one_ring(cell, j);

@@ -1,6 +1,7 @@
 // How creased a cloth's edges are, for its edge-edge contact (self_contact.glsl), which keeps an
 // edge pair only where one of its edges is creased. Each particle's six ring edges are judged
-// once where the spatial hash is built (hash_scatter.comp, fused.comp) into a word of
+// once where the spatial hash is built (hash_scatter.comp, fused.comp; truncation_hash.comp
+// and fused.comp's truncation from the substep's starts) into a word of
 // self_pairs that the searches read for every candidate (a ring's six positions and six sags
 // a candidate otherwise); brute force computes them as it goes.
 // Include after bindings.glsl, with CPOS(j) (particle j's position) defined.

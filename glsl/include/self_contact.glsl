@@ -136,14 +136,6 @@ bool in_one_ring(uvec2 cell, uint j) {
     return max(d.x, d.y) <= 1;
 }
 
-// Whether a vertex of triangle t is in the one-ring of the particle at `cell`.
-bool touches_one_ring(uvec2 cell, uint t) {
-    uvec3 tv = triangle_vertices(t);
-    bool touches = false;
-    [[unroll]] for (int k = 0; k < 3; ++k) touches = touches || in_one_ring(cell, tv[k]);
-    return touches;
-}
-
 // Whether triangle t is nearer than h at rest to the particle at `cell` (possible only for a
 // thickness of 0.7 grid spacings or more: a cell's diagonal and the vertex next to it are
 // sx sy / |s| apart; past the one-ring, two spacings).
@@ -207,7 +199,8 @@ float edge_pair_part(uint p, uint code, vec2 st) {
 // ... for contact `code` of particle p of weights c (pair_geometry): 1 for a triangle.
 float pair_part(uint p, uint code, vec4 c) { return is_edge_pair(code) ? edge_pair_part(p, code, vec2(c.y, -c.w)) : 1.0; }
 // Particle j's (at xj) ring crease masks (creases.glsl): as the spatial hash's build wrote
-// them for this substep's positions, or by brute force computed here.
+// them for the positions it was built from (the truncation's, the starts), or by brute force
+// computed here.
 uint ring_creases(uint j, vec3 xj) {
     return self_hashed() ? uint(self_pairs[creases_word(j)]) : ring_crease_masks(j, xj);
 }
@@ -484,7 +477,8 @@ void rope_segments(vec3 x, uint j, vec3 xj, float d2j, float farthest, float lis
 }
 
 // self_triangles' visit of the triangles around candidate j (at `at`, xj, squared distance
-// d2j from x) outside the particle's one-ring.
+// d2j from x) outside the particle's one-ring (in the truncation's search, `noting`, every
+// triangle without the particle: a fold's are noted, not kept as contacts).
 void self_triangles_of(uvec2 cell, vec3 x, uint j, ivec2 at, vec3 xj, float d2j, float farthest, float list_reach) {
     ivec2 dims = ivec2(obj.dims);
     bool unfiltered = noting;  // (the truncation's search: a fold's pairs too)
@@ -590,7 +584,7 @@ void mesh_self_triangles(vec3 x, uint j, float list_reach) {
 }
 
 // The find pass's visit of candidate vertex j (not the particle at `cell`, at x): when j is
-// outside the particle's one-ring, each triangle around j whose vertex nearest x is j (so each
+// outside the particle's one-ring (or in the truncation's search), each triangle around j whose vertex nearest x is j (so each
 // triangle is visited once) and that is not left out is kept when a contact and, while the
 // contact lists are built (`list_reach`: h plus the skin, otherwise 0), recorded in the
 // particle's list when nearer than that; then, for j past the particle, their edge pairs

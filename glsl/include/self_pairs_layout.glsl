@@ -6,7 +6,8 @@
 // the further passes' indirect dispatch per stage (workgroups; zero in a substep where no
 // particle found a contact: the find pass writes it, the constraint stage zeroes it); with
 // edge contact, (11 + PAIR_MAX) n + 3 + i the creases of particle i's ring edges
-// (creases.glsl), written where the spatial hash is built, and (12 + PAIR_MAX) n + 3 + i the
+// (creases.glsl), written where the spatial hash is built (truncation_hash.comp too), and
+// (12 + PAIR_MAX) n + 3 + i the
 // fraction of its move in the substep it keeps (self_contact.glsl's note_truncation; 0 for
 // none).
 // sim::gpu::object mirrors the sizes.

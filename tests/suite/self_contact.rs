@@ -166,8 +166,8 @@ fn standing_strip(dims: [usize; 2], spacing: f64, top: f64, tilt: f64) -> SimMod
 /// passes let fewer through: measured 0 on the reference and 0 on the GPU (fused). Where it
 /// piles is chaotic: over 24 tilts from 0.02 to 0.48 rad at friction 0.3, 0.5 and 0.7 the
 /// reference let none through in 68 of the 72 runs and 4 to 6 in four, each next to a fold
-/// sharper than a cell, none through a layer (with the bound on each particle's move, its
-/// colliders' part too; 185 edges in 16 runs without the bound, through layers in some), the
+/// sharper than a cell, none through a layer (measured with the bound on each particle's move
+/// that the truncation replaced; 185 edges in 16 runs without it, through layers in some), the
 /// GPU per stage none at 11 tilts (docs/records/bench/cpu/edge-margin/, 6), so that bound is 15 and
 /// none through a layer. The count changes in place. The default tier runs the GPU without
 /// edges and the reference with them; the reference at one pass and at four without edges
@@ -990,13 +990,14 @@ fn wide_strip_crossings(tilt: f64) -> (usize, usize) {
 
 /// A pile's layers land faster than contacts found once a substep stop them (the strip's top
 /// at about 5 m/s moves 5 mm a substep against h = 10 mm): with edge contact each particle's
-/// move in a substep, its colliders' part too, is bounded by 0.4 of its contacts' distance at
-/// the substep's start (`BOUND_FRACTION`), so that no two sides meet within it. A strip the
-/// other tests do not use, at three tilts: no edge through a layer, and at most a few through
-/// the triangles next to it where a fold is sharper than a cell (pairs the rest-state filter
-/// leaves out). Measured here: 2, 0 and 2 edges, none through a layer (without the bound 23, 4
-/// and 27, of which 11, 0 and 6 through a layer); over the eight tilts from 0.05 to 0.4 rad
-/// none through a layer, 2 to 10 next to a fold at three (docs/records/bench/cpu/edge-margin/, 6).
+/// move in a substep, its colliders' part too, is cut short at planes between the sides of the
+/// pairs near at the substep's start (`TRUNCATION_GAP` in glsl/include/self_contact.glsl), so
+/// that no two sides meet within it. A strip the other tests do not use, at three tilts: no
+/// edge through a layer, and at most a few through the triangles next to it where a fold is
+/// sharper than a cell. Measured with the bound on each move that the truncation replaced (0.4
+/// of its contacts' distance): 2, 0 and 2 edges, none through a layer (without it 23, 4 and 27,
+/// of which 11, 0 and 6 through a layer); over the eight tilts from 0.05 to 0.4 rad none
+/// through a layer, 2 to 10 next to a fold at three (docs/records/bench/cpu/edge-margin/, 6).
 #[test]
 fn a_wide_strip_piling_with_edge_contact_never_passes_through_a_layer() {
     let worst: Vec<(usize, usize)> = [0.1, 0.15, 0.25].into_iter().map(wide_strip_crossings).collect();
@@ -1041,13 +1042,13 @@ fn the_fused_lists_follow_edges_that_crease() {
 }
 
 /// A 6 x 12 cloth (the piling strip's material, 2 cm spacing) folded over its middle into two
-/// layers 8 mm apart (h = 1 cm, so they touch and bound each other's moves to 0.4 of that,
-/// 3.2 mm a substep) lying on a box that rises at 8 m/s (8.3 mm a substep), with edge contact:
-/// the box must carry both layers. The bound on
-/// each particle's move would hold the bottom layer back inside the box, so a particle it moved
-/// meets its colliders again. Measured: no particle below the box's top on the reference or on
-/// the GPU (per stage, edge contact's path); without the colliders after the bound the box
-/// passed through the cloth (2.9 m below its top after 20 frames). Tolerance 1 mm, a fifth of
+/// layers 8 mm apart (h = 1 cm, so they touch and truncate each other's moves at the plane
+/// between them, each move held to 5 mm a substep) lying on a box that rises at 8 m/s (8.3 mm
+/// a substep), with edge contact: the box must carry both layers. The truncation would hold
+/// the bottom layer back inside the box, so a particle it moved meets its colliders again.
+/// Measured: no particle below the box's top on the reference or on the GPU (per stage, edge
+/// contact's path); without the colliders after the cut (then the bound on each move that the
+/// truncation replaced) the box passed through the cloth (2.9 m below its top after 20 frames). Tolerance 1 mm, a fifth of
 /// the margin that keeps the cloth above the box.
 #[test]
 #[ignore = "exhaustive tier: kept out of the default tier's 10-minute budget"]
@@ -1098,8 +1099,8 @@ fn a_rising_box_carries_a_folded_cloth_with_edge_contact() {
 /// turn 300 degrees each, opposite ways, over 5 s) over its whole run (300 frames): the cloth is
 /// wrung into a rope lying on itself, its layers squeezed together without limit, and no edge
 /// passes through one of its triangles at any frame's end (the exact test, every frame), on
-/// the path the preset runs (per stage, with contact lists: 2,500 particles are past one
-/// workgroup). Before each move was truncated by the pairs near at a substep's start, its
+/// the path the preset runs (per stage, since edge contact runs there, its contact lists off
+/// since its pins move). Before each move was truncated by the pairs near at a substep's start, its
 /// layers crossed from frame 82 (1,988 edges at worst; docs/records/accuracy/lavapipe/
 /// twist-truncation/).
 #[test]

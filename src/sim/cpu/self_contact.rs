@@ -499,8 +499,7 @@ pub fn contacts(o: &ObjectModel, x: &[DVec3]) -> Vec<Contact> {
 /// positions the passes before moved (a pair separated by then takes no part; the contacts of
 /// a particle that found more than PAIR_MAX, the first pass only). Returns the
 /// positions after all passes but the last, and the last pass's moves (the constraint stage
-/// adds those, as the GPU's takes the last pass's sums), and with a cloth's edge pairs the
-/// contacts (`truncation`).
+/// adds those, as the GPU's takes the last pass's sums).
 pub(super) fn self_contact(o: &ObjectModel, x: &[DVec3], start: &[DVec3], iterations: u32) -> SelfContact {
     let mut xk = x.to_vec();
     let mut vk_shift = vec![DVec3::ZERO; x.len()];
@@ -641,7 +640,7 @@ fn near_pairs(o: &ObjectModel, x: &[DVec3], h: f64) -> Vec<Contact> {
 
 /// A particle at `p` with velocity `vel` that began the substep at `start`, moved back towards
 /// it by fraction `t` of its move, its velocity scaled as its move is; whether it moved it
-/// (`truncate` in glsl/include/self_contact.glsl, which says why).
+/// (`truncate_move` in glsl/include/self_contact.glsl, which says why).
 pub(super) fn truncate(p: &mut DVec3, vel: &mut DVec3, start: DVec3, t: f64) -> bool {
     if t >= 1.0 {
         return false;

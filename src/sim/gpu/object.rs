@@ -299,8 +299,8 @@ impl GpuObject {
                 let usage = BufferUsage::STORAGE | BufferUsage::TRANSFER_DST | BufferUsage::INDIRECT;
                 // Sums and counts (4), lengths (1), contacts, where each began the substep (3),
                 // the sums' parts that move the position only (3); the further passes'
-                // indirect dispatch; with edge-edge contact, the ring creases (1) and the bound
-                // on each particle's move (1).
+                // indirect dispatch; with edge-edge contact, the ring creases (1) and the
+                // fraction of each particle's move its truncation keeps (1).
                 let bytes = self_pairs_bytes(n, o.has_cloth_edge_pairs());
                 let name = format!("{}.self_pairs", o.name);
                 self_pairs = Some(Buffer::new(ctx, &name, bytes, usage, MemoryKind::GpuOnly)?);
@@ -611,7 +611,7 @@ pub(super) fn further_passes_offset(n: u64) -> u64 {
 }
 
 /// Bytes of an object's self_pairs buffer (n particles; `creases`: a cloth's edge pairs, with
-/// each particle's ring creases and the bound on its move).
+/// each particle's ring creases and the fraction of its move its truncation keeps).
 fn self_pairs_bytes(n: u64, creases: bool) -> u64 {
     further_passes_offset(n) + 12 + if creases { 8 * n } else { 0 }
 }
