@@ -728,7 +728,9 @@ bool truncate_move(uint i, vec3 start, inout vec3 x, inout vec3 v) {
     }
     float moved = length(x - start);
     float most = TRUNCATION_MOVE * obj.self_distance;
-    if (moved > most) t = min(t, most / moved);
+    // (A move past the guard's speed is not held: held, a blow-up's positions and velocities
+    // would stay finite and slow, and the guard would never stop it.)
+    if (moved > most && moved <= g.guard_speed * g.dt) t = min(t, most / moved);
     if (!(t < 1.0)) return false;
     x = start + (x - start) * t;
     v *= t;

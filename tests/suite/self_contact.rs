@@ -1102,10 +1102,16 @@ fn a_rising_box_carries_a_folded_cloth_with_edge_contact() {
 /// the path the preset runs (per stage, since edge contact runs there, its contact lists off
 /// since its pins move). Before each move was truncated by the pairs near at a substep's start, its
 /// layers crossed from frame 82 (1,988 edges at worst; docs/records/accuracy/lavapipe/
-/// twist-truncation/).
+/// twist-truncation/). On a CPU driver it returns at once, saying so: there its 300 frames
+/// take past 20 minutes with validation (the reference's test below runs everywhere); run it
+/// on a GPU (MSDSIM_DEVICE; the H100 run is in that record).
 #[test]
 #[ignore = "exhaustive tier: 300 frames of a 50 x 50 cloth wrung onto itself"]
 fn the_twist_preset_never_passes_through_itself() {
+    if gpu().info().kind == msdsim::vk::DeviceKind::Cpu {
+        eprintln!("the twist's 300 frames run on a GPU, not a CPU driver: not run here");
+        return;
+    }
     let runs = worst_crossings(&twist_preset(), 300, &[("per stage", false, None)]);
     println!("{runs:?}");
     assert!(runs.iter().all(|r| r.1 == 0), "edges through the twisted cloth's triangles: {runs:?}");

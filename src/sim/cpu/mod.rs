@@ -524,7 +524,7 @@ fn constraints(
     // too, and where that moved it its colliders again (note_truncation in
     // glsl/include/self_contact.glsl).
     if o.has_cloth_edge_pairs() && o.self_distance.is_some() {
-        let t = self_contact::truncation(o, start, &nx);
+        let t = self_contact::truncation(o, start, &nx, m.max_speed * dt);
         for (i, t) in t.into_iter().enumerate() {
             if self_contact::truncate(&mut nx[i], &mut nv[i], start[i], t) {
                 for (c, pose) in m.colliders.iter().zip(motions) {

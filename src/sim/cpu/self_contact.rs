@@ -546,14 +546,15 @@ pub(super) struct SelfContact {
 /// With a cloth's edge pairs, each particle's fraction of its move over the substep (from
 /// `start` to `x`, the constraint stage's result) that keeps it on its side of the plane
 /// between the two sides of each pair nearer than h at the start (`near_pairs`;
-/// `note_truncation` in glsl/include/self_contact.glsl, which says why): 1 where nothing
-/// truncates it.
-pub(super) fn truncation(o: &ObjectModel, start: &[DVec3], x: &[DVec3]) -> Vec<f64> {
+/// `note_truncation` in glsl/include/self_contact.glsl, which says why), each move also held to
+/// TRUNCATION_MOVE h unless longer than `runaway`: 1 where nothing truncates it.
+pub(super) fn truncation(o: &ObjectModel, start: &[DVec3], x: &[DVec3], runaway: f64) -> Vec<f64> {
     let mut t = vec![1.0f64; x.len()];
     let Some(h) = o.self_distance else { return t };
     for (k, t) in t.iter_mut().enumerate() {
         let moved = (x[k] - start[k]).length();
-        if moved > TRUNCATION_MOVE * h && !o.pinned[k] {
+        // (not a move past `runaway`, the guard's speed times the substep: a blow-up)
+        if moved > TRUNCATION_MOVE * h && moved <= runaway && !o.pinned[k] {
             *t = TRUNCATION_MOVE * h / moved;
         }
     }
