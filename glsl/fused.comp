@@ -212,6 +212,19 @@ void set_stretched(uint k, uint count) {
 #include "reduce.glsl"
 #include "rigid_start.glsl"
 
+// Links particle k, at `at`, into the shared hash (the bucket of its cell, obj.cell_inv).
+void hash_insert(uint k, vec3 at) {
+    uint h = cell_hash(hash_cell(at, obj.cell_inv, k), BUCKETS - 1u);
+    scratch[BUCKETS + k] = atomicExchange(scratch[h], k);
+}
+
+// Writes particle k's crease word from its ring at `at` (creases.glsl; `listing`: the contact
+// lists are built from there).
+void write_creases(uint k, vec3 at, bool listing) {
+    uint word = uint(self_pairs[creases_word(k)]);
+    self_pairs[creases_word(k)] = int(listed_crease_word(ring_crease_masks(k, at), word, listing));
+}
+
 // A free object's rigid start (rigid_start.glsl): the subgroups' 16 sums pass through the
 // positions and then scratch (free between the prediction and the solve), as many of each
 // subgroup's as fit a round (one round with subgroups of 8 lanes or more; the host keeps room
@@ -768,14 +781,10 @@ void main() {
                     if (s >= SLOTS) break;
                     uint k = own[s];
                     if (k >= n) continue;
-                    uint h = cell_hash(hash_cell(x[s], obj.cell_inv, k), BUCKETS - 1u);
-                    scratch[BUCKETS + k] = atomicExchange(scratch[h], k);
+                    hash_insert(k, x[s]);
                     // (how creased its ring edges are, which the search reads for every
-                    // candidate: creases.glsl)
-                    if (creases) {
-                        uint word = listed_crease_word(ring_crease_masks(k, x[s]), uint(self_pairs[creases_word(k)]), list_build);
-                        self_pairs[creases_word(k)] = int(word);
-                    }
+                    // candidate)
+                    if (creases) write_creases(k, x[s], list_build);
                 }
                 if (creases) memoryBarrierBuffer();
                 barrier();
@@ -884,10 +893,8 @@ void main() {
                     if (s >= SLOTS) break;
                     uint k = own[s];
                     if (k >= n) continue;
-                    uint h = cell_hash(hash_cell(began[s], obj.cell_inv, k), BUCKETS - 1u);
-                    scratch[BUCKETS + k] = atomicExchange(scratch[h], k);
-                    uint word = listed_crease_word(ring_crease_masks(k, began[s]), uint(self_pairs[creases_word(k)]), false);
-                    self_pairs[creases_word(k)] = int(word);
+                    hash_insert(k, began[s]);
+                    write_creases(k, began[s], false);
                 }
                 memoryBarrierBuffer();
                 barrier();

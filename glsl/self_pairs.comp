@@ -34,6 +34,10 @@ layout(constant_id = 4) const uint PASS = PASS_FIND;
 const bool APPLY = PASS == PASS_APPLY;
 layout(push_constant) uniform Push {
     uint substep;  // of the frame, 0-based
+    // With a cloth's edge pairs, the lanes the find, apply and note passes split each
+    // particle's search among (self_contact.glsl's search_lanes), side by side along x: the
+    // dispatch is that many times wider (sim::gpu::SEARCH_LANES).
+    uint lanes;
 } pc;
 
 #define IN(i) p_in[i]
@@ -54,8 +58,16 @@ void listed_candidates(uvec2 cell, vec3 x, float reach, inout vec3 correction, i
 uint visiting = 0u;
 vec3 substep_start() { return pair_start(visiting); }
 
+const bool LANED_PASS = PASS == PASS_FIND || PASS == PASS_APPLY || PASS == PASS_NOTE;
+
 void main() {
     uvec2 cell = gl_GlobalInvocationID.xy;
+    uint lanes = cloth_edge_pairs() ? max(pc.lanes, 1u) : 1u;
+    uint lane = 0u;
+    if (LANED_PASS) {
+        lane = cell.x % lanes;
+        cell.x /= lanes;
+    }
     if (!has(F_SELF) || cell.x >= obj.dims.x || cell.y >= obj.dims.y) return;
     uint i = cell.x + cell.y * obj.dims.x;
     vec3 x = p_in[i].pos.xyz;
@@ -74,10 +86,13 @@ void main() {
         return;
     }
     if (PASS == PASS_NOTE) {
+        search_lane = lane;
+        search_lanes = lanes;
         note_truncation(i);
         return;
     }
     if (PASS == PASS_TRUNCATE) {
+        self_pairs[pairs_len_word(i)] = 0;  // (the split find pass's counter, for the next substep)
         Particle q = p_out[i];
         if (q.pos.w > 0.5) return;  // (pinned: nothing noted)
         vec3 v = q.vel.xyz;
@@ -89,13 +104,19 @@ void main() {
         return;
     }
     list_state(i, pc.substep, self_hashed(), LISTS);
+    // A search of the hash that builds no lists is split among the lanes; else lane 0 alone.
+    bool split = cloth_edge_pairs() && list_rebuild && !list_build;
+    if (!split && lane > 0u) return;
+    search_lane = lane;
+    search_lanes = split ? lanes : 1u;
     // (p_out: the substep's start, which only the find pass notes)
     self_pass(cell, i, x, APPLY ? x : p_out[i].pos.xyz, APPLY);
     if (PASS == PASS_FIND && subgroupAny(pair_len > 0u) && subgroupElect()) {
         // The further passes run: one thread of each subgroup where some particle found a
-        // contact writes the dispatch's size (atomically: all write the same).
+        // contact writes the dispatch's size (atomically: all write the same; the further
+        // passes are not split among lanes).
         uint w = further_passes_word();
-        atomicMax(self_pairs[w], int(gl_NumWorkGroups.x));
+        atomicMax(self_pairs[w], int(gl_NumWorkGroups.x / lanes));
         atomicMax(self_pairs[w + 1u], int(gl_NumWorkGroups.y));
         atomicMax(self_pairs[w + 2u], int(gl_NumWorkGroups.z));
     }

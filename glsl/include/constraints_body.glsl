@@ -180,12 +180,39 @@ void self_search(uvec2 cell, vec3 x, inout vec3 correction, inout uint n_active)
         SELF_CANDIDATES(cell, x, reach, correction, n_active);
     } else {
         uint n = particle_count();
-        for (uint j = 0u; j < n; ++j) {
+        for (uint j = search_lane; j < n; j += search_lanes) {
             if (!rest_neighbour(cell, j, obj.self_distance)) {
                 self_candidate(cell, x, j, distance(CPOS(j), x), reach, correction, n_active);
             }
         }
     }
+}
+
+// self_pass split among lanes (search_lanes; per stage, a cloth with edge pairs searching the
+// hash without building lists): the find pass's lanes each search their share, numbering the
+// contacts they keep with an atomic counter (pairs_len_word, zeroed after the substep), so
+// that the slots hold the first PAIR_MAX found in whatever order; the apply pass applies the
+// slots, or where more were found, searches again applying each contact as it finds it. The
+// same contacts are applied, each once, and their moves are summed in fixed point in any
+// order, so the result is the one lane's, bit for bit.
+void laned_pass(uvec2 cell, uint i, vec3 x, bool apply, uint len) {
+    pair_particle = i;
+    pair_x = x;
+    pair_len = 0u;
+    own_creases = crease_mask(ring_creases(i, x), false);
+    vec3 unused = vec3(0.0);
+    uint unused_count = 0u;
+    if (!apply) {
+        self_search(cell, x, unused, unused_count);
+        return;
+    }
+    if (len <= PAIR_MAX) {
+        for (uint k = search_lane; k < len; k += search_lanes) apply_contact(i, x, uint(self_pairs[pair_word(k, i)]));
+        return;
+    }
+    apply_found = true;
+    self_search(cell, x, unused, unused_count);
+    apply_found = false;
 }
 
 // A pass of a cloth's self-contact (self_contact.glsl) for particle i at `cell`, at x: the
@@ -198,7 +225,11 @@ void self_search(uvec2 cell, vec3 x, inout vec3 correction, inout uint n_active)
 // holds the contact tests once.
 void self_pass(uvec2 cell, uint i, vec3 x, vec3 start, bool apply) {
     uint len = apply ? uint(self_pairs[pairs_len_word(i)]) : 0u;
-    if (!apply) set_pair_start(i, start);
+    if (!apply && search_lane == 0u) set_pair_start(i, start);
+    if (search_lanes > 1u) {
+        laned_pass(cell, i, x, apply, len);
+        return;
+    }
     uint from = 0u;
     do {
         if (!apply || from > 0u) {
@@ -355,7 +386,7 @@ void visit_bucket(uint h, uvec2 cell, vec3 x, float reach, inout vec3 correction
 }
 void visit_range(uint from, uint end, uvec2 cell, vec3 x, float reach, inout vec3 correction, inout uint n_active) {
     float listed = list_build ? list_reach() : reach;
-    for (uint at = from; at < end; ++at) {
+    for (uint at = from + search_lane; at < end; at += search_lanes) {
         vec4 e = sorted[at];
         float d = distance(e.xyz, x);
         uint j = floatBitsToUint(e.w);

@@ -258,6 +258,15 @@ float recorded_within() { return list_build ? list_within() : noting ? obj.self_
 // In the apply pass's search, the contacts before pair_skip were applied already: the next
 // PAIR_MAX are noted in the particle's slots.
 uint pair_skip = 0u;
+// The lane of a search and the lanes it is split among, which take the hash's entries (or by
+// brute force the particles) side by side: per stage, a cloth with edge pairs (a wrung or piled
+// cloth's particle has hundreds of candidates, each with up to 36 edge pairs, and a cloth of a
+// few thousand particles fills a fraction of the GPU); else one. Split, the apply pass's
+// search applies every contact as it finds it (apply_found; laned_pass in
+// constraints_body.glsl).
+uint search_lane = 0u;
+uint search_lanes = 1u;
+bool apply_found = false;
 
 // A contact's weight in its particles' counts (sim::cpu::self_contact's `count_weight`): 1
 // once the overlap reaches a tenth of h, less before, so that a contact that begins changes
@@ -286,14 +295,16 @@ void keep_pair(uint code, uvec4 m, float d, float fade) {
     bvec4 free_m = bvec4(!CPINNED(m.x), !CPINNED(m.y), !CPINNED(m.z), !CPINNED(m.w));
     if (!any(free_m)) return;
 #ifdef SELF_APPLY_FOUND
-    if (SELF_APPLY_FOUND && apply_pass && pair_len >= pair_skip + PAIR_MAX) {
+    if (SELF_APPLY_FOUND && (apply_found || apply_pass && pair_len >= pair_skip + PAIR_MAX)) {
         apply_contact(pair_particle, pair_x, code);
         pair_len += 1u;
         return;
     }
 #endif
-    uint slot = pair_len - pair_skip;
-    if (pair_len >= pair_skip && slot < PAIR_MAX) self_pairs[pair_word(slot, pair_particle)] = int(code);
+    // (split among lanes: numbered by the particle's counter)
+    uint index = search_lanes > 1u ? uint(atomicAdd(self_pairs[pairs_len_word(pair_particle)], 1)) : pair_len;
+    uint slot = index - pair_skip;
+    if (index >= pair_skip && slot < PAIR_MAX) self_pairs[pair_word(slot, pair_particle)] = int(code);
     pair_len += 1u;
     if (apply_pass) return;
     int weight = int(round(65536.0 * contact_weight(obj.self_distance - d) * fade));

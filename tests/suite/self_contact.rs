@@ -418,6 +418,40 @@ fn the_gpu_finds_the_contacts_the_reference_finds_by_every_search() {
     ]);
 }
 
+/// A cloth's search split among lanes (per stage with edge pairs: 8 lanes on a GPU, 1 on a
+/// CPU driver) applies the same contacts as one lane, each once, and the moves are summed in
+/// fixed point in any order: after 4 frames the states are the same bit for bit, with the
+/// contact lists off (every substep split) and on (split where a substep rebuilds without
+/// building lists), in a thrown fold and a dense one (particles with more contacts than the
+/// 16 slots, which the apply pass's split search applies as it finds them).
+#[test]
+#[ignore = "exhaustive tier: 16 runs of 4 frames with edge contact"]
+fn a_search_split_among_lanes_gives_the_state_of_one_lane() {
+    let ctx = gpu();
+    let scenes =
+        [("thrown", with_edges(&fold(0.07, 4.0))), ("dense", with_edges(&fold_of(0.01, 0.019, 0.005, 0.0)))];
+    for (name, s) in scenes {
+        for lists in [Some(false), Some(true)] {
+            let mut states = Vec::new();
+            for lanes in [1, 8] {
+                let mut g = GpuSim::new(&ctx, &s).unwrap();
+                g.set_fused(&ctx, false).unwrap();
+                g.force_contact_lists(lists);
+                g.set_search_lanes(lanes);
+                for _ in 0..4 {
+                    g.step_frame(&ctx).unwrap();
+                }
+                states.push(g.read_states(&ctx).unwrap()[0].positions());
+                g.destroy(&ctx);
+            }
+            let d = (states[0].iter().zip(&states[1])).map(|(a, b)| a.distance(*b)).fold(0.0, f64::max);
+            println!("{name} fold, lists {lists:?}: 8 lanes from 1 by {d:e} m");
+            assert!(d == 0.0, "{name} fold, lists {lists:?}: 8 lanes part from 1 by {d} m");
+        }
+    }
+    assert_clean(&ctx);
+}
+
 /// ... on each (search, fused, contact lists forced) of `paths`.
 fn gpu_finds_the_contacts(paths: &[(SelfCollisionMethod, bool, Option<bool>)]) {
     let ctx = gpu();

@@ -40,7 +40,7 @@ use fused::ObjectPlan;
 pub use fused::{FusedLimits, FusedShape, FUSED_DEFAULT_SLOTS, FUSED_SLOTS};
 pub use object::{check_fits, particles};
 
-use super::gpu_types::{Globals, Particle, SurfaceVertex};
+use super::gpu_types::{self, Globals, Particle, SurfaceVertex};
 use super::model::{ObjectModel, SimModel};
 use crate::shaders::ShaderSet;
 use crate::vk::{
@@ -54,6 +54,12 @@ use pipelines::{Pipelines, SelfPass, Stage};
 /// Workgroup shape of the cloth stages (the paper's 16 x 16) and of the rope stages (1-D).
 const CLOTH_GROUP: [u32; 2] = [16, 16];
 const ROPE_GROUP: u32 = 64;
+/// Lanes a particle's search is split among in the find, apply and note passes of a cloth
+/// with edge pairs on a GPU (`self_pairs.comp`'s push constant `lanes`), side by side along the
+/// grid's x: a wrung cloth's particle searches hundreds of candidates, each with up to 36 edge
+/// pairs, and a cloth of a few thousand particles fills a fraction of the GPU. A CPU driver
+/// runs every lane's invocation in turn, so there one lane.
+const SEARCH_LANES: u32 = 8;
 /// Bindings per set, in the order of `glsl/include/bindings.glsl`.
 const BINDINGS: u32 = 20;
 
@@ -117,6 +123,9 @@ pub struct GpuSim {
     /// The self-contact features an object may have and still run fused (by default
     /// `fused::default_fused_contact`, which says why; `set_fused(true)`: all).
     fuse_contact: u32,
+    /// Lanes of a cloth's self-contact search with edge pairs per stage (`SEARCH_LANES`, or 1
+    /// on a CPU driver; `set_search_lanes`).
+    search_lanes: u32,
     /// The implicit method per stage: objects of more workgroups than this have their dot
     /// products' partial sums totalled by a pass of one workgroup (`step.rs`).
     cg_totals_above: u32,
@@ -314,6 +323,10 @@ impl GpuSim {
             stage_timing: true,
             fused: true,
             fuse_contact: fused::default_fused_contact(ctx.info()),
+            search_lanes: match ctx.info().kind {
+                crate::vk::DeviceKind::Cpu => 1,
+                _ => SEARCH_LANES,
+            },
             cg_totals_above: step::CG_TOTALS_ABOVE,
             limits,
             drawn: true,
@@ -587,6 +600,7 @@ impl GpuSim {
         let passes = [SelfPass::Find, SelfPass::Apply]
             .into_iter()
             .chain((1..self.model.contact_iterations).flat_map(|_| again));
+        let push = [substep, self.search_lanes];
         for pass in passes {
             for o in &cloths {
                 let lists = self.lists_on(o) && matches!(pass, SelfPass::Find | SelfPass::Apply);
@@ -596,9 +610,16 @@ impl GpuSim {
                     // Only in a substep where some particle found a contact.
                     (SelfPass::Move | SelfPass::Reapply, Some(args)) => {
                         let offset = object::further_passes_offset(o.particles as u64);
-                        rec.dispatch_indirect(pipeline, o.sets[1], args, offset, &[substep]);
+                        rec.dispatch_indirect(pipeline, o.sets[1], args, offset, &push);
                     }
-                    _ => rec.dispatch_with(pipeline, o.sets[1], o.step_groups, &[substep]),
+                    (SelfPass::Find | SelfPass::Apply, _)
+                        if gpu_types::has_cloth_edge_pairs(o.plan.features) =>
+                    {
+                        let groups =
+                            [o.step_groups[0] * self.search_lanes, o.step_groups[1], o.step_groups[2]];
+                        rec.dispatch_with(pipeline, o.sets[1], groups, &push)
+                    }
+                    _ => rec.dispatch_with(pipeline, o.sets[1], o.step_groups, &push),
                 }
             }
             rec.barrier(&barriers);
@@ -611,6 +632,12 @@ impl GpuSim {
     /// scan, scatter), then the note and truncate passes; each ordered after the writes before
     /// it and before the reads after it by a barrier on the state, the scratch and the hash
     /// buffers.
+    /// Lanes a cloth's self-contact search with edge pairs is split among per stage (by
+    /// default `SEARCH_LANES` on a GPU, 1 on a CPU driver); for tests and measurements.
+    pub fn set_search_lanes(&mut self, lanes: u32) {
+        self.search_lanes = lanes.max(1);
+    }
+
     fn record_truncation(&self, rec: &mut Recorder<'_>, substep: u32) {
         let cloths: Vec<&GpuObject> = (self.objects.iter())
             .filter(|o| !self.is_fused(o) && o.self_pairs.is_some())
@@ -644,7 +671,11 @@ impl GpuSim {
             rec.barrier(&barriers);
             for o in &cloths {
                 let pipeline = self.pipelines.get(Stage::SelfPairs(o.plan.features, false, pass));
-                rec.dispatch_with(pipeline, o.sets[1], o.step_groups, &[substep]);
+                let mut groups = o.step_groups;
+                if pass == SelfPass::Note {
+                    groups[0] *= self.search_lanes;
+                }
+                rec.dispatch_with(pipeline, o.sets[1], groups, &[substep, self.search_lanes]);
             }
         }
         rec.barrier(&barriers);
