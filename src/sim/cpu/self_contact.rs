@@ -467,29 +467,37 @@ pub fn contacts(o: &ObjectModel, x: &[DVec3]) -> Vec<Contact> {
     if !o.has_edge_pairs() {
         return contacts;
     }
-    // Edge pairs, swept along x: edges sorted by their boxes' low ends, each against those
-    // whose boxes begin before its own (grown by h) ends.
+    let chord = 0.5 * o.spacing[0].hypot(o.spacing[1]) / h;
+    for (e1, e2) in edge_box_pairs(o, x, h) {
+        let m = edge_pair_order(h, x, e1, e2);
+        if pinned(&m) || edges_left_out(o, h, e1, e2) {
+            continue;
+        }
+        let ([o1, o2], [o3, o4]) = (edge_opposite(o, m[0], m[1]), edge_opposite(o, m[2], m[3]));
+        contacts.extend(Contact::at(m, (true, o.has_segment_pairs()), [o1, o2, o3, o4], chord, x, h));
+    }
+    contacts
+}
+
+/// The pairs of cloth `o`'s edges whose boxes at `x` come within `r` of each other, swept
+/// along x: edges sorted by their boxes' low ends, each against those whose boxes begin
+/// before its own (grown by r) ends.
+fn edge_box_pairs(o: &ObjectModel, x: &[DVec3], r: f64) -> Vec<([usize; 2], [usize; 2])> {
     let mut edges: Vec<([usize; 2], DVec3, DVec3)> =
         grid_edges(o).into_iter().map(|e| (e, x[e[0]].min(x[e[1]]), x[e[0]].max(x[e[1]]))).collect();
     edges.sort_by(|a, b| a.1.x.total_cmp(&b.1.x));
-    let chord = 0.5 * o.spacing[0].hypot(o.spacing[1]) / h;
+    let mut pairs = Vec::new();
     for (i, &(e1, lo1, hi1)) in edges.iter().enumerate() {
         for &(e2, lo2, hi2) in &edges[i + 1..] {
-            if lo2.x > hi1.x + h {
+            if lo2.x > hi1.x + r {
                 break;
             }
-            if (lo1 - h).cmpgt(hi2).any() || (lo2 - h).cmpgt(hi1).any() {
-                continue;
+            if !((lo1 - r).cmpgt(hi2).any() || (lo2 - r).cmpgt(hi1).any()) {
+                pairs.push((e1, e2));
             }
-            let m = edge_pair_order(h, x, e1, e2);
-            if pinned(&m) || edges_left_out(o, h, e1, e2) {
-                continue;
-            }
-            let ([o1, o2], [o3, o4]) = (edge_opposite(o, m[0], m[1]), edge_opposite(o, m[2], m[3]));
-            contacts.extend(Contact::at(m, (true, o.has_segment_pairs()), [o1, o2, o3, o4], chord, x, h));
         }
     }
-    contacts
+    pairs
 }
 
 /// Each particle's summed moves from cloth `o`'s contacts with its own triangles (positions
@@ -619,22 +627,11 @@ fn near_pairs(o: &ObjectModel, x: &[DVec3], h: f64) -> Vec<Contact> {
         }
         _ => 1.0,
     };
-    let mut edges: Vec<([usize; 2], (DVec3, DVec3))> =
-        grid_edges(o).into_iter().map(|e| (e, boxed(&e))).collect();
-    edges.sort_by(|a, b| a.1 .0.x.total_cmp(&b.1 .0.x));
-    for (i, &(e1, b1)) in edges.iter().enumerate() {
-        for &(e2, b2) in &edges[i + 1..] {
-            if b2.0.x > b1.1.x + r {
-                break;
-            }
-            if apart(b1, b2) || edges_left_out(o, h, e1, e2) {
-                continue;
-            }
-            if creased(e1) <= 0.0 && creased(e2) <= 0.0 {
-                continue;
-            }
-            out.extend(Contact::at([e1[0], e1[1], e2[0], e2[1]], (true, true), [NONE; 4], 0.0, x, r));
+    for (e1, e2) in edge_box_pairs(o, x, r) {
+        if edges_left_out(o, h, e1, e2) || creased(e1) <= 0.0 && creased(e2) <= 0.0 {
+            continue;
         }
+        out.extend(Contact::at([e1[0], e1[1], e2[0], e2[1]], (true, true), [NONE; 4], 0.0, x, r));
     }
     out
 }
