@@ -4,7 +4,7 @@
 #extension GL_KHR_shader_subgroup_basic : require
 #extension GL_KHR_shader_subgroup_vote : require
 // A cloth's contact with its own triangles on the per-stage path, one thread per particle
-// (pinned ones too), between the spatial hash's build and the constraints, one pass a dispatch
+// (pinned ones too; with edge pairs, `lanes` of them: pc.lanes), between the spatial hash's build and the constraints, one pass a dispatch
 // (PASS): the find pass (each particle's contacts kept and counted; the contact lists walked,
 // or searched from the hash and rebuilt), the apply pass (each contact's moves summed into its
 // four particles), and with contact_iterations > 1 each further pass's move of the physics

@@ -188,33 +188,6 @@ void self_search(uvec2 cell, vec3 x, inout vec3 correction, inout uint n_active)
     }
 }
 
-// self_pass split among lanes (search_lanes; per stage, a cloth with edge pairs searching the
-// hash without building lists): the find pass's lanes each search their share, numbering the
-// contacts they keep with an atomic counter (pairs_len_word, zeroed after the substep), so
-// that the slots hold the first PAIR_MAX found in whatever order; the apply pass applies the
-// slots, or where more were found, searches again applying each contact as it finds it. The
-// same contacts are applied, each once, and their moves are summed in fixed point in any
-// order, so the result is the one lane's, bit for bit.
-void laned_pass(uvec2 cell, uint i, vec3 x, bool apply, uint len) {
-    pair_particle = i;
-    pair_x = x;
-    pair_len = 0u;
-    own_creases = crease_mask(ring_creases(i, x), false);
-    vec3 unused = vec3(0.0);
-    uint unused_count = 0u;
-    if (!apply) {
-        self_search(cell, x, unused, unused_count);
-        return;
-    }
-    if (len <= PAIR_MAX) {
-        for (uint k = search_lane; k < len; k += search_lanes) apply_contact(i, x, uint(self_pairs[pair_word(k, i)]));
-        return;
-    }
-    apply_found = true;
-    self_search(cell, x, unused, unused_count);
-    apply_found = false;
-}
-
 // A pass of a cloth's self-contact (self_contact.glsl) for particle i at `cell`, at x: the
 // find pass (`apply` false; the particle began the substep at `start`) searches for its
 // contacts, keeps the first PAIR_MAX and counts them all; the apply pass applies those it
@@ -223,21 +196,30 @@ void laned_pass(uvec2 cell, uint i, vec3 x, bool apply, uint len) {
 // same contacts in the same order (the same positions and candidates: the contact list, or
 // the hash's buckets in the same order). The search is in one place, so the compiled kernel
 // holds the contact tests once.
+// Split among lanes (search_lanes; per stage, a cloth with edge pairs searching its hash), the
+// find pass's lanes number the contacts they keep with the particle's counter
+// (pairs_len_word, which the truncate pass zeroes for the next substep), so the slots hold the
+// first PAIR_MAX found in whatever order; the apply pass applies the slots split among the
+// lanes, or where more were found, searches again applying each contact as it finds it
+// (apply_found). The same contacts are applied, each once, and their moves are summed in fixed
+// point in any order, so the result is one lane's bit for bit.
 void self_pass(uvec2 cell, uint i, vec3 x, vec3 start, bool apply) {
     uint len = apply ? uint(self_pairs[pairs_len_word(i)]) : 0u;
     if (!apply && search_lane == 0u) set_pair_start(i, start);
-    if (search_lanes > 1u) {
-        laned_pass(cell, i, x, apply, len);
+    bool split = search_lanes > 1u;
+    if (split && apply && len <= PAIR_MAX) {
+        for (uint k = search_lane; k < len; k += search_lanes) apply_contact(i, x, uint(self_pairs[pair_word(k, i)]));
         return;
     }
     uint from = 0u;
     do {
-        if (!apply || from > 0u) {
+        if (!apply || from > 0u || split) {
             pair_particle = i;
             pair_x = x;
             pair_len = 0u;
             pair_skip = from;
             apply_pass = apply;
+            apply_found = split && apply;
             bool building = list_build;
             list_build = building && !apply;
             if (cloth_edge_pairs()) own_creases = crease_mask(ring_creases(i, x), list_build);
@@ -246,11 +228,13 @@ void self_pass(uvec2 cell, uint i, vec3 x, vec3 start, bool apply) {
             self_search(cell, x, unused, unused_count);
             list_build = building;
             apply_pass = false;
+            apply_found = false;
             pair_skip = 0u;
             if (!apply) {
-                self_pairs[pairs_len_word(i)] = int(pair_len);
+                if (!split) self_pairs[pairs_len_word(i)] = int(pair_len);
                 return;
             }
+            if (split) return;  // (each contact applied as found)
             len = pair_len;
         }
         uint batch = min(len - from, PAIR_MAX);

@@ -258,12 +258,12 @@ float recorded_within() { return list_build ? list_within() : noting ? obj.self_
 // In the apply pass's search, the contacts before pair_skip were applied already: the next
 // PAIR_MAX are noted in the particle's slots.
 uint pair_skip = 0u;
-// The lane of a search and the lanes it is split among, which take the hash's entries (or by
-// brute force the particles) side by side: per stage, a cloth with edge pairs (a wrung or piled
-// cloth's particle has hundreds of candidates, each with up to 36 edge pairs, and a cloth of a
-// few thousand particles fills a fraction of the GPU); else one. Split, the apply pass's
-// search applies every contact as it finds it (apply_found; laned_pass in
-// constraints_body.glsl).
+// The lane of a search and the lanes it is split among, which take the hash's entries (in the
+// truncation's note pass, by brute force the particles) side by side: per stage, a cloth with
+// edge pairs (a wrung or piled cloth's particle has hundreds of candidates, each with up to 36
+// edge pairs, and a cloth of a few thousand particles fills a fraction of the GPU); else one.
+// Split, the apply pass's search applies every contact as it finds it (apply_found;
+// constraints_body.glsl's self_pass).
 uint search_lane = 0u;
 uint search_lanes = 1u;
 bool apply_found = false;
@@ -287,9 +287,10 @@ float pair_count(uint i) { return float(self_pairs[4u * i + 3u]) * (1.0 / 65536.
 void apply_contact(uint p, vec3 x, uint code);
 #endif
 
-// Contact `code` of pair_particle (its particles m, overlap h - d), the pair_len-th found:
-// noted in the particle's slots when among the PAIR_MAX from pair_skip on (past those applied,
-// SELF_APPLY_FOUND), and in the find pass counted in its free particles (the apply pass
+// Contact `code` of pair_particle (its particles m, overlap h - d), the pair_len-th found
+// (split among lanes, numbered by the particle's counter): noted in the particle's slots when
+// among the PAIR_MAX from pair_skip on (past those applied, SELF_APPLY_FOUND, and every one
+// with apply_found), and in the find pass counted in its free particles (the apply pass
 // applies what the slots hold).
 void keep_pair(uint code, uvec4 m, float d, float fade) {
     bvec4 free_m = bvec4(!CPINNED(m.x), !CPINNED(m.y), !CPINNED(m.z), !CPINNED(m.w));

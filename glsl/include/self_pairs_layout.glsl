@@ -1,6 +1,7 @@
 // The layout of a cloth's self-contact buffer, self_pairs (binding 17), n particles: words
 // [4 i, 4 i + 4) particle i's sum (x, y, z in units of h / 2^26) and count (in units of
-// 2^-16); 4 n + i the number of contacts it keeps; (5 + k) n + i its contact k's code;
+// 2^-16); 4 n + i the number of contacts it found (split among lanes, their counter, which
+// the truncate pass zeroes); (5 + k) n + i its contact k's code;
 // [(5 + PAIR_MAX) n + 3 i, + 3) where it began the substep; [(8 + PAIR_MAX) n + 3 i, + 3) the
 // part of its sum that moves the position only (units as the sum); [(11 + PAIR_MAX) n, + 3)
 // the further passes' indirect dispatch per stage (workgroups; zero in a substep where no

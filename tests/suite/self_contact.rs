@@ -421,11 +421,11 @@ fn the_gpu_finds_the_contacts_the_reference_finds_by_every_search() {
 /// A cloth's search split among lanes (per stage with edge pairs: 8 lanes on a GPU, 1 on a
 /// CPU driver) applies the same contacts as one lane, each once, and the moves are summed in
 /// fixed point in any order: after 4 frames the states are the same bit for bit, with the
-/// contact lists off (every substep split) and on (split where a substep rebuilds without
-/// building lists), in a thrown fold and a dense one (particles with more contacts than the
-/// 16 slots, which the apply pass's split search applies as it finds them).
+/// contact lists off (the find, apply and note passes split) and on (the note pass alone), in
+/// a thrown fold and a dense one (particles with more contacts than the 16 slots, which the
+/// apply pass's split search applies as it finds them).
 #[test]
-#[ignore = "exhaustive tier: 16 runs of 4 frames with edge contact"]
+#[ignore = "exhaustive tier: 8 runs of 4 frames with edge contact"]
 fn a_search_split_among_lanes_gives_the_state_of_one_lane() {
     let ctx = gpu();
     let scenes =
@@ -446,7 +446,8 @@ fn a_search_split_among_lanes_gives_the_state_of_one_lane() {
             }
             let d = (states[0].iter().zip(&states[1])).map(|(a, b)| a.distance(*b)).fold(0.0, f64::max);
             println!("{name} fold, lists {lists:?}: 8 lanes from 1 by {d:e} m");
-            assert!(d == 0.0, "{name} fold, lists {lists:?}: 8 lanes part from 1 by {d} m");
+            // (compared whole: a NaN differs from itself)
+            assert!(states[0] == states[1], "{name} fold, lists {lists:?}: 8 lanes part from 1 by {d} m");
         }
     }
     assert_clean(&ctx);

@@ -60,6 +60,10 @@ const ROPE_GROUP: u32 = 64;
 /// pairs, and a cloth of a few thousand particles fills a fraction of the GPU. A CPU driver
 /// runs every lane's invocation in turn, so there one lane.
 const SEARCH_LANES: u32 = 8;
+/// The most lanes `GpuSim::set_search_lanes` takes.
+const MAX_SEARCH_LANES: u32 = 64;
+/// Workgroups along x every Vulkan device dispatches (the minimum of maxComputeWorkGroupCount).
+const MIN_WORKGROUP_COUNT: u32 = 65_535;
 /// Bindings per set, in the order of `glsl/include/bindings.glsl`.
 const BINDINGS: u32 = 20;
 
@@ -600,29 +604,48 @@ impl GpuSim {
         let passes = [SelfPass::Find, SelfPass::Apply]
             .into_iter()
             .chain((1..self.model.contact_iterations).flat_map(|_| again));
-        let push = [substep, self.search_lanes];
         for pass in passes {
             for o in &cloths {
                 let lists = self.lists_on(o) && matches!(pass, SelfPass::Find | SelfPass::Apply);
                 let stage = Stage::SelfPairs(o.plan.features, lists, pass);
                 let pipeline = self.pipelines.get(stage);
+                // (the find and apply passes split alike: the apply pass reads the find's slots)
+                let lanes = self.lanes_of(o, o.hash.is_some() && !self.lists_on(o));
+                let push = [substep, lanes];
                 match (pass, &o.self_pairs) {
                     // Only in a substep where some particle found a contact.
                     (SelfPass::Move | SelfPass::Reapply, Some(args)) => {
                         let offset = object::further_passes_offset(o.particles as u64);
                         rec.dispatch_indirect(pipeline, o.sets[1], args, offset, &push);
                     }
-                    (SelfPass::Find | SelfPass::Apply, _)
-                        if gpu_types::has_cloth_edge_pairs(o.plan.features) =>
-                    {
-                        let groups =
-                            [o.step_groups[0] * self.search_lanes, o.step_groups[1], o.step_groups[2]];
-                        rec.dispatch_with(pipeline, o.sets[1], groups, &push)
+                    _ => {
+                        let [x, y, z] = o.step_groups;
+                        rec.dispatch_with(pipeline, o.sets[1], [x * lanes, y, z], &push)
                     }
-                    _ => rec.dispatch_with(pipeline, o.sets[1], o.step_groups, &push),
                 }
             }
             rec.barrier(&barriers);
+        }
+    }
+
+    /// Lanes a cloth's self-contact search with edge pairs is split among per stage (by
+    /// default `SEARCH_LANES` on a GPU, 1 on a CPU driver; at most `MAX_SEARCH_LANES`); for
+    /// tests and measurements.
+    pub fn set_search_lanes(&mut self, lanes: u32) {
+        self.search_lanes = lanes.clamp(1, MAX_SEARCH_LANES);
+    }
+
+    /// Lanes object `o`'s self-contact passes split each particle's search among
+    /// (`self_pairs.comp`'s push constant `lanes`): `search_lanes` for a cloth with edge pairs
+    /// whose pass `searches` the hash or by brute force (a find or apply pass that builds or
+    /// walks the contact lists keeps each particle's list in one lane), where the wider
+    /// dispatch fits the workgroup count every device allows; else 1.
+    fn lanes_of(&self, o: &GpuObject, searches: bool) -> u32 {
+        let fits = o.step_groups[0].saturating_mul(self.search_lanes) <= MIN_WORKGROUP_COUNT;
+        if searches && fits && gpu_types::has_cloth_edge_pairs(o.plan.features) {
+            self.search_lanes
+        } else {
+            1
         }
     }
 
@@ -632,12 +655,6 @@ impl GpuSim {
     /// scan, scatter), then the note and truncate passes; each ordered after the writes before
     /// it and before the reads after it by a barrier on the state, the scratch and the hash
     /// buffers.
-    /// Lanes a cloth's self-contact search with edge pairs is split among per stage (by
-    /// default `SEARCH_LANES` on a GPU, 1 on a CPU driver); for tests and measurements.
-    pub fn set_search_lanes(&mut self, lanes: u32) {
-        self.search_lanes = lanes.max(1);
-    }
-
     fn record_truncation(&self, rec: &mut Recorder<'_>, substep: u32) {
         let cloths: Vec<&GpuObject> = (self.objects.iter())
             .filter(|o| !self.is_fused(o) && o.self_pairs.is_some())
@@ -671,11 +688,9 @@ impl GpuSim {
             rec.barrier(&barriers);
             for o in &cloths {
                 let pipeline = self.pipelines.get(Stage::SelfPairs(o.plan.features, false, pass));
-                let mut groups = o.step_groups;
-                if pass == SelfPass::Note {
-                    groups[0] *= self.search_lanes;
-                }
-                rec.dispatch_with(pipeline, o.sets[1], groups, &[substep, self.search_lanes]);
+                let lanes = if pass == SelfPass::Note { self.lanes_of(o, true) } else { 1 };
+                let [x, y, z] = o.step_groups;
+                rec.dispatch_with(pipeline, o.sets[1], [x * lanes, y, z], &[substep, lanes]);
             }
         }
         rec.barrier(&barriers);

@@ -157,7 +157,8 @@ impl Stage {
                 [group(kind, f), vec![0, f]].concat()
             }
             Stage::SelfPairs(f, lists, pass) => {
-                // (dispatched over the object's step groups: a rope's when its segments pair)
+                // (dispatched over the object's step groups, a rope's when its segments pair;
+                // with a cloth's edge pairs the searches' lanes times as wide: `lanes_of`)
                 let rope = f & crate::sim::gpu_types::FEATURE_SEGMENT_PAIRS != 0;
                 let kind = if rope { ObjectKind::Rope } else { ObjectKind::Cloth };
                 [group(kind, f), vec![lists as u32, f, pass as u32]].concat()
