@@ -3,19 +3,18 @@
 #extension GL_EXT_control_flow_attributes : require
 #extension GL_KHR_shader_subgroup_basic : require
 #extension GL_KHR_shader_subgroup_vote : require
-// A cloth's contact with its own triangles on the per-stage path, one thread per particle
-// (pinned ones too; with edge pairs, `lanes` of them: pc.lanes), between the spatial hash's build and the constraints, one pass a dispatch
-// (PASS): the find pass (each particle's contacts kept and counted; the contact lists walked,
-// or searched from the hash and rebuilt), the apply pass (each contact's moves summed into its
-// four particles), and with contact_iterations > 1 each further pass's move of the physics
-// output by the sums and the kept contacts' application from there. The work is in
-// self_contact.glsl and constraints_body.glsl, shared with fused.comp; the constraint stage
-// adds the last pass's sums. The find and apply passes read the contact lists' state (LISTS:
-// the pipelines with lists on). With a cloth's edge pairs two passes follow the constraint
-// stage (after truncation_hash.comp's hash of where the particles began the substep): each
-// particle's pairs near there noted in their particles' truncations (note_truncation: CPOS
-// reads the start in that pass), then each particle's move truncated (truncate_move), on the
-// stage's result in p_out.
+// A cloth's contact with its own triangles on the per-stage path, one thread per particle (pinned
+// ones too; with edge pairs, pc.lanes of them), between the spatial hash's build and the
+// constraints, one pass a dispatch (PASS): the find pass (each particle's contacts kept and
+// counted; the contact lists walked, or searched from the hash and rebuilt), the apply pass (each
+// contact's moves summed into its four particles), and with contact_iterations > 1 each further
+// pass's move of the physics output by the sums and the kept contacts' application from there. The
+// work is in self_contact.glsl and constraints_body.glsl, shared with fused.comp; the constraint
+// stage adds the last pass's sums. The find and apply passes read the contact lists' state (LISTS:
+// the pipelines with lists on). With a cloth's edge pairs two passes follow the constraint stage
+// (after truncation_hash.comp's hash of where the particles began the substep): each particle's
+// pairs near there noted in their particles' truncations (note_truncation: CPOS reads the start in
+// that pass), then each particle's move truncated (truncate_move), on the stage's result in p_out.
 #define STATE_OUT_READ
 #define STATE_IN_WRITE
 #include "bindings.glsl"
@@ -104,11 +103,10 @@ void main() {
         return;
     }
     list_state(i, pc.substep, self_hashed(), LISTS);
-    // A search of the hash that builds no lists is split among the lanes; else lane 0 alone.
-    bool split = cloth_edge_pairs() && list_rebuild && !list_build;
-    if (!split && lane > 0u) return;
+    // (split only where the pass searches the hash with the lists off: the host passes one
+    // lane where it builds or walks them, sim::gpu::GpuSim::lanes_of)
     search_lane = lane;
-    search_lanes = split ? lanes : 1u;
+    search_lanes = lanes;
     // (p_out: the substep's start, which only the find pass notes)
     self_pass(cell, i, x, APPLY ? x : p_out[i].pos.xyz, APPLY);
     if (PASS == PASS_FIND && subgroupAny(pair_len > 0u) && subgroupElect()) {

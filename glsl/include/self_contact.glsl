@@ -648,29 +648,29 @@ void add_move(uint i, vec3 move, vec3 rest) {
 // 0.010 m/s after, against 0.011 to 0.034 with it and 1.5; tests/suite/self_contact.rs).
 float pair_relaxation() { return edge_contact() ? 1.5 : 1.0; }
 
-// With a cloth's edge pairs, every pair (particle and triangle, edge and edge) nearer than h at
-// the substep's start keeps its two sides apart over the whole substep, whatever moved them
-// (the solve, the contacts' passes, the colliders): each free particle's move from where it
-// began is cut short (scaled, velocity too) where it would come nearer than TRUNCATION_GAP h / 2
-// to the plane halfway between the pair's nearest points at the substep's start, square to
-// their offset. Each side then stays in its own half-space for the whole substep (a move along
-// a segment, and the sides convex), so no particle passes through a triangle and no edge
-// through an edge among those pairs, at any speed; the contacts' response still pushes the
-// sides out to h. Moving away or along the plane is never cut. The pairs (note_truncation)
-// include a fold's, which contacts leave out: a cloth wrung by kinematic handles squeezes
-// exactly those through; edge pairs count where one edge is creased. A plain fraction of the gap (no floor), as Newton's VBD truncation has it, lets a pair
-// squeezed without limit close it geometrically until rounding passes one side through; a
-// fixed gap instead stops the squeeze where it is. (Offset Geometric Contact and Newton's
-// planar truncation bound each vertex this way; the response there is inside the solve.)
-// Twin: sim::cpu::self_contact's truncation.
+// With a cloth's edge pairs, every pair (particle and triangle, edge and edge) nearer than h at the
+// substep's start keeps its two sides apart over the whole substep, whatever moved them (the solve,
+// the contacts' passes, the colliders): each free particle's move from where it began is cut short
+// (scaled, velocity too) where it would come nearer than TRUNCATION_GAP h / 2 to the plane halfway
+// between the pair's nearest points at the substep's start, square to their offset. Each side then
+// stays in its own half-space for the whole substep (a move along a segment, and the sides convex),
+// so no particle passes through a triangle and no edge through an edge among those pairs, at any
+// speed; the contacts' response still pushes the sides out to h. Moving away or along the plane is
+// never cut. The pairs (note_truncation) include a fold's, which contacts leave out: a cloth wrung
+// by kinematic handles squeezes exactly those through; edge pairs count where one edge is creased.
+// A plain fraction of the gap (no floor), as Newton's VBD truncation has it, lets a pair squeezed
+// without limit close it geometrically until rounding passes one side through; a fixed gap instead
+// stops the squeeze where it is. (Offset Geometric Contact and Newton's planar truncation bound
+// each vertex this way; the response there is inside the solve.) Twin: sim::cpu::self_contact's
+// truncation.
 const float TRUNCATION_GAP = 0.5;
 
-// The truncation holds every pair nearer than h at a substep's start, but a pair a little
-// farther can still cross within the substep where its sides close more than that gap (a cloth's free
-// border snapping through a crumple at 4 m/s). Each free particle's move in a substep is also
-// held to TRUNCATION_MOVE h (scaled as the truncation scales it), so that no two sides close
-// more than h: past (h / 2) / dt a particle is slowed, which `simulate` states as its contact
-// speed (sim::collider::contact_speed). Twin: sim::cpu::self_contact::TRUNCATION_MOVE.
+// The truncation holds every pair nearer than h at a substep's start, but a pair a little farther
+// can still cross within the substep where its sides close more than that gap (a cloth's free
+// border snapping through a crumple at 4 m/s). Each free particle's move in a substep is also held
+// to TRUNCATION_MOVE h (scaled as the truncation scales it), so that no two sides close more than
+// h: past (h / 2) / dt a particle is slowed, which `simulate` states as its contact speed
+// (sim::collider::contact_speed). Twin: sim::cpu::self_contact::TRUNCATION_MOVE.
 const float TRUNCATION_MOVE = 0.5;
 
 // TRUNC_POS(j): particle j's position after the constraint stage (defined by the includer
