@@ -2,18 +2,23 @@
 # The test suite: installs missing system packages, then runs the tests on the Vulkan device
 # (on a machine without a GPU: Mesa's lavapipe) with validation and synchronization validation.
 #
-#   scripts/test.sh            the default tier: every behaviour (about 5.5 minutes on a 2-core
-#                              machine once built, 9.5 with the build)
+#   scripts/test.sh            the default tier: each feature's checks (about 7 minutes on a
+#                              fresh 2-core machine once built, 9 with the build)
 #   scripts/test.sh --all      the default tier, then the exhaustive one: the tests `#[ignore]`d
 #                              as repeating a behaviour at a larger size or over more cases (CI)
 #   scripts/test.sh FILTER     only the integration tests whose names contain FILTER
 #                              (`scripts/test.sh self_contact::`)
 #
-# The unit tests run as `cargo test` runs them; each integration test (tests/suite/) runs in a
-# process of its own, as many at once as there are cores: the validation layer serialises the
-# GPU work of threads of one process. Options starting with `-` go to `cargo test --no-run`.
-# Prints each test's result and time, the time of the build and of each tier, and ends with
-# one line of totals.
+# The unit tests run as `cargo test` runs them; the integration tests (tests/suite/) a file
+# (module) a process, its tests one after another sharing one GPU context, as many processes
+# at once as there are cores (the validation layer serialises the GPU work of threads of one
+# process). Sharing the context shares its pipelines: lavapipe compiles each pipeline variant
+# once a process, and compiling was most of a test's time. A test that fails there, or does not
+# run because one before it crashed the process, runs again in a process of its own, and that
+# run's result counts (a test that panics leaves its GPU objects behind, which would fail the
+# next one's check). Options starting with `-` go to `cargo test --no-run`. Prints each
+# test's result, each file's time, the time of the build and of each tier, and ends with one
+# line of totals.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 all=0
@@ -68,7 +73,24 @@ run_one() {
         printf 'FAIL %4ds %s\n' $((SECONDS - t0)) "$name"
     fi
 }
-export -f log_of run_one
+# The integration tests named in file $1 (one file's, of one tier) in one process sharing a
+# context (`MSDSIM_TEST_SHARED_CONTEXT`, tests/suite/common); those that did not pass there run
+# alone (run_one).
+run_file() {
+    local file=$1 log t0=$SECONDS name
+    log=$(log_of "$(basename "$file")")
+    xargs -a "$file" -d '\n' env MSDSIM_TEST_SHARED_CONTEXT=1 "$suite" --exact --include-ignored \
+        --test-threads 1 > "$log" 2>&1 || true
+    while read -r name; do
+        if grep -qxF "test $name ... ok" "$log"; then
+            printf 'PASS       %s\n' "$name"
+        else
+            run_one "$name"
+        fi
+    done < "$file"
+    printf '     %4ds %s (%d tests)\n' $((SECONDS - t0)) "$(basename "$file")" "$(wc -l < "$file")"
+}
+export -f log_of run_one run_file
 export suite work
 
 # The integration tests of a tier (`--ignored`: the exhaustive one), listed by the binary.
@@ -83,7 +105,17 @@ run_tier() {
     [ -n "$listed" ] || return 0
     local start
     start=$(date +%s)
-    tr '\n' '\0' <<< "$listed" | xargs -0 -P "$(nproc)" -I{} bash -c 'run_one "$1"' _ {} | tee "$work/$tier.results"
+    # (a file of names for each test file; the longest to run first, then by their tests'
+    # count, so that no long one starts last)
+    local dir="$work/$tier.files" longest="gpu_vs_cpu self_contact cli mesh_cloth"
+    mkdir -p "$dir"
+    while read -r name; do echo "$name" >> "$dir/${name%%::*}"; done <<< "$listed"
+    {
+        for m in $longest; do [ -f "$dir/$m" ] && echo "$dir/$m"; done
+        for f in "$dir"/*; do
+            grep -qw "$(basename "$f")" <<< "$longest" || echo "$(wc -l < "$f") $f"
+        done | sort -rn | cut -d' ' -f2
+    } | xargs -P "$(nproc)" -I{} bash -c 'run_file "$1"' _ {} | tee "$work/$tier.results"
     times="$times, $tier tier $(seconds "$start") s"
     passed=$((passed + $(grep -c '^PASS' "$work/$tier.results" || true)))
     while read -r name; do

@@ -24,6 +24,13 @@ impl ValidationCanary {
         self.messages.lock().unwrap_or_else(|e| e.into_inner()).clone()
     }
 
+    /// The count and first messages seen so far, counting afresh from now (a context shared
+    /// by several tests checks each test's messages alone).
+    pub fn take(&self) -> (u32, Vec<String>) {
+        let mut m = self.messages.lock().unwrap_or_else(|e| e.into_inner());
+        (self.count.swap(0, Ordering::SeqCst), std::mem::take(&mut *m))
+    }
+
     fn record(&self, text: String) {
         self.count.fetch_add(1, Ordering::SeqCst);
         let mut m = self.messages.lock().unwrap_or_else(|e| e.into_inner());

@@ -15,7 +15,7 @@ use std::path::Path;
 use std::time::{Duration, Instant};
 
 struct Rig {
-    ctx: std::rc::Rc<msdsim::vk::GpuContext>,
+    ctx: std::sync::Arc<msdsim::vk::GpuContext>,
     shaders: ShaderSet,
     sim: GpuSim,
     retired: RetireQueue,

@@ -12,7 +12,7 @@ use msdsim::sim::model::{
 };
 use msdsim::vk::{ContextOptions, GpuContext};
 use std::cell::RefCell;
-use std::rc::Rc;
+use std::sync::{Arc, Mutex};
 
 /// Gives SIGINT its default action back in this test's process, so that the children it
 /// stops with SIGINT inherit that: a shell starts a background job (`scripts/test.sh &`) with
@@ -26,17 +26,28 @@ pub fn default_sigint() {
 /// A context with validation and synchronization validation. Panics (never skips) when no
 /// Vulkan device or validation layer is available. A crash by a signal from here on prints
 /// its test thread and stack (`crash`).
-pub fn gpu() -> Rc<GpuContext> {
-    CONTEXT.with(|c| c.borrow_mut().get_or_insert_with(|| Rc::new(new_context())).clone())
+///
+/// With `MSDSIM_TEST_SHARED_CONTEXT` set (scripts/test.sh, which runs a file's tests one after
+/// another in one process) every test of the process shares one context, so that a pipeline
+/// one test compiled is taken from its cache by the next.
+pub fn gpu() -> Arc<GpuContext> {
+    if std::env::var_os("MSDSIM_TEST_SHARED_CONTEXT").is_some() {
+        let mut shared = SHARED.lock().unwrap_or_else(|e| e.into_inner());
+        return shared.get_or_insert_with(|| Arc::new(new_context())).clone();
+    }
+    CONTEXT.with(|c| c.borrow_mut().get_or_insert_with(|| Arc::new(new_context())).clone())
 }
+
+/// The process's context where tests share one (`gpu`); kept to the process's end.
+static SHARED: Mutex<Option<Arc<GpuContext>>> = Mutex::new(None);
 
 thread_local! {
     /// The test thread's context: every `gpu()` of one test shares it, so that a pipeline one
     /// path or run compiled is taken from the context's cache by the next instead of compiled
-    /// again (on lavapipe compiling the pipelines was over half of a test's time). Validation
-    /// messages and live allocations are counted over the whole test (`assert_clean`). It
-    /// goes with the test's thread.
-    static CONTEXT: RefCell<Option<Rc<GpuContext>>> = const { RefCell::new(None) };
+    /// again (on lavapipe compiling the pipelines was over half of a test's time). Live
+    /// allocations are counted over the whole test, validation messages since the last
+    /// `assert_clean`. It goes with the test's thread.
+    static CONTEXT: RefCell<Option<Arc<GpuContext>>> = const { RefCell::new(None) };
 }
 
 fn new_context() -> GpuContext {
@@ -56,8 +67,8 @@ fn new_context() -> GpuContext {
 
 /// Fails the test if validation reported anything or an allocation is still alive.
 pub fn assert_clean(ctx: &GpuContext) {
-    let count = ctx.canary().count();
-    assert_eq!(count, 0, "{count} validation message(s): {:#?}", ctx.canary().messages());
+    let (count, messages) = ctx.canary().take();
+    assert_eq!(count, 0, "{count} validation message(s): {messages:#?}");
     let live = ctx.live_allocations();
     assert!(live.is_empty(), "allocations leaked: {live:?}");
 }
