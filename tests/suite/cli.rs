@@ -256,25 +256,27 @@ fn an_unstable_scene_exits_3_with_advice() {
 /// yet explained: docs/guide/limits.md). Edge contact holds each move to half the contact
 /// distance a substep (but not one past sim.max_speed), so the guard may see the blow-up
 /// first as a spring stretched past twice its length; its message names the stability limit
-/// either way.
+/// either way. A run of the same scene at its own mass comes first: lavapipe compiles the
+/// pipelines in the first frame (20 s and more with no shader cache yet, as on a fresh
+/// machine), and Mesa's shader cache then has them for the timed run.
 #[test]
+#[ignore = "exhaustive tier: kept out of the default tier's 10-minute budget"]
 fn a_blow_up_with_edge_contact_ends_within_its_frame() {
-    let out = msdsim(&[
-        "--gpu-timeout",
-        "10",
+    let scene = [
         "simulate",
         "--preset",
         "presets/towel.toml",
         "--set",
-        "cloth.0.mass=1e-7",
-        "--set",
         "cloth.0.self_contact=\"triangles_and_edges\"",
         "--set",
         "sim.integrator=\"symplectic_euler\"",
-        "--frames",
-        "2",
         "--quiet",
-    ]);
+    ];
+    // (its outcome is the timed run's to check)
+    msdsim(&[&scene[..], &["--frames", "1"]].concat());
+    let out = msdsim(
+        &[&["--gpu-timeout", "10"], &scene[..], &["--set", "cloth.0.mass=1e-7", "--frames", "2"]].concat(),
+    );
     let stderr = String::from_utf8_lossy(&out.stderr);
     assert_eq!(out.status.code(), Some(3), "stderr: {stderr}");
     assert!(stderr.contains("blew up") || stderr.contains("over-stretched"), "{stderr}");
@@ -401,6 +403,7 @@ fn chart_error(csv: &str, method: &str, substeps: &str) -> f64 {
 /// stretch at that step, hangs several times too low: its error at least 5x each of theirs
 /// (measured on lavapipe: see the assertion message).
 #[test]
+#[ignore = "exhaustive tier: kept out of the default tier's 10-minute budget"]
 fn chart_stiff_scene_separates_the_large_step_methods() {
     let args = [
         "--methods",
