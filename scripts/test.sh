@@ -13,10 +13,11 @@
 # (module) a process, its tests one after another sharing one GPU context, as many processes
 # at once as there are cores (the validation layer serialises the GPU work of threads of one
 # process). Sharing the context shares its pipelines: lavapipe compiles each pipeline variant
-# once a process, and compiling was most of a test's time. A test that fails there, or does not
-# run because one before it crashed the process, runs again in a process of its own, and that
-# run's result counts (a test that panics leaves its GPU objects behind, which would fail the
-# next one's check). Options starting with `-` go to `cargo test --no-run`. Prints each
+# once a process, and compiling was most of a test's time. The first test of a process that
+# fails (or dies) fails; those after it that do not pass run again each in a process of its
+# own, and that run's result counts (a test that panics leaves its GPU objects behind, which
+# would fail the next one's check); a process that ends in error after all its tests passed
+# fails as its file. Options starting with `-` go to `cargo test --no-run`. Prints each
 # test's result, each file's time, the time of the build and of each tier, and ends with one
 # line of totals.
 set -euo pipefail
@@ -74,21 +75,30 @@ run_one() {
     fi
 }
 # The integration tests named in file $1 (one file's, of one tier) in one process sharing a
-# context (`MSDSIM_TEST_SHARED_CONTEXT`, tests/suite/common); those that did not pass there run
-# alone (run_one).
+# context (`MSDSIM_TEST_SHARED_CONTEXT`, tests/suite/common). The first that did not pass
+# there (failed, or was running when the process died) fails with the process's output; those
+# after it that did not pass run alone (run_one).
 run_file() {
-    local file=$1 log t0=$SECONDS name
-    log=$(log_of "$(basename "$file")")
+    local file=$1 base log t0=$SECONDS name first status=0
+    base=$(basename "$file")
+    log=$(log_of "$base")
     xargs -a "$file" -d '\n' env MSDSIM_TEST_SHARED_CONTEXT=1 "$suite" --exact --include-ignored \
-        --test-threads 1 > "$log" 2>&1 || true
+        --test-threads 1 > "$log" 2>&1 < /dev/null || status=$?
+    first=$(awk '/^test [^ ]+ \.\.\. / && $NF != "ok" { print $2; exit }' "$log")
     while read -r name; do
         if grep -qxF "test $name ... ok" "$log"; then
             printf 'PASS       %s\n' "$name"
+        elif [ "$name" = "$first" ]; then
+            cp "$log" "$(log_of "$name")"
+            printf 'FAIL       %s\n' "$name"
         else
-            run_one "$name"
+            run_one "$name" < /dev/null
         fi
     done < "$file"
-    printf '     %4ds %s (%d tests)\n' $((SECONDS - t0)) "$(basename "$file")" "$(wc -l < "$file")"
+    if [ "$status" != 0 ] && [ -z "$first" ] && [ "$(grep -c ' \.\.\. ok$' "$log")" = "$(wc -l < "$file")" ]; then
+        printf 'FAIL       %s\n' "$base"
+    fi
+    printf '     %4ds %s (%d tests)\n' $((SECONDS - t0)) "$base" "$(wc -l < "$file")"
 }
 export -f log_of run_one run_file
 export suite work
@@ -114,7 +124,7 @@ run_tier() {
         for m in $longest; do [ -f "$dir/$m" ] && echo "$dir/$m"; done
         for f in "$dir"/*; do
             grep -qw "$(basename "$f")" <<< "$longest" || echo "$(wc -l < "$f") $f"
-        done | sort -rn | cut -d' ' -f2
+        done | sort -rn | cut -d' ' -f2-
     } | xargs -P "$(nproc)" -I{} bash -c 'run_file "$1"' _ {} | tee "$work/$tier.results"
     times="$times, $tier tier $(seconds "$start") s"
     passed=$((passed + $(grep -c '^PASS' "$work/$tier.results" || true)))
@@ -123,7 +133,7 @@ run_tier() {
         failures+=("$name")
         echo "---- $name ----"
         cat "$(log_of "$name")"
-    done < <(sed -n 's/^FAIL *[0-9]*s //p' "$work/$tier.results")
+    done < <(sed -n 's/^FAIL *\([0-9]*s\)\? *//p' "$work/$tier.results")
 }
 run_tier default
 if [ "$all" = 1 ]; then

@@ -916,7 +916,7 @@ fn self_collision_lists_forced_on_and_off() {
     );
 }
 
-/// `rope_self_collision` by brute force (the hash is the default tier's).
+/// `rope_self_collision` by brute force (the hash is that test's).
 #[test]
 #[ignore = "exhaustive tier: the brute-force search"]
 fn rope_self_collision_by_brute_force() {
@@ -1122,10 +1122,10 @@ fn fused_substeps_equal_the_per_stage_path() {
 /// The iterative methods fused (prediction, colour or Jacobi passes separated by barrier(),
 /// constraints, in one workgroup) equal their per-stage path to f32 rounding (the 13 x 9
 /// cloth's 117 particles take one slot under either limit; two are tested on a 33 x 32 cloth
-/// below): 1e-6 m allowed over 240 substeps, as above (on the uneven grids 112) (measured: 0 m for XPBD, VBD and XPBD by Jacobi; 3.6e-7 m for the
-/// implicit method, whose dot products each path sums in its own order: a workgroup's
-/// subgroups fused, workgroups' sums per stage). Without the barrier
-/// between two colours a particle reads a neighbour's half-updated displacement: XPBD's paths
+/// below): 1e-6 m allowed over 240 substeps, as above (on the uneven grids 112) (measured: 0 m
+/// for XPBD, VBD and XPBD by Jacobi; 3.6e-7 m for the implicit method, whose dot products each
+/// path sums in its own order: a workgroup's subgroups fused, workgroups' sums per stage).
+/// Without the barrier between two colours a particle reads a neighbour's half-updated displacement: XPBD's paths
 /// then part by 0.25 m. The default tier takes VBD and XPBD (Gauss-Seidel by colours) on
 /// grids whose colour classes have uneven rows at one particle a thread (two are
 /// `iterative_methods_at_two_particles_a_thread_match_the_per_stage_path`'s); the exhaustive
@@ -1427,21 +1427,22 @@ fn iterative_methods_on_stiff_springs_at_one_substep() {
 /// swinging scene a moving particle of the cloth is stopped and lifted by 1 cm; 5 frames later
 /// both must still agree (measured: 2.4e-6 m at most). Kept, the stale history moves it on by a
 /// third of its last step, and the paths part by 2.1e-4 m (XPBD), twice the tolerance.
-/// Each method on one path (alternating); the other paths in a test of their own.
+/// The default tier takes XPBD fused (its pipelines are the fused iterative methods' test's);
+/// the exhaustive tier every method on each path.
 #[test]
-#[ignore = "exhaustive tier: kept out of the default tier's 10-minute budget"]
 fn a_particle_set_between_frames_loses_its_history() {
-    particle_set_loses_history(&alternate_paths(true));
+    particle_set_loses_history(&[(Integrator::Xpbd, true)]);
 }
 
 #[test]
-#[ignore = "exhaustive tier: each method on the other path"]
+#[ignore = "exhaustive tier: every method on each path"]
 fn a_particle_set_between_frames_loses_its_history_on_the_other_paths() {
+    particle_set_loses_history(&alternate_paths(true));
     particle_set_loses_history(&alternate_paths(false));
 }
 
 /// Each iterative method with a path, fused for every other one in order, starting with
-/// `first_fused` (the default tier takes one half, the exhaustive tier the other).
+/// `first_fused`.
 fn alternate_paths(first_fused: bool) -> Vec<(Integrator, bool)> {
     iterative().enumerate().map(|(i, m)| (m, (i % 2 == 0) == first_fused)).collect()
 }
@@ -1489,7 +1490,7 @@ fn particle_set_loses_history(paths: &[(Integrator, bool)]) {
 /// symplectic Euler's deviation. Measured: symplectic Euler 3.2e-6 m, XPBD 3.6e-6, implicit
 /// 3.7e-6 to 4.0e-6, VBD 3.8e-6. With the rounding of the base x~ left in the positions (not
 /// carried in `lost`, predict_body.glsl) every method parted by 1.6e-5 m.
-/// The default tier takes each method on one path (alternating), the exhaustive tier the other.
+/// Each method on one path (alternating); the other path in the test after it.
 #[test]
 #[ignore = "exhaustive tier: kept out of the default tier's 10-minute budget"]
 fn the_bdf2_start_rounds_no_worse_than_an_explicit_step() {

@@ -174,7 +174,6 @@ fn standing_strip(dims: [usize; 2], spacing: f64, top: f64, tilt: f64) -> SimMod
 /// (`one_contact_pass_lets_a_strip_pile_through`) and the GPU with edges are the exhaustive
 /// tier's.
 #[test]
-#[ignore = "exhaustive tier: kept out of the default tier's 10-minute budget"]
 fn contact_iterations_stop_a_strip_piling_on_itself() {
     let s = piling_strip();
     assert_eq!(s.contact_iterations, 4);
