@@ -1125,9 +1125,10 @@ fn fused_substeps_equal_the_per_stage_path() {
 /// below): 1e-6 m allowed over 240 substeps, as above (on the uneven grids 112) (measured: 0 m
 /// for XPBD, VBD and XPBD by Jacobi; 3.6e-7 m for the implicit method, whose dot products each
 /// path sums in its own order: a workgroup's subgroups fused, workgroups' sums per stage).
-/// Without the barrier between two colours a particle reads a neighbour's half-updated displacement: XPBD's paths
-/// then part by 0.25 m. The default tier takes VBD and XPBD (Gauss-Seidel by colours) on
-/// grids whose colour classes have uneven rows at one particle a thread (two are
+/// Without the barrier between two colours a particle reads a neighbour's half-updated
+/// displacement: XPBD's paths then part by 0.25 m. The default tier takes VBD and XPBD
+/// (Gauss-Seidel by colours) on grids whose colour classes have uneven rows at one particle a
+/// thread (two are
 /// `iterative_methods_at_two_particles_a_thread_match_the_per_stage_path`'s); the exhaustive
 /// tier the other methods there and the 13 x 9 scene at both.
 #[test]
