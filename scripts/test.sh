@@ -102,6 +102,9 @@ run_file() {
 }
 export -f log_of run_one run_file
 export suite work
+# The validation layer reports a message at most 10 times an instance by default: in a process
+# that runs many tests on one instance, a later test's repeat of a message would go unreported.
+export VK_LAYER_DUPLICATE_MESSAGE_LIMIT=1000000000
 
 # The integration tests of a tier (`--ignored`: the exhaustive one), listed by the binary.
 run_tier() {
