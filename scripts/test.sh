@@ -79,8 +79,9 @@ run_one() {
 # there (failed, or was running when the process died) fails with the process's output; those
 # after it that did not pass run alone (run_one).
 run_file() {
-    local file=$1 base log t0=$SECONDS name first status=0
+    local file=$1 base log t0=$SECONDS name first status=0 count
     base=$(basename "$file")
+    count=$(wc -l < "$file")
     log=$(log_of "$base")
     xargs -a "$file" -d '\n' env MSDSIM_TEST_SHARED_CONTEXT=1 "$suite" --exact --include-ignored \
         --test-threads 1 > "$log" 2>&1 < /dev/null || status=$?
@@ -95,10 +96,10 @@ run_file() {
             run_one "$name" < /dev/null
         fi
     done < "$file"
-    if [ "$status" != 0 ] && [ -z "$first" ] && [ "$(grep -c ' \.\.\. ok$' "$log")" = "$(wc -l < "$file")" ]; then
+    if [ "$status" != 0 ] && [ -z "$first" ] && [ "$(grep -c ' \.\.\. ok$' "$log")" = "$count" ]; then
         printf 'FAIL       %s\n' "$base"
     fi
-    printf '     %4ds %s (%d tests)\n' $((SECONDS - t0)) "$base" "$(wc -l < "$file")"
+    printf '     %4ds %s (%d tests)\n' $((SECONDS - t0)) "$base" "$count"
 }
 export -f log_of run_one run_file
 export suite work
