@@ -4,6 +4,7 @@
 pub mod cloth_mesh;
 pub mod collider;
 pub mod collider_mesh;
+pub mod colouring;
 pub mod cpu;
 pub mod gpu;
 pub mod gpu_types;
