@@ -40,9 +40,9 @@ vec3 wind_force(vec3 x) {
     return g.wind_dir * (g.wind_force * wind_strength(x));
 }
 
-// Gravity, wind and drag on a particle at x moving at v [N].
-vec3 external_force(vec3 x, vec3 v) {
-    return obj.mass * GRAVITY_SCALE * g.gravity + wind_force(x) - obj.drag * v;
+// Gravity, wind and drag on a particle of mass m at x moving at v [N].
+vec3 external_force(vec3 x, vec3 v, float m) {
+    return m * GRAVITY_SCALE * g.gravity + wind_force(x) - obj.drag * v;
 }
 
 #endif

@@ -15,9 +15,16 @@ uint mesh_springs_at() { return obj_words[0]; }
 uint mesh_colours_at() { return obj_words[1]; }
 uint mesh_triangles_at() { return obj_words[2]; }
 uint mesh_rings_at() { return obj_words[3]; }
+uint mesh_masses_at() { return obj_words[4]; }
 
 // Particle i's springs are entries [mesh_first(i), mesh_first(i + 1)).
-uint mesh_first(uint i) { return obj_words[4u + i]; }
+uint mesh_first(uint i) { return obj_words[5u + i]; }
+
+// Particle i's mass over the object's `mass`: 1 for a grid's; for a mesh's its share, a third
+// of its triangles' area over the mean (ClothMesh::mass_share).
+float mass_share(uint i) { return is_mesh() ? uintBitsToFloat(obj_words[mesh_masses_at() + i]) : 1.0; }
+// The mass of particle `cell` [kg].
+float particle_mass(uvec2 cell) { return obj.mass * mass_share(cell.x); }
 
 // The stiffness of a spring of `type`: the grid's three types, or 3 a seam (rest length zero,
 // sim::cloth_mesh::SEAM) [N/m].

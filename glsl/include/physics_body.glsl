@@ -24,9 +24,10 @@ float physics_drift() { return VERLET ? 0.5 * g.dt : 0.0; }
 // becomes the new position; v the new velocity.
 void physics_step(uvec2 cell, inout vec3 x, inout vec3 v) {
     float drift = physics_drift();
-    vec3 force = external_force(x, v) + air_force(cell, x, v, drift);
+    float m = particle_mass(cell);
+    vec3 force = external_force(x, v, m) + air_force(cell, x, v, drift);
     add_spring_forces(cell, x, v, drift, force);
-    v += force * (g.dt / obj.mass);
+    v += force * (g.dt / m);
     x += v * (g.dt - drift);
 }
 

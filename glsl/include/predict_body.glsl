@@ -17,8 +17,9 @@
 // step of implicit Euler (sim::cpu::integrators::inertial and restart). `pull` is the
 // prediction's part h^2 F / m.
 vec3 predicted_displacement(uvec2 cell, vec3 x, vec3 v, vec4 hx, vec3 hv, out vec3 base, out vec3 pull) {
-    vec3 force = external_force(x, v) + air_force(cell, x, v, 0.0);
-    vec3 a = force / obj.mass;
+    float m = particle_mass(cell);
+    vec3 force = external_force(x, v, m) + air_force(cell, x, v, 0.0);
+    vec3 a = force / m;
     if (implicit_euler()) {
         // implicit Euler's start: base x_n, y = x_n + dt v_n + dt^2 F / m
         base = vec3(0.0);
@@ -31,7 +32,7 @@ vec3 predicted_displacement(uvec2 cell, vec3 x, vec3 v, vec4 hx, vec3 hv, out ve
     if (!known) {
         float stiffness;
         vec3 elastic = elastic_spring_force(cell, x, stiffness);
-        vec3 ar = (force + elastic) / (obj.mass + g.dt * g.dt * stiffness);
+        vec3 ar = (force + elastic) / (m + g.dt * g.dt * stiffness);
         dx = (v + ar * g.dt) * g.dt;
         dv = ar * g.dt;
     }
@@ -54,7 +55,7 @@ float stiffness_ratio(uvec2 cell, float h) {
             float k = mesh_spring(e).k;
             if (k != 0.0) sum += h * (h * k + obj.stiffness.w);
         }
-        return sum / obj.mass;
+        return sum / particle_mass(cell);
     }
     [[unroll]] for (int s = 0; s < 12; ++s) {
         ivec3 spring = SPRINGS[s];

@@ -26,8 +26,8 @@
 // = 1 for p and -b_k for t's vertex k, b the barycentric weights of t's point nearest p; for edges
 // (p, a) and (j, b) with nearest points at p + s (a - p) and j + u (b - j), c = (1 - s, s, u - 1,
 // -u). With n the unit offset, the projection of the constraint n . sum c_k x_k >= h moves particle
-// k by w_k c_k lambda n (w: 1 free, 0 pinned; one mass in a cloth), so the pair's momentum is
-// unchanged. Of the overlap h - d, the part the substep's approach made (the relative motion of the
+// k by w_k c_k lambda n (w: its inverse mass over the object's mass, 0 pinned, 1 free on a grid;
+// m_k w_k is the object's mass for every free particle), so the pair's momentum is unchanged. Of the overlap h - d, the part the substep's approach made (the relative motion of the
 // two nearest points along -n since the substep began) is undone with the velocity that made it,
 // and the rest, left from earlier substeps, in position only (the constraint stage's velocity
 // follows the correction but for that part: a late-resolved overlap does not bounce). Coulomb
@@ -760,6 +760,10 @@ void apply_contact(uint p, vec3 x, uint code) {
     if (!(d > 0.0 && d < obj.self_distance)) return;
     vec4 free_m = vec4(CPINNED(m.x) ? 0.0 : 1.0, CPINNED(m.y) ? 0.0 : 1.0, CPINNED(m.z) ? 0.0 : 1.0,
                        CPINNED(m.w) ? 0.0 : 1.0);
+    // Each particle's inverse mass over the object's: 0 pinned, 1 free on a grid, the inverse
+    // of its mass_share on a mesh.
+    vec4 w = free_m;
+    if (is_mesh()) w /= vec4(mass_share(m.x), mass_share(m.y), mass_share(m.z), mass_share(m.w));
     // Each free particle's count of contacts.
     vec4 shares = vec4(0.0);
     [[unroll]] for (int q = 0; q < 4; ++q) {
@@ -772,7 +776,7 @@ void apply_contact(uint p, vec3 x, uint code) {
     float weight = contact_weight(overlap) * pair_part(p, code, c);
     // Each free particle's mass split among its contacts: inverse mass w n, n its count (at
     // least 1).
-    vec4 split_m = max(shares, free_m);
+    vec4 split_m = max(shares, free_m) * w;
     // The relative motion of the two sides' nearest points over the substep: the overlap it
     // made (its approach along n) is undone with the velocity that made it; what overlap
     // remains from before is undone in position only (no bounce from an overlap resolved late).
@@ -781,7 +785,7 @@ void apply_contact(uint p, vec3 x, uint code) {
     float approach = clamp(-dot(moved, n), 0.0, overlap);
     vec4 c2 = c * c;
     float split = dot(c2, split_m);
-    float whole = dot(c2, free_m);
+    float whole = dot(c2, w);
     // (Weights on pinned particles only: nothing to move.)
     if (!(whole > 0.0)) return;
     float k = weight * min(pair_relaxation() / split, 1.0 / whole);
@@ -794,13 +798,13 @@ void apply_contact(uint p, vec3 x, uint code) {
     // while a particle's weak contacts together undo no more than one would (times the
     // over-relaxation). The counts are fixed point (1 / 65536): a contact of weight near 1e-5
     // takes a somewhat smaller share on the GPU than on the reference, within a cone that small.
-    float counted = dot(c2, max(shares, weight * free_m));
+    float counted = dot(c2, max(shares, weight * free_m) * w);
     float share = weight > 0.0 ? min(pair_relaxation() * weight / counted, 1.0 / whole) : 0.0;
     vec3 slip = share > 0.0 ? friction_correction(moved, n, k * approach / share, obj.friction) * share : vec3(0.0);
     vec3 push = n * (overlap * k) - slip;
     vec3 rest = n * ((overlap - approach) * k);
     [[unroll]] for (int q = 0; q < 4; ++q) {
-        if (free_m[q] > 0.0 && c[q] != 0.0) add_move(m[q], push * c[q], rest * c[q]);
+        if (free_m[q] > 0.0 && c[q] != 0.0) add_move(m[q], push * (c[q] * w[q]), rest * (c[q] * w[q]));
     }
 }
 

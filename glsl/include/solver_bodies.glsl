@@ -105,7 +105,7 @@ struct Sym3 {
 // written in delta = d n below (sim::cpu::integrators::spring_newton).
 vec3 newton_particle(uvec2 cell, vec3 x, vec3 dx, vec3 dy, out Sym3 hessian) {
     float h = solve_dt();
-    float inertia = obj.mass / (h * h);
+    float inertia = particle_mass(cell) / (h * h);
     float b = has(F_DAMPING) ? obj.stiffness.w : 0.0;
     float damp = b / h;  // a dashpot's stiffness on the displacement
     vec3 force = (dy - dx) * inertia;

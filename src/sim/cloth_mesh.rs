@@ -133,6 +133,10 @@ pub struct ClothMesh {
     pub ring: Vec<u32>,
     /// The mesh's area as placed [m^2].
     pub area: f64,
+    /// Per particle, its mass over the mean particle's: a third of the area of each of its
+    /// triangles (lumped), over the mean share area / n. The lumped masses' centre is the
+    /// area's centroid, whatever the triangles; 1 everywhere on a mesh of equal triangles.
+    pub mass_share: Vec<f64>,
     /// The mean length of its edges [m].
     pub mean_edge: f64,
     /// The longest of its structural and shear springs and its triangles' edges [m].
@@ -275,6 +279,12 @@ impl ClothMesh {
                 0.5 * (b - a).cross(c - a).length()
             })
             .sum();
+        let mut mass_share = vec![0.0; n];
+        for t in &triangles {
+            let [a, b, c] = t.map(|k| rest[k as usize]);
+            let third = (b - a).cross(c - a).length() / 6.0;
+            t.iter().for_each(|&k| mass_share[k as usize] += third * n as f64 / area);
+        }
         let edges: Vec<f64> = springs.iter().filter(|s| s.kind == 0).map(|s| s.rest).collect();
         let mean_edge = edges.iter().sum::<f64>() / edges.len().max(1) as f64;
         // (a polygon's fan diagonals are no springs, but its triangles reach that far)
@@ -304,6 +314,7 @@ impl ClothMesh {
             colour_order,
             colour_first,
             area,
+            mass_share,
             mean_edge,
             longest,
             unbent_edges,
@@ -410,18 +421,19 @@ impl ClothMesh {
         let n = self.spring_first.len() as u64 - 1;
         let lists =
             2 * self.springs.len() + self.colour_first.len() + 3 * self.triangles.len() + self.ring.len();
-        // (header, spring firsts, colour count, colour order, ring firsts; then the lists)
-        4 + (n + 1) + 1 + n + (n + 1) + lists as u64
+        // (header, spring firsts, colour count, colour order, ring firsts, mass shares; then
+        // the lists)
+        5 + (n + 1) + 1 + n + (n + 1) + n + lists as u64
     }
 
     /// The words the GPU reads after the object's parameters (glsl/include/mesh_springs.glsl):
-    /// a header of where the spring entries, colours, triangles and rings start; the n + 1
-    /// spring firsts; a spring as two words (other end | kind << 30, its rest length scaled by
-    /// `rest_scale` as f32 bits); the colour count C, the C + 1 colour firsts and the
+    /// a header of where the spring entries, colours, triangles, rings and mass shares start;
+    /// the n + 1 spring firsts; a spring as two words (other end | kind << 30, its rest length
+    /// scaled by `rest_scale` as f32 bits); the colour count C, the C + 1 colour firsts and the
     /// particles by colour; the triangles' corners; each particle's n + 1 ring firsts and
-    /// then its triangles.
+    /// then its triangles; each particle's `mass_share` as f32 bits.
     pub fn pack(&self, rest_scale: [f64; 3]) -> Vec<u32> {
-        let mut w = vec![0u32; 4];
+        let mut w = vec![0u32; 5];
         w.extend(&self.spring_first);
         w[0] = w.len() as u32;
         for s in &self.springs {
@@ -437,6 +449,8 @@ impl ClothMesh {
         w[3] = w.len() as u32;
         w.extend(&self.ring_first);
         w.extend(&self.ring);
+        w[4] = w.len() as u32;
+        w.extend(self.mass_share.iter().map(|&m| (m as f32).to_bits()));
         w
     }
 }
@@ -696,6 +710,22 @@ mod tests {
         assert!((m.area - 0.5 * 0.8).abs() < 1e-12);
         assert_eq!(m.colour_order.len(), 30);
         assert_proper(&m);
+    }
+
+    /// Masses lumped by area, closed forms: a unit square split into four uneven triangles
+    /// about a vertex at (0.2, 0.3) gives the corner (0, 0) a third of its two triangles'
+    /// areas (0.15 and 0.1) over the mean share (1/5); the shares sum to the particle count; and
+    /// their centre is the square's centroid (each triangle's thirds at its corners weigh as
+    /// its area at its centroid), where equal shares would put it at (0.44, 0.46).
+    #[test]
+    fn masses_are_lumped_by_area_with_their_centre_at_the_centroid() {
+        let p = [DVec3::ZERO, DVec3::X, DVec3::new(1.0, 1.0, 0.0), DVec3::Y, DVec3::new(0.2, 0.3, 0.0)];
+        let faces = [vec![0, 1, 4], vec![1, 2, 4], vec![2, 3, 4], vec![3, 0, 4]];
+        let m = ClothMesh::new(&p, &faces, &[], &[]).unwrap();
+        assert!((m.mass_share[0] - 0.25 / 3.0 * 5.0).abs() < 1e-12, "{:?}", m.mass_share);
+        assert!((m.mass_share.iter().sum::<f64>() - 5.0).abs() < 1e-12);
+        let centre = p.iter().zip(&m.mass_share).map(|(x, s)| *x * *s).sum::<DVec3>() / 5.0;
+        assert!(centre.distance(DVec3::new(0.5, 0.5, 0.0)) < 1e-12, "{centre}");
     }
 
     /// No spring joins two particles of one colour; each particle has one colour.

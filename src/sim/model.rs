@@ -90,7 +90,7 @@ pub struct ObjectModel {
     pub seam: f64,
     /// Dashpot along every spring [N s/m].
     pub damping: f64,
-    /// Mass of each particle [kg].
+    /// Mass of each particle [kg]; a mesh cloth's mean particle's (`mass_of`).
     pub mass: f64,
     /// Stokes drag coefficient: force -drag * v [N s/m].
     pub drag: f64,
@@ -141,6 +141,12 @@ impl ObjectModel {
 
     pub fn particle_count(&self) -> usize {
         self.shape().particle_count() as usize
+    }
+
+    /// Particle i's mass [kg]: `mass`, times a mesh cloth particle's share of its area
+    /// (`ClothMesh::mass_share`; `particle_mass` in glsl/include/mesh_springs.glsl).
+    pub fn mass_of(&self, i: usize) -> f64 {
+        self.mesh.as_ref().map_or(self.mass, |m| self.mass * m.mass_share[i])
     }
 
     /// Particle i's pin group (`pin_group`).

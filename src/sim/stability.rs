@@ -110,12 +110,16 @@ pub fn predict_object(
 pub fn predict(model: &SimModel) -> Vec<Prediction> {
     (model.objects.iter())
         .map(|o| match &o.mesh {
-            // A mesh cloth's best-connected particle, from its lists (seams among them).
+            // A mesh cloth's stiffest particle against its mass, from its lists (seams among
+            // them).
             Some(mesh) => {
                 let sum = (0..o.particle_count())
-                    .map(|i| mesh.springs_of(i).iter().map(|s| o.stiffness_of(s.kind as usize)).sum::<f64>())
+                    .map(|i| {
+                        let k: f64 = mesh.springs_of(i).iter().map(|s| o.stiffness_of(s.kind as usize)).sum();
+                        k / o.mass_of(i)
+                    })
                     .fold(0.0, f64::max);
-                let omega_max = (2.0 * sum / o.mass).sqrt();
+                let omega_max = (2.0 * sum).sqrt();
                 Prediction {
                     name: o.name.clone(),
                     kind: o.kind,

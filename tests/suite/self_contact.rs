@@ -646,7 +646,10 @@ pub fn layers_slide_as_coulomb_says(
         let d = mean(rows - 5..=rows - 3) - mean(2..=4);
         (d.x, -d.z)
     };
-    let momentum = |v: &[DVec3]| v.iter().sum::<DVec3>();
+    // (each particle by its mass: a mesh cloth's lumped by area, lighter at its border)
+    let momentum = |o: &msdsim::sim::model::ObjectModel, v: &[DVec3]| {
+        v.iter().enumerate().map(|(i, v)| *v * o.mass_of(i)).sum::<DVec3>()
+    };
     let ctx = gpu();
     let mut failures = Vec::new();
     for &(edges, paths) in cases {
@@ -654,7 +657,7 @@ pub fn layers_slide_as_coulomb_says(
             let expected = f64::max(0.0, LAYERS_VT - mu * LAYERS_VN);
             for &substeps in substep_counts {
                 let s = layers(mu, substeps, edges);
-                let start = momentum(&s.objects[0].velocities);
+                let start = momentum(&s.objects[0], &s.objects[0].velocities);
                 let mut runs = Vec::new();
                 for &fused in paths {
                     let mut g = GpuSim::new(&ctx, &s).unwrap();
@@ -676,7 +679,7 @@ pub fn layers_slide_as_coulomb_says(
                 }
                 for (path, v) in runs {
                     let (slide, approach) = relative(&v);
-                    let change = (momentum(&v) - start).length() / start.length();
+                    let change = (momentum(&s.objects[0], &v) - start).length() / start.length();
                     let path = if edges { format!("{path}, edges") } else { path.to_string() };
                     println!(
                         "mu {mu}, {substeps} substeps, {path}: sliding {slide:.4} m/s (closed form \

@@ -86,7 +86,7 @@ fn elastic_springs(o: &ObjectModel, i: usize) -> impl Iterator<Item = (Spring, f
 /// Gravity, wind and drag on particle i at x[i] with velocity v [N] (x: every particle's
 /// position, for the aerodynamic wind's area and orientation).
 fn external(m: &SimModel, o: &ObjectModel, i: usize, x: &[DVec3], v: DVec3, time: f64) -> DVec3 {
-    m.gravity * o.mass + wind_at(&m.wind, x[i]) + air_force(m, o, i, x, v, time) - v * o.drag
+    m.gravity * o.mass_of(i) + wind_at(&m.wind, x[i]) + air_force(m, o, i, x, v, time) - v * o.drag
 }
 
 /// The springs' force on particle i: elastic and dashpot parts [N].
@@ -126,7 +126,7 @@ fn explicit(s: &Substep<'_>, verlet: bool) -> State {
         }
         // (at the half-drifted state's time too: the wind's turbulence)
         let force = external(m, o, i, &at, v[i], time + drift) + spring_force(o, i, &at, v);
-        nv[i] = v[i] + force / o.mass * dt;
+        nv[i] = v[i] + force / o.mass_of(i) * dt;
         nx[i] = at[i] + nv[i] * (dt - drift);
     }
     (nx, nv)
@@ -186,7 +186,7 @@ fn inertial(s: &Substep<'_>, history: &[History]) -> Inertial {
                 return (x[i] + d * (1.0 - h / dt), x[i] + d);
             }
             let force = external(m, o, i, x, v[i], time);
-            let pull = force / o.mass * (h * h);
+            let pull = force / o.mass_of(i) * (h * h);
             let (base, y, held) = if rigid {
                 (x[i], x[i] + v[i] * dt + pull, history[i].map_or(0.0, |p| p.held))
             } else {
@@ -270,7 +270,7 @@ fn outer(a: DVec3, b: DVec3) -> DMat3 {
 /// How stiff a particle's springs are against its inertia over the solve's step h:
 /// (h^2 sum k + h sum b) / m over its springs that have a stiffness (`elastic_springs`).
 fn stiffness_ratio(o: &ObjectModel, i: usize, h: f64) -> f64 {
-    elastic_springs(o, i).map(|(_, k)| h * h * k + h * o.damping).sum::<f64>() / o.mass
+    elastic_springs(o, i).map(|(_, k)| h * h * k + h * o.damping).sum::<f64>() / o.mass_of(i)
 }
 
 /// Where the adaptive methods start particle i: `guess` (the prediction less the pull its
@@ -326,7 +326,7 @@ fn restart(o: &ObjectModel, i: usize, x: &[DVec3], v: DVec3, force: DVec3, dt: f
         elastic += delta / d * (k * (d - s.rest));
         stiffness += k;
     }
-    let a = (force + elastic) / (o.mass + dt * dt * stiffness);
+    let a = (force + elastic) / (o.mass_of(i) + dt * dt * stiffness);
     Past { dx: (v + a * dt) * dt, dv: a * dt, held: 0.0 }
 }
 
@@ -583,7 +583,6 @@ impl VbdSolve {
     ) {
         let o = s.object;
         let (h, x) = (self.start.h, &self.start.base[..]);
-        let inertia = o.mass / (h * h);
         for &i in &self.order {
             if o.pinned[i] {
                 continue;
@@ -593,6 +592,7 @@ impl VbdSolve {
                 self.start.y[i] += moved[i];
             }
             let p = &self.p;
+            let inertia = o.mass_of(i) / (h * h);
             let mut force = (self.start.y[i] - p[i]) * inertia;
             let mut hessian = DMat3::from_diagonal(DVec3::splat(inertia));
             for (_, f, block) in newton_springs(o, h, p, x, i) {
@@ -864,7 +864,7 @@ pub fn energy(m: &SimModel, o: &ObjectModel, x: &[DVec3], v: &[DVec3]) -> f64 {
     let (cols, rows) = (o.dims[0] as i64, o.dims[1] as i64);
     let mut e = 0.0;
     for i in 0..x.len() {
-        e += 0.5 * o.mass * v[i].length_squared() - o.mass * m.gravity.dot(x[i]);
+        e += o.mass_of(i) * (0.5 * v[i].length_squared() - m.gravity.dot(x[i]));
         if let Some(mesh) = &o.mesh {
             // (each spring once, from its lower end)
             for s in mesh.springs_of(i).iter().filter(|s| s.other as usize > i) {

@@ -9,8 +9,8 @@
 //! particles (p and t's vertices: 1 and minus the barycentric weights of t's point nearest p;
 //! edges (p, a) and (j, b): 1 - s, s, u - 1, -u at their nearest points' parameters s and u);
 //! with n its unit vector, particle k moves by w_k c_k lambda n,
-//! lambda = c (h - d) min(RELAXATION / sum n_k w_k c_k^2, 1 / sum w_k c_k^2) (w: 1 free, 0
-//! pinned; n: each particle's count of contacts, at least 1, a contact counting by its weight
+//! lambda = c (h - d) min(RELAXATION / sum n_k w_k c_k^2, 1 / sum w_k c_k^2) (w: the inverse
+//! mass over the object's `mass`, 0 pinned, 1 free on a grid; n: each particle's count of contacts, at least 1, a contact counting by its weight
 //! c, fully once its overlap reaches h / 10; its mass split among them, the share over-relaxed
 //! with edge contact but never past the contact's whole, RELAXATION 1 without), so every contact conserves momentum. The part of the
 //! overlap the substep's approach made moves the velocity too, the rest the position only.
@@ -659,7 +659,8 @@ fn apply(
 ) -> (Vec<DVec3>, Vec<DVec3>) {
     let mut moves = vec![DVec3::ZERO; x.len()];
     let mut rests = vec![DVec3::ZERO; x.len()];
-    let free = |k: usize| if o.pinned[k] { 0.0 } else { 1.0 };
+    // Each particle's inverse mass over the object's `mass`: 0 pinned.
+    let free = |k: usize| if o.pinned[k] { 0.0 } else { o.mass / o.mass_of(k) };
     let relaxation = if o.has_edge_pairs() { RELAXATION } else { 1.0 };
     for contact in found {
         // The pair again at these positions (as the GPU's apply_contact computes it).

@@ -86,8 +86,9 @@ fn scale(masses: &[f64], states: &States, elastic: &[f64], gravity: DVec3) -> f6
 fn elastic_energy(model: &SimModel, states: &States, totals: &[f64]) -> Vec<f64> {
     (model.objects.iter().zip(states).zip(totals))
         .map(|((o, (x, v)), total)| {
-            let kinetic: f64 = v.iter().map(|v| 0.5 * o.mass * v.length_squared()).sum();
-            let gravity: f64 = x.iter().map(|x| -o.mass * model.gravity.dot(*x)).sum();
+            let kinetic: f64 =
+                v.iter().enumerate().map(|(i, v)| 0.5 * o.mass_of(i) * v.length_squared()).sum();
+            let gravity: f64 = x.iter().enumerate().map(|(i, x)| -o.mass_of(i) * model.gravity.dot(*x)).sum();
             total - kinetic - gravity
         })
         .collect()

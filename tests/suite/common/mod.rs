@@ -400,14 +400,14 @@ pub fn copy_dir(from: &std::path::Path, to: &std::path::Path) {
 }
 
 /// The line of physics_body.glsl that `broken` edits.
-pub const BROKEN_LINE: &str = "v += force * (g.dt / obj.mass);";
+pub const BROKEN_LINE: &str = "v += force * (g.dt / m);";
 
 /// physics_body.glsl with a typo that fails to compile (`forse` for `force`); panics when the
 /// text no longer has the line edited, so a test cannot silently write the file unchanged.
 pub fn broken(physics_body: &str) -> String {
     let line = BROKEN_LINE;
     assert!(physics_body.contains(line), "physics_body.glsl no longer has `{line}`: update the test");
-    physics_body.replace(line, "v += forse * (g.dt / obj.mass);")
+    physics_body.replace(line, "v += forse * (g.dt / m);")
 }
 
 /// A chain of 10 nodes, 5 cm apart, hanging straight down from a pin at its top at its rest
