@@ -250,6 +250,15 @@ void self_pass(uvec2 cell, uint i, vec3 x, vec3 start, bool apply) {
 // (a cloth's self-contact undoing an overlap from an earlier substep).
 vec3 position_only;
 
+// The share of a stretched spring's excess its end moves by, the end counting `n` stretched
+// springs and the other, j, its own (it counted this spring too, from the same positions; at
+// least one in case rounding of a spring at the limit told it otherwise), times `weight` (the
+// end's part by inverse mass, 1 on a grid): all over n where j is pinned.
+float stretch_split(int j, uint n, float weight) {
+    if (CPINNED(j)) return 1.0 / float(n);
+    return 0.25 * (1.0 / float(n) + 1.0 / float(max(STRETCHED(j), 1u))) * weight;
+}
+
 // The position correction of the free particle at grid `cell`, at x after physics; the
 // velocity follows it but for position_only.
 vec3 constraint_correction(uvec2 cell, vec3 x) {
@@ -263,17 +272,26 @@ vec3 constraint_correction(uvec2 cell, vec3 x) {
     // thrown rope's momentum with a 1% limit; the smaller share, over the larger count, let
     // edges of a piling strip through each other); the end of one held by a pin moves all of
     // it over its own count.
+    // A mesh cloth's ends move by their inverse masses w, 2 w_i / (w_i + w_j) of that, so that
+    // their momenta stay equal and opposite (1 on a grid).
     uint n_stretched = 0u;
     if (has(F_STRETCH) && (obj.flags & OBJ_STRETCH_LIMIT) != 0u) {
         n_stretched = STRETCHED(cell.x + cell.y * obj.dims.x);
-        [[unroll]] for (int s = 0; s < 8; ++s) {
-            int j;
-            float excess;
-            if (n_stretched == 0u || !overstretched(ivec2(cell), x, s, j, excess)) continue;
-            // (the other end counted this spring too, from the same positions; at least one
-            // in case rounding of a spring at the limit told it otherwise)
-            float split = CPINNED(j) ? 1.0 / float(n_stretched) : 0.25 * (1.0 / float(n_stretched) + 1.0 / float(max(STRETCHED(j), 1u)));
-            correction += normalize(CPOS(j) - x) * (excess * split);
+        if (is_mesh()) {
+            for (uint e = mesh_first(cell.x); n_stretched > 0u && e < mesh_first(cell.x + 1u); ++e) {
+                int j;
+                float excess;
+                if (!mesh_overstretched(x, e, j, excess)) continue;
+                float wi = 1.0 / mass_share(cell.x), wj = 1.0 / mass_share(uint(j));
+                correction += normalize(CPOS(j) - x) * (excess * stretch_split(j, n_stretched, 2.0 * wi / (wi + wj)));
+            }
+        } else {
+            [[unroll]] for (int s = 0; s < 8; ++s) {
+                int j;
+                float excess;
+                if (n_stretched == 0u || !overstretched(ivec2(cell), x, s, j, excess)) continue;
+                correction += normalize(CPOS(j) - x) * (excess * stretch_split(j, n_stretched, 1.0));
+            }
         }
     }
 

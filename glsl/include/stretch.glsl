@@ -20,8 +20,28 @@ bool overstretched(ivec2 cell, vec3 x, int s, out int j, out float excess) {
     return excess > 0.0;
 }
 
+// A mesh cloth's: entry e of its list, a structural or shear spring (not bending, not a
+// seam's, of rest length zero) with a stiffness.
+bool mesh_overstretched(vec3 x, uint e, out int j, out float excess) {
+    excess = 0.0;
+    MeshSpring s = mesh_spring(e);
+    j = s.other;
+    if (s.type > uint(SPRING_SHEAR) || s.k == 0.0) return false;
+    precise float d = length(CPOS(j) - x) - s.rest * (1.0 + obj.stretch_limit);
+    excess = d;
+    return excess > 0.0;
+}
+
 uint stretched_springs(ivec2 cell, vec3 x) {
     uint n = 0u;
+    if (is_mesh()) {
+        for (uint e = mesh_first(uint(cell.x)); e < mesh_first(uint(cell.x) + 1u); ++e) {
+            int j;
+            float excess;
+            if (mesh_overstretched(x, e, j, excess)) n += 1u;
+        }
+        return n;
+    }
     [[unroll]] for (int s = 0; s < 8; ++s) {
         int j;
         float excess;

@@ -336,7 +336,7 @@ pub(super) fn mesh_cloth(c: &super::MeshCloth) -> Result<ObjectModel, String> {
         drag: c.drag,
         friction: c.friction,
         margin: c.collision_margin,
-        stretch_limit: None,
+        stretch_limit: c.stretch_limit,
         self_distance: c.self_collision.then(|| c.self_collision_distance.unwrap_or(0.5 * mesh.mean_edge)),
         triangle_contact: true,
         edge_contact: false,

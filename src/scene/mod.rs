@@ -656,6 +656,10 @@ pub struct MeshCloth {
     /// Stokes drag coefficient [N s/m].
     #[serde(default)]
     pub drag: f64,
+    /// Maximum elongation of structural and shear springs (the mesh's edges and a quad's
+    /// diagonals), as a fraction of rest length.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub stretch_limit: Option<f64>,
     /// Coulomb friction coefficient mu against colliders.
     #[serde(default)]
     pub friction: f64,

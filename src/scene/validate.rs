@@ -538,6 +538,9 @@ fn check_mesh_cloth(at: &str, c: &super::MeshCloth, scene: &Scene) -> Check {
     non_negative(&format!("{at}.weld"), c.weld, LENGTH.1, "m")?;
     positive(&format!("{at}.density"), c.density, (1e-6, 1e3), "kg/m^2")?;
     check_springs(at, (c.stiffness, c.rest_scale, "multiple of the mesh's length"), c.damping, c.drag)?;
+    if let Some(l) = c.stretch_limit {
+        non_negative(&format!("{at}.stretch_limit"), l, 1e3, "fraction of rest length")?;
+    }
     friction(&format!("{at}.friction"), c.friction)?;
     non_negative(&format!("{at}.collision_margin"), c.collision_margin, LENGTH.1, "m")?;
     color(&format!("{at}.color"), c.color)?;

@@ -32,7 +32,7 @@ pub const METHODS: [crate::sim::model::Integrator; 3] = {
 };
 
 /// Whether both simulators run object `o` of `model` as it asks: a mesh cloth with one of
-/// `METHODS`, without a stretch limit or contact between objects, and with self-contact, if
+/// `METHODS`, without contact between objects, and with self-contact, if
 /// any, of its particles against its triangles (what scene validation keeps a preset to,
 /// checked again for a model built otherwise; validation also checks the thickness against
 /// the rest shape, `thin_enough`, which a model's current positions need not be). The error
@@ -52,8 +52,6 @@ pub fn check_model(
         "self-collision of particles against particles".into()
     } else if o.has_edge_pairs() {
         "self-collision of edges against edges".into()
-    } else if o.stretch_limit.is_some() {
-        "a stretch limit".into()
     } else {
         return Ok(());
     };

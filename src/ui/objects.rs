@@ -190,6 +190,7 @@ pub fn mesh_cloth_panel(ui: &Ui, c: &mut MeshCloth) {
     }
     drag(ui, "density [kg/m^2]", &mut c.density, 0.005, 1e-6, 1e3);
     cloth_springs(ui, (&mut c.stiffness, &mut c.rest_scale), &mut c.damping, &mut c.drag);
+    optional(ui, "stretch limit", &mut c.stretch_limit, 0.1, 0.005, 10.0);
     drag(ui, "friction", &mut c.friction, 0.01, 0.0, MAX_FRICTION);
     drag(ui, "collision margin [m]", &mut c.collision_margin, 0.001, 0.0, 10.0);
     check(ui, "self-collision", &mut c.self_collision);
@@ -246,6 +247,7 @@ pub fn new_mesh_cloth(
         rest_scale: PerSpring { structural: 1.0, shear: 1.0, bending: 1.0 },
         damping: 0.002,
         drag: 0.0,
+        stretch_limit: None,
         friction: 0.3,
         collision_margin: 0.01,
         self_collision: false,

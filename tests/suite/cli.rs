@@ -1052,6 +1052,9 @@ fn bad_mesh_cloths_are_refused_in_one_line() {
         "v -1 0 -1\nv 1 0 -1\nv 1 0 1\nv -1 0 1\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\nf 1/1 4/4 3/3 2/2\n",
     );
     run("good.obj", "[sim]\nintegrator = \"xpbd\"\n", &["mesh_cloth[0]", "\"xpbd\"", "vbd"]);
+    let limited = std::fs::read_to_string(preset("good.obj", "")).unwrap() + "stretch_limit = -0.1\n";
+    let limited = write(d, "limited.toml", &limited);
+    rejects(&["simulate", "--preset", &limited, "--frames", "1"], &["mesh_cloth[0].stretch_limit = -0.1"]);
     // Two squares 1 cm apart: half the mean edge, the default thickness, would push them apart.
     write(
         d,

@@ -189,7 +189,8 @@ fn overstretched<'a>(
     limit: f64,
 ) -> impl Iterator<Item = (usize, f64)> + 'a {
     springs(o, i).into_iter().filter_map(move |s| {
-        if s.kind == SpringType::Bending || o.stiffness_of(s.kind as usize) == 0.0 {
+        let limited = matches!(s.kind, SpringType::Structural | SpringType::Shear);
+        if !limited || o.stiffness_of(s.kind as usize) == 0.0 {
             return None;
         }
         let excess = (x[s.other] - x[i]).length() - s.rest * (1.0 + limit);
@@ -480,10 +481,14 @@ fn constraints(
             let own: Vec<(usize, f64)> = overstretched(o, x, i, limit).collect();
             stretched = own.len() as u32;
             for (j, excess) in own {
+                // (a mesh cloth's ends by their inverse masses w: 2 w_i / (w_i + w_j) of the
+                // move, so that their momenta stay equal and opposite; 1 on a grid)
+                let (wi, wj) = (o.mass / o.mass_of(i), o.mass / o.mass_of(j));
                 let split = if o.pinned[j] {
                     1.0 / stretched as f64
                 } else {
                     0.5 * (1.0 / stretched as f64 + 1.0 / overstretched(o, x, j, limit).count() as f64)
+                        * (2.0 * wi / (wi + wj))
                 };
                 correction += (x[j] - x[i]).normalize() * excess * share(j) * split;
             }
