@@ -10,7 +10,7 @@
 
 bool is_mesh() { return has(F_CLOTH_MESH); }
 
-// Where the lists start: the header's four words.
+// Where the lists start: the header's five words.
 uint mesh_springs_at() { return obj_words[0]; }
 uint mesh_colours_at() { return obj_words[1]; }
 uint mesh_triangles_at() { return obj_words[2]; }
@@ -20,8 +20,8 @@ uint mesh_masses_at() { return obj_words[4]; }
 // Particle i's springs are entries [mesh_first(i), mesh_first(i + 1)).
 uint mesh_first(uint i) { return obj_words[5u + i]; }
 
-// Particle i's mass over the object's `mass`: 1 for a grid's; for a mesh's its share, a third
-// of its triangles' area over the mean (ClothMesh::mass_share).
+// Particle i's mass over the object's `mass`: 1 for a grid's; for a mesh's its share, an equal
+// part of each of its faces' area over the mean (ClothMesh::mass_share).
 float mass_share(uint i) { return is_mesh() ? uintBitsToFloat(obj_words[mesh_masses_at() + i]) : 1.0; }
 // The mass of particle `cell` [kg].
 float particle_mass(uvec2 cell) { return obj.mass * mass_share(cell.x); }

@@ -27,7 +27,8 @@
 // (p, a) and (j, b) with nearest points at p + s (a - p) and j + u (b - j), c = (1 - s, s, u - 1,
 // -u). With n the unit offset, the projection of the constraint n . sum c_k x_k >= h moves particle
 // k by w_k c_k lambda n (w: its inverse mass over the object's mass, 0 pinned, 1 free on a grid;
-// m_k w_k is the object's mass for every free particle), so the pair's momentum is unchanged. Of the overlap h - d, the part the substep's approach made (the relative motion of the
+// m_k w_k is the object's mass for every free particle), so the pair's momentum is unchanged.
+// Of the overlap h - d, the part the substep's approach made (the relative motion of the
 // two nearest points along -n since the substep began) is undone with the velocity that made it,
 // and the rest, left from earlier substeps, in position only (the constraint stage's velocity
 // follows the correction but for that part: a late-resolved overlap does not bounce). Coulomb

@@ -131,9 +131,11 @@ pub struct ClothMesh {
     pub ring: Vec<u32>,
     /// The mesh's area as placed [m^2].
     pub area: f64,
-    /// Per particle, its mass over the mean particle's: a third of the area of each of its
-    /// triangles (lumped), over the mean share area / n. The lumped masses' centre is the
-    /// area's centroid, whatever the triangles; 1 everywhere on a mesh of equal triangles.
+    /// Per particle, its mass over the mean particle's: an equal part of the area of each of
+    /// its faces (a triangle's third, a quad's quarter: lumped), over the mean share area / n.
+    /// On a mesh of triangles the lumped masses' centre is the area's centroid, whatever the
+    /// triangles (a quad's corners, which the file may list from any of them, take equal parts
+    /// rather than its fan's uneven thirds).
     pub mass_share: Vec<f64>,
     /// The mean length of its edges [m].
     pub mean_edge: f64,
@@ -277,11 +279,14 @@ impl ClothMesh {
                 0.5 * (b - a).cross(c - a).length()
             })
             .sum();
+        // (a face's area from its fan, as the total's; each face has some, `check`)
         let mut mass_share = vec![0.0; n];
-        for t in &triangles {
-            let [a, b, c] = t.map(|k| rest[k as usize]);
-            let third = (b - a).cross(c - a).length() / 6.0;
-            t.iter().for_each(|&k| mass_share[k as usize] += third * n as f64 / area);
+        for face in faces {
+            let at = |k: usize| rest[face[k] as usize];
+            let face_area: f64 =
+                (1..face.len() - 1).map(|k| 0.5 * (at(k) - at(0)).cross(at(k + 1) - at(0)).length()).sum();
+            let part = face_area / face.len() as f64 * n as f64 / area;
+            face.iter().for_each(|&k| mass_share[k as usize] += part);
         }
         let edges: Vec<f64> = springs.iter().filter(|s| s.kind == 0).map(|s| s.rest).collect();
         let mean_edge = edges.iter().sum::<f64>() / edges.len().max(1) as f64;
@@ -323,6 +328,12 @@ impl ClothMesh {
     /// Particle i's springs.
     pub fn springs_of(&self, i: usize) -> &[MeshSpring] {
         &self.springs[self.spring_first[i] as usize..self.spring_first[i + 1] as usize]
+    }
+
+    /// The most structural and shear springs (those the stretch limit limits) a particle has.
+    pub fn most_limited_springs(&self) -> usize {
+        let limited = |i: usize| self.springs_of(i).iter().filter(|s| s.kind < 2).count();
+        (0..self.spring_first.len() - 1).map(limited).max().unwrap_or(0)
     }
 
     /// Whether vertex j is particle p or joined to it by a structural, shear or seam spring:
@@ -714,7 +725,8 @@ mod tests {
     /// about a vertex at (0.2, 0.3) gives the corner (0, 0) a third of its two triangles'
     /// areas (0.15 and 0.1) over the mean share (1/5); the shares sum to the particle count; and
     /// their centre is the square's centroid (each triangle's thirds at its corners weigh as
-    /// its area at its centroid), where equal shares would put it at (0.44, 0.46).
+    /// its area at its centroid), where equal shares would put it at (0.44, 0.46). A quad of
+    /// 2 x 1 and a triangle on its side share their corners' areas equally (2 / 4 and 1 / 3).
     #[test]
     fn masses_are_lumped_by_area_with_their_centre_at_the_centroid() {
         let p = [DVec3::ZERO, DVec3::X, DVec3::new(1.0, 1.0, 0.0), DVec3::Y, DVec3::new(0.2, 0.3, 0.0)];
@@ -724,6 +736,10 @@ mod tests {
         assert!((m.mass_share.iter().sum::<f64>() - 5.0).abs() < 1e-12);
         let centre = p.iter().zip(&m.mass_share).map(|(x, s)| *x * *s).sum::<DVec3>() / 5.0;
         assert!(centre.distance(DVec3::new(0.5, 0.5, 0.0)) < 1e-12, "{centre}");
+        let q = [DVec3::ZERO, 2.0 * DVec3::X, DVec3::new(2.0, 1.0, 0.0), DVec3::Y, DVec3::new(1.0, 2.0, 0.0)];
+        let m = ClothMesh::new(&q, &[vec![0, 1, 2, 3], vec![3, 2, 4]], &[], &[]).unwrap();
+        let want = [0.5, 0.5, 0.5 + 1.0 / 3.0, 0.5 + 1.0 / 3.0, 1.0 / 3.0].map(|a| a * 5.0 / 3.0);
+        assert!(m.mass_share.iter().zip(want).all(|(s, w)| (s - w).abs() < 1e-12), "{:?}", m.mass_share);
     }
 
     /// No spring joins two particles of one colour; each particle has one colour.

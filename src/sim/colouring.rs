@@ -8,10 +8,11 @@
 //! colour is given one by a Kempe-chain interchange (two colours swapped over the connected part
 //! of the graph they colour that touches the particle, which frees one of them), and the few
 //! left without one after it by a tabu search (Hertz and de Werra's Tabucol) from the nearly
-//! proper colouring. On a grid of triangles split along alternating diagonals DSatur and greedy
-//! take 6 colours where 5 suffice: the interchanges leave 2 of 65,536 particles, which a few
-//! tabu moves place. Each try has a budget of work proportional to the particle count, so a
-//! mesh whose next count is out of reach costs a bounded time and keeps the colouring it has.
+//! proper colouring. On a grid of triangles split along alternating diagonals, which 5 colours
+//! suffice for, DSatur takes 7 and greedy 6; the interchanges at 5 leave a few particles, which a
+//! few tabu moves place. Each try has a budget of work proportional to the particle count (the
+//! chains' visits, the tabu search's evaluations of a move), so a mesh whose next count is out
+//! of reach costs a bounded time and keeps the colouring it has.
 
 use std::cmp::Reverse;
 use std::collections::{BTreeSet, BinaryHeap, HashMap};
@@ -39,8 +40,10 @@ impl Graph<'_> {
 
 /// Kempe-chain vertices a try at one colour fewer may visit, per vertex of the graph.
 const CHAIN_VISITS_PER_VERTEX: usize = 64;
-/// Tabu moves a try may make, per vertex left without a colour by the interchanges.
+/// Tabu moves a try may make, per vertex left without a colour by the interchanges, and
+/// evaluations of a vertex's move to another colour it may make, per vertex of the graph.
 const TABU_MOVES_PER_LEFT: usize = 2_000;
+const TABU_EVALUATIONS_PER_VERTEX: usize = 256;
 /// A try whose interchanges leave more vertices than this (or 1 in 256 of them, if more)
 /// without a colour is given up: the tabu search mends a nearly proper colouring, not a poor one.
 const MOST_LEFT: usize = 16;
@@ -146,7 +149,7 @@ fn with_colours(g: &Graph, k: usize) -> Option<Vec<u32>> {
     if left.is_empty() {
         return Some(colour);
     }
-    tabu(g, colour, &left, k, TABU_MOVES_PER_LEFT * left.len())
+    tabu(g, colour, &left, k, (TABU_MOVES_PER_LEFT * left.len(), TABU_EVALUATIONS_PER_VERTEX * n))
 }
 
 /// The Kempe chains' walk: a stamp a walk marks its vertices with, so that no walk clears the
@@ -204,9 +207,15 @@ impl Chains {
 /// given the colour fewest of its neighbours hold, then, while any spring joins two vertices of
 /// one colour, the move of one such vertex to another colour that leaves the fewest such
 /// springs is made (a move back forbidden for a while, unless it would leave fewer than ever),
-/// at most `moves` times. The random choices are seeded, so that a mesh's colouring is the same
+/// at most `moves` times and within `evaluations` of a vertex's move. The random choices are seeded, so that a mesh's colouring is the same
 /// at every load.
-fn tabu(g: &Graph, mut colour: Vec<u32>, left: &[usize], k: usize, moves: usize) -> Option<Vec<u32>> {
+fn tabu(
+    g: &Graph,
+    mut colour: Vec<u32>,
+    left: &[usize],
+    k: usize,
+    (moves, mut evaluations): (usize, usize),
+) -> Option<Vec<u32>> {
     let clashes = |colour: &[u32], v: usize, c: u32| g.neighbours(v).filter(|&j| colour[j] == c).count();
     for &v in left {
         colour[v] = (0..k as u32).min_by_key(|&c| clashes(&colour, v, c)).unwrap_or(0);
@@ -234,6 +243,7 @@ fn tabu(g: &Graph, mut colour: Vec<u32>, left: &[usize], k: usize, moves: usize)
         // The best move, ties broken at random (reservoir sampling).
         let mut best: Option<(isize, usize, u32)> = None;
         let mut ties = 0u64;
+        evaluations = evaluations.checked_sub(clash.len() * k)?;
         for &v in &clash {
             let here = clashes(&colour, v, colour[v]) as isize;
             for c in (0..k as u32).filter(|&c| c != colour[v]) {

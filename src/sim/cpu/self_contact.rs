@@ -10,8 +10,9 @@
 //! edges (p, a) and (j, b): 1 - s, s, u - 1, -u at their nearest points' parameters s and u);
 //! with n its unit vector, particle k moves by w_k c_k lambda n,
 //! lambda = c (h - d) min(RELAXATION / sum n_k w_k c_k^2, 1 / sum w_k c_k^2) (w: the inverse
-//! mass over the object's `mass`, 0 pinned, 1 free on a grid; n: each particle's count of contacts, at least 1, a contact counting by its weight
-//! c, fully once its overlap reaches h / 10; its mass split among them, the share over-relaxed
+//! mass over the object's `mass`, 0 pinned, 1 free on a grid; n: each particle's count of
+//! contacts, at least 1, a contact counting by its weight c, fully once its overlap reaches
+//! h / 10; its mass split among them, the share over-relaxed
 //! with edge contact but never past the contact's whole, RELAXATION 1 without), so every contact conserves momentum. The part of the
 //! overlap the substep's approach made moves the velocity too, the rest the position only.
 //! Coulomb friction (mu: the cloth's `friction`) undoes the relative motion over the substep of

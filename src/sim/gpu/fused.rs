@@ -272,8 +272,12 @@ impl FusedShape {
             Some(s) => limits.solver_slots.unwrap_or(solver_slots(s.sweep)),
             None => limits.slots,
         };
-        // Objects that touch each other meet every substep: they run per stage.
-        if n == 0 || n > most.min(FUSED_SLOTS) * MAX_THREADS || model.inter_object_contact() {
+        // Objects that touch each other meet every substep: they run per stage. So does a
+        // mesh with a stretch limit and a particle of more limited springs than a count's four
+        // bits hold (STRETCH_PACKED; a grid's particle has eight).
+        let counted =
+            o.stretch_limit.is_none() || o.mesh.as_ref().is_none_or(|m| m.most_limited_springs() <= 15);
+        if n == 0 || n > most.min(FUSED_SLOTS) * MAX_THREADS || model.inter_object_contact() || !counted {
             return None;
         }
         let slots = n.div_ceil(MAX_THREADS);
