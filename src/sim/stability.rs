@@ -12,6 +12,9 @@ use super::model::{Integrator, ObjectKind, SimModel};
 pub struct Prediction {
     pub name: String,
     pub kind: ObjectKind,
+    /// A mesh cloth's: of the methods for large steps it runs with VBD only
+    /// (`sim::cloth_mesh::METHODS`), which the advice names alone.
+    pub mesh: bool,
     /// Upper bound of the highest angular frequency [rad/s].
     pub omega_max: f64,
     /// Largest stable substep, 2 / omega_max [s].
@@ -29,7 +32,7 @@ impl Prediction {
     /// `MAX_SUBSTEPS`, that none will do; then the methods for large steps (the iterative ones).
     pub fn substep_advice(&self, frame_dt: f64) -> String {
         let n = self.min_substeps(frame_dt);
-        let stable = stable_integrators();
+        let stable = stable_integrators(self.mesh);
         if n <= MAX_SUBSTEPS {
             format!(
                 "use at least {n} substeps per frame, or sim.integrator = {stable} (the methods for large steps)"
@@ -60,10 +63,12 @@ fn more_substeps(model: &SimModel) -> String {
 }
 
 /// The methods for large steps (the iterative ones: a stiff held cloth settles at one 1/60 s
-/// substep with each, `tests/suite/large_steps.rs`), for advice: `"xpbd", "implicit" or "vbd"`.
-pub fn stable_integrators() -> String {
+/// substep with each, `tests/suite/large_steps.rs`), for advice: `"xpbd", "implicit" or "vbd"`;
+/// where `mesh`, those a mesh cloth runs with.
+pub fn stable_integrators(mesh: bool) -> String {
+    let runs = |m: &&Integrator| m.iterative() && (!mesh || crate::sim::cloth_mesh::METHODS.contains(m));
     let names: Vec<String> =
-        Integrator::ALL.iter().filter(|m| m.iterative()).map(|m| format!("\"{}\"", m.label())).collect();
+        Integrator::ALL.iter().filter(runs).map(|m| format!("\"{}\"", m.label())).collect();
     match names.split_last() {
         Some((last, rest)) if !rest.is_empty() => format!("{} or {last}", rest.join(", ")),
         _ => names.concat(),
@@ -102,6 +107,7 @@ pub fn predict_object(
     Prediction {
         name: name.to_string(),
         kind,
+        mesh: false,
         omega_max,
         dt_max: if omega_max > 0.0 { 2.0 / omega_max } else { f64::INFINITY },
     }
@@ -123,6 +129,7 @@ pub fn predict(model: &SimModel) -> Vec<Prediction> {
                 Prediction {
                     name: o.name.clone(),
                     kind: o.kind,
+                    mesh: true,
                     omega_max,
                     dt_max: if omega_max > 0.0 { 2.0 / omega_max } else { f64::INFINITY },
                 }

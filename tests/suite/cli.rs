@@ -561,6 +561,25 @@ fn advice_past_the_largest_substep_count_names_the_stable_integrators() {
     }
 }
 
+/// The same advice for a mesh cloth names VBD alone, the one method for large steps it runs with
+/// (a sliver triangle makes one vertex light, its springs stiff against it).
+#[test]
+fn advice_for_a_mesh_cloth_names_only_the_methods_it_runs_with() {
+    let dir = tempfile::tempdir().unwrap();
+    write(
+        dir.path(),
+        "s.obj",
+        "v 0 1 0\nv 1 1 0\nv 1 0 0\nv 0 0 0\nv 1.000001 0.5 0\nf 1 4 3\nf 1 3 2\nf 2 3 5\n",
+    );
+    let text = "[sim]\nintegrator = \"symplectic_euler\"\n[[mesh_cloth]]\nname = \"s\"\nfile = \"s.obj\"\n\
+                density = 0.2\nstiffness = { structural = 100.0, shear = 10.0, bending = 1.0 }\npinned = [0]\n";
+    let p = write(dir.path(), "s.toml", text);
+    let out = msdsim(&["simulate", "--preset", &p, "--frames", "30", "--quiet"]);
+    let text = String::from_utf8_lossy(&out.stdout) + String::from_utf8_lossy(&out.stderr);
+    assert!(text.contains("PAST IT") && text.contains("sim.integrator = \"vbd\" (the methods"), "{text}");
+    assert!(!text.contains("xpbd") && !text.contains("implicit"), "{text}");
+}
+
 /// `integrator = "auto"` works on every shipped preset: where the scene is chaotic over the
 /// 0.5 s calibration (the flag in the wind, the towel folding onto itself), it calibrates over a
 /// shorter time the reference certifies and says so. (It used to refuse the flag and the towel
