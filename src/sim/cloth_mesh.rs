@@ -272,19 +272,17 @@ impl ClothMesh {
             }
             corner += face.len();
         }
-        let area = triangles
+        // Each face's area from its fan's triangles (each face has some, `check`).
+        let face_areas: Vec<f64> = faces
             .iter()
-            .map(|t| {
-                let [a, b, c] = t.map(|k| rest[k as usize]);
-                0.5 * (b - a).cross(c - a).length()
+            .map(|face| {
+                let at = |k: usize| rest[face[k] as usize];
+                (1..face.len() - 1).map(|k| 0.5 * (at(k) - at(0)).cross(at(k + 1) - at(0)).length()).sum()
             })
-            .sum();
-        // (a face's area from its fan, as the total's; each face has some, `check`)
+            .collect();
+        let area: f64 = face_areas.iter().sum();
         let mut mass_share = vec![0.0; n];
-        for face in faces {
-            let at = |k: usize| rest[face[k] as usize];
-            let face_area: f64 =
-                (1..face.len() - 1).map(|k| 0.5 * (at(k) - at(0)).cross(at(k + 1) - at(0)).length()).sum();
+        for (face, face_area) in faces.iter().zip(&face_areas) {
             let part = face_area / face.len() as f64 * n as f64 / area;
             face.iter().for_each(|&k| mass_share[k as usize] += part);
         }

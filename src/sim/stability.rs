@@ -22,6 +22,12 @@ pub struct Prediction {
 }
 
 impl Prediction {
+    /// An object's prediction from its highest angular frequency.
+    fn of(name: &str, kind: ObjectKind, mesh: bool, omega_max: f64) -> Prediction {
+        let dt_max = if omega_max > 0.0 { 2.0 / omega_max } else { f64::INFINITY };
+        Prediction { name: name.to_string(), kind, mesh, omega_max, dt_max }
+    }
+
     /// Fewest substeps per frame that keep `frame_dt / substeps` within the limit (may exceed
     /// `MAX_SUBSTEPS`; it saturates at u32::MAX).
     pub fn min_substeps(&self, frame_dt: f64) -> u32 {
@@ -104,13 +110,7 @@ pub fn predict_object(
     mass: f64,
 ) -> Prediction {
     let omega_max = (2.0 * stiffness_sum(dims, stiffness) / mass).sqrt();
-    Prediction {
-        name: name.to_string(),
-        kind,
-        mesh: false,
-        omega_max,
-        dt_max: if omega_max > 0.0 { 2.0 / omega_max } else { f64::INFINITY },
-    }
+    Prediction::of(name, kind, false, omega_max)
 }
 
 pub fn predict(model: &SimModel) -> Vec<Prediction> {
@@ -125,14 +125,7 @@ pub fn predict(model: &SimModel) -> Vec<Prediction> {
                         k / o.mass_of(i)
                     })
                     .fold(0.0, f64::max);
-                let omega_max = (2.0 * sum).sqrt();
-                Prediction {
-                    name: o.name.clone(),
-                    kind: o.kind,
-                    mesh: true,
-                    omega_max,
-                    dt_max: if omega_max > 0.0 { 2.0 / omega_max } else { f64::INFINITY },
-                }
+                Prediction::of(&o.name, o.kind, true, (2.0 * sum).sqrt())
             }
             None => predict_object(&o.name, o.kind, o.dims, o.stiffness, o.mass),
         })

@@ -256,6 +256,8 @@ const RIGID_SUMS: u32 = 16;
 /// The stretch limit's counts packed eight a word from scratch's start (fused.comp's
 /// STRETCH_PACKED).
 const STRETCH_PACKED: u32 = 1;
+/// The most a stretch count's four bits hold (`stretched` in glsl/fused.comp).
+const STRETCH_COUNT_MOST: usize = 15;
 /// ... in the top bits of the hash's links, where a particle self-collision reads the hash
 /// during the constraints (STRETCH_IN_LINKS).
 const STRETCH_IN_LINKS: u32 = 2;
@@ -275,8 +277,8 @@ impl FusedShape {
         // Objects that touch each other meet every substep: they run per stage. So does a
         // mesh with a stretch limit and a particle of more limited springs than a count's four
         // bits hold (STRETCH_PACKED; a grid's particle has eight).
-        let counted =
-            o.stretch_limit.is_none() || o.mesh.as_ref().is_none_or(|m| m.most_limited_springs() <= 15);
+        let counted = o.stretch_limit.is_none()
+            || o.mesh.as_ref().is_none_or(|m| m.most_limited_springs() <= STRETCH_COUNT_MOST);
         if n == 0 || n > most.min(FUSED_SLOTS) * MAX_THREADS || model.inter_object_contact() || !counted {
             return None;
         }
