@@ -40,9 +40,14 @@ vec3 wind_force(vec3 x) {
     return g.wind_dir * (g.wind_force * wind_strength(x));
 }
 
-// Gravity, wind and drag on a particle of mass m at x moving at v [N].
+// Gravity, wind and drag on a particle of mass m at x moving at v [N]. The paper's wind and
+// Stokes drag are per particle; a mesh cloth's particles, whose areas differ, take them in
+// proportion to their mass (their share of the area, `mass_share`): a particle of the mean
+// area takes `drag`, and a uniform flow moves the cloth without deforming it.
 vec3 external_force(vec3 x, vec3 v, float m) {
-    return m * GRAVITY_SCALE * g.gravity + wind_force(x) - obj.drag * v;
+    vec3 air = wind_force(x) - obj.drag * v;
+    if (has(F_CLOTH_MESH)) air *= m / obj.mass;
+    return m * GRAVITY_SCALE * g.gravity + air;
 }
 
 #endif

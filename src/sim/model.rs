@@ -146,7 +146,13 @@ impl ObjectModel {
     /// Particle i's mass [kg]: `mass`, times a mesh cloth particle's share of its area
     /// (`ClothMesh::mass_share`; `particle_mass` in glsl/include/mesh_springs.glsl).
     pub fn mass_of(&self, i: usize) -> f64 {
-        self.mesh.as_ref().map_or(self.mass, |m| self.mass * m.mass_share[i])
+        self.mass * self.share_of(i)
+    }
+
+    /// Particle i's share of its object's area over the mean particle's: 1 but on a mesh cloth
+    /// (`ClothMesh::mass_share`).
+    pub fn share_of(&self, i: usize) -> f64 {
+        self.mesh.as_ref().map_or(1.0, |m| m.mass_share[i])
     }
 
     /// Particle i's pin group (`pin_group`).

@@ -84,9 +84,12 @@ fn elastic_springs(o: &ObjectModel, i: usize) -> impl Iterator<Item = (Spring, f
 }
 
 /// Gravity, wind and drag on particle i at x[i] with velocity v [N] (x: every particle's
-/// position, for the aerodynamic wind's area and orientation).
+/// position, for the aerodynamic wind's area and orientation). The paper's wind and Stokes drag
+/// are per particle, a mesh cloth's by its share of the area (`external_force` in
+/// glsl/include/forces.glsl).
 fn external(m: &SimModel, o: &ObjectModel, i: usize, x: &[DVec3], v: DVec3, time: f64) -> DVec3 {
-    m.gravity * o.mass_of(i) + wind_at(&m.wind, x[i]) + air_force(m, o, i, x, v, time) - v * o.drag
+    let per_particle = (wind_at(&m.wind, x[i]) - v * o.drag) * o.share_of(i);
+    m.gravity * o.mass_of(i) + per_particle + air_force(m, o, i, x, v, time)
 }
 
 /// The springs' force on particle i: elastic and dashpot parts [N].
