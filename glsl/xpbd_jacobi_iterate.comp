@@ -7,7 +7,8 @@
 // solver_bodies.glsl), one thread per particle. Iterate slices alternate: iteration k reads
 // slice k % 2 (displacements p - x~ from the BDF2 base x~, see predict.comp) and writes
 // (k + 1) % 2; aux[3i .. 3i + 3) holds the multipliers of particle i's 12 springs (its own
-// copy: both ends of a spring compute the same update).
+// copy: both ends of a spring compute the same update); a mesh cloth's, aux's floats at its
+// list's entries (MESH_LAMBDA).
 #define BATCHED
 #include "bindings.glsl"
 #include "springs.glsl"
@@ -19,6 +20,7 @@ layout(local_size_x_id = 0, local_size_y_id = 1, local_size_z = 1) in;
 #define SX(j) history[hist(uint(j), H_BASE)].xyz
 #define SD(j) SLICE(j).xyz
 #define SPIN(j) (SLICE(j).w > 0.5)
+#define MESH_LAMBDA(e) aux[(e) >> 2u][(e) & 3u]
 #include "solver_bodies.glsl"
 
 void main() {
@@ -30,7 +32,9 @@ void main() {
     vec4 di = SLICE(i);
     vec3 dx = di.xyz;
     bool pinned = di.w > 0.5;
-    if (!pinned) {
+    if (!pinned && is_mesh()) {
+        dx = xpbd_jacobi_mesh(i, SX(i), dx, !last_iteration());
+    } else if (!pinned) {
         vec4 lam[3] = vec4[3](aux[3u * i], aux[3u * i + 1u], aux[3u * i + 2u]);
         dx = xpbd_jacobi_particle(cell, SX(i), dx, lam);
         if (!last_iteration()) {

@@ -86,6 +86,53 @@ vec3 xpbd_jacobi_particle(uvec2 cell, vec3 x, vec3 dx, inout vec4 lam[3]) {
     return dx + move * (beta * w);
 }
 
+#ifdef MESH_LAMBDA
+// XPBD by Jacobi on a mesh cloth's particle i (F_CLOTH_MESH; per stage only): as
+// xpbd_jacobi_particle over its spring list, each spring's constants from its own stiffness and
+// both ends' masses, which lumping by area makes unequal: D = (1 + gamma)(w_i + w_j) + alpha~,
+// the particle moving by beta w_i n dlambda with beta = min(1, 1 / sum (1 + gamma)(w_i + w_j) / D)
+// (the grid's bound, whose w_j is w_i or 0; it needs no positions, so it is summed first and
+// each multiplier advances in place). Its multipliers, its own copies, are MESH_LAMBDA(e) at
+// its list's entries; `keep`: advance them (not in the last iteration). Returns the new
+// displacement.
+float xpbd_mesh_ends(MeshSpring s, float w, float b, float h) {
+    float w_j = SPIN(s.other) ? 0.0 : 1.0 / particle_mass(uvec2(uint(s.other), 0u));
+    return (1.0 + b / (s.k * h)) * (w + w_j);
+}
+vec3 xpbd_jacobi_mesh(uint i, vec3 x, vec3 dx, bool keep) {
+    float h = solve_dt();
+    float b = has(F_DAMPING) ? obj.stiffness.w : 0.0;
+    float w = 1.0 / particle_mass(uvec2(i, 0u));
+    uint end = mesh_first(i + 1u);
+    float load = 0.0;
+    for (uint e = mesh_first(i); e < end; ++e) {
+        MeshSpring s = mesh_spring(e);
+        if (s.k == 0.0) continue;
+        float ends = xpbd_mesh_ends(s, w, b, h);
+        load += ends / (ends + 1.0 / (s.k * h * h));
+    }
+    float beta = load > 1.0 ? 1.0 / load : 1.0;
+    vec3 move = vec3(0.0);
+    for (uint e = mesh_first(i); e < end; ++e) {
+        MeshSpring s = mesh_spring(e);
+        if (s.k == 0.0) continue;
+        float alpha = 1.0 / (s.k * h * h);
+        float gamma = b / (s.k * h);
+        vec3 rel = dx - SD(s.other);
+        vec3 delta = (x - SX(s.other)) + rel;
+        float dd = dot(delta, delta);
+        if (dd <= 0.0) continue;
+        float inv = inversesqrt(dd);
+        vec3 normal = delta * inv;
+        float lambda = MESH_LAMBDA(e);
+        float dl = (s.rest - dd * inv - alpha * lambda - gamma * dot(normal, rel)) / (xpbd_mesh_ends(s, w, b, h) + alpha);
+        move += normal * dl;
+        if (keep) MESH_LAMBDA(e) = lambda + beta * dl;
+    }
+    return dx + move * (beta * w);
+}
+#endif
+
 // Conjugate-gradient iterations of one Newton step of the implicit method: must equal
 // sim::integrator::NEWTON_CG_ITERATIONS (the GPU-vs-CPU tests compare).
 const uint NEWTON_CG_ITERATIONS = 5u;

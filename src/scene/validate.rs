@@ -551,7 +551,8 @@ fn check_mesh_cloth(at: &str, c: &super::MeshCloth, scene: &Scene) -> Check {
     }
     if let Some(m) = scene.sim.integrator.method().filter(|m| !crate::sim::cloth_mesh::METHODS.contains(m)) {
         return Err(format!(
-            "{at}: a mesh cloth runs with sim.integrator = \"symplectic_euler\", \"verlet\" or \"vbd\" for now, not \"{}\"",
+            "{at}: a mesh cloth runs with sim.integrator = {} for now, not \"{}\"",
+            crate::sim::cloth_mesh::methods_named(),
             m.label()
         ));
     }

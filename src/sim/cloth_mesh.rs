@@ -26,10 +26,17 @@ pub const MAX_FACES: usize = 1 << 23;
 
 /// The integrators a mesh cloth runs with (the others sweep a grid's spring classes or
 /// assemble its springs by grid offsets, and come later).
-pub const METHODS: [crate::sim::model::Integrator; 3] = {
+pub const METHODS: [crate::sim::model::Integrator; 4] = {
     use crate::sim::model::Integrator::*;
-    [SymplecticEuler, Verlet, Vbd]
+    [SymplecticEuler, Verlet, Vbd, XpbdJacobi]
 };
+
+/// `METHODS` as a user writes them: `"a", "b" or "c"`.
+pub fn methods_named() -> String {
+    let names: Vec<String> = METHODS.iter().map(|m| format!("\"{}\"", m.label())).collect();
+    let (last, rest) = names.split_last().expect("METHODS is not empty");
+    format!("{} or {last}", rest.join(", "))
+}
 
 /// Whether both simulators run object `o` of `model` as it asks: a mesh cloth with one of
 /// `METHODS`, without contact between objects, and with self-contact, if

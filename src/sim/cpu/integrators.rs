@@ -479,20 +479,25 @@ pub(crate) fn xpbd_jacobi(s: &Substep<'_>, history: &mut [History]) -> State {
     let start = inertial(s, history);
     let (dt, x) = (start.h, &start.base[..]);
     let mut p = start.y.clone();
-    let mut lambda = vec![[0.0f64; 12]; n];
-    let w = 1.0 / o.mass;
+    // Each particle's copy of its springs' multipliers, by slot (a grid's 12, a mesh's list).
+    let slots = |i: usize| o.mesh.as_ref().map_or(12, |mesh| mesh.springs_of(i).len());
+    let mut lambda: Vec<Vec<f64>> = (0..n).map(|i| vec![0.0; slots(i)]).collect();
     for _ in 0..m.iterations {
         let mut next = p.clone();
         for i in 0..n {
             if o.pinned[i] {
                 continue;
             }
-            let (mut load, mut moved_by, mut updates) = (0.0, DVec3::ZERO, [0.0f64; 12]);
+            // (a mesh cloth's masses differ, so each spring's denominator takes both ends';
+            // on a grid w_j is w or 0)
+            let w = 1.0 / o.mass_of(i);
+            let (mut load, mut moved_by, mut updates) = (0.0, DVec3::ZERO, vec![0.0f64; slots(i)]);
             for (s, k) in elastic_springs(o, i) {
                 let j = s.other;
                 let (alpha, gamma) = (1.0 / (k * dt * dt), o.damping / (k * dt));
-                let (w_j, ends) = if o.pinned[j] { (0.0, 1.0) } else { (w, 2.0) };
+                let w_j = if o.pinned[j] { 0.0 } else { 1.0 / o.mass_of(j) };
                 let scale = 1.0 / ((1.0 + gamma) * (w + w_j) + alpha);
+                let ends = (w + w_j) / w; // (a grid's 2, or 1 with j pinned)
                 load += (1.0 + gamma) * ends * scale;
                 let delta = p[i] - p[j];
                 let d = delta.length();

@@ -145,17 +145,17 @@ const SPRING_GROUPS: [(SpringType, [(i64, i64); 4]); 3] = [
 /// The springs of particle i. In a grid: structural to the 4 direct neighbours, shear to the 4
 /// diagonal ones, bending to the 4 at distance two, only those inside the grid, each counted
 /// once from its even slot (the forward direction). In a mesh cloth: its list
-/// (`sim::cloth_mesh`), each counted once from its lower end.
+/// (`sim::cloth_mesh`), each counted once from its lower end, its slot its place in the list.
 fn springs(o: &ObjectModel, i: usize) -> Vec<Spring> {
     const KINDS: [SpringType; 4] =
         [SpringType::Structural, SpringType::Shear, SpringType::Bending, SpringType::Seam];
     if let Some(mesh) = &o.mesh {
-        return (mesh.springs_of(i).iter())
-            .map(|s| Spring {
+        return (mesh.springs_of(i).iter().enumerate())
+            .map(|(slot, s)| Spring {
                 other: s.other as usize,
                 kind: KINDS[s.kind as usize],
                 rest: s.scaled_rest(o.rest_scale),
-                slot: 0,
+                slot,
                 once: (s.other as usize) > i,
             })
             .collect();

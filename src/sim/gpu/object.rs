@@ -138,19 +138,23 @@ pub(super) struct SolverBuffers {
 }
 
 impl SolverBuffers {
-    /// `groups`: the workgroups of a pass over every particle.
+    /// `groups`: the workgroups of a pass over every particle of `o`.
     fn new(
         ctx: &GpuContext,
-        name: &str,
-        particles: u64,
+        o: &ObjectModel,
         groups: u64,
         model: &SimModel,
     ) -> Result<Option<Self>, VkError> {
         let Some(solver) = model.integrator.solver() else { return Ok(None) };
+        let (name, particles) = (&o.name, o.particle_count() as u64);
         // With contact rounds a slice more: the colliders' moves within the solve
         // (glsl/vbd_iterate.comp); a scene without them does not pay for it.
         let slices = solver.aux + (model.contact_rounds() > 1) as u64;
         let mut aux = slices * particles;
+        if let Some(mesh) = o.mesh.as_ref().filter(|_| model.integrator == Integrator::XpbdJacobi) {
+            // A mesh cloth's multipliers: a float an entry of its lists (MESH_LAMBDA).
+            aux = aux.max((mesh.springs.len() as u64).div_ceil(4));
+        }
         if solver.adaptive_start {
             // A free object's rigid start: four sums a workgroup and their totals after the
             // first slice (glsl/rigid_start.comp).
@@ -287,7 +291,7 @@ impl GpuObject {
                 )?);
             }
             let groups = step_groups(&o.shape()).iter().product::<u32>() as u64;
-            solver = SolverBuffers::new(ctx, &o.name, n, groups, model)?;
+            solver = SolverBuffers::new(ctx, o, groups, model)?;
             if builds_hash(o, model) {
                 let fused = 4 * plan.fused.map_or(0, |f| f.list_words());
                 let name = format!("{}.self_list", o.name);
