@@ -270,7 +270,21 @@ vec3 vbd_particle(uvec2 cell, vec3 x, vec3 dx, vec3 dy) {
 vec3 hessian_product(uvec2 cell, vec3 pi, vec3 di) {
     float h = solve_dt();
     float damp = has(F_DAMPING) ? obj.stiffness.w / h : 0.0;
-    vec3 q = di * (obj.mass / (h * h));
+    vec3 q = di * (particle_mass(cell) / (h * h));
+    if (is_mesh()) {
+        // (a mesh cloth's list, per stage only: the fused kernel does not run it)
+        for (uint f = mesh_first(cell.x); f < mesh_first(cell.x + 1u); ++f) {
+            MeshSpring s = mesh_spring(f);
+            vec3 delta = pi - PP(s.other);
+            float dd = dot(delta, delta);
+            if (dd <= 0.0) continue;
+            float inv = inversesqrt(dd);
+            float kt = max(s.k - (s.k * s.rest) * inv, 0.0);
+            vec3 e = di - DD(s.other);
+            q += delta * (((s.k + damp - kt) * (inv * inv)) * dot(delta, e)) + kt * e;
+        }
+        return q;
+    }
     int self_index = int(cell.x + cell.y * obj.dims.x);
     [[unroll]] for (int s = 0; s < 12; ++s) {
         ivec3 spring = SPRINGS[s];
@@ -302,30 +316,43 @@ vec3 hessian_product(uvec2 cell, vec3 pi, vec3 di) {
 // Must equal sim::cpu::integrators::LINE_SEARCH_STEPS.
 const vec4 LINE_SEARCH_STEPS = vec4(1.0, 0.5, 0.25, 0.125);
 
+// One spring's part of newton_descent: stiffness k, rest length `rest`, p_i - p_j `delta`,
+// dp_i - dp_j `e`, the dashpots' stiffness `damp` on the displacement.
+vec4 spring_descent(float k, float rest, vec3 delta, vec3 e, float damp) {
+    vec4 a = LINE_SEARCH_STEPS;
+    float dd = dot(delta, delta);
+    if (dd <= 0.0) return vec4(0.0);
+    float inv = inversesqrt(dd);
+    float d = dd * inv;
+    float ne = dot(delta, e) * inv;
+    float stretch = d - rest;
+    // d' - d from d'^2 - d^2 = a e.(2 delta + a e): exact where a e is small against delta.
+    vec4 grown = a * (2.0 * dot(delta, e)) + (a * a) * dot(e, e);
+    // (d'^2 >= 0: rounding can take a nearly collapsed trial below it)
+    vec4 moved = grown / (sqrt(max(dd + grown, vec4(0.0))) + d);
+    return (0.5 * k) * moved * (moved + 2.0 * stretch) - a * (k * stretch * ne) + (0.5 * damp * ne * ne) * (a * a);
+}
+
 vec4 newton_descent(uvec2 cell, vec3 pi, vec3 dpi, float r0dp) {
     float h = solve_dt();
     float damp = has(F_DAMPING) ? obj.stiffness.w / h : 0.0;
     vec4 a = LINE_SEARCH_STEPS;
-    vec4 change = -a * r0dp + ((0.5 * obj.mass / (h * h)) * dot(dpi, dpi)) * (a * a);
+    vec4 change = -a * r0dp + ((0.5 * particle_mass(cell) / (h * h)) * dot(dpi, dpi)) * (a * a);
+    if (is_mesh()) {
+        // (a mesh cloth's list, each spring once: from its lower end)
+        for (uint e = mesh_first(cell.x); e < mesh_first(cell.x + 1u); ++e) {
+            MeshSpring s = mesh_spring(e);
+            if (uint(s.other) < cell.x) continue;
+            change += spring_descent(s.k, s.rest, pi - PP(s.other), dpi - DP(s.other), damp);
+        }
+        return change;
+    }
     [[unroll]] for (int s = 0; s < 12; s += 2) {
         ivec3 spring = SPRINGS[s];
         if (!has(1u << spring.z)) continue;  // (as newton_particle)
         int j = SPRING_NEIGHBOUR(cell, s);
         if (j < 0) continue;
-        vec3 delta = pi - PP(j);
-        float dd = dot(delta, delta);
-        if (dd <= 0.0) continue;
-        float k = obj.stiffness[spring.z];
-        float inv = inversesqrt(dd);
-        float d = dd * inv;
-        vec3 e = dpi - DP(j);
-        float ne = dot(delta, e) * inv;
-        float stretch = d - rest_length(s);
-        // d' - d from d'^2 - d^2 = a e.(2 delta + a e): exact where a e is small against delta.
-        vec4 grown = a * (2.0 * dot(delta, e)) + (a * a) * dot(e, e);
-        // (d'^2 >= 0: rounding can take a nearly collapsed trial below it)
-        vec4 moved = grown / (sqrt(max(dd + grown, vec4(0.0))) + d);
-        change += (0.5 * k) * moved * (moved + 2.0 * stretch) - a * (k * stretch * ne) + (0.5 * damp * ne * ne) * (a * a);
+        change += spring_descent(obj.stiffness[spring.z], rest_length(s), pi - PP(j), dpi - DP(j), damp);
     }
     return change;
 }

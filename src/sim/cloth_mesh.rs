@@ -24,11 +24,11 @@ pub const MAX_VERTICES: usize = 1 << 22;
 /// Faces a mesh cloth may have.
 pub const MAX_FACES: usize = 1 << 23;
 
-/// The integrators a mesh cloth runs with (the others sweep a grid's spring classes or
-/// assemble its springs by grid offsets, and come later).
-pub const METHODS: [crate::sim::model::Integrator; 4] = {
+/// The integrators a mesh cloth runs with (XPBD by spring classes sweeps a grid's spring
+/// classes, and comes later).
+pub const METHODS: [crate::sim::model::Integrator; 5] = {
     use crate::sim::model::Integrator::*;
-    [SymplecticEuler, Verlet, Vbd, XpbdJacobi]
+    [SymplecticEuler, Verlet, Implicit, Vbd, XpbdJacobi]
 };
 
 /// `METHODS` as a user writes them: `"a", "b" or "c"`.

@@ -101,9 +101,14 @@ fn a_grid_read_as_a_mesh_moves_as_the_grid() {
     const FRAMES: usize = 120;
     let size = SIZE[0].max(SIZE[1]);
     let ctx = gpu();
-    for (integrator, air) in
-        [("symplectic_euler", false), ("vbd", false), ("vbd", true), ("xpbd_jacobi", false)]
-    {
+    let cases = [
+        ("symplectic_euler", false),
+        ("vbd", false),
+        ("vbd", true),
+        ("xpbd_jacobi", false),
+        ("implicit", false),
+    ];
+    for (integrator, air) in cases {
         let dir = tempfile::tempdir().unwrap();
         let (grid, mesh) = grid_and_mesh(dir.path(), integrator, air);
         let name = format!("{integrator}{}", if air { ", aerodynamic wind" } else { "" });
@@ -120,11 +125,12 @@ fn a_grid_read_as_a_mesh_moves_as_the_grid() {
             let apart = furthest(&a.objects()[0].x, &b.objects()[0].x);
             println!("{name}: the reference's grid and mesh runs {apart:.2e} m apart (moved {moved:.2} m)");
             // (VBD's colour order differs; the explicit methods and Jacobi's sweeps are the
-            // same sums in another order, whose rounding (1e-14 m at frame 20) grows once the
-            // cloth meets the sphere: Jacobi's to 2e-8 m at frame 120, the explicit to 1e-10)
+            // same sums in another order, as are the implicit method's, whose rounding (1e-14 m
+            // at frame 20) grows once the cloth meets the sphere: Jacobi's to 2e-8 m at frame
+            // 120, the implicit method's 1e-8, the explicit 1e-10)
             let most = match integrator {
                 "vbd" => 1e-5,
-                "xpbd_jacobi" => 1e-6,
+                "xpbd_jacobi" | "implicit" => 1e-6,
                 _ => 1e-9,
             };
             assert!(
@@ -135,7 +141,8 @@ fn a_grid_read_as_a_mesh_moves_as_the_grid() {
         // (fused for the explicit method, whose dashpots read the velocity window, and VBD
         // with the wind: plain VBD's loops are those of the latter; XPBD by Jacobi runs a mesh
         // per stage only)
-        let fuses = |f: bool| !f || (integrator != "xpbd_jacobi" && (air || integrator != "vbd"));
+        let per_stage = ["xpbd_jacobi", "implicit"].contains(&integrator);
+        let fuses = |f: bool| !f || (!per_stage && (air || integrator != "vbd"));
         for fused in [false, true].into_iter().filter(|&f| fuses(f)) {
             let (d, _) = compare_with(&ctx, &mesh, FRAMES, Mode::Resync, &|gpu| {
                 gpu.set_fused(&ctx, fused).expect("the fused kernels");
@@ -243,6 +250,61 @@ fn an_irregular_mesh_keeps_its_momentum_and_energy() {
     assert_clean(&ctx);
 }
 
+/// The irregular disc (127 vertices, masses lumped by area 0.41 to 1.23 of the mean) with
+/// `integrator` at `iterations`, stretched 10% and twisted about its centre 1 m up, with no
+/// gravity, 16 substeps of a 16 ms frame.
+fn stretched_disc(integrator: &str, iterations: u32) -> SimModel {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(dir.path().join("disc.obj"), disc_obj(6, 0.3)).unwrap();
+    let text = format!(
+        "[sim]\nsubsteps = 16\nframe_dt = 0.016\ngravity = [0.0, 0.0, 0.0]\nintegrator = \"{integrator}\"\n\
+         iterations = {iterations}\n[[mesh_cloth]]\nname = \"disc\"\nfile = \"disc.obj\"\ncenter = [0.0, 1.0, 0.0]\n\
+         density = 2.0\nstiffness = {{ structural = 200.0, shear = 0.0, bending = 5.0 }}\n"
+    );
+    std::fs::write(dir.path().join("disc.toml"), text).unwrap();
+    let mut model =
+        msdsim::scene::to_model(&msdsim::scene::load(&dir.path().join("disc.toml"), &[]).unwrap());
+    let centre = DVec3::new(0.0, 1.0, 0.0);
+    for p in &mut model.objects[0].positions {
+        let r = *p - centre;
+        *p = centre + glam::DQuat::from_rotation_y(0.4 * r.length()) * r * 1.1;
+    }
+    model
+}
+
+/// The implicit method on the stretched disc: a converged Newton step keeps the momentum (the
+/// springs' forces cancel in pairs and their Hessian's blocks act on differences, so
+/// sum m_i dp_i = sum m_i (y_i - p_i)), and its linear solves converge in a few
+/// conjugate-gradient iterations here: under 1e-9 kg m/s on the reference. VBD's run of the
+/// same incremental potential at 40 iterations ends within 1e-5 m of it; the GPU, per stage,
+/// follows the reference a frame at a time to 1e-5 of the disc's size.
+#[test]
+fn the_implicit_method_moves_an_irregular_mesh_as_vbd_does() {
+    let model = stretched_disc("implicit", 12);
+    let o = &model.objects[0];
+    let mut cpu = CpuSim::new(&model);
+    let mut most: f64 = 0.0;
+    for _ in 0..30 {
+        cpu.step_frame();
+        most = most.max(momentum(o, &cpu.objects()[0].v).length());
+    }
+    println!("the reference's momentum at most {most:.2e} kg m/s");
+    let mut vbd = CpuSim::new(&stretched_disc("vbd", 40));
+    for _ in 0..30 {
+        vbd.step_frame();
+    }
+    let apart = furthest(&cpu.objects()[0].x, &vbd.objects()[0].x);
+    let moved = furthest(&cpu.objects()[0].x, &o.positions);
+    println!("implicit and VBD {apart:.2e} m apart after 30 frames (moved {moved:.3} m)");
+    let ctx = gpu();
+    let (d, _) = compare_path(&ctx, &model, 30, Mode::Resync, false);
+    println!("the GPU against the reference, a frame at a time: {d:?}");
+    assert!(most < 1e-9, "the reference's momentum reached {most:.2e} kg m/s");
+    assert!(apart < 1e-5 && moved > 0.01, "implicit and VBD end {apart:.2e} m apart (moved {moved})");
+    assert!(d.position <= 1e-5 * 0.6, "the GPU is {:.2e} m from the reference", d.position);
+    assert_clean(&ctx);
+}
+
 /// XPBD by Jacobi on the irregular disc (masses lumped by area, 0.41 to 1.23 of the mean),
 /// stretched 10% and twisted, let go with no gravity: each spring's two ends compute the same
 /// update and move by their inverse masses, so at a step where every particle's bound leaves
@@ -253,19 +315,7 @@ fn an_irregular_mesh_keeps_its_momentum_and_energy() {
 /// 1e-5 of the disc's size.
 #[test]
 fn xpbd_by_jacobi_keeps_an_irregular_meshs_momentum() {
-    let dir = tempfile::tempdir().unwrap();
-    std::fs::write(dir.path().join("disc.obj"), disc_obj(6, 0.3)).unwrap();
-    let text = "[sim]\nsubsteps = 16\nframe_dt = 0.016\ngravity = [0.0, 0.0, 0.0]\nintegrator = \"xpbd_jacobi\"\n\
-                iterations = 8\n[[mesh_cloth]]\nname = \"disc\"\nfile = \"disc.obj\"\ncenter = [0.0, 1.0, 0.0]\n\
-                density = 2.0\nstiffness = { structural = 200.0, shear = 0.0, bending = 5.0 }\n";
-    std::fs::write(dir.path().join("disc.toml"), text).unwrap();
-    let mut model =
-        msdsim::scene::to_model(&msdsim::scene::load(&dir.path().join("disc.toml"), &[]).unwrap());
-    let centre = DVec3::new(0.0, 1.0, 0.0);
-    for p in &mut model.objects[0].positions {
-        let r = *p - centre;
-        *p = centre + glam::DQuat::from_rotation_y(0.4 * r.length()) * r * 1.1;
-    }
+    let model = stretched_disc("xpbd_jacobi", 8);
     let o = &model.objects[0];
     let mesh = o.mesh.as_ref().unwrap();
     // The bound's sum at its largest (with the frame's substep: the solve's step is shorter,

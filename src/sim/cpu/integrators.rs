@@ -704,7 +704,8 @@ pub(crate) fn implicit(s: &Substep<'_>, history: &mut [History]) -> State {
     let n = x0.len();
     let start = inertial(s, history);
     let (dt, x, y) = (start.h, &start.base[..], &start.y[..]);
-    let inertia = o.mass / (dt * dt);
+    // (each particle's: a mesh cloth's masses are lumped by area)
+    let inertia: Vec<f64> = (0..n).map(|i| o.mass_of(i) / (dt * dt)).collect();
     let mut p = start.start.clone();
     let free: Vec<usize> = (0..n).filter(|&i| !o.pinned[i]).collect();
     let search = implicit_searches(m, o);
@@ -714,8 +715,8 @@ pub(crate) fn implicit(s: &Substep<'_>, history: &mut [History]) -> State {
         let mut pre = vec![DMat3::ZERO; n];
         let mut blocks: Vec<Vec<(usize, DMat3)>> = vec![Vec::new(); n];
         for &i in &free {
-            let mut force = (y[i] - p[i]) * inertia;
-            let mut diagonal = DMat3::from_diagonal(DVec3::splat(inertia));
+            let mut force = (y[i] - p[i]) * inertia[i];
+            let mut diagonal = DMat3::from_diagonal(DVec3::splat(inertia[i]));
             for (j, f, block) in newton_springs(o, dt, &p, x, i) {
                 force += f;
                 diagonal += block;
@@ -728,7 +729,7 @@ pub(crate) fn implicit(s: &Substep<'_>, history: &mut [History]) -> State {
         let product = |d: &[DVec3]| -> Vec<DVec3> {
             let mut q = vec![DVec3::ZERO; n];
             for &i in &free {
-                q[i] = d[i] * inertia + blocks[i].iter().map(|(j, b)| *b * (d[i] - d[*j])).sum::<DVec3>();
+                q[i] = d[i] * inertia[i] + blocks[i].iter().map(|(j, b)| *b * (d[i] - d[*j])).sum::<DVec3>();
             }
             q
         };
@@ -829,12 +830,11 @@ fn line_search(o: &ObjectModel, h: f64, p: &[DVec3], dp: &[DVec3], r0: &[DVec3])
 /// replaces; d' - d is formed from d'^2 - d^2 = a e.(2 delta + a e), exact where a e is small
 /// against the spring).
 fn descent(o: &ObjectModel, h: f64, p: &[DVec3], dp: &[DVec3], r0: &[DVec3]) -> [f64; 4] {
-    let inertia = o.mass / (h * h);
     let damp = o.damping / h;
     let mut change = [0.0; 4];
     for i in 0..p.len() {
         let first = -r0[i].dot(dp[i]);
-        let second = inertia * dp[i].length_squared();
+        let second = o.mass_of(i) / (h * h) * dp[i].length_squared();
         for (t, &a) in LINE_SEARCH_STEPS.iter().enumerate() {
             change[t] += a * first + 0.5 * a * a * second;
         }
