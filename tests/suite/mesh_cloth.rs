@@ -98,17 +98,23 @@ fn furthest(a: &[DVec3], b: &[DVec3]) -> f64 {
 /// grid's from its four neighbours, so the two runs differ): the GPU against the reference.
 #[test]
 fn a_grid_read_as_a_mesh_moves_as_the_grid() {
+    grid_as_mesh(&[("symplectic_euler", false), ("vbd", false), ("vbd", true)]);
+}
+
+/// The same with XPBD by Jacobi and the implicit method, which a mesh cloth runs per stage
+/// (their sums are the grid's in another order: on the reference to 1e-6 of the size).
+#[test]
+#[ignore = "exhaustive tier: the default tier checks these methods on the stretched disc"]
+fn a_grid_read_as_a_mesh_moves_as_the_grid_with_the_other_iterative_methods() {
+    grid_as_mesh(&[("xpbd_jacobi", false), ("implicit", false)]);
+}
+
+/// `a_grid_read_as_a_mesh_moves_as_the_grid` for each (integrator, aerodynamic wind) case.
+fn grid_as_mesh(cases: &[(&str, bool)]) {
     const FRAMES: usize = 120;
     let size = SIZE[0].max(SIZE[1]);
     let ctx = gpu();
-    let cases = [
-        ("symplectic_euler", false),
-        ("vbd", false),
-        ("vbd", true),
-        ("xpbd_jacobi", false),
-        ("implicit", false),
-    ];
-    for (integrator, air) in cases {
+    for &(integrator, air) in cases {
         let dir = tempfile::tempdir().unwrap();
         let (grid, mesh) = grid_and_mesh(dir.path(), integrator, air);
         let name = format!("{integrator}{}", if air { ", aerodynamic wind" } else { "" });
