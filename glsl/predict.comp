@@ -7,7 +7,8 @@
 // as the start position, what its rounding left out into H_DV (finish_particle reads it and
 // writes the new v_n - v_{n-1} there), and where the iterate starts (the prediction y, or with
 // ADAPTIVE_START adaptive_start's) into the iterates. Resets the solver's auxiliary
-// data: a copy of y (KEEP_PREDICTION), else the 12 multipliers of XPBD to zero. The constants
+// data: a copy of y (KEEP_PREDICTION), else the multipliers of XPBD to zero (a grid particle's
+// 12; a mesh cloth's, a float an entry of its spring lists: MESH_LAMBDA). The constants
 // are the method's row in sim::integrator.
 //
 // The iterates are displacements from the base, p - x~, not positions: the velocity p - x~

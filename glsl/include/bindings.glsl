@@ -60,7 +60,7 @@ layout(std430, set = 0, binding = 10) BLOCK_SUMS_COHERENT buffer HashBlocks { ui
 layout(std430, set = 0, binding = 11) buffer GuardBuf { uint guard_flags; uint guard_first; uint guard_lists_on; uint guard_lists_rebuilt; }; // GUARD_* bits, lowest bad index
 // Iterates of the iterative integrators (objects of the explicit ones bind a placeholder).
 layout(std430, set = 0, binding = 12) buffer SolverIter { vec4 iter[]; }; // slices of N positions; w = 1 pinned
-layout(std430, set = 0, binding = 13) buffer SolverAux { vec4 aux[]; };   // xpbd: 12 multipliers per particle; implicit: y
+layout(std430, set = 0, binding = 13) buffer SolverAux { vec4 aux[]; };   // xpbd: 12 multipliers per particle (a mesh: one a list entry); implicit: y
 // Inter-object contact: per particle, the summed corrections from other objects (xyz) and
 // their count (w), written by contact.comp each substep, read by the constraint stage.
 layout(std430, set = 0, binding = 14) buffer ContactBuf { vec4 contact[]; };

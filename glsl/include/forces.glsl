@@ -45,9 +45,8 @@ vec3 wind_force(vec3 x) {
 // proportion to their mass (their share of the area, `mass_share`): a particle of the mean
 // area takes `drag`, and a uniform flow moves the cloth without deforming it.
 vec3 external_force(vec3 x, vec3 v, float m) {
-    vec3 air = wind_force(x) - obj.drag * v;
-    if (has(F_CLOTH_MESH)) air *= m / obj.mass;
-    return m * GRAVITY_SCALE * g.gravity + air;
+    float share = has(F_CLOTH_MESH) ? m / obj.mass : 1.0;
+    return m * GRAVITY_SCALE * g.gravity + wind_force(x) * share - obj.drag * v * share;
 }
 
 #endif

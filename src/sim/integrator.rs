@@ -63,7 +63,7 @@ pub struct Solver {
     /// The iteration shader.
     pub shader: &'static str,
     /// `predict.comp` keeps the prediction y - x in the auxiliary buffer (else it zeroes the 12
-    /// multipliers a particle keeps there).
+    /// multipliers a particle keeps there; a mesh cloth's, one an entry of its spring lists).
     pub keeps_prediction: bool,
     /// The iterate starts from the prediction less the part of the external pull the springs
     /// held last substep (`sim::cpu::integrators::held_fraction`), not from the prediction.
@@ -249,7 +249,8 @@ const METHODS: [Method; 6] = [
         integrator: Integrator::XpbdJacobi,
         label: "xpbd_jacobi",
         order: 2.0,
-        // Two alternating slices; aux: the multipliers of the particle's 12 springs.
+        // Two alternating slices; aux: the multipliers of the particle's 12 springs (a mesh
+        // cloth's: one an entry of its lists, `SolverBuffers::new`).
         scheme: solver("xpbd_jacobi_iterate.comp", (false, false, false), 2, 3, Sweep::Jacobi),
         cpu: cpu::xpbd_jacobi,
         colour: (140, 86, 75),

@@ -92,7 +92,8 @@ pub struct ObjectModel {
     pub damping: f64,
     /// Mass of each particle [kg]; a mesh cloth's mean particle's (`mass_of`).
     pub mass: f64,
-    /// Stokes drag coefficient: force -drag * v [N s/m].
+    /// Stokes drag coefficient: force -drag * v [N s/m] (a mesh cloth's particle, times its
+    /// share of the area: `share_of`).
     pub drag: f64,
     /// Coulomb's friction coefficient mu: against colliders (unless a collider sets its own),
     /// other objects (the mean of the two objects') and, with triangle self-contact, itself.

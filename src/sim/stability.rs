@@ -12,8 +12,8 @@ use super::model::{Integrator, ObjectKind, SimModel};
 pub struct Prediction {
     pub name: String,
     pub kind: ObjectKind,
-    /// A mesh cloth's: of the methods for large steps it runs with VBD only
-    /// (`sim::cloth_mesh::METHODS`), which the advice names alone.
+    /// A mesh cloth's: the advice names only the methods for large steps it runs with
+    /// (`sim::cloth_mesh::METHODS`).
     pub mesh: bool,
     /// Upper bound of the highest angular frequency [rad/s].
     pub omega_max: f64,

@@ -130,10 +130,9 @@ fn grid_as_mesh(cases: &[(&str, bool)]) {
             assert!(moved > 0.2, "{name}: the cloth moved only {moved} m");
             let apart = furthest(&a.objects()[0].x, &b.objects()[0].x);
             println!("{name}: the reference's grid and mesh runs {apart:.2e} m apart (moved {moved:.2} m)");
-            // (VBD's colour order differs; the explicit methods and Jacobi's sweeps are the
-            // same sums in another order, as are the implicit method's, whose rounding (1e-14 m
-            // at frame 20) grows once the cloth meets the sphere: Jacobi's to 2e-8 m at frame
-            // 120, the implicit method's 1e-8, the explicit 1e-10)
+            // (VBD's colour order differs; the other methods' sums are the grid's in another
+            // order, whose rounding grows once the cloth meets the sphere, the iterative
+            // methods' faster: docs/ACCURACY.md has the figures)
             let most = match integrator {
                 "vbd" => 1e-5,
                 "xpbd_jacobi" | "implicit" => 1e-6,
@@ -145,8 +144,8 @@ fn grid_as_mesh(cases: &[(&str, bool)]) {
             );
         }
         // (fused for the explicit method, whose dashpots read the velocity window, and VBD
-        // with the wind: plain VBD's loops are those of the latter; XPBD by Jacobi runs a mesh
-        // per stage only)
+        // with the wind: plain VBD's loops are those of the latter; XPBD by Jacobi and the
+        // implicit method run a mesh per stage only)
         let per_stage = ["xpbd_jacobi", "implicit"].contains(&integrator);
         let fuses = |f: bool| !f || (!per_stage && (air || integrator != "vbd"));
         for fused in [false, true].into_iter().filter(|&f| fuses(f)) {
@@ -316,7 +315,8 @@ fn the_implicit_method_moves_an_irregular_mesh_as_vbd_does() {
 /// update and move by their inverse masses, so at a step where every particle's bound leaves
 /// its move whole (the sum of (w_i + w_j) / (w_i + w_j + alpha~) over its springs under 1, as
 /// here) the momentum stays zero (1e-12 kg m/s on the reference, 1e-6 on the GPU as above),
-/// and the energy only falls (the step is implicit Euler's, which dissipates). The GPU (per
+/// and the energy falls frame by frame (BDF2 damps a free oscillation, and a solve stopped
+/// short of convergence damps it more; observed here, not a law of the method). The GPU (per
 /// stage: a mesh with this method does not fuse) follows the reference a frame at a time to
 /// 1e-5 of the disc's size.
 #[test]
@@ -416,9 +416,9 @@ fn the_wind_pushes_a_flat_mesh_by_its_area() {
 /// middle and stretch its soft springs by about c v / k = 0.4 mm). Symplectic Euler's step
 /// v += h a(v), x += h v, followed over 1 s: the reference to 1e-5 m/s and 1e-6 m (it takes
 /// the GPU's start rounded to f32, which strains the springs by 1e-8 m, ringing at omega = 100
-/// rad/s: 2e-6 m/s); the GPU, per stage and fused, to 3e-4 m/s and 2e-5 m (f32 positions
-/// near 1 m round to 1e-7 m a substep, and the springs answer that rounding: 6e-5 m/s seen).
-/// Forces per particle, as before the change, put the border 0.13 m and 0.43 m/s off.
+/// rad/s); the GPU, per stage and fused, to 3e-4 m/s and 2e-5 m (f32 positions near 1 m round
+/// to 1e-7 m a substep, and the springs answer that rounding). Forces per particle, whatever
+/// its area, put the light border far off both (docs/ACCURACY.md).
 #[test]
 fn drag_and_the_papers_wind_move_a_mesh_cloth_without_deforming_it() {
     const FRAMES: usize = 60;

@@ -88,8 +88,9 @@ fn elastic_springs(o: &ObjectModel, i: usize) -> impl Iterator<Item = (Spring, f
 /// are per particle, a mesh cloth's by its share of the area (`external_force` in
 /// glsl/include/forces.glsl).
 fn external(m: &SimModel, o: &ObjectModel, i: usize, x: &[DVec3], v: DVec3, time: f64) -> DVec3 {
-    let per_particle = (wind_at(&m.wind, x[i]) - v * o.drag) * o.share_of(i);
-    m.gravity * o.mass_of(i) + per_particle + air_force(m, o, i, x, v, time)
+    let share = o.share_of(i);
+    m.gravity * o.mass_of(i) + wind_at(&m.wind, x[i]) * share + air_force(m, o, i, x, v, time)
+        - v * o.drag * share
 }
 
 /// The springs' force on particle i: elastic and dashpot parts [N].
@@ -463,10 +464,12 @@ pub(crate) fn xpbd(s: &Substep<'_>, history: &mut [History]) -> State {
 ///
 /// beta_i bounds the step so that no sweep overshoots: linearised, a sweep multiplies the
 /// error by I - B W J^T G D^-1 J (G the springs' 1 + gamma, D their denominators
-/// (1 + gamma)(w_i + w_j) + alpha~), whose eigenvalues lie in [0, 1] when every particle's
-/// block row of the second term has norm at most one: beta_i w_i sum (1 + gamma) e / D <= 1
-/// with e = 2, or 1 when the other end is pinned. So beta_i = min(1, 1 / (w_i sum (1 + gamma)
-/// e / D)), a constant of the particle's springs and the substep. Where the springs are soft
+/// (1 + gamma)(w_i + w_j) + alpha~), whose eigenvalues lie in [0, 1] (the second term is
+/// similar to a positive semi-definite matrix) when every particle's block row of the second
+/// term, weighted by the inverse masses (Gershgorin's bound on diag(w)^-1 B W J^T G D^-1 J
+/// diag(w)), sums to at most one: beta_i sum (1 + gamma)(w_i + w_j) / D <= 1, w_j = 0 where the
+/// other end is pinned (on a grid w_i e with e = 2, or 1 pinned). So beta_i = min(1, 1 /
+/// sum (1 + gamma)(w_i + w_j) / D), a constant of the particle's springs and the substep. Where the springs are soft
 /// against the substep (alpha~ >> w: the sum is about 2 w h^2 sum k) beta is 1 and a sweep is
 /// plain Jacobi, whose one iteration is a consistent step like `xpbd`'s; where they are stiff beta tends to
 /// 1 / (springs), the mean of the springs' corrections, which is stable but converges slowly
@@ -482,6 +485,7 @@ pub(crate) fn xpbd_jacobi(s: &Substep<'_>, history: &mut [History]) -> State {
     // Each particle's copy of its springs' multipliers, by slot (a grid's 12, a mesh's list).
     let slots = |i: usize| o.mesh.as_ref().map_or(12, |mesh| mesh.springs_of(i).len());
     let mut lambda: Vec<Vec<f64>> = (0..n).map(|i| vec![0.0; slots(i)]).collect();
+    let mut updates = Vec::new();
     for _ in 0..m.iterations {
         let mut next = p.clone();
         for i in 0..n {
@@ -491,7 +495,9 @@ pub(crate) fn xpbd_jacobi(s: &Substep<'_>, history: &mut [History]) -> State {
             // (a mesh cloth's masses differ, so each spring's denominator takes both ends';
             // on a grid w_j is w or 0)
             let w = 1.0 / o.mass_of(i);
-            let (mut load, mut moved_by, mut updates) = (0.0, DVec3::ZERO, vec![0.0f64; slots(i)]);
+            let (mut load, mut moved_by) = (0.0, DVec3::ZERO);
+            updates.clear();
+            updates.resize(slots(i), 0.0);
             for (s, k) in elastic_springs(o, i) {
                 let j = s.other;
                 let (alpha, gamma) = (1.0 / (k * dt * dt), o.damping / (k * dt));
@@ -512,7 +518,7 @@ pub(crate) fn xpbd_jacobi(s: &Substep<'_>, history: &mut [History]) -> State {
             }
             let beta = if w * load > 1.0 { 1.0 / (w * load) } else { 1.0 };
             next[i] += moved_by * beta;
-            for (l, dl) in lambda[i].iter_mut().zip(updates) {
+            for (l, dl) in lambda[i].iter_mut().zip(&updates) {
                 *l += beta * dl;
             }
         }

@@ -278,7 +278,8 @@ impl FusedShape {
         // mesh with a stretch limit and a particle of more limited springs than a count's four
         // bits hold (STRETCH_PACKED; a grid's particle has eight), and a mesh with XPBD by
         // Jacobi (its multipliers, one an entry of its lists, live in the solver's buffer) or
-        // the implicit method (the fused kernel's Hessian product walks a grid's slots).
+        // the implicit method (its fused path, whose reductions span the workgroup, is not
+        // checked on a mesh against the reference: per stage until it is).
         let counted = o.stretch_limit.is_none()
             || o.mesh.as_ref().is_none_or(|m| m.most_limited_springs() <= STRETCH_COUNT_MOST);
         let per_stage = [Integrator::XpbdJacobi, Integrator::Implicit];
