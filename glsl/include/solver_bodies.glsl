@@ -272,7 +272,7 @@ vec3 hessian_product(uvec2 cell, vec3 pi, vec3 di) {
     float damp = has(F_DAMPING) ? obj.stiffness.w / h : 0.0;
     vec3 q = di * (particle_mass(cell) / (h * h));
     if (is_mesh()) {
-        // (a mesh cloth's list; the fused plan keeps a mesh with this method per stage)
+        // (a mesh cloth's list, as newton_particle's)
         for (uint f = mesh_first(cell.x); f < mesh_first(cell.x + 1u); ++f) {
             MeshSpring s = mesh_spring(f);
             vec3 delta = pi - PP(s.other);

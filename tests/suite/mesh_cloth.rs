@@ -101,7 +101,7 @@ fn a_grid_read_as_a_mesh_moves_as_the_grid() {
     grid_as_mesh(&[("symplectic_euler", false), ("vbd", false), ("vbd", true)]);
 }
 
-/// The same with XPBD by Jacobi and the implicit method, which a mesh cloth runs per stage
+/// The same with XPBD by Jacobi (which a mesh cloth runs per stage) and the implicit method
 /// (their sums are the grid's in another order: on the reference to 1e-6 of the size).
 #[test]
 #[ignore = "exhaustive tier: the default tier checks these methods on the stretched disc"]
@@ -144,10 +144,9 @@ fn grid_as_mesh(cases: &[(&str, bool)]) {
             );
         }
         // (fused for the explicit method, whose dashpots read the velocity window, and VBD
-        // with the wind: plain VBD's loops are those of the latter; XPBD by Jacobi and the
-        // implicit method run a mesh per stage only)
-        let per_stage = ["xpbd_jacobi", "implicit"].contains(&integrator);
-        let fuses = |f: bool| !f || (!per_stage && (air || integrator != "vbd"));
+        // with the wind: plain VBD's loops are those of the latter; XPBD by Jacobi runs a mesh
+        // per stage only)
+        let fuses = |f: bool| !f || (integrator != "xpbd_jacobi" && (air || integrator != "vbd"));
         for fused in [false, true].into_iter().filter(|&f| fuses(f)) {
             let (d, _) = compare_with(&ctx, &mesh, FRAMES, Mode::Resync, &|gpu| {
                 gpu.set_fused(&ctx, fused).expect("the fused kernels");
@@ -281,8 +280,8 @@ fn stretched_disc(integrator: &str, iterations: u32) -> SimModel {
 /// springs' forces cancel in pairs and their Hessian's blocks act on differences, so
 /// sum m_i dp_i = sum m_i (y_i - p_i)), and its linear solves converge in a few
 /// conjugate-gradient iterations here: under 1e-9 kg m/s on the reference. VBD's run of the
-/// same incremental potential at 40 iterations ends within 1e-5 m of it; the GPU, per stage,
-/// follows the reference a frame at a time to 1e-5 of the disc's size.
+/// same incremental potential at 40 iterations ends within 1e-5 m of it; the GPU, per stage and
+/// fused, follows the reference a frame at a time to 1e-5 of the disc's size.
 #[test]
 fn the_implicit_method_moves_an_irregular_mesh_as_vbd_does() {
     let model = stretched_disc("implicit", 12);
@@ -301,12 +300,21 @@ fn the_implicit_method_moves_an_irregular_mesh_as_vbd_does() {
     let apart = furthest(&cpu.objects()[0].x, &vbd.objects()[0].x);
     let moved = furthest(&cpu.objects()[0].x, &o.positions);
     println!("implicit and VBD {apart:.2e} m apart after 30 frames (moved {moved:.3} m)");
-    let ctx = gpu();
-    let (d, _) = compare_path(&ctx, &model, 30, Mode::Resync, false);
-    println!("the GPU against the reference, a frame at a time: {d:?}");
     assert!(most < 1e-9, "the reference's momentum reached {most:.2e} kg m/s");
     assert!(apart < 1e-5 && moved > 0.01, "implicit and VBD end {apart:.2e} m apart (moved {moved})");
-    assert!(d.position <= 1e-5 * 0.6, "the GPU is {:.2e} m from the reference", d.position);
+    let ctx = gpu();
+    for fused in [false, true] {
+        let (d, _) = compare_with(&ctx, &model, 30, Mode::Resync, &|gpu| {
+            gpu.set_fused(&ctx, fused).expect("the fused kernels");
+            assert_eq!(gpu.runs_fused(0), fused, "the disc runs fused: {fused}");
+        });
+        println!("the GPU (fused: {fused}) against the reference, a frame at a time: {d:?}");
+        assert!(
+            d.position <= 1e-5 * 0.6,
+            "the GPU (fused: {fused}) is {:.2e} m from the reference",
+            d.position
+        );
+    }
     assert_clean(&ctx);
 }
 

@@ -277,13 +277,10 @@ impl FusedShape {
         // Objects that touch each other meet every substep: they run per stage. So does a
         // mesh with a stretch limit and a particle of more limited springs than a count's four
         // bits hold (STRETCH_PACKED; a grid's particle has eight), and a mesh with XPBD by
-        // Jacobi (its multipliers, one an entry of its lists, live in the solver's buffer) or
-        // the implicit method (its fused path, whose reductions span the workgroup, is not
-        // checked on a mesh against the reference: per stage until it is).
+        // Jacobi (its multipliers, one an entry of its lists, live in the solver's buffer).
         let counted = o.stretch_limit.is_none()
             || o.mesh.as_ref().is_none_or(|m| m.most_limited_springs() <= STRETCH_COUNT_MOST);
-        let per_stage = [Integrator::XpbdJacobi, Integrator::Implicit];
-        let listed = o.mesh.is_none() || !per_stage.contains(&model.integrator);
+        let listed = o.mesh.is_none() || model.integrator != Integrator::XpbdJacobi;
         let alone = !model.inter_object_contact();
         if n == 0 || n > most.min(FUSED_SLOTS) * MAX_THREADS || !alone || !counted || !listed {
             return None;
