@@ -318,6 +318,54 @@ fn the_implicit_method_moves_an_irregular_mesh_as_vbd_does() {
     assert_clean(&ctx);
 }
 
+/// The implicit method on the disc with springs stiff against the step (20,000 N/m at 4
+/// substeps, with dashpots), so that its Newton steps take the line search and a free disc
+/// starts each solve from its rigid move (`implicit_searches`, `rigid_starts`: their mesh
+/// branches), dropped tilted onto the ground, free and held by its centre: the GPU, per stage
+/// and fused, follows the reference a frame at a time to 1e-4 of the disc's size (springs a
+/// hundred times the soft disc's turn f32's rounding of positions into forces a hundred times
+/// larger, and the search's choice among four lengths can differ on it).
+#[test]
+#[ignore = "exhaustive tier: four GPU runs of 40 frames (the soft disc's test is in the default)"]
+fn the_implicit_method_searches_and_starts_rigidly_on_a_stiff_mesh() {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(dir.path().join("disc.obj"), disc_obj(6, 0.3)).unwrap();
+    let ctx = gpu();
+    for held in [false, true] {
+        let text = format!(
+            "[sim]\nsubsteps = 4\nintegrator = \"implicit\"\niterations = 6\n[ground]\nheight = 0.0\n\
+             [[mesh_cloth]]\nname = \"disc\"\nfile = \"disc.obj\"\ncenter = [0.0, 0.3, 0.0]\n\
+             rotation = [30.0, 0.0, 0.0]\ndensity = 0.2\ndamping = 0.5\ncollision_margin = 0.005\n\
+             stiffness = {{ structural = 20000.0, shear = 0.0, bending = 50.0 }}\n{}",
+            if held { "pinned = [0]\n" } else { "" }
+        );
+        std::fs::write(dir.path().join("disc.toml"), text).unwrap();
+        let model =
+            msdsim::scene::to_model(&msdsim::scene::load(&dir.path().join("disc.toml"), &[]).unwrap());
+        let o = &model.objects[0];
+        assert!(
+            msdsim::sim::cpu::implicit_searches(&model, o),
+            "the disc's springs are not stiff against the step"
+        );
+        assert_eq!(msdsim::sim::cpu::rigid_starts(&model, o), !held);
+        for fused in [false, true] {
+            let (d, last) = compare_with(&ctx, &model, 40, Mode::Resync, &|gpu| {
+                gpu.set_fused(&ctx, fused).expect("the fused kernels");
+                assert_eq!(gpu.runs_fused(0), fused, "the disc runs fused: {fused}");
+            });
+            let low = last[0].positions().iter().map(|p| p.y).fold(f64::INFINITY, f64::min);
+            println!("held {held}, fused {fused}: the GPU against the reference {d:?}; lowest {low:.4} m");
+            assert!(held || low < 0.01, "fused {fused}: the free disc did not reach the ground ({low} m)");
+            assert!(
+                d.position <= 1e-4 * 0.6,
+                "held {held}, fused {fused}: the GPU is {:.2e} m from the reference",
+                d.position
+            );
+        }
+    }
+    assert_clean(&ctx);
+}
+
 /// XPBD by Jacobi on the irregular disc (masses lumped by area, 0.41 to 1.23 of the mean),
 /// stretched 10% and twisted, let go with no gravity: each spring's two ends compute the same
 /// update and move by their inverse masses, so at a step where every particle's bound leaves
