@@ -552,7 +552,7 @@ fn check_mesh_cloth(at: &str, c: &super::MeshCloth, scene: &Scene) -> Check {
     if let Some(m) = scene.sim.integrator.method().filter(|m| !crate::sim::cloth_mesh::METHODS.contains(m)) {
         return Err(format!(
             "{at}: a mesh cloth runs with sim.integrator = {} for now, not \"{}\"",
-            crate::sim::cloth_mesh::methods_named(),
+            crate::sim::model::Integrator::named(crate::sim::cloth_mesh::METHODS),
             m.label()
         ));
     }

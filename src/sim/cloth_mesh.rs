@@ -31,13 +31,6 @@ pub const METHODS: [crate::sim::model::Integrator; 5] = {
     [SymplecticEuler, Verlet, Implicit, Vbd, XpbdJacobi]
 };
 
-/// `METHODS` as a user writes them: `"a", "b" or "c"`.
-pub fn methods_named() -> String {
-    let names: Vec<String> = METHODS.iter().map(|m| format!("\"{}\"", m.label())).collect();
-    let (last, rest) = names.split_last().expect("METHODS is not empty");
-    format!("{} or {last}", rest.join(", "))
-}
-
 /// Whether both simulators run object `o` of `model` as it asks: a mesh cloth with one of
 /// `METHODS`, without contact between objects, and with self-contact, if
 /// any, of its particles against its triangles (what scene validation keeps a preset to,

@@ -283,6 +283,15 @@ impl Integrator {
         self.method().label
     }
 
+    /// `methods` as a user writes them in a preset: `"a", "b" or "c"`.
+    pub fn named(methods: impl IntoIterator<Item = Integrator>) -> String {
+        let names: Vec<String> = methods.into_iter().map(|m| format!("\"{}\"", m.label())).collect();
+        match names.split_last() {
+            Some((last, rest)) if !rest.is_empty() => format!("{} or {last}", rest.join(", ")),
+            _ => names.concat(),
+        }
+    }
+
     /// The method whose label is `name`.
     pub fn from_label(name: &str) -> Option<Integrator> {
         Self::ALL.into_iter().find(|m| m.label() == name)

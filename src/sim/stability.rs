@@ -73,12 +73,7 @@ fn more_substeps(model: &SimModel) -> String {
 /// where `mesh`, those a mesh cloth runs with.
 pub fn stable_integrators(mesh: bool) -> String {
     let runs = |m: &&Integrator| m.iterative() && (!mesh || crate::sim::cloth_mesh::METHODS.contains(m));
-    let names: Vec<String> =
-        Integrator::ALL.iter().filter(runs).map(|m| format!("\"{}\"", m.label())).collect();
-    match names.split_last() {
-        Some((last, rest)) if !rest.is_empty() => format!("{} or {last}", rest.join(", ")),
-        _ => names.concat(),
-    }
+    Integrator::named(Integrator::ALL.iter().filter(runs).copied())
 }
 
 /// Sum of the spring stiffnesses of the best-connected particle of an object of `dims` particles (a rope: [nodes, 1]) with springs of `stiffness`

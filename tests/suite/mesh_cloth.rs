@@ -148,10 +148,7 @@ fn grid_as_mesh(cases: &[(&str, bool)]) {
         // per stage only)
         let fuses = |f: bool| !f || (integrator != "xpbd_jacobi" && (air || integrator != "vbd"));
         for fused in [false, true].into_iter().filter(|&f| fuses(f)) {
-            let (d, _) = compare_with(&ctx, &mesh, FRAMES, Mode::Resync, &|gpu| {
-                gpu.set_fused(&ctx, fused).expect("the fused kernels");
-                assert_eq!(gpu.runs_fused(0), fused, "{name}: the mesh cloth runs fused: {fused}");
-            });
+            let (d, _) = compare_fused(&ctx, &mesh, FRAMES, fused);
             let path = if fused { "fused" } else { "per stage" };
             println!("{name}, {path}: the GPU's mesh run against the reference's, a frame at a time: {d:?}");
             assert!(
@@ -304,10 +301,7 @@ fn the_implicit_method_moves_an_irregular_mesh_as_vbd_does() {
     assert!(apart < 1e-5 && moved > 0.01, "implicit and VBD end {apart:.2e} m apart (moved {moved})");
     let ctx = gpu();
     for fused in [false, true] {
-        let (d, _) = compare_with(&ctx, &model, 30, Mode::Resync, &|gpu| {
-            gpu.set_fused(&ctx, fused).expect("the fused kernels");
-            assert_eq!(gpu.runs_fused(0), fused, "the disc runs fused: {fused}");
-        });
+        let (d, _) = compare_fused(&ctx, &model, 30, fused);
         println!("the GPU (fused: {fused}) against the reference, a frame at a time: {d:?}");
         assert!(
             d.position <= 1e-5 * 0.6,
@@ -349,10 +343,7 @@ fn the_implicit_method_searches_and_starts_rigidly_on_a_stiff_mesh() {
         );
         assert_eq!(msdsim::sim::cpu::rigid_starts(&model, o), !held);
         for fused in [false, true] {
-            let (d, last) = compare_with(&ctx, &model, 40, Mode::Resync, &|gpu| {
-                gpu.set_fused(&ctx, fused).expect("the fused kernels");
-                assert_eq!(gpu.runs_fused(0), fused, "the disc runs fused: {fused}");
-            });
+            let (d, last) = compare_fused(&ctx, &model, 40, fused);
             let low = last[0].positions().iter().map(|p| p.y).fold(f64::INFINITY, f64::min);
             println!("held {held}, fused {fused}: the GPU against the reference {d:?}; lowest {low:.4} m");
             assert!(held || low < 0.01, "fused {fused}: the free disc did not reach the ground ({low} m)");
@@ -1025,10 +1016,7 @@ fn the_stretch_limit_holds_a_mesh_cloth_and_keeps_its_momentum() {
     assert!(strain < 0.1 && strain <= 1.05 * grid_strain, "a spring stretched {strain:.4} past a 0.05 limit");
     let ctx = gpu();
     for fused in [false, true] {
-        let (d, _) = compare_with(&ctx, &s, 30, Mode::Resync, &|gpu| {
-            gpu.set_fused(&ctx, fused).expect("the fused kernels");
-            assert_eq!(gpu.runs_fused(0), fused, "the mesh cloth runs fused: {fused}");
-        });
+        let (d, _) = compare_fused(&ctx, &s, 30, fused);
         println!("fused {fused}: the GPU against the reference a frame at a time {d:?}");
         assert!(
             d.position <= 1e-5 * 0.6,

@@ -282,6 +282,20 @@ pub fn compare_path(
     compare_with(ctx, model, frames, mode, &|gpu| gpu.set_fused(ctx, fused).expect("the fused kernels"))
 }
 
+/// `compare_path` that also checks the first object runs on the path asked for (fused, or per
+/// stage), where a fused run that fell back to per stage would compare the wrong path.
+pub fn compare_fused(
+    ctx: &GpuContext,
+    model: &SimModel,
+    frames: usize,
+    fused: bool,
+) -> (Deviation, Vec<ObjectState>) {
+    compare_with(ctx, model, frames, Mode::Resync, &|gpu| {
+        gpu.set_fused(ctx, fused).expect("the fused kernels");
+        assert_eq!(gpu.runs_fused(0), fused, "the object runs fused: {fused}");
+    })
+}
+
 /// `compare_path` with the GPU simulation set up by `setup` before the first frame.
 pub fn compare_with(
     ctx: &GpuContext,
