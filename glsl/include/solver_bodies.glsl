@@ -91,43 +91,71 @@ vec3 xpbd_jacobi_particle(uvec2 cell, vec3 x, vec3 dx, inout vec4 lam[3]) {
 // xpbd_jacobi_particle over its spring list, each spring's constants from its own stiffness and
 // both ends' masses, which lumping by area makes unequal: D = (1 + gamma)(w_i + w_j) + alpha~,
 // the particle moving by beta w_i n dlambda with beta = min(1, 1 / sum (1 + gamma)(w_i + w_j) / D)
-// (the grid's bound, whose w_j is w_i or 0; it needs no positions, so it is summed first and
-// each multiplier advances in place). Its multipliers, its own copies, are MESH_LAMBDA(e) at
-// its list's entries; `keep`: advance them (not in the last iteration). Returns the new
-// displacement.
-float xpbd_mesh_ends(MeshSpring s, float w, float b, float h) {
-    float w_j = SPIN(s.other) ? 0.0 : 1.0 / particle_mass(uvec2(uint(s.other), 0u));
-    return (1.0 + b / (s.k * h)) * (w + w_j);
-}
+// (the grid's bound, whose w_j is w_i or 0). Its multipliers, its own copies, are MESH_LAMBDA(e)
+// at its list's entries; `keep`: advance them (not in the last iteration). One pass over the
+// list in batches (mesh_batch): the bound and the move are summed together, each multiplier
+// advancing by its whole dlambda, and where the bound then cuts (beta < 1) a second pass takes
+// back (1 - beta) dlambda, the only spring values it recomputes. Returns the new displacement.
 vec3 xpbd_jacobi_mesh(uint i, vec3 x, vec3 dx, bool keep) {
     float h = solve_dt();
     float b = has(F_DAMPING) ? obj.stiffness.w : 0.0;
     float w = 1.0 / particle_mass(uvec2(i, 0u));
     uint end = mesh_first(i + 1u);
     float load = 0.0;
-    for (uint e = mesh_first(i); e < end; ++e) {
-        MeshSpring s = mesh_spring(e);
-        if (s.k == 0.0) continue;
-        float ends = xpbd_mesh_ends(s, w, b, h);
-        load += ends / (ends + 1.0 / (s.k * h * h));
+    vec3 move = vec3(0.0);
+    for (uint e = mesh_first(i); e < end; e += MESH_BATCH) {
+        MeshSpring s[MESH_BATCH];
+        vec3 dj[MESH_BATCH];
+        vec3 xj[MESH_BATCH];
+        bool pin_j[MESH_BATCH];
+        float share[MESH_BATCH];
+        [[unroll]] for (uint q = 0u; q < MESH_BATCH; ++q) s[q] = mesh_batch(e + q, end);
+        [[unroll]] for (uint q = 0u; q < MESH_BATCH; ++q) {
+            dj[q] = SD(s[q].other);
+            pin_j[q] = SPIN(s[q].other);
+            xj[q] = SX(s[q].other);
+            share[q] = mass_share(uint(s[q].other));
+        }
+        [[unroll]] for (uint q = 0u; q < MESH_BATCH; ++q) {
+            if (e + q >= end || s[q].k == 0.0) continue;
+            float alpha = 1.0 / (s[q].k * h * h);
+            float gamma = b / (s[q].k * h);
+            float w_j = pin_j[q] ? 0.0 : 1.0 / (obj.mass * share[q]);
+            float ends = (1.0 + gamma) * (w + w_j);
+            load += ends / (ends + alpha);
+            vec3 rel = dx - dj[q];
+            vec3 delta = (x - xj[q]) + rel;
+            float dd = dot(delta, delta);
+            if (dd <= 0.0) continue;
+            float inv = inversesqrt(dd);
+            vec3 normal = delta * inv;
+            float lambda = MESH_LAMBDA(e + q);
+            float dl = (s[q].rest - dd * inv - alpha * lambda - gamma * dot(normal, rel)) / (ends + alpha);
+            move += normal * dl;
+            if (keep) MESH_LAMBDA(e + q) = lambda + dl;
+        }
     }
     float beta = load > 1.0 ? 1.0 / load : 1.0;
-    vec3 move = vec3(0.0);
-    for (uint e = mesh_first(i); e < end; ++e) {
-        MeshSpring s = mesh_spring(e);
-        if (s.k == 0.0) continue;
-        float alpha = 1.0 / (s.k * h * h);
-        float gamma = b / (s.k * h);
-        vec3 rel = dx - SD(s.other);
-        vec3 delta = (x - SX(s.other)) + rel;
-        float dd = dot(delta, delta);
-        if (dd <= 0.0) continue;
-        float inv = inversesqrt(dd);
-        vec3 normal = delta * inv;
-        float lambda = MESH_LAMBDA(e);
-        float dl = (s.rest - dd * inv - alpha * lambda - gamma * dot(normal, rel)) / (xpbd_mesh_ends(s, w, b, h) + alpha);
-        move += normal * dl;
-        if (keep) MESH_LAMBDA(e) = lambda + beta * dl;
+    if (keep && beta < 1.0) {
+        for (uint e = mesh_first(i); e < end; ++e) {
+            MeshSpring s = mesh_spring(e);
+            if (s.k == 0.0) continue;
+            float alpha = 1.0 / (s.k * h * h);
+            float gamma = b / (s.k * h);
+            float w_j = SPIN(s.other) ? 0.0 : 1.0 / particle_mass(uvec2(uint(s.other), 0u));
+            float ends = (1.0 + gamma) * (w + w_j);
+            vec3 rel = dx - SD(s.other);
+            vec3 delta = (x - SX(s.other)) + rel;
+            float dd = dot(delta, delta);
+            if (dd <= 0.0) continue;
+            float inv = inversesqrt(dd);
+            vec3 normal = delta * inv;
+            // (the stored multiplier is lambda + dlambda, so dlambda D = R - alpha~ lambda
+            // gives dlambda (1 + gamma)(w_i + w_j) = R - alpha~ stored)
+            float stored = MESH_LAMBDA(e);
+            float dl = (s.rest - dd * inv - gamma * dot(normal, rel) - alpha * stored) / ends;
+            MESH_LAMBDA(e) = stored - (1.0 - beta) * dl;
+        }
     }
     return dx + move * (beta * w);
 }
@@ -272,16 +300,26 @@ vec3 hessian_product(uvec2 cell, vec3 pi, vec3 di) {
     float damp = has(F_DAMPING) ? obj.stiffness.w / h : 0.0;
     vec3 q = di * (particle_mass(cell) / (h * h));
     if (is_mesh()) {
-        // (a mesh cloth's list, as newton_particle's)
-        for (uint f = mesh_first(cell.x); f < mesh_first(cell.x + 1u); ++f) {
-            MeshSpring s = mesh_spring(f);
-            vec3 delta = pi - PP(s.other);
-            float dd = dot(delta, delta);
-            if (dd <= 0.0) continue;
-            float inv = inversesqrt(dd);
-            float kt = max(s.k - (s.k * s.rest) * inv, 0.0);
-            vec3 e = di - DD(s.other);
-            q += delta * (((s.k + damp - kt) * (inv * inv)) * dot(delta, e)) + kt * e;
+        // (a mesh cloth's list in batches, as newton_particle's)
+        uint end = mesh_first(cell.x + 1u);
+        for (uint f = mesh_first(cell.x); f < end; f += MESH_BATCH) {
+            MeshSpring s[MESH_BATCH];
+            vec3 pj[MESH_BATCH];
+            vec3 dj[MESH_BATCH];
+            [[unroll]] for (uint b = 0u; b < MESH_BATCH; ++b) s[b] = mesh_batch(f + b, end);
+            [[unroll]] for (uint b = 0u; b < MESH_BATCH; ++b) {
+                pj[b] = PP(s[b].other);
+                dj[b] = DD(s[b].other);
+            }
+            [[unroll]] for (uint b = 0u; b < MESH_BATCH; ++b) {
+                vec3 delta = pi - pj[b];
+                float dd = dot(delta, delta);
+                if (f + b >= end || dd <= 0.0) continue;
+                float inv = inversesqrt(dd);
+                float kt = max(s[b].k - (s[b].k * s[b].rest) * inv, 0.0);
+                vec3 e = di - dj[b];
+                q += delta * (((s[b].k + damp - kt) * (inv * inv)) * dot(delta, e)) + kt * e;
+            }
         }
         return q;
     }
