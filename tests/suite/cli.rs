@@ -329,8 +329,10 @@ fn stability_map_writes_csv_and_svg() {
 }
 
 /// `chart` on a tiny sweep: one row per setting with finite errors and costs for the stable
-/// ones, a Pareto front, and an SVG with a curve per method.
+/// ones, a Pareto front, and an SVG with a curve per method. (The default tier's chart is
+/// `chart_contact_scene_converges_with_substeps`.)
 #[test]
+#[ignore = "exhaustive tier: kept out of the default tier's 10-minute budget"]
 fn chart_writes_csv_and_svg() {
     let dir = tempfile::tempdir().unwrap();
     let out_dir = dir.path().join("chart");

@@ -658,8 +658,10 @@ fn edge_pairs_between_cloths() {
 /// Two ropes crossing (one held at its ends, one thrown across it), friction 0.8 between them:
 /// contact between two ropes is capsule against capsule (segment pairs), with Coulomb friction
 /// on both paths (the reference had none for such pairs until 2026-11-24 and
-/// was 1.1 cm a frame off here).
+/// was 1.1 cm a frame off here). (The default tier's rope on a rope is
+/// `inter_object::a_rope_stays_on_a_coarse_rope`.)
 #[test]
+#[ignore = "exhaustive tier: kept out of the default tier's 10-minute budget"]
 fn rope_pairs_with_friction() {
     let mut a = rope(12, 0.025);
     for (i, p) in a.positions.iter_mut().enumerate() {
@@ -941,6 +943,7 @@ fn normals_of_a_bent_cloth() {
 }
 
 #[test]
+#[ignore = "exhaustive tier: the features together (each feature's own test is in the default)"]
 fn everything_together() {
     check_mode("everything", &everything_scene(), Mode::Resync);
 }
@@ -1126,12 +1129,14 @@ fn fused_substeps_equal_the_per_stage_path() {
 /// for XPBD, VBD and XPBD by Jacobi; 3.6e-7 m for the implicit method, whose dot products each
 /// path sums in its own order: a workgroup's subgroups fused, workgroups' sums per stage).
 /// Without the barrier between two colours a particle reads a neighbour's half-updated
-/// displacement: XPBD's paths then part by 0.25 m. The default tier takes VBD and XPBD
-/// (Gauss-Seidel by colours) on grids whose colour classes have uneven rows at one particle a
-/// thread (two are
-/// `iterative_methods_at_two_particles_a_thread_match_the_per_stage_path`'s); the exhaustive
-/// tier the other methods there and the 13 x 9 scene at both.
+/// displacement: XPBD's paths then part by 0.25 m. This test takes VBD and XPBD (Gauss-Seidel
+/// by colours) on grids whose colour classes have uneven rows at one particle a thread (two are
+/// `iterative_methods_at_two_particles_a_thread_match_the_per_stage_path`'s); the next the
+/// other methods there, the one after the 13 x 9 scene at both. All are the exhaustive tier's:
+/// the default compares each method's two paths with the reference (`xpbd`, `vbd`,
+/// `xpbd_jacobi`, `implicit`).
 #[test]
+#[ignore = "exhaustive tier: the paths against each other on uneven grids"]
 fn fused_iterative_methods_equal_the_per_stage_path() {
     fused_iterative_methods_on_uneven_grids(|m| matches!(m, Integrator::Vbd | Integrator::Xpbd));
 }
