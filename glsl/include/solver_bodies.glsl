@@ -91,38 +91,56 @@ vec3 xpbd_jacobi_particle(uvec2 cell, vec3 x, vec3 dx, inout vec4 lam[3]) {
 // xpbd_jacobi_particle over its spring list, each spring's constants from its own stiffness and
 // both ends' masses, which lumping by area makes unequal: D = (1 + gamma)(w_i + w_j) + alpha~,
 // the particle moving by beta w_i n dlambda with beta = min(1, 1 / sum (1 + gamma)(w_i + w_j) / D)
-// (the grid's bound, whose w_j is w_i or 0). Its multipliers, its own copies, are MESH_LAMBDA(e)
-// at its list's entries; `keep`: advance them (not in the last iteration). One pass over the
-// list in batches (mesh_batch): the bound and the move are summed together, each multiplier
-// advancing by its whole dlambda, and where the bound then cuts (beta < 1) a second pass takes
-// back (1 - beta) dlambda, the only spring values it recomputes. Returns the new displacement.
+// (the grid's bound, whose w_j is w_i or 0; it needs no positions, so it is summed first and
+// each multiplier advances in place). Its multipliers, its own copies, are MESH_LAMBDA(e) at
+// its list's entries; `keep`: advance them (not in the last iteration). Both passes read a
+// batch of entries and their other ends before using any (mesh_batch). Returns the new
+// displacement.
+float xpbd_mesh_ends(float k, bool pin_j, float share_j, float w, float b, float h) {
+    float w_j = pin_j ? 0.0 : 1.0 / (obj.mass * share_j);
+    return (1.0 + b / (k * h)) * (w + w_j);
+}
 vec3 xpbd_jacobi_mesh(uint i, vec3 x, vec3 dx, bool keep) {
     float h = solve_dt();
     float b = has(F_DAMPING) ? obj.stiffness.w : 0.0;
     float w = 1.0 / particle_mass(uvec2(i, 0u));
+    uint first = mesh_first(i);
     uint end = mesh_first(i + 1u);
     float load = 0.0;
-    vec3 move = vec3(0.0);
-    for (uint e = mesh_first(i); e < end; e += MESH_BATCH) {
+    for (uint e = first; e < end; e += MESH_BATCH) {
         MeshSpring s[MESH_BATCH];
-        vec3 dj[MESH_BATCH];
-        vec3 xj[MESH_BATCH];
         bool pin_j[MESH_BATCH];
-        float share[MESH_BATCH];
+        float share_j[MESH_BATCH];
         [[unroll]] for (uint q = 0u; q < MESH_BATCH; ++q) s[q] = mesh_batch(e + q, end);
         [[unroll]] for (uint q = 0u; q < MESH_BATCH; ++q) {
+            pin_j[q] = SPIN(s[q].other);
+            share_j[q] = mass_share(uint(s[q].other));
+        }
+        [[unroll]] for (uint q = 0u; q < MESH_BATCH; ++q) {
+            if (e + q >= end || s[q].k == 0.0) continue;
+            float ends = xpbd_mesh_ends(s[q].k, pin_j[q], share_j[q], w, b, h);
+            load += ends / (ends + 1.0 / (s[q].k * h * h));
+        }
+    }
+    float beta = load > 1.0 ? 1.0 / load : 1.0;
+    vec3 move = vec3(0.0);
+    for (uint e = first; e < end; e += MESH_BATCH) {
+        MeshSpring s[MESH_BATCH];
+        vec3 xj[MESH_BATCH];
+        vec3 dj[MESH_BATCH];
+        bool pin_j[MESH_BATCH];
+        float share_j[MESH_BATCH];
+        [[unroll]] for (uint q = 0u; q < MESH_BATCH; ++q) s[q] = mesh_batch(e + q, end);
+        [[unroll]] for (uint q = 0u; q < MESH_BATCH; ++q) {
+            xj[q] = SX(s[q].other);
             dj[q] = SD(s[q].other);
             pin_j[q] = SPIN(s[q].other);
-            xj[q] = SX(s[q].other);
-            share[q] = mass_share(uint(s[q].other));
+            share_j[q] = mass_share(uint(s[q].other));
         }
         [[unroll]] for (uint q = 0u; q < MESH_BATCH; ++q) {
             if (e + q >= end || s[q].k == 0.0) continue;
             float alpha = 1.0 / (s[q].k * h * h);
             float gamma = b / (s[q].k * h);
-            float w_j = pin_j[q] ? 0.0 : 1.0 / (obj.mass * share[q]);
-            float ends = (1.0 + gamma) * (w + w_j);
-            load += ends / (ends + alpha);
             vec3 rel = dx - dj[q];
             vec3 delta = (x - xj[q]) + rel;
             float dd = dot(delta, delta);
@@ -130,31 +148,10 @@ vec3 xpbd_jacobi_mesh(uint i, vec3 x, vec3 dx, bool keep) {
             float inv = inversesqrt(dd);
             vec3 normal = delta * inv;
             float lambda = MESH_LAMBDA(e + q);
+            float ends = xpbd_mesh_ends(s[q].k, pin_j[q], share_j[q], w, b, h);
             float dl = (s[q].rest - dd * inv - alpha * lambda - gamma * dot(normal, rel)) / (ends + alpha);
             move += normal * dl;
-            if (keep) MESH_LAMBDA(e + q) = lambda + dl;
-        }
-    }
-    float beta = load > 1.0 ? 1.0 / load : 1.0;
-    if (keep && beta < 1.0) {
-        for (uint e = mesh_first(i); e < end; ++e) {
-            MeshSpring s = mesh_spring(e);
-            if (s.k == 0.0) continue;
-            float alpha = 1.0 / (s.k * h * h);
-            float gamma = b / (s.k * h);
-            float w_j = SPIN(s.other) ? 0.0 : 1.0 / particle_mass(uvec2(uint(s.other), 0u));
-            float ends = (1.0 + gamma) * (w + w_j);
-            vec3 rel = dx - SD(s.other);
-            vec3 delta = (x - SX(s.other)) + rel;
-            float dd = dot(delta, delta);
-            if (dd <= 0.0) continue;
-            float inv = inversesqrt(dd);
-            vec3 normal = delta * inv;
-            // (the stored multiplier is lambda + dlambda, so dlambda D = R - alpha~ lambda
-            // gives dlambda (1 + gamma)(w_i + w_j) = R - alpha~ stored)
-            float stored = MESH_LAMBDA(e);
-            float dl = (s.rest - dd * inv - gamma * dot(normal, rel) - alpha * stored) / ends;
-            MESH_LAMBDA(e) = stored - (1.0 - beta) * dl;
+            if (keep) MESH_LAMBDA(e + q) = lambda + beta * dl;
         }
     }
     return dx + move * (beta * w);
