@@ -141,7 +141,7 @@ fn friction_sticks_below_the_friction_angle_slides_above_it_and_stops_in_v2_over
 }
 
 #[test]
-#[ignore = "exhaustive tier: the other methods on the GPU"]
+#[ignore = "exhaustive tier: the other methods on the GPU (and their references again)"]
 fn friction_on_slopes_with_the_other_methods_on_the_gpu() {
     let others = |m| !matches!(m, Integrator::SymplecticEuler | Integrator::Implicit | Integrator::Vbd);
     friction_on_slopes(&[8], others, others);

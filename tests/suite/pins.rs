@@ -52,12 +52,12 @@ fn moving_pins_follow_their_keys_exactly() {
 
 #[test]
 #[ignore = "exhaustive tier: smooth keys with every method"]
-fn moving_pins_follow_their_smooth_keys_with_every_method() {
+fn moving_pins_follow_their_smooth_keys_with_the_other_methods() {
     moving_pins(false, |m| !matches!(m, Integrator::SymplecticEuler | Integrator::Vbd));
 }
 
-/// The test above: linear keys with every method (`linear`), smooth keys with the methods
-/// `smooth` names.
+/// `moving_pins_follow_their_keys_exactly`: linear keys with every method (`linear`), smooth
+/// keys with the methods `smooth` names.
 fn moving_pins(linear: bool, smooth: impl Fn(Integrator) -> bool + Copy) {
     let ctx = gpu();
     let keys = vec![
