@@ -2,8 +2,8 @@
 # The test suite: installs missing system packages, then runs the tests on the Vulkan device
 # (on a machine without a GPU: Mesa's lavapipe) with validation and synchronization validation.
 #
-#   scripts/test.sh            the default tier: each feature's checks (about 7 minutes on a
-#                              fresh 2-core machine once built, 9 with the build)
+#   scripts/test.sh            the default tier: each feature's checks (7 to 11 minutes on a
+#                              fresh 2-core machine once built, 3 to 4 more to build)
 #   scripts/test.sh --all      the default tier, then the exhaustive one: the tests `#[ignore]`d
 #                              as repeating a behaviour at a larger size or over more cases (CI)
 #   scripts/test.sh FILTER     only the integration tests whose names contain FILTER
