@@ -136,14 +136,19 @@ const METHODS: [Integrator; 6] = [
 /// iterations); the other methods' GPU runs and 16 and 64 substeps are the exhaustive tier's.
 #[test]
 fn friction_sticks_below_the_friction_angle_slides_above_it_and_stops_in_v2_over_2_mu_g() {
-    let gpu_default = |m| matches!(m, Integrator::SymplecticEuler | Integrator::Implicit | Integrator::Vbd);
-    friction_on_slopes(&[8], |_| true, gpu_default);
+    friction_on_slopes(&[8], |_| true, on_the_gpu_by_default);
+}
+
+/// The methods whose slopes the default tier runs on the GPU too: symplectic Euler, the
+/// implicit method (both also per stage) and VBD (its colliders act within its iterations).
+fn on_the_gpu_by_default(m: Integrator) -> bool {
+    matches!(m, Integrator::SymplecticEuler | Integrator::Implicit | Integrator::Vbd)
 }
 
 #[test]
 #[ignore = "exhaustive tier: the other methods on the GPU (and their references again)"]
 fn friction_on_slopes_with_the_other_methods_on_the_gpu() {
-    let others = |m| !matches!(m, Integrator::SymplecticEuler | Integrator::Implicit | Integrator::Vbd);
+    let others = |m| !on_the_gpu_by_default(m);
     friction_on_slopes(&[8], others, others);
 }
 
