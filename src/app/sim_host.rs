@@ -110,12 +110,13 @@ fn layout_key(s: &Scene) -> String {
         .iter()
         .map(|c| {
             format!(
-                "{}{:?}{:?}{:?}{:?}{:?}{:?}{:?}{:?}{:?}",
+                "{}{:?}{:?}{:?}{:?}{:?}{:?}{:?}{:?}{:?}{:?}",
                 c.file,
                 c.center,
                 c.rotation,
                 c.scale,
                 c.weld,
+                c.sew,
                 c.seams,
                 c.pinned,
                 c.pin_box,

@@ -76,9 +76,9 @@ pub struct FaceFile {
     built: std::sync::Mutex<Vec<(ClothKey, Arc<Placed>)>>,
 }
 
-/// What a mesh cloth's build depends on besides its file: centre, rotation, scale, weld, and
-/// its seams.
-type ClothKey = ([f64; 8], Vec<Vec<[u32; 2]>>);
+/// What a mesh cloth's build depends on besides its file: centre, rotation, scale, weld, sew,
+/// and its seams.
+type ClothKey = ([f64; 9], Vec<Vec<[u32; 2]>>);
 /// A mesh cloth as built: its particles placed and welded, and its topology.
 pub type Placed = (Vec<DVec3>, Arc<crate::sim::cloth_mesh::ClothMesh>);
 
@@ -94,14 +94,17 @@ impl PartialEq for FaceFile {
 
 impl FaceFile {
     /// The cloth `c` makes of its faces: placed by its `center`, `rotation` and `scale`,
-    /// welded within its `weld`, with its seams: the same one while those stay (the last few
+    /// welded within its `weld`, with its seams and those its `sew` finds: the same one while
+    /// those stay (the last few
     /// kept, as `MeshFile::built`'s), since the scene is built again on every edit.
     pub fn built(&self, c: &super::MeshCloth) -> Result<Arc<Placed>, String> {
         const KEPT: usize = 4;
         let (center, rotation, scale) = (c.center, c.rotation, c.scale);
         let seams = c.seam_pairs();
-        let key =
-            ([center[0], center[1], center[2], rotation[0], rotation[1], rotation[2], scale, c.weld], seams);
+        let key = (
+            [center[0], center[1], center[2], rotation[0], rotation[1], rotation[2], scale, c.weld, c.sew],
+            seams,
+        );
         let mut built = self.built.lock().unwrap_or_else(|e| e.into_inner());
         if let Some((_, placed)) = built.iter().find(|(k, _)| *k == key) {
             return Ok(placed.clone());
@@ -111,7 +114,11 @@ impl FaceFile {
         let at = DVec3::from_array(center);
         let placed: Vec<DVec3> = self.vertices.iter().map(|&p| at + turn * (p * scale)).collect();
         let (positions, faces) = crate::sim::cloth_mesh::weld(&placed, &self.faces, c.weld);
-        let mesh = crate::sim::cloth_mesh::ClothMesh::new(&positions, &faces, &self.uvs, &key.1)?;
+        let mut seams = key.1.clone();
+        if c.sew > 0.0 {
+            seams.extend(crate::sim::cloth_mesh::found_seams(&positions, &faces, c.sew)?);
+        }
+        let mesh = crate::sim::cloth_mesh::ClothMesh::new(&positions, &faces, &self.uvs, &seams)?;
         let placed = Arc::new((positions, Arc::new(mesh)));
         if built.len() == KEPT {
             built.remove(0);

@@ -689,6 +689,10 @@ pub struct MeshCloth {
     /// Seams (`[[mesh_cloth.seam]]`): pairs of vertex runs sewn together.
     #[serde(default, rename = "seam", skip_serializing_if = "Vec::is_empty")]
     pub seams: Vec<Seam>,
+    /// Border vertices this near another part of its border are sewn to the nearest such
+    /// (seams found, as `seam`s are given) [m]; 0: none. Less than its border's edges.
+    #[serde(default, skip_serializing_if = "is_zero")]
+    pub sew: f64,
     /// The seams' springs' stiffness [N/m] (rest length zero): how fast they close.
     #[serde(default, skip_serializing_if = "is_zero")]
     pub seam_stiffness: f64,

@@ -546,8 +546,12 @@ fn check_mesh_cloth(at: &str, c: &super::MeshCloth, scene: &Scene) -> Check {
     color(&format!("{at}.color"), c.color)?;
     color(&format!("{at}.back_color"), c.back_color)?;
     non_negative(&format!("{at}.seam_stiffness"), c.seam_stiffness, MAX_STIFFNESS, "N/m")?;
+    non_negative(&format!("{at}.sew"), c.sew, LENGTH.1, "m")?;
     if !c.seams.is_empty() && c.seam_stiffness == 0.0 {
         return Err(format!("{at}.seam: its seams need a seam_stiffness (N/m) to close"));
+    }
+    if c.sew > 0.0 && c.seam_stiffness == 0.0 {
+        return Err(format!("{at}.sew: the seams it finds need a seam_stiffness (N/m) to close"));
     }
     if let Some(m) = scene.sim.integrator.method().filter(|m| !crate::sim::cloth_mesh::METHODS.contains(m)) {
         return Err(format!(

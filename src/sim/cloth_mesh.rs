@@ -9,8 +9,9 @@
 //!   the springs that skip a vertex, as a grid's bending springs do). An edge of three or more
 //!   faces (non-manifold) has no bending spring across it (`unbent_edges` counts them).
 //!
-//! - across a seam (`[[mesh_cloth.seam]]`) as across a shared edge, where two of its pairs in a
-//!   row sew a border edge to a border edge, at the length the pair has with the seam flat.
+//! - across a seam (`[[mesh_cloth.seam]]`, or those `sew` finds: `found_seams`) as across a
+//!   shared edge, where two of its pairs in a row sew a border edge to a border edge, at the
+//!   length the pair has with the seam flat.
 //!
 //! A pair joined twice keeps its first kind in that order. Both simulators read a particle's
 //! springs as a list (`springs_of`); the GPU reads the same lists from the words `pack` writes
@@ -492,6 +493,85 @@ pub fn weld(vertices: &[DVec3], faces: &[Vec<u32>], tolerance: f64) -> (Vec<DVec
     (kept, faces)
 }
 
+/// The seams a mesh cloth's `sew` finds (`within` > 0): each border vertex (on an edge of one
+/// face) sewn to the nearest border vertex within `within` that shares no face with it, as
+/// Marvelous Designer's panels laid round a body are sewn where their edges meet. Given as
+/// runs of two pairs where a border edge is sewn to a border edge (what `ClothMesh::new`
+/// bends across), then the other pairs alone. The error says where `within` reaches a
+/// vertex's own border (a border edge no longer than it: it would sew a border to itself), or
+/// that it sews nothing.
+pub fn found_seams(rest: &[DVec3], faces: &[Vec<u32>], within: f64) -> Result<Vec<Vec<[u32; 2]>>, String> {
+    let mut edge_count: HashMap<(u32, u32), u32> = HashMap::new();
+    for face in faces {
+        for (k, &a) in face.iter().enumerate() {
+            let b = face[(k + 1) % face.len()];
+            *edge_count.entry((a.min(b), a.max(b))).or_default() += 1;
+        }
+    }
+    let mut border: Vec<(u32, u32)> = edge_count.iter().filter(|(_, &n)| n == 1).map(|(&e, _)| e).collect();
+    border.sort_unstable();
+    let length = |(a, b): (u32, u32)| rest[a as usize].distance(rest[b as usize]);
+    if let Some(&e) = border.iter().find(|&&e| length(e) <= within) {
+        return Err(format!(
+            "sew = {within} m reaches along its own border: border edge ({}, {}) is {:.4} m long; \
+             sew less than its border's edges",
+            e.0,
+            e.1,
+            length(e)
+        ));
+    }
+    let mut on_border = vec![false; rest.len()];
+    border.iter().for_each(|&(a, b)| (on_border[a as usize], on_border[b as usize]) = (true, true));
+    let mut face_mates: HashMap<u32, Vec<u32>> = HashMap::new();
+    for face in faces {
+        for &a in face.iter().filter(|&&a| on_border[a as usize]) {
+            face_mates.entry(a).or_default().extend(face.iter().copied());
+        }
+    }
+    let cell = |p: DVec3| (p / within).floor().as_i64vec3().to_array();
+    let mut grid: HashMap<[i64; 3], Vec<u32>> = HashMap::new();
+    for (i, _) in on_border.iter().enumerate().filter(|(_, &b)| b) {
+        grid.entry(cell(rest[i])).or_default().push(i as u32);
+    }
+    let partner: Vec<Option<u32>> = (0..rest.len() as u32)
+        .map(|a| {
+            let p = rest[a as usize];
+            let c = cell(p);
+            let mates = face_mates.get(&a)?;
+            (0..27)
+                .flat_map(|n| grid.get(&[c[0] + n % 3 - 1, c[1] + n / 3 % 3 - 1, c[2] + n / 9 - 1]))
+                .flatten()
+                .filter(|&&b| !mates.contains(&b) && rest[b as usize].distance(p) <= within)
+                .min_by(|&&b, &&d| {
+                    rest[b as usize].distance(p).total_cmp(&rest[d as usize].distance(p)).then(b.cmp(&d))
+                })
+                .copied()
+        })
+        .collect();
+    let key = |a: u32, b: u32| (a.min(b), a.max(b));
+    let mut seams = Vec::new();
+    let mut sewn = std::collections::HashSet::new();
+    for &(a0, a1) in &border {
+        let (Some(b0), Some(b1)) = (partner[a0 as usize], partner[a1 as usize]) else { continue };
+        // (found from both sides: one run of the two)
+        let (p, q) = (key(a0, b0), key(a1, b1));
+        if b0 != b1 && edge_count.get(&key(b0, b1)) == Some(&1) && sewn.insert((p.min(q), p.max(q))) {
+            seams.push(vec![[a0, b0], [a1, b1]]);
+        }
+    }
+    let mut paired: std::collections::HashSet<(u32, u32)> =
+        seams.iter().flatten().map(|&[a, b]| key(a, b)).collect();
+    for (a, b) in partner.iter().enumerate().filter_map(|(a, b)| Some((a as u32, (*b)?))) {
+        if paired.insert(key(a, b)) {
+            seams.push(vec![[a, b]]);
+        }
+    }
+    if seams.is_empty() {
+        return Err(format!("sew = {within} m finds no border vertex that near another's"));
+    }
+    Ok(seams)
+}
+
 /// The vertex of `face` next to `a` that is not `b` (`a` and `b` an edge of it).
 fn beside(face: &[u32], a: u32, b: u32) -> u32 {
     let k = face.iter().position(|&v| v == a).expect("an edge's end is in its face");
@@ -649,6 +729,49 @@ mod tests {
         assert!(across >= 2, "{across} bending springs across the seam");
         // Vertex 2 (sewn to 9) has 9's neighbours 10 and 12 in its one-ring, and they its.
         assert!(m.linked(2, 10) && m.linked(2, 12) && m.linked(10, 2) && !m.linked(2, 11));
+    }
+
+    /// `sew` on two 4 x 4 panels of triangles a gap apart (g = 0.04 m, spacings s = 0.1 m)
+    /// finds the seam one would list, A's last column to B's first, row by row: 4 pairs, each
+    /// g apart, and the same springs, bending ones across included, as that list given as a
+    /// seam; reaching to g it finds nothing, and reaching a border edge's length it is refused
+    /// (it would sew a border to itself). Rolled into a tube, one panel's sides sew to each
+    /// other the same way.
+    #[test]
+    fn sewing_finds_the_seam_one_would_list() {
+        let (s, g) = (0.1, 0.04);
+        let mut rest = flat_grid(4, 4, 0.0, s, s);
+        rest.extend(flat_grid(4, 4, 3.0 * s + g, s, s));
+        let split = |q: Vec<u32>| [vec![q[0], q[1], q[2]], vec![q[0], q[2], q[3]]];
+        let mut faces: Vec<Vec<u32>> = grid_quads(4, 4).into_iter().flat_map(split).collect();
+        let second = grid_quads(4, 4).into_iter().map(|f| f.into_iter().map(|v| v + 16).collect());
+        faces.extend(second.flat_map(split));
+        let listed: Vec<[u32; 2]> = (0..4).map(|r| [4 * r + 3, 16 + 4 * r]).collect();
+        let found = found_seams(&rest, &faces, 1.5 * g).unwrap();
+        let mut pairs: Vec<[u32; 2]> = found.iter().flatten().map(|&[a, b]| [a.min(b), a.max(b)]).collect();
+        pairs.sort_unstable();
+        pairs.dedup();
+        assert_eq!(pairs, listed, "{found:?}");
+        assert_eq!(found.iter().filter(|run| run.len() == 2).count(), 3, "{found:?}");
+        assert!(pairs.iter().all(|&[a, b]| (rest[a as usize].distance(rest[b as usize]) - g).abs() < 1e-12));
+        let by_list = ClothMesh::new(&rest, &faces, &[], std::slice::from_ref(&listed)).unwrap();
+        let by_sew = ClothMesh::new(&rest, &faces, &[], &found).unwrap();
+        assert_eq!((&by_sew.spring_first, &by_sew.springs), (&by_list.spring_first, &by_list.springs));
+        assert!(by_sew.springs.iter().any(|sp| sp.kind == 2 && sp.rest > 1.9 * s), "no bending across it");
+        let err = found_seams(&rest, &faces, 0.99 * g).unwrap_err();
+        assert!(err.contains("finds no border vertex"), "{err}");
+        let err = found_seams(&rest, &faces, s).unwrap_err();
+        assert!(err.contains("reaches along its own border"), "{err}");
+        // One panel of 8 columns rolled round a 7-sided ring, less a gap between its sides.
+        let turn = |c: u32| 2.0 * std::f64::consts::PI * (c as f64 - 0.5) / 7.2;
+        let tube: Vec<DVec3> =
+            (0..24).map(|i| DVec3::new(turn(i % 8).cos(), (i / 8) as f64, turn(i % 8).sin())).collect();
+        let faces = grid_quads(8, 3);
+        let found = found_seams(&tube, &faces, 0.2).unwrap();
+        let mut pairs: Vec<[u32; 2]> = found.iter().flatten().map(|&[a, b]| [a.min(b), a.max(b)]).collect();
+        pairs.sort_unstable();
+        pairs.dedup();
+        assert_eq!(pairs, [[0, 7], [8, 15], [16, 23]], "{found:?}");
     }
 
     /// A flat grid of quads, whose one-rings are a grid's eight neighbours (a quad's diagonals

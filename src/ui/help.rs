@@ -83,6 +83,7 @@ const HELP: &[(&str, &str)] = &[
     ("scale##mesh cloth", "The mesh file's units in metres: 1 for a file in metres, 0.01 for centimetres, 0.001 for millimetres. Its origin stays at the centre."),
     ("weld [m]", "Vertices nearer than this are one particle [m] (0: those at the same place): a glTF file repeats its vertices along texture seams."),
     ("density [kg/m^2]", "Mass per area [kg/m^2], lumped at the vertices by area (each takes an equal part of each of its faces'): light cotton about 0.15, denim 0.4."),
+    ("sew [m]", "Border vertices this near another part of the border are sewn to the nearest such by a seam spring [m] (0: none): panels laid round a body, their edges a little apart, close into a garment. Less than the border's edges."),
     ("seam stiffness [N/m]", "Stiffness of the seams' springs, of rest length zero [N/m]: how fast the sewn runs of vertices close."),
     ("radius [m]##collider", "The collider's radius [m]."),
     ("half extents [m]", "Half the box's size along its own x, y, z [m]."),

@@ -201,6 +201,9 @@ pub fn mesh_cloth_panel(ui: &Ui, c: &mut MeshCloth) {
     if !c.seams.is_empty() {
         let pairs = c.seam_pairs().iter().map(Vec::len).sum::<usize>();
         ui.text_disabled(format!("{} seams, {pairs} vertex pairs (edit them in the preset)", c.seams.len()));
+    }
+    drag(ui, "sew [m]", &mut c.sew, 0.0005, 0.0, 1.0);
+    if !c.seams.is_empty() || c.sew > 0.0 {
         drag(ui, "seam stiffness [N/m]", &mut c.seam_stiffness, 1.0, 0.0, 1e6);
     }
     color(ui, "front colour", &mut c.color);
@@ -257,6 +260,7 @@ pub fn new_mesh_cloth(
         pin_motion: None,
         pin_groups: Vec::new(),
         seams: Vec::new(),
+        sew: 0.0,
         seam_stiffness: 0.0,
         color: [0.2, 0.45, 0.75],
         back_color: [0.8, 0.8, 0.75],

@@ -929,6 +929,45 @@ fn mesh_layers_friction(substep_counts: &[u32], paths: &[bool]) {
     crate::self_contact::layers_slide_as_coulomb_says(&[(false, paths)], substep_counts, &as_mesh);
 }
 
+/// The skirt preset's side seams, found by its `sew` (1.8 cm), are the ones scripts/skirt.py
+/// lists (each panel's side columns, row by row: front first to back last at +x, front last
+/// to back first at -x): the same springs, bending ones across the seams included, as those
+/// lists given as `[[mesh_cloth.seam]]`s. Independently of the lists: 52 seam springs, each
+/// from the front panel (its first 572 vertices) to the back, on the same row, its ends 0.8
+/// to 1.6 cm apart (the script's gap, 0.03 rad each side, at the skirt's radii).
+#[test]
+fn the_skirts_seams_are_found_where_its_panels_sides_meet() {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("presets/skirt.toml");
+    let mut scene = msdsim::scene::load(&path, &[]).expect("the skirt loads");
+    assert!(scene.mesh_cloths[0].sew > 0.0 && scene.mesh_cloths[0].seams.is_empty(), "the preset sews");
+    let found = msdsim::scene::to_model(&scene);
+    let column = |c: usize, first: usize| (0..26).map(|r| (first + c + 22 * r) as u32).collect::<Vec<_>>();
+    let c = &mut scene.mesh_cloths[0];
+    c.sew = 0.0;
+    c.seams = vec![
+        msdsim::scene::Seam { from: column(0, 0), to: column(21, 572) },
+        msdsim::scene::Seam { from: column(21, 0), to: column(0, 572) },
+    ];
+    let listed = msdsim::scene::to_model(&scene);
+    let (a, b) = (found.objects[0].mesh.as_ref().unwrap(), listed.objects[0].mesh.as_ref().unwrap());
+    assert_eq!((&a.spring_first, &a.springs), (&b.spring_first, &b.springs), "found and listed seams differ");
+    let x = &found.objects[0].positions;
+    let mut seams = Vec::new();
+    for i in 0..x.len() {
+        for sp in a.springs_of(i).iter().filter(|sp| sp.kind == msdsim::sim::cloth_mesh::SEAM) {
+            if i < sp.other as usize {
+                seams.push((i, sp.other as usize, x[i].distance(x[sp.other as usize])));
+            }
+        }
+    }
+    let (nearest, farthest) =
+        seams.iter().fold((f64::INFINITY, 0.0f64), |(n, f), s| (n.min(s.2), f.max(s.2)));
+    println!("{} seam springs, their ends {nearest:.4} to {farthest:.4} m apart", seams.len());
+    assert_eq!(seams.len(), 52);
+    assert!(seams.iter().all(|&(i, j, _)| i < 572 && j >= 572 && i / 22 == (j - 572) / 22), "{seams:?}");
+    assert!(nearest > 0.007 && farthest < 0.017, "{seams:?}");
+}
+
 /// The skirt preset as shipped (two panels of 22 x 26 vertices sewn at the sides, draped on
 /// the dress form, self-collision on) over 150 frames (2.5 s: the seams close in the first
 /// frames and the skirt settles on the hips in folds) on the GPU: no edge of it passes through
