@@ -43,6 +43,25 @@ fn check(name: &str, model: &SimModel) {
     check_mode(name, model, Mode::FreeRunning);
 }
 
+thread_local! {
+    /// Whether `check_feature_mode` takes the fused path instead of the per-stage one (set by
+    /// the exhaustive tier's `each_feature_on_the_fused_path`).
+    static FUSED: std::cell::Cell<bool> = const { std::cell::Cell::new(false) };
+}
+
+fn check_feature(name: &str, model: &SimModel) {
+    check_feature_mode(name, model, Mode::FreeRunning);
+}
+
+/// A feature's comparison with the reference on one GPU path: per stage (the path of large
+/// objects and of objects in contact) in the default tier, fused in the exhaustive tier
+/// (`each_feature_on_the_fused_path`). The default tier's `fused_substeps_equal_the_per_stage_path`
+/// shows the two paths equal on these features together; the iterative methods and
+/// self-collision compare both paths with the reference in the default tier (`check_mode`).
+fn check_feature_mode(name: &str, model: &SimModel, mode: Mode) {
+    check_paths(name, model, mode, &[(FUSED.get(), None)]);
+}
+
 /// Both GPU paths against the reference: small objects fused (all substeps in one dispatch)
 /// and every object per stage (a dispatch and a barrier per stage and substep), the latter
 /// with its self-collision contact lists as the host's policy keeps them (turned off while
@@ -165,21 +184,21 @@ fn jittered_cloth() -> msdsim::sim::model::ObjectModel {
 fn structural_springs() {
     let mut c = jittered_cloth();
     c.stiffness = [60.0, 0.0, 0.0];
-    check("structural", &scene(vec![c]));
+    check_feature("structural", &scene(vec![c]));
 }
 
 #[test]
 fn shear_springs() {
     let mut c = jittered_cloth();
     c.stiffness = [0.0, 40.0, 0.0];
-    check("shear", &scene(vec![c]));
+    check_feature("shear", &scene(vec![c]));
 }
 
 #[test]
 fn bending_springs() {
     let mut c = jittered_cloth();
     c.stiffness = [0.0, 0.0, 20.0];
-    check("bending", &scene(vec![c]));
+    check_feature("bending", &scene(vec![c]));
 }
 
 #[test]
@@ -188,7 +207,7 @@ fn spring_damping_and_rest_scale() {
     c.stiffness = [60.0, 20.0, 5.0];
     c.rest_scale = [0.9, 1.05, 1.0];
     c.damping = 0.02;
-    check("damping+rest_scale", &scene(vec![c]));
+    check_feature("damping+rest_scale", &scene(vec![c]));
 }
 
 #[test]
@@ -197,7 +216,7 @@ fn gravity() {
     c.stiffness = [60.0, 20.0, 5.0];
     let mut s = scene(vec![c]);
     s.gravity = DVec3::new(0.5, -9.81, 0.2);
-    check("gravity", &s);
+    check_feature("gravity", &s);
 }
 
 #[test]
@@ -209,7 +228,7 @@ fn stokes_drag() {
     c.drag = 0.05;
     let s = scene(vec![c]);
     assert_matters("drag", &s, |m| m.objects[0].drag = 0.0);
-    check("drag", &s);
+    check_feature("drag", &s);
 }
 
 #[test]
@@ -220,7 +239,7 @@ fn wind_cone() {
     let mut s = scene(vec![c]);
     s.wind = Some(wind([-0.15, 0.8, 0.5], [0.0, 0.0, -1.0], 0.02, 0.3, 0.9));
     assert_matters("wind", &s, |m| m.wind = None);
-    check("wind", &s);
+    check_feature("wind", &s);
 }
 
 #[test]
@@ -234,7 +253,7 @@ fn pins() {
     let mut s = scene(vec![c]);
     s.gravity = DVec3::new(0.0, -9.81, 0.0);
     assert_matters("pins", &s, |m| m.objects[0].pinned.fill(false));
-    check("pins", &s);
+    check_feature("pins", &s);
 }
 
 #[test]
@@ -249,7 +268,7 @@ fn stretch_limit() {
     let mut s = scene(vec![c]);
     s.gravity = DVec3::new(0.0, -30.0, 3.0);
     assert_matters("stretch_limit", &s, |m| m.objects[0].stretch_limit = None);
-    check("stretch_limit", &s);
+    check_feature("stretch_limit", &s);
 }
 
 /// The stretch limit keeps momentum (issue 69, item 10): a free cloth and a free rope, no
@@ -321,7 +340,7 @@ fn spheres_with_friction() {
     s.colliders = vec![sphere([-0.1, 0.2, 0.0], 0.25), sphere([0.25, 0.25, 0.1], 0.1)];
     assert_matters("colliders", &s, |m| m.colliders.clear());
     assert_matters("friction", &s, |m| m.objects[0].friction = 0.0);
-    check("spheres", &s);
+    check_feature("spheres", &s);
 }
 
 /// The ground, a tilted box and a capsule, one at a time: the same falling cloth as for the
@@ -379,7 +398,7 @@ fn ground_box_and_capsule() {
         // face is nearest flips with rounding there, so f32 and f64 part chaotically (1.2e-3
         // m free-running, 4.5e-7 a frame): compared frame by frame from the GPU's state.
         let mode = if name == "box" { Mode::Resync } else { Mode::FreeRunning };
-        check_mode(name, &s, mode);
+        check_feature_mode(name, &s, mode);
     }
 }
 
@@ -414,7 +433,7 @@ fn moving_colliders() {
         },
     ];
     assert_matters("motion", &s, |m| m.colliders.iter_mut().for_each(|c| c.motion = Motion::Fixed));
-    check("moving colliders", &s);
+    check_feature("moving colliders", &s);
 }
 
 /// The scene of `inter_object_contact`: a 13 x 9 cloth held at its corners, a 7 x 7 cloth
@@ -846,7 +865,7 @@ fn rope_springs_and_vertices() {
     r.rope_radius = 0.01;
     let mut s = scene(vec![r]);
     s.gravity = DVec3::new(0.0, -9.81, 0.0);
-    check("rope", &s);
+    check_feature("rope", &s);
 }
 
 #[test]
@@ -864,7 +883,7 @@ fn rope_on_sphere_with_friction() {
     s.gravity = DVec3::new(0.0, -9.81, 0.0);
     s.colliders = vec![sphere([0.0, 0.0, 0.0], 0.3)];
     assert_matters("rope friction", &s, |m| m.objects[0].friction = 0.0);
-    check("rope on sphere", &s);
+    check_feature("rope on sphere", &s);
 }
 
 #[test]
@@ -939,7 +958,34 @@ fn normals_of_a_bent_cloth() {
     }
     jitter(&mut c.positions, 0.004, 5);
     c.stiffness = [10.0, 2.0, 1.0];
-    check("normals", &scene(vec![c]));
+    check_feature("normals", &scene(vec![c]));
+}
+
+/// Each feature's comparison with the reference on the fused path (the default tier's are per
+/// stage: `check_feature_mode`).
+#[test]
+#[ignore = "exhaustive tier: each feature's comparison on the fused path"]
+fn each_feature_on_the_fused_path() {
+    FUSED.set(true);
+    let features: [fn(); 15] = [
+        structural_springs,
+        shear_springs,
+        bending_springs,
+        spring_damping_and_rest_scale,
+        gravity,
+        stokes_drag,
+        wind_cone,
+        pins,
+        stretch_limit,
+        spheres_with_friction,
+        ground_box_and_capsule,
+        moving_colliders,
+        rope_springs_and_vertices,
+        rope_on_sphere_with_friction,
+        normals_of_a_bent_cloth,
+    ];
+    features.iter().for_each(|f| f());
+    FUSED.set(false);
 }
 
 #[test]

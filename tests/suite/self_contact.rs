@@ -1050,10 +1050,21 @@ fn wide_strip_crossings(tilt: f64) -> (usize, usize) {
 /// of its contacts' distance): 2, 0 and 2 edges, none through a layer (without it 23, 4 and 27,
 /// of which 11, 0 and 6 through a layer); over the eight tilts from 0.05 to 0.4 rad none
 /// through a layer, 2 to 10 next to a fold at three (docs/records/bench/cpu/edge-margin/, 6).
+/// The default tier drops it at 0.25 rad (the most edges through without the truncation).
 #[test]
 fn a_wide_strip_piling_with_edge_contact_never_passes_through_a_layer() {
-    let worst: Vec<(usize, usize)> = [0.1, 0.15, 0.25].into_iter().map(wide_strip_crossings).collect();
-    println!("crossing edges at worst (all, through a layer): {worst:?}");
+    wide_strip_holds(&[0.25]);
+}
+
+#[test]
+#[ignore = "exhaustive tier: the wide strip at its two other tilts"]
+fn a_wide_strip_piling_with_edge_contact_never_passes_through_a_layer_at_other_tilts() {
+    wide_strip_holds(&[0.1, 0.15]);
+}
+
+fn wide_strip_holds(tilts: &[f64]) {
+    let worst: Vec<(usize, usize)> = tilts.iter().map(|&t| wide_strip_crossings(t)).collect();
+    println!("crossing edges at worst (all, through a layer) at tilts {tilts:?}: {worst:?}");
     let held = worst.iter().all(|&(all, layers)| all <= 15 && layers == 0);
     assert!(held, "edges through the strip's triangles (all, through a layer): {worst:?}");
 }
