@@ -8,7 +8,9 @@
 // slice k % 2 (displacements p - x~ from the BDF2 base x~, see predict.comp) and writes
 // (k + 1) % 2; aux[3i .. 3i + 3) holds the multipliers of particle i's 12 springs (its own
 // copy: both ends of a spring compute the same update); a mesh cloth's, aux's floats at its
-// list's entries (MESH_LAMBDA).
+// list's entries (MESH_LAMBDA), and its step bound, summed in the first iteration of a
+// substep, kept negated in the iterate's w (a free particle's w is 0 there, a pinned one's
+// its pin code over 0.5, which SPIN reads: the bound in (0, 1] keeps it free).
 #define BATCHED
 #include "bindings.glsl"
 #include "springs.glsl"
@@ -33,7 +35,9 @@ void main() {
     vec3 dx = di.xyz;
     bool pinned = di.w > 0.5;
     if (!pinned && is_mesh()) {
-        dx = xpbd_jacobi_mesh(i, SX(i), dx, !last_iteration());
+        float beta = it.k == 0u ? xpbd_jacobi_mesh_bound(i) : -di.w;
+        dx = xpbd_jacobi_mesh(i, SX(i), dx, !last_iteration(), beta);
+        di.w = -beta;
     } else if (!pinned) {
         vec4 lam[3] = vec4[3](aux[3u * i], aux[3u * i + 1u], aux[3u * i + 2u]);
         dx = xpbd_jacobi_particle(cell, SX(i), dx, lam);

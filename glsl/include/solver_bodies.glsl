@@ -91,16 +91,16 @@ vec3 xpbd_jacobi_particle(uvec2 cell, vec3 x, vec3 dx, inout vec4 lam[3]) {
 // xpbd_jacobi_particle over its spring list, each spring's constants from its own stiffness and
 // both ends' masses, which lumping by area makes unequal: D = (1 + gamma)(w_i + w_j) + alpha~,
 // the particle moving by beta w_i n dlambda with beta = min(1, 1 / sum (1 + gamma)(w_i + w_j) / D)
-// (the grid's bound, whose w_j is w_i or 0; it needs no positions, so it is summed first and
-// each multiplier advances in place). Its multipliers, its own copies, are MESH_LAMBDA(e) at
-// its list's entries; `keep`: advance them (not in the last iteration). Both passes read a
-// batch of entries and their other ends before using any (mesh_batch). Returns the new
-// displacement.
+// (the grid's bound, whose w_j is w_i or 0; it needs no positions nor multipliers, so
+// xpbd_jacobi_mesh_bound sums it once a substep and each multiplier advances in place). Its
+// multipliers, its own copies, are MESH_LAMBDA(e) at its list's entries; `keep`: advance them
+// (not in the last iteration). Both loops read a batch of entries and their other ends before
+// using any (mesh_batch). Returns the new displacement.
 float xpbd_mesh_ends(float k, bool pin_j, float share_j, float w, float b, float h) {
     float w_j = pin_j ? 0.0 : 1.0 / (obj.mass * share_j);
     return (1.0 + b / (k * h)) * (w + w_j);
 }
-vec3 xpbd_jacobi_mesh(uint i, vec3 x, vec3 dx, bool keep) {
+float xpbd_jacobi_mesh_bound(uint i) {
     float h = solve_dt();
     float b = has(F_DAMPING) ? obj.stiffness.w : 0.0;
     float w = 1.0 / particle_mass(uvec2(i, 0u));
@@ -122,7 +122,14 @@ vec3 xpbd_jacobi_mesh(uint i, vec3 x, vec3 dx, bool keep) {
             load += ends / (ends + 1.0 / (s[q].k * h * h));
         }
     }
-    float beta = load > 1.0 ? 1.0 / load : 1.0;
+    return load > 1.0 ? 1.0 / load : 1.0;
+}
+vec3 xpbd_jacobi_mesh(uint i, vec3 x, vec3 dx, bool keep, float beta) {
+    float h = solve_dt();
+    float b = has(F_DAMPING) ? obj.stiffness.w : 0.0;
+    float w = 1.0 / particle_mass(uvec2(i, 0u));
+    uint first = mesh_first(i);
+    uint end = mesh_first(i + 1u);
     vec3 move = vec3(0.0);
     for (uint e = first; e < end; e += MESH_BATCH) {
         MeshSpring s[MESH_BATCH];
