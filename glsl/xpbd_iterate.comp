@@ -9,7 +9,10 @@
 // class touches them). In place in
 // iter (one slice of displacements p - x~ from the BDF2 base x~, see predict.comp;
 // w = 1 pinned); aux[3i + dir / 4][dir % 4] holds the multiplier of particle i's forward spring
-// of direction dir. Pass SPRING_CLASS_COUNT, after the last iteration, finishes every particle.
+// of direction dir. Pass XPBD_FINISH, after the last iteration, finishes every particle.
+// A mesh cloth's pass c takes its class c (sim::cloth_mesh::spring_classes), an invocation a
+// spring (xpbd_mesh_spring), its multiplier in aux's float at the spring's entry in its lower
+// end's list (MESH_LAMBDA).
 #define BATCHED
 #include "bindings.glsl"
 #include "springs.glsl"
@@ -19,15 +22,23 @@ layout(local_size_x_id = 0, local_size_y_id = 1, local_size_z = 1) in;
 #define SX(j) history[hist(uint(j), H_BASE)].xyz
 #define SD(j) iter[j].xyz
 #define SPIN(j) (iter[j].w > 0.5)
+#define SLICE(j) iter[uint(j)]
+#define MESH_LAMBDA(e) aux[(e) >> 2u][(e) & 3u]
 #include "solver_bodies.glsl"
 #include "solver_end.glsl"
 
 void main() {
     if (!iteration_begin()) return;
     uvec2 cell = gl_GlobalInvocationID.xy;
+    if (is_mesh() && it.colour != XPBD_FINISH) {
+        if (cell.x >= mesh_class_size(it.colour)) return;
+        uvec2 spring = mesh_class_spring(it.colour, cell.x);
+        xpbd_mesh_spring(spring.x, spring.y);
+        return;
+    }
     if (cell.x >= obj.dims.x || cell.y >= obj.dims.y) return;
     uint i = cell.x + cell.y * obj.dims.x;
-    if (it.colour == SPRING_CLASS_COUNT) {
+    if (it.colour == XPBD_FINISH) {
         vec4 di = iter[i];
         finish_particle(i, di.xyz, di.w > 0.5, 0.0);
         return;

@@ -10,15 +10,16 @@
 
 bool is_mesh() { return has(F_CLOTH_MESH); }
 
-// Where the lists start: the header's five words.
+// Where the lists start: the header's six words.
 uint mesh_springs_at() { return obj_words[0]; }
 uint mesh_colours_at() { return obj_words[1]; }
 uint mesh_triangles_at() { return obj_words[2]; }
 uint mesh_rings_at() { return obj_words[3]; }
 uint mesh_masses_at() { return obj_words[4]; }
+uint mesh_classes_at() { return obj_words[5]; }
 
 // Particle i's springs are entries [mesh_first(i), mesh_first(i + 1)).
-uint mesh_first(uint i) { return obj_words[5u + i]; }
+uint mesh_first(uint i) { return obj_words[6u + i]; }
 
 // Particle i's mass over the object's `mass`: 1 for a grid's; for a mesh's its share, an equal
 // part of each of its faces' area over the mean (ClothMesh::mass_share).
@@ -105,6 +106,19 @@ uint mesh_colour_of_rank(uint r) {
     uint c = 0u;
     while (c + 1u < mesh_colour_count() && obj_words[at + c + 1u] <= r) ++c;
     return c;
+}
+
+// XPBD's spring classes (packed with XPBD by spring classes only): their count, and the k-th
+// spring of class c (k < mesh_class_size(c)) as its lower end and its entry in that end's list.
+uint mesh_class_count() { return obj_words[mesh_classes_at()]; }
+uint mesh_class_size(uint c) {
+    uint at = mesh_classes_at() + 1u;
+    return obj_words[at + c + 1u] - obj_words[at + c];
+}
+uvec2 mesh_class_spring(uint c, uint k) {
+    uint at = mesh_classes_at() + 1u;
+    uint first = at + mesh_class_count() + 1u + 2u * (obj_words[at + c] + k);
+    return uvec2(obj_words[first], obj_words[first + 1u]);
 }
 
 // Triangle t's corners.

@@ -87,6 +87,38 @@ vec3 xpbd_jacobi_particle(uvec2 cell, vec3 x, vec3 dx, inout vec4 lam[3]) {
 }
 
 #ifdef MESH_LAMBDA
+// XPBD on a mesh cloth's spring at entry e of particle a's list (a its lower end; F_CLOTH_MESH,
+// per stage only): xpbd_spring's update with its own stiffness and both ends' masses (lumped
+// by area, so unequal), moving both ends in place; its multiplier is MESH_LAMBDA(e). No other
+// spring of its class shares an end (sim::cloth_mesh::spring_classes).
+void xpbd_mesh_spring(uint a, uint e) {
+    MeshSpring s = mesh_spring(e);
+    if (s.k == 0.0) return;
+    uint j = uint(s.other);
+    vec4 da = SLICE(a);
+    vec4 dj = SLICE(j);
+    bool pin_a = da.w > 0.5;
+    bool pin_j = dj.w > 0.5;
+    float w_a = pin_a ? 0.0 : 1.0 / particle_mass(uvec2(a, 0u));
+    float w_j = pin_j ? 0.0 : 1.0 / particle_mass(uvec2(j, 0u));
+    if (w_a + w_j == 0.0) return;
+    float h = solve_dt();
+    float alpha = 1.0 / (s.k * h * h);
+    float gamma = (has(F_DAMPING) ? obj.stiffness.w : 0.0) / (s.k * h);
+    vec3 rel = da.xyz - dj.xyz;
+    vec3 delta = (SX(a) - SX(j)) + rel;
+    float dd = dot(delta, delta);
+    if (dd <= 0.0) return;
+    float inv = inversesqrt(dd);
+    vec3 normal = delta * inv;
+    float lambda = MESH_LAMBDA(e);
+    float dl = g.relaxation * (s.rest - dd * inv - alpha * lambda - gamma * dot(normal, rel))
+        / ((1.0 + gamma) * (w_a + w_j) + alpha);
+    if (!pin_a) SLICE(a) = vec4(da.xyz + normal * (w_a * dl), da.w);
+    if (!pin_j) SLICE(j) = vec4(dj.xyz - normal * (w_j * dl), dj.w);
+    MESH_LAMBDA(e) = lambda + dl;
+}
+
 // XPBD by Jacobi on a mesh cloth's particle i (F_CLOTH_MESH; per stage only): as
 // xpbd_jacobi_particle over its spring list, each spring's constants from its own stiffness and
 // both ends' masses, which lumping by area makes unequal: D = (1 + gamma)(w_i + w_j) + alpha~,

@@ -69,8 +69,9 @@ void guard_strain(uvec2 cell) {
 // class q = 2 dir + parity; direction dir is the offset from a spring's first node to its
 // second, its springs split by the parity of the first node's coordinate along the line (halved
 // for bending). No two springs of a class share a particle. A pass per class, then a pass
-// (q = SPRING_CLASS_COUNT) that finishes every particle.
+// (XPBD_FINISH, sim::gpu::step's) that finishes every particle.
 const uint SPRING_CLASS_COUNT = 12u;
+const uint XPBD_FINISH = 0xFFFFu;
 // The class XPBD sweeps in its pass-th pass of an iteration: from the last class to the first,
 // so the structural springs come last (sim::integrator::xpbd_class_order says why).
 uint xpbd_class(uint pass) { return SPRING_CLASS_COUNT - 1u - pass; }

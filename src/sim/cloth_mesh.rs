@@ -25,11 +25,10 @@ pub const MAX_VERTICES: usize = 1 << 22;
 /// Faces a mesh cloth may have.
 pub const MAX_FACES: usize = 1 << 23;
 
-/// The integrators a mesh cloth runs with (XPBD by spring classes sweeps a grid's spring
-/// classes, and comes later).
-pub const METHODS: [crate::sim::model::Integrator; 5] = {
+/// The integrators a mesh cloth runs with: every one.
+pub const METHODS: [crate::sim::model::Integrator; 6] = {
     use crate::sim::model::Integrator::*;
-    [SymplecticEuler, Verlet, Implicit, Vbd, XpbdJacobi]
+    [SymplecticEuler, Verlet, Xpbd, Implicit, Vbd, XpbdJacobi]
 };
 
 /// Whether both simulators run object `o` of `model` as it asks: a mesh cloth with one of
@@ -127,6 +126,11 @@ pub struct ClothMesh {
     /// one more at the end.
     pub colour_order: Vec<u32>,
     pub colour_first: Vec<u32>,
+    /// XPBD's spring classes, in the order it sweeps them (`spring_classes`): each spring as
+    /// its lower end and its entry in that end's list, and each class's first there, one more
+    /// at the end.
+    pub class_springs: Vec<[u32; 2]>,
+    pub class_first: Vec<u32>,
     /// Per particle, its first entry in `ring` (its triangles); one more at the end.
     pub ring_first: Vec<u32>,
     pub ring: Vec<u32>,
@@ -296,6 +300,7 @@ impl ClothMesh {
         });
         let longest = springs.iter().filter(|s| s.kind < 2).map(|s| s.rest).chain(fan).fold(0.0, f64::max);
         let (colour_order, colour_first) = colouring(&spring_first, &springs);
+        let (class_springs, class_first) = spring_classes(&spring_first, &springs);
         let mut rings: Vec<Vec<u32>> = vec![Vec::new(); n];
         for (t, tri) in triangles.iter().enumerate() {
             tri.iter().for_each(|&k| rings[k as usize].push(t as u32));
@@ -315,6 +320,8 @@ impl ClothMesh {
             springs,
             colour_order,
             colour_first,
+            class_springs,
+            class_first,
             area,
             mass_share,
             mean_edge,
@@ -419,29 +426,46 @@ impl ClothMesh {
         ring.iter().map(|&t| self.triangles[t as usize])
     }
 
+    /// XPBD's spring classes: how many.
+    pub fn class_count(&self) -> usize {
+        self.class_first.len() - 1
+    }
+
+    /// Class c's springs, each its lower end and its entry in that end's list.
+    pub fn class(&self, c: usize) -> &[[u32; 2]] {
+        &self.class_springs[self.class_first[c] as usize..self.class_first[c + 1] as usize]
+    }
+
     /// The particles of colour c.
     pub fn colour(&self, c: usize) -> &[u32] {
         &self.colour_order[self.colour_first[c] as usize..self.colour_first[c + 1] as usize]
     }
 
-    /// How many words `pack` writes.
-    pub fn word_count(&self) -> u64 {
+    /// How many words `pack` writes (`classes`: with XPBD's spring classes).
+    pub fn word_count(&self, classes: bool) -> u64 {
         let n = self.spring_first.len() as u64 - 1;
         let lists =
             2 * self.springs.len() + self.colour_first.len() + 3 * self.triangles.len() + self.ring.len();
-        // (header, spring firsts, colour count, colour order, ring firsts, mass shares; then
-        // the lists)
-        5 + (n + 1) + 1 + n + (n + 1) + n + lists as u64
+        let classes = match classes {
+            true => self.class_first.len() + 2 * self.class_springs.len(),
+            false => 0,
+        };
+        // (header, spring firsts, colour count, colour order, ring firsts, mass shares, class
+        // count; then the lists)
+        6 + (n + 1) + 1 + n + (n + 1) + n + 1 + (lists + classes) as u64
     }
 
     /// The words the GPU reads after the object's parameters (glsl/include/mesh_springs.glsl):
-    /// a header of where the spring entries, colours, triangles, rings and mass shares start;
+    /// a header of where the spring entries, colours, triangles, rings, mass shares and spring
+    /// classes start;
     /// the n + 1 spring firsts; a spring as two words (other end | kind << 30, its rest length
     /// scaled by `rest_scale` as f32 bits); the colour count C, the C + 1 colour firsts and the
     /// particles by colour; the triangles' corners; each particle's n + 1 ring firsts and
-    /// then its triangles; each particle's `mass_share` as f32 bits.
-    pub fn pack(&self, rest_scale: [f64; 3]) -> Vec<u32> {
-        let mut w = vec![0u32; 5];
+    /// then its triangles; each particle's `mass_share` as f32 bits; with `classes` (XPBD by
+    /// spring classes; else none) the class count C, the C + 1 class firsts and each spring of
+    /// the classes as its lower end and its entry.
+    pub fn pack(&self, rest_scale: [f64; 3], classes: bool) -> Vec<u32> {
+        let mut w = vec![0u32; 6];
         w.extend(&self.spring_first);
         w[0] = w.len() as u32;
         for s in &self.springs {
@@ -459,6 +483,15 @@ impl ClothMesh {
         w.extend(&self.ring);
         w[4] = w.len() as u32;
         w.extend(self.mass_share.iter().map(|&m| (m as f32).to_bits()));
+        w[5] = w.len() as u32;
+        match classes {
+            true => {
+                w.push(self.class_count() as u32);
+                w.extend(&self.class_first);
+                w.extend(self.class_springs.iter().flatten());
+            }
+            false => w.push(0),
+        }
         w
     }
 }
@@ -626,6 +659,48 @@ fn check(rest: &[DVec3], faces: &[Vec<u32>]) -> Result<(), String> {
         return Err(format!("vertex {i} belongs to no face (it would fall on its own)"));
     }
     Ok(())
+}
+
+/// XPBD's spring classes (Gauss-Seidel over the springs, as a grid's `SPRING_CLASSES`): a
+/// greedy colouring of the springs in which no two of a class share a particle, the bending
+/// springs' classes first, then the shear springs', then the structural and seam springs'
+/// (the structural last, as on a grid: `sim::integrator::xpbd_class_order` says why). Each
+/// spring is its lower end and its entry in that end's list; returns them class by class and
+/// each class's first, one more at the end.
+fn spring_classes(first: &[u32], springs: &[MeshSpring]) -> (Vec<[u32; 2]>, Vec<u32>) {
+    let n = first.len() - 1;
+    let (mut order, mut class_first) = (Vec::new(), vec![0u32]);
+    for kinds in [&[2u8][..], &[1], &[0, SEAM]] {
+        // (each particle's classes taken so far, as bits of the group's classes in use)
+        let mut taken: Vec<Vec<u64>> = vec![Vec::new(); n];
+        let mut classes: Vec<Vec<[u32; 2]>> = Vec::new();
+        for a in 0..n {
+            for e in first[a]..first[a + 1] {
+                let s = &springs[e as usize];
+                let b = s.other as usize;
+                if b < a || !kinds.contains(&s.kind) {
+                    continue;
+                }
+                let used = |v: &[u64], c: usize| v.get(c / 64).is_some_and(|w| w >> (c % 64) & 1 == 1);
+                let c = (0..).find(|&c| !used(&taken[a], c) && !used(&taken[b], c)).expect("a free class");
+                for v in [a, b] {
+                    if taken[v].len() <= c / 64 {
+                        taken[v].resize(c / 64 + 1, 0);
+                    }
+                    taken[v][c / 64] |= 1 << (c % 64);
+                }
+                if classes.len() <= c {
+                    classes.resize(c + 1, Vec::new());
+                }
+                classes[c].push([a as u32, e]);
+            }
+        }
+        for class in classes {
+            order.extend(class);
+            class_first.push(order.len() as u32);
+        }
+    }
+    (order, class_first)
 }
 
 /// The particles by colour and the colours' firsts, from `sim::colouring`'s colouring of the
@@ -836,7 +911,9 @@ mod tests {
             }
         }
         assert_eq!(m.triangles.len(), 2 * 5 * 4);
-        assert_eq!(m.word_count(), m.pack([1.0; 3]).len() as u64);
+        for classes in [false, true] {
+            assert_eq!(m.word_count(classes), m.pack([1.0; 3], classes).len() as u64);
+        }
         assert!((m.area - 0.5 * 0.8).abs() < 1e-12);
         assert_eq!(m.colour_order.len(), 30);
         assert_proper(&m);
@@ -873,6 +950,36 @@ mod tests {
             }
         }
         assert!(seen.iter().all(|&k| k == 1), "a particle in no colour or in two");
+        // XPBD's spring classes: each spring once, from its lower end; no two of a class share
+        // a particle; the bending springs' classes first, the structural and seams' last.
+        let mut sewn = vec![0; m.springs.len()];
+        let mut last_group = 0;
+        for c in 0..m.class_count() {
+            let mut ends: Vec<u32> =
+                m.class(c).iter().flat_map(|&[a, e]| [a, m.springs[e as usize].other]).collect();
+            let count = ends.len();
+            ends.sort_unstable();
+            ends.dedup();
+            assert_eq!(ends.len(), count, "class {c} has two springs at one particle");
+            for &[a, e] in m.class(c) {
+                let s = &m.springs[e as usize];
+                assert!(e >= m.spring_first[a as usize] && e < m.spring_first[a as usize + 1] && s.other > a);
+                sewn[e as usize] += 1;
+                let group = match s.kind {
+                    2 => 0,
+                    1 => 1,
+                    _ => 2,
+                };
+                assert!(group >= last_group, "class {c}: kinds out of order");
+                last_group = group;
+            }
+        }
+        for (i, list) in m.spring_first.windows(2).enumerate() {
+            for e in list[0]..list[1] {
+                let forward = m.springs[e as usize].other as usize > i;
+                assert_eq!(sewn[e as usize], forward as u32, "entry {e} of particle {i}");
+            }
+        }
     }
 
     /// Grids of 64 x 64 as quads and as triangles split along alternating diagonals take 5

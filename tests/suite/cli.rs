@@ -1043,8 +1043,8 @@ fn bad_mesh_files_are_refused_in_one_line() {
 }
 
 /// A mesh cloth's file that is missing or bad (a face of no area, a vertex that is not a
-/// number, a face naming a vertex twice), a pin past its vertices, a method it does not run
-/// with, or a self-collision thickness its rest shape does not leave room for stops a run with
+/// number, a face naming a vertex twice), a pin past its vertices, a `sew` that reaches along
+/// its own border, or a self-collision thickness its rest shape does not leave room for stops a run with
 /// exit code 2 and one line naming the object and what is wrong; a good one runs, and a
 /// non-manifold one runs and says where no bending spring crosses.
 #[test]
@@ -1074,7 +1074,13 @@ fn bad_mesh_cloths_are_refused_in_one_line() {
         "good.obj",
         "v -1 0 -1\nv 1 0 -1\nv 1 0 1\nv -1 0 1\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\nf 1/1 4/4 3/3 2/2\n",
     );
-    run("good.obj", "[sim]\nintegrator = \"xpbd\"\n", &["mesh_cloth[0]", "\"xpbd\"", "vbd"]);
+    let sewn =
+        std::fs::read_to_string(preset("good.obj", "")).unwrap() + "sew = 3.0\nseam_stiffness = 10.0\n";
+    let sewn = write(d, "sewn.toml", &sewn);
+    rejects(
+        &["simulate", "--preset", &sewn, "--frames", "1"],
+        &["mesh_cloth[0]", "sew = 3", "its own border"],
+    );
     let limited = std::fs::read_to_string(preset("good.obj", "")).unwrap() + "stretch_limit = -0.1\n";
     let limited = write(d, "limited.toml", &limited);
     rejects(&["simulate", "--preset", &limited, "--frames", "1"], &["mesh_cloth[0].stretch_limit = -0.1"]);

@@ -410,6 +410,10 @@ pub(crate) fn xpbd(s: &Substep<'_>, history: &mut [History]) -> State {
     let start = inertial(s, history);
     let (dt, x) = (start.h, &start.base[..]);
     let mut p = start.y.clone();
+    if let Some(mesh) = &o.mesh {
+        xpbd_mesh(m, o, mesh, (dt, x), &mut p);
+        return finish(s, &start, p, history);
+    }
     let mut lambda = vec![[0.0f64; 6]; n];
     let w = 1.0 / o.mass;
     let rest = super::rest_lengths(o);
@@ -453,6 +457,45 @@ pub(crate) fn xpbd(s: &Substep<'_>, history: &mut [History]) -> State {
         }
     }
     finish(s, &start, p, history)
+}
+
+/// `xpbd` on a mesh cloth (`o`'s `mesh`) from the iterate `p` (x the BDF2 base, dt its step):
+/// its spring classes in their order (`sim::cloth_mesh::spring_classes`), each spring the
+/// update of `xpbd` with both ends' masses (lumped by area) and its own stiffness, its
+/// multiplier kept at its entry in its lower end's list (as the GPU's MESH_LAMBDA).
+fn xpbd_mesh(
+    m: &SimModel,
+    o: &ObjectModel,
+    mesh: &crate::sim::cloth_mesh::ClothMesh,
+    (dt, x): (f64, &[DVec3]),
+    p: &mut [DVec3],
+) {
+    let mut lambda = vec![0.0f64; mesh.springs.len()];
+    let w = |i: usize| if o.pinned[i] { 0.0 } else { 1.0 / o.mass_of(i) };
+    for _ in 0..m.iterations {
+        for c in 0..mesh.class_count() {
+            for &[a, e] in mesh.class(c) {
+                let (a, e) = (a as usize, e as usize);
+                let s = &mesh.springs[e];
+                let (j, k) = (s.other as usize, o.stiffness_of(s.kind as usize));
+                let (w_a, w_j) = (w(a), w(j));
+                let delta = p[a] - p[j];
+                let d = delta.length();
+                if k == 0.0 || w_a + w_j == 0.0 || d <= 0.0 {
+                    continue;
+                }
+                let (alpha, gamma) = (1.0 / (k * dt * dt), o.damping / (k * dt));
+                let normal = delta / d;
+                let moved = normal.dot((p[a] - x[a]) - (p[j] - x[j]));
+                let cons = d - s.scaled_rest(o.rest_scale);
+                let dl = m.relaxation * (-cons - alpha * lambda[e] - gamma * moved)
+                    / ((1.0 + gamma) * (w_a + w_j) + alpha);
+                p[a] += normal * (w_a * dl);
+                p[j] -= normal * (w_j * dl);
+                lambda[e] += dl;
+            }
+        }
+    }
 }
 
 /// XPBD by Jacobi, from the BDF2 start (`inertial`; dt below is its step h, x its base x~):

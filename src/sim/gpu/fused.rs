@@ -276,11 +276,13 @@ impl FusedShape {
         };
         // Objects that touch each other meet every substep: they run per stage. So does a
         // mesh with a stretch limit and a particle of more limited springs than a count's four
-        // bits hold (STRETCH_PACKED; a grid's particle has eight), and a mesh with XPBD by
-        // Jacobi (its multipliers, one an entry of its lists, live in the solver's buffer).
+        // bits hold (STRETCH_PACKED; a grid's particle has eight), and a mesh with XPBD, by
+        // spring classes or by Jacobi (its multipliers, one an entry of its lists, live in the
+        // solver's buffer).
         let counted = o.stretch_limit.is_none()
             || o.mesh.as_ref().is_none_or(|m| m.most_limited_springs() <= STRETCH_COUNT_MOST);
-        let listed = o.mesh.is_none() || model.integrator != Integrator::XpbdJacobi;
+        let listed =
+            o.mesh.is_none() || !matches!(model.integrator, Integrator::XpbdJacobi | Integrator::Xpbd);
         let alone = !model.inter_object_contact();
         if n == 0 || n > most.min(FUSED_SLOTS) * MAX_THREADS || !alone || !counted || !listed {
             return None;

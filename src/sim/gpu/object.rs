@@ -10,7 +10,7 @@ use crate::sim::gpu_types::{
     Globals, ObjectParams, Particle, SurfaceVertex, OBJ_ANCHORED, OBJ_LINE_SEARCH, OBJ_RIGID_START,
     OBJ_SELF_COLLISION, OBJ_SELF_HASH, OBJ_SELF_TRIANGLES, OBJ_STRETCH_LIMIT,
 };
-use crate::sim::integrator::{vertex_colours, BDF2_STEP};
+use crate::sim::integrator::{vertex_colours, BDF2_STEP, SPRING_CLASSES};
 use crate::sim::model::{
     Integrator, ObjectKind, ObjectModel, ObjectShape, SelfCollisionMethod, SimModel, PIN_GROUPS,
 };
@@ -151,8 +151,11 @@ impl SolverBuffers {
         // (glsl/vbd_iterate.comp); a scene without them does not pay for it.
         let slices = solver.aux + (model.contact_rounds() > 1) as u64;
         let mut aux = slices * particles;
-        if let Some(mesh) = o.mesh.as_ref().filter(|_| model.integrator == Integrator::XpbdJacobi) {
-            // A mesh cloth's multipliers: a float an entry of its lists (MESH_LAMBDA).
+        if let Some(mesh) =
+            o.mesh.as_ref().filter(|_| matches!(model.integrator, Integrator::XpbdJacobi | Integrator::Xpbd))
+        {
+            // A mesh cloth's multipliers: a float an entry of its lists (MESH_LAMBDA; XPBD's
+            // a spring's at its lower end's entry).
             aux = aux.max((mesh.springs.len() as u64).div_ceil(4));
         }
         if solver.adaptive_start {
@@ -184,6 +187,10 @@ pub(super) struct GpuObject {
     /// Vertex colours and the workgroups of a pass over one colour (`vertex_colours`).
     pub colours: u32,
     pub colour_groups: [u32; 3],
+    /// XPBD's spring classes and the workgroups of a pass over one (a grid's
+    /// `SPRING_CLASSES` twice, over its particles; a mesh's own, over its largest class).
+    pub classes: u32,
+    pub class_groups: [u32; 3],
     /// A cloth made from a mesh (`sim::cloth_mesh`).
     pub mesh: bool,
     pub surface_groups: [u32; 3],
@@ -242,7 +249,9 @@ impl GpuObject {
         let parameters = object_params(o, model);
         // A mesh cloth's lists follow its parameters (glsl/include/mesh_springs.glsl): one
         // buffer, so that every stage that binds the parameters reads them.
-        let words = o.mesh.as_ref().map_or(Vec::new(), |m| m.pack(o.rest_scale));
+        // (XPBD's spring classes only where it sweeps them)
+        let classes = model.integrator == Integrator::Xpbd;
+        let words = o.mesh.as_ref().map_or(Vec::new(), |m| m.pack(o.rest_scale, classes));
         let [mut params, a, b, surface, mut guard, placeholder] = buffers(
             ctx,
             &o.name,
@@ -323,6 +332,14 @@ impl GpuObject {
                     [most.div_ceil(ROPE_GROUP), 1, 1]
                 }
                 None => colour_groups(&o.shape()),
+            },
+            classes: o.mesh.as_ref().map_or(2 * SPRING_CLASSES.len() as u32, |m| m.class_count() as u32),
+            class_groups: match &o.mesh {
+                Some(m) => {
+                    let most = (0..m.class_count()).map(|c| m.class(c).len() as u32).max().unwrap_or(1);
+                    [most.div_ceil(ROPE_GROUP), 1, 1]
+                }
+                None => step_groups(&o.shape()),
             },
             mesh: o.mesh.is_some(),
             surface_groups: surface_groups(&o.shape()),
@@ -470,7 +487,7 @@ fn object_bytes(o: &ObjectShape) -> u64 {
     2 * n * std::mem::size_of::<Particle>() as u64
         + o.surface_count() * std::mem::size_of::<SurfaceVertex>() as u64
         + std::mem::size_of::<ObjectParams>() as u64
-        + o.mesh.as_ref().map_or(0, |m| 4 * m.word_count())
+        + o.mesh.as_ref().map_or(0, |m| 4 * m.word_count(true))
         + 24 * n
         + 8 * hash_table_size(n)
         + 4
@@ -512,8 +529,8 @@ pub fn check_fits(info: &DeviceInfo, shapes: &[ObjectShape]) -> Result<(), UserE
         let surface = o.surface_count() * std::mem::size_of::<SurfaceVertex>() as u64;
         let contact = self_list_bytes(n).max(self_pairs_bytes(n, true));
         // (a mesh cloth's parameters carry its lists)
-        let params =
-            std::mem::size_of::<ObjectParams>() as u64 + o.mesh.as_ref().map_or(0, |m| 4 * m.word_count());
+        let params = std::mem::size_of::<ObjectParams>() as u64
+            + o.mesh.as_ref().map_or(0, |m| 4 * m.word_count(true));
         let largest = state.max(surface).max(solver_vec4s().0 * 16 * n).max(contact).max(params);
         if largest > info.max_storage_buffer_range {
             return Err(UserError(format!(

@@ -15,7 +15,7 @@ use super::batch::Pass;
 use super::object::GpuObject;
 use super::pipelines::Stage;
 use super::GpuSim;
-use crate::sim::integrator::{newton_steps, Scheme, Sweep, SPRING_CLASSES};
+use crate::sim::integrator::{newton_steps, Scheme, Sweep};
 use crate::vk::{Access, BufferBarrier, Recorder};
 
 impl GpuSim {
@@ -71,11 +71,10 @@ impl GpuSim {
             }
         }
         // Passes of one iteration of the methods that sweep (not the implicit method).
-        let classes = 2 * SPRING_CLASSES.len() as u32;
         let passes = match solver.sweep {
             Sweep::Jacobi | Sweep::NewtonCg => 1,
             Sweep::VertexColours => stepped.iter().map(|(_, o)| o.colours).max().unwrap_or(1),
-            Sweep::SpringClasses => classes,
+            Sweep::SpringClasses => stepped.iter().map(|(_, o)| o.classes).max().unwrap_or(1),
         };
         let rounds = self.model.contact_rounds();
         // One pass: each object's workgroups and pass word (SKIP: it takes no part).
@@ -146,6 +145,9 @@ impl GpuSim {
             move |_: usize, o: &GpuObject| match solver.sweep {
                 Sweep::VertexColours if pass >= o.colours => ([0; 3], SKIP),
                 Sweep::VertexColours => (o.colour_groups, pass),
+                Sweep::SpringClasses if pass == XPBD_FINISH => (o.step_groups, pass),
+                Sweep::SpringClasses if pass >= o.classes => ([0; 3], SKIP),
+                Sweep::SpringClasses => (o.class_groups, pass),
                 _ => (o.step_groups, pass),
             }
         };
@@ -163,7 +165,7 @@ impl GpuSim {
         }
         if solver.sweep == Sweep::SpringClasses {
             // Every particle finished once all classes of the last iteration are done.
-            iterate(rec, self.model.iterations - 1, &swept(classes));
+            iterate(rec, self.model.iterations - 1, &swept(XPBD_FINISH));
         }
     }
 }
@@ -213,6 +215,9 @@ const CG_SEARCHED: u32 = 128;
 const CONTACT_ROUNDS: u32 = 2;
 /// A pass word no pass has: the object takes no part in the pass.
 const SKIP: u32 = u32::MAX;
+/// XPBD's pass after its last iteration's classes, that finishes every particle
+/// (glsl/include/springs.glsl's XPBD_FINISH).
+const XPBD_FINISH: u32 = 0xFFFF;
 
 /// The pass word of a Newton step's pass `phase` in its CG iteration `c` of `count`: the phase,
 /// c's parity (bit 3), whether c is the first (bit 4) and the last (`LAST_CG`).
