@@ -175,7 +175,8 @@ pub fn rope_panel(ui: &Ui, r: &mut Rope) {
 pub fn mesh_cloth_panel(ui: &Ui, c: &mut MeshCloth) {
     ui.text(format!("mesh cloth '{}'", c.name));
     ui.text_disabled(&c.file);
-    let built = c.loaded.as_ref().and_then(|f| f.built(c).ok());
+    let build = c.loaded.as_ref().map(|f| f.built(c));
+    let built = build.as_ref().and_then(|b| b.as_ref().ok()).cloned();
     if let Some((positions, mesh)) = built.as_deref() {
         ui.text_disabled(format!("{} particles, {} triangles", positions.len(), mesh.triangles.len()));
     }
@@ -203,6 +204,17 @@ pub fn mesh_cloth_panel(ui: &Ui, c: &mut MeshCloth) {
         ui.text_disabled(format!("{} seams, {pairs} vertex pairs (edit them in the preset)", c.seams.len()));
     }
     drag(ui, "sew [m]", &mut c.sew, 0.0005, 0.0, 1.0);
+    if c.sew > 0.0 {
+        // (what the sewing found, or why it found nothing, as the editor last built it)
+        match (&build, built.as_deref()) {
+            (_, Some((_, mesh))) => {
+                let sewn = mesh.springs.iter().filter(|s| s.kind == crate::sim::cloth_mesh::SEAM).count() / 2;
+                ui.text_disabled(format!("{sewn} vertex pairs sewn in all"));
+            }
+            (Some(Err(e)), None) => ui.text_wrapped(e),
+            _ => {}
+        }
+    }
     if !c.seams.is_empty() || c.sew > 0.0 {
         drag(ui, "seam stiffness [N/m]", &mut c.seam_stiffness, 1.0, 0.0, 1e6);
     }
