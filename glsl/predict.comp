@@ -66,7 +66,8 @@ void main() {
     if (KEEP_PREDICTION) {
         aux[i] = vec4(dy, 0.0);
     } else if (is_mesh()) {
-        // (XPBD by Jacobi's multipliers of a mesh cloth: a float an entry of its lists)
+        // (XPBD's multipliers of a mesh cloth, by classes or by Jacobi: a float an entry of
+        // its lists)
         for (uint e = mesh_first(i); e < mesh_first(i + 1u); ++e) aux[e >> 2u][e & 3u] = 0.0;
     } else {
         for (uint q = 0u; q < 3u; ++q) aux[3u * i + q] = vec4(0.0);

@@ -71,7 +71,7 @@ void guard_strain(uvec2 cell) {
 // for bending). No two springs of a class share a particle. A pass per class, then a pass
 // (XPBD_FINISH, sim::gpu::step's) that finishes every particle.
 const uint SPRING_CLASS_COUNT = 12u;
-const uint XPBD_FINISH = 0xFFFFu;
+const uint XPBD_FINISH = 0xFFFFFFFEu;
 // The class XPBD sweeps in its pass-th pass of an iteration: from the last class to the first,
 // so the structural springs come last (sim::integrator::xpbd_class_order says why).
 uint xpbd_class(uint pass) { return SPRING_CLASS_COUNT - 1u - pass; }

@@ -80,6 +80,16 @@ fn non_negative(key: &str, v: f64, max: f64, unit: &str) -> Check {
     }
 }
 
+/// A distance that is 0 (off) or a length within LENGTH: a search reach, whose cells of that
+/// size must stay countable.
+fn off_or_length(key: &str, v: f64) -> Check {
+    non_negative(key, v, LENGTH.1, "m")?;
+    if v > 0.0 && v < LENGTH.0 {
+        return Err(format!("{key} = {}: must be 0 (off) or at least {:e} m", num(v), LENGTH.0));
+    }
+    Ok(())
+}
+
 /// The largest friction coefficient accepted (rubber on dry concrete is about 1).
 pub const MAX_FRICTION: f64 = 10.0;
 
@@ -535,7 +545,7 @@ fn check_mesh_cloth(at: &str, c: &super::MeshCloth, scene: &Scene) -> Check {
     vector(&format!("{at}.center"), c.center, MAX_COORDINATE, "m")?;
     vector(&format!("{at}.rotation"), c.rotation, 360.0, "degrees")?;
     positive(&format!("{at}.scale"), c.scale, (1e-6, 1e6), "m per file unit")?;
-    non_negative(&format!("{at}.weld"), c.weld, LENGTH.1, "m")?;
+    off_or_length(&format!("{at}.weld"), c.weld)?;
     positive(&format!("{at}.density"), c.density, (1e-6, 1e3), "kg/m^2")?;
     check_springs(at, (c.stiffness, c.rest_scale, "multiple of the mesh's length"), c.damping, c.drag)?;
     if let Some(l) = c.stretch_limit {
@@ -546,7 +556,7 @@ fn check_mesh_cloth(at: &str, c: &super::MeshCloth, scene: &Scene) -> Check {
     color(&format!("{at}.color"), c.color)?;
     color(&format!("{at}.back_color"), c.back_color)?;
     non_negative(&format!("{at}.seam_stiffness"), c.seam_stiffness, MAX_STIFFNESS, "N/m")?;
-    non_negative(&format!("{at}.sew"), c.sew, LENGTH.1, "m")?;
+    off_or_length(&format!("{at}.sew"), c.sew)?;
     if !c.seams.is_empty() && c.seam_stiffness == 0.0 {
         return Err(format!("{at}.seam: its seams need a seam_stiffness (N/m) to close"));
     }
@@ -555,7 +565,7 @@ fn check_mesh_cloth(at: &str, c: &super::MeshCloth, scene: &Scene) -> Check {
     }
     if let Some(m) = scene.sim.integrator.method().filter(|m| !crate::sim::cloth_mesh::METHODS.contains(m)) {
         return Err(format!(
-            "{at}: a mesh cloth runs with sim.integrator = {} for now, not \"{}\"",
+            "{at}: a mesh cloth runs with sim.integrator = {}, not \"{}\"",
             crate::sim::model::Integrator::named(crate::sim::cloth_mesh::METHODS),
             m.label()
         ));

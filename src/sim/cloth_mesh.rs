@@ -25,7 +25,8 @@ pub const MAX_VERTICES: usize = 1 << 22;
 /// Faces a mesh cloth may have.
 pub const MAX_FACES: usize = 1 << 23;
 
-/// The integrators a mesh cloth runs with: every one.
+/// The integrators a mesh cloth runs with: every one (the place a method added later says
+/// whether it does; scene validation and the advice read it).
 pub const METHODS: [crate::sim::model::Integrator; 6] = {
     use crate::sim::model::Integrator::*;
     [SymplecticEuler, Verlet, Xpbd, Implicit, Vbd, XpbdJacobi]
@@ -527,7 +528,8 @@ pub fn weld(vertices: &[DVec3], faces: &[Vec<u32>], tolerance: f64) -> (Vec<DVec
 }
 
 /// The seams a mesh cloth's `sew` finds (`within` > 0): each border vertex (on an edge of one
-/// face) sewn to the nearest border vertex within `within` that shares no face with it, as
+/// face) sewn to the nearest border vertex within `within` that is not on its faces nor on
+/// theirs' (two faces away), as
 /// Marvelous Designer's panels laid round a body are sewn where their edges meet. Given as
 /// runs of two pairs where a border edge is sewn to a border edge (what `ClothMesh::new`
 /// bends across), then the other pairs alone. The error says where `within` reaches a
@@ -555,11 +557,20 @@ pub fn found_seams(rest: &[DVec3], faces: &[Vec<u32>], within: f64) -> Result<Ve
     }
     let mut on_border = vec![false; rest.len()];
     border.iter().for_each(|&(a, b)| (on_border[a as usize], on_border[b as usize]) = (true, true));
+    // Each border vertex's near vertices: those of its faces and of their faces (two faces
+    // away: at a sharp corner of its border the vertex two edges along can come within reach
+    // of it, and sewing them would pucker the corner).
+    let mut vertex_faces: Vec<Vec<u32>> = vec![Vec::new(); rest.len()];
+    for (f, face) in faces.iter().enumerate() {
+        face.iter().for_each(|&v| vertex_faces[v as usize].push(f as u32));
+    }
+    let ring = |v: u32| vertex_faces[v as usize].iter().flat_map(|&f| faces[f as usize].iter().copied());
     let mut face_mates: HashMap<u32, Vec<u32>> = HashMap::new();
-    for face in faces {
-        for &a in face.iter().filter(|&&a| on_border[a as usize]) {
-            face_mates.entry(a).or_default().extend(face.iter().copied());
-        }
+    for a in (0..rest.len() as u32).filter(|&a| on_border[a as usize]) {
+        let mut near: Vec<u32> = ring(a).flat_map(ring).collect();
+        near.sort_unstable();
+        near.dedup();
+        face_mates.insert(a, near);
     }
     let cell = |p: DVec3| (p / within).floor().as_i64vec3().to_array();
     let mut grid: HashMap<[i64; 3], Vec<u32>> = HashMap::new();
@@ -574,7 +585,7 @@ pub fn found_seams(rest: &[DVec3], faces: &[Vec<u32>], within: f64) -> Result<Ve
             (0..27)
                 .flat_map(|n| grid.get(&[c[0] + n % 3 - 1, c[1] + n / 3 % 3 - 1, c[2] + n / 9 - 1]))
                 .flatten()
-                .filter(|&&b| !mates.contains(&b) && rest[b as usize].distance(p) <= within)
+                .filter(|&&b| mates.binary_search(&b).is_err() && rest[b as usize].distance(p) <= within)
                 .min_by(|&&b, &&d| {
                     rest[b as usize].distance(p).total_cmp(&rest[d as usize].distance(p)).then(b.cmp(&d))
                 })

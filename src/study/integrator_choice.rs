@@ -155,7 +155,7 @@ pub fn calibrate(
     };
     let reference: Samples = vec![fine];
     let mut curves: Vec<(Integrator, u32)> = Vec::new();
-    // (a mesh cloth runs with some methods only)
+    // (a mesh cloth runs with the methods sim::cloth_mesh::METHODS names)
     let meshes = model.objects.iter().any(|o| o.mesh.is_some());
     for m in Integrator::ALL.into_iter().filter(|m| !meshes || crate::sim::cloth_mesh::METHODS.contains(m)) {
         if m.iterative() {

@@ -204,6 +204,10 @@ pub fn mesh_cloth_panel(ui: &Ui, c: &mut MeshCloth) {
         ui.text_disabled(format!("{} seams, {pairs} vertex pairs (edit them in the preset)", c.seams.len()));
     }
     drag(ui, "sew [m]", &mut c.sew, 0.0005, 0.0, 1.0);
+    if c.sew > 0.0 && c.seam_stiffness == 0.0 {
+        // (found seams need a stiffness to close: the skirt preset's, until the user sets one)
+        c.seam_stiffness = 100.0;
+    }
     if c.sew > 0.0 {
         // (what the sewing found, or why it found nothing, as the editor last built it)
         match (&build, built.as_deref()) {

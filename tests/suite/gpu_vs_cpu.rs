@@ -56,8 +56,11 @@ fn check_feature(name: &str, model: &SimModel) {
 /// A feature's comparison with the reference on one GPU path: per stage (the path of large
 /// objects and of objects in contact) in the default tier, fused in the exhaustive tier
 /// (`each_feature_on_the_fused_path`). The default tier's `fused_substeps_equal_the_per_stage_path`
-/// shows the two paths equal on these features together; the iterative methods and
-/// self-collision compare both paths with the reference in the default tier (`check_mode`).
+/// shows the two paths' positions equal on most of them together (springs with dashpots, drag,
+/// the wind, pins, the stretch limit, a sphere with friction, a rope; not the rest scale, the
+/// ground, box and capsule or moving colliders, whose code both paths share, colliders.glsl);
+/// the iterative methods and self-collision compare both paths with the reference in the
+/// default tier (`check_mode`).
 fn check_feature_mode(name: &str, model: &SimModel, mode: Mode) {
     check_paths(name, model, mode, &[(FUSED.get(), None)]);
 }

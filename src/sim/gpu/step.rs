@@ -216,8 +216,8 @@ const CONTACT_ROUNDS: u32 = 2;
 /// A pass word no pass has: the object takes no part in the pass.
 const SKIP: u32 = u32::MAX;
 /// XPBD's pass after its last iteration's classes, that finishes every particle
-/// (glsl/include/springs.glsl's XPBD_FINISH).
-const XPBD_FINISH: u32 = 0xFFFF;
+/// (glsl/include/springs.glsl's XPBD_FINISH): past any class a mesh's colouring can make.
+const XPBD_FINISH: u32 = u32::MAX - 1;
 
 /// The pass word of a Newton step's pass `phase` in its CG iteration `c` of `count`: the phase,
 /// c's parity (bit 3), whether c is the first (bit 4) and the last (`LAST_CG`).

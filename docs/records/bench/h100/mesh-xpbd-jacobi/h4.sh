@@ -1,5 +1,5 @@
 set -u
-# Issue 71 on the H200: XPBD by Jacobi and the implicit method on a mesh cloth against a grid of
+# Issue 71 (run on an H100 here; written for the H200): XPBD by Jacobi and the implicit method on a mesh cloth against a grid of
 # its vertex count; x = 229dfe6's tree, y = 8fc3e52's (83cdb39's XPBD by Jacobi's two passes and
 # hessian_product over a mesh read in batches), interleaved.
 nvidia-smi --query-gpu=name --format=csv,noheader
