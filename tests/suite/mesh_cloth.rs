@@ -279,6 +279,19 @@ fn disc(integrator: &str, iterations: u32) -> SimModel {
     msdsim::scene::to_model(&msdsim::scene::load(&dir.path().join("disc.toml"), &[]).unwrap())
 }
 
+/// The largest momentum of `model`'s first object over `frames` frames on the reference, and
+/// the reference after them.
+fn momentum_on_the_reference(model: &SimModel, frames: usize) -> (f64, CpuSim) {
+    let mut cpu = CpuSim::new(model);
+    let mut most: f64 = 0.0;
+    for _ in 0..frames {
+        cpu.step_frame();
+        most = most.max(momentum(&model.objects[0], &cpu.objects()[0].v).length());
+    }
+    println!("the reference's momentum at most {most:.2e} kg m/s");
+    (most, cpu)
+}
+
 /// The implicit method on the stretched disc: a converged Newton step keeps the momentum (the
 /// springs' forces cancel in pairs and their Hessian's blocks act on differences, so
 /// sum m_i dp_i = sum m_i (y_i - p_i)), and its linear solves converge in a few
@@ -289,13 +302,7 @@ fn disc(integrator: &str, iterations: u32) -> SimModel {
 fn the_implicit_method_moves_an_irregular_mesh_as_vbd_does() {
     let model = stretched_disc("implicit", 12);
     let o = &model.objects[0];
-    let mut cpu = CpuSim::new(&model);
-    let mut most: f64 = 0.0;
-    for _ in 0..30 {
-        cpu.step_frame();
-        most = most.max(momentum(o, &cpu.objects()[0].v).length());
-    }
-    println!("the reference's momentum at most {most:.2e} kg m/s");
+    let (most, cpu) = momentum_on_the_reference(&model, 30);
     let mut vbd = CpuSim::new(&stretched_disc("vbd", 40));
     for _ in 0..30 {
         vbd.step_frame();
@@ -449,13 +456,7 @@ fn xpbd_by_jacobi_keeps_an_irregular_meshs_momentum() {
 fn xpbd_by_spring_classes_keeps_a_meshs_momentum_and_rests_in_balance() {
     let model = stretched_disc("xpbd", 8);
     let o = &model.objects[0];
-    let mut cpu = CpuSim::new(&model);
-    let mut most: f64 = 0.0;
-    for _ in 0..30 {
-        cpu.step_frame();
-        most = most.max(momentum(o, &cpu.objects()[0].v).length());
-    }
-    println!("the reference's momentum at most {most:.2e} kg m/s");
+    let (most, cpu) = momentum_on_the_reference(&model, 30);
     assert!(most < 1e-12, "the reference's momentum reached {most:.2e} kg m/s");
     let moved = furthest(&cpu.objects()[0].x, &o.positions);
     assert!(moved > 0.01, "the disc barely moved: {moved} m");
