@@ -127,11 +127,6 @@ pub struct ClothMesh {
     /// one more at the end.
     pub colour_order: Vec<u32>,
     pub colour_first: Vec<u32>,
-    /// XPBD's spring classes, in the order it sweeps them (`spring_classes`): each spring as
-    /// its lower end and its entry in that end's list, and each class's first there, one more
-    /// at the end.
-    pub class_springs: Vec<[u32; 2]>,
-    pub class_first: Vec<u32>,
     /// Per particle, its first entry in `ring` (its triangles); one more at the end.
     pub ring_first: Vec<u32>,
     pub ring: Vec<u32>,
@@ -151,6 +146,10 @@ pub struct ClothMesh {
     pub unbent_edges: usize,
     /// `rest_clearance`'s nearest pair, once found.
     nearest_at_rest: Kept<Option<(f64, usize, usize)>>,
+    /// XPBD's spring classes, in the order it sweeps them (`spring_classes`), made when first
+    /// asked for (only XPBD by spring classes sweeps them): each spring as its lower end and
+    /// its entry in that end's list, and each class's first there, one more at the end.
+    classes: Kept<(Vec<[u32; 2]>, Vec<u32>)>,
 }
 
 /// A value computed once from what holds it: no part of what it is equal to.
@@ -196,14 +195,12 @@ impl ClothMesh {
             }
         };
         // Structural first, then shear, then bending: a pair keeps its first kind.
-        let mut edge_faces: HashMap<(u32, u32), Vec<usize>> = HashMap::new();
-        for (f, face) in faces.iter().enumerate() {
+        for face in faces {
             for (k, &a) in face.iter().enumerate() {
-                let b = face[(k + 1) % face.len()];
-                join(a, b, 0, None);
-                edge_faces.entry((a.min(b), a.max(b))).or_default().push(f);
+                join(a, face[(k + 1) % face.len()], 0, None);
             }
         }
+        let edge_faces = edge_faces(faces);
         for face in faces.iter().filter(|f| f.len() == 4) {
             join(face[0], face[2], 1, None);
             join(face[1], face[3], 1, None);
@@ -301,7 +298,6 @@ impl ClothMesh {
         });
         let longest = springs.iter().filter(|s| s.kind < 2).map(|s| s.rest).chain(fan).fold(0.0, f64::max);
         let (colour_order, colour_first) = colouring(&spring_first, &springs);
-        let (class_springs, class_first) = spring_classes(&spring_first, &springs);
         let mut rings: Vec<Vec<u32>> = vec![Vec::new(); n];
         for (t, tri) in triangles.iter().enumerate() {
             tri.iter().for_each(|&k| rings[k as usize].push(t as u32));
@@ -321,14 +317,13 @@ impl ClothMesh {
             springs,
             colour_order,
             colour_first,
-            class_springs,
-            class_first,
             area,
             mass_share,
             mean_edge,
             longest,
             unbent_edges,
             nearest_at_rest: Kept::default(),
+            classes: Kept::default(),
         })
     }
 
@@ -427,14 +422,20 @@ impl ClothMesh {
         ring.iter().map(|&t| self.triangles[t as usize])
     }
 
+    /// XPBD's spring classes: the springs class by class and the classes' firsts.
+    fn classes(&self) -> &(Vec<[u32; 2]>, Vec<u32>) {
+        self.classes.0.get_or_init(|| spring_classes(&self.spring_first, &self.springs))
+    }
+
     /// XPBD's spring classes: how many.
     pub fn class_count(&self) -> usize {
-        self.class_first.len() - 1
+        self.classes().1.len() - 1
     }
 
     /// Class c's springs, each its lower end and its entry in that end's list.
     pub fn class(&self, c: usize) -> &[[u32; 2]] {
-        &self.class_springs[self.class_first[c] as usize..self.class_first[c + 1] as usize]
+        let (springs, first) = self.classes();
+        &springs[first[c] as usize..first[c + 1] as usize]
     }
 
     /// The particles of colour c.
@@ -448,7 +449,7 @@ impl ClothMesh {
         let lists =
             2 * self.springs.len() + self.colour_first.len() + 3 * self.triangles.len() + self.ring.len();
         let classes = match classes {
-            true => self.class_first.len() + 2 * self.class_springs.len(),
+            true => self.classes().1.len() + 2 * self.classes().0.len(),
             false => 0,
         };
         // (header, spring firsts, colour count, colour order, ring firsts, mass shares, class
@@ -487,9 +488,10 @@ impl ClothMesh {
         w[5] = w.len() as u32;
         match classes {
             true => {
+                let (springs, first) = self.classes();
                 w.push(self.class_count() as u32);
-                w.extend(&self.class_first);
-                w.extend(self.class_springs.iter().flatten());
+                w.extend(first);
+                w.extend(springs.iter().flatten());
             }
             false => w.push(0),
         }
@@ -497,11 +499,34 @@ impl ClothMesh {
     }
 }
 
+/// Each edge of `faces` (its ends, lower first) and the faces it borders.
+fn edge_faces(faces: &[Vec<u32>]) -> HashMap<(u32, u32), Vec<usize>> {
+    let mut edge_faces: HashMap<(u32, u32), Vec<usize>> = HashMap::new();
+    for (f, face) in faces.iter().enumerate() {
+        for (k, &a) in face.iter().enumerate() {
+            let b = face[(k + 1) % face.len()];
+            edge_faces.entry((a.min(b), a.max(b))).or_default().push(f);
+        }
+    }
+    edge_faces
+}
+
+/// The cell of `p` in a spatial grid of cells `size` wide.
+fn cell_of(p: DVec3, size: f64) -> [i64; 3] {
+    (p / size).floor().as_i64vec3().to_array()
+}
+
+/// Cell `c` and the 26 around it: where a search within one cell's width of a point in `c`
+/// looks.
+fn cells_around(c: [i64; 3]) -> impl Iterator<Item = [i64; 3]> {
+    (0..27).map(move |n| [c[0] + n % 3 - 1, c[1] + n / 3 % 3 - 1, c[2] + n / 9 - 1])
+}
+
 /// The vertices of `faces` with those within `tolerance` of an earlier one merged into it
 /// (0: those at the very same place), renumbered in order of their first appearance.
 pub fn weld(vertices: &[DVec3], faces: &[Vec<u32>], tolerance: f64) -> (Vec<DVec3>, Vec<Vec<u32>>) {
     let cell = |p: DVec3| match tolerance > 0.0 {
-        true => (p / tolerance).floor().as_i64vec3().to_array(),
+        true => cell_of(p, tolerance),
         false => p.to_array().map(|c| (c + 0.0).to_bits() as i64),
     };
     let mut grid: HashMap<[i64; 3], Vec<u32>> = HashMap::new();
@@ -513,7 +538,7 @@ pub fn weld(vertices: &[DVec3], faces: &[Vec<u32>], tolerance: f64) -> (Vec<DVec
             grid.get(&c).into_iter().flatten().copied().find(|&k| kept[k as usize].distance(p) <= tolerance)
         };
         let found = match tolerance > 0.0 {
-            true => (0..27).find_map(|n| near([c[0] + n % 3 - 1, c[1] + n / 3 % 3 - 1, c[2] + n / 9 - 1])),
+            true => cells_around(c).find_map(near),
             false => near(c),
         };
         to.push(found.unwrap_or_else(|| {
@@ -536,14 +561,9 @@ pub fn weld(vertices: &[DVec3], faces: &[Vec<u32>], tolerance: f64) -> (Vec<DVec
 /// vertex's own border (a border edge no longer than it: it would sew a border to itself), or
 /// that it sews nothing.
 pub fn found_seams(rest: &[DVec3], faces: &[Vec<u32>], within: f64) -> Result<Vec<Vec<[u32; 2]>>, String> {
-    let mut edge_count: HashMap<(u32, u32), u32> = HashMap::new();
-    for face in faces {
-        for (k, &a) in face.iter().enumerate() {
-            let b = face[(k + 1) % face.len()];
-            *edge_count.entry((a.min(b), a.max(b))).or_default() += 1;
-        }
-    }
-    let mut border: Vec<(u32, u32)> = edge_count.iter().filter(|(_, &n)| n == 1).map(|(&e, _)| e).collect();
+    let edge_faces = edge_faces(faces);
+    let on_one = |e: &(u32, u32)| edge_faces.get(e).is_some_and(|f| f.len() == 1);
+    let mut border: Vec<(u32, u32)> = edge_faces.keys().copied().filter(on_one).collect();
     border.sort_unstable();
     let length = |(a, b): (u32, u32)| rest[a as usize].distance(rest[b as usize]);
     if let Some(&e) = border.iter().find(|&&e| length(e) <= within) {
@@ -572,18 +592,16 @@ pub fn found_seams(rest: &[DVec3], faces: &[Vec<u32>], within: f64) -> Result<Ve
         near.dedup();
         face_mates.insert(a, near);
     }
-    let cell = |p: DVec3| (p / within).floor().as_i64vec3().to_array();
     let mut grid: HashMap<[i64; 3], Vec<u32>> = HashMap::new();
     for (i, _) in on_border.iter().enumerate().filter(|(_, &b)| b) {
-        grid.entry(cell(rest[i])).or_default().push(i as u32);
+        grid.entry(cell_of(rest[i], within)).or_default().push(i as u32);
     }
     let partner: Vec<Option<u32>> = (0..rest.len() as u32)
         .map(|a| {
             let p = rest[a as usize];
-            let c = cell(p);
             let mates = face_mates.get(&a)?;
-            (0..27)
-                .flat_map(|n| grid.get(&[c[0] + n % 3 - 1, c[1] + n / 3 % 3 - 1, c[2] + n / 9 - 1]))
+            cells_around(cell_of(p, within))
+                .flat_map(|c| grid.get(&c))
                 .flatten()
                 .filter(|&&b| mates.binary_search(&b).is_err() && rest[b as usize].distance(p) <= within)
                 .min_by(|&&b, &&d| {
@@ -599,7 +617,7 @@ pub fn found_seams(rest: &[DVec3], faces: &[Vec<u32>], within: f64) -> Result<Ve
         let (Some(b0), Some(b1)) = (partner[a0 as usize], partner[a1 as usize]) else { continue };
         // (found from both sides: one run of the two)
         let (p, q) = (key(a0, b0), key(a1, b1));
-        if b0 != b1 && edge_count.get(&key(b0, b1)) == Some(&1) && sewn.insert((p.min(q), p.max(q))) {
+        if b0 != b1 && on_one(&key(b0, b1)) && sewn.insert((p.min(q), p.max(q))) {
             seams.push(vec![[a0, b0], [a1, b1]]);
         }
     }

@@ -439,24 +439,48 @@ pub(crate) fn xpbd(s: &Substep<'_>, history: &mut [History]) -> State {
                     }
                     let (i, j) = ((c + r * cols) as usize, (nc + nr * cols) as usize);
                     let (w_i, w_j) = (if o.pinned[i] { 0.0 } else { w }, if o.pinned[j] { 0.0 } else { w });
-                    let delta = p[i] - p[j];
-                    let d = delta.length();
-                    if w_i + w_j == 0.0 || d <= 0.0 {
-                        continue;
-                    }
-                    let normal = delta / d;
-                    let moved = normal.dot((p[i] - x[i]) - (p[j] - x[j]));
-                    let cons = d - rest[slot / 4][slot % 4];
-                    let dl = m.relaxation * (-cons - alpha * lambda[i][dir] - gamma * moved)
-                        / ((1.0 + gamma) * (w_i + w_j) + alpha);
-                    p[i] += normal * (w_i * dl);
-                    p[j] -= normal * (w_j * dl);
-                    lambda[i][dir] += dl;
+                    let spring = XpbdSpring { rest: rest[slot / 4][slot % 4], alpha, gamma };
+                    spring.update(m.relaxation, (&mut p, x), (i, j), (w_i, w_j), &mut lambda[i][dir]);
                 }
             }
         }
     }
     finish(s, &start, p, history)
+}
+
+/// One spring of `xpbd`: its rest length, alpha~ = 1 / (k dt^2) and gamma = b / (k dt).
+struct XpbdSpring {
+    rest: f64,
+    alpha: f64,
+    gamma: f64,
+}
+
+impl XpbdSpring {
+    /// The spring from particle i to j of the iterate `p` (x the base) takes XPBD's update with
+    /// inverse masses w_i, w_j and multiplier `lambda` (none where both ends are pinned or they
+    /// coincide).
+    fn update(
+        &self,
+        relaxation: f64,
+        (p, x): (&mut [DVec3], &[DVec3]),
+        (i, j): (usize, usize),
+        (w_i, w_j): (f64, f64),
+        lambda: &mut f64,
+    ) {
+        let delta = p[i] - p[j];
+        let d = delta.length();
+        if w_i + w_j == 0.0 || d <= 0.0 {
+            return;
+        }
+        let normal = delta / d;
+        let moved = normal.dot((p[i] - x[i]) - (p[j] - x[j]));
+        let cons = d - self.rest;
+        let dl = relaxation * (-cons - self.alpha * *lambda - self.gamma * moved)
+            / ((1.0 + self.gamma) * (w_i + w_j) + self.alpha);
+        p[i] += normal * (w_i * dl);
+        p[j] -= normal * (w_j * dl);
+        *lambda += dl;
+    }
 }
 
 /// `xpbd` on a mesh cloth (`o`'s `mesh`) from the iterate `p` (x the BDF2 base, dt its step):
@@ -478,21 +502,12 @@ fn xpbd_mesh(
                 let (a, e) = (a as usize, e as usize);
                 let s = &mesh.springs[e];
                 let (j, k) = (s.other as usize, o.stiffness_of(s.kind as usize));
-                let (w_a, w_j) = (w(a), w(j));
-                let delta = p[a] - p[j];
-                let d = delta.length();
-                if k == 0.0 || w_a + w_j == 0.0 || d <= 0.0 {
+                if k == 0.0 {
                     continue;
                 }
                 let (alpha, gamma) = (1.0 / (k * dt * dt), o.damping / (k * dt));
-                let normal = delta / d;
-                let moved = normal.dot((p[a] - x[a]) - (p[j] - x[j]));
-                let cons = d - s.scaled_rest(o.rest_scale);
-                let dl = m.relaxation * (-cons - alpha * lambda[e] - gamma * moved)
-                    / ((1.0 + gamma) * (w_a + w_j) + alpha);
-                p[a] += normal * (w_a * dl);
-                p[j] -= normal * (w_j * dl);
-                lambda[e] += dl;
+                let spring = XpbdSpring { rest: s.scaled_rest(o.rest_scale), alpha, gamma };
+                spring.update(m.relaxation, (p, x), (a, j), (w(a), w(j)), &mut lambda[e]);
             }
         }
     }

@@ -250,8 +250,8 @@ impl GpuObject {
         // A mesh cloth's lists follow its parameters (glsl/include/mesh_springs.glsl): one
         // buffer, so that every stage that binds the parameters reads them.
         // (XPBD's spring classes only where it sweeps them)
-        let classes = model.integrator == Integrator::Xpbd;
-        let words = o.mesh.as_ref().map_or(Vec::new(), |m| m.pack(o.rest_scale, classes));
+        let swept = model.integrator == Integrator::Xpbd;
+        let words = o.mesh.as_ref().map_or(Vec::new(), |m| m.pack(o.rest_scale, swept));
         let [mut params, a, b, surface, mut guard, placeholder] = buffers(
             ctx,
             &o.name,
@@ -327,18 +327,18 @@ impl GpuObject {
             step_groups: step_groups(&o.shape()),
             colours: o.mesh.as_ref().map_or(vertex_colours(o.dims), |m| m.colour_count() as u32),
             colour_groups: match &o.mesh {
-                Some(m) => {
-                    let most = (0..m.colour_count()).map(|c| m.colour(c).len() as u32).max().unwrap_or(1);
-                    [most.div_ceil(ROPE_GROUP), 1, 1]
-                }
+                Some(m) => largest_groups((0..m.colour_count()).map(|c| m.colour(c).len())),
                 None => colour_groups(&o.shape()),
             },
-            classes: o.mesh.as_ref().map_or(2 * SPRING_CLASSES.len() as u32, |m| m.class_count() as u32),
+            // (a mesh's classes made only where XPBD sweeps them; else no pass takes them)
+            classes: match &o.mesh {
+                Some(m) if swept => m.class_count() as u32,
+                Some(_) => 0,
+                None => 2 * SPRING_CLASSES.len() as u32,
+            },
             class_groups: match &o.mesh {
-                Some(m) => {
-                    let most = (0..m.class_count()).map(|c| m.class(c).len() as u32).max().unwrap_or(1);
-                    [most.div_ceil(ROPE_GROUP), 1, 1]
-                }
+                Some(m) if swept => largest_groups((0..m.class_count()).map(|c| m.class(c).len())),
+                Some(_) => [0; 3],
                 None => step_groups(&o.shape()),
             },
             mesh: o.mesh.is_some(),
@@ -560,6 +560,12 @@ fn step_groups(o: &ObjectShape) -> [u32; 3] {
         ObjectKind::Cloth => [o.dims[0].div_ceil(CLOTH_GROUP[0]), o.dims[1].div_ceil(CLOTH_GROUP[1]), 1],
         ObjectKind::Rope => [o.dims[0].div_ceil(ROPE_GROUP), 1, 1],
     }
+}
+
+/// The workgroups of a pass over the largest of a mesh's parts (a colour, a spring class),
+/// an invocation an item.
+fn largest_groups(sizes: impl Iterator<Item = usize>) -> [u32; 3] {
+    [(sizes.max().unwrap_or(1) as u32).div_ceil(ROPE_GROUP), 1, 1]
 }
 
 /// Workgroups of a pass over one vertex colour: each row's cells of that colour, at most
